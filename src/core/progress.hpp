@@ -1,0 +1,29 @@
+#pragma once
+// Progress of a long stage: a redrawn bar when stderr is a terminal, otherwise a few plain
+// log lines (every 10 %), so CI and nightly logs stay readable.
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+namespace tw {
+
+class Progress {
+ public:
+  Progress(std::string label, std::int64_t total);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void advance(std::int64_t steps = 1);
+
+ private:
+  void report(std::int64_t done);
+
+  std::string label_;
+  std::int64_t total_;
+  std::atomic<std::int64_t> done_{0};
+  std::atomic<int> last_decile_{-1};
+  bool terminal_;
+};
+
+}  // namespace tw

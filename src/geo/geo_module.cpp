@@ -1,0 +1,1 @@
+// Module geo: see its headers.

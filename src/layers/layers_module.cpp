@@ -1,0 +1,1 @@
+// Module layers: see its headers.

@@ -1,0 +1,1 @@
+// Module raster: see its headers.

@@ -1,0 +1,1 @@
+// Module synth: see its headers.

@@ -1,0 +1,1 @@
+// Module terrain: see its headers.

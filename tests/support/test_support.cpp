@@ -1,0 +1,54 @@
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+namespace tw::test {
+
+namespace fs = std::filesystem;
+
+fs::path source_dir() {
+  const char* dir = std::getenv("TERRAWEAVE_SOURCE_DIR");
+  if (dir == nullptr) ADD_FAILURE() << "TERRAWEAVE_SOURCE_DIR is not set (run the tests with ctest)";
+  return dir ? fs::path(dir) : fs::current_path();
+}
+
+fs::path terraweave_binary() {
+  const char* bin = std::getenv("TERRAWEAVE_BINARY");
+  if (bin == nullptr) ADD_FAILURE() << "TERRAWEAVE_BINARY is not set (run the tests with ctest)";
+  return bin ? fs::path(bin) : fs::path("terraweave");
+}
+
+TempDir::TempDir() {
+  std::random_device rd;
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "tw";
+  path_ = fs::temp_directory_path() / ("terraweave-" + name + "-" + std::to_string(rd()));
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+}
+
+CommandResult run_command(const std::string& command_line) {
+  CommandResult result;
+  FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) {
+    result.exit_code = -1;
+    return result;
+  }
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), int(buffer.size()), pipe) != nullptr) result.output += buffer.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace tw::test

@@ -1,0 +1,34 @@
+#pragma once
+// Helpers shared by every test executable.
+#include <filesystem>
+#include <string>
+
+namespace tw::test {
+
+// The repository root (from TERRAWEAVE_SOURCE_DIR, set by ctest).
+std::filesystem::path source_dir();
+// The built terraweave executable (from TERRAWEAVE_BINARY, set by ctest).
+std::filesystem::path terraweave_binary();
+
+// A fresh folder removed at the end of the test.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct CommandResult {
+  int exit_code = 0;
+  std::string output;  // stdout and stderr together
+};
+// Runs a shell command line and captures what it prints.
+CommandResult run_command(const std::string& command_line);
+
+}  // namespace tw::test
