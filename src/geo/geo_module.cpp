@@ -1,1 +1,0 @@
-// Module geo: see its headers.

@@ -1,0 +1,46 @@
+#pragma once
+// The heightfield every stage works on: a north-up grid in a metric CRS, heights in metres,
+// NaN for nodata. Read from any raster GDAL opens (warped into a local metric frame when the
+// source is geographic, not in metres, or rotated) or generated from a seed.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/grid.hpp"
+
+namespace tw {
+
+struct Heightfield {
+  GridSpec grid;                       // north-up, metric (metres), square-ish pixels
+  std::string crs_wkt;                 // WKT of the grid's (metric) CRS
+  Raster<float> height;                // metres; NaN marks nodata (never a height)
+  std::optional<double> nodata_value;  // the source's nodata value, for writing outputs
+  std::string source;                  // path or "generated:seed=N" for messages and reports
+};
+
+struct HeightfieldOptions {
+  // Output pixel size in metres; default: the source's, in metres (at the centre of the DEM
+  // when the source is geographic).
+  std::optional<double> resolution;
+};
+
+// Reads band 1 of a GDAL raster. Throws tw::Error naming the path when the file cannot be
+// read, has no CRS, or holds nothing but nodata.
+Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options = {});
+
+struct GeneratedTerrain {
+  int width = 512;
+  int height = 512;
+  double pixel_size = 10.0;  // metres
+  std::uint64_t seed = 1;
+  double relief = 150.0;  // metres between the lowest and highest possible height
+  std::string crs = "EPSG:32631";
+  double origin_x = 500000;   // world x of the left edge
+  double origin_y = 5000000;  // world y of the top edge
+};
+
+// Seeded fractal terrain (gradient noise, fBm octaves) from an integer hash: the same
+// parameters give the same bytes on every platform.
+Heightfield generate_heightfield(const GeneratedTerrain& params);
+
+}  // namespace tw
