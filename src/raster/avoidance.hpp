@@ -1,0 +1,35 @@
+#pragma once
+// The avoidance map (Zhou et al. 2013, Section 3.1): canvas pixels where no opaque exemplar pixel
+// may land, plus the distance to them.
+#include <cstdint>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "raster/polygon.hpp"
+#include "ribbon/ribbon.hpp"
+
+namespace tw {
+
+struct AvoidanceMap {
+  GridSpec grid;
+  Window window;
+  Raster<std::uint8_t> forbidden;  // window-sized, 1 = forbidden, 0 = free
+  Raster<float> distance;          // metres to the nearest forbidden pixel centre (0 on them)
+};
+
+struct AvoidanceInputs {
+  std::vector<Polygon> polygons;         // existing areas (lakes, buildings...)
+  std::vector<std::vector<Vec2>> lines;  // existing linear features
+  std::vector<double> line_widths;       // full widths in metres, one per line
+  std::vector<const Ribbon*> ribbons;    // already synthesized features: whole footprint
+  bool include_foldovers = true;         // add fold-overs of `ribbons` and `current`
+  const Ribbon* current = nullptr;       // the ribbon about to be synthesized: fold-overs only
+  std::vector<Polygon> junction_discs;   // e.g. from junction_discs() (docs/junctions.md)
+};
+
+// Union of everything in `inputs` on the window (pixel-centre rule), and its exact Euclidean
+// distance field. Throws tw::Error (naming the line) on mismatched widths.
+AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
+                                 const Window& window);
+
+}  // namespace tw

@@ -1,0 +1,37 @@
+#pragma once
+// Where curves meet: shared endpoints, T-junctions and crossings. See docs/junctions.md for what
+// the rest of the pipeline does with them.
+#include <cstddef>
+#include <vector>
+
+#include "ribbon/curve.hpp"
+
+namespace tw {
+
+struct JunctionMember {
+  std::size_t curve = 0;     // index into the input curves
+  double arc_length = 0.0;   // where on that curve, metres from its first point
+  bool at_endpoint = false;  // the curve starts or ends here (never true for closed curves)
+  friend bool operator==(const JunctionMember&, const JunctionMember&) = default;
+};
+
+struct Junction {
+  Vec2 position;                        // mean of the meeting points
+  std::vector<JunctionMember> members;  // sorted by (curve, arc_length); at least two
+  // True when at least two members pass through (an X crossing); false when all but at most one
+  // member end here (shared endpoints, T-junctions).
+  bool crossing = false;
+};
+
+// Finds the junctions of a set of curves:
+//  - endpoints of open curves closer than `tolerance_m` to each other (shared endpoints), or to
+//    another curve (T-junctions: the other curve's member has at_endpoint = false);
+//  - segment crossings between different curves, and self-crossings of one curve between
+//    non-adjacent segments.
+// Candidates closer than tolerance_m are merged into one junction (transitively). Segment pairs
+// are found through a uniform grid, not by testing all pairs. Output order is deterministic
+// (by first member). Throws tw::Error if tolerance_m < 0 or a point is not finite (names the
+// curve).
+std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m);
+
+}  // namespace tw
