@@ -1,1 +1,0 @@
-// Module layers: see its headers.

@@ -1,0 +1,54 @@
+#pragma once
+// Writers of a LayerSet: EXR (float32, ZIP, named channels, georeferencing attributes),
+// GeoTIFF twins through GDAL, and a PNG preview. Every file is staged in an
+// OutputTransaction, so a failed run leaves previous outputs untouched.
+#include <filesystem>
+#include <vector>
+
+#include "core/atomic_output.hpp"
+#include "layers/layer_set.hpp"
+
+namespace tw {
+
+// EXR header attributes carrying the georeferencing.
+inline constexpr const char* kExrCrsAttribute = "terraweave:crs_wkt";  // string
+inline constexpr const char* kExrGeotransformAttribute =
+    "terraweave:geotransform";                                                  // string, 6 x %.17g
+inline constexpr const char* kExrOriginAttribute = "terraweave:origin";         // V2d (x, y)
+inline constexpr const char* kExrPixelSizeAttribute = "terraweave:pixel_size";  // V2d (w, h)
+
+struct WriteOptions {
+  bool exr = true;
+  bool geotiff = true;
+  bool preview = true;
+  int preview_max_size = 2048;  // longest side of preview.png in pixels
+};
+
+// Writes <dir>/<layer>.exr (+ <layer>.tif) for each layer and <dir>/preview.png, staged in
+// `tx` (the caller commits). Returns the final paths.
+std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
+                                                   const std::filesystem::path& dir,
+                                                   OutputTransaction& tx,
+                                                   const WriteOptions& options = {});
+
+// Single-file writers (they write `path` directly; stage it first for atomicity).
+void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
+void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
+// Hillshade of "height" tinted by "splat" with `lines` (world metres) drawn on top; 8-bit RGB.
+void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
+                       const std::vector<std::vector<Vec2>>& lines = {}, int max_size = 2048);
+
+// What an EXR holds, read back (for tests and tools).
+struct ExrContents {
+  int width = 0;
+  int height = 0;
+  std::vector<std::string> channels;  // in file order (alphabetical, as EXR stores them)
+  std::vector<Raster<float>> bands;
+  std::string crs_wkt;
+  std::string geotransform;  // the string attribute
+  Vec2 origin;
+  Vec2 pixel_size;
+};
+ExrContents read_exr(const std::filesystem::path& path);
+
+}  // namespace tw

@@ -1,0 +1,60 @@
+#pragma once
+// Linear terrain features (roads, rivers, ridges) as the terrain module sees them: a
+// centerline in world metres, a width and the profile parameters of the feature's kind.
+#include <cstdint>
+#include <string_view>
+
+#include "ribbon/curve.hpp"
+
+namespace tw {
+
+enum class FeatureKind { road, river, ridge };
+
+std::string_view to_string(FeatureKind kind);
+
+// A graded road: the longitudinal profile is the terrain along the centerline smoothed over
+// `smoothing` metres, then limited to `max_grade`; the cross-section is level over the road
+// and its shoulders, then blends into the terrain over `falloff` metres (cut and fill).
+struct RoadProfile {
+  double max_grade = 0.08;      // rise over run
+  double shoulder_width = 3.0;  // metres on each side of the road surface
+  double falloff = 15.0;        // metres of cut/fill slope beyond the shoulders
+  double smoothing = 60.0;      // metres of the moving average along the centerline
+};
+
+// A carved river: the water surface follows the terrain downstream (the centerline's
+// direction) but never rises; the bed is `depth` below it across the width, with banks that
+// blend into the terrain over bank_width + falloff metres. Rivers only ever lower terrain.
+struct RiverProfile {
+  double depth = 2.5;       // metres below the water surface
+  double bank_width = 6.0;  // metres of bank on each side
+  double falloff = 20.0;    // metres beyond the banks
+  double min_slope = 0.0;   // the surface drops at least this much per metre downstream
+};
+
+// A raised ridge: the crest (the width) is raised by `height`, the flanks fall off over
+// `falloff` metres; a larger `sharpness` gives a narrower, more pointed crest.
+struct RidgeProfile {
+  double height = 8.0;
+  double falloff = 60.0;
+  double sharpness = 1.5;
+};
+
+struct TerrainFeature {
+  FeatureKind kind = FeatureKind::road;
+  std::int64_t fid = 0;  // named in error messages
+  Curve centerline;      // world metres; for rivers, points run downstream
+  double width = 0.0;    // metres: road surface, river bed, or ridge crest
+  RoadProfile road;
+  RiverProfile river;
+  RidgeProfile ridge;
+};
+
+// Metres from the centerline within which the feature changes heights or splat weights.
+double feature_reach(const TerrainFeature& feature);
+
+// Throws tw::Error naming the FID when a feature has fewer than two distinct points, a
+// non-finite point, or a width / profile parameter out of range.
+void validate_feature(const TerrainFeature& feature);
+
+}  // namespace tw

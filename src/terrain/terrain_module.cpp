@@ -1,1 +1,0 @@
-// Module terrain: see its headers.
