@@ -35,7 +35,7 @@ OLINDA_EPSG = 31985  # SIRGAS 2000 / UTM zone 25S, what the file's proj string d
 # Crop of the Olinda DEM (pixels): 80 x 80 cells of 90 m = 7.2 km across.
 CROP_X, CROP_Y, CROP_W, CROP_H = 12, 22, 80, 80
 # Luxembourg crop (degrees): the Moselle between Schengen and Grevenmacher.
-LUX_BOX = (6.25, 49.44, 6.53, 49.70)  # west, south, east, north
+LUX_BOX = (6.12, 49.44, 6.53, 49.70)  # west, south, east, north
 
 D8 = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
 
@@ -351,7 +351,7 @@ def make_wgs84(out_dir, wdbii_text):
     for part in clipped:
         if part.Length() > 0.01:  # degrees; drops slivers cut at the box edge
             add_feature(layer, part.Clone(), name="Moselle (WDBII)", width=90.0, kind="river")
-    add_feature(layer, line([(6.30, 49.52), (6.34, 49.55), (6.39, 49.56), (6.43, 49.60)]), name="Drawn road",
+    add_feature(layer, line([(6.17, 49.50), (6.22, 49.55), (6.27, 49.59), (6.31, 49.64)]), name="Drawn road",
                 width=7.0, kind="road")
     ds = None
 
