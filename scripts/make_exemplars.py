@@ -60,21 +60,21 @@ def chain(rng):
     x = 4.0
     links = []
     while x < 199 + 20:
-        length = 30.0 + rng.uniform(-3.0, 3.0)
+        length = 36.0 + rng.uniform(-3.0, 3.0)
         sag = 4.0 * math.sin(math.pi * x / 199.0) + rng.uniform(-1.5, 1.5)
         links.append((x, length, centre + sag))
         x += length * 0.78 + rng.uniform(-1.5, 1.5)
     steel = (150, 155, 165)
     for i, (x0, length, y) in enumerate(links):
         if i % 2 == 0:  # face-on ring: thick outline, open middle
-            half_h = 11.0 + rng.uniform(-1.0, 1.0)
+            half_h = 14.0 + rng.uniform(-1.0, 1.0)
             box = c.s([(x0, y - half_h), (x0 + length, y + half_h)])
-            c.draw.ellipse(box, outline=shade(steel, 0.75), width=int(7 * SS))
+            c.draw.ellipse(box, outline=shade(steel, 0.75), width=int(8 * SS))
             inner = c.s([(x0 + 1.5, y - half_h + 1.5), (x0 + length - 1.5, y + half_h - 1.5)])
             c.draw.ellipse(inner, outline=shade(steel, 1.15), width=int(3 * SS))
     for i, (x0, length, y) in enumerate(links):
         if i % 2 == 1:  # edge-on link: a bar threaded through both neighbours
-            half_h = 4.5 + rng.uniform(-0.5, 0.5)
+            half_h = 5.0 + rng.uniform(-0.5, 0.5)
             box = c.s([(x0 - 4, y - half_h), (x0 + length + 4, y + half_h)])
             c.draw.rounded_rectangle(box, radius=int(half_h * SS), fill=shade(steel, 0.9))
             c.draw.line(c.s([(x0 - 1, y - 1), (x0 + length + 1, y - 1)]), fill=shade(steel, 1.3), width=SS)
