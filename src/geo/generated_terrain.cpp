@@ -1,10 +1,53 @@
+#include <bit>
+#include <cmath>
+
 #include "core/error.hpp"
+#include "geo/detail/gdal_support.hpp"
+#include "geo/detail/gradient_noise.hpp"
 #include "geo/heightfield.hpp"
 
 namespace tw {
 
 Heightfield generate_heightfield(const GeneratedTerrain& params) {
-  fail("generate_heightfield(seed={}) is not implemented yet", params.seed);
+  const std::string name = fmt::format("generated:seed={}", params.seed);
+  if (params.width <= 0 || params.height <= 0) {
+    fail("{}: size must be positive, got {} x {}", name, params.width, params.height);
+  }
+  if (!(std::isfinite(params.pixel_size) && params.pixel_size > 0.0)) {
+    fail("{}: pixel_size must be a positive number of metres, got {}", name, params.pixel_size);
+  }
+  if (!(std::isfinite(params.relief) && params.relief >= 0.0)) {
+    fail("{}: relief must be >= 0 metres, got {}", name, params.relief);
+  }
+  detail::ensure_gdal_registered();
+  detail::QuietGdalErrors quiet;
+  OGRSpatialReference srs;
+  if (!detail::import_traditional_srs(srs, params.crs)) {
+    fail("{}: unknown CRS '{}'", name, params.crs);
+  }
+  if (!srs.IsProjected() || std::abs(srs.GetLinearUnits() - 1.0) > 1e-12) {
+    fail("{}: CRS '{}' is not a projected CRS in metres", name, params.crs);
+  }
+
+  Heightfield result;
+  result.source = name;
+  result.crs_wkt = detail::to_wkt(srs);
+  result.grid = {params.width,    params.height,     params.origin_x,
+                 params.origin_y, params.pixel_size, params.pixel_size};
+  result.height = Raster<float>(params.width, params.height);
+  // The largest features span about a quarter of the longer side (a power of two, so that
+  // each octave's lattice nests in the previous one's).
+  const std::int64_t largest_cell =
+      std::int64_t(std::bit_floor(std::uint64_t(std::max(params.width, params.height) / 4 + 2)));
+  const double metres_per_unit = params.relief / (2.0 * double(detail::kNoiseOne));
+  for (int row = 0; row < params.height; ++row) {
+    for (int col = 0; col < params.width; ++col) {
+      const std::int64_t n = detail::fractal_noise(col, row, largest_cell, params.seed);
+      // n + one lies in [0, 2 one]: heights lie in [0, relief].
+      result.height.at(col, row) = float(double(n + detail::kNoiseOne) * metres_per_unit);
+    }
+  }
+  return result;
 }
 
 }  // namespace tw

@@ -1,11 +1,141 @@
 #include "geo/heightfield.hpp"
 
+#include <GeographicLib/Geodesic.hpp>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
 #include "core/error.hpp"
+#include "core/log.hpp"
+#include "geo/detail/gdal_support.hpp"
+#include "geo/detail/warp.hpp"
+#include "geo/metric_frame.hpp"
 
 namespace tw {
+namespace {
 
-Heightfield read_heightfield(const std::string& path, const HeightfieldOptions&) {
-  fail("{}: read_heightfield is not implemented yet", path);
+using detail::GdalDatasetPtr;
+
+bool is_metric_north_up(const OGRSpatialReference& srs, const double gt[6]) {
+  const bool metric = srs.IsProjected() && std::abs(srs.GetLinearUnits() - 1.0) < 1e-12;
+  const bool north_up = gt[2] == 0.0 && gt[4] == 0.0 && gt[1] > 0.0 && gt[5] < 0.0;
+  return metric && north_up;
+}
+
+Vec2 apply_geotransform(const double gt[6], Vec2 pixel) {
+  return {gt[0] + pixel.x * gt[1] + pixel.y * gt[2], gt[3] + pixel.x * gt[4] + pixel.y * gt[5]};
+}
+
+// The local transverse Mercator centred on the DEM, with the pixel size (metres, measured as
+// geodesics on WGS84 between neighbouring pixel centres at the DEM's centre) unless the caller
+// asked for a resolution.
+detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialReference& srs,
+                                       const double gt[6], const HeightfieldOptions& options,
+                                       const std::string& path) {
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRSpatialReference source_srs(srs);
+  source_srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_lon_lat(
+      OGRCreateCoordinateTransformation(&source_srs, &wgs84));
+  if (!to_lon_lat) fail("{}: cannot relate its CRS to WGS84: {}", path, detail::last_gdal_error());
+
+  const Vec2 centre_pixel{source.GetRasterXSize() / 2.0, source.GetRasterYSize() / 2.0};
+  Vec2 lon_lat[3] = {apply_geotransform(gt, centre_pixel),
+                     apply_geotransform(gt, centre_pixel + Vec2{1.0, 0.0}),
+                     apply_geotransform(gt, centre_pixel + Vec2{0.0, 1.0})};
+  for (Vec2& p : lon_lat) {
+    if (!to_lon_lat->Transform(1, &p.x, &p.y)) {
+      fail("{}: cannot locate its centre in WGS84: {}", path, detail::last_gdal_error());
+    }
+  }
+  detail::WarpTarget target;
+  target.crs_wkt = local_transverse_mercator_wkt(lon_lat[0].x, lon_lat[0].y);
+  if (options.resolution) {
+    target.pixel_width = target.pixel_height = *options.resolution;
+  } else {
+    const GeographicLib::Geodesic& geodesic = GeographicLib::Geodesic::WGS84();
+    geodesic.Inverse(lon_lat[0].y, lon_lat[0].x, lon_lat[1].y, lon_lat[1].x, target.pixel_width);
+    geodesic.Inverse(lon_lat[0].y, lon_lat[0].x, lon_lat[2].y, lon_lat[2].x, target.pixel_height);
+  }
+  logger().info(
+      "{}: warping into a local transverse Mercator at lon {:.6f} lat {:.6f}, {:.3f} x "
+      "{:.3f} m pixels",
+      path, lon_lat[0].x, lon_lat[0].y, target.pixel_width, target.pixel_height);
+  return target;
+}
+
+// Band 1 as float heights; the nodata value, NaN and infinities all become NaN.
+Raster<float> read_heights(GDALRasterBand& band, const std::string& path) {
+  int has_nodata = 0;
+  const double nodata = band.GetNoDataValue(&has_nodata);
+  Raster<float> heights(band.GetXSize(), band.GetYSize());
+  std::vector<double> row(heights.width);
+  for (int y = 0; y < heights.height; ++y) {
+    if (band.RasterIO(GF_Read, 0, y, heights.width, 1, row.data(), heights.width, 1, GDT_Float64, 0,
+                      0) != CE_None) {
+      fail("{}: cannot read row {}: {}", path, y, detail::last_gdal_error());
+    }
+    for (int x = 0; x < heights.width; ++x) {
+      const double value = row[x];
+      const bool missing = !std::isfinite(value) || (has_nodata && value == nodata);
+      heights.at(x, y) = missing ? std::numeric_limits<float>::quiet_NaN() : float(value);
+    }
+  }
+  return heights;
+}
+
+}  // namespace
+
+Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options) {
+  detail::ensure_gdal_registered();
+  detail::QuietGdalErrors quiet;
+  if (options.resolution && !(std::isfinite(*options.resolution) && *options.resolution > 0.0)) {
+    fail("{}: resolution must be a positive number of metres, got {}", path, *options.resolution);
+  }
+  GdalDatasetPtr source(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!source) fail("{}: cannot open as a raster: {}", path, detail::last_gdal_error());
+  if (source->GetRasterCount() < 1) fail("{}: has no raster band", path);
+  const OGRSpatialReference* srs = source->GetSpatialRef();
+  if (!srs || srs->IsEmpty()) {
+    fail("{}: has no CRS; a heightfield needs one to place features in metres", path);
+  }
+  double gt[6];
+  if (source->GetGeoTransform(gt) != CE_None) fail("{}: has no geotransform", path);
+
+  Heightfield result;
+  result.source = path;
+  int has_nodata = 0;
+  const double nodata = source->GetRasterBand(1)->GetNoDataValue(&has_nodata);
+  if (has_nodata) result.nodata_value = nodata;
+
+  GdalDatasetPtr warped;
+  GDALDataset* grid_source = source.get();
+  if (is_metric_north_up(*srs, gt)) {
+    result.crs_wkt = detail::to_wkt(*srs);
+    if (options.resolution) {
+      warped = detail::warp_to_metric_grid(
+          *source, {result.crs_wkt, *options.resolution, *options.resolution}, path);
+      grid_source = warped.get();
+    }
+  } else {
+    const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
+    result.crs_wkt = target.crs_wkt;
+    warped = detail::warp_to_metric_grid(*source, target, path);
+    grid_source = warped.get();
+  }
+  if (grid_source->GetGeoTransform(gt) != CE_None)
+    fail("{}: warped grid has no geotransform", path);
+  result.grid = {
+      grid_source->GetRasterXSize(), grid_source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
+  result.height = read_heights(*grid_source->GetRasterBand(1), path);
+  bool any_height = false;
+  for (float h : result.height.pixels) any_height = any_height || !std::isnan(h);
+  if (!any_height) fail("{}: every cell is nodata; there is no terrain to work on", path);
+  return result;
 }
 
 }  // namespace tw

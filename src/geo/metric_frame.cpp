@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "geo/detail/gdal_support.hpp"
 
 namespace tw {
 
@@ -19,12 +20,7 @@ std::string local_transverse_mercator_wkt(double lon0_degrees, double lat0_degre
   if (srs.importFromProj4(proj.c_str()) != OGRERR_NONE) {
     fail("cannot build the local metric frame '{}'", proj);
   }
-  char* wkt = nullptr;
-  const char* options[] = {"FORMAT=WKT2_2018", nullptr};
-  srs.exportToWkt(&wkt, options);
-  std::string result = wkt ? wkt : "";
-  CPLFree(wkt);
-  return result;
+  return detail::to_wkt(srs);
 }
 
 MetresPerDegree metres_per_degree(double latitude_degrees) {

@@ -1,0 +1,44 @@
+#include "geo/detail/gdal_support.hpp"
+
+#include <cpl_error.h>
+
+#include <mutex>
+
+namespace tw::detail {
+
+void ensure_gdal_registered() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+QuietGdalErrors::QuietGdalErrors() {
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  CPLErrorReset();
+}
+
+QuietGdalErrors::~QuietGdalErrors() {
+  CPLPopErrorHandler();
+}
+
+std::string last_gdal_error() {
+  const char* message = CPLGetLastErrorMsg();
+  return message && *message ? std::string(message) : std::string("unknown GDAL error");
+}
+
+bool import_traditional_srs(OGRSpatialReference& srs, const std::string& user_input) {
+  if (user_input.empty()) return false;
+  if (srs.SetFromUserInput(user_input.c_str()) != OGRERR_NONE) return false;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return true;
+}
+
+std::string to_wkt(const OGRSpatialReference& srs) {
+  char* wkt = nullptr;
+  const char* options[] = {"FORMAT=WKT2_2018", nullptr};
+  srs.exportToWkt(&wkt, options);
+  std::string result = wkt ? wkt : "";
+  CPLFree(wkt);
+  return result;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,142 @@
+#include "geo/detail/vector_layer.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace tw::detail {
+namespace {
+
+std::string layer_names(GDALDataset& dataset) {
+  std::string names;
+  for (OGRLayer* layer : dataset.GetLayers()) {
+    names += names.empty() ? "" : ", ";
+    names += layer->GetName();
+  }
+  return names.empty() ? "none" : names;
+}
+
+}  // namespace
+
+OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
+  ensure_gdal_registered();
+  QuietGdalErrors quiet;
+  OpenVectorLayer result;
+  result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  if (!result.dataset) {
+    fail("{}: cannot open as vector data: {}", source.path, last_gdal_error());
+  }
+  if (source.layer.empty()) {
+    if (result.dataset->GetLayerCount() < 1) fail("{}: has no vector layer", source.path);
+    result.layer = result.dataset->GetLayer(0);
+  } else {
+    result.layer = result.dataset->GetLayerByName(source.layer.c_str());
+    if (!result.layer) {
+      fail("{}: no layer '{}' (layers: {})", source.path, source.layer,
+           layer_names(*result.dataset));
+    }
+  }
+  result.label = fmt::format("{}:{}", source.path, result.layer->GetName());
+  if (!source.where.empty() &&
+      result.layer->SetAttributeFilter(source.where.c_str()) != OGRERR_NONE) {
+    fail("{}: bad where clause '{}': {}", result.label, source.where, last_gdal_error());
+  }
+
+  const OGRSpatialReference* layer_srs = result.layer->GetSpatialRef();
+  if (!layer_srs || layer_srs->IsEmpty()) {
+    fail("{}: layer has no CRS; cannot place its features on the grid", result.label);
+  }
+  OGRSpatialReference from(*layer_srs);
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  result.source_is_geographic = from.IsGeographic();
+  OGRSpatialReference to;
+  if (!import_traditional_srs(to, grid_of.crs_wkt)) {
+    fail("{}: the heightfield '{}' has no usable CRS", result.label, grid_of.source);
+  }
+  if (!from.IsSame(&to)) {
+    result.to_grid.reset(OGRCreateCoordinateTransformation(&from, &to));
+    if (!result.to_grid) {
+      fail("{}: no transformation from the layer's CRS to the grid's: {}", result.label,
+           last_gdal_error());
+    }
+  }
+  return result;
+}
+
+OGRPolygon grid_extent_polygon(const GridSpec& grid) {
+  const double west = grid.origin_x;
+  const double north = grid.origin_y;
+  const double east = grid.origin_x + grid.width * grid.pixel_width;
+  const double south = grid.origin_y - grid.height * grid.pixel_height;
+  OGRLinearRing ring;
+  ring.addPoint(west, south);
+  ring.addPoint(east, south);
+  ring.addPoint(east, north);
+  ring.addPoint(west, north);
+  ring.closeRings();
+  OGRPolygon polygon;
+  polygon.addRing(&ring);
+  return polygon;
+}
+
+namespace {
+
+void check_curve(const OGRSimpleCurve& curve, bool geographic, const OpenVectorLayer& layer,
+                 std::int64_t fid) {
+  for (int i = 0; i < curve.getNumPoints(); ++i) {
+    const double x = curve.getX(i);
+    const double y = curve.getY(i);
+    const bool finite = std::isfinite(x) && std::isfinite(y);
+    const bool plausible = geographic ? std::abs(x) <= 540.0 && std::abs(y) <= 90.0
+                                      : std::abs(x) < 1e9 && std::abs(y) < 1e9;
+    if (!finite || !plausible) {
+      fail("{}: FID {}: vertex {} has a non-finite or out-of-range coordinate ({}, {})",
+           layer.label, fid, i, x, y);
+    }
+  }
+}
+
+void check_geometry(const OGRGeometry& geometry, bool geographic, const OpenVectorLayer& layer,
+                    std::int64_t fid) {
+  const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
+  if (type == wkbLineString || type == wkbLinearRing) {
+    check_curve(*geometry.toSimpleCurve(), geographic, layer, fid);
+  } else if (type == wkbPolygon) {
+    for (const OGRLinearRing* ring : *geometry.toPolygon()) {
+      check_curve(*ring, geographic, layer, fid);
+    }
+  } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
+    for (const OGRGeometry* part : *geometry.toGeometryCollection()) {
+      check_geometry(*part, geographic, layer, fid);
+    }
+  }
+}
+
+}  // namespace
+
+void check_coordinates(const OGRGeometry& geometry, const OpenVectorLayer& layer,
+                       std::int64_t fid) {
+  check_geometry(geometry, layer.source_is_geographic, layer, fid);
+}
+
+void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid) {
+  if (!layer.to_grid) return;
+  QuietGdalErrors quiet;
+  if (geometry.transform(layer.to_grid.get()) != OGRERR_NONE) {
+    fail("{}: FID {}: cannot reproject into the grid's CRS: {}", layer.label, fid,
+         last_gdal_error());
+  }
+  check_geometry(geometry, false, layer, fid);
+}
+
+std::vector<Vec2> distinct_points(const OGRSimpleCurve& curve) {
+  std::vector<Vec2> points;
+  points.reserve(curve.getNumPoints());
+  for (int i = 0; i < curve.getNumPoints(); ++i) {
+    const Vec2 p{curve.getX(i), curve.getY(i)};
+    if (points.empty() || points.back() != p) points.push_back(p);
+  }
+  return points;
+}
+
+}  // namespace tw::detail

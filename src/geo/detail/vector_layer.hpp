@@ -1,0 +1,45 @@
+#pragma once
+// What line and polygon ingest share: opening a layer with its filter, the transformation into
+// the grid's CRS, the grid's extent as a polygon, and checks on raw coordinates.
+#include <ogrsf_frmts.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "geo/detail/gdal_support.hpp"
+#include "geo/features.hpp"
+
+namespace tw::detail {
+
+struct OpenVectorLayer {
+  GdalDatasetPtr dataset;
+  OGRLayer* layer = nullptr;  // owned by dataset
+  std::string label;          // "path:layer", for messages and LineFeature::source
+  // Null when the layer is already in the grid's CRS.
+  std::unique_ptr<OGRCoordinateTransformation> to_grid;
+  bool source_is_geographic = false;
+};
+
+// Opens the layer (the first when source.layer is empty) and applies source.where.
+// Throws tw::Error for a missing file, an unknown layer, a bad where clause or a missing CRS.
+OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of);
+
+// The grid's extent, in the grid's CRS.
+OGRPolygon grid_extent_polygon(const GridSpec& grid);
+
+// Every vertex finite and plausible (|lat| <= 90 and |lon| <= 540 for geographic layers,
+// |x|, |y| < 1e9 otherwise), else tw::Error naming label and fid. Call it on the geometry as
+// read, in the layer's CRS.
+void check_coordinates(const OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid);
+
+// Moves geometry into the grid's CRS (and checks the result is finite and plausible there);
+// tw::Error naming label and fid when PROJ cannot.
+void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid);
+
+// The vertices of a line string, dropping consecutive duplicates.
+std::vector<Vec2> distinct_points(const OGRSimpleCurve& curve);
+
+}  // namespace tw::detail

@@ -1,0 +1,82 @@
+#include "geo/detail/warp.hpp"
+
+#include <gdal_utils.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace tw::detail {
+namespace {
+
+GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const char* resampling,
+                            const std::string& label) {
+  const std::vector<std::string> args = {"-of",
+                                         "MEM",
+                                         "-b",
+                                         "1",
+                                         "-t_srs",
+                                         target.crs_wkt,
+                                         "-tr",
+                                         fmt::format("{:.17g}", target.pixel_width),
+                                         fmt::format("{:.17g}", target.pixel_height),
+                                         "-r",
+                                         resampling,
+                                         "-ot",
+                                         "Float32",
+                                         "-dstnodata",
+                                         "nan"};
+  std::vector<char*> argv;
+  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  argv.push_back(nullptr);
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv.data(), nullptr);
+  if (!options) fail("{}: bad warp options: {}", label, last_gdal_error());
+  GDALDatasetH source_handle = GDALDataset::ToHandle(&source);
+  int usage_error = 0;
+  GDALDatasetH warped = GDALWarp("", nullptr, 1, &source_handle, options, &usage_error);
+  GDALWarpAppOptionsFree(options);
+  if (!warped || usage_error) {
+    fail("{}: cannot warp into a metric grid: {}", label, last_gdal_error());
+  }
+  return GdalDatasetPtr(GDALDataset::FromHandle(warped));
+}
+
+}  // namespace
+
+GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
+                                   const std::string& label) {
+  GdalDatasetPtr bilinear = run_gdalwarp(source, target, "bilinear", label);
+  int has_nodata = 0;
+  source.GetRasterBand(1)->GetNoDataValue(&has_nodata);
+  if (!has_nodata) return bilinear;
+
+  GdalDatasetPtr nearest = run_gdalwarp(source, target, "near", label);
+  GDALRasterBand* heights = bilinear->GetRasterBand(1);
+  GDALRasterBand* nearest_band = nearest->GetRasterBand(1);
+  const int width = heights->GetXSize();
+  std::vector<float> row(width);
+  std::vector<float> nearest_row(width);
+  for (int y = 0; y < heights->GetYSize(); ++y) {
+    if (heights->RasterIO(GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float32, 0, 0) !=
+            CE_None ||
+        nearest_band->RasterIO(GF_Read, 0, y, width, 1, nearest_row.data(), width, 1, GDT_Float32,
+                               0, 0) != CE_None) {
+      fail("{}: cannot read the warped grid: {}", label, last_gdal_error());
+    }
+    bool changed = false;
+    for (int x = 0; x < width; ++x) {
+      if (std::isnan(nearest_row[x]) && !std::isnan(row[x])) {
+        row[x] = std::nanf("");
+        changed = true;
+      }
+    }
+    if (changed && heights->RasterIO(GF_Write, 0, y, width, 1, row.data(), width, 1, GDT_Float32, 0,
+                                     0) != CE_None) {
+      fail("{}: cannot write the warped grid: {}", label, last_gdal_error());
+    }
+  }
+  return bilinear;
+}
+
+}  // namespace tw::detail

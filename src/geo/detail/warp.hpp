@@ -1,0 +1,22 @@
+#pragma once
+// Warping a DEM into a north-up metric grid (gdalwarp as a library call).
+#include <string>
+
+#include "geo/detail/gdal_support.hpp"
+
+namespace tw::detail {
+
+struct WarpTarget {
+  std::string crs_wkt;        // metric CRS of the output
+  double pixel_width = 0.0;   // metres
+  double pixel_height = 0.0;  // metres
+};
+
+// Band 1 of `source` warped (bilinear) into an in-memory Float32 dataset with NaN as nodata.
+// Bilinear never mixes a nodata cell into a height (GDAL renormalizes over valid neighbours);
+// and an output cell whose centre falls on a source nodata cell stays nodata (checked with a
+// nearest-neighbour warp), so holes do not shrink. `label` names the source in errors.
+GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
+                                   const std::string& label);
+
+}  // namespace tw::detail

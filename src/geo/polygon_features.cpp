@@ -1,0 +1,90 @@
+#include <memory>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "geo/detail/vector_layer.hpp"
+#include "geo/features.hpp"
+
+namespace tw {
+namespace {
+
+using detail::OpenVectorLayer;
+
+// The polygon parts of a feature's geometry (curves linearized); tw::Error for anything else.
+std::unique_ptr<OGRMultiPolygon> polygon_parts(const OGRFeature& feature,
+                                               const OpenVectorLayer& layer) {
+  const std::int64_t fid = feature.GetFID();
+  const OGRGeometry* geometry = feature.GetGeometryRef();
+  if (!geometry || geometry->IsEmpty()) fail("{}: FID {}: has no geometry", layer.label, fid);
+  std::unique_ptr<OGRGeometry> linear(geometry->hasCurveGeometry() ? geometry->getLinearGeometry()
+                                                                   : geometry->clone());
+  const OGRwkbGeometryType type = wkbFlatten(linear->getGeometryType());
+  auto parts = std::make_unique<OGRMultiPolygon>();
+  if (type == wkbPolygon) {
+    parts->addGeometry(linear.get());
+  } else if (type == wkbMultiPolygon) {
+    for (const OGRPolygon* part : *linear->toMultiPolygon()) parts->addGeometry(part);
+  } else {
+    fail("{}: FID {}: is a {} where polygons (Polygon/MultiPolygon) are expected", layer.label, fid,
+         OGRGeometryTypeToName(type));
+  }
+  return parts;
+}
+
+void collect_polygons(const OGRGeometry& geometry, std::vector<const OGRPolygon*>& polygons) {
+  const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
+  if (type == wkbPolygon) {
+    if (!geometry.IsEmpty()) polygons.push_back(geometry.toPolygon());
+  } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
+    for (const OGRGeometry* part : *geometry.toGeometryCollection()) {
+      collect_polygons(*part, polygons);
+    }
+  }
+  // Lines and points (where a polygon only touches the border) cover no area: dropped.
+}
+
+std::vector<Vec2> open_ring(const OGRLinearRing& ring) {
+  std::vector<Vec2> points = detail::distinct_points(ring);
+  if (points.size() >= 2 && points.front() == points.back()) points.pop_back();
+  return points;
+}
+
+}  // namespace
+
+std::vector<PolygonFeature> read_polygon_features(const VectorSource& source,
+                                                  const Heightfield& grid_of) {
+  OpenVectorLayer layer = detail::open_vector_layer(source, grid_of);
+  const OGRPolygon extent = detail::grid_extent_polygon(grid_of.grid);
+  std::vector<PolygonFeature> result;
+  for (const auto& feature : *layer.layer) {
+    const std::int64_t fid = feature->GetFID();
+    std::unique_ptr<OGRMultiPolygon> parts = polygon_parts(*feature, layer);
+    detail::check_coordinates(*parts, layer, fid);
+    {
+      detail::QuietGdalErrors quiet;
+      if (!parts->IsValid()) {
+        fail("{}: FID {}: is not a valid polygon (self-intersecting or badly nested rings)",
+             layer.label, fid);
+      }
+    }
+    detail::transform_to_grid(*parts, layer, fid);
+    detail::QuietGdalErrors quiet;
+    std::unique_ptr<OGRGeometry> inside(parts->Intersection(&extent));
+    if (!inside) {
+      fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid, detail::last_gdal_error());
+    }
+    std::vector<const OGRPolygon*> polygons;
+    collect_polygons(*inside, polygons);
+    if (polygons.empty()) {
+      logger().info("{}: FID {} lies outside the grid; skipped", layer.label, fid);
+    }
+    for (const OGRPolygon* polygon : polygons) {
+      PolygonFeature clipped{fid, {}, layer.label};
+      for (const OGRLinearRing* ring : *polygon) clipped.rings.push_back(open_ring(*ring));
+      result.push_back(std::move(clipped));
+    }
+  }
+  return result;
+}
+
+}  // namespace tw
