@@ -1,0 +1,262 @@
+#include "pipeline/config.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "pipeline/detail/yaml_reader.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using detail::MapReader;
+using detail::YamlSource;
+
+namespace {
+
+FeatureKind read_kind(const MapReader& m) {
+  const std::string value = m.string("kind");
+  if (value == "road") return FeatureKind::road;
+  if (value == "river") return FeatureKind::river;
+  if (value == "ridge") return FeatureKind::ridge;
+  const std::string hint = detail::closest_match(value, {"road", "river", "ridge"});
+  m.source().fail(m.get("kind"), m.path("kind"),
+                  fmt::format("unknown kind '{}', expected road, river or ridge{}", value,
+                              hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+}
+
+std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback) {
+  const std::string value = m.string_or(key, fallback);
+  if (value != "cpu" && value != "opencl" && value != "auto") {
+    m.source().fail(m.get(key), m.path(key),
+                    fmt::format("unknown backend '{}', expected cpu, opencl or auto", value));
+  }
+  return value;
+}
+
+GenerateConfig read_generate(const MapReader& m) {
+  GenerateConfig g;
+  g.width = m.int_or("width", g.width);
+  g.height = m.int_or("height", g.height);
+  for (const char* key : {"width", "height"}) {
+    const int cells = key[0] == 'w' ? g.width : g.height;
+    if (cells < 2 || cells > 65536) {
+      m.source().fail(m.get(key), m.path(key), fmt::format("must be in [2, 65536], got {}", cells));
+    }
+  }
+  g.cell_size = m.positive_or("cell_size", g.cell_size);
+  g.relief = m.non_negative_or("relief", g.relief);
+  g.crs = m.string_or("crs", g.crs);
+  if (m.has("origin")) {
+    const YAML::Node origin = m.get("origin");
+    if (!origin.IsSequence() || origin.size() != 2) {
+      m.source().fail(origin, m.path("origin"), "expected [x, y] in metres");
+    }
+    g.origin_x = detail::read_double(m.source(), origin[0], m.path("origin.0"));
+    g.origin_y = detail::read_double(m.source(), origin[1], m.path("origin.1"));
+  }
+  return g;
+}
+
+ProfileConfig read_profile(const MapReader& m) {
+  ProfileConfig p;
+  p.max_grade = m.positive_or("max_grade", p.max_grade);
+  p.shoulder_width = m.non_negative_or("shoulder_width", p.shoulder_width);
+  p.falloff = m.non_negative_or("falloff", p.falloff);
+  p.smoothing = m.non_negative_or("smoothing", p.smoothing);
+  p.depth = m.non_negative_or("depth", p.depth);
+  return p;
+}
+
+SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
+  SynthesisConfig s;
+  const YAML::Node exemplar = m.get("exemplar");
+  if (exemplar.IsSequence()) {
+    if (exemplar.size() == 0) m.source().fail(exemplar, m.path("exemplar"), "empty list");
+    for (std::size_t i = 0; i < exemplar.size(); ++i) {
+      const std::string key = m.path("exemplar") + "." + std::to_string(i);
+      const std::string value = detail::read_string(m.source(), exemplar[i], key);
+      if (value.empty()) m.source().fail(exemplar[i], key, "empty path");
+      s.exemplars.push_back(m.source().resolve(value, key));
+    }
+  } else {
+    s.exemplars.push_back(m.file("exemplar"));
+  }
+  s.delta = m.positive_or("delta", s.delta);
+  s.scale = m.positive_or("scale", s.scale);
+  s.stitch = m.bool_or("stitch", s.stitch);
+  s.seed =
+      m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
+  if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
+  s.height_detail = m.non_negative_or("height_detail", s.height_detail);
+  return s;
+}
+
+FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,
+                                      std::uint64_t seed) {
+  FeatureClassConfig f;
+  f.name = name;
+  f.source = m.file("source");
+  f.layer = m.string_or("layer", "");
+  f.where = m.string_or("where", "");
+  f.kind = read_kind(m);
+  f.width_attribute = m.string_or("width_attribute", "");
+  if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
+  if (m.has("profile")) {
+    f.profile =
+        read_profile(MapReader(m.source(), m.get("profile"), m.path("profile"),
+                               {"max_grade", "shoulder_width", "falloff", "smoothing", "depth"}));
+  }
+  if (m.has("synthesis")) {
+    f.synthesis = read_synthesis(
+        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
+                  {"exemplar", "delta", "scale", "stitch", "seed", "backend", "height_detail"}),
+        seed);
+  }
+  return f;
+}
+
+ExistingConfig read_existing(const MapReader& m) {
+  ExistingConfig e;
+  e.source = m.file("source");
+  e.layer = m.string_or("layer", "");
+  e.where = m.string_or("where", "");
+  e.width = m.positive_or("width", 0.0);
+  return e;
+}
+
+// Orders the feature classes by `precedence` (lowest first), which must name each exactly once.
+void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& features) {
+  if (!root.has("precedence")) return;
+  const YAML::Node list = root.get("precedence");
+  const std::string list_path = root.path("precedence");
+  if (!list.IsSequence()) root.source().fail(list, list_path, "expected a list of feature classes");
+  std::vector<std::string> names;
+  for (const auto& f : features) names.push_back(f.name);
+  std::vector<FeatureClassConfig> ordered;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string key = list_path + "." + std::to_string(i);
+    const std::string name = detail::read_string(root.source(), list[i], key);
+    auto it = std::find_if(features.begin(), features.end(),
+                           [&](const FeatureClassConfig& f) { return f.name == name; });
+    if (it == features.end()) {
+      const bool repeated =
+          std::any_of(ordered.begin(), ordered.end(),
+                      [&](const FeatureClassConfig& f) { return f.name == name; });
+      const std::string hint = detail::closest_match(name, names);
+      root.source().fail(
+          list[i], key,
+          repeated ? fmt::format("'{}' is listed twice", name)
+                   : fmt::format("'{}' is not a feature class{}", name,
+                                 hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+    }
+    ordered.push_back(std::move(*it));
+    features.erase(it);
+  }
+  if (!features.empty()) {
+    root.source().fail(
+        list, list_path,
+        fmt::format("feature class '{}' is missing from the list", features.front().name));
+  }
+  features = std::move(ordered);
+}
+
+PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
+  const MapReader root(src, tree, "",
+                       {"version", "seed", "heightfield", "generate", "resolution", "output",
+                        "backend", "precedence", "features", "existing"});
+  PipelineConfig c;
+  c.version = read_int(src, root.get("version"), "version");
+  if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
+  if (root.has("seed")) c.seed = detail::read_uint64(src, root.get("seed"), "seed");
+  if (root.has("heightfield") && root.has("generate")) {
+    src.fail(root.get("generate"), "generate", "give either heightfield or generate, not both");
+  }
+  if (root.has("heightfield")) c.heightfield = root.file("heightfield");
+  if (root.has("generate")) {
+    c.generate =
+        read_generate(MapReader(src, root.get("generate"), "generate",
+                                {"width", "height", "cell_size", "relief", "crs", "origin"}));
+  }
+  if (root.has("resolution")) c.resolution = root.positive("resolution");
+  if (root.has("output")) {
+    const MapReader out(src, root.get("output"), "output", {"dir", "exr", "geotiff", "preview"});
+    if (out.has("dir")) c.output.dir = out.file("dir");
+    c.output.exr = out.bool_or("exr", c.output.exr);
+    c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
+    c.output.preview = out.bool_or("preview", c.output.preview);
+  } else {
+    c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
+  }
+  if (!c.output.exr && !c.output.geotiff) {
+    src.fail(root.get("output"), "output", "at least one of exr and geotiff must be true");
+  }
+  c.backend = read_backend(root, "backend", c.backend);
+  const YAML::Node features = root.get("features");
+  if (!features.IsMap())
+    src.fail(features, "features", "expected a mapping of class names to classes");
+  for (const auto& entry : features) {
+    const std::string name = detail::read_string(src, entry.first, "features");
+    const std::string path = "features." + name;
+    c.features.push_back(
+        read_feature_class(MapReader(src, entry.second, path,
+                                     {"source", "layer", "where", "kind", "width_attribute",
+                                      "width", "profile", "synthesis"}),
+                           name, c.seed));
+  }
+  if (c.features.empty()) src.fail(root.get("features"), "features", "no feature classes");
+  apply_precedence(root, c.features);
+  if (root.has("existing")) {
+    const YAML::Node list = root.get("existing");
+    if (!list.IsSequence()) src.fail(list, "existing", "expected a list of {source, layer}");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string key = "existing." + std::to_string(i);
+      c.existing.push_back(
+          read_existing(MapReader(src, list[i], key, {"source", "layer", "where", "width"})));
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+Override parse_override(std::string_view assignment) {
+  const auto equals = assignment.find('=');
+  if (equals == std::string_view::npos || equals == 0) {
+    fail("--set {}: expected key.path=value", assignment);
+  }
+  return {std::string(assignment.substr(0, equals)), std::string(assignment.substr(equals + 1))};
+}
+
+PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& file_label,
+                              const fs::path& base_dir, const std::vector<Override>& overrides) {
+  const YamlSource src(file_label, base_dir, overrides);
+  return read_pipeline(src, src.load(yaml_text));
+}
+
+PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) fail("{}: cannot read the pipeline file", file.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
+  const fs::path folder = fs::absolute(file).parent_path();
+  PipelineConfig config = parse_pipeline(text.str(), file.string(), folder, overrides);
+  config.file = file;
+  return config;
+}
+
+std::string_view to_string(FeatureKind kind) {
+  switch (kind) {
+    case FeatureKind::road:
+      return "road";
+    case FeatureKind::river:
+      return "river";
+    case FeatureKind::ridge:
+      return "ridge";
+  }
+  return "?";
+}
+
+}  // namespace tw

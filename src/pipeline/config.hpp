@@ -1,0 +1,107 @@
+#pragma once
+// A pipeline file (YAML, docs/pipeline.md) parsed into plain values. Every relative path is
+// already resolved: against the pipeline file's folder, or against the current folder for
+// values given with --set. Lengths are metres.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tw {
+
+enum class FeatureKind { road, river, ridge };
+
+// A seeded synthetic heightfield, used when the pipeline names no heightfield file.
+struct GenerateConfig {
+  int width = 1024;                // cells
+  int height = 1024;               // cells
+  double cell_size = 4.0;          // metres
+  double relief = 120.0;           // metres between lowest and highest point (roughly)
+  std::string crs = "EPSG:32631";  // a metric CRS
+  double origin_x = 500000.0;      // world x of the west edge
+  double origin_y = 5000000.0;     // world y of the north edge
+};
+
+// How a feature shapes the terrain (see terrain/).
+struct ProfileConfig {
+  double max_grade = 0.08;      // rise over run along the feature
+  double shoulder_width = 3.0;  // metres of flat ground beside the ribbon
+  double falloff = 15.0;        // metres over which the edit blends into the terrain
+  double smoothing = 60.0;      // metres of along-curve smoothing of the target height
+  double depth = 0.0;           // metres: river bed depth, ridge height; 0 = the kind's default
+};
+
+// Curvilinear pattern synthesis (Zhou et al. 2013) along a feature class (issue #4).
+struct SynthesisConfig {
+  std::vector<std::filesystem::path> exemplars;  // one or more; the first is used for now
+  double delta = 4.0;                            // piece length, metres
+  double scale = 8.0;                            // exemplar texels per metre of ribbon
+  bool stitch = true;
+  std::uint64_t seed = 0;
+  std::string backend;         // "" = the pipeline's backend
+  double height_detail = 0.0;  // metres of relief the exemplar's height channel adds; 0 = none
+};
+
+struct FeatureClassConfig {
+  std::string name;  // the key under `features`, e.g. "roads"
+  std::filesystem::path source;
+  std::string layer;  // "" = the source's only layer
+  std::string where;  // OGR attribute filter, "" = every feature
+  FeatureKind kind = FeatureKind::road;
+  std::string width_attribute;  // "" = every feature has `width`
+  double width = 0.0;           // metres, > 0 (fallback when the attribute is missing or null)
+  ProfileConfig profile;
+  std::optional<SynthesisConfig> synthesis;
+};
+
+// Avoidance input: polygons are burnt as they are, lines are buffered by `width`.
+struct ExistingConfig {
+  std::filesystem::path source;
+  std::string layer;
+  std::string where;
+  double width = 0.0;  // metres, required (> 0) when the layer holds lines
+};
+
+struct OutputConfig {
+  std::filesystem::path dir = "out";
+  bool exr = true;
+  bool geotiff = true;
+  bool preview = true;
+};
+
+struct PipelineConfig {
+  std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
+  int version = 1;
+  std::uint64_t seed = 0;
+  std::optional<std::filesystem::path> heightfield;  // absent -> generate
+  GenerateConfig generate;
+  std::optional<double> resolution;  // output cell size in metres; absent = the heightfield's
+  OutputConfig output;
+  std::string backend = "auto";              // cpu | opencl | auto
+  std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
+  std::vector<ExistingConfig> existing;
+};
+
+// One `--set key.path=value` (value parsed as a YAML scalar or flow collection).
+struct Override {
+  std::string key_path;
+  std::string value;
+};
+
+// Splits "key.path=value"; throws tw::Error when there is no '=' or the key is empty.
+Override parse_override(std::string_view assignment);
+
+// Reads and validates a pipeline file, applying `overrides` first. Throws tw::Error with
+// "file:line:col: key.path: problem" (or "--set key.path=value: ...") on any problem.
+PipelineConfig load_pipeline(const std::filesystem::path& file,
+                             const std::vector<Override>& overrides = {});
+// The same from text; relative paths resolve against `base_dir`, messages name `file_label`.
+PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& file_label,
+                              const std::filesystem::path& base_dir,
+                              const std::vector<Override>& overrides = {});
+
+std::string_view to_string(FeatureKind kind);
+
+}  // namespace tw

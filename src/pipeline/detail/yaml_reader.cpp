@@ -1,0 +1,268 @@
+#include "pipeline/detail/yaml_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// True when `path` is `prefix` or lies under it ("a.b" is under "a", "ab" is not).
+bool is_under(std::string_view path, std::string_view prefix) {
+  return path.size() >= prefix.size() && path.substr(0, prefix.size()) == prefix &&
+         (path.size() == prefix.size() || path[prefix.size()] == '.');
+}
+
+std::vector<std::string> split_key_path(const Override& o) {
+  std::vector<std::string> parts;
+  std::string_view rest = o.key_path;
+  while (true) {
+    const auto dot = rest.find('.');
+    const std::string_view part = rest.substr(0, dot);
+    if (part.empty()) fail("--set {}={}: empty key in '{}'", o.key_path, o.value, o.key_path);
+    parts.emplace_back(part);
+    if (dot == std::string_view::npos) break;
+    rest.remove_prefix(dot + 1);
+  }
+  return parts;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+template <class T>
+T convert(const YamlSource& src, const YAML::Node& node, const std::string& key_path,
+          const char* expected) {
+  if (!node.IsScalar()) src.fail(node, key_path, fmt::format("expected {}", expected));
+  T value{};
+  if (!YAML::convert<T>::decode(node, value)) {
+    src.fail(node, key_path, fmt::format("expected {}, got '{}'", expected, node.Scalar()));
+  }
+  return value;
+}
+
+}  // namespace
+
+YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides)
+    : file_label_(std::move(file_label)),
+      base_dir_(std::move(base_dir)),
+      overrides_(std::move(overrides)) {}
+
+YAML::Node YamlSource::load(std::string_view text) const {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    tw::fail("{}:{}:{}: invalid YAML: {}", file_label_, e.mark.line + 1, e.mark.column + 1, e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  for (const Override& o : overrides_) {
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::Exception& e) {
+      tw::fail("--set {}={}: invalid value: {}", o.key_path, o.value, e.msg);
+    }
+    const std::vector<std::string> parts = split_key_path(o);
+    YAML::Node current = root;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const bool last = i + 1 == parts.size();
+      if (current.IsSequence()) {
+        std::size_t index = 0;
+        const auto [end, ec] =
+            std::from_chars(parts[i].data(), parts[i].data() + parts[i].size(), index);
+        if (ec != std::errc() || end != parts[i].data() + parts[i].size() ||
+            index >= current.size()) {
+          tw::fail("--set {}={}: '{}' is not an index of a list of {} items", o.key_path, o.value,
+                   parts[i], current.size());
+        }
+        if (last) {
+          current[index] = value;
+        } else {
+          current.reset(current[index]);
+        }
+        continue;
+      }
+      if (!current.IsMap() && !current.IsNull()) {
+        tw::fail("--set {}={}: '{}' is a value, not a mapping", o.key_path, o.value, parts[i - 1]);
+      }
+      if (last) {
+        current[parts[i]] = value;
+      } else {
+        YAML::Node child = current[parts[i]];
+        if (!child.IsDefined() || child.IsNull()) {
+          current[parts[i]] = YAML::Node(YAML::NodeType::Map);
+          child.reset(current[parts[i]]);
+        }
+        current.reset(child);
+      }
+    }
+  }
+  return root;
+}
+
+const Override* YamlSource::override_for(const std::string& key_path) const {
+  // The last override wins, as when the tree was built.
+  for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it) {
+    if (is_under(key_path, it->key_path)) return &*it;
+  }
+  return nullptr;
+}
+
+std::string YamlSource::location(const YAML::Node& node, const std::string& key_path) const {
+  if (const Override* o = override_for(key_path)) {
+    return fmt::format("--set {}={}", o->key_path, o->value);
+  }
+  // An override may have created the maps above its key: an unknown key there is its fault.
+  for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it) {
+    if (is_under(it->key_path, key_path))
+      return fmt::format("--set {}={}", it->key_path, it->value);
+  }
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return file_label_;
+  return fmt::format("{}:{}:{}", file_label_, mark.line + 1, mark.column + 1);
+}
+
+void YamlSource::fail(const YAML::Node& node, const std::string& key_path,
+                      const std::string& problem) const {
+  tw::fail("{}: {}: {}", location(node, key_path), key_path.empty() ? "(top level)" : key_path,
+           problem);
+}
+
+fs::path YamlSource::resolve(const std::string& value, const std::string& key_path) const {
+  const fs::path path(value);
+  if (path.is_absolute()) return path.lexically_normal();
+  const fs::path base = override_for(key_path) ? fs::current_path() : base_dir_;
+  return (base / path).lexically_normal();
+}
+
+double read_double(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  const double value = convert<double>(src, node, key_path, "a number");
+  if (!std::isfinite(value)) src.fail(node, key_path, "must be a finite number");
+  return value;
+}
+
+double read_positive(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  const double value = read_double(src, node, key_path);
+  if (!(value > 0.0)) src.fail(node, key_path, fmt::format("must be > 0, got {}", value));
+  return value;
+}
+
+double read_non_negative(const YamlSource& src, const YAML::Node& node,
+                         const std::string& key_path) {
+  const double value = read_double(src, node, key_path);
+  if (value < 0.0) src.fail(node, key_path, fmt::format("must be >= 0, got {}", value));
+  return value;
+}
+
+int read_int(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  return convert<int>(src, node, key_path, "an integer");
+}
+
+std::uint64_t read_uint64(const YamlSource& src, const YAML::Node& node,
+                          const std::string& key_path) {
+  return convert<std::uint64_t>(src, node, key_path, "a non-negative integer");
+}
+
+bool read_bool(const YamlSource& src, const YAML::Node& node, const std::string& key_path) {
+  return convert<bool>(src, node, key_path, "true or false");
+}
+
+std::string read_string(const YamlSource& src, const YAML::Node& node,
+                        const std::string& key_path) {
+  if (!node.IsScalar()) src.fail(node, key_path, "expected a string");
+  return node.Scalar();
+}
+
+MapReader::MapReader(const YamlSource& src, const YAML::Node& node, std::string key_path,
+                     std::initializer_list<std::string_view> allowed_keys)
+    : src_(src), node_(node), key_path_(std::move(key_path)) {
+  if (node_.IsNull()) node_ = YAML::Node(YAML::NodeType::Map);
+  if (!node_.IsMap()) src_.fail(node, key_path_, "expected a mapping of keys to values");
+  const std::vector<std::string> allowed(allowed_keys.begin(), allowed_keys.end());
+  for (const auto& entry : node_) {
+    const YAML::Node& key = entry.first;
+    const std::string name = key.IsScalar() ? key.Scalar() : std::string("?");
+    if (std::find(allowed.begin(), allowed.end(), name) != allowed.end()) continue;
+    const std::string suggestion = closest_match(name, allowed);
+    src_.fail(key, path(name),
+              suggestion.empty() ? "unknown key"
+                                 : fmt::format("unknown key (did you mean '{}'?)", suggestion));
+  }
+}
+
+bool MapReader::has(const std::string& key) const {
+  const YAML::Node child = node_[key];
+  return child.IsDefined() && !child.IsNull();
+}
+
+YAML::Node MapReader::get(const std::string& key) const {
+  if (!has(key)) src_.fail(node_, path(key), "missing required key");
+  return node_[key];
+}
+
+std::string MapReader::path(const std::string& key) const {
+  return key_path_.empty() ? key : key_path_ + "." + key;
+}
+
+double MapReader::positive_or(const std::string& key, double fallback) const {
+  return has(key) ? positive(key) : fallback;
+}
+
+double MapReader::non_negative_or(const std::string& key, double fallback) const {
+  return has(key) ? read_non_negative(src_, get(key), path(key)) : fallback;
+}
+
+int MapReader::int_or(const std::string& key, int fallback) const {
+  return has(key) ? read_int(src_, get(key), path(key)) : fallback;
+}
+
+bool MapReader::bool_or(const std::string& key, bool fallback) const {
+  return has(key) ? read_bool(src_, get(key), path(key)) : fallback;
+}
+
+std::string MapReader::string(const std::string& key) const {
+  return read_string(src_, get(key), path(key));
+}
+
+std::string MapReader::string_or(const std::string& key, const std::string& fallback) const {
+  return has(key) ? string(key) : fallback;
+}
+
+fs::path MapReader::file(const std::string& key) const {
+  const std::string value = string(key);
+  if (value.empty()) src_.fail(get(key), path(key), "empty path");
+  return src_.resolve(value, path(key));
+}
+
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const std::string& c : candidates) {
+    const std::size_t d = edit_distance(word, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+}  // namespace tw::detail

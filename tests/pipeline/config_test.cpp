@@ -1,0 +1,236 @@
+// The pipeline file: types, defaults, relative paths, precedence, overrides, and located errors.
+#include "pipeline/config.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/error.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const char* const kMinimal = R"(version: 1
+seed: 7
+heightfield: ../samples/dem.tif
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 8 }
+)";
+
+PipelineConfig parse(const std::string& text, const std::vector<Override>& overrides = {}) {
+  return parse_pipeline(text, "p.yaml", "/base/dir", overrides);
+}
+
+// The message of the tw::Error that parsing `text` throws ("" when it does not throw).
+std::string error_of(const std::string& text, const std::vector<Override>& overrides = {}) {
+  try {
+    parse(text, overrides);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PipelineConfig, ReadsValuesAndFillsDefaults) {
+  const PipelineConfig c = parse(kMinimal);
+  EXPECT_EQ(c.version, 1);
+  EXPECT_EQ(c.seed, 7u);
+  ASSERT_TRUE(c.heightfield.has_value());
+  EXPECT_EQ(*c.heightfield, fs::path("/base/samples/dem.tif"));
+  EXPECT_FALSE(c.resolution.has_value());
+  EXPECT_EQ(c.backend, "auto");
+  EXPECT_EQ(c.output.dir, fs::path("/base/dir/out"));
+  EXPECT_TRUE(c.output.exr && c.output.geotiff && c.output.preview);
+  ASSERT_EQ(c.features.size(), 1u);
+  const FeatureClassConfig& roads = c.features[0];
+  EXPECT_EQ(roads.name, "roads");
+  EXPECT_EQ(roads.source, fs::path("/base/dir/map.gpkg"));
+  EXPECT_EQ(roads.layer, "roads");
+  EXPECT_EQ(roads.kind, FeatureKind::road);
+  EXPECT_DOUBLE_EQ(roads.width, 8.0);
+  EXPECT_DOUBLE_EQ(roads.profile.max_grade, ProfileConfig{}.max_grade);
+  EXPECT_FALSE(roads.synthesis.has_value());
+  EXPECT_TRUE(c.existing.empty());
+}
+
+TEST(PipelineConfig, ReadsEveryNestedSection) {
+  const PipelineConfig c = parse(R"(version: 1
+seed: 3
+generate: { width: 300, height: 200, cell_size: 2.5, relief: 50, origin: [1000, 9000] }
+resolution: 4
+output: { dir: /tmp/o, exr: false, geotiff: true, preview: false }
+backend: cpu
+precedence: [ridges, rivers, roads]
+features:
+  roads: { source: m.gpkg, kind: road, width_attribute: w, where: "type = 'a'",
+           profile: { max_grade: 0.05, shoulder_width: 2, falloff: 10, smoothing: 30 },
+           synthesis: { exemplar: [a.png, b.png], delta: 3, scale: 6, stitch: false, backend: opencl } }
+  ridges: { source: m.gpkg, layer: ridges, kind: ridge, width: 40, profile: { depth: 12 } }
+  rivers: { source: m.gpkg, layer: rivers, kind: river, width: 12,
+            synthesis: { exemplar: r.png, seed: 99 } }
+existing:
+  - { source: m.gpkg, layer: existing }
+  - { source: /abs/lines.shp, width: 6 }
+)");
+  EXPECT_FALSE(c.heightfield.has_value());
+  EXPECT_EQ(c.generate.width, 300);
+  EXPECT_EQ(c.generate.height, 200);
+  EXPECT_DOUBLE_EQ(c.generate.cell_size, 2.5);
+  EXPECT_DOUBLE_EQ(c.generate.origin_x, 1000.0);
+  EXPECT_DOUBLE_EQ(c.generate.origin_y, 9000.0);
+  EXPECT_DOUBLE_EQ(*c.resolution, 4.0);
+  EXPECT_EQ(c.output.dir, fs::path("/tmp/o"));
+  EXPECT_FALSE(c.output.exr);
+  EXPECT_FALSE(c.output.preview);
+  EXPECT_EQ(c.backend, "cpu");
+  ASSERT_EQ(c.features.size(), 3u);
+  EXPECT_EQ(c.features[0].name, "ridges");
+  EXPECT_EQ(c.features[1].name, "rivers");
+  EXPECT_EQ(c.features[2].name, "roads");
+  const FeatureClassConfig& roads = c.features[2];
+  EXPECT_EQ(roads.width_attribute, "w");
+  EXPECT_EQ(roads.where, "type = 'a'");
+  EXPECT_DOUBLE_EQ(roads.profile.max_grade, 0.05);
+  EXPECT_DOUBLE_EQ(roads.profile.smoothing, 30.0);
+  ASSERT_TRUE(roads.synthesis.has_value());
+  EXPECT_EQ(roads.synthesis->exemplars,
+            (std::vector<fs::path>{"/base/dir/a.png", "/base/dir/b.png"}));
+  EXPECT_DOUBLE_EQ(roads.synthesis->delta, 3.0);
+  EXPECT_FALSE(roads.synthesis->stitch);
+  EXPECT_EQ(roads.synthesis->seed, 3u);  // the pipeline's seed by default
+  EXPECT_EQ(roads.synthesis->backend, "opencl");
+  EXPECT_EQ(c.features[1].synthesis->seed, 99u);
+  EXPECT_EQ(c.features[1].synthesis->backend, "");
+  EXPECT_DOUBLE_EQ(c.features[0].profile.depth, 12.0);
+  ASSERT_EQ(c.existing.size(), 2u);
+  EXPECT_EQ(c.existing[0].layer, "existing");
+  EXPECT_EQ(c.existing[1].source, fs::path("/abs/lines.shp"));
+  EXPECT_DOUBLE_EQ(c.existing[1].width, 6.0);
+}
+
+TEST(PipelineConfig, UnknownKeyNamesFileLineColumnAndSuggests) {
+  const std::string text =
+      std::string(kMinimal) + "  rivers: { source: m.gpkg, kind: river, widht: 3 }\n";
+  EXPECT_EQ(error_of(text),
+            "p.yaml:6:42: features.rivers.widht: unknown key (did you mean 'width'?)");
+  EXPECT_EQ(error_of(std::string(kMinimal) + "colour: red\n"), "p.yaml:6:1: colour: unknown key");
+}
+
+TEST(PipelineConfig, WrongTypesAndBadValuesAreLocated) {
+  EXPECT_EQ(error_of("version: 1\nseed: seven\n"),
+            "p.yaml:2:7: seed: expected a non-negative integer, got 'seven'");
+  EXPECT_EQ(error_of(R"(version: 1
+features:
+  roads: { source: m.gpkg, kind: road, width: wide }
+)"),
+            "p.yaml:3:47: features.roads.width: expected a number, got 'wide'");
+  EXPECT_EQ(error_of(R"(version: 1
+features:
+  roads: { source: m.gpkg, kind: road, width: 0 }
+)"),
+            "p.yaml:3:47: features.roads.width: must be > 0, got 0");
+  EXPECT_THAT(error_of(R"(version: 1
+features:
+  roads: { source: m.gpkg, kind: road, width: 3, synthesis: { exemplar: e.png, delta: -1 } }
+)"),
+              HasSubstr("features.roads.synthesis.delta: must be > 0, got -1"));
+  EXPECT_THAT(error_of("version: 1\nresolution: .nan\nfeatures: {}\n"),
+              HasSubstr("p.yaml:2:13: resolution: must be a finite number"));
+  EXPECT_THAT(error_of("version: 1\noutput: [a]\n"),
+              HasSubstr("p.yaml:2:9: output: expected a mapping"));
+  EXPECT_THAT(error_of(R"(version: 1
+features:
+  roads: { source: m.gpkg, kind: raod, width: 3 }
+)"),
+              HasSubstr("features.roads.kind: unknown kind 'raod', expected road, river or ridge "
+                        "(did you mean 'road'?)"));
+  EXPECT_THAT(error_of("version: 2\n"), HasSubstr("p.yaml:1:10: version: only version 1"));
+  EXPECT_THAT(error_of("version: 1\nbackend: gpu\n"), HasSubstr("backend: unknown backend 'gpu'"));
+  EXPECT_THAT(error_of("version: [1\n"), HasSubstr("p.yaml:"));
+}
+
+TEST(PipelineConfig, MissingRequiredKeysAreNamed) {
+  EXPECT_THAT(error_of("seed: 1\n"), HasSubstr("version: missing required key"));
+  EXPECT_THAT(error_of("version: 1\n"), HasSubstr("features: missing required key"));
+  EXPECT_EQ(error_of("version: 1\nfeatures:\n  roads: { kind: road, width: 3 }\n"),
+            "p.yaml:3:10: features.roads.source: missing required key");
+  EXPECT_THAT(error_of("version: 1\nfeatures:\n  roads: { source: a, kind: road }\n"),
+              HasSubstr("features.roads.width: missing required key"));
+}
+
+TEST(PipelineConfig, PrecedenceMustNameEachClassOnce) {
+  const std::string two =
+      std::string(kMinimal) + "  rivers: { source: m.gpkg, kind: river, width: 3 }\n";
+  EXPECT_THAT(error_of(two + "precedence: [rivers, roadz]\n"),
+              HasSubstr("precedence.1: 'roadz' is not a feature class (did you mean 'roads'?)"));
+  EXPECT_THAT(error_of(two + "precedence: [rivers]\n"),
+              HasSubstr("precedence: feature class 'roads' is missing from the list"));
+  EXPECT_THAT(error_of(two + "precedence: [rivers, rivers]\n"),
+              HasSubstr("'rivers' is listed twice"));
+}
+
+TEST(PipelineConfig, OverridesReplaceAddAndResolveAgainstTheCurrentFolder) {
+  const PipelineConfig c = parse(
+      kMinimal,
+      {parse_override("heightfield=other.tif"), parse_override("features.roads.width=12.5"),
+       parse_override("output={dir: /o, preview: false}"), parse_override("seed=11"),
+       parse_override("features.rivers.source=r.gpkg"),
+       parse_override("features.rivers.kind=river"), parse_override("features.rivers.width=4")});
+  EXPECT_EQ(*c.heightfield, fs::current_path() / "other.tif");
+  EXPECT_DOUBLE_EQ(c.features[0].width, 12.5);
+  EXPECT_EQ(c.output.dir, fs::path("/o"));
+  EXPECT_FALSE(c.output.preview);
+  EXPECT_EQ(c.seed, 11u);
+  ASSERT_EQ(c.features.size(), 2u);
+  EXPECT_EQ(c.features[1].source, fs::current_path() / "r.gpkg");
+  const PipelineConfig listed = parse(std::string(kMinimal) + "existing: [{source: a.gpkg}]\n",
+                                      {parse_override("existing.0.layer=houses")});
+  EXPECT_EQ(listed.existing[0].layer, "houses");
+}
+
+TEST(PipelineConfig, BadOverridesNameTheOverride) {
+  EXPECT_EQ(
+      error_of(kMinimal, {parse_override("features.roads.widht=3")}),
+      "--set features.roads.widht=3: features.roads.widht: unknown key (did you mean 'width'?)");
+  EXPECT_EQ(error_of(kMinimal, {parse_override("colour.shade=3")}),
+            "--set colour.shade=3: colour: unknown key");
+  EXPECT_EQ(error_of(kMinimal, {parse_override("features.roads.width=-2")}),
+            "--set features.roads.width=-2: features.roads.width: must be > 0, got -2");
+  EXPECT_THAT(error_of(kMinimal, {parse_override("existing.3.layer=x")}),
+              HasSubstr("--set existing.3.layer=x"));
+  EXPECT_THROW(parse_override("novalue"), Error);
+  EXPECT_THROW(parse_override("=3"), Error);
+}
+
+TEST(PipelineConfig, LoadsAFileAndResolvesAgainstItsFolder) {
+  test::TempDir dir;
+  fs::create_directories(dir / "pipelines");
+  std::ofstream(dir / "pipelines/p.yaml") << kMinimal;
+  const PipelineConfig c = load_pipeline(dir / "pipelines/p.yaml");
+  EXPECT_EQ(*c.heightfield, dir.path() / "samples/dem.tif");
+  EXPECT_EQ(c.features[0].source, dir.path() / "pipelines/map.gpkg");
+  try {
+    load_pipeline(dir / "missing.yaml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("missing.yaml: cannot read the pipeline file"));
+  }
+}
+
+TEST(PipelineConfig, ShippedPipelinesParse) {
+  for (const char* name : {"pipelines/generated.yaml", "pipelines/demo.yaml"}) {
+    const fs::path file = test::source_dir() / name;
+    if (!fs::exists(file)) continue;  // demo.yaml lands with samples/
+    SCOPED_TRACE(name);
+    const PipelineConfig c = load_pipeline(file);
+    EXPECT_FALSE(c.features.empty());
+  }
+}
+
+}  // namespace
+}  // namespace tw
