@@ -1,0 +1,85 @@
+#include "raster/distance.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace tw {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// One 1-D pass of Felzenszwalb & Huttenlocher: d[q] = min_p (w2 (q - p)^2 + f[p]) over the
+// lower envelope of parabolas. Samples with f = +inf are not parabolas at all (skipping them
+// avoids inf - inf in the intersection formula).
+struct Envelope {
+  std::vector<int> v;
+  std::vector<double> z;
+  void transform(const double* f, int n, double w2, double* d) {
+    v.resize(std::size_t(n));
+    z.resize(std::size_t(n) + 1);
+    int k = -1;
+    for (int q = 0; q < n; ++q) {
+      if (f[q] == kInf) continue;
+      const double fq = f[q] + w2 * double(q) * q;
+      double s = -kInf;
+      while (k >= 0) {
+        const int p = v[k];
+        s = (fq - (f[p] + w2 * double(p) * p)) / (2.0 * w2 * double(q - p));
+        if (s > z[k]) break;
+        --k;
+      }
+      ++k;
+      v[k] = q;
+      z[k] = k == 0 ? -kInf : s;
+      z[k + 1] = kInf;
+    }
+    if (k < 0) {
+      for (int q = 0; q < n; ++q) d[q] = kInf;
+      return;
+    }
+    int j = 0;
+    for (int q = 0; q < n; ++q) {
+      while (z[j + 1] < q) ++j;
+      const double dq = double(q - v[j]);
+      d[q] = w2 * dq * dq + f[v[j]];
+    }
+  }
+};
+
+}  // namespace
+
+Raster<float> distance_to_mask(const Raster<std::uint8_t>& mask, double pixel_w, double pixel_h) {
+  if (!(pixel_w > 0.0) || !(pixel_h > 0.0))
+    fail("distance_to_mask: pixel size must be > 0 (got {} x {})", pixel_w, pixel_h);
+  const int w = mask.width, h = mask.height;
+  Raster<float> out(w, h, 0.0f);
+  if (w == 0 || h == 0) return out;
+  // Squared distances along columns first (metres^2), then along rows.
+  std::vector<double> columns(std::size_t(w) * h);
+  tbb::parallel_for(tbb::blocked_range<int>(0, w, 16), [&](const tbb::blocked_range<int>& range) {
+    Envelope envelope;
+    std::vector<double> f(static_cast<std::size_t>(h)), d(static_cast<std::size_t>(h));
+    for (int c = range.begin(); c != range.end(); ++c) {
+      for (int r = 0; r < h; ++r) f[r] = mask.at(c, r) ? 0.0 : kInf;
+      envelope.transform(f.data(), h, pixel_h * pixel_h, d.data());
+      for (int r = 0; r < h; ++r) columns[std::size_t(r) * w + c] = d[r];
+    }
+  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& range) {
+    Envelope envelope;
+    std::vector<double> d(static_cast<std::size_t>(w));
+    for (int r = range.begin(); r != range.end(); ++r) {
+      envelope.transform(columns.data() + std::size_t(r) * w, w, pixel_w * pixel_w, d.data());
+      for (int c = 0; c < w; ++c) out.at(c, r) = float(std::sqrt(d[c]));
+    }
+  });
+  return out;
+}
+
+}  // namespace tw

@@ -1,1 +1,0 @@
-// Module raster: see its headers.

@@ -1,0 +1,240 @@
+#include "ribbon/junctions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
+
+#include "core/error.hpp"
+
+namespace tw {
+namespace {
+
+struct Segment {
+  std::size_t curve;
+  std::size_t index;  // segment k runs from point k to point k + 1 (wrapping on closed curves)
+  Vec2 a, b;
+  double arc0;  // arc length at a
+};
+
+struct Candidate {
+  Vec2 position;
+  std::vector<JunctionMember> members;
+};
+
+// A uniform grid of segment bounding boxes (grown by the tolerance): only segments sharing a
+// cell are ever compared.
+class SegmentGrid {
+ public:
+  SegmentGrid(const std::vector<Segment>& segments, double cell, double grow)
+      : cell_(cell), grow_(grow) {
+    for (std::uint32_t s = 0; s < segments.size(); ++s) {
+      const auto [c0, r0, c1, r1] = cell_range(segments[s]);
+      for (std::int64_t r = r0; r <= r1; ++r)
+        for (std::int64_t c = c0; c <= c1; ++c) cells_[key(c, r)].push_back(s);
+    }
+  }
+  struct Range {
+    std::int64_t c0, r0, c1, r1;
+  };
+  Range cell_range(const Segment& s) const {
+    return {coord(std::min(s.a.x, s.b.x) - grow_), coord(std::min(s.a.y, s.b.y) - grow_),
+            coord(std::max(s.a.x, s.b.x) + grow_), coord(std::max(s.a.y, s.b.y) + grow_)};
+  }
+  std::int64_t coord(double v) const { return std::int64_t(std::floor(v / cell_)); }
+  static std::int64_t key(std::int64_t c, std::int64_t r) {
+    return std::int64_t((std::uint64_t(c) << 32) ^ (std::uint64_t(r) & 0xffffffffULL));
+  }
+  const std::unordered_map<std::int64_t, std::vector<std::uint32_t>>& cells() const {
+    return cells_;
+  }
+  const std::vector<std::uint32_t>* at(Vec2 p) const {
+    auto it = cells_.find(key(coord(p.x), coord(p.y)));
+    return it == cells_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  double cell_, grow_;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+};
+
+double closest_parameter(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double len2 = dot(ab, ab);
+  return len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+}
+
+// Intersection parameters of segments ab and cd (touching included), if they meet at one point.
+bool segment_intersection(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double& t, double& u) {
+  const Vec2 r = b - a, s = d - c;
+  const double denom = cross(r, s);
+  if (denom == 0.0) return false;  // parallel: overlaps are caught by the endpoint tests
+  t = cross(c - a, s) / denom;
+  u = cross(c - a, r) / denom;
+  return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
+}
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m) {
+  if (!(tolerance_m >= 0.0) || !std::isfinite(tolerance_m))
+    fail("find_junctions: tolerance {} m must be >= 0", tolerance_m);
+  std::vector<Segment> segments;
+  std::vector<double> lengths(curves.size(), 0.0);
+  double total_length = 0.0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const auto& pts = curves[c].points;
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      if (!is_finite(pts[i])) fail("curve {}: point {} is not finite", c, i);
+    const auto cumulative = cumulative_lengths(curves[c]);
+    if (pts.empty()) continue;
+    lengths[c] = cumulative.back();
+    total_length += lengths[c];
+    const std::size_t count = curves[c].closed && pts.size() > 1 ? pts.size() : pts.size() - 1;
+    for (std::size_t i = 0; i < count; ++i)
+      segments.push_back({c, i, pts[i], pts[(i + 1) % pts.size()], cumulative[i]});
+    if (pts.size() == 1) segments.push_back({c, 0, pts[0], pts[0], 0.0});
+  }
+  if (segments.empty()) return {};
+
+  auto at_endpoint = [&](std::size_t c, double arc) {
+    return !curves[c].closed && (arc <= tolerance_m || arc >= lengths[c] - tolerance_m);
+  };
+  // A member within the tolerance of an end is reported exactly at that end.
+  auto member = [&](std::size_t c, double arc) {
+    if (!at_endpoint(c, arc)) return JunctionMember{c, arc, false};
+    return JunctionMember{c, arc <= tolerance_m ? 0.0 : lengths[c], true};
+  };
+  // Neighbouring segments of one curve always touch; they are not junctions.
+  auto adjacent = [&](const Segment& s, const Segment& t) {
+    if (s.curve != t.curve) return false;
+    const std::size_t n = curves[s.curve].points.size();
+    const std::size_t i = std::min(s.index, t.index), j = std::max(s.index, t.index);
+    return j - i <= 1 || (curves[s.curve].closed && i == 0 && j == n - 1);
+  };
+
+  const double cell = std::max({total_length / double(segments.size()), 2.0 * tolerance_m, 1e-6});
+  const SegmentGrid grid(segments, cell, tolerance_m);
+  std::vector<Candidate> candidates;
+
+  // Crossings: each pair is tested once, in the cell holding the lowest corner of the overlap of
+  // the two (grown) boxes.
+  for (const auto& [cell_key, ids] : grid.cells()) {
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      for (std::size_t j = i + 1; j < ids.size(); ++j) {
+        const Segment& s = segments[ids[i]];
+        const Segment& t = segments[ids[j]];
+        if (adjacent(s, t)) continue;
+        const auto rs = grid.cell_range(s), rt = grid.cell_range(t);
+        if (SegmentGrid::key(std::max(rs.c0, rt.c0), std::max(rs.r0, rt.r0)) != cell_key) continue;
+        double u, v;
+        if (!segment_intersection(s.a, s.b, t.a, t.b, u, v)) continue;
+        const double arc_s = s.arc0 + u * distance(s.a, s.b);
+        const double arc_t = t.arc0 + v * distance(t.a, t.b);
+        if (s.curve == t.curve && std::abs(arc_s - arc_t) <= tolerance_m) continue;
+        candidates.push_back({lerp(s.a, s.b, u), {member(s.curve, arc_s), member(t.curve, arc_t)}});
+      }
+    }
+  }
+  // Endpoints of open curves near any other part of any curve (shared ends, T-junctions).
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (curves[c].closed || curves[c].points.empty()) continue;
+    for (const bool last : {false, true}) {
+      const Vec2 e = last ? curves[c].points.back() : curves[c].points.front();
+      const double arc_e = last ? lengths[c] : 0.0;
+      const auto* ids = grid.at(e);
+      if (ids == nullptr) continue;
+      for (const std::uint32_t id : *ids) {
+        const Segment& s = segments[id];
+        const double u = closest_parameter(e, s.a, s.b);
+        const Vec2 q = lerp(s.a, s.b, u);
+        if (distance(e, q) > tolerance_m) continue;
+        const double arc_s = s.arc0 + u * distance(s.a, s.b);
+        if (s.curve == c && std::abs(arc_s - arc_e) <= 2.0 * tolerance_m + 1e-9) continue;
+        candidates.push_back({e, {member(c, arc_e), member(s.curve, arc_s)}});
+      }
+    }
+  }
+
+  // The grid's hash order must not leak into the output: canonical order first.
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.position.x != b.position.x) return a.position.x < b.position.x;
+    if (a.position.y != b.position.y) return a.position.y < b.position.y;
+    const auto key = [](const Candidate& c) {
+      return std::tuple(c.members[0].curve, c.members[0].arc_length, c.members[1].curve,
+                        c.members[1].arc_length);
+    };
+    return key(a) < key(b);
+  });
+  // Merge candidates closer than the tolerance: sweep in x.
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return candidates[a].position.x < candidates[b].position.x;
+  });
+  UnionFind groups(candidates.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    for (std::size_t j = i + 1; j < order.size(); ++j) {
+      const Vec2 a = candidates[order[i]].position, b = candidates[order[j]].position;
+      if (b.x - a.x > tolerance_m) break;
+      if (distance(a, b) <= tolerance_m) groups.join(order[i], order[j]);
+    }
+  }
+  std::vector<std::vector<std::size_t>> by_root(candidates.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i) by_root[groups.find(i)].push_back(i);
+
+  std::vector<Junction> junctions;
+  for (const auto& ids : by_root) {
+    if (ids.empty()) continue;
+    Junction j;
+    std::vector<JunctionMember> all;
+    for (const std::size_t id : ids) {
+      j.position += candidates[id].position;
+      all.insert(all.end(), candidates[id].members.begin(), candidates[id].members.end());
+    }
+    j.position = j.position / double(ids.size());
+    std::sort(all.begin(), all.end(), [](const JunctionMember& a, const JunctionMember& b) {
+      return a.curve != b.curve ? a.curve < b.curve : a.arc_length < b.arc_length;
+    });
+    // One member per passage of a curve: same curve within the tolerance is the same place.
+    for (const JunctionMember& m : all) {
+      if (!j.members.empty() && j.members.back().curve == m.curve &&
+          m.arc_length - j.members.back().arc_length <= tolerance_m) {
+        j.members.back().at_endpoint = j.members.back().at_endpoint || m.at_endpoint;
+        continue;
+      }
+      j.members.push_back(m);
+    }
+    if (j.members.size() < 2) continue;
+    const auto through = std::count_if(j.members.begin(), j.members.end(),
+                                       [](const JunctionMember& m) { return !m.at_endpoint; });
+    j.crossing = through >= 2;
+    junctions.push_back(std::move(j));
+  }
+  std::sort(junctions.begin(), junctions.end(), [](const Junction& a, const Junction& b) {
+    const auto& ma = a.members.front();
+    const auto& mb = b.members.front();
+    if (ma.curve != mb.curve) return ma.curve < mb.curve;
+    if (ma.arc_length != mb.arc_length) return ma.arc_length < mb.arc_length;
+    return a.position.x != b.position.x ? a.position.x < b.position.x : a.position.y < b.position.y;
+  });
+  return junctions;
+}
+
+}  // namespace tw
