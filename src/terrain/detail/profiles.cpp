@@ -1,0 +1,103 @@
+#include "terrain/detail/profiles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tw::detail {
+
+double sample_height(const Raster<float>& height, const GridSpec& grid, Vec2 world) {
+  const Vec2 p = grid.world_to_pixel(world) - Vec2{0.5, 0.5};  // in pixel-centre units
+  const double fx = std::floor(p.x), fy = std::floor(p.y);
+  const int c = int(fx), r = int(fy);
+  const double tx = p.x - fx, ty = p.y - fy;
+  double sum = 0.0, weight = 0.0;
+  for (int dy = 0; dy <= 1; ++dy)
+    for (int dx = 0; dx <= 1; ++dx) {
+      const int col = c + dx, row = r + dy;
+      if (!height.inside(col, row)) continue;
+      const float h = height.at(col, row);
+      if (std::isnan(h)) continue;
+      const double w = (dx ? tx : 1.0 - tx) * (dy ? ty : 1.0 - ty);
+      sum += w * h;
+      weight += w;
+    }
+  return weight > 1e-9 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,
+                                  const Curve& curve, double step) {
+  const auto cumulative = cumulative_lengths(curve);
+  const double total = cumulative.back();
+  const std::size_t count = std::size_t(std::llround(total / step)) + 1;
+  std::vector<double> v(count);
+  for (std::size_t i = 0; i < count; ++i)
+    v[i] = sample_height(height, grid, point_at(curve, cumulative, std::min(total, i * step)));
+  // Bridge nodata: linear between valid neighbours, constant beyond the first / last valid.
+  std::size_t previous = count;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (std::isnan(v[i])) continue;
+    if (previous == count) {
+      std::fill(v.begin(), v.begin() + std::ptrdiff_t(i), v[i]);
+    } else {
+      for (std::size_t k = previous + 1; k < i; ++k)
+        v[k] = v[previous] + (v[i] - v[previous]) * double(k - previous) / double(i - previous);
+    }
+    previous = i;
+  }
+  if (previous == count) return {};
+  std::fill(v.begin() + std::ptrdiff_t(previous) + 1, v.end(), v[previous]);
+  return v;
+}
+
+std::vector<double> moving_average(const std::vector<double>& v, double step, double window) {
+  const auto half = std::ptrdiff_t(std::floor(0.5 * window / step));
+  if (half <= 0) return v;
+  const auto n = std::ptrdiff_t(v.size());
+  std::vector<double> prefix(v.size() + 1, 0.0);
+  for (std::ptrdiff_t i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + v[i];
+  std::vector<double> out(v.size());
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(0, i - half);
+    const std::ptrdiff_t hi = std::min(n, i + half + 1);
+    out[i] = (prefix[hi] - prefix[lo]) / double(hi - lo);
+  }
+  return out;
+}
+
+std::vector<double> limit_grade(const std::vector<double>& v, double step, double grade) {
+  const double rise = grade * step;
+  std::vector<double> forward = v, backward = v;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    forward[i] = std::clamp(forward[i], forward[i - 1] - rise, forward[i - 1] + rise);
+  for (std::size_t i = v.size() - 1; i-- > 0;)
+    backward[i] = std::clamp(backward[i], backward[i + 1] - rise, backward[i + 1] + rise);
+  std::vector<double> out(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) out[i] = 0.5 * (forward[i] + backward[i]);
+  return out;
+}
+
+std::vector<double> water_surface(const std::vector<double>& terrain, double step,
+                                  double min_slope) {
+  std::vector<double> s = terrain;
+  for (std::size_t i = 1; i < s.size(); ++i) s[i] = std::min(s[i], s[i - 1] - min_slope * step);
+  return s;
+}
+
+void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins) {
+  if (pins.empty()) return;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double s = double(i) * step;
+    double upper = std::numeric_limits<double>::infinity();
+    double lower = -upper;
+    for (const Pin& p : pins) {
+      const double slack = grade * std::abs(s - p.s);
+      upper = std::min(upper, p.height + slack);
+      lower = std::max(lower, p.height - slack);
+    }
+    // Inconsistent pins (too steep between them): the lower cone wins, deterministically.
+    v[i] = std::max(std::min(v[i], upper), lower);
+  }
+}
+
+}  // namespace tw::detail

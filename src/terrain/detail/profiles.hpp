@@ -1,0 +1,50 @@
+#pragma once
+// Longitudinal profiles: the terrain sampled along a centerline, smoothed, graded (roads) or
+// made non-increasing downstream (rivers). All in double; samples every `step` metres.
+#include <vector>
+
+#include "core/grid.hpp"
+#include "ribbon/curve.hpp"
+
+namespace tw::detail {
+
+// Bilinear height at a world point from the valid (non-NaN) neighbours only; NaN when all
+// four neighbours are nodata or the point is off the grid.
+double sample_height(const Raster<float>& height, const GridSpec& grid, Vec2 world);
+
+// Heights every `step` metres along the curve (step divides L: count = L/step + 1);
+// nodata gaps are bridged linearly between valid samples, ends extended. Returns an empty
+// vector when the whole curve lies over nodata.
+std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,
+                                  const Curve& curve, double step);
+
+// Centred moving average over `window` metres (truncated at the ends).
+std::vector<double> moving_average(const std::vector<double>& v, double step, double window);
+
+// The average of the forward- and backward-limited profiles: |v[i+1] - v[i]| <= grade*step,
+// without a bias towards either direction.
+std::vector<double> limit_grade(const std::vector<double>& v, double step, double grade);
+
+// Running minimum downstream with a minimum drop of min_slope per metre.
+std::vector<double> water_surface(const std::vector<double>& terrain, double step,
+                                  double min_slope);
+
+// A pinned profile height (a junction) at arc length s.
+struct Pin {
+  double s = 0.0;
+  double height = 0.0;
+};
+// Clamps a grade-limited profile between the cones of its pins, so it passes through each
+// pin and stays within the grade (when the pins themselves are within grade of each other).
+void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins);
+
+// Linear interpolation of a profile at arc length s (clamped to its ends).
+inline double profile_at(const std::vector<float>& v, double step, double s) {
+  const double x = std::max(0.0, s / step);
+  const std::size_t i = std::min(std::size_t(x), v.size() - 1);
+  if (i + 1 >= v.size()) return v.back();
+  const double t = x - double(i);
+  return v[i] + (double(v[i + 1]) - v[i]) * t;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,277 @@
+#include "terrain/height_ops.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "terrain/detail/feature_index.hpp"
+#include "terrain/detail/influence.hpp"
+#include "terrain/detail/junctions.hpp"
+#include "terrain/detail/precedence.hpp"
+#include "terrain/detail/profiles.hpp"
+
+namespace tw {
+
+namespace {
+
+using detail::Pin;
+
+// Profile samples about every half pixel, spaced to divide the length exactly.
+double profile_step(const GridSpec& grid, double length) {
+  const double target = 0.5 * std::min(grid.pixel_width, grid.pixel_height);
+  const double count = std::clamp(std::ceil(length / target), 1.0, 4.0e6);
+  return length / count;
+}
+
+// Roads meeting at their ends share one height there, so the blend of their surfaces is
+// level: through roads (T-junctions) keep theirs, shared endpoints take the mean.
+void pin_road_junctions(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
+                        const std::vector<std::vector<detail::EndContact>>& contacts) {
+  std::vector<std::vector<Pin>> pins(plan.features.size());
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    if (plan.features[i].kind != FeatureKind::road) continue;
+    const double step = plan.steps[i];
+    for (const bool at_start : {true, false}) {
+      const double s = at_start ? 0.0 : double(profiles[i].size() - 1) * step;
+      double through_sum = 0.0, shared_sum = 0.0;
+      int through = 0, shared = 0;
+      bool own_counted = false;
+      for (const auto& c : contacts[i]) {
+        if (c.at_start != at_start) continue;
+        const auto& other = profiles[std::size_t(c.other)];
+        const double h = std::clamp(
+            other[std::min(other.size() - 1, std::size_t(std::llround(
+                                                 c.other_s / plan.steps[std::size_t(c.other)])))],
+            -1e30, 1e30);
+        if (!c.other_end) {
+          through_sum += h;
+          ++through;
+          continue;
+        }
+        // Sum in feature order so every road of the junction gets the same mean.
+        if (!own_counted && std::size_t(c.other) > i) {
+          shared_sum += profiles[i][at_start ? 0 : profiles[i].size() - 1];
+          ++shared;
+          own_counted = true;
+        }
+        shared_sum += h;
+        ++shared;
+      }
+      if (through > 0) {
+        pins[i].push_back({s, through_sum / through});
+      } else if (shared > 0) {
+        if (!own_counted) {
+          shared_sum += profiles[i][at_start ? 0 : profiles[i].size() - 1];
+          ++shared;
+        }
+        pins[i].push_back({s, shared_sum / shared});
+      }
+    }
+  }
+  for (std::size_t i = 0; i < plan.features.size(); ++i)
+    detail::apply_pins(profiles[i], plan.steps[i], plan.features[i].road.max_grade, pins[i]);
+}
+
+// A river continues into the river that starts at its mouth (that one's surface never starts
+// above its feeder's), and a tributary's surface is eased down over its last stretch to the
+// surface of the river it joins, so confluences have no step.
+void join_rivers(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
+                 const std::vector<std::vector<detail::EndContact>>& contacts) {
+  const auto& fs = plan.features;
+  auto surface_at = [&](std::size_t j, double s) {
+    const auto& p = profiles[j];
+    return p[std::min(p.size() - 1, std::size_t(std::llround(s / plan.steps[j])))];
+  };
+  for (std::size_t pass = 0; pass <= fs.size(); ++pass) {
+    bool changed = false;
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      if (fs[i].kind != FeatureKind::river) continue;
+      for (const auto& c : contacts[i]) {
+        if (c.at_start || !c.other_end || c.other_s > 0.0) continue;
+        auto& next = profiles[std::size_t(c.other)];
+        if (next.front() > profiles[i].back()) {
+          next.front() = profiles[i].back();
+          const auto& r = fs[std::size_t(c.other)].river;
+          next = detail::water_surface(next, plan.steps[std::size_t(c.other)], r.min_slope);
+          changed = true;
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    if (fs[i].kind != FeatureKind::river) continue;
+    for (const auto& c : contacts[i]) {
+      if (c.at_start || c.other_end) continue;
+      auto& p = profiles[i];
+      const double excess = p.back() - surface_at(std::size_t(c.other), c.other_s);
+      if (excess <= 0.0) continue;
+      const auto& r = fs[i].river;
+      const double ramp = fs[i].width + r.bank_width + r.falloff;
+      const double total = double(p.size() - 1) * plan.steps[i];
+      // Subtracting a non-decreasing ramp keeps the surface non-increasing.
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const double s = double(k) * plan.steps[i];
+        p[k] -= excess * std::clamp((s - (total - ramp)) / ramp, 0.0, 1.0);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params) {
+  if (height.width != grid.width || height.height != grid.height)
+    fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
+         height.height, grid.width, grid.height);
+  TerrainPlan plan;
+  plan.params = params;
+  const auto ranks = detail::precedence_ranks(params);
+  for (const auto& f : features) {
+    validate_feature(f);
+    if (ranks[std::size_t(f.kind)] < 0)
+      fail("{} feature FID {}: its kind is missing from the terrain precedence", to_string(f.kind),
+           f.fid);
+    TerrainFeature copy = f;
+    copy.centerline = without_duplicates(f.centerline);
+    plan.features.push_back(std::move(copy));
+  }
+  std::stable_sort(plan.features.begin(), plan.features.end(), [&](const auto& a, const auto& b) {
+    return ranks[std::size_t(a.kind)] < ranks[std::size_t(b.kind)];
+  });
+
+  std::vector<std::vector<double>> profiles(plan.features.size());
+  std::vector<char> over_nodata(plan.features.size(), 0);
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    const auto& f = plan.features[i];
+    const double step = profile_step(grid, arc_length(f.centerline));
+    plan.steps.push_back(step);
+    if (f.kind == FeatureKind::ridge) {
+      profiles[i] = {0.0};
+      continue;
+    }
+    auto terrain = detail::terrain_along(height, grid, f.centerline, step);
+    if (terrain.empty()) {
+      logger().warn("{} feature FID {} lies entirely over nodata; left out", to_string(f.kind),
+                    f.fid);
+      over_nodata[i] = 1;
+      profiles[i] = {0.0};
+      continue;
+    }
+    if (f.kind == FeatureKind::road) {
+      profiles[i] = detail::limit_grade(detail::moving_average(terrain, step, f.road.smoothing),
+                                        step, f.road.max_grade);
+    } else {
+      profiles[i] = detail::water_surface(terrain, step, f.river.min_slope);
+    }
+  }
+  const auto contacts =
+      detail::find_end_contacts(plan.features, 0.5 * std::max(grid.pixel_width, grid.pixel_height));
+  pin_road_junctions(plan, profiles, contacts);
+  join_rivers(plan, profiles, contacts);
+
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    if (over_nodata[i]) plan.features[i].width = 0.0;  // marks "nothing to apply"
+    plan.profiles.emplace_back(profiles[i].begin(), profiles[i].end());
+  }
+  return plan;
+}
+
+namespace {
+
+// Per pixel and kind: the weighted mean of the features' values and the strongest weight.
+struct KindAccumulator {
+  double weight_sum = 0.0;
+  double value_sum = 0.0;
+  double weight_max = 0.0;
+};
+
+}  // namespace
+
+void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
+                   const TerrainPlan& plan) {
+  if (height.width != grid.width || height.height != grid.height)
+    fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
+         height.height, grid.width, grid.height);
+  if (window.col0 < 0 || window.row0 < 0 || window.col_end() > grid.width ||
+      window.row_end() > grid.height)
+    fail("shape_terrain: window ({}, {}, {} x {}) is outside the {} x {} grid", window.col0,
+         window.row0, window.width, window.height, grid.width, grid.height);
+  std::vector<const Curve*> curves;
+  std::vector<double> reach;
+  for (const auto& f : plan.features) {
+    curves.push_back(&f.centerline);
+    reach.push_back(f.width > 0.0 ? feature_reach(f) : -1.0);
+  }
+  const detail::FeatureIndex index(grid, window, curves, reach);
+  const auto ranks = detail::precedence_ranks(plan.params);
+  const std::size_t kinds = plan.params.precedence.size();
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, index.tile_count()), [&](const auto& range) {
+    std::vector<detail::NearestSample> samples;
+    std::vector<KindAccumulator> acc;
+    for (int t = range.begin(); t != range.end(); ++t) {
+      if (index.tile_is_empty(t)) continue;
+      const Window tile = index.tile(t);
+      const std::size_t n = std::size_t(tile.width) * tile.height;
+      acc.assign(n * kinds, KindAccumulator{});
+      index.for_each_feature(t, samples, [&](int fi, const std::vector<detail::NearestSample>& s) {
+        const auto& f = plan.features[std::size_t(fi)];
+        const auto& profile = plan.profiles[std::size_t(fi)];
+        const double step = plan.steps[std::size_t(fi)];
+        const std::size_t rank = std::size_t(ranks[std::size_t(f.kind)]);
+        for (std::size_t k = 0; k < n; ++k) {
+          if (!std::isfinite(s[k].distance)) continue;
+          const double w = detail::height_weight(f, s[k].distance);
+          if (w <= 0.0) continue;
+          double value = f.ridge.height;
+          if (f.kind == FeatureKind::road) value = detail::profile_at(profile, step, s[k].along);
+          if (f.kind == FeatureKind::river)
+            value = detail::profile_at(profile, step, s[k].along) - f.river.depth;
+          auto& a = acc[k * kinds + rank];
+          a.weight_sum += w;
+          a.value_sum += w * value;
+          a.weight_max = std::max(a.weight_max, w);
+        }
+      });
+      for (int r = 0; r < tile.height; ++r)
+        for (int c = 0; c < tile.width; ++c) {
+          float& cell = height.at(tile.col0 + c, tile.row0 + r);
+          if (std::isnan(cell)) continue;  // nodata is never read nor written
+          double h = cell;
+          const std::size_t k = std::size_t(r) * tile.width + c;
+          for (std::size_t rank = 0; rank < kinds; ++rank) {
+            const auto& a = acc[k * kinds + rank];
+            if (a.weight_max <= 0.0) continue;
+            const double mean = a.value_sum / a.weight_sum;
+            double target = mean;
+            switch (plan.params.precedence[rank]) {
+              case FeatureKind::road:
+                break;
+              case FeatureKind::river:
+                target = std::min(h, mean);
+                break;  // rivers only carve
+              case FeatureKind::ridge:
+                target = h + mean;
+                break;
+            }
+            h += (target - h) * a.weight_max;
+          }
+          cell = float(h);
+        }
+    }
+  });
+}
+
+void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
+                   const std::vector<TerrainFeature>& features, const TerrainParams& params) {
+  apply_terrain(height, grid, window, plan_terrain(height, grid, features, params));
+}
+
+}  // namespace tw

@@ -1,0 +1,233 @@
+#include "terrain/height_ops.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "terrain_test_support.hpp"
+
+namespace tw {
+namespace {
+
+// Row of the pixel centres at world y = size - row - 0.5; a feature along world y = Y runs
+// between rows size - Y - 1 and size - Y.
+constexpr int kSize = 200;
+
+TEST(ShapeTerrain, RiverBedIsDepthBelowTheSurfaceAndBanksMeetTheTerrain) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto plane = [](double x, double) { return 100.0 - 0.05 * x; };  // falls eastwards
+  const Raster<float> before = test::heights_from(grid, plane);
+  Raster<float> h = before;
+  auto river = test::feature(FeatureKind::river, 7, {{20.0, 100.5}, {180.0, 100.5}}, 6.0);
+  river.river = {2.5, 4.0, 10.0, 0.0};
+  shape_terrain(h, grid, Window::whole(grid), {river}, {});
+  const int centre_row = kSize - 101;  // centres at y = 100.5
+  for (int col = 25; col < 175; ++col) {
+    for (int dr = -3; dr <= 3; ++dr)  // |across| <= 3 = half the width
+      EXPECT_NEAR(h.at(col, centre_row + dr), before.at(col, centre_row + dr) - 2.5, 2e-3)
+          << col << " " << dr;
+    // Bank top: beyond bank + falloff the terrain is untouched.
+    EXPECT_EQ(h.at(col, centre_row + 18), before.at(col, centre_row + 18));
+    EXPECT_EQ(h.at(col, centre_row - 18), before.at(col, centre_row - 18));
+    // The bank rises monotonically from the bed to the terrain.
+    for (int dr = 3; dr < 17; ++dr) {
+      EXPECT_LE(h.at(col, centre_row + dr) - before.at(col, centre_row + dr),
+                h.at(col, centre_row + dr + 1) - before.at(col, centre_row + dr + 1) + 1e-5);
+    }
+  }
+}
+
+TEST(ShapeTerrain, WaterSurfaceNeverRisesDownstreamOverABump) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto bumpy = [](double x, double y) {
+    return 100.0 - 0.05 * x + 6.0 * std::exp(-std::pow((x - 100.0) / 12.0, 2)) + 0.01 * y;
+  };
+  const Raster<float> before = test::heights_from(grid, bumpy);
+  Raster<float> h = before;
+  auto river = test::feature(FeatureKind::river, 3, {{15.0, 100.5}, {185.0, 100.5}}, 4.0);
+  river.river.depth = 2.0;
+  river.river.min_slope = 0.001;
+  shape_terrain(h, grid, Window::whole(grid), {river}, {});
+  const int centre_row = kSize - 101;
+  float upstream_min = before.at(16, centre_row);
+  for (int col = 16; col < 184; ++col) {
+    upstream_min = std::min(upstream_min, before.at(col, centre_row));
+    EXPECT_LE(h.at(col, centre_row), upstream_min - 2.0 + 1e-3) << col;
+    EXPECT_LE(h.at(col + 1, centre_row), h.at(col, centre_row) - 0.001 + 1e-4) << col;
+    EXPECT_LE(h.at(col, centre_row), before.at(col, centre_row) - 2.0 + 1e-3);
+  }
+  // Through the bump the bed is far below the terrain (a gorge), never a dam.
+  EXPECT_LT(h.at(100, centre_row), before.at(100, centre_row) - 6.0);
+}
+
+TEST(ShapeTerrain, RoadIsLevelAcrossWithinGradeAlongAndMeetsTheTerrain) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto hills = [](double x, double y) { return 50.0 + 12.0 * std::sin(x / 9.0) + 0.3 * y; };
+  const Raster<float> before = test::heights_from(grid, hills);
+  Raster<float> h = before;
+  auto road = test::feature(FeatureKind::road, 11, {{10.0, 100.0}, {190.0, 100.0}}, 6.0);
+  road.road = {0.08, 2.0, 10.0, 30.0};
+  shape_terrain(h, grid, Window::whole(grid), {road}, {});
+  const int north = kSize - 101, south = kSize - 100;  // rows either side of y = 100
+  for (int col = 10; col < 190; ++col) {
+    // Level over the road and its shoulders: |across| <= 3 + 2 metres.
+    for (int dr = -4; dr <= 4; ++dr)
+      EXPECT_NEAR(h.at(col, north + dr), h.at(col, north), 0.01) << col << " " << dr;
+    // Within the grade along the road, sampled on the raster.
+    if (col + 1 < 190) {
+      EXPECT_LE(std::abs(h.at(col + 1, north) - h.at(col, north)), 0.08 + 1e-4) << col;
+    }
+    // Untouched beyond the falloff, and continuous with the terrain at its edge.
+    const int outer_n = north - 15, outer_s = south + 15;  // 15.5 m > 3 + 2 + 10
+    EXPECT_EQ(h.at(col, outer_n), before.at(col, outer_n));
+    EXPECT_EQ(h.at(col, outer_s), before.at(col, outer_s));
+    // 14.5 m out, 0.5 m inside the falloff edge: the smoothstep leaves < 1 % of the cut.
+    const float cut = std::abs(h.at(col, north) - before.at(col, north - 14));
+    EXPECT_LE(std::abs(h.at(col, north - 14) - before.at(col, north - 14)), 0.01f * cut + 1e-3);
+  }
+  // The terrain had grades up to 12/9 = 1.3: the road really was graded.
+  float steepest = 0;
+  for (int col = 10; col < 189; ++col)
+    steepest = std::max(steepest, std::abs(before.at(col + 1, north) - before.at(col, north)));
+  EXPECT_GT(steepest, 1.0f);
+}
+
+TEST(ShapeTerrain, RidgeRaisesTheCrestByItsHeight) {
+  const GridSpec grid = test::unit_grid(kSize);
+  Raster<float> h(kSize, kSize, 10.0f);
+  auto ridge = test::feature(FeatureKind::ridge, 2, {{100.5, 20.0}, {100.5, 180.0}}, 4.0);
+  ridge.ridge = {8.0, 30.0, 1.5};
+  shape_terrain(h, grid, Window::whole(grid), {ridge}, {});
+  const int crest = 100;  // centres at x = 100.5
+  EXPECT_FLOAT_EQ(h.at(crest, 100), 18.0f);
+  EXPECT_FLOAT_EQ(h.at(crest + 2, 100), 18.0f);  // within the crest width
+  for (int dc = 2; dc < 32; ++dc) EXPECT_LE(h.at(crest + dc + 1, 100), h.at(crest + dc, 100));
+  EXPECT_GT(h.at(crest + 15, 100), 10.0f);
+  EXPECT_EQ(h.at(crest + 33, 100), 10.0f);
+}
+
+TEST(ShapeTerrain, NodataIsNeverWrittenNorReadAsAHeight) {
+  const GridSpec grid = test::unit_grid(kSize);
+  Raster<float> h(kSize, kSize, 20.0f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int row = 80; row < 120; ++row)
+    for (int col = 90; col < 110; ++col) h.at(col, row) = nan;
+  auto road = test::feature(FeatureKind::road, 1, {{20.0, 100.0}, {180.0, 100.0}}, 8.0);
+  auto river = test::feature(FeatureKind::river, 2, {{100.0, 20.0}, {100.0, 180.0}}, 6.0);
+  shape_terrain(h, grid, Window::whole(grid), {road, river}, {});
+  for (int row = 0; row < kSize; ++row)
+    for (int col = 0; col < kSize; ++col) {
+      const bool hole = row >= 80 && row < 120 && col >= 90 && col < 110;
+      if (hole) {
+        EXPECT_TRUE(std::isnan(h.at(col, row)));
+      } else if (std::abs(col + 0.5 - 100.0) > 3.0 + 6.0 + 20.0) {
+        // Away from the river, only the road acts: a flat profile at 20, never pulled
+        // towards a nodata value.
+        EXPECT_NEAR(h.at(col, row), 20.0f, 1e-4) << col << " " << row;
+      }
+    }
+}
+
+TEST(ShapeTerrain, LaterKindsOverwriteWhereTheyHoldFully) {
+  const GridSpec grid = test::unit_grid(kSize);
+  const Raster<float> before =
+      test::heights_from(grid, [](double x, double) { return 30.0 + 0.02 * x; });
+  Raster<float> h = before;
+  auto road = test::feature(FeatureKind::road, 1, {{100.5, 20.0}, {100.5, 180.0}}, 6.0);
+  auto river = test::feature(FeatureKind::river, 2, {{20.0, 100.5}, {180.0, 100.5}}, 6.0);
+  shape_terrain(h, grid, Window::whole(grid), {road, river}, {});  // road after river by default
+  // At the crossing the road surface (the terrain there, 32.01) wins over the river bed.
+  EXPECT_NEAR(h.at(100, 99), before.at(100, 99), 1e-3);
+  EXPECT_LT(h.at(60, 99), before.at(60, 99) - 2.0);  // the river elsewhere
+  TerrainParams river_last;
+  river_last.precedence = {FeatureKind::ridge, FeatureKind::road, FeatureKind::river};
+  Raster<float> h2 = before;
+  shape_terrain(h2, grid, Window::whole(grid), {road, river}, river_last);
+  EXPECT_LT(h2.at(100, 99), before.at(100, 99) - 2.0);
+}
+
+TEST(ShapeTerrain, RoadsSharingAnEndpointMeetLevelWithoutASpike) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto slope = [](double x, double y) { return 40.0 + 0.2 * x + 8.0 * std::sin(y / 11.0); };
+  const Raster<float> before = test::heights_from(grid, slope);
+  Raster<float> h = before;
+  const Vec2 junction{100.0, 100.0};
+  auto east = test::feature(FeatureKind::road, 1, {{20.0, 100.0}, junction}, 6.0);
+  auto north = test::feature(FeatureKind::road, 2, {junction, {100.0, 190.0}}, 6.0);
+  shape_terrain(h, grid, Window::whole(grid), {east, north}, {});
+  // No spike, no trench: near the junction every height lies within the range of the
+  // terrain around it (the road profiles are smoothed terrain).
+  const Vec2 jp = grid.world_to_pixel(junction);
+  float lo = 1e9f, hi = -1e9f;
+  for (int row = int(jp.y) - 40; row < int(jp.y) + 40; ++row)
+    for (int col = int(jp.x) - 40; col < int(jp.x) + 40; ++col) {
+      lo = std::min(lo, before.at(col, row));
+      hi = std::max(hi, before.at(col, row));
+    }
+  for (int row = int(jp.y) - 20; row < int(jp.y) + 20; ++row)
+    for (int col = int(jp.x) - 20; col < int(jp.x) + 20; ++col) {
+      EXPECT_GE(h.at(col, row), lo - 0.01f);
+      EXPECT_LE(h.at(col, row), hi + 0.01f);
+    }
+  // On both road surfaces near the junction, neighbours differ by at most the grade: the
+  // surfaces meet level instead of with a step.
+  for (int row = int(jp.y) - 10; row < int(jp.y) + 3; ++row)
+    for (int col = int(jp.x) - 10; col < int(jp.x) + 3; ++col) {
+      const Vec2 p = grid.pixel_centre_world(col, row);
+      const bool on_east = std::abs(p.y - 100.0) < 2.5 && p.x < 102.0;
+      const bool on_north = std::abs(p.x - 100.0) < 2.5 && p.y > 98.0;
+      if (!on_east && !on_north) continue;
+      EXPECT_LE(std::abs(h.at(col + 1, row) - h.at(col, row)), 0.08f * 1.5f + 0.01f)
+          << col << " " << row;
+      EXPECT_LE(std::abs(h.at(col, row + 1) - h.at(col, row)), 0.08f * 1.5f + 0.01f)
+          << col << " " << row;
+    }
+  // Both roads end at the same height: the two centre pixels beside the junction agree.
+  EXPECT_NEAR(h.at(int(jp.x) - 1, int(jp.y)), h.at(int(jp.x), int(jp.y) - 1), 0.2);
+}
+
+TEST(ShapeTerrain, TilesAndThreadCountsGiveIdenticalBits) {
+  const GridSpec grid = test::unit_grid(kSize);
+  const Raster<float> before = test::heights_from(grid, [](double x, double y) {
+    return 60.0 + 5.0 * std::sin(x / 13.0) * std::cos(y / 17.0);
+  });
+  std::vector<TerrainFeature> features = {
+      test::feature(FeatureKind::road, 1, {{5.0, 20.0}, {80.0, 120.0}, {195.0, 140.0}}, 7.0),
+      test::feature(FeatureKind::river, 2, {{10.0, 190.0}, {120.0, 90.0}, {190.0, 5.0}}, 9.0),
+      test::feature(FeatureKind::ridge, 3, {{30.0, 30.0}, {170.0, 60.0}}, 3.0),
+      test::feature(FeatureKind::road, 4, {{80.0, 120.0}, {60.0, 195.0}}, 5.0)};
+  Raster<float> whole = before;
+  shape_terrain(whole, grid, Window::whole(grid), features, {});
+  const TerrainPlan plan = plan_terrain(before, grid, features, {});
+  Raster<float> tiled = before;
+  for (const Window w : {Window{0, 0, 77, 200}, Window{77, 0, 123, 91}, Window{77, 91, 123, 109}})
+    apply_terrain(tiled, grid, w, plan);
+  Raster<float> serial = before;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    shape_terrain(serial, grid, Window::whole(grid), features, {});
+  }
+  EXPECT_EQ(0, std::memcmp(whole.pixels.data(), tiled.pixels.data(), whole.pixels.size() * 4));
+  EXPECT_EQ(0, std::memcmp(whole.pixels.data(), serial.pixels.data(), whole.pixels.size() * 4));
+  EXPECT_NE(0, std::memcmp(whole.pixels.data(), before.pixels.data(), whole.pixels.size() * 4));
+}
+
+TEST(ShapeTerrain, BadFeaturesNameTheirFid) {
+  const GridSpec grid = test::unit_grid(20);
+  Raster<float> h(20, 20, 0.0f);
+  auto f = test::feature(FeatureKind::road, 42, {{1.0, 1.0}, {1.0, 1.0}}, 4.0);
+  try {
+    shape_terrain(h, grid, Window::whole(grid), {f}, {});
+    FAIL() << "expected tw::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("FID 42"), std::string::npos) << e.what();
+  }
+  f.centerline.points = {{1.0, 1.0}, {5.0, 5.0}};
+  f.width = -1.0;
+  EXPECT_THROW(shape_terrain(h, grid, Window::whole(grid), {f}, {}), Error);
+}
+
+}  // namespace
+}  // namespace tw
