@@ -10,7 +10,9 @@
 //   ux in [0, W) and uy in [-C, H): index(u) = (uy + C) * W + ux, U = W * (H + C).
 //   Texels outside the exemplar read as transparent black.
 // - Colours are packed RGBA8: R | G << 8 | B << 16 | A << 24. For the cost, alpha is binary
-//   (A >= 128 is opaque) unless CostTexels::binary_alpha is false.
+//   (A >= 128 is opaque) unless CostTexels::binary_alpha is false. Colours are premultiplied
+//   by alpha at load time (synth/exemplar.cpp), so transparent texels are black.
+// - Costs, the bilinear fixed-point read and xi are defined in synth/detail/cost.hpp.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -56,6 +58,7 @@ struct PieceFootprint {
 struct ColumnSet {
   int column = 0;
   std::vector<std::uint32_t> samples;
+  bool binary_alpha = true;  // copied from CostTexels by the extract stages: selects xi
 };
 
 class Backend {

@@ -1,0 +1,280 @@
+#include "synth/detail/dp.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <numeric>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/progress.hpp"
+#include "synth/detail/cost.hpp"
+
+namespace tw::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::int64_t kNoCost = std::numeric_limits<std::int64_t>::max();
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+struct Row {
+  std::vector<std::int32_t> indices;
+  std::vector<std::int32_t> argmin;  // into the previous row's indices; -1: previous is empty
+  bool empty = false;
+  std::int32_t empty_from = -1;  // for an empty row: the previous row's entry it continues
+};
+
+struct Pass {
+  std::vector<Row> rows;
+  std::vector<std::int64_t> last_cost;  // of the last row (one entry if it is empty)
+};
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// Lowest (cost, entry) of a row's costs.
+std::int32_t best_entry(const std::vector<std::int64_t>& cost) {
+  std::int32_t best = -1;
+  for (std::size_t j = 0; j < cost.size(); ++j)
+    if (best < 0 || cost[j] < cost[std::size_t(best)]) best = std::int32_t(j);
+  return best;
+}
+
+class Driver {
+ public:
+  Driver(Backend& backend, const DpInput& input, DpTimings& timings)
+      : backend_(backend), input_(input), timings_(timings) {}
+
+  // Valid indices of every piece; identical consecutive footprints share one computation.
+  std::vector<std::vector<std::int32_t>> valid_positions() {
+    std::vector<std::vector<std::int32_t>> valid(input_.pieces.size());
+    std::vector<std::uint8_t> flags;
+    for (std::size_t i = 0; i < input_.pieces.size(); ++i) {
+      const PieceFootprint& p = input_.pieces[i];
+      if (i > 0 && same_shape(p, input_.pieces[i - 1])) {
+        valid[i] = valid[i - 1];
+        continue;
+      }
+      auto start = Clock::now();
+      backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
+      timings_.find_valid_ms += ms_since(start);
+      start = Clock::now();
+      backend_.compact_valid_positions(flags, valid[i]);
+      timings_.compact_ms += ms_since(start);
+    }
+    return valid;
+  }
+
+  // One forward pass over rows 0..R-1; row r > 0 holds piece r (piece 0 again for the terminal
+  // row r = N of a closed curve) at positions `row_indices(r)`.
+  Pass forward(const std::vector<std::int32_t>& first_row, int row_count,
+               const std::function<const std::vector<std::int32_t>&(int)>& row_indices,
+               Progress* progress) {
+    const int N = int(input_.pieces.size());
+    Pass pass;
+    pass.rows.reserve(std::size_t(row_count));
+    std::vector<std::int64_t> cost, next_cost;
+    ColumnSet right, left;
+    pass.rows.push_back({first_row, {}, first_row.empty(), -1});
+    if (first_row.empty()) {
+      require_empty_allowed(0);
+      cost.assign(1, empty_piece_penalty(input_.space.column));
+    } else {
+      cost.assign(first_row.size(), 0);
+    }
+    for (int r = 1; r < row_count; ++r) {
+      const PieceFootprint& previous_piece = input_.pieces[std::size_t(r - 1)];
+      const std::vector<std::int32_t>& indices = row_indices(r);
+      const Row& previous = pass.rows.back();
+      Row row;
+      row.indices = indices;
+      if (indices.empty()) {
+        require_empty_allowed(r % N);
+        row.empty = true;
+        row.empty_from = previous.empty ? -1 : best_entry(cost);
+        next_cost.assign(1, cost[std::size_t(std::max(0, row.empty_from))] +
+                                empty_piece_penalty(input_.space.column));
+      } else if (previous.empty) {
+        next_cost.assign(indices.size(), cost[0]);
+        row.argmin.assign(indices.size(), -1);
+      } else {
+        auto start = Clock::now();
+        backend_.extract_right_columns(*input_.texels, input_.space, previous_piece,
+                                       previous.indices, right);
+        backend_.extract_left_columns(*input_.texels, input_.space, indices, left);
+        timings_.extract_ms += ms_since(start);
+        start = Clock::now();
+        backend_.update_table_row(cost, right, left, next_cost, row.argmin);
+        timings_.update_ms += ms_since(start);
+        ++timings_.rows;
+      }
+      cost.swap(next_cost);
+      pass.rows.push_back(std::move(row));
+      if (progress) progress->advance();
+    }
+    pass.last_cost = std::move(cost);
+    return pass;
+  }
+
+ private:
+  static bool same_shape(const PieceFootprint& a, const PieceFootprint& b) {
+    auto same = [](const std::vector<TexelOffset>& x, const std::vector<TexelOffset>& y) {
+      return x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](auto p, auto q) {
+               return p.dx == q.dx && p.dy == q.dy;
+             });
+    };
+    return same(a.must_be_clear, b.must_be_clear) && same(a.interior, b.interior);
+  }
+
+  void require_empty_allowed(int piece) const {
+    if (input_.allow_empty) return;
+    if (input_.no_valid_message) throw Error(input_.no_valid_message(piece));
+    fail("piece {}: no valid position in the exemplar", piece);
+  }
+
+  Backend& backend_;
+  const DpInput& input_;
+  DpTimings& timings_;
+};
+
+// Positions per row, backtracked from entry `entry` of the last row.
+std::vector<std::int32_t> backtrack(const Pass& pass, std::int32_t entry) {
+  std::vector<std::int32_t> positions(pass.rows.size(), -1);
+  for (std::size_t r = pass.rows.size(); r-- > 0;) {
+    const Row& row = pass.rows[r];
+    if (row.empty) {
+      entry = row.empty_from;
+      continue;
+    }
+    positions[r] = row.indices[std::size_t(entry)];
+    entry = row.argmin.empty() ? -1 : row.argmin[std::size_t(entry)];
+  }
+  return positions;
+}
+
+}  // namespace
+
+std::int64_t empty_piece_penalty(int column) { return std::int64_t(kGamma) * column * 2; }
+
+std::int64_t seam_cost(const CostTexels& texels, const PositionSpace& space,
+                       const PieceFootprint& piece, std::int32_t a, std::int32_t b) {
+  const std::int32_t X0 = space.ux(a) * 256 - 128, Y0 = space.uy(a) * 256 - 128;
+  std::int64_t sum = 0;
+  for (int k = 0; k < piece.column; ++k) {
+    const std::uint32_t right =
+        sample_bilinear(texels, X0 + piece.right_fx[k], Y0 + piece.right_fy[k]);
+    const std::uint32_t left = texel_at(texels, space.ux(b), space.uy(b) + k);
+    sum += xi(right, left, texels.binary_alpha);
+  }
+  return sum;
+}
+
+std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
+                           const std::vector<PieceFootprint>& pieces,
+                           const std::vector<std::int32_t>& positions, bool closed) {
+  std::int64_t sum = 0;
+  for (std::size_t i = 0; i + 1 < positions.size(); ++i)
+    sum += seam_cost(texels, space, pieces[i], positions[i], positions[i + 1]);
+  if (closed && !positions.empty())
+    sum += seam_cost(texels, space, pieces.back(), positions.back(), positions.front());
+  return sum;
+}
+
+DpResult run_dp(Backend& backend, const DpInput& input) {
+  const int N = int(input.pieces.size());
+  if (N == 0) fail("synthesis needs at least one piece");
+  DpResult result;
+  Driver driver(backend, input, result.timings);
+  const auto valid = driver.valid_positions();
+  for (const auto& v : valid) result.valid_counts.push_back(int(v.size()));
+
+  std::vector<std::int32_t> first_row = valid[0];
+  if (input.first_index) {
+    if (!std::binary_search(valid[0].begin(), valid[0].end(), *input.first_index))
+      fail("the fixed first position ({}, {}) is not a valid position for piece 0",
+           input.space.ux(*input.first_index), input.space.uy(*input.first_index));
+    first_row = {*input.first_index};
+  } else if (input.seed != 0 && !valid[0].empty()) {
+    first_row = {valid[0][splitmix64(input.seed) % valid[0].size()]};
+  }
+
+  const int rows = input.closed ? N + 1 : N;
+  std::unique_ptr<Progress> progress;
+  if (rows >= 64) progress = std::make_unique<Progress>("synthesis DP rows", rows - 1);
+  auto free_rows = [&](const std::vector<std::int32_t>& terminal) {
+    return [&valid, &terminal, N](int r) -> const std::vector<std::int32_t>& {
+      return r < N ? valid[std::size_t(r)] : terminal;
+    };
+  };
+  const Pass pass = driver.forward(first_row, rows, free_rows(first_row), progress.get());
+
+  auto start = Clock::now();
+  if (!input.closed) {
+    const std::int32_t entry = pass.rows.back().empty ? 0 : best_entry(pass.last_cost);
+    result.positions = backtrack(pass, entry);
+    result.total_cost = pass.last_cost[std::size_t(entry)];
+    result.timings.backtrack_ms += ms_since(start);
+    return result;
+  }
+
+  // Closed: the terminal row N stands for piece 0 again; a cycle has equal first and terminal
+  // positions. Approximation: backtrack from terminal entries in increasing (cost, entry).
+  const Row& terminal = pass.rows.back();
+  std::vector<std::int32_t> order(terminal.indices.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return pass.last_cost[a] != pass.last_cost[b] ? pass.last_cost[a] < pass.last_cost[b] : a < b;
+  });
+  std::int64_t best_cost = kNoCost;
+  std::int32_t best_start = std::numeric_limits<std::int32_t>::max();
+  for (std::int32_t entry : order) {
+    auto positions = backtrack(pass, entry);
+    if (positions.front() != positions.back()) continue;
+    best_cost = pass.last_cost[std::size_t(entry)];
+    best_start = positions.front();
+    positions.pop_back();
+    result.positions = std::move(positions);
+    result.approximate_cycle_cost = best_cost;
+    break;
+  }
+  result.timings.backtrack_ms += ms_since(start);
+  if (terminal.empty) fail("closed curve: piece 0 has no valid position to close the cycle");
+  if (!input.exact_cycle && result.approximate_cycle_cost >= 0) {
+    result.total_cost = best_cost;
+    return result;
+  }
+  if (!input.exact_cycle)
+    logger().info("closed curve: the single-DP approximation found no cycle; running the exact mode");
+
+  // Exact: one DP per start u0, in increasing free-DP terminal cost, which bounds the cost of
+  // every cycle through u0 from below; stop once the bound cannot win.
+  for (std::int32_t entry : order) {
+    const std::int64_t bound = pass.last_cost[std::size_t(entry)];
+    const std::int32_t start_index = terminal.indices[std::size_t(entry)];
+    if (bound > best_cost || (bound == best_cost && start_index >= best_start)) break;
+    const std::vector<std::int32_t> single{start_index};
+    const Pass cycle = driver.forward(single, rows, free_rows(single), nullptr);
+    ++result.exact_starts_run;
+    if (cycle.rows.back().empty) continue;
+    const std::int64_t cost = cycle.last_cost[0];
+    if (cost < best_cost || (cost == best_cost && start_index < best_start)) {
+      best_cost = cost;
+      best_start = start_index;
+      result.positions = backtrack(cycle, 0);
+      result.positions.pop_back();
+    }
+  }
+  if (best_cost == kNoCost) fail("closed curve: no cycle of valid positions exists");
+  result.total_cost = best_cost;
+  return result;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,58 @@
+#pragma once
+// The DP over piece positions (Sections 1.4, 1.5 and 2): the row loop findValid / compact /
+// extractColumns / updateTableRow on a Backend, then backtracking. Memory is O(N * V): per row
+// only the valid indices and the argmins are kept, never a U x U table.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "synth/detail/stages.hpp"
+
+namespace tw::detail {
+
+struct DpInput {
+  const CostTexels* texels = nullptr;
+  PositionSpace space;
+  std::vector<PieceFootprint> pieces;  // N pieces, in order along the curve
+  bool closed = false;                 // add the terminal piece (= piece 0) and keep cycles
+  bool exact_cycle = false;            // closed: one DP per start (pruned) instead of one DP
+  std::optional<std::int32_t> first_index;  // fixes piece 0 (must be a valid position)
+  std::uint64_t seed = 0;   // != 0 and no first_index: piece 0 drawn among its valid positions
+  bool allow_empty = false;  // a row with no valid position becomes an empty piece
+  // Message of the tw::Error for a piece without any valid position.
+  std::function<std::string(int piece)> no_valid_message;
+};
+
+struct DpTimings {
+  double find_valid_ms = 0, compact_ms = 0, extract_ms = 0, update_ms = 0, backtrack_ms = 0;
+  int rows = 0;  // updateTableRow calls
+};
+
+struct DpResult {
+  std::vector<std::int32_t> positions;  // per piece: position index, -1 for an empty piece
+  std::int64_t total_cost = 0;          // Omega (+ empty penalties)
+  std::vector<int> valid_counts;        // per piece
+  // Closed curves: the single-DP approximation's cycle cost (-1 if it found no cycle) and the
+  // number of start positions the exact mode ran a DP for.
+  std::int64_t approximate_cycle_cost = -1;
+  int exact_starts_run = 0;
+  DpTimings timings;
+};
+
+// An empty piece costs as much as an edge of C mismatched samples (on both of its edges).
+std::int64_t empty_piece_penalty(int column);
+
+DpResult run_dp(Backend& backend, const DpInput& input);
+
+// Omega of a given sequence of positions (no -1), with the same sampling as the DP; closed
+// curves include the edge from the last piece back to the first.
+std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
+                           const std::vector<PieceFootprint>& pieces,
+                           const std::vector<std::int32_t>& positions, bool closed);
+// D between piece i at position a (its right edge) and the next piece at position b.
+std::int64_t seam_cost(const CostTexels& texels, const PositionSpace& space,
+                       const PieceFootprint& piece, std::int32_t a, std::int32_t b);
+
+}  // namespace tw::detail

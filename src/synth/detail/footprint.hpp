@@ -1,0 +1,44 @@
+#pragma once
+// From a ribbon piece in world metres to its exemplar-space footprint (Section 1.3).
+// The piece frame M maps a world vector w to exemplar texels s * (dot(w, e_a), dot(w, e_l)):
+// e_l = normalized(l) (top -> bottom, exemplar +y), e_a its perpendicular with a positive dot
+// with the tangent (exemplar +x). A piece at position u covers, relative to u,
+//   (0.5, 0) + M(p - T(x_i))
+// so its left edge runs through the centres of exemplar column ux (see docs/synthesis.md).
+#include <cstdint>
+
+#include "core/grid.hpp"
+#include "ribbon/ribbon.hpp"
+#include "synth/detail/stages.hpp"
+
+namespace tw::detail {
+
+struct PieceFrame {
+  Vec2 origin;  // T(x_i), world
+  Vec2 along;   // e_a, world unit vector -> exemplar +x
+  Vec2 across;  // e_l, world unit vector -> exemplar +y
+  double scale = 1.0;
+};
+
+PieceFrame piece_frame(const Piece& piece, double scale);
+// World point -> exemplar coordinates relative to the position u (continuous texels).
+Vec2 to_exemplar(const PieceFrame& frame, Vec2 world);
+Vec2 to_world(const PieceFrame& frame, Vec2 exemplar);
+
+// C = ceil(s * b): samples per edge.
+int column_count(double ribbon_width, double scale);
+
+// Winding number of the piece quad (T, B, B', T') around a point; +1 inside a regular piece,
+// -1 inside the inverted lobe of a folded one, 0 outside.
+int piece_winding(const Piece& piece, Vec2 world);
+
+// Subsamples per canvas pixel side used by the renderer (and by the avoidance guarantee).
+int supersampling(double scale, const GridSpec& canvas);
+Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int n);
+
+// The footprint of `piece`. `forbidden` (over `canvas`, non-zero = forbidden) may be null.
+PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
+                                    const GridSpec& canvas,
+                                    const Raster<std::uint8_t>* forbidden);
+
+}  // namespace tw::detail
