@@ -1,1 +1,0 @@
-// Module synth: see its headers.
