@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "geo/detail/gdal_support.hpp"
 
 namespace tw {
 
@@ -30,6 +31,8 @@ double planar_length(const std::vector<Vec2>& points) {
 
 LengthCheck check_metric_length(const std::vector<Vec2>& lon_lat_degrees,
                                 const std::string& metric_crs) {
+  detail::ensure_gdal_registered();
+  detail::QuietGdalErrors quiet;
   OGRSpatialReference geographic;
   geographic.SetWellKnownGeogCS("WGS84");
   geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
