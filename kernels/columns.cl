@@ -10,7 +10,9 @@ uint texel_at(global const uint* texels, int width, int height, int x, int y) {
 }
 
 // floor(value / 256) for negative values too (no reliance on signed shifts).
-int floor_div256(int value) { return value >= 0 ? value / 256 : -((-value + 255) / 256); }
+int floor_div256(int value) {
+  return value >= 0 ? value / 256 : -((-value + 255) / 256);
+}
 
 // Bilinear sample at (px, py) in 1/256 texel, texel centres at +128: every channel (alpha
 // included) is weighted in 16-bit fixed point and rounded half up.

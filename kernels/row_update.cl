@@ -13,22 +13,30 @@
 // (the colour one squared), and ties are never pruned, so the result is the exact optimum
 // whatever the visiting order of work-items.
 
-#define GAMMA 16384
-
-// xi(p, q): gamma when exactly one of p, q is opaque, else floor(16 |p - q|) over RGB read
-// from the host's table of floor(sqrt(256 d2)) (no floating point anywhere).
-uint xi(uint p, uint q, global const uint* distance_table, uint opaque_alpha) {
+// xi(p, q) as in synth/detail/cost.hpp. The colour term floor(16 |p - q|) over RGB comes
+// from the host's table of floor(sqrt(256 d2)) (no floating point anywhere). Binary alpha:
+// gamma when exactly one of p, q is opaque, else the colour term. Continuous alpha (a, b):
+// floor((w_same * colour + w_diff * gamma) / 255^2), which stays below 2^31.
+uint xi(uint p, uint q, global const uint* distance_table, uint gamma, uint opaque_alpha,
+        int binary_alpha) {
   const int dr = (int)(p & 255u) - (int)(q & 255u);
   const int dg = (int)((p >> 8) & 255u) - (int)((q >> 8) & 255u);
   const int db = (int)((p >> 16) & 255u) - (int)((q >> 16) & 255u);
-  const uint d2 = (uint)(dr * dr + dg * dg + db * db);
-  const uint mismatch = (uint)(((p >> 24) >= opaque_alpha) != ((q >> 24) >= opaque_alpha));
-  return select(distance_table[d2], (uint)GAMMA, mismatch);
+  const uint colour = distance_table[(uint)(dr * dr + dg * dg + db * db)];
+  const uint a = p >> 24, b = q >> 24;
+  if (binary_alpha) {
+    const uint mismatch = (uint)((a >= opaque_alpha) != (b >= opaque_alpha));
+    return select(colour, gamma, mismatch);
+  }
+  const uint same = a * b + (255u - a) * (255u - b);
+  const uint diff = a * (255u - b) + (255u - a) * b;
+  return (same * colour + diff * gamma) / (255u * 255u);
 }
 
-// True when no candidate with these column statistics can bring P + D down to best.
-bool cannot_reach(int4 right, int4 left, long slack, int column) {
-  if ((long)GAMMA * (long)abs(right.x - left.x) > slack) return true;
+// True when no candidate with these column statistics can bring P + D down to best (the
+// opaque-count bound holds for binary alpha only; continuous xi is at least the colour term).
+bool cannot_reach(int4 right, int4 left, long slack, int column, uint gamma, int binary_alpha) {
+  if (binary_alpha && (long)gamma * (long)abs(right.x - left.x) > slack) return true;
   const long reach = slack + column;
   if (reach >= (1L << 31)) return false;
   const long dr = right.y - left.y, dg = right.z - left.z, db = right.w - left.w;
@@ -39,8 +47,8 @@ kernel void update_table_row(global const long* sorted_cost, global const int* s
                              global const uint* sorted_right, global const int4* sorted_stats,
                              int previous_count, global const uint* left,
                              global const int4* left_stats, int current_count, int column,
-                             global const uint* distance_table, uint opaque_alpha,
-                             global long* cost, global int* argmin) {
+                             global const uint* distance_table, uint gamma, uint opaque_alpha,
+                             int binary_alpha, global long* cost, global int* argmin) {
   const int j = (int)get_global_id(0);
   if (j >= current_count) return;
   global const uint* left_column = left + (long)j * column;
@@ -52,7 +60,8 @@ kernel void update_table_row(global const long* sorted_cost, global const int* s
     const long p = sorted_cost[r];
     if (p > best) break;
     const long slack = best - p;  // >= 0; LONG_MAX - p until a first candidate is complete
-    if (best_v >= 0 && cannot_reach(sorted_stats[r], left_stat, slack, column)) continue;
+    if (best_v >= 0 && cannot_reach(sorted_stats[r], left_stat, slack, column, gamma, binary_alpha))
+      continue;
 
     // D in blocks of 8 samples (branch-free inside), leaving as soon as it exceeds the slack.
     global const uint* right_column = sorted_right + (long)r * column;
@@ -60,7 +69,7 @@ kernel void update_table_row(global const long* sorted_cost, global const int* s
     for (int k = 0; k < column && d <= slack; k += 8) {
       const int end = min(k + 8, column);
       for (int i = k; i < end; ++i) {
-        d += xi(right_column[i], left_column[i], distance_table, opaque_alpha);
+        d += xi(right_column[i], left_column[i], distance_table, gamma, opaque_alpha, binary_alpha);
       }
     }
     if (d > slack) continue;

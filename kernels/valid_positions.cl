@@ -13,8 +13,8 @@ uint texel_at(global const uint* texels, int width, int height, int x, int y) {
 
 kernel void find_valid_positions(global const uint* texels, int width, int height, int column,
                                  global const int2* must_be_clear, int clear_count,
-                                 global const int2* interior, int interior_count,
-                                 uint opaque_alpha, global uchar* flags) {
+                                 global const int2* interior, int interior_count, uint opaque_alpha,
+                                 global uchar* flags) {
   const int index = (int)get_global_id(0);
   if (index >= width * (height + column)) return;
   const int ux = index % width;
@@ -22,7 +22,8 @@ kernel void find_valid_positions(global const uint* texels, int width, int heigh
 
   uchar valid = 1;
   for (int i = 0; i < clear_count && valid; ++i) {
-    const uint t = texel_at(texels, width, height, ux + must_be_clear[i].x, uy + must_be_clear[i].y);
+    const uint t =
+        texel_at(texels, width, height, ux + must_be_clear[i].x, uy + must_be_clear[i].y);
     valid = (t >> 24) < opaque_alpha;
   }
   uchar filled = 0;

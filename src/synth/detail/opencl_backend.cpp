@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/error.hpp"
+#include "synth/detail/cost.hpp"
 
 namespace tw::detail {
 
@@ -262,6 +263,7 @@ void OpenCLBackend::extract_right_columns(const CostTexels& texels, const Positi
          piece.right_fx.size(), piece.right_fy.size(), piece.column, space.column);
   }
   out.column = space.column;
+  out.binary_alpha = texels.binary_alpha;
   out.samples.assign(indices.size() * std::size_t(space.column), 0);
   if (out.samples.empty()) return;
   const cl::Context& context = context_.context();
@@ -280,6 +282,7 @@ void OpenCLBackend::extract_right_columns(const CostTexels& texels, const Positi
 void OpenCLBackend::extract_left_columns(const CostTexels& texels, const PositionSpace& space,
                                          const std::vector<std::int32_t>& indices, ColumnSet& out) {
   out.column = space.column;
+  out.binary_alpha = texels.binary_alpha;
   out.samples.assign(indices.size() * std::size_t(space.column), 0);
   if (out.samples.empty()) return;
   const cl::Context& context = context_.context();
@@ -322,7 +325,7 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
     std::copy_n(right.samples.begin() + std::ptrdiff_t(order[r]) * column, column,
                 sorted_right.begin() + std::ptrdiff_t(r) * column);
   }
-  ColumnSet sorted_set{column, std::move(sorted_right)};
+  ColumnSet sorted_set{column, std::move(sorted_right), left.binary_alpha};
 
   const cl::Context& context = context_.context();
   cl::Buffer cost_buffer = input_buffer(context, sorted_cost);
@@ -335,8 +338,8 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
   cl::Buffer argmin_out = output_buffer(context, current * sizeof(cl_int));
   cl::Kernel& k = kernel("row_update", "update_table_row");
   set_args(k, cost_buffer, order_buffer, right_buffer, right_stats, cl_int(previous), left_buffer,
-           left_stats, cl_int(current), cl_int(column), distance_table_, cl_uint(kOpaqueAlpha),
-           cost_out, argmin_out);
+           left_stats, cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma),
+           cl_uint(kOpaqueAlpha), cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
   launch(k, "update_table_row", current, kRowGroup);
   read_buffer(context_.queue(), cost_out, cost);
   read_buffer(context_.queue(), argmin_out, argmin);
