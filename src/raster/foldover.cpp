@@ -67,7 +67,7 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
   std::vector<std::uint16_t> count(cells, 0);
 
   std::vector<detail::ScanEdge> edges;
-  for (const auto& ring : detail::polygons_to_pixels(piece_polygons(ribbon), grid, 1.0))
+  for (const auto& ring : detail::polygons_to_pixels(piece_polygons(ribbon), grid, 1.0, window))
     detail::append_ring_edges(ring.points, ring.shape, edges);
   detail::scan_spans(edges, window.row0, window.row_end(), window.col0, window.col_end(),
                      kBlockRows, [&](int row, std::uint32_t piece, int c0, int c1) {
@@ -92,7 +92,7 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
     if (auto lobe = inverted_lobe(piece)) lobes.push_back({std::move(*lobe)});
   if (!lobes.empty()) {
     std::vector<detail::ScanEdge> lobe_edges;
-    for (const auto& ring : detail::polygons_to_pixels(lobes, grid, 1.0))
+    for (const auto& ring : detail::polygons_to_pixels(lobes, grid, 1.0, window))
       detail::append_ring_edges(ring.points, ring.shape, lobe_edges);
     detail::scan_spans(lobe_edges, window.row0, window.row_end(), window.col0, window.col_end(),
                        kBlockRows, [&](int row, std::uint32_t, int c0, int c1) {

@@ -18,9 +18,10 @@ namespace {
 constexpr int kBlockRows = 16;
 
 std::vector<detail::ScanEdge> polygon_edges(const std::vector<Polygon>& polygons,
-                                            const GridSpec& grid, double scale) {
+                                            const GridSpec& grid, double scale,
+                                            const Window& window) {
   std::vector<detail::ScanEdge> edges;
-  for (const auto& ring : detail::polygons_to_pixels(polygons, grid, scale))
+  for (const auto& ring : detail::polygons_to_pixels(polygons, grid, scale, window))
     detail::append_ring_edges(ring.points, ring.shape, edges);
   return edges;
 }
@@ -30,7 +31,7 @@ std::vector<detail::ScanEdge> polygon_edges(const std::vector<Polygon>& polygons
 void burn_polygons(const std::vector<Polygon>& polygons, const GridSpec& grid, const Window& window,
                    Raster<std::uint8_t>& out, std::uint8_t value) {
   detail::prepare_window_raster(out, window, "burn_polygons");
-  const auto edges = polygon_edges(polygons, grid, 1.0);
+  const auto edges = polygon_edges(polygons, grid, 1.0, window);
   detail::scan_spans(edges, window.row0, window.row_end(), window.col0, window.col_end(),
                      kBlockRows, [&](int row, std::uint32_t, int c0, int c1) {
                        std::uint8_t* line =
@@ -45,7 +46,8 @@ Raster<float> polygon_coverage(const std::vector<Polygon>& polygons, const GridS
   if (supersample < 1 || supersample > 16)
     fail("polygon_coverage: supersample must be in 1..16 (got {})", supersample);
   const int s = supersample;
-  const auto edges = polygon_edges(polygons, grid, double(s));
+  const Window sub_window{window.col0 * s, window.row0 * s, window.width * s, window.height * s};
+  const auto edges = polygon_edges(polygons, grid, double(s), sub_window);
   // Sub-pixel hits per pixel; each sub-row's union is taken in a 0/1 line first so overlapping
   // polygons are not counted twice.
   Raster<std::uint16_t> hits(window.width, window.height, 0);

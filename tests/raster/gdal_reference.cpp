@@ -27,9 +27,10 @@ Raster<std::uint8_t> gdal_rasterize(const std::vector<Polygon>& polygons, const 
     for (const Ring& ring : polygon) {
       OGRGeometryH r = OGR_G_CreateGeometry(wkbLinearRing);
       for (const Vec2 p : ring) OGR_G_AddPoint_2D(r, p.x, p.y);
+      if (!ring.empty() && ring.front() != ring.back())
+        OGR_G_AddPoint_2D(r, ring.front().x, ring.front().y);
       OGR_G_AddGeometryDirectly(g, r);
     }
-    OGR_G_CloseRings(g);
     geometries.push_back(g);
   }
   int band = 1;

@@ -67,21 +67,24 @@ void scan_spans(const std::vector<ScanEdge>& edges, int row_begin, int row_end, 
   const RowBuckets buckets = bucket_edges(edges, row_begin, row_end, block_rows);
   const int blocks = int(buckets.offsets.size()) - 1;
   tbb::parallel_for(tbb::blocked_range<int>(0, blocks), [&](const tbb::blocked_range<int>& range) {
-    std::vector<Crossing> crossings;
+    // Crossings per row of the block, generated edge by edge: the work is proportional to the
+    // number of crossings, not to edges x rows.
+    std::vector<std::vector<Crossing>> row_crossings(static_cast<std::size_t>(block_rows));
     for (int b = range.begin(); b != range.end(); ++b) {
       const int r0 = row_begin + b * block_rows;
       const int r1 = std::min(row_end, r0 + block_rows);
       const auto* ids = buckets.edge_ids.data() + buckets.offsets[b];
       const auto count = buckets.offsets[b + 1] - buckets.offsets[b];
       if (count == 0) continue;
+      for (std::uint32_t k = 0; k < count; ++k) {
+        const ScanEdge& e = edges[ids[k]];
+        const int first = std::max(r0, e.row_begin), last = std::min(r1, e.row_end);
+        for (int row = first; row < last; ++row)
+          row_crossings[std::size_t(row - r0)].push_back(
+              {e.shape, e.x_top + (row + 0.5 - e.y_top) * e.dx_dy});
+      }
       for (int row = r0; row < r1; ++row) {
-        crossings.clear();
-        const double y = row + 0.5;
-        for (std::uint32_t k = 0; k < count; ++k) {
-          const ScanEdge& e = edges[ids[k]];
-          if (row < e.row_begin || row >= e.row_end) continue;
-          crossings.push_back({e.shape, e.x_top + (y - e.y_top) * e.dx_dy});
-        }
+        auto& crossings = row_crossings[std::size_t(row - r0)];
         std::sort(crossings.begin(), crossings.end());
         for (std::size_t i = 0; i + 1 < crossings.size();) {
           if (crossings[i].shape != crossings[i + 1].shape) {  // odd count: numerical leftover
@@ -95,6 +98,7 @@ void scan_spans(const std::vector<ScanEdge>& edges, int row_begin, int row_end, 
           if (c0 < c1) span(row, crossings[i].shape, c0, c1);
           i += 2;
         }
+        crossings.clear();
         row_done(row);
       }
     }

@@ -18,7 +18,9 @@ struct PixelRing {
   std::vector<Vec2> points;
   std::uint32_t shape;
 };
+// Polygons whose bounding box misses `window` (in scaled pixels) are left out: they cannot touch
+// it, and on a tile of a large world most polygons are elsewhere.
 std::vector<PixelRing> polygons_to_pixels(const std::vector<Polygon>& polygons,
-                                          const GridSpec& grid, double scale);
+                                          const GridSpec& grid, double scale, const Window& window);
 
 }  // namespace tw::detail
