@@ -2,6 +2,7 @@
 #include "raster/rasterize.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <numeric>
@@ -180,6 +181,29 @@ TEST(BurnBufferedLines, RejectsMismatchedWidths) {
                Error);
   EXPECT_THROW(burn_buffered_lines({{{0, 0}, {1, 1}}}, {-2.0}, grid, Window::whole(grid), out, 1),
                Error);
+}
+
+}  // namespace
+}  // namespace tw
+
+namespace tw {
+namespace {
+
+TEST(BurnPolygons, SameResultOnOneThreadAndMany) {
+  const auto polygons = test::realistic_polygons();
+  const GridSpec grid = utm_grid();
+  Raster<std::uint8_t> many;
+  burn_polygons(polygons, grid, Window::whole(grid), many, 1);
+  const auto coverage_many = polygon_coverage(polygons, grid, Window::whole(grid), 3);
+  Raster<std::uint8_t> one;
+  Raster<float> coverage_one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    burn_polygons(polygons, grid, Window::whole(grid), one, 1);
+    coverage_one = polygon_coverage(polygons, grid, Window::whole(grid), 3);
+  }
+  EXPECT_EQ(one.pixels, many.pixels);
+  EXPECT_EQ(coverage_one.pixels, coverage_many.pixels);
 }
 
 }  // namespace
