@@ -21,7 +21,8 @@ struct WriteOptions {
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
-  int preview_max_size = 2048;  // longest side of preview.png in pixels
+  int preview_max_size = 2048;                   // longest side of preview.png in pixels
+  std::vector<std::vector<Vec2>> preview_lines;  // world metres, drawn on the preview
 };
 
 // Writes <dir>/<layer>.exr (+ <layer>.tif) for each layer and <dir>/preview.png, staged in

@@ -1,0 +1,148 @@
+// The preview: a look, not data. Hillshaded heights (box-downsampled to at most max_size
+// pixels), tinted by elevation and by the splat materials, with feature lines on top;
+// 8-bit RGB through GDAL's PNG driver.
+#include <gdal_priv.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include "core/error.hpp"
+#include "layers/detail/gdal_init.hpp"
+#include "layers/write.hpp"
+
+namespace tw {
+
+namespace {
+
+using Rgb = std::array<float, 3>;
+
+// Hypsometric tint from low (green) to high (pale tan).
+Rgb elevation_tint(float t) {
+  static constexpr std::array<Rgb, 4> stops = {
+      {{96, 140, 80}, {150, 170, 100}, {190, 170, 120}, {225, 215, 200}}};
+  t = std::clamp(t, 0.0f, 1.0f) * 3.0f;
+  const int i = std::min(2, int(t));
+  const float f = t - float(i);
+  Rgb c;
+  for (int k = 0; k < 3; ++k) c[k] = stops[i][k] + (stops[i + 1][k] - stops[i][k]) * f;
+  return c;
+}
+
+Rgb material_colour(const std::string& channel) {
+  if (channel == "splat.road") return {70, 70, 75};
+  if (channel == "splat.shoulder") return {165, 150, 125};
+  if (channel == "splat.riverbed") return {45, 95, 175};
+  if (channel == "splat.bank") return {110, 125, 80};
+  if (channel == "splat.ridge_rock") return {150, 140, 135};
+  return {-1, -1, -1};  // base and unknown materials: the elevation tint
+}
+
+// Box average of a band over factor x factor blocks, ignoring NaN.
+Raster<float> downsample(const Raster<float>& band, int factor, int w, int h) {
+  Raster<float> out(w, h, std::numeric_limits<float>::quiet_NaN());
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      double sum = 0.0;
+      int n = 0;
+      for (int y = r * factor; y < std::min(band.height, (r + 1) * factor); ++y)
+        for (int x = c * factor; x < std::min(band.width, (c + 1) * factor); ++x) {
+          const float v = band.at(x, y);
+          if (!std::isnan(v)) sum += v, ++n;
+        }
+      if (n > 0) out.at(c, r) = float(sum / n);
+    }
+  return out;
+}
+
+}  // namespace
+
+void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
+                       const std::vector<std::vector<Vec2>>& lines, int max_size) {
+  const Layer* height = find_layer(set, "height");
+  if (height == nullptr || height->bands.empty())
+    fail("preview {}: the layer set has no 'height' layer", path.string());
+  const GridSpec& g = set.grid;
+  const int factor =
+      std::max(1, int(std::ceil(double(std::max(g.width, g.height)) / std::max(1, max_size))));
+  const int w = std::max(1, g.width / factor), h = std::max(1, g.height / factor);
+  const Raster<float> z = downsample(height->bands[0], factor, w, h);
+
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (const float v : z.pixels)
+    if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  const float range = hi > lo ? hi - lo : 1.0f;
+
+  std::vector<std::pair<Rgb, Raster<float>>> materials;
+  if (const Layer* splat = find_layer(set, "splat")) {
+    for (std::size_t i = 0; i < splat->channels.size(); ++i) {
+      const Rgb colour = material_colour(splat->channels[i]);
+      if (colour[0] >= 0) materials.emplace_back(colour, downsample(splat->bands[i], factor, w, h));
+    }
+  }
+
+  // Hillshade (sun from the north-west, 45 degrees up), slopes exaggerated 2x for legibility.
+  const double cell_x = g.pixel_width * factor, cell_y = g.pixel_height * factor;
+  const double azimuth = 315.0 * M_PI / 180.0, altitude = 45.0 * M_PI / 180.0;
+  const Vec2 sun{std::sin(azimuth) * std::cos(altitude), std::cos(azimuth) * std::cos(altitude)};
+  std::array<std::vector<std::uint8_t>, 3> rgb;
+  for (auto& channel : rgb) channel.assign(std::size_t(w) * h, 0);
+  auto at = [&](int c, int r, float fallback) {
+    const float v = z.at(std::clamp(c, 0, w - 1), std::clamp(r, 0, h - 1));
+    return std::isnan(v) ? fallback : v;
+  };
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const std::size_t k = std::size_t(r) * w + c;
+      const float v = z.at(c, r);
+      if (std::isnan(v)) {  // nodata: a dark neutral grey
+        for (auto& channel : rgb) channel[k] = 40;
+        continue;
+      }
+      const double dzdx = 2.0 * (at(c + 1, r, v) - at(c - 1, r, v)) / (2.0 * cell_x);
+      const double dzdy = 2.0 * (at(c, r - 1, v) - at(c, r + 1, v)) / (2.0 * cell_y);  // north up
+      const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
+      const double shade =
+          std::clamp((-dzdx * sun.x - dzdy * sun.y + std::sin(altitude)) / norm, 0.0, 1.0);
+      Rgb colour = elevation_tint((v - lo) / range);
+      for (const auto& [mc, weights] : materials) {
+        const float m = std::isnan(weights.at(c, r)) ? 0.0f : weights.at(c, r);
+        for (int i = 0; i < 3; ++i) colour[i] += (mc[i] - colour[i]) * m;
+      }
+      const double light = 0.35 + 0.75 * shade;
+      for (int i = 0; i < 3; ++i)
+        rgb[i][k] = std::uint8_t(std::clamp(colour[i] * light, 0.0, 255.0));
+    }
+
+  // Feature lines: a thin near-white stroke, sampled every half preview pixel.
+  for (const auto& line : lines)
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Vec2 a = g.world_to_pixel(line[i]) / factor, b = g.world_to_pixel(line[i + 1]) / factor;
+      const int steps = std::max(1, int(std::ceil(2.0 * distance(a, b))));
+      for (int s = 0; s <= steps; ++s) {
+        const Vec2 p = lerp(a, b, double(s) / steps);
+        const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
+        if (c < 0 || r < 0 || c >= w || r >= h) continue;
+        const std::size_t k = std::size_t(r) * w + c;
+        rgb[0][k] = 255, rgb[1][k] = 240, rgb[2][k] = 120;
+      }
+    }
+
+  detail::ensure_gdal_registered();
+  CPLErrorReset();
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  GDALDriver* png = GetGDALDriverManager()->GetDriverByName("PNG");
+  if (mem == nullptr || png == nullptr)
+    fail("GDAL lacks the MEM or PNG driver (writing {})", path.string());
+  std::unique_ptr<GDALDataset> image(mem->Create("", w, h, 3, GDT_Byte, nullptr));
+  for (int i = 0; i < 3; ++i)
+    if (image->GetRasterBand(i + 1)->RasterIO(GF_Write, 0, 0, w, h, rgb[i].data(), w, h, GDT_Byte,
+                                              0, 0) != CE_None)
+      fail("preview {}: {}", path.string(), CPLGetLastErrorMsg());
+  GDALDataset* out = png->CreateCopy(path.c_str(), image.get(), FALSE, nullptr, nullptr, nullptr);
+  if (out == nullptr) fail("cannot write preview {}: {}", path.string(), CPLGetLastErrorMsg());
+  GDALClose(out);
+}
+
+}  // namespace tw

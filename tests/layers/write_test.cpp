@@ -1,0 +1,218 @@
+#include "layers/write.hpp"
+
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogr_spatialref.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.hpp"
+#include "terrain/height_ops.hpp"
+#include "terrain/splat.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+
+WriteOptions only(bool exr, bool geotiff, bool preview) {
+  WriteOptions o;
+  o.exr = exr;
+  o.geotiff = geotiff;
+  o.preview = preview;
+  return o;
+}
+
+std::string utm31_wkt() {
+  OGRSpatialReference srs;
+  srs.importFromEPSG(32631);
+  char* wkt = nullptr;
+  srs.exportToWkt(&wkt);
+  std::string out(wkt);
+  CPLFree(wkt);
+  return out;
+}
+
+// A small world: a sloping heightfield with a nodata corner, a road and a river, shaped and
+// splatted by the terrain module.
+LayerSet sample_set(float tilt = 0.02f) {
+  LayerSet set;
+  set.grid = GridSpec{160, 120, 500000.0, 5000120.0 * 1.0, 2.0, 2.0};
+  set.grid.origin_y = 5000240.0;
+  set.crs_wkt = utm31_wkt();
+  set.nodata = -9999.0;
+  Raster<float> h(set.grid.width, set.grid.height);
+  for (int r = 0; r < h.height; ++r)
+    for (int c = 0; c < h.width; ++c)
+      h.at(c, r) = 200.0f + tilt * c * 2.0f + 6.0f * std::sin(r / 9.0f) * std::cos(c / 13.0f);
+  for (int r = 0; r < 15; ++r)
+    for (int c = 0; c < 20; ++c) h.at(c, r) = std::numeric_limits<float>::quiet_NaN();
+  std::vector<TerrainFeature> features(2);
+  features[0].kind = FeatureKind::road;
+  features[0].fid = 1;
+  features[0].width = 6.0;
+  features[0].centerline.points = {
+      {500010.0, 5000020.0}, {500150.0, 5000120.0}, {500310.0, 5000140.0}};
+  features[1].kind = FeatureKind::river;
+  features[1].fid = 2;
+  features[1].width = 8.0;
+  features[1].centerline.points = {
+      {500040.0, 5000230.0}, {500200.0, 5000100.0}, {500300.0, 5000010.0}};
+  shape_terrain(h, set.grid, Window::whole(set.grid), features, {});
+  set.layers.push_back(height_layer(std::move(h)));
+  set.layers.push_back(splat_layer(compute_splat(set.grid, Window::whole(set.grid), features, {})));
+  return set;
+}
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(WriteLayers, ExrRoundTripsPixelsAndGeoreferencing) {
+  test::TempDir dir;
+  const LayerSet set = sample_set();
+  OutputTransaction tx;
+  const auto written = write_layer_set(set, dir.path(), tx, only(true, false, false));
+  tx.commit();
+  ASSERT_EQ(written.size(), 2u);
+  const ExrContents exr = read_exr(dir / "splat.exr");
+  EXPECT_EQ(exr.width, set.grid.width);
+  EXPECT_EQ(exr.height, set.grid.height);
+  EXPECT_EQ(exr.crs_wkt, set.crs_wkt);
+  EXPECT_EQ(exr.origin.x, 500000.0);
+  EXPECT_EQ(exr.origin.y, 5000240.0);
+  EXPECT_EQ(exr.pixel_size.x, 2.0);
+  EXPECT_EQ(exr.geotransform, "500000,2,0,5000240,0,-2");
+  const Layer& splat = set.layers[1];
+  ASSERT_EQ(exr.channels.size(), splat.channels.size());
+  for (std::size_t i = 0; i < splat.channels.size(); ++i) {
+    const auto it = std::find(exr.channels.begin(), exr.channels.end(), splat.channels[i]);
+    ASSERT_NE(it, exr.channels.end()) << splat.channels[i];
+    const auto& band = exr.bands[std::size_t(it - exr.channels.begin())];
+    EXPECT_EQ(0,
+              std::memcmp(band.pixels.data(), splat.bands[i].pixels.data(), band.pixels.size() * 4))
+        << splat.channels[i];
+  }
+  const ExrContents height = read_exr(dir / "height.exr");
+  ASSERT_EQ(height.channels, std::vector<std::string>{"height"});
+  EXPECT_TRUE(std::isnan(height.bands[0].at(3, 3)));  // nodata stays NaN in the EXR
+  EXPECT_EQ(height.bands[0].at(100, 60), set.layers[0].bands[0].at(100, 60));
+}
+
+TEST(WriteLayers, GeoTiffTwinIsGeoreferencedWithNamedBandsAndNodata) {
+  test::TempDir dir;
+  const LayerSet set = sample_set();
+  OutputTransaction tx;
+  write_layer_set(set, dir.path(), tx, only(false, true, false));
+  tx.commit();
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir / "height.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(ds);
+  double gt[6];
+  ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+  const auto expected = set.grid.geotransform();
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(gt[i], expected[i]);
+  ASSERT_NE(ds->GetSpatialRef(), nullptr);
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32631);
+  EXPECT_TRUE(ds->GetSpatialRef()->IsSame(&utm));
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  EXPECT_EQ(band->GetRasterDataType(), GDT_Float32);
+  EXPECT_STREQ(band->GetDescription(), "height");
+  int has_nodata = 0;
+  EXPECT_EQ(band->GetNoDataValue(&has_nodata), -9999.0);
+  EXPECT_TRUE(has_nodata);
+  float corner = 0, inside = 0;
+  ASSERT_EQ(band->RasterIO(GF_Read, 3, 3, 1, 1, &corner, 1, 1, GDT_Float32, 0, 0), CE_None);
+  ASSERT_EQ(band->RasterIO(GF_Read, 100, 60, 1, 1, &inside, 1, 1, GDT_Float32, 0, 0), CE_None);
+  EXPECT_EQ(corner, -9999.0f);
+  EXPECT_EQ(inside, set.layers[0].bands[0].at(100, 60));
+
+  std::unique_ptr<GDALDataset> splat(
+      GDALDataset::Open((dir / "splat.tif").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(splat);
+  ASSERT_EQ(splat->GetRasterCount(), 6);
+  for (int b = 0; b < 6; ++b)
+    EXPECT_EQ(splat->GetRasterBand(b + 1)->GetDescription(),
+              set.layers[1].channels[std::size_t(b)]);
+  // No sidecar files: everything QGIS needs is inside the TIFF.
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    EXPECT_TRUE(entry.path().extension() == ".tif") << entry.path();
+}
+
+TEST(WriteLayers, PreviewIsAnRgbPngOfTheGridShape) {
+  test::TempDir dir;
+  const LayerSet set = sample_set();
+  OutputTransaction tx;
+  WriteOptions options = only(false, false, true);
+  options.preview_max_size = 100;  // forces a 2x downsample
+  options.preview_lines = {{{500010.0, 5000020.0}, {500150.0, 5000120.0}}};
+  write_layer_set(set, dir.path(), tx, options);
+  tx.commit();
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> png(
+      GDALDataset::Open((dir / "preview.png").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(png);
+  EXPECT_EQ(png->GetRasterXSize(), 80);
+  EXPECT_EQ(png->GetRasterYSize(), 60);
+  EXPECT_EQ(png->GetRasterCount(), 3);
+  EXPECT_EQ(png->GetRasterBand(1)->GetRasterDataType(), GDT_Byte);
+  // The line's midpoint (500080, 5000070) is drawn in its colour.
+  std::uint8_t rgb[3];
+  const Vec2 mid = set.grid.world_to_pixel({500080.0, 5000070.0}) / 2.0;
+  for (int b = 0; b < 3; ++b)
+    ASSERT_EQ(png->GetRasterBand(b + 1)->RasterIO(GF_Read, int(mid.x), int(mid.y), 1, 1, &rgb[b], 1,
+                                                  1, GDT_Byte, 0, 0),
+              CE_None);
+  EXPECT_EQ(rgb[0], 255);
+  EXPECT_EQ(rgb[2], 120);
+}
+
+TEST(WriteLayers, AFailingWriteLeavesThePreviousOutputsIntact) {
+  test::TempDir dir;
+  {
+    OutputTransaction tx;
+    write_layer_set(sample_set(), dir.path(), tx);
+    tx.commit();
+  }
+  std::map<std::string, std::string> before;
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    before[entry.path().filename().string()] = file_bytes(entry.path());
+  EXPECT_EQ(before.size(), 5u);  // height/splat .exr + .tif, preview.png
+
+  // A second run whose EXR and GeoTIFF files are written, but whose preview fails (no height
+  // layer): the transaction is never committed.
+  LayerSet broken = sample_set(0.5f);
+  broken.layers.erase(broken.layers.begin());
+  EXPECT_THROW(
+      {
+        OutputTransaction tx;
+        write_layer_set(broken, dir.path(), tx);
+        tx.commit();
+      },
+      Error);
+  std::map<std::string, std::string> after;
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    after[entry.path().filename().string()] = file_bytes(entry.path());
+  EXPECT_EQ(before, after);  // same names (no temporaries left), same bytes
+}
+
+TEST(WriteLayers, InconsistentLayersNameTheLayer) {
+  test::TempDir dir;
+  LayerSet set = sample_set();
+  set.layers[1].bands.pop_back();
+  OutputTransaction tx;
+  try {
+    write_layer_set(set, dir.path(), tx);
+    FAIL() << "expected tw::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'splat'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tw
