@@ -7,6 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/error.hpp"
+
 namespace tw::test {
 namespace {
 
@@ -103,6 +105,15 @@ std::array<double, 2> utm31_from_lon_lat(double lon, double lat) {
   double y = 0.0;
   GeographicLib::UTMUPS::Forward(lat, lon, zone, north, x, y, 31);
   return {x, y};
+}
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "no tw::Error";
 }
 
 }  // namespace tw::test

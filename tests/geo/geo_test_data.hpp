@@ -24,6 +24,14 @@ struct DemSpec {
 void write_geotiff(const std::string& path, const DemSpec& spec);
 
 struct TestFeature {
+  TestFeature(std::int64_t fid_, std::string wkt_, std::optional<double> width_ = std::nullopt,
+              std::string kind_ = "road", std::vector<double> raw_points_ = {})
+      : fid(fid_),
+        wkt(std::move(wkt_)),
+        width(width_),
+        kind(std::move(kind_)),
+        raw_points(std::move(raw_points_)) {}
+
   std::int64_t fid = 0;            // 0 = let the driver choose
   std::string wkt;                 // empty = no geometry
   std::optional<double> width;     // attribute "width"; unset = NULL
@@ -41,5 +49,8 @@ Heightfield small_utm_grid();
 
 // (lon, lat) -> (x, y) with GeographicLib's UTM, zone 31 north: independent of OGR/PROJ.
 std::array<double, 2> utm31_from_lon_lat(double lon, double lat);
+
+// The message of the tw::Error that action throws, or "no tw::Error".
+std::string error_of(const std::function<void()>& action);
 
 }  // namespace tw::test

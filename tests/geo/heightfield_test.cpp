@@ -16,6 +16,7 @@ namespace tw {
 namespace {
 
 using test::DemSpec;
+using test::error_of;
 using test::TempDir;
 using ::testing::HasSubstr;
 
@@ -58,15 +59,6 @@ class GridToCrs {
   OGRSpatialReference to_;
   std::unique_ptr<OGRCoordinateTransformation> transform_;
 };
-
-std::string error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "no tw::Error";
-}
 
 TEST(ReadHeightfield, MetricNorthUpDemIsReadAsIsWithNodataAsNaN) {
   TempDir dir;

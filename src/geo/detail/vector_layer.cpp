@@ -16,6 +16,21 @@ std::string layer_names(GDALDataset& dataset) {
   return names.empty() ? "none" : names;
 }
 
+// Some drivers (GeoPackage) accept any filter and only fail when reading: read one feature
+// to find out while we can still name the clause.
+void apply_where(OGRLayer& layer, const std::string& where, const std::string& label) {
+  CPLErrorReset();
+  const OGRErr set = layer.SetAttributeFilter(where.c_str());
+  bool failed = set != OGRERR_NONE || CPLGetLastErrorType() >= CE_Failure;
+  if (!failed) {
+    layer.ResetReading();
+    OGRFeatureUniquePtr probe(layer.GetNextFeature());
+    failed = CPLGetLastErrorType() >= CE_Failure;
+    layer.ResetReading();
+  }
+  if (failed) fail("{}: bad where clause '{}': {}", label, where, last_gdal_error());
+}
+
 }  // namespace
 
 OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
@@ -37,10 +52,7 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
     }
   }
   result.label = fmt::format("{}:{}", source.path, result.layer->GetName());
-  if (!source.where.empty() &&
-      result.layer->SetAttributeFilter(source.where.c_str()) != OGRERR_NONE) {
-    fail("{}: bad where clause '{}': {}", result.label, source.where, last_gdal_error());
-  }
+  if (!source.where.empty()) apply_where(*result.layer, source.where, result.label);
 
   const OGRSpatialReference* layer_srs = result.layer->GetSpatialRef();
   if (!layer_srs || layer_srs->IsEmpty()) {
