@@ -1,3 +1,119 @@
-// Placeholder until the pipeline lands; replaced by the CLI (issue #2).
+// terraweave's command line: a thin parse over library calls (pipeline/, synth/).
+// Every tw::Error becomes one line "terraweave: error: <message>" and exit code 1; usage
+// errors exit with 2.
+#include <cpl_error.h>
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
-int main() { std::puts("terraweave"); return 0; }
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run.hpp"
+#include "pipeline/version.hpp"
+
+namespace {
+
+// GDAL's own messages go to the log at debug level: our errors already name the culprit, and
+// a failing command must print one line, not GDAL's and ours.
+void log_gdal_message(CPLErr level, CPLErrorNum number, const char* message) {
+  tw::logger().debug("GDAL {} ({}): {}", int(level), number, message ? message : "");
+}
+
+struct PipelineArgs {
+  std::string file;
+  std::vector<std::string> overrides;
+};
+
+void add_pipeline_args(CLI::App& command, PipelineArgs& args) {
+  command.add_option("PIPELINE", args.file, "pipeline file (YAML, see docs/pipeline.md)")
+      ->required();
+  command.add_option("--set", args.overrides,
+                     "override a value of the pipeline file: key.path=value (repeatable)");
+}
+
+tw::PipelineConfig load(const PipelineArgs& args) {
+  std::vector<tw::Override> overrides;
+  for (const std::string& o : args.overrides) overrides.push_back(tw::parse_override(o));
+  return tw::load_pipeline(args.file, overrides);
+}
+
+int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
+  const tw::RunReport report = tw::run_pipeline(load(args), options);
+  for (const auto& stage : report.stages)
+    std::printf("%-10s %8.3f s\n", stage.stage.c_str(), stage.seconds);
+  std::printf("%-10s %8.3f s, %zu files in %s\n", "total", report.total_seconds,
+              report.outputs.size(),
+              report.outputs.empty() ? "-" : report.outputs.front().parent_path().c_str());
+  return 0;
+}
+
+int validate_command(const PipelineArgs& args) {
+  tw::RunOptions options;
+  options.write_outputs = false;
+  const tw::RunReport report = tw::run_pipeline(load(args), options);
+  std::size_t features = 0;
+  for (const auto& c : report.classes) features += c.features.size();
+  std::printf("%s: ok (%zu feature classes, %zu features, grid %d x %d)\n", args.file.c_str(),
+              report.classes.size(), features, report.grid.width, report.grid.height);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CPLSetErrorHandler(log_gdal_message);
+  CLI::App app{"terraweave: terrain features for procedural worlds"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", tw::version_line());
+  bool verbose = false;
+  bool quiet = false;
+  app.add_flag("-v,--verbose", verbose, "debug logging");
+  app.add_flag("-q,--quiet", quiet, "warnings and errors only");
+
+  PipelineArgs run_args;
+  tw::RunOptions run_options;
+  std::string out_dir;
+  std::string backend;
+  CLI::App* run = app.add_subcommand("run", "run a pipeline and write its layers");
+  add_pipeline_args(*run, run_args);
+  run->add_option("--out", out_dir, "output folder (replaces output.dir)");
+  run->add_option("--backend", backend, "synthesis backend")
+      ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
+  run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
+      ->check(CLI::PositiveNumber);
+
+  PipelineArgs validate_args;
+  CLI::App* validate =
+      app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
+  add_pipeline_args(*validate, validate_args);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  tw::set_log_level(verbose ? spdlog::level::debug
+                    : quiet ? spdlog::level::warn
+                            : spdlog::level::info);
+  try {
+    if (run->parsed()) {
+      if (!out_dir.empty()) run_options.output_dir = out_dir;
+      if (!backend.empty()) run_options.backend = backend;
+      return run_command(run_args, run_options);
+    }
+    if (validate->parsed()) return validate_command(validate_args);
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "terraweave: error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -45,7 +45,7 @@ GenerateConfig read_generate(const MapReader& m) {
       m.source().fail(m.get(key), m.path(key), fmt::format("must be in [2, 65536], got {}", cells));
     }
   }
-  g.cell_size = m.positive_or("cell_size", g.cell_size);
+  g.pixel_size = m.positive_or("pixel_size", g.pixel_size);
   g.relief = m.non_negative_or("relief", g.relief);
   g.crs = m.string_or("crs", g.crs);
   if (m.has("origin")) {
@@ -59,14 +59,34 @@ GenerateConfig read_generate(const MapReader& m) {
   return g;
 }
 
-ProfileConfig read_profile(const MapReader& m) {
-  ProfileConfig p;
-  p.max_grade = m.positive_or("max_grade", p.max_grade);
-  p.shoulder_width = m.non_negative_or("shoulder_width", p.shoulder_width);
-  p.falloff = m.non_negative_or("falloff", p.falloff);
-  p.smoothing = m.non_negative_or("smoothing", p.smoothing);
-  p.depth = m.non_negative_or("depth", p.depth);
-  return p;
+// The `profile` keys are those of the feature's kind (terrain/features.hpp).
+void read_profile(const detail::YamlSource& src, const YAML::Node& node, const std::string& path,
+                  FeatureClassConfig& f) {
+  switch (f.kind) {
+    case FeatureKind::road: {
+      const MapReader m(src, node, path, {"max_grade", "shoulder_width", "falloff", "smoothing"});
+      f.road.max_grade = m.positive_or("max_grade", f.road.max_grade);
+      f.road.shoulder_width = m.non_negative_or("shoulder_width", f.road.shoulder_width);
+      f.road.falloff = m.non_negative_or("falloff", f.road.falloff);
+      f.road.smoothing = m.non_negative_or("smoothing", f.road.smoothing);
+      break;
+    }
+    case FeatureKind::river: {
+      const MapReader m(src, node, path, {"depth", "bank_width", "falloff", "min_slope"});
+      f.river.depth = m.non_negative_or("depth", f.river.depth);
+      f.river.bank_width = m.non_negative_or("bank_width", f.river.bank_width);
+      f.river.falloff = m.non_negative_or("falloff", f.river.falloff);
+      f.river.min_slope = m.non_negative_or("min_slope", f.river.min_slope);
+      break;
+    }
+    case FeatureKind::ridge: {
+      const MapReader m(src, node, path, {"height", "falloff", "sharpness"});
+      f.ridge.height = m.non_negative_or("height", f.ridge.height);
+      f.ridge.falloff = m.non_negative_or("falloff", f.ridge.falloff);
+      f.ridge.sharpness = m.positive_or("sharpness", f.ridge.sharpness);
+      break;
+    }
+  }
 }
 
 SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
@@ -103,11 +123,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   f.kind = read_kind(m);
   f.width_attribute = m.string_or("width_attribute", "");
   if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
-  if (m.has("profile")) {
-    f.profile =
-        read_profile(MapReader(m.source(), m.get("profile"), m.path("profile"),
-                               {"max_grade", "shoulder_width", "falloff", "smoothing", "depth"}));
-  }
+  if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
     f.synthesis = read_synthesis(
         MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
@@ -177,7 +193,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   if (root.has("generate")) {
     c.generate =
         read_generate(MapReader(src, root.get("generate"), "generate",
-                                {"width", "height", "cell_size", "relief", "crs", "origin"}));
+                                {"width", "height", "pixel_size", "relief", "crs", "origin"}));
   }
   if (root.has("resolution")) c.resolution = root.positive("resolution");
   if (root.has("output")) {
@@ -245,18 +261,6 @@ PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& 
   PipelineConfig config = parse_pipeline(text.str(), file.string(), folder, overrides);
   config.file = file;
   return config;
-}
-
-std::string_view to_string(FeatureKind kind) {
-  switch (kind) {
-    case FeatureKind::road:
-      return "road";
-    case FeatureKind::river:
-      return "river";
-    case FeatureKind::ridge:
-      return "ridge";
-  }
-  return "?";
 }
 
 }  // namespace tw

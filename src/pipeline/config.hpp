@@ -9,28 +9,19 @@
 #include <string_view>
 #include <vector>
 
-namespace tw {
+#include "terrain/features.hpp"
 
-enum class FeatureKind { road, river, ridge };
+namespace tw {
 
 // A seeded synthetic heightfield, used when the pipeline names no heightfield file.
 struct GenerateConfig {
   int width = 1024;                // cells
   int height = 1024;               // cells
-  double cell_size = 4.0;          // metres
+  double pixel_size = 4.0;         // metres
   double relief = 120.0;           // metres between lowest and highest point (roughly)
   std::string crs = "EPSG:32631";  // a metric CRS
   double origin_x = 500000.0;      // world x of the west edge
   double origin_y = 5000000.0;     // world y of the north edge
-};
-
-// How a feature shapes the terrain (see terrain/).
-struct ProfileConfig {
-  double max_grade = 0.08;      // rise over run along the feature
-  double shoulder_width = 3.0;  // metres of flat ground beside the ribbon
-  double falloff = 15.0;        // metres over which the edit blends into the terrain
-  double smoothing = 60.0;      // metres of along-curve smoothing of the target height
-  double depth = 0.0;           // metres: river bed depth, ridge height; 0 = the kind's default
 };
 
 // Curvilinear pattern synthesis (Zhou et al. 2013) along a feature class (issue #4).
@@ -52,7 +43,10 @@ struct FeatureClassConfig {
   FeatureKind kind = FeatureKind::road;
   std::string width_attribute;  // "" = every feature has `width`
   double width = 0.0;           // metres, > 0 (fallback when the attribute is missing or null)
-  ProfileConfig profile;
+  // The profile of `kind` (the others keep their defaults), from the `profile` key.
+  RoadProfile road;
+  RiverProfile river;
+  RidgeProfile ridge;
   std::optional<SynthesisConfig> synthesis;
 };
 
@@ -101,7 +95,5 @@ PipelineConfig load_pipeline(const std::filesystem::path& file,
 PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& file_label,
                               const std::filesystem::path& base_dir,
                               const std::vector<Override>& overrides = {});
-
-std::string_view to_string(FeatureKind kind);
 
 }  // namespace tw

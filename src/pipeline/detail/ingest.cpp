@@ -1,0 +1,70 @@
+#include "pipeline/detail/ingest.hpp"
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+
+namespace tw::detail {
+
+Heightfield load_heightfield(const PipelineConfig& config) {
+  if (config.heightfield) {
+    HeightfieldOptions options;
+    options.resolution = config.resolution;
+    return read_heightfield(config.heightfield->string(), options);
+  }
+  const GenerateConfig& g = config.generate;
+  GeneratedTerrain params;
+  params.width = g.width;
+  params.height = g.height;
+  params.pixel_size = config.resolution.value_or(g.pixel_size);
+  params.seed = config.seed;
+  params.relief = g.relief;
+  params.crs = g.crs;
+  params.origin_x = g.origin_x;
+  params.origin_y = g.origin_y;
+  return generate_heightfield(params);
+}
+
+std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
+                                            const Heightfield& heightfield) {
+  LineClassSpec spec;
+  spec.name = config.name;
+  spec.source = {config.source.string(), config.layer, config.where};
+  spec.width_attribute = config.width_attribute;
+  spec.default_width = config.width;
+  std::vector<LineFeature> lines = read_line_features(spec, heightfield);
+  if (lines.empty()) {
+    fail(
+        "features.{}: {}{}{}: no line feature on the heightfield (empty layer, a where clause "
+        "that matches nothing, or lines outside the heightfield's extent)",
+        config.name, config.source.string(), config.layer.empty() ? "" : ":", config.layer);
+  }
+  return lines;
+}
+
+ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
+                               const Heightfield& heightfield) {
+  ExistingFeatures out;
+  for (std::size_t i = 0; i < existing.size(); ++i) {
+    const ExistingConfig& e = existing[i];
+    const VectorSource source{e.source.string(), e.layer, e.where};
+    if (e.width > 0.0) {
+      LineClassSpec spec;
+      spec.name = "existing." + std::to_string(i);
+      spec.source = source;
+      spec.default_width = e.width;
+      for (LineFeature& line : read_line_features(spec, heightfield)) {
+        if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
+        out.lines.push_back(std::move(line.points));
+        out.line_widths.push_back(e.width);
+      }
+    } else {
+      for (PolygonFeature& polygon : read_polygon_features(source, heightfield)) {
+        out.polygons.push_back(std::move(polygon.rings));
+      }
+    }
+  }
+  logger().info("existing: {} polygons, {} lines", out.polygons.size(), out.lines.size());
+  return out;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,34 @@
+#pragma once
+// The ingest stage: the heightfield, the line features of each class and the existing
+// (avoidance) features, all in the heightfield's metric grid CRS.
+#include <string>
+#include <vector>
+
+#include "geo/features.hpp"
+#include "geo/heightfield.hpp"
+#include "pipeline/config.hpp"
+#include "raster/polygon.hpp"
+
+namespace tw::detail {
+
+// Reads config.heightfield (at config.resolution) or generates one from config.generate and
+// config.seed.
+Heightfield load_heightfield(const PipelineConfig& config);
+
+// The lines of one class. Throws tw::Error naming the class and its source when none of its
+// features lies on the heightfield (an empty layer, a where clause matching nothing, or a
+// layer beside the DEM), besides geo's per-feature errors.
+std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
+                                            const Heightfield& heightfield);
+
+struct ExistingFeatures {
+  std::vector<Polygon> polygons;
+  std::vector<std::vector<Vec2>> lines;
+  std::vector<double> line_widths;  // metres, one per line
+};
+
+// Entries with a width are read as lines buffered by it, the others as polygons.
+ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
+                               const Heightfield& heightfield);
+
+}  // namespace tw::detail

@@ -1,0 +1,52 @@
+#include "pipeline/detail/report_json.hpp"
+
+#include <gdal.h>
+
+#include "pipeline/version.hpp"
+
+namespace tw::detail {
+
+nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config) {
+  using nlohmann::json;
+  json stages = json::array();
+  for (const StageTiming& s : report.stages)
+    stages.push_back({{"stage", s.stage}, {"seconds", s.seconds}});
+  json classes = json::array();
+  for (const FeatureClassReport& c : report.classes) {
+    json features = json::array();
+    double total_length = 0.0;
+    for (const FeatureReport& f : c.features) {
+      features.push_back(
+          {{"fid", f.fid}, {"length_m", f.length_m}, {"width_m", f.width_m}, {"pieces", f.pieces}});
+      total_length += f.length_m;
+    }
+    classes.push_back({{"name", c.name},
+                       {"kind", std::string(to_string(c.kind))},
+                       {"source", c.source},
+                       {"delta_m", c.delta_m},
+                       {"length_m", total_length},
+                       {"ingest_seconds", c.ingest_seconds},
+                       {"features", features}});
+  }
+  const GridSpec& g = report.grid;
+  return {
+      {"terraweave", kTerraweaveVersion},
+      {"versions", version_line()},
+      {"pipeline", config.file.string()},
+      {"seed", report.seed},
+      {"backend", config.backend},
+      {"heightfield", report.heightfield},
+      {"grid",
+       {{"width", g.width},
+        {"height", g.height},
+        {"origin", {g.origin_x, g.origin_y}},
+        {"pixel_size", {g.pixel_width, g.pixel_height}},
+        {"crs_wkt", report.crs_wkt}}},
+      {"stages", stages},
+      {"total_seconds", report.total_seconds},
+      {"forbidden_pixels", report.forbidden_pixels},
+      {"classes", classes},
+  };
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,39 @@
+#pragma once
+// The middle stages of a run, between ingest and the layers: ribbons and junctions, the
+// avoidance map, and the features as the terrain module sees them.
+#include <vector>
+
+#include "core/grid.hpp"
+#include "geo/features.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/detail/ingest.hpp"
+#include "raster/avoidance.hpp"
+#include "ribbon/ribbon.hpp"
+#include "terrain/height_ops.hpp"
+
+namespace tw::detail {
+
+// Per class (config order) and feature (reading order).
+struct FeatureRibbons {
+  std::vector<double> delta;                 // piece length of each class, metres
+  std::vector<std::vector<double>> lengths;  // metres, of the feature as read
+  std::vector<std::vector<Ribbon>> ribbons;  // no pieces when shorter than delta
+  std::vector<Polygon> junction_discs;       // where features meet
+};
+
+// Slices every feature into pieces of its class's delta (the synthesis delta, or its default)
+// and finds the junctions between all features.
+FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
+                                    const std::vector<std::vector<LineFeature>>& lines,
+                                    const GridSpec& grid);
+
+// Existing features, every ribbon's footprint and fold-overs, and the junction discs.
+AvoidanceMap build_run_avoidance(const ExistingFeatures& existing, const FeatureRibbons& ribbons,
+                                 const GridSpec& grid);
+
+std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
+                                             const std::vector<std::vector<LineFeature>>& lines);
+// Kinds in the order of the classes (a kind's last class decides its place), later wins.
+TerrainParams terrain_params(const PipelineConfig& config);
+
+}  // namespace tw::detail

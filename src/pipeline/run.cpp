@@ -1,0 +1,165 @@
+#include "pipeline/run.hpp"
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+
+#include "core/atomic_output.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "layers/layer_set.hpp"
+#include "layers/write.hpp"
+#include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/report_json.hpp"
+#include "pipeline/detail/stages.hpp"
+#include "raster/avoidance.hpp"
+#include "terrain/height_ops.hpp"
+#include "terrain/splat.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTiming>& timings) : timings_(timings) {}
+
+  void start(std::string stage) {
+    stage_ = std::move(stage);
+    logger().info("{}...", stage_);
+    started_ = std::chrono::steady_clock::now();
+  }
+  double stop() {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    timings_.push_back({stage_, seconds});
+    logger().info("{}: {:.3f} s", stage_, seconds);
+    return seconds;
+  }
+
+ private:
+  std::vector<StageTiming>& timings_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+// The avoidance map as a layer: 1 on forbidden pixels, and metres to the nearest of them.
+Layer avoidance_layer(AvoidanceMap map) {
+  Raster<float> forbidden(map.forbidden.width, map.forbidden.height);
+  std::transform(map.forbidden.pixels.begin(), map.forbidden.pixels.end(), forbidden.pixels.begin(),
+                 [](std::uint8_t v) { return v ? 1.0f : 0.0f; });
+  Layer layer;
+  layer.name = "avoidance";
+  layer.channels = {"forbidden", "distance"};
+  layer.bands.push_back(std::move(forbidden));
+  layer.bands.push_back(std::move(map.distance));
+  return layer;
+}
+
+void write_report(const fs::path& path, const nlohmann::json& json) {
+  std::ofstream out(path);
+  out << json.dump(2) << '\n';
+  out.close();
+  if (!out) fail("cannot write {}", path.string());
+}
+
+}  // namespace
+
+RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) {
+  const auto run_started = std::chrono::steady_clock::now();
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0) {
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+  }
+  RunReport report;
+  report.seed = config.seed;
+  StageClock clock(report.stages);
+
+  clock.start("ingest");
+  Heightfield heightfield = detail::load_heightfield(config);
+  report.grid = heightfield.grid;
+  report.crs_wkt = heightfield.crs_wkt;
+  report.heightfield = heightfield.source;
+  std::vector<std::vector<LineFeature>> lines;
+  for (const FeatureClassConfig& feature_class : config.features) {
+    const auto started = std::chrono::steady_clock::now();
+    lines.push_back(detail::load_feature_class(feature_class, heightfield));
+    FeatureClassReport& class_report = report.classes.emplace_back();
+    class_report.name = feature_class.name;
+    class_report.kind = feature_class.kind;
+    class_report.source = feature_class.source.string() + ":" + feature_class.layer;
+    class_report.ingest_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+  detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
+  clock.stop();
+
+  clock.start("ribbons");
+  const detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(config, lines, heightfield.grid);
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    report.classes[c].delta_m = ribbons.delta[c];
+    for (std::size_t i = 0; i < lines[c].size(); ++i) {
+      report.classes[c].features.push_back({lines[c][i].fid, ribbons.lengths[c][i],
+                                            lines[c][i].width,
+                                            int(ribbons.ribbons[c][i].pieces.size())});
+    }
+  }
+  clock.stop();
+  if (!options.write_outputs) {
+    report.total_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
+    return report;
+  }
+
+  clock.start("avoidance");
+  AvoidanceMap avoidance = detail::build_run_avoidance(existing, ribbons, heightfield.grid);
+  report.forbidden_pixels =
+      std::count(avoidance.forbidden.pixels.begin(), avoidance.forbidden.pixels.end(), 1);
+  clock.stop();
+
+  clock.start("terrain");
+  const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
+  const TerrainParams params = detail::terrain_params(config);
+  const Window whole = Window::whole(heightfield.grid);
+  shape_terrain(heightfield.height, heightfield.grid, whole, features, params);
+  SplatLayers splat = compute_splat(heightfield.grid, whole, features, params);
+  clock.stop();
+
+  clock.start("layers");
+  const fs::path dir = options.output_dir.value_or(config.output.dir);
+  LayerSet layers;
+  layers.grid = heightfield.grid;
+  layers.crs_wkt = heightfield.crs_wkt;
+  layers.nodata = heightfield.nodata_value;
+  layers.layers.push_back(height_layer(std::move(heightfield.height)));
+  layers.layers.push_back(splat_layer(std::move(splat)));
+  layers.layers.push_back(avoidance_layer(std::move(avoidance)));
+  OutputTransaction transaction;
+  WriteOptions write_options;
+  write_options.exr = config.output.exr;
+  write_options.geotiff = config.output.geotiff;
+  write_options.preview = false;  // drawn below, with the centerlines on top
+  write_layer_set(layers, dir, transaction, write_options);
+  if (config.output.preview) {
+    std::vector<std::vector<Vec2>> centerlines;
+    for (const auto& feature : features) centerlines.push_back(feature.centerline.points);
+    write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
+  }
+  clock.stop();
+
+  report.total_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
+  write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
+  transaction.commit();
+  report.outputs = transaction.committed();
+  logger().info("wrote {} files to {} in {:.2f} s", report.outputs.size(), dir.string(),
+                report.total_seconds);
+  return report;
+}
+
+}  // namespace tw
