@@ -2,7 +2,6 @@
 
 #include <gdal_utils.h>
 
-#include <cmath>
 #include <vector>
 
 #include "core/error.hpp"
@@ -55,38 +54,7 @@ GdalDatasetPtr warp_to_metric_grid(GDALDataset& full_source, const WarpTarget& t
                                    const std::string& label) {
   GdalDatasetPtr band_one;
   if (full_source.GetRasterCount() > 1) band_one = first_band_only(full_source, label);
-  GDALDataset& source = band_one ? *band_one : full_source;
-  GdalDatasetPtr bilinear = run_gdalwarp(source, target, "bilinear", label);
-  int has_nodata = 0;
-  source.GetRasterBand(1)->GetNoDataValue(&has_nodata);
-  if (!has_nodata) return bilinear;
-
-  GdalDatasetPtr nearest = run_gdalwarp(source, target, "near", label);
-  GDALRasterBand* heights = bilinear->GetRasterBand(1);
-  GDALRasterBand* nearest_band = nearest->GetRasterBand(1);
-  const int width = heights->GetXSize();
-  std::vector<float> row(width);
-  std::vector<float> nearest_row(width);
-  for (int y = 0; y < heights->GetYSize(); ++y) {
-    if (heights->RasterIO(GF_Read, 0, y, width, 1, row.data(), width, 1, GDT_Float32, 0, 0) !=
-            CE_None ||
-        nearest_band->RasterIO(GF_Read, 0, y, width, 1, nearest_row.data(), width, 1, GDT_Float32,
-                               0, 0) != CE_None) {
-      fail("{}: cannot read the warped grid: {}", label, last_gdal_error());
-    }
-    bool changed = false;
-    for (int x = 0; x < width; ++x) {
-      if (std::isnan(nearest_row[x]) && !std::isnan(row[x])) {
-        row[x] = std::nanf("");
-        changed = true;
-      }
-    }
-    if (changed && heights->RasterIO(GF_Write, 0, y, width, 1, row.data(), width, 1, GDT_Float32, 0,
-                                     0) != CE_None) {
-      fail("{}: cannot write the warped grid: {}", label, last_gdal_error());
-    }
-  }
-  return bilinear;
+  return run_gdalwarp(band_one ? *band_one : full_source, target, "bilinear", label);
 }
 
 }  // namespace tw::detail

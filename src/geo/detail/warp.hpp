@@ -13,9 +13,10 @@ struct WarpTarget {
 };
 
 // Band 1 of `source` warped (bilinear) into an in-memory Float32 dataset with NaN as nodata.
-// Bilinear never mixes a nodata cell into a height (GDAL renormalizes over valid neighbours);
-// and an output cell whose centre falls on a source nodata cell stays nodata (checked with a
-// nearest-neighbour warp), so holes do not shrink. `label` names the source in errors.
+// GDAL's warper never mixes a nodata cell into a height (it weighs valid neighbours only) and
+// leaves an output cell nodata when the source cell under its centre is nodata, so holes
+// neither fill nor shrink (tests/geo/heightfield_test.cpp checks both). `label` names the
+// source in errors.
 GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
                                    const std::string& label);
 
