@@ -19,6 +19,8 @@
 #include <random>
 #include <vector>
 
+#include "raster/distance.hpp"
+#include "raster/foldover.hpp"
 #include "raster/rasterize.hpp"
 
 namespace {
@@ -161,6 +163,46 @@ void run_case(int count, int size) {
               100.0 * double(same) / double(ours.pixels.size()), ours.pixels.size(), filled,
               ours.pixels.size() - same);
   for (OGRGeometryH g : geometries) OGR_G_DestroyGeometry(g);
+
+  // The other raster stages on the same grid, for scale.
+  auto time_best = [](auto&& fn) {
+    double best = 1e30;
+    for (int i = 0; i < 3; ++i) {
+      const auto t = std::chrono::steady_clock::now();
+      fn();
+      best = std::min(best, seconds_since(t));
+    }
+    return best;
+  };
+  const double coverage =
+      time_best([&] { tw::polygon_coverage(polygons, grid, tw::Window::whole(grid), 4); });
+  const double edt =
+      time_best([&] { tw::distance_to_mask(ours, grid.pixel_width, grid.pixel_height); });
+  std::printf("  polygon_coverage 4x4    : %8.2f ms\n", coverage * 1e3);
+  std::printf("  distance_to_mask (EDT)  : %8.2f ms\n", edt * 1e3);
+}
+
+// Fold-overs of a long meandering ribbon (5 m wide, 1 m pieces) on a 1 m grid.
+void run_foldover_case(int size) {
+  tw::Curve meander;
+  for (int i = 0; i <= 20 * size; ++i) {
+    const double s = i * 0.05;
+    meander.points.push_back(
+        {500000.0 + s,
+         5000000.0 + size / 2.0 + 0.2 * size * std::sin(s / 7.0) + 3.0 * std::sin(s / 1.3)});
+  }
+  const GridSpec grid{size, size, 500000.0, 5000000.0 + size, 1.0, 1.0};
+  const tw::Ribbon ribbon = tw::make_ribbon(meander, {5.0, 1.0});
+  double best = 1e30;
+  std::size_t folded = 0;
+  for (int i = 0; i < 3; ++i) {
+    const auto t = std::chrono::steady_clock::now();
+    const auto mask = tw::foldover_mask(ribbon, grid, tw::Window::whole(grid));
+    best = std::min(best, seconds_since(t));
+    folded = std::size_t(std::count(mask.pixels.begin(), mask.pixels.end(), 1));
+  }
+  std::printf("foldover_mask: %zu pieces on %dx%d: %8.2f ms (%zu fold-over pixels)\n",
+              ribbon.pieces.size(), size, size, best * 1e3, folded);
 }
 
 }  // namespace
@@ -171,5 +213,6 @@ int main(int argc, char** argv) {
   const int size = argc > 2 ? std::atoi(argv[2]) : 4096;
   run_case(200, 512);
   run_case(count, size);
+  run_foldover_case(size);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -62,15 +63,25 @@ Raster<float> distance_to_mask(const Raster<std::uint8_t>& mask, double pixel_w,
   if (w == 0 || h == 0) return out;
   // Squared distances along columns first (metres^2), then along rows.
   std::vector<double> columns(std::size_t(w) * h);
-  tbb::parallel_for(tbb::blocked_range<int>(0, w, 16), [&](const tbb::blocked_range<int>& range) {
-    Envelope envelope;
-    std::vector<double> f(static_cast<std::size_t>(h)), d(static_cast<std::size_t>(h));
-    for (int c = range.begin(); c != range.end(); ++c) {
-      for (int r = 0; r < h; ++r) f[r] = mask.at(c, r) ? 0.0 : kInf;
-      envelope.transform(f.data(), h, pixel_h * pixel_h, d.data());
-      for (int r = 0; r < h; ++r) columns[std::size_t(r) * w + c] = d[r];
-    }
-  });
+  // Columns are gathered kChunk at a time so reads and writes walk rows, not strides.
+  constexpr int kChunk = 16;
+  tbb::parallel_for(tbb::blocked_range<int>(0, (w + kChunk - 1) / kChunk),
+                    [&](const tbb::blocked_range<int>& range) {
+                      Envelope envelope;
+                      std::vector<double> f(std::size_t(kChunk) * h), d(std::size_t(kChunk) * h);
+                      for (int chunk = range.begin(); chunk != range.end(); ++chunk) {
+                        const int c0 = chunk * kChunk, c1 = std::min(w, c0 + kChunk);
+                        for (int r = 0; r < h; ++r)
+                          for (int c = c0; c < c1; ++c)
+                            f[std::size_t(c - c0) * h + r] = mask.at(c, r) ? 0.0 : kInf;
+                        for (int c = c0; c < c1; ++c)
+                          envelope.transform(&f[std::size_t(c - c0) * h], h, pixel_h * pixel_h,
+                                             &d[std::size_t(c - c0) * h]);
+                        for (int r = 0; r < h; ++r)
+                          for (int c = c0; c < c1; ++c)
+                            columns[std::size_t(r) * w + c] = d[std::size_t(c - c0) * h + r];
+                      }
+                    });
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& range) {
     Envelope envelope;
     std::vector<double> d(static_cast<std::size_t>(w));

@@ -1,9 +1,12 @@
 #include "raster/foldover.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <optional>
 
+#include "core/error.hpp"
+#include "raster/detail/edge_builder.hpp"
 #include "raster/detail/scanline.hpp"
 #include "raster/detail/window_raster.hpp"
 
@@ -66,10 +69,15 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
   std::vector<std::uint32_t> lowest(cells, kNone), highest(cells, 0);
   std::vector<std::uint16_t> count(cells, 0);
 
-  std::vector<detail::ScanEdge> edges;
-  for (const auto& ring : detail::polygons_to_pixels(piece_polygons(ribbon), grid, 1.0, window))
-    detail::append_ring_edges(ring.points, ring.shape, edges);
-  detail::scan_spans(edges, window.row0, window.row_end(), window.col0, window.col_end(),
+  detail::EdgeBuilder pieces(grid, 1.0, window);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Piece& p = ribbon.pieces[i];
+    const std::array<std::array<Vec2, 4>, 1> quad{
+        {{p.top_left, p.bottom_left, p.bottom_right, p.top_right}}};
+    if (!pieces.add_shape(quad, i))
+      fail("foldover_mask: ribbon piece {} has a non-finite corner", i);
+  }
+  detail::scan_spans(pieces.edges, window.row0, window.row_end(), window.col0, window.col_end(),
                      kBlockRows, [&](int row, std::uint32_t piece, int c0, int c1) {
                        const std::size_t base = std::size_t(row - window.row0) * window.width;
                        for (int c = c0; c < c1; ++c) {
@@ -91,11 +99,10 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
   for (const Piece& piece : ribbon.pieces)
     if (auto lobe = inverted_lobe(piece)) lobes.push_back({std::move(*lobe)});
   if (!lobes.empty()) {
-    std::vector<detail::ScanEdge> lobe_edges;
-    for (const auto& ring : detail::polygons_to_pixels(lobes, grid, 1.0, window))
-      detail::append_ring_edges(ring.points, ring.shape, lobe_edges);
-    detail::scan_spans(lobe_edges, window.row0, window.row_end(), window.col0, window.col_end(),
-                       kBlockRows, [&](int row, std::uint32_t, int c0, int c1) {
+    detail::EdgeBuilder lobe_edges(grid, 1.0, window);
+    for (std::size_t i = 0; i < lobes.size(); ++i) lobe_edges.add_shape(lobes[i], std::uint32_t(i));
+    detail::scan_spans(lobe_edges.edges, window.row0, window.row_end(), window.col0,
+                       window.col_end(), kBlockRows, [&](int row, std::uint32_t, int c0, int c1) {
                          std::uint8_t* line =
                              mask.pixels.data() + std::size_t(row - window.row0) * window.width;
                          std::fill(line + (c0 - window.col0), line + (c1 - window.col0), 1);

@@ -7,6 +7,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "core/error.hpp"
+#include "raster/detail/edge_builder.hpp"
 #include "raster/detail/scanline.hpp"
 #include "raster/detail/window_raster.hpp"
 
@@ -20,10 +21,11 @@ constexpr int kBlockRows = 16;
 std::vector<detail::ScanEdge> polygon_edges(const std::vector<Polygon>& polygons,
                                             const GridSpec& grid, double scale,
                                             const Window& window) {
-  std::vector<detail::ScanEdge> edges;
-  for (const auto& ring : detail::polygons_to_pixels(polygons, grid, scale, window))
-    detail::append_ring_edges(ring.points, ring.shape, edges);
-  return edges;
+  detail::EdgeBuilder builder(grid, scale, window);
+  for (std::size_t p = 0; p < polygons.size(); ++p)
+    if (!builder.add_shape(polygons[p], std::uint32_t(p)))
+      fail("polygon {}: a point is not finite", p);
+  return std::move(builder.edges);
 }
 
 }  // namespace
@@ -48,34 +50,60 @@ Raster<float> polygon_coverage(const std::vector<Polygon>& polygons, const GridS
   const int s = supersample;
   const Window sub_window{window.col0 * s, window.row0 * s, window.width * s, window.height * s};
   const auto edges = polygon_edges(polygons, grid, double(s), sub_window);
-  // Sub-pixel hits per pixel; each sub-row's union is taken in a 0/1 line first so overlapping
-  // polygons are not counted twice.
+  // Sub-pixel hits per pixel. Each sub-row's spans are merged first (their union), so
+  // overlapping polygons are not counted twice; then whole pixels get s hits at once.
   Raster<std::uint16_t> hits(window.width, window.height, 0);
-  const int sub_col0 = window.col0 * s;
-  const int sub_cols = window.width * s;
   // Blocks are whole pixel rows (multiples of s sub-rows), so a pixel row has a single writer.
   const int block = kBlockRows * s;
-  struct Line {
-    std::vector<std::uint8_t> inside;
+  struct Scratch {
+    std::vector<std::pair<int, int>> spans;  // of the current sub-row
+    std::vector<std::int32_t> whole;         // difference array of +s runs over the pixel row
   };
-  tbb::enumerable_thread_specific<Line> lines(
-      [&] { return Line{std::vector<std::uint8_t>(sub_cols, 0)}; });
+  tbb::enumerable_thread_specific<Scratch> scratch([&] {
+    return Scratch{{}, std::vector<std::int32_t>(std::size_t(window.width) + 1, 0)};
+  });
   detail::scan_spans(
-      edges, window.row0 * s, window.row_end() * s, sub_col0, sub_col0 + sub_cols, block,
-      [&](int, std::uint32_t, int c0, int c1) {
-        auto& inside = lines.local().inside;
-        std::fill(inside.begin() + (c0 - sub_col0), inside.begin() + (c1 - sub_col0), 1);
-      },
+      edges, sub_window.row0, sub_window.row_end(), sub_window.col0, sub_window.col_end(), block,
+      [&](int, std::uint32_t, int c0, int c1) { scratch.local().spans.emplace_back(c0, c1); },
       [&](int sub_row) {
-        auto& inside = lines.local().inside;
-        const int row = sub_row / s - window.row0;
-        std::uint16_t* out = hits.pixels.data() + std::size_t(row) * hits.width;
-        for (int c = 0; c < window.width; ++c) {
-          int n = 0;
-          for (int k = 0; k < s; ++k) n += inside[std::size_t(c) * s + k];
-          out[c] = std::uint16_t(out[c] + n);
+        auto& [spans, whole] = scratch.local();
+        std::uint16_t* out =
+            hits.pixels.data() + std::size_t(sub_row / s - window.row0) * hits.width;
+        // Sub-columns [a, b) relative to the window: partial pixels directly, whole ones in
+        // the difference array.
+        auto add = [&](int a, int b) {
+          const int first_whole = (a + s - 1) / s, end_whole = b / s;
+          if (first_whole > end_whole) {  // inside one pixel
+            out[a / s] = std::uint16_t(out[a / s] + (b - a));
+            return;
+          }
+          if (a < first_whole * s) out[a / s] = std::uint16_t(out[a / s] + (first_whole * s - a));
+          if (end_whole * s < b)
+            out[end_whole] = std::uint16_t(out[end_whole] + (b - end_whole * s));
+          whole[std::size_t(first_whole)] += s;
+          whole[std::size_t(end_whole)] -= s;
+        };
+        if (!spans.empty()) {
+          std::sort(spans.begin(), spans.end());
+          int run_begin = spans[0].first, run_end = spans[0].second;
+          for (std::size_t i = 1; i < spans.size(); ++i) {
+            if (spans[i].first > run_end) {
+              add(run_begin - sub_window.col0, run_end - sub_window.col0);
+              run_begin = spans[i].first;
+            }
+            run_end = std::max(run_end, spans[i].second);
+          }
+          add(run_begin - sub_window.col0, run_end - sub_window.col0);
+          spans.clear();
         }
-        std::fill(inside.begin(), inside.end(), 0);
+        if (sub_row % s == s - 1) {  // the pixel row is complete
+          std::int32_t running = 0;
+          for (int c = 0; c < window.width; ++c) {
+            running += whole[std::size_t(c)];
+            out[c] = std::uint16_t(out[c] + running);
+          }
+          std::fill(whole.begin(), whole.end(), 0);
+        }
       });
   Raster<float> coverage(window.width, window.height, 0.0f);
   const float scale = 1.0f / float(s * s);

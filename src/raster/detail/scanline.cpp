@@ -2,25 +2,6 @@
 
 namespace tw::detail {
 
-void append_ring_edges(const std::vector<Vec2>& ring_px, std::uint32_t shape,
-                       std::vector<ScanEdge>& edges) {
-  const std::size_t n = ring_px.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec2 a = ring_px[i];
-    Vec2 b = ring_px[(i + 1) % n];
-    if (a.y == b.y) continue;
-    if (a.y > b.y) std::swap(a, b);
-    ScanEdge e;
-    e.x_top = a.x;
-    e.y_top = a.y;
-    e.dx_dy = (b.x - a.x) / (b.y - a.y);
-    e.row_begin = first_row_at_or_below(a.y);
-    e.row_end = first_row_at_or_below(b.y);
-    e.shape = shape;
-    if (e.row_begin < e.row_end) edges.push_back(e);
-  }
-}
-
 RowBuckets bucket_edges(const std::vector<ScanEdge>& edges, int row_begin, int row_end,
                         int block_rows) {
   RowBuckets buckets;

@@ -32,11 +32,6 @@ inline int first_row_at_or_below(double y) {
   return int(std::ceil(y - 0.5));
 }
 
-// Appends the edges of one closed ring (implicit closing edge) belonging to `shape`. Horizontal
-// edges cross no row centre and are dropped.
-void append_ring_edges(const std::vector<Vec2>& ring_px, std::uint32_t shape,
-                       std::vector<ScanEdge>& edges);
-
 struct Crossing {
   std::uint32_t shape;
   double x;
