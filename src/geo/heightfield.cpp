@@ -2,6 +2,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -68,8 +69,27 @@ detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialRefe
   return target;
 }
 
-// Band 1 as float heights; the nodata value, NaN and infinities all become NaN.
-Raster<float> read_heights(GDALRasterBand& band, const std::string& path) {
+// Metres per unit of the band's values, from GDAL's unit type (GeoTIFF's vertical units).
+// DEMs of the USA often hold feet; an empty or unknown unit is taken as metres.
+double metres_per_height_unit(GDALRasterBand& band, const std::string& path) {
+  std::string unit = band.GetUnitType() ? band.GetUnitType() : "";
+  for (char& c : unit) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
+      unit == "meters") {
+    return 1.0;
+  }
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") {
+    return 0.3048;
+  }
+  if (unit == "us-ft" || unit == "ftus" || unit == "us survey foot" || unit == "us_survey_foot") {
+    return 1200.0 / 3937.0;
+  }
+  logger().warn("{}: unknown height unit '{}'; taking heights as metres", path, unit);
+  return 1.0;
+}
+
+// Band 1 as float heights in metres; the nodata value, NaN and infinities all become NaN.
+Raster<float> read_heights(GDALRasterBand& band, double metres_per_unit, const std::string& path) {
   int has_nodata = 0;
   const double nodata = band.GetNoDataValue(&has_nodata);
   Raster<float> heights(band.GetXSize(), band.GetYSize());
@@ -82,7 +102,8 @@ Raster<float> read_heights(GDALRasterBand& band, const std::string& path) {
     for (int x = 0; x < heights.width; ++x) {
       const double value = row[x];
       const bool missing = !std::isfinite(value) || (has_nodata && value == nodata);
-      heights.at(x, y) = missing ? std::numeric_limits<float>::quiet_NaN() : float(value);
+      heights.at(x, y) =
+          missing ? std::numeric_limits<float>::quiet_NaN() : float(value * metres_per_unit);
     }
   }
   return heights;
@@ -111,6 +132,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   int has_nodata = 0;
   const double nodata = source->GetRasterBand(1)->GetNoDataValue(&has_nodata);
   if (has_nodata) result.nodata_value = nodata;
+  const double height_unit = metres_per_height_unit(*source->GetRasterBand(1), path);
 
   GdalDatasetPtr warped;
   GDALDataset* grid_source = source.get();
@@ -131,7 +153,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
     fail("{}: warped grid has no geotransform", path);
   result.grid = {
       grid_source->GetRasterXSize(), grid_source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
-  result.height = read_heights(*grid_source->GetRasterBand(1), path);
+  result.height = read_heights(*grid_source->GetRasterBand(1), height_unit, path);
   bool any_height = false;
   for (float h : result.height.pixels) any_height = any_height || !std::isnan(h);
   if (!any_height) fail("{}: every cell is nodata; there is no terrain to work on", path);

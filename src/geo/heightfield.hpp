@@ -24,7 +24,8 @@ struct HeightfieldOptions {
   std::optional<double> resolution;
 };
 
-// Reads band 1 of a GDAL raster. Throws tw::Error naming the path when the file cannot be
+// Reads band 1 of a GDAL raster; heights in feet (GDAL unit type "ft", "US survey foot")
+// become metres. Throws tw::Error naming the path when the file cannot be
 // read, has no CRS, or holds nothing but nodata.
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options = {});
 

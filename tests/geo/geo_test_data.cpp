@@ -27,7 +27,7 @@ void write_geotiff(const std::string& path, const DemSpec& spec) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   DatasetPtr dataset(
-      driver->Create(path.c_str(), spec.width, spec.height, 1, GDT_Float32, nullptr));
+      driver->Create(path.c_str(), spec.width, spec.height, spec.bands, GDT_Float32, nullptr));
   require(dataset != nullptr, "create " + path);
   std::array<double, 6> gt = spec.geotransform;
   dataset->SetGeoTransform(gt.data());
@@ -36,17 +36,21 @@ void write_geotiff(const std::string& path, const DemSpec& spec) {
     require(srs.SetFromUserInput(spec.crs.c_str()) == OGRERR_NONE, "crs " + spec.crs);
     dataset->SetSpatialRef(&srs);
   }
-  GDALRasterBand* band = dataset->GetRasterBand(1);
-  if (spec.nodata) band->SetNoDataValue(*spec.nodata);
-  std::vector<float> pixels(std::size_t(spec.width) * spec.height);
-  for (int row = 0; row < spec.height; ++row) {
-    for (int col = 0; col < spec.width; ++col) {
-      pixels[std::size_t(row) * spec.width + col] = float(spec.value(col, row));
+  for (int b = 1; b <= spec.bands; ++b) {
+    GDALRasterBand* band = dataset->GetRasterBand(b);
+    if (spec.nodata) band->SetNoDataValue(*spec.nodata);
+    if (!spec.unit.empty()) band->SetUnitType(spec.unit.c_str());
+    std::vector<float> pixels(std::size_t(spec.width) * spec.height);
+    for (int row = 0; row < spec.height; ++row) {
+      for (int col = 0; col < spec.width; ++col) {
+        pixels[std::size_t(row) * spec.width + col] =
+            float(spec.value(col, row) + 1000.0 * (b - 1));
+      }
     }
+    require(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, pixels.data(), spec.width,
+                           spec.height, GDT_Float32, 0, 0) == CE_None,
+            "write " + path);
   }
-  require(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, pixels.data(), spec.width,
-                         spec.height, GDT_Float32, 0, 0) == CE_None,
-          "write " + path);
 }
 
 void write_vector(const std::string& path, const std::string& driver_name,

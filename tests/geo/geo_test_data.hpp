@@ -18,6 +18,8 @@ struct DemSpec {
   std::string crs = "EPSG:32631";  // empty = no CRS at all
   std::optional<double> nodata;
   std::function<double(int col, int row)> value = [](int, int) { return 100.0; };
+  int bands = 1;     // band b holds value + 1000 * (b - 1)
+  std::string unit;  // GDAL unit type of every band; empty = none
 };
 
 // A Float32 GeoTIFF.

@@ -276,6 +276,34 @@ TEST(ReadHeightfield, ResolutionOptionResamplesAMetricDemWithoutMixingNodata) {
   }
 }
 
+TEST(ReadHeightfield, ReadsBandOneOfAMultiBandDem) {
+  TempDir dir;
+  for (const std::string crs : {"EPSG:32631", "EPSG:4326"}) {
+    const std::string path = (dir / "bands.tif").string();
+    DemSpec spec;
+    spec.bands = 3;
+    spec.crs = crs;
+    if (crs == "EPSG:4326") spec.geotransform = {3.0, 0.0001, 0.0, 45.0, 0.0, -0.0001};
+    test::write_geotiff(path, spec);
+    const Heightfield field = read_heightfield(path);
+    EXPECT_FLOAT_EQ(field.height.at(field.grid.width / 2, field.grid.height / 2), 100.0f) << crs;
+  }
+}
+
+TEST(ReadHeightfield, HeightsInFeetBecomeMetres) {
+  TempDir dir;
+  const std::string path = (dir / "feet_heights.tif").string();
+  DemSpec spec;
+  spec.unit = "ft";
+  spec.nodata = -9999.0;
+  spec.value = [](int col, int) { return col == 0 ? -9999.0 : 1000.0; };
+  test::write_geotiff(path, spec);
+  const Heightfield field = read_heightfield(path);
+  EXPECT_FLOAT_EQ(field.height.at(5, 5), 304.8f);
+  EXPECT_TRUE(std::isnan(field.height.at(0, 5)));
+  EXPECT_EQ(*field.nodata_value, -9999.0);
+}
+
 TEST(ReadHeightfield, AllNodataIsAnErrorNamingTheFile) {
   TempDir dir;
   const std::string path = (dir / "empty_dem.tif").string();

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "core/error.hpp"
 #include "geo/features.hpp"
@@ -125,6 +126,47 @@ TEST_F(LineFeatures, ReprojectsFromWgs84InLonLatOrder) {
   // The metric length agrees with the geodesic one up to UTM's scale near its central meridian.
   const double metric = planar_length(utm);
   EXPECT_NEAR(metric / geodesic_length(lon_lat), 0.9996, 1e-5);
+}
+
+TEST_F(LineFeatures, GeographicFeaturesOnAWarpedGeographicDem) {
+  // The DEM is in degrees, so it is warped into a local transverse Mercator; features in
+  // lon/lat follow it there and keep their geodesic lengths.
+  const std::string dem = (dir / "dem_4326.tif").string();
+  test::DemSpec spec;
+  spec.width = 200;
+  spec.height = 150;
+  spec.geotransform = {6.40, 0.001, 0.0, 45.40, 0.0, -0.001};
+  spec.crs = "EPSG:4326";
+  test::write_geotiff(dem, spec);
+  const Heightfield field = read_heightfield(dem);
+
+  const std::vector<Vec2> lon_lat{{6.42, 45.28}, {6.47, 45.31}, {6.53, 45.30}, {6.58, 45.33}};
+  std::string wkt = "LINESTRING (";
+  for (const Vec2& p : lon_lat) {
+    wkt += fmt::format("{}{} {}", wkt.back() == '(' ? "" : ",", p.x, p.y);
+  }
+  const std::string path = write({{1, wkt + ")", 5.0}}, "EPSG:4326", "tm.geojson", "GeoJSON");
+  const std::vector<LineFeature> lines = read_line_features(spec_for(path), field);
+  ASSERT_EQ(lines.size(), 1u);
+  ASSERT_EQ(lines[0].points.size(), 4u);
+  const double geodesic = geodesic_length(lon_lat);
+  EXPECT_GT(geodesic, 12000.0);
+  EXPECT_LT(std::abs(planar_length(lines[0].points) / geodesic - 1.0), 1e-4);
+  // The frame is centred on the DEM (6.5 E, 45.325 N): x is metres east of 6.5 E.
+  EXPECT_NEAR(lines[0].points[1].x, (6.47 - 6.5) * 78.4e3, 100.0);
+}
+
+TEST_F(LineFeatures, CurvedGeometriesAreLinearized) {
+  const std::string path =
+      write({{3, "CIRCULARSTRING (500300 4999500,500500 4999700,500700 4999500)", 5.0}});
+  const std::vector<LineFeature> lines = read_line_features(spec_for(path), grid);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_GT(lines[0].points.size(), 10u);
+  // Half a circle of radius 200 m.
+  EXPECT_NEAR(planar_length(lines[0].points), std::numbers::pi * 200.0, 1.0);
+  for (const Vec2& p : lines[0].points) {
+    EXPECT_NEAR(distance(p, Vec2{500500, 4999500}), 200.0, 1e-6);
+  }
 }
 
 TEST_F(LineFeatures, ClipsToTheGridExtent) {

@@ -1,0 +1,48 @@
+#include "geo/detail/gradient_noise.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace tw::detail {
+namespace {
+
+TEST(GradientNoise, VanishesOnLatticePointsIncludingNegativeOnes) {
+  for (std::int64_t cell : {2, 8, 64}) {
+    for (std::int64_t i = -3; i <= 3; ++i) {
+      for (std::int64_t j = -3; j <= 3; ++j) {
+        EXPECT_EQ(gradient_noise(i * cell, j * cell, cell, 42), 0) << cell << " " << i << " " << j;
+      }
+    }
+  }
+}
+
+TEST(GradientNoise, IsContinuousAcrossCells) {
+  // A cell of 64 pixels: one pixel step changes the noise by far less than its range.
+  std::int64_t largest_step = 0;
+  for (std::int64_t x = -200; x < 200; ++x) {
+    largest_step = std::max(
+        largest_step, std::abs(gradient_noise(x + 1, 37, 64, 9) - gradient_noise(x, 37, 64, 9)));
+  }
+  EXPECT_LT(largest_step, kNoiseOne / 10);
+  EXPECT_GT(largest_step, 0);
+}
+
+TEST(FractalNoise, StaysWithinPlusMinusOneAndUsesTheRange) {
+  std::int64_t low = kNoiseOne;
+  std::int64_t high = -kNoiseOne;
+  for (std::int64_t y = 0; y < 128; y += 3) {
+    for (std::int64_t x = 0; x < 128; x += 3) {
+      const std::int64_t n = fractal_noise(x, y, 32, 5);
+      low = std::min(low, n);
+      high = std::max(high, n);
+    }
+  }
+  EXPECT_GE(low, -kNoiseOne);
+  EXPECT_LE(high, kNoiseOne);
+  EXPECT_GT(high - low, kNoiseOne / 2);
+}
+
+}  // namespace
+}  // namespace tw::detail
