@@ -31,11 +31,13 @@ std::string geotransform_string(const GridSpec& grid) {
 
 }  // namespace
 
-void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path) {
+void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
+               int zip_level) {
   const GridSpec& g = set.grid;
   try {
     Imf::Header header(g.width, g.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = zip_level;
     header.insert(kExrCrsAttribute, Imf::StringAttribute(set.crs_wkt));
     header.insert(kExrGeotransformAttribute, Imf::StringAttribute(geotransform_string(g)));
     header.insert(kExrOriginAttribute, Imf::V2dAttribute(Imath::V2d(g.origin_x, g.origin_y)));

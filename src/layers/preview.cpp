@@ -1,7 +1,9 @@
 // The preview: a look, not data. Hillshaded heights (box-downsampled to at most max_size
 // pixels), tinted by elevation and by the splat materials, with feature lines on top;
 // 8-bit RGB through GDAL's PNG driver.
+#include <cpl_string.h>
 #include <gdal_priv.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -42,7 +44,7 @@ Rgb material_colour(const std::string& channel) {
 // Box average of a band over factor x factor blocks, ignoring NaN.
 Raster<float> downsample(const Raster<float>& band, int factor, int w, int h) {
   Raster<float> out(w, h, std::numeric_limits<float>::quiet_NaN());
-  for (int r = 0; r < h; ++r)
+  tbb::parallel_for(0, h, [&](int r) {
     for (int c = 0; c < w; ++c) {
       double sum = 0.0;
       int n = 0;
@@ -53,6 +55,7 @@ Raster<float> downsample(const Raster<float>& band, int factor, int w, int h) {
         }
       if (n > 0) out.at(c, r) = float(sum / n);
     }
+  });
   return out;
 }
 
@@ -92,7 +95,7 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
     const float v = z.at(std::clamp(c, 0, w - 1), std::clamp(r, 0, h - 1));
     return std::isnan(v) ? fallback : v;
   };
-  for (int r = 0; r < h; ++r)
+  tbb::parallel_for(0, h, [&](int r) {
     for (int c = 0; c < w; ++c) {
       const std::size_t k = std::size_t(r) * w + c;
       const float v = z.at(c, r);
@@ -114,6 +117,7 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
       for (int i = 0; i < 3; ++i)
         rgb[i][k] = std::uint8_t(std::clamp(colour[i] * light, 0.0, 255.0));
     }
+  });
 
   // Feature lines: a thin near-white stroke, sampled every half preview pixel.
   for (const auto& line : lines)
@@ -140,7 +144,10 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
     if (image->GetRasterBand(i + 1)->RasterIO(GF_Write, 0, 0, w, h, rgb[i].data(), w, h, GDT_Byte,
                                               0, 0) != CE_None)
       fail("preview {}: {}", path.string(), CPLGetLastErrorMsg());
-  GDALDataset* out = png->CreateCopy(path.c_str(), image.get(), FALSE, nullptr, nullptr, nullptr);
+  CPLStringList options;
+  options.SetNameValue("ZLEVEL", "3");  // a preview: speed over the last bytes
+  GDALDataset* out =
+      png->CreateCopy(path.c_str(), image.get(), FALSE, options.List(), nullptr, nullptr);
   if (out == nullptr) fail("cannot write preview {}: {}", path.string(), CPLGetLastErrorMsg());
   GDALClose(out);
 }

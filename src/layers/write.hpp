@@ -21,6 +21,7 @@ struct WriteOptions {
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
+  int exr_zip_level = 1;                         // zlib level of the EXR ZIP compression (1-9)
   int preview_max_size = 2048;                   // longest side of preview.png in pixels
   std::vector<std::vector<Vec2>> preview_lines;  // world metres, drawn on the preview
 };
@@ -33,7 +34,9 @@ std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
                                                    const WriteOptions& options = {});
 
 // Single-file writers (they write `path` directly; stage it first for atomicity).
-void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
+// zip_level: zlib level 1 (fastest; float heights barely compress better at higher levels) - 9.
+void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
+               int zip_level = 1);
 void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
 // Hillshade of "height" tinted by "splat" with `lines` (world metres) drawn on top; 8-bit RGB.
 void write_preview_png(const LayerSet& set, const std::filesystem::path& path,

@@ -123,6 +123,28 @@ void join_rivers(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
   }
 }
 
+// Bed = water surface - depth. A river whose source joins no other river starts at a spring:
+// its depth eases in from 0 over width + bank + falloff metres instead of a round pit.
+void carve_river_beds(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
+                      const std::vector<std::vector<detail::EndContact>>& contacts) {
+  const auto& fs = plan.features;
+  std::vector<char> fed(fs.size(), 0);
+  for (std::size_t i = 0; i < fs.size(); ++i)
+    for (const auto& c : contacts[i]) {
+      if (c.at_start) fed[i] = 1;  // starts on another river
+      if (!c.at_start && c.other_end && c.other_s == 0.0) fed[std::size_t(c.other)] = 1;
+    }
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    if (fs[i].kind != FeatureKind::river) continue;
+    const auto& r = fs[i].river;
+    const double taper = fs[i].width + r.bank_width + r.falloff;
+    for (std::size_t k = 0; k < profiles[i].size(); ++k) {
+      const double s = double(k) * plan.steps[i];
+      profiles[i][k] -= r.depth * (fed[i] ? 1.0 : detail::smoothstep01(s / taper));
+    }
+  }
+}
+
 }  // namespace
 
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
@@ -175,6 +197,8 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       detail::find_end_contacts(plan.features, 0.5 * std::max(grid.pixel_width, grid.pixel_height));
   pin_road_junctions(plan, profiles, contacts);
   join_rivers(plan, profiles, contacts);
+
+  carve_river_beds(plan, profiles, contacts);
 
   for (std::size_t i = 0; i < plan.features.size(); ++i) {
     if (over_nodata[i]) plan.features[i].width = 0.0;  // marks "nothing to apply"
@@ -231,9 +255,7 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
           const double w = detail::height_weight(f, s[k].distance);
           if (w <= 0.0) continue;
           double value = f.ridge.height;
-          if (f.kind == FeatureKind::road) value = detail::profile_at(profile, step, s[k].along);
-          if (f.kind == FeatureKind::river)
-            value = detail::profile_at(profile, step, s[k].along) - f.river.depth;
+          if (f.kind != FeatureKind::ridge) value = detail::profile_at(profile, step, s[k].along);
           auto& a = acc[k * kinds + rank];
           a.weight_sum += w;
           a.value_sum += w * value;

@@ -19,7 +19,7 @@ struct TerrainParams {
 struct TerrainPlan {
   std::vector<TerrainFeature> features;  // validated copies, grouped by precedence
   // One per feature: its profile every `step` metres of arc length (road surface height,
-  // river water surface, unused for ridges) and the step.
+  // river bed = water surface - depth, unused for ridges) and the step.
   std::vector<std::vector<float>> profiles;
   std::vector<double> steps;
   TerrainParams params;

@@ -53,8 +53,8 @@ SplatLayers compute_splat(const GridSpec& grid, const Window& window,
   }
   SplatLayers out;
   out.materials = splat_materials();
-  out.weights.assign(material_count, Raster<float>(window.width, window.height, 0.0f));
-  std::fill(out.weights[base].pixels.begin(), out.weights[base].pixels.end(), 1.0f);
+  out.weights.resize(material_count);
+  for (auto& w : out.weights) w = Raster<float>(window.width, window.height, 0.0f);
 
   const detail::FeatureIndex index(grid, window, curves, reach);
   const std::size_t kinds = params.precedence.size();
@@ -62,8 +62,14 @@ SplatLayers compute_splat(const GridSpec& grid, const Window& window,
     std::vector<detail::NearestSample> samples;
     std::vector<KindCoverage> cover;
     for (int t = range.begin(); t != range.end(); ++t) {
-      if (index.tile_is_empty(t)) continue;
       const Window tile = index.tile(t);
+      if (index.tile_is_empty(t)) {  // base only (filled here, in parallel, not up front)
+        for (int r = tile.row0; r < tile.row_end(); ++r) {
+          float* row = &out.weights[base].at(tile.col0 - window.col0, r - window.row0);
+          std::fill(row, row + tile.width, 1.0f);
+        }
+        continue;
+      }
       const std::size_t n = std::size_t(tile.width) * tile.height;
       cover.assign(n * kinds, KindCoverage{});
       index.for_each_feature(t, samples, [&](int fi, const std::vector<detail::NearestSample>& s) {

@@ -24,7 +24,9 @@ TEST(ShapeTerrain, RiverBedIsDepthBelowTheSurfaceAndBanksMeetTheTerrain) {
   river.river = {2.5, 4.0, 10.0, 0.0};
   shape_terrain(h, grid, Window::whole(grid), {river}, {});
   const int centre_row = kSize - 101;  // centres at y = 100.5
-  for (int col = 25; col < 175; ++col) {
+  // A spring, not a pit: the depth eases in over width + bank + falloff = 20 m.
+  EXPECT_GT(h.at(21, centre_row), before.at(21, centre_row) - 0.5);
+  for (int col = 41; col < 175; ++col) {
     for (int dr = -3; dr <= 3; ++dr)  // |across| <= 3 = half the width
       EXPECT_NEAR(h.at(col, centre_row + dr), before.at(col, centre_row + dr) - 2.5, 2e-3)
           << col << " " << dr;
@@ -54,9 +56,10 @@ TEST(ShapeTerrain, WaterSurfaceNeverRisesDownstreamOverABump) {
   float upstream_min = before.at(16, centre_row);
   for (int col = 16; col < 184; ++col) {
     upstream_min = std::min(upstream_min, before.at(col, centre_row));
-    EXPECT_LE(h.at(col, centre_row), upstream_min - 2.0 + 1e-3) << col;
+    if (col > 15 + 30) {
+      EXPECT_LE(h.at(col, centre_row), upstream_min - 2.0 + 1e-3) << col;
+    }
     EXPECT_LE(h.at(col + 1, centre_row), h.at(col, centre_row) - 0.001 + 1e-4) << col;
-    EXPECT_LE(h.at(col, centre_row), before.at(col, centre_row) - 2.0 + 1e-3);
   }
   // Through the bump the bed is far below the terrain (a gorge), never a dam.
   EXPECT_LT(h.at(100, centre_row), before.at(100, centre_row) - 6.0);
