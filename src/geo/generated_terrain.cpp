@@ -1,5 +1,8 @@
 #include <bit>
 #include <cmath>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
 #include "geo/detail/gdal_support.hpp"
@@ -40,13 +43,15 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
   const std::int64_t largest_cell =
       std::int64_t(std::bit_floor(std::uint64_t(std::max(params.width, params.height) / 4 + 2)));
   const double metres_per_unit = params.relief / (2.0 * double(detail::kNoiseOne));
-  for (int row = 0; row < params.height; ++row) {
+  // Rows are independent: any split over threads gives the same bytes.
+  tbb::parallel_for(0, params.height, [&](int row) {
+    std::vector<std::int64_t> noise(std::size_t(params.width));
+    detail::fractal_noise_row(row, 0, noise, largest_cell, params.seed);
     for (int col = 0; col < params.width; ++col) {
-      const std::int64_t n = detail::fractal_noise(col, row, largest_cell, params.seed);
-      // n + one lies in [0, 2 one]: heights lie in [0, relief].
-      result.height.at(col, row) = float(double(n + detail::kNoiseOne) * metres_per_unit);
+      // noise + one lies in [0, 2 one]: heights lie in [0, relief].
+      result.height.at(col, row) = float(double(noise[col] + detail::kNoiseOne) * metres_per_unit);
     }
-  }
+  });
   return result;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 namespace tw::detail {
 namespace {
@@ -42,6 +43,16 @@ TEST(FractalNoise, StaysWithinPlusMinusOneAndUsesTheRange) {
   EXPECT_GE(low, -kNoiseOne);
   EXPECT_LE(high, kNoiseOne);
   EXPECT_GT(high - low, kNoiseOne / 2);
+}
+
+TEST(FractalNoiseRow, MatchesThePointwiseNoiseBitForBit) {
+  for (std::int64_t row : {-70, -1, 0, 5, 129}) {
+    std::vector<std::int64_t> out(300);
+    fractal_noise_row(row, -37, out, 64, 11);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      ASSERT_EQ(out[i], fractal_noise(-37 + std::int64_t(i), row, 64, 11)) << row << " " << i;
+    }
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Integer gradient noise (Perlin-style) and its fBm sum, in fixed point so that the same seed
 // gives the same bits on every compiler and CPU (no floating point until the final scaling).
 #include <cstdint>
+#include <span>
 
 namespace tw::detail {
 
@@ -24,5 +25,10 @@ std::int64_t gradient_noise(std::int64_t col, std::int64_t row, std::int64_t cel
 // half the amplitude of the one before, normalized to Q16 within [-1, 1].
 std::int64_t fractal_noise(std::int64_t col, std::int64_t row, std::int64_t largest_cell,
                            std::uint64_t seed);
+
+// fractal_noise for the pixels (col0 + i, row) of out, bit for bit, hashing each lattice
+// cell's gradients once instead of once per pixel.
+void fractal_noise_row(std::int64_t row, std::int64_t col0, std::span<std::int64_t> out,
+                       std::int64_t largest_cell, std::uint64_t seed);
 
 }  // namespace tw::detail
