@@ -100,6 +100,7 @@ struct Timing {
 
 template <class F>
 Timing timed(F&& f) {
+  const double cpu0 = cpu_seconds();
   const auto t0 = Clock::now();
   f();
   return {seconds_since(t0), cpu_seconds() - cpu0};
