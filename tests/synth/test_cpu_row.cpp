@@ -62,7 +62,8 @@ TEST(CpuRow, BoundNeverExceedsTrueCost) {
     const EdgeStats sa = make_edge_stats(a), sb = make_edge_stats(b);
     for (int i = 0; i < 60; ++i) {
       for (int j = 0; j < 60; ++j) {
-        const std::int64_t d = edge_cost(a.samples.data() + i * C, b.samples.data() + j * C, C, binary);
+        const std::int64_t d =
+            edge_cost(a.samples.data() + i * C, b.samples.data() + j * C, C, binary);
         EXPECT_LE(std::int64_t(edge_cost_bound(sa, i, sb, j, binary)), d);
       }
     }

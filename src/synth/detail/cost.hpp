@@ -19,9 +19,15 @@ inline constexpr std::int32_t kMaxColourTerm = 7066;
 // A texel is opaque for validity and binary costs when its alpha is at least this.
 inline constexpr std::uint32_t kOpaqueAlphaMin = 128;
 
-constexpr std::uint32_t channel_of(std::uint32_t rgba, int c) { return (rgba >> (8 * c)) & 255u; }
-constexpr std::uint32_t alpha_of(std::uint32_t rgba) { return rgba >> 24; }
-constexpr bool is_opaque(std::uint32_t rgba) { return alpha_of(rgba) >= kOpaqueAlphaMin; }
+constexpr std::uint32_t channel_of(std::uint32_t rgba, int c) {
+  return (rgba >> (8 * c)) & 255u;
+}
+constexpr std::uint32_t alpha_of(std::uint32_t rgba) {
+  return rgba >> 24;
+}
+constexpr bool is_opaque(std::uint32_t rgba) {
+  return alpha_of(rgba) >= kOpaqueAlphaMin;
+}
 constexpr std::uint32_t pack_rgba(std::uint32_t r, std::uint32_t g, std::uint32_t b,
                                   std::uint32_t a) {
   return r | (g << 8) | (b << 16) | (a << 24);

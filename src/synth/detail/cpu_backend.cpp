@@ -47,7 +47,8 @@ class CpuBackend final : public Backend {
   std::string name() const override { return "cpu"; }
 
   void find_valid_positions(const CostTexels& texels, const PositionSpace& space,
-                            const PieceFootprint& piece, std::vector<std::uint8_t>& flags) override {
+                            const PieceFootprint& piece,
+                            std::vector<std::uint8_t>& flags) override {
     flags.assign(std::size_t(space.count()), 0);
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, space.count(), 256), [&](auto range) {
       for (std::int64_t index = range.begin(); index < range.end(); ++index) {
@@ -118,11 +119,13 @@ class CpuBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cpu_backend() { return std::make_unique<CpuBackend>(); }
+std::unique_ptr<Backend> make_cpu_backend() {
+  return std::make_unique<CpuBackend>();
+}
 
-void update_table_row_naive(const std::vector<std::int64_t>& previous_cost,
-                            const ColumnSet& right, const ColumnSet& left,
-                            std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin) {
+void update_table_row_naive(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
+                            const ColumnSet& left, std::vector<std::int64_t>& cost,
+                            std::vector<std::int32_t>& argmin) {
   const int C = left.column;
   const int count = column_count(left);
   cost.assign(std::size_t(count), kNoCost);
@@ -147,10 +150,9 @@ void update_table_row_naive(const std::vector<std::int64_t>& previous_cost,
   });
 }
 
-void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost,
-                             const ColumnSet& right, const ColumnSet& left,
-                             std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
-                             std::int64_t* pairs_evaluated) {
+void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
+                             const ColumnSet& left, std::vector<std::int64_t>& cost,
+                             std::vector<std::int32_t>& argmin, std::int64_t* pairs_evaluated) {
   const int C = left.column;
   const int count = column_count(left);
   const int previous = int(previous_cost.size());
@@ -201,9 +203,9 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost,
             const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
             const float colour = 16.0f * __builtin_sqrtf(dr * dr + dg * dg + db * db) - size;
             const float mismatch = __builtin_fabsf(ro[r] - lo);
-            const float term = binary ? std::max(float(kGamma) * mismatch,
-                                                 colour + kMismatchExtra * mismatch)
-                                      : std::max(colour, 0.0f);
+            const float term =
+                binary ? std::max(float(kGamma) * mismatch, colour + kMismatchExtra * mismatch)
+                       : std::max(colour, 0.0f);
             bound[r] += term;
           }
         }
@@ -216,8 +218,8 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost,
           if (lower > best || (lower == best && v > best_index)) continue;
           ++local_evaluated;
           const std::int64_t limit = best == kNoCost ? kNoCost : best - p;
-          const std::int64_t d = edge_cost_capped(
-              sorted_samples.data() + std::size_t(r0 + r) * C, left_samples, C, binary, limit);
+          const std::int64_t d = edge_cost_capped(sorted_samples.data() + std::size_t(r0 + r) * C,
+                                                  left_samples, C, binary, limit);
           if (d > limit) continue;
           if (improves(p + d, v, best, best_index)) {
             best = p + d;

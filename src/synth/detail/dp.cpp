@@ -162,7 +162,9 @@ std::vector<std::int32_t> backtrack(const Pass& pass, std::int32_t entry) {
 
 }  // namespace
 
-std::int64_t empty_piece_penalty(int column) { return std::int64_t(kGamma) * column * 2; }
+std::int64_t empty_piece_penalty(int column) {
+  return std::int64_t(kGamma) * column * 2;
+}
 
 std::int64_t seam_cost(const CostTexels& texels, const PositionSpace& space,
                        const PieceFootprint& piece, std::int32_t a, std::int32_t b) {
@@ -252,7 +254,8 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
     return result;
   }
   if (!input.exact_cycle)
-    logger().info("closed curve: the single-DP approximation found no cycle; running the exact mode");
+    logger().info(
+        "closed curve: the single-DP approximation found no cycle; running the exact mode");
 
   // Exact: one DP per start u0, in increasing free-DP terminal cost, which bounds the cost of
   // every cycle through u0 from below; stop once the bound cannot win.

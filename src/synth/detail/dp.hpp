@@ -15,11 +15,11 @@ namespace tw::detail {
 struct DpInput {
   const CostTexels* texels = nullptr;
   PositionSpace space;
-  std::vector<PieceFootprint> pieces;  // N pieces, in order along the curve
-  bool closed = false;                 // add the terminal piece (= piece 0) and keep cycles
-  bool exact_cycle = false;            // closed: one DP per start (pruned) instead of one DP
+  std::vector<PieceFootprint> pieces;       // N pieces, in order along the curve
+  bool closed = false;                      // add the terminal piece (= piece 0) and keep cycles
+  bool exact_cycle = false;                 // closed: one DP per start (pruned) instead of one DP
   std::optional<std::int32_t> first_index;  // fixes piece 0 (must be a valid position)
-  std::uint64_t seed = 0;   // != 0 and no first_index: piece 0 drawn among its valid positions
+  std::uint64_t seed = 0;    // != 0 and no first_index: piece 0 drawn among its valid positions
   bool allow_empty = false;  // a row with no valid position becomes an empty piece
   // Message of the tw::Error for a piece without any valid position.
   std::function<std::string(int piece)> no_valid_message;

@@ -10,8 +10,8 @@ namespace tw::detail {
 EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32_t>& order) {
   const int C = columns.column;
   EdgeStats stats;
-  stats.count = order.empty() ? int(columns.samples.size() / std::size_t(std::max(C, 1)))
-                              : int(order.size());
+  stats.count =
+      order.empty() ? int(columns.samples.size() / std::size_t(std::max(C, 1))) : int(order.size());
   stats.blocks = (C + kBoundBlock - 1) / kBoundBlock;
   const std::size_t n = std::size_t(stats.count) * stats.blocks;
   stats.opaque.assign(n, 0.0f);

@@ -89,8 +89,7 @@ Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int
 }
 
 PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
-                                    const GridSpec& canvas,
-                                    const Raster<std::uint8_t>* forbidden) {
+                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden) {
   const PieceFrame frame = piece_frame(piece, scale);
   const Vec2 q_top_left = to_exemplar(frame, piece.top_left);
   const Vec2 q_bottom_left = to_exemplar(frame, piece.bottom_left);

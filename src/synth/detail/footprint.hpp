@@ -38,7 +38,6 @@ Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int
 
 // The footprint of `piece`. `forbidden` (over `canvas`, non-zero = forbidden) may be null.
 PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
-                                    const GridSpec& canvas,
-                                    const Raster<std::uint8_t>* forbidden);
+                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden);
 
 }  // namespace tw::detail

@@ -68,7 +68,8 @@ class Backend {
 
   // findValidPositions: flags[index] = 1 where the piece is valid at that position.
   virtual void find_valid_positions(const CostTexels& texels, const PositionSpace& space,
-                                    const PieceFootprint& piece, std::vector<std::uint8_t>& flags) = 0;
+                                    const PieceFootprint& piece,
+                                    std::vector<std::uint8_t>& flags) = 0;
   // compactValidPositions: ascending indices of the set flags (a parallel scan on devices).
   virtual void compact_valid_positions(const std::vector<std::uint8_t>& flags,
                                        std::vector<std::int32_t>& indices) = 0;
@@ -84,7 +85,8 @@ class Backend {
   //   argmin[j] = the lowest v reaching it.
   virtual void update_table_row(const std::vector<std::int64_t>& previous_cost,
                                 const ColumnSet& right, const ColumnSet& left,
-                                std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin) = 0;
+                                std::vector<std::int64_t>& cost,
+                                std::vector<std::int32_t>& argmin) = 0;
 };
 
 }  // namespace tw::detail

@@ -1,0 +1,194 @@
+// synthesize() on a given backend: footprints, the DP, placements, seam costs, stitching.
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "synth/detail/cost.hpp"
+#include "synth/detail/dp.hpp"
+#include "synth/detail/foldover.hpp"
+#include "synth/detail/footprint.hpp"
+#include "synth/detail/stitch.hpp"
+#include "synth/synthesize.hpp"
+
+namespace tw::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::vector<std::uint32_t> right_samples(const CostTexels& texels, const PieceFootprint& piece,
+                                         int ux, int uy) {
+  std::vector<std::uint32_t> out;
+  for (int k = 0; k < piece.column; ++k)
+    out.push_back(sample_bilinear(texels, ux * 256 - 128 + piece.right_fx[k],
+                                  uy * 256 - 128 + piece.right_fy[k]));
+  return out;
+}
+
+std::vector<std::uint32_t> left_samples(const CostTexels& texels, int C, int ux, int uy) {
+  std::vector<std::uint32_t> out;
+  for (int k = 0; k < C; ++k) out.push_back(texel_at(texels, ux, uy + k));
+  return out;
+}
+
+// Does the stitched mapping of piece i keep every forbidden subsample on transparent texels?
+bool stitch_respects_avoidance(const CostTexels& texels, const Placement& placement,
+                               const Piece& piece, const GridSpec& canvas,
+                               const Raster<std::uint8_t>& avoidance, int n) {
+  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+  for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
+    const Vec2 p = canvas.world_to_pixel(w);
+    min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+    min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+  }
+  for (int row = std::max(0, int(min_y) - 1); row <= std::min(canvas.height - 1, int(max_y) + 1);
+       ++row) {
+    for (int col = std::max(0, int(min_x) - 1); col <= std::min(canvas.width - 1, int(max_x) + 1);
+         ++col) {
+      if (!avoidance.at(col, row)) continue;
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          const Vec2 w = subsample_world(canvas, col, row, i, j, n);
+          if (piece_winding(piece, w) == 0) continue;
+          const Vec2 q = placement_to_relative(placement, piece, w, true);
+          const int x0 = int(std::floor(q.x - 0.5)) + placement.ux;
+          const int y0 = int(std::floor(q.y - 0.5)) + placement.uy;
+          for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx)
+              if (is_opaque(texel_at(texels, x0 + dx, y0 + dy))) return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
+                        const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                        const SynthParams& params) {
+  const auto start = Clock::now();
+  if (!(params.scale > 0.0) || !std::isfinite(params.scale))
+    fail("synthesis scale s must be > 0 exemplar texels per metre (got {})", params.scale);
+  if (ribbon.pieces.empty()) fail("ribbon of {} has no pieces", params.feature_label);
+  const std::string feature = params.feature_label.empty() ? "the curve" : params.feature_label;
+  const int N = int(ribbon.pieces.size());
+  const int C = column_count(ribbon.width, params.scale);
+  const CostTexels& texels = exemplar.cost;
+  const PositionSpace space{exemplar.width, exemplar.height, C};
+
+  Synthesis out;
+  out.backend = backend.name();
+  out.column = C;
+  out.closed = ribbon.closed;
+  const Raster<std::uint8_t> avoidance = combined_avoidance(ribbon, canvas, forbidden);
+  DpInput input;
+  input.texels = &texels;
+  input.space = space;
+  input.pieces.resize(std::size_t(N));
+  tbb::parallel_for(0, N, [&](int i) {
+    input.pieces[std::size_t(i)] =
+        make_piece_footprint(ribbon.pieces[std::size_t(i)], params.scale, C, canvas, &avoidance);
+  });
+  out.timings.footprints_ms = ms_since(start);
+  input.closed = ribbon.closed;
+  input.exact_cycle = params.closed_mode == ClosedMode::exact;
+  input.seed = params.seed;
+  input.allow_empty = params.allow_empty_pieces;
+  if (params.first_position) {
+    const auto [ux, uy] = *params.first_position;
+    if (ux < 0 || ux >= space.width || uy < -C || uy >= space.height)
+      fail("first_position ({}, {}) is outside the positions [0, {}) x [{}, {}) of exemplar {}", ux,
+           uy, space.width, -C, space.height, exemplar.path);
+    input.first_index = std::int32_t((uy + C) * space.width + ux);
+  }
+  input.no_valid_message = [&](int i) {
+    const Piece& piece = ribbon.pieces[std::size_t(i)];
+    const Vec2 at = lerp(piece.top_left, piece.bottom_right, 0.5);
+    std::vector<std::uint8_t> flags;
+    backend.find_valid_positions(
+        texels, space, make_piece_footprint(piece, params.scale, C, canvas, nullptr), flags);
+    std::int64_t without = 0;
+    for (auto f : flags) without += f;
+    const std::string reason =
+        without > 0 ? fmt::format(
+                          "avoidance (forbidden pixels or fold-overs) blocks all {} "
+                          "positions that are valid without it",
+                          without)
+                    : fmt::format(
+                          "no position where the top and bottom edges clear the "
+                          "pattern: ribbon width {} m x s = {} texels, exemplar {}x{}",
+                          ribbon.width, C, exemplar.width, exemplar.height);
+    return fmt::format("piece {} of {} at ({:.2f}, {:.2f}): no valid position in exemplar {} ({})",
+                       i, feature, at.x, at.y, exemplar.path, reason);
+  };
+
+  const DpResult dp = run_dp(backend, input);
+  out.total_cost = dp.total_cost;
+  out.approximate_cycle_cost = dp.approximate_cycle_cost;
+  out.valid_counts = dp.valid_counts;
+  out.timings.find_valid_ms = dp.timings.find_valid_ms;
+  out.timings.compact_ms = dp.timings.compact_ms;
+  out.timings.extract_ms = dp.timings.extract_ms;
+  out.timings.update_ms = dp.timings.update_ms;
+  out.timings.backtrack_ms = dp.timings.backtrack_ms;
+  out.timings.rows = dp.timings.rows;
+
+  for (int i = 0; i < N; ++i) {
+    const PieceFrame frame = piece_frame(ribbon.pieces[std::size_t(i)], params.scale);
+    Placement p;
+    const std::int32_t index = dp.positions[std::size_t(i)];
+    p.empty = index < 0;
+    p.ux = p.empty ? 0 : space.ux(index);
+    p.uy = p.empty ? 0 : space.uy(index);
+    p.origin = frame.origin;
+    p.along = frame.along;
+    p.across = frame.across;
+    p.scale = params.scale;
+    out.placements.push_back(std::move(p));
+  }
+
+  // Seams, their costs before and after stitching.
+  const auto stitch_start = Clock::now();
+  const int seams = ribbon.closed ? N : N - 1;
+  const int n = supersampling(params.scale, canvas);
+  std::int64_t raw = 0, stitched = 0;
+  int counted = 0;
+  for (int i = 0; i < seams; ++i) {
+    Placement& a = out.placements[std::size_t(i)];
+    const Placement& b = out.placements[std::size_t((i + 1) % N)];
+    if (a.empty || b.empty) continue;
+    const auto R = right_samples(texels, input.pieces[std::size_t(i)], a.ux, a.uy);
+    const auto L = left_samples(texels, C, b.ux, b.uy);
+    const std::int64_t seam = edge_cost(R.data(), L.data(), C, texels.binary_alpha);
+    raw += seam;
+    ++counted;
+    if (!params.stitch) {
+      stitched += seam;
+      continue;
+    }
+    const auto T = align_edges(R.data(), L.data(), C, texels.binary_alpha,
+                               std::int64_t(params.stitch_penalty) * kColourScale);
+    a.stitch.assign(T.begin(), T.end());
+    // The deformation must not move forbidden subsamples onto opaque texels.
+    if (!stitch_respects_avoidance(texels, a, ribbon.pieces[std::size_t(i)], canvas, avoidance,
+                                   n)) {
+      a.stitch.clear();
+      stitched += seam;
+      continue;
+    }
+    for (int s = 0; s < C; ++s) stitched += xi(R[std::size_t(T[s])], L[s], texels.binary_alpha);
+  }
+  out.timings.stitch_ms = ms_since(stitch_start);
+  out.mean_seam_cost = counted ? double(raw) / counted / kColourScale : 0.0;
+  out.mean_seam_cost_stitched = counted ? double(stitched) / counted / kColourScale : 0.0;
+  out.timings.total_ms = ms_since(start);
+  return out;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,114 @@
+#include "synth/placements_io.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+#include "core/error.hpp"
+
+namespace tw {
+namespace {
+
+using nlohmann::json;
+constexpr const char* kFormat = "terraweave.placements";
+constexpr int kVersion = 1;
+
+json vec(Vec2 v) {
+  return json::array({v.x, v.y});
+}
+
+}  // namespace
+
+void save_placements(const Synthesis& s, const std::string& exemplar_path,
+                     const std::string& path) {
+  json doc;
+  doc["format"] = kFormat;
+  doc["version"] = kVersion;
+  doc["exemplar"] = exemplar_path;
+  doc["column"] = s.column;
+  doc["closed"] = s.closed;
+  doc["backend"] = s.backend;
+  doc["total_cost"] = s.total_cost;
+  doc["mean_seam_cost"] = s.mean_seam_cost;
+  doc["mean_seam_cost_stitched"] = s.mean_seam_cost_stitched;
+  doc["valid_counts"] = s.valid_counts;
+  json list = json::array();
+  for (const Placement& p : s.placements) {
+    list.push_back({{"ux", p.ux},
+                    {"uy", p.uy},
+                    {"empty", p.empty},
+                    {"origin", vec(p.origin)},
+                    {"along", vec(p.along)},
+                    {"across", vec(p.across)},
+                    {"scale", p.scale},
+                    {"stitch", p.stitch}});
+  }
+  doc["placements"] = std::move(list);
+  std::ofstream file(path);
+  if (!file) fail("placements {}: cannot open for writing", path);
+  file << doc.dump(1) << '\n';
+  if (!file) fail("placements {}: write failed", path);
+}
+
+Synthesis load_placements(const std::string& path, std::string* exemplar_path) {
+  std::ifstream file(path);
+  if (!file) fail("placements {}: cannot open", path);
+  json doc;
+  try {
+    doc = json::parse(file);
+  } catch (const json::exception& e) {
+    fail("placements {}: not JSON ({})", path, e.what());
+  }
+  std::string key;
+  try {
+    key = "format";
+    if (doc.at(key).get<std::string>() != kFormat)
+      fail("placements {}: key \"format\" is not \"{}\"", path, kFormat);
+    key = "version";
+    if (doc.at(key).get<int>() != kVersion)
+      fail("placements {}: unsupported version {}", path, doc.at(key).dump());
+    Synthesis s;
+    key = "exemplar";
+    const std::string exemplar = doc.at(key).get<std::string>();
+    if (exemplar_path) *exemplar_path = exemplar;
+    key = "column";
+    s.column = doc.at(key).get<int>();
+    key = "closed";
+    s.closed = doc.at(key).get<bool>();
+    key = "backend";
+    s.backend = doc.at(key).get<std::string>();
+    key = "total_cost";
+    s.total_cost = doc.at(key).get<std::int64_t>();
+    key = "mean_seam_cost";
+    s.mean_seam_cost = doc.at(key).get<double>();
+    key = "mean_seam_cost_stitched";
+    s.mean_seam_cost_stitched = doc.at(key).get<double>();
+    key = "valid_counts";
+    s.valid_counts = doc.at(key).get<std::vector<int>>();
+    const json& list = doc.at("placements");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const json& j = list[i];
+      key = fmt::format("placements[{}]", i);
+      Placement p;
+      p.ux = j.at("ux").get<int>();
+      p.uy = j.at("uy").get<int>();
+      p.empty = j.at("empty").get<bool>();
+      auto v = [&](const char* name) {
+        const auto a = j.at(name).get<std::vector<double>>();
+        if (a.size() != 2) fail("placements {}: {}.{} must have two numbers", path, key, name);
+        return Vec2{a[0], a[1]};
+      };
+      p.origin = v("origin");
+      p.along = v("along");
+      p.across = v("across");
+      p.scale = j.at("scale").get<double>();
+      p.stitch = j.at("stitch").get<std::vector<float>>();
+      s.placements.push_back(std::move(p));
+    }
+    return s;
+  } catch (const json::exception& e) {
+    fail("placements {}: key \"{}\": {}", path, key, e.what());
+  }
+}
+
+}  // namespace tw

@@ -1,0 +1,79 @@
+#pragma once
+// Pattern synthesis along a ribbon (Zhou, Lasram & Lefebvre 2013): each piece of the ribbon
+// gets a position in the exemplar, chosen by an exact DP over all valid positions so that the
+// colours across consecutive piece edges match best (Omega); then optional stitching.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "ribbon/ribbon.hpp"
+#include "synth/detail/backend_factory.hpp"
+#include "synth/exemplar.hpp"
+
+namespace tw {
+
+enum class ClosedMode {
+  approximate,  // the paper's single DP, backtracked from every terminal position
+  exact,        // one DP per start position, pruned by the single DP's terminal costs
+};
+
+struct SynthParams {
+  double scale = 0.0;      // s: exemplar texels per metre (the paper's s is our s * b)
+  std::uint64_t seed = 0;  // 0: global optimum; else piece 0 is drawn among its valid positions
+  bool stitch = true;      // Section 3.2 edge alignment
+  detail::BackendKind backend = detail::BackendKind::cpu;
+  ClosedMode closed_mode = ClosedMode::approximate;
+  bool allow_empty_pieces = false;  // a piece without valid position stays empty (penalized)
+  std::optional<std::pair<int, int>> first_position;  // fixes piece 0 at (ux, uy)
+  int stitch_penalty = 32;                            // the paper's P, in 0..255 colour units
+  std::string feature_label;  // names the feature in messages, e.g. "feature 42"
+};
+
+// Where one piece reads the exemplar: exemplar = (ux + 0.5, uy) + s * (dot(p - origin, along),
+// dot(p - origin, across)) for a world point p, plus the stitching deformation.
+struct Placement {
+  int ux = 0, uy = 0;  // position of the top-left corner (uy may be negative, down to -C)
+  bool empty = false;  // no valid position (allow_empty_pieces): renders transparent
+  Vec2 origin;         // T(x_i), world metres
+  Vec2 along;          // e_a: world unit vector mapped to exemplar +x
+  Vec2 across;         // e_l: world unit vector mapped to exemplar +y (top -> bottom)
+  double scale = 1.0;  // s
+  // The paper's T: right-edge sample index shown at right-edge sample k (empty: identity).
+  std::vector<float> stitch;
+};
+
+struct SynthTimings {
+  double footprints_ms = 0, find_valid_ms = 0, compact_ms = 0, extract_ms = 0, update_ms = 0,
+         backtrack_ms = 0, stitch_ms = 0, total_ms = 0;
+  int rows = 0;
+};
+
+struct Synthesis {
+  std::vector<Placement> placements;  // one per ribbon piece
+  std::int64_t total_cost = 0;        // Omega in cost units (xi = 16 x colour distance)
+  // Omega per seam in colour units (xi / 16), before and after stitching.
+  double mean_seam_cost = 0.0;
+  double mean_seam_cost_stitched = 0.0;
+  std::int64_t approximate_cycle_cost = -1;  // closed curves: the single-DP cycle (-1: none)
+  std::vector<int> valid_counts;             // valid positions per piece
+  int column = 0;                            // C
+  bool closed = false;
+  std::string backend;
+  SynthTimings timings;
+};
+
+Synthesis synthesize(const Exemplar& exemplar, const Ribbon& ribbon, const GridSpec& canvas,
+                     const Raster<std::uint8_t>* forbidden, const SynthParams& params,
+                     OpenCLContext* context = nullptr);
+
+namespace detail {
+// The same on a given backend.
+Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
+                        const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                        const SynthParams& params);
+}  // namespace detail
+
+}  // namespace tw

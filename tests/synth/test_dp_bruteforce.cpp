@@ -1,0 +1,135 @@
+// The DP finds the global optimum: compared with enumerating every sequence of valid positions
+// on tiny exemplars and ribbons (open and closed).
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <limits>
+
+#include "synth/detail/cpu_backend.hpp"
+#include "synth/detail/dp.hpp"
+#include "synth/detail/footprint.hpp"
+#include "synth/shapes.hpp"
+#include "synth_fixtures.hpp"
+
+namespace tw {
+namespace {
+
+struct Problem {
+  Exemplar exemplar;
+  detail::DpInput input;
+  std::vector<std::vector<std::int32_t>> valid;
+};
+
+Problem make_problem(const Curve& curve, double width, double delta, double scale, unsigned seed,
+                     int gap = 4) {
+  Problem p{test::band_exemplar(9, 6, 2, 3, seed, gap), {}, {}};
+  const Ribbon ribbon = make_ribbon(curve, {width, delta});
+  const int C = detail::column_count(width, scale);
+  p.input.texels = &p.exemplar.cost;
+  p.input.space = {p.exemplar.width, p.exemplar.height, C};
+  p.input.closed = ribbon.closed;
+  auto backend = detail::make_cpu_backend();
+  for (const Piece& piece : ribbon.pieces) {
+    p.input.pieces.push_back(detail::make_piece_footprint(piece, scale, C, GridSpec{}, nullptr));
+    std::vector<std::uint8_t> flags;
+    backend->find_valid_positions(p.exemplar.cost, p.input.space, p.input.pieces.back(), flags);
+    std::vector<std::int32_t> idx;
+    backend->compact_valid_positions(flags, idx);
+    p.valid.push_back(idx);
+  }
+  return p;
+}
+
+// Minimum of Omega over all sequences (cycles when closed).
+std::int64_t brute_force(const Problem& p) {
+  const int N = int(p.valid.size());
+  std::vector<std::int32_t> seq(static_cast<std::size_t>(N));
+  std::int64_t best = std::numeric_limits<std::int64_t>::max();
+  std::function<void(int)> go = [&](int i) {
+    if (i == N) {
+      best = std::min(best, detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces,
+                                                  seq, p.input.closed));
+      return;
+    }
+    for (std::int32_t v : p.valid[std::size_t(i)]) {
+      seq[std::size_t(i)] = v;
+      go(i + 1);
+    }
+  };
+  go(0);
+  return best;
+}
+
+TEST(DpBruteForce, OpenCurvesReachTheGlobalOptimum) {
+  const Curve straight{{{0, 0}, {6, 0}}, false};
+  Curve bent;
+  for (int i = 0; i <= 40; ++i) {
+    const double a = 0.9 * i / 40.0;
+    bent.points.push_back({6 * std::sin(a), 6 - 6 * std::cos(a)});
+  }
+  int checked = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    for (const Curve* curve : std::vector<const Curve*>{&straight, &bent}) {
+      Problem p = make_problem(*curve, 5.0, 1.6, 1.0, seed);
+      if (p.input.pieces.size() > 4) p.input.pieces.resize(4), p.valid.resize(4);
+      auto backend = detail::make_cpu_backend();
+      const detail::DpResult r = detail::run_dp(*backend, p.input);
+      const std::int64_t best = brute_force(p);
+      ASSERT_GT(p.valid[0].size(), 3u);
+      EXPECT_EQ(r.total_cost, best) << "seed " << seed;
+      // The backtracked placements really cost what the DP says.
+      EXPECT_EQ(
+          detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces, r.positions, false),
+          r.total_cost);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 12);
+}
+
+TEST(DpBruteForce, ClosedCurvesExactModeIsOptimalAndApproximationNoBetter) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    Curve circle;
+    for (int i = 0; i < 64; ++i)
+      circle.points.push_back({2.0 * std::cos(-i * 0.0982), 2.0 * std::sin(-i * 0.0982)});
+    circle.closed = true;
+    Problem p = make_problem(circle, 2.0, 3.2, 2.0, seed, 0);  // 4 pieces, C = 4
+    ASSERT_EQ(p.input.pieces.size(), 4u);
+    auto backend = detail::make_cpu_backend();
+    detail::DpInput exact = p.input;
+    exact.exact_cycle = true;
+    const detail::DpResult e = detail::run_dp(*backend, exact);
+    const detail::DpResult a = detail::run_dp(*backend, p.input);
+    const std::int64_t best = brute_force(p);
+    EXPECT_GT(best, 0);
+    EXPECT_EQ(e.total_cost, best) << "seed " << seed;
+    EXPECT_GE(a.total_cost, e.total_cost);
+    EXPECT_EQ(
+        detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces, e.positions, true),
+        e.total_cost);
+    std::printf("closed seed %u: exact %lld, approximate %lld (%d exact starts)\n", seed,
+                (long long)e.total_cost, (long long)a.total_cost, e.exact_starts_run);
+  }
+}
+
+TEST(DpBruteForce, ValidPositionsOfAStraightPieceOverABand) {
+  // Band rows 2..3, C = 5, piece 2 texels long: valid iff the top row (uy) and the bottom-edge
+  // row (uy + 5) miss the band and the piece's two columns hold an opaque texel.
+  Problem p = make_problem(Curve{{{0, 0}, {4, 0}}, false}, 5.0, 2.0, 1.0, 3);
+  const auto& space = p.input.space;
+  std::vector<std::int32_t> expected;
+  for (std::int64_t i = 0; i < space.count(); ++i) {
+    const int ux = space.ux(i), uy = space.uy(i);
+    auto band = [](int y) { return y == 2 || y == 3; };
+    auto opaque_column = [&](int x) { return x >= 0 && x < 9 && x % 4 != 3; };
+    const bool edges_clear =
+        !(band(uy) && (opaque_column(ux) || opaque_column(ux + 1) || opaque_column(ux + 2))) &&
+        !(band(uy + 5) && (opaque_column(ux) || opaque_column(ux + 1) || opaque_column(ux + 2)));
+    const bool holds = uy <= 3 && uy + 4 >= 2 && (opaque_column(ux) || opaque_column(ux + 1));
+    if (edges_clear && holds) expected.push_back(std::int32_t(i));
+  }
+  EXPECT_EQ(p.valid[0], expected);
+}
+
+}  // namespace
+}  // namespace tw

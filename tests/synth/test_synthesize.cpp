@@ -1,0 +1,203 @@
+// synthesize() end to end on generated chains: avoidance, seams vs the parametric baseline,
+// stitching, determinism, placements files and the errors users can trigger.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "synth/baseline.hpp"
+#include "synth/detail/cpu_backend.hpp"
+#include "synth/detail/foldover.hpp"
+#include "synth/placements_io.hpp"
+#include "synth/render.hpp"
+#include "synth/shapes.hpp"
+#include "synth/synthesize.hpp"
+#include "synth_fixtures.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+constexpr double kScale = 2.0;  // texels per metre
+constexpr double kWidth = 10.0, kDelta = 3.0;
+
+Synthesis run(const Exemplar& e, const Ribbon& r, const GridSpec& canvas,
+              const Raster<std::uint8_t>* forbidden, SynthParams params = {}) {
+  if (params.scale == 0.0) params.scale = kScale;
+  auto backend = detail::make_cpu_backend();
+  return detail::synthesize_on(*backend, e, r, canvas, forbidden, params);
+}
+
+// A disc of forbidden pixels on the top half of the ribbon at 40 % of its length.
+Raster<std::uint8_t> forbidden_disc(const Ribbon& ribbon, const GridSpec& canvas) {
+  const Piece& p = ribbon.pieces[ribbon.pieces.size() * 2 / 5];
+  const Vec2 centre = lerp(p.top_left, p.bottom_left, 0.2);
+  Raster<std::uint8_t> f(canvas.width, canvas.height, 0);
+  for (int r = 0; r < canvas.height; ++r)
+    for (int c = 0; c < canvas.width; ++c)
+      if (distance(canvas.pixel_centre_world(c, r), centre) < 1.6) f.at(c, r) = 1;
+  return f;
+}
+
+class Shapes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Shapes, NoOpaqueTexelOnForbiddenOrFoldedPixels) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Ribbon ribbon = make_ribbon(make_shape(GetParam(), 60.0), {kWidth, kDelta});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  const Raster<std::uint8_t> disc = forbidden_disc(ribbon, canvas);
+  SynthParams params;
+  params.allow_empty_pieces = true;
+  const Synthesis s = run(chain, ribbon, canvas, &disc, params);
+  const RenderedPattern out = render_pattern(chain, ribbon, s, canvas, Window::whole(canvas));
+  const Raster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &disc);
+  EXPECT_EQ(count_avoidance_violations(out, avoid), 0);
+  std::int64_t covered = 0, forbidden = 0;
+  for (std::size_t i = 0; i < avoid.pixels.size(); ++i) {
+    if (avoid.pixels[i]) {
+      ++forbidden;
+      ASSERT_EQ(out.coverage.pixels[i], 0.0f) << "pixel " << i;
+    }
+    covered += out.coverage.pixels[i] > 0.5f;
+  }
+  EXPECT_GT(forbidden, 10);
+  EXPECT_GT(covered, 200);  // a real pattern was drawn
+  if (std::string(GetParam()) == "hairpin") {
+    EXPECT_GT(forbidden, std::int64_t(detail::foldover_mask(ribbon, canvas).pixels.size() / 1000));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Synth, Shapes,
+                         ::testing::Values("line", "arc", "s-curve", "circle", "hairpin"));
+
+TEST(Synthesize, SeamsBeatTheParametricBaselineAndStitchingLowersThem) {
+  const Exemplar chain = test::chain_exemplar(90, 28, 17);
+  for (const char* shape : {"arc", "s-curve", "heart"}) {
+    const Ribbon ribbon = make_ribbon(make_shape(shape, 60.0), {kWidth, kDelta});
+    const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+    const Synthesis s = run(chain, ribbon, canvas, nullptr);
+    const Synthesis base = parametric_baseline(chain, ribbon, kScale);
+    std::printf("%s: synthesized %.1f, stitched %.1f, parametric %.1f (colour units per seam)\n",
+                shape, s.mean_seam_cost, s.mean_seam_cost_stitched, base.mean_seam_cost);
+    EXPECT_LT(s.mean_seam_cost, base.mean_seam_cost) << shape;
+    EXPECT_GT(s.mean_seam_cost, 0.0) << shape;
+    // Alignment never hurts; it helps where curvature tilts edges most (the heart's cusps).
+    EXPECT_LE(s.mean_seam_cost_stitched, s.mean_seam_cost) << shape;
+    if (std::string(shape) == "heart") {
+      EXPECT_LT(s.mean_seam_cost_stitched, s.mean_seam_cost);
+    }
+    EXPECT_EQ(double(s.total_cost) /
+                  (ribbon.closed ? ribbon.pieces.size() : ribbon.pieces.size() - 1) / 16.0,
+              s.mean_seam_cost);
+  }
+}
+
+TEST(Synthesize, SameSeedSameBytesOnAnyThreadCount) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Ribbon ribbon = make_ribbon(make_shape("s-curve", 60.0), {kWidth, kDelta});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  SynthParams params;
+  params.seed = 7;
+  const Synthesis a = run(chain, ribbon, canvas, nullptr, params);
+  Synthesis b;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    b = run(chain, ribbon, canvas, nullptr, params);
+  }
+  ASSERT_EQ(a.placements.size(), b.placements.size());
+  for (std::size_t i = 0; i < a.placements.size(); ++i) {
+    EXPECT_EQ(a.placements[i].ux, b.placements[i].ux);
+    EXPECT_EQ(a.placements[i].uy, b.placements[i].uy);
+    EXPECT_EQ(a.placements[i].stitch, b.placements[i].stitch);
+  }
+  EXPECT_EQ(a.total_cost, b.total_cost);
+  params.seed = 8;
+  const Synthesis c = run(chain, ribbon, canvas, nullptr, params);
+  const Synthesis optimum = run(chain, ribbon, canvas, nullptr);
+  EXPECT_LE(optimum.total_cost, std::min(a.total_cost, c.total_cost));
+  bool differs = false;
+  for (std::size_t i = 0; i < a.placements.size(); ++i)
+    differs |= a.placements[i].ux != c.placements[i].ux || a.placements[i].uy != c.placements[i].uy;
+  EXPECT_TRUE(differs);
+}
+
+TEST(Synthesize, ClosedExactModeIsNeverWorseThanTheApproximation) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Ribbon ribbon = make_ribbon(make_shape("circle", 24.0), {kWidth, 4.0});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  SynthParams params;
+  const Synthesis approx = run(chain, ribbon, canvas, nullptr, params);
+  params.closed_mode = ClosedMode::exact;
+  const Synthesis exact = run(chain, ribbon, canvas, nullptr, params);
+  std::printf("circle: exact cycle %lld, approximate cycle %lld\n", (long long)exact.total_cost,
+              (long long)approx.total_cost);
+  EXPECT_LE(exact.total_cost, approx.total_cost);
+  EXPECT_TRUE(exact.closed);
+}
+
+TEST(Synthesize, PlacementsRoundTripThroughJson) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Ribbon ribbon = make_ribbon(make_shape("arc", 40.0), {kWidth, kDelta});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  const Synthesis s = run(chain, ribbon, canvas, nullptr);
+  test::TempDir dir;
+  const std::string path = (dir / "placements.json").string();
+  save_placements(s, "chain.png", path);
+  std::string exemplar;
+  const Synthesis back = load_placements(path, &exemplar);
+  EXPECT_EQ(exemplar, "chain.png");
+  EXPECT_EQ(back.total_cost, s.total_cost);
+  const auto r1 = render_pattern(chain, ribbon, s, canvas, Window::whole(canvas));
+  const auto r2 = render_pattern(chain, ribbon, back, canvas, Window::whole(canvas));
+  EXPECT_EQ(r1.coverage.pixels, r2.coverage.pixels);
+  std::ofstream(dir / "bad.json") << R"({"format": "terraweave.placements", "version": 1})";
+  try {
+    load_placements((dir / "bad.json").string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("exemplar"), std::string::npos);
+  }
+}
+
+TEST(Synthesize, BadInputsNameTheCulprit) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Curve line = make_shape("line", 30.0);
+  EXPECT_THROW(make_ribbon(line, {0.0, 3.0}), Error);
+  EXPECT_THROW(make_ribbon(line, {10.0, -1.0}), Error);
+  EXPECT_THROW(make_ribbon(line, {10.0, 31.0}), Error);
+  EXPECT_THROW(make_shape("spiral", 10.0), Error);
+  const Ribbon ribbon = make_ribbon(line, {kWidth, kDelta});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  SynthParams params;
+  params.scale = -1.0;
+  EXPECT_THROW(run(chain, ribbon, canvas, nullptr, params), Error);
+  Raster<std::uint8_t> all(canvas.width, canvas.height, 1);
+  params.scale = kScale;
+  params.feature_label = "feature 42";
+  try {
+    run(chain, ribbon, canvas, &all, params);
+    FAIL();
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("piece 0 of feature 42 at ("), std::string::npos) << m;
+    EXPECT_NE(m.find("no valid position in exemplar chain(test)"), std::string::npos) << m;
+    EXPECT_NE(m.find("avoidance"), std::string::npos) << m;
+  }
+  // A ribbon narrower than a solid band: no position clears top and bottom edges.
+  const Exemplar band = test::band_exemplar(30, 24, 2, 20, 1);
+  try {
+    run(band, make_ribbon(line, {3.0, kDelta}), canvas, nullptr, params);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("top and bottom edges"), std::string::npos) << e.what();
+  }
+  params.allow_empty_pieces = true;
+  const Synthesis empty = run(chain, ribbon, canvas, &all, params);
+  for (const Placement& p : empty.placements) EXPECT_TRUE(p.empty);
+}
+
+}  // namespace
+}  // namespace tw
