@@ -51,7 +51,7 @@ Raster<float> rolling_hills(const GridSpec& grid) {
       const double x = p.x - grid.origin_x, y = grid.origin_y - p.y;
       h.at(c, r) = float(300.0 + 40.0 * std::sin(x / 700.0) * std::cos(y / 900.0) +
                          12.0 * std::sin((x + 2.0 * y) / 210.0) +
-                         3.0 * std::sin((3.0 * x - y) / 47.0) + 0.002 * x);
+                         1.0 * std::sin((3.0 * x - y) / 150.0) + 0.002 * x);
     }
   });
   return h;

@@ -35,7 +35,7 @@ Rgb elevation_tint(float t) {
 Rgb material_colour(const std::string& channel) {
   if (channel == "splat.road") return {70, 70, 75};
   if (channel == "splat.shoulder") return {165, 150, 125};
-  if (channel == "splat.riverbed") return {45, 95, 175};
+  if (channel == "splat.riverbed") return {60, 125, 215};
   if (channel == "splat.bank") return {110, 125, 80};
   if (channel == "splat.ridge_rock") return {150, 140, 135};
   return {-1, -1, -1};  // base and unknown materials: the elevation tint
@@ -119,7 +119,8 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
     }
   });
 
-  // Feature lines: a thin near-white stroke, sampled every half preview pixel.
+  // Feature lines: a thin pale stroke, sampled every half preview pixel (each pixel once).
+  std::vector<char> drawn(std::size_t(w) * h, 0);
   for (const auto& line : lines)
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const Vec2 a = g.world_to_pixel(line[i]) / factor, b = g.world_to_pixel(line[i + 1]) / factor;
@@ -129,7 +130,12 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
         const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
         if (c < 0 || r < 0 || c >= w || r >= h) continue;
         const std::size_t k = std::size_t(r) * w + c;
-        rgb[0][k] = 255, rgb[1][k] = 240, rgb[2][k] = 120;
+        if (drawn[k]) continue;
+        drawn[k] = 1;
+        // Half-transparent, so the road or river under the line stays visible.
+        rgb[0][k] = std::uint8_t((rgb[0][k] + 255) / 2);
+        rgb[1][k] = std::uint8_t((rgb[1][k] + 240) / 2);
+        rgb[2][k] = std::uint8_t((rgb[2][k] + 120) / 2);
       }
     }
 

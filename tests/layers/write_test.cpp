@@ -168,8 +168,9 @@ TEST(WriteLayers, PreviewIsAnRgbPngOfTheGridShape) {
     ASSERT_EQ(png->GetRasterBand(b + 1)->RasterIO(GF_Read, int(mid.x), int(mid.y), 1, 1, &rgb[b], 1,
                                                   1, GDT_Byte, 0, 0),
               CE_None);
-  EXPECT_EQ(rgb[0], 255);
-  EXPECT_EQ(rgb[2], 120);
+  // Drawn half-transparent in pale yellow: red well above blue whatever lies under it.
+  EXPECT_GE(rgb[0], 128);
+  EXPECT_GT(int(rgb[0]) - int(rgb[2]), 40);
 }
 
 TEST(WriteLayers, AFailingWriteLeavesThePreviousOutputsIntact) {
