@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <vector>
@@ -19,6 +20,14 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
   if (!(std::isfinite(params.pixel_size) && params.pixel_size > 0.0)) {
     fail("{}: pixel_size must be a positive number of metres, got {}", name, params.pixel_size);
   }
+  if (!(std::isfinite(params.feature_size) && params.feature_size > 0.0)) {
+    fail("{}: feature_size must be a positive number of metres, got {}", name, params.feature_size);
+  }
+  if (!(std::isfinite(params.origin_x) && std::isfinite(params.origin_y)) ||
+      std::abs(params.origin_x / params.pixel_size) > 1e15 ||
+      std::abs(params.origin_y / params.pixel_size) > 1e15) {
+    fail("{}: origin ({}, {}) is not a usable coordinate", name, params.origin_x, params.origin_y);
+  }
   if (!(std::isfinite(params.relief) && params.relief >= 0.0)) {
     fail("{}: relief must be >= 0 metres, got {}", name, params.relief);
   }
@@ -38,15 +47,18 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
   result.grid = {params.width,    params.height,     params.origin_x,
                  params.origin_y, params.pixel_size, params.pixel_size};
   result.height = Raster<float>(params.width, params.height);
-  // The largest features span about a quarter of the longer side (a power of two, so that
-  // each octave's lattice nests in the previous one's).
-  const std::int64_t largest_cell =
-      std::int64_t(std::bit_floor(std::uint64_t(std::max(params.width, params.height) / 4 + 2)));
+  // Noise is indexed by world pixel (origin / pixel size + pixel), and the largest hills span
+  // feature_size metres (a power-of-two number of pixels, so each octave's lattice nests in the
+  // previous one's): a tile generated on its own equals the same window of a larger world.
+  const std::int64_t largest_cell = std::max<std::int64_t>(
+      2, std::int64_t(std::bit_floor(std::uint64_t(params.feature_size / params.pixel_size))));
+  const std::int64_t world_col0 = std::llround(params.origin_x / params.pixel_size);
+  const std::int64_t world_row0 = std::llround(-params.origin_y / params.pixel_size);
   const double metres_per_unit = params.relief / (2.0 * double(detail::kNoiseOne));
   // Rows are independent: any split over threads gives the same bytes.
   tbb::parallel_for(0, params.height, [&](int row) {
     std::vector<std::int64_t> noise(std::size_t(params.width));
-    detail::fractal_noise_row(row, 0, noise, largest_cell, params.seed);
+    detail::fractal_noise_row(world_row0 + row, world_col0, noise, largest_cell, params.seed);
     for (int col = 0; col < params.width; ++col) {
       // noise + one lies in [0, 2 one]: heights lie in [0, relief].
       result.height.at(col, row) = float(double(noise[col] + detail::kNoiseOne) * metres_per_unit);

@@ -36,12 +36,15 @@ struct GeneratedTerrain {
   std::uint64_t seed = 1;
   double relief = 150.0;  // metres between the lowest and highest possible height
   std::string crs = "EPSG:32631";
-  double origin_x = 500000;   // world x of the left edge
-  double origin_y = 5000000;  // world y of the top edge
+  double origin_x = 500000;      // world x of the left edge
+  double origin_y = 5000000;     // world y of the top edge
+  double feature_size = 2560.0;  // metres spanned by the largest hills
 };
 
 // Seeded fractal terrain (gradient noise, fBm octaves) from an integer hash: the same
-// parameters give the same bytes on every platform.
+// parameters give the same bytes on every platform and thread count. The noise is a function
+// of the world pixel, so a tile (same seed, pixel size and feature size, origin on the same
+// pixel lattice) equals the matching window of a larger generated world.
 Heightfield generate_heightfield(const GeneratedTerrain& params);
 
 }  // namespace tw

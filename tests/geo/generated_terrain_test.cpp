@@ -16,6 +16,7 @@ GeneratedTerrain small(std::uint64_t seed) {
   params.width = 96;
   params.height = 64;
   params.pixel_size = 5.0;
+  params.feature_size = 160.0;  // hills of 32 pixels: several fit in the window
   params.seed = seed;
   return params;
 }
@@ -69,6 +70,22 @@ TEST(GenerateHeightfield, GridCrsAndHeightsFollowTheParameters) {
   EXPECT_LT(largest_step, 0.2 * params.relief);
 }
 
+TEST(GenerateHeightfield, ATileEqualsTheWindowOfTheLargerWorld) {
+  const GeneratedTerrain world = small(6);
+  GeneratedTerrain tile = world;
+  tile.width = 32;
+  tile.height = 24;
+  tile.origin_x = world.origin_x + 40 * world.pixel_size;
+  tile.origin_y = world.origin_y - 20 * world.pixel_size;
+  const Heightfield big = generate_heightfield(world);
+  const Heightfield part = generate_heightfield(tile);
+  for (int row = 0; row < tile.height; ++row) {
+    for (int col = 0; col < tile.width; ++col) {
+      ASSERT_EQ(part.height.at(col, row), big.height.at(col + 40, row + 20)) << col << "," << row;
+    }
+  }
+}
+
 TEST(GenerateHeightfield, ReliefScalesHeights) {
   GeneratedTerrain params = small(4);
   const Heightfield base = generate_heightfield(params);
@@ -91,6 +108,9 @@ TEST(GenerateHeightfield, BadParametersAreErrors) {
   EXPECT_THROW(generate_heightfield(params), Error);
   params = small(5);
   params.pixel_size = -1.0;
+  EXPECT_THROW(generate_heightfield(params), Error);
+  params = small(5);
+  params.feature_size = 0.0;
   EXPECT_THROW(generate_heightfield(params), Error);
 }
 
