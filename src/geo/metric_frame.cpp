@@ -31,8 +31,8 @@ MetresPerDegree metres_per_degree(double latitude_degrees) {
   double north_south = 0.0;
   double east_west = 0.0;
   wgs84.Inverse(latitude_degrees - step / 2, 0.0, latitude_degrees + step / 2, 0.0, north_south);
-  // Along the parallel: the radius of the parallel times the angle (a geodesic between two points
-  // of a parallel is not the parallel, but over 0.001 degree they differ by far under 1e-9).
+  // Along the parallel: over 0.001 degree the geodesic and the parallel differ by far less
+  // than a millimetre per degree.
   wgs84.Inverse(latitude_degrees, 0.0, latitude_degrees, step, east_west);
   return {north_south / step, east_west / step};
 }

@@ -28,9 +28,9 @@ class QuietGdalErrors {
 // The last GDAL error message, or "unknown GDAL error" when GDAL gave none.
 std::string last_gdal_error();
 
-// A spatial reference with x = easting/longitude and y = northing/latitude whatever the
-// authority's axis order says (OAMS_TRADITIONAL_GIS_ORDER). Empty optional-like: returns false
-// from import when the text is not a CRS.
+// Sets srs from WKT, "EPSG:n", a PROJ string... with x = easting/longitude and y =
+// northing/latitude whatever the authority's axis order says (OAMS_TRADITIONAL_GIS_ORDER).
+// False when the text is empty or not a CRS.
 bool import_traditional_srs(OGRSpatialReference& srs, const std::string& user_input);
 
 // WKT2 of a spatial reference (what Heightfield::crs_wkt holds).
