@@ -296,4 +296,10 @@ void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
   apply_terrain(height, grid, window, plan_terrain(height, grid, features, params));
 }
 
+void shape_heightfield(Heightfield& heightfield, const std::vector<TerrainFeature>& features,
+                       const TerrainParams& params) {
+  shape_terrain(heightfield.height, heightfield.grid, Window::whole(heightfield.grid), features,
+                params);
+}
+
 }  // namespace tw

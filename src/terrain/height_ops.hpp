@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "geo/heightfield.hpp"
 #include "terrain/features.hpp"
 
 namespace tw {
@@ -38,5 +39,9 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
 // plan_terrain + apply_terrain.
 void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const std::vector<TerrainFeature>& features, const TerrainParams& params);
+
+// The whole heightfield (its grid, its NaN nodata).
+void shape_heightfield(Heightfield& heightfield, const std::vector<TerrainFeature>& features,
+                       const TerrainParams& params = {});
 
 }  // namespace tw

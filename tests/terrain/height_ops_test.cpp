@@ -191,6 +191,51 @@ TEST(ShapeTerrain, RoadsSharingAnEndpointMeetLevelWithoutASpike) {
   EXPECT_NEAR(h.at(int(jp.x) - 1, int(jp.y)), h.at(int(jp.x), int(jp.y) - 1), 0.2);
 }
 
+TEST(ShapeTerrain, ATJunctionRoadMeetsTheThroughRoadAtItsLevel) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto hills = [](double x, double y) { return 70.0 + 0.15 * y + 6.0 * std::sin(x / 17.0); };
+  const Raster<float> before = test::heights_from(grid, hills);
+  Raster<float> h = before;
+  auto through = test::feature(FeatureKind::road, 1, {{10.0, 100.0}, {190.0, 100.0}}, 6.0);
+  auto branch = test::feature(FeatureKind::road, 2, {{80.0, 190.0}, {100.0, 100.0}}, 6.0);
+  Raster<float> alone = before;
+  shape_terrain(alone, grid, Window::whole(grid), {through}, {});
+  shape_terrain(h, grid, Window::whole(grid), {through, branch}, {});
+  // The through road keeps its own level at the junction; the branch arrives at it.
+  const int jc = 100, jr = kSize - 101;
+  // (Within the grade over the half pixel between the pixel centre and the junction point.)
+  EXPECT_NEAR(h.at(jc, jr), alone.at(jc, jr), 0.08 * std::sqrt(0.5));
+  // Walking up the branch from the junction, the road rises within the grade: no step.
+  for (int row = jr - 1; row > jr - 40; --row) {
+    const double x = 100.0 - 20.0 * (kSize - row - 0.5 - 100.0) / 90.0;
+    const int col = int(std::floor(x));
+    const int prev_col = int(std::floor(100.0 - 20.0 * (kSize - row - 1.5 - 100.0) / 90.0));
+    const double ds = std::hypot(1.0, col - prev_col);
+    EXPECT_LE(std::abs(h.at(col, row) - h.at(prev_col, row + 1)), 0.08 * ds + 0.05) << row;
+  }
+}
+
+TEST(ShapeTerrain, ATributaryIsEasedDownToTheMainRiverSurface) {
+  const GridSpec grid = test::unit_grid(kSize);
+  // The main river runs east along a valley floor; the tributary comes down a side slope and
+  // would end well above the main surface if nothing joined them.
+  auto valley = [](double x, double y) { return 50.0 - 0.02 * x + 0.3 * std::abs(y - 60.0); };
+  const Raster<float> before = test::heights_from(grid, valley);
+  Raster<float> h = before;
+  auto main = test::feature(FeatureKind::river, 1, {{5.0, 60.5}, {195.0, 60.5}}, 8.0);
+  auto trib = test::feature(FeatureKind::river, 2, {{100.5, 190.0}, {100.5, 60.5}}, 4.0);
+  main.river.depth = 2.0;
+  trib.river.depth = 1.0;
+  shape_terrain(h, grid, Window::whole(grid), {main, trib}, {});
+  // Along the tributary the bed never rises downstream, right into the confluence.
+  const int col = 100;
+  for (int row = kSize - 189; row < kSize - 62; ++row)
+    EXPECT_LE(h.at(col, row + 1), h.at(col, row) + 1e-4) << row;
+  // At the confluence the beds meet: no step between the tributary's mouth and the main bed.
+  const int mouth_row = kSize - 66;  // 5 m upstream of the main centerline
+  EXPECT_LE(h.at(col, mouth_row) - h.at(col, kSize - 61), 1.1);
+}
+
 TEST(ShapeTerrain, TilesAndThreadCountsGiveIdenticalBits) {
   const GridSpec grid = test::unit_grid(kSize);
   const Raster<float> before = test::heights_from(grid, [](double x, double y) {
@@ -215,6 +260,18 @@ TEST(ShapeTerrain, TilesAndThreadCountsGiveIdenticalBits) {
   EXPECT_EQ(0, std::memcmp(whole.pixels.data(), tiled.pixels.data(), whole.pixels.size() * 4));
   EXPECT_EQ(0, std::memcmp(whole.pixels.data(), serial.pixels.data(), whole.pixels.size() * 4));
   EXPECT_NE(0, std::memcmp(whole.pixels.data(), before.pixels.data(), whole.pixels.size() * 4));
+}
+
+TEST(ShapeTerrain, ShapesAHeightfieldInPlace) {
+  Heightfield hf;
+  hf.grid = test::unit_grid(60);
+  hf.height = Raster<float>(60, 60, 5.0f);
+  auto ridge = test::feature(FeatureKind::ridge, 9, {{30.5, 5.0}, {30.5, 55.0}}, 2.0);
+  ridge.ridge.height = 3.0;
+  ridge.ridge.falloff = 10.0;
+  shape_heightfield(hf, {ridge});
+  EXPECT_FLOAT_EQ(hf.height.at(30, 30), 8.0f);
+  EXPECT_FLOAT_EQ(hf.height.at(2, 30), 5.0f);
 }
 
 TEST(ShapeTerrain, BadFeaturesNameTheirFid) {
