@@ -156,6 +156,45 @@ TEST(ReadHeightfield, GeographicDemIsWarpedToMetresAtTheSourceResolution) {
   EXPECT_GT(nodata_inside_block, 100);
 }
 
+TEST(ReadHeightfield, WarpedGridCoversTheWholeSourceFootprint) {
+  // Points along the DEM's edges, mapped into the warped grid's CRS, lie inside its extent:
+  // no row or column of data is lost to rounding the pixel count.
+  TempDir dir;
+  for (const int width : {37, 50, 61, 83}) {
+    const std::string path = (dir / fmt::format("edge_{}.tif", width)).string();
+    DemSpec spec;
+    spec.width = width;
+    spec.height = 31;
+    spec.geotransform = {6.1166, 1.0 / 120, 0.0, 49.70, 0.0, -1.0 / 120};
+    spec.crs = "EPSG:4326";
+    test::write_geotiff(path, spec);
+    const Heightfield field = read_heightfield(path);
+    OGRSpatialReference wgs84;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    OGRSpatialReference grid_srs;
+    grid_srs.importFromWkt(field.crs_wkt.c_str());
+    grid_srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> to_grid(
+        OGRCreateCoordinateTransformation(&wgs84, &grid_srs));
+    const double east = 6.1166 + width / 120.0;
+    const double south = 49.70 - 31 / 120.0;
+    for (int i = 0; i <= 20; ++i) {
+      const double t = i / 20.0;
+      for (Vec2 p :
+           {Vec2{6.1166 + t * (east - 6.1166), south}, Vec2{6.1166 + t * (east - 6.1166), 49.70},
+            Vec2{6.1166, south + t * (49.70 - south)}, Vec2{east, south + t * (49.70 - south)}}) {
+        ASSERT_TRUE(to_grid->Transform(1, &p.x, &p.y));
+        const Vec2 pixel = field.grid.world_to_pixel(p);
+        EXPECT_GE(pixel.x, -1e-6) << width << " " << i;
+        EXPECT_GE(pixel.y, -1e-6) << width << " " << i;
+        EXPECT_LE(pixel.x, field.grid.width + 1e-6) << width << " " << i;
+        EXPECT_LE(pixel.y, field.grid.height + 1e-6) << width << " " << i;
+      }
+    }
+  }
+}
+
 TEST(ReadHeightfield, ResolutionOptionOnAGeographicDemSetsThePixelSize) {
   TempDir dir;
   const std::string path = (dir / "geographic.tif").string();

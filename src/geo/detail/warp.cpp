@@ -2,6 +2,10 @@
 
 #include <gdal_utils.h>
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
 #include <vector>
 
 #include "core/error.hpp"
@@ -27,12 +31,66 @@ GdalDatasetPtr first_band_only(GDALDataset& source, const std::string& label) {
   return GdalDatasetPtr(GDALDataset::FromHandle(band));
 }
 
+// The target extent covering the whole source footprint in whole pixels. gdalwarp's own
+// choice rounds the pixel count to the nearest, which can drop up to half a pixel (hundreds of
+// metres for arc-second DEMs) and with it data and the ends of features at the DEM's edge.
+// The footprint's edges are curves in the target CRS: they are sampled densely.
+struct Extent {
+  double west, south, east, north;
+};
+Extent covering_extent(GDALDataset& source, const WarpTarget& target, const std::string& label) {
+  OGRSpatialReference from(*source.GetSpatialRef());
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRSpatialReference to;
+  if (!import_traditional_srs(to, target.crs_wkt)) fail("{}: bad target CRS", label);
+  std::unique_ptr<OGRCoordinateTransformation> transform(
+      OGRCreateCoordinateTransformation(&from, &to));
+  if (!transform) fail("{}: cannot relate it to the metric grid: {}", label, last_gdal_error());
+  double gt[6];
+  source.GetGeoTransform(gt);
+  const double columns = source.GetRasterXSize();
+  const double rows = source.GetRasterYSize();
+  constexpr int samples = 256;  // per edge
+  std::vector<double> xs;
+  std::vector<double> ys;
+  for (int i = 0; i <= samples; ++i) {
+    const double t = double(i) / samples;
+    for (const auto& [col, row] : {std::pair{t * columns, 0.0}, std::pair{t * columns, rows},
+                                   std::pair{0.0, t * rows}, std::pair{columns, t * rows}}) {
+      xs.push_back(gt[0] + col * gt[1] + row * gt[2]);
+      ys.push_back(gt[3] + col * gt[4] + row * gt[5]);
+    }
+  }
+  std::vector<int> ok(xs.size());
+  transform->Transform(int(xs.size()), xs.data(), ys.data(), nullptr, ok.data());
+  Extent bounds{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (!ok[i] || !std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+    bounds = {std::min(bounds.west, xs[i]), std::min(bounds.south, ys[i]),
+              std::max(bounds.east, xs[i]), std::max(bounds.north, ys[i])};
+  }
+  if (!(bounds.west < bounds.east && bounds.south < bounds.north)) {
+    fail("{}: cannot find its extent in the metric grid: {}", label, last_gdal_error());
+  }
+  // Whole pixels from the north-west corner; 1e-9 keeps an exact fit from gaining a pixel.
+  const double width = std::ceil((bounds.east - bounds.west) / target.pixel_width - 1e-9);
+  const double height = std::ceil((bounds.north - bounds.south) / target.pixel_height - 1e-9);
+  return {bounds.west, bounds.north - height * target.pixel_height,
+          bounds.west + width * target.pixel_width, bounds.north};
+}
+
+std::string number(double value) {
+  return fmt::format("{:.17g}", value);
+}
+
 GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const char* resampling,
                             const std::string& label) {
+  const Extent extent = covering_extent(source, target, label);
   // clang-format off
   const std::vector<std::string> args = {
       "-of", "MEM", "-t_srs", target.crs_wkt,
-      "-tr", fmt::format("{:.17g}", target.pixel_width), fmt::format("{:.17g}", target.pixel_height),
+      "-te", number(extent.west), number(extent.south), number(extent.east), number(extent.north),
+      "-tr", number(target.pixel_width), number(target.pixel_height),
       "-r", resampling, "-ot", "Float32", "-dstnodata", "nan"};
   // clang-format on
   std::vector<char*> argv = argv_of(args);
