@@ -24,8 +24,12 @@ struct HeightfieldOptions {
   std::optional<double> resolution;
 };
 
-// Reads band 1 of a GDAL raster; heights in feet (GDAL unit type "ft", "US survey foot")
-// become metres. Throws tw::Error naming the path when the file cannot be
+// Reads band 1 of a GDAL raster. A metric north-up DEM keeps its grid and CRS (resampled,
+// bilinear and nodata-aware, when options.resolution is set); a geographic, non-metre or
+// rotated one is warped (bilinear, nodata kept) into local_transverse_mercator_wkt() centred on
+// the DEM (geo/metric_frame.hpp), with the source's pixel size at its centre measured as
+// geodesics, covering its whole footprint. Heights in feet (GDAL unit type "ft",
+// "US survey foot") become metres. Throws tw::Error naming the path when the file cannot be
 // read, has no CRS, or holds nothing but nodata.
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options = {});
 
