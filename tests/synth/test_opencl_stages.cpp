@@ -199,6 +199,11 @@ void expect_same_row(Backends& b, const std::vector<std::int64_t>& previous, con
   RowResult cl = run_row(*b.opencl, previous, right, left);
   EXPECT_EQ(cl.cost, cpu.cost);
   EXPECT_EQ(cl.argmin, cpu.argmin);
+  // Both prune; the unpruned definition (every pair, every sample) must agree with them.
+  RowResult naive;
+  detail::update_table_row_naive(previous, right, left, naive.cost, naive.argmin);
+  EXPECT_EQ(cl.cost, naive.cost);
+  EXPECT_EQ(cl.argmin, naive.argmin);
 }
 
 ColumnSet palette_columns(std::mt19937& rng, int count, int column, int palette) {

@@ -16,8 +16,8 @@ constexpr std::size_t kScanGroup = 256;      // work-group size of the compactio
 constexpr std::size_t kColumnGroup = 64;     // one work-item per column
 constexpr std::size_t kRowGroup = 16;        // small groups balance the pruned walks
 constexpr std::uint32_t kMaxColourDistance2 = 3 * 255 * 255;
-
-using ColumnStats = std::array<std::int32_t, 4>;  // opaque count, sum R, sum G, sum B
+// A mismatched sample costs gamma, at least this much more than 16 |p - q| - 1.
+constexpr std::int32_t kMismatchExtra = kGamma - kMaxColourTerm - 1;
 
 // floor(sqrt(n)) in integers only.
 std::uint32_t integer_sqrt(std::uint64_t n) {
@@ -65,17 +65,24 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
   (check_cl(kernel.setArg(index++, args), "clSetKernelArg"), ...);
 }
 
-std::vector<ColumnStats> column_stats(const ColumnSet& set, std::size_t count) {
-  std::vector<ColumnStats> stats(count, ColumnStats{0, 0, 0, 0});
+// The pruning statistics of each column: its opaque mask (bit k of word k / 64 set when
+// sample k is opaque) and its sums of R, G, B (kernels/row_update.cl).
+struct ColumnStats {
+  std::vector<cl_ulong> masks;  // count * words
+  std::vector<cl_int4> sums;    // count
+};
+
+ColumnStats column_stats(const ColumnSet& set, std::size_t count) {
+  const std::size_t words = (std::size_t(set.column) + 63) / 64;
+  ColumnStats stats{std::vector<cl_ulong>(count * words, 0), std::vector<cl_int4>(count)};
   for (std::size_t j = 0; j < count; ++j) {
-    ColumnStats& s = stats[j];
-    for (int k = 0; k < set.column; ++k) {
+    cl_int4 sum{{0, 0, 0, 0}};
+    for (std::size_t k = 0; k < std::size_t(set.column); ++k) {
       const std::uint32_t t = set.samples[j * set.column + k];
-      s[0] += (t >> 24) >= kOpaqueAlpha;
-      s[1] += t & 255u;
-      s[2] += (t >> 8) & 255u;
-      s[3] += (t >> 16) & 255u;
+      if (is_opaque(t)) stats.masks[j * words + k / 64] |= cl_ulong(1) << (k % 64);
+      for (int c = 0; c < 3; ++c) sum.s[c] += cl_int(channel_of(t, c));
     }
+    stats.sums[j] = sum;
   }
   return stats;
 }
@@ -327,19 +334,25 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
   }
   ColumnSet sorted_set{column, std::move(sorted_right), left.binary_alpha};
 
+  const ColumnStats right_stats = column_stats(sorted_set, previous);
+  const ColumnStats left_stats = column_stats(left, current);
+
   const cl::Context& context = context_.context();
   cl::Buffer cost_buffer = input_buffer(context, sorted_cost);
   cl::Buffer order_buffer = input_buffer(context, order);
   cl::Buffer right_buffer = input_buffer(context, sorted_set.samples);
-  cl::Buffer right_stats = input_buffer(context, column_stats(sorted_set, previous));
+  cl::Buffer right_masks = input_buffer(context, right_stats.masks);
+  cl::Buffer right_sums = input_buffer(context, right_stats.sums);
   cl::Buffer left_buffer = input_buffer(context, left.samples);
-  cl::Buffer left_stats = input_buffer(context, column_stats(left, current));
+  cl::Buffer left_masks = input_buffer(context, left_stats.masks);
+  cl::Buffer left_sums = input_buffer(context, left_stats.sums);
   cl::Buffer cost_out = output_buffer(context, current * sizeof(cl_long));
   cl::Buffer argmin_out = output_buffer(context, current * sizeof(cl_int));
   cl::Kernel& k = kernel("row_update", "update_table_row");
-  set_args(k, cost_buffer, order_buffer, right_buffer, right_stats, cl_int(previous), left_buffer,
-           left_stats, cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma),
-           cl_uint(kOpaqueAlpha), cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
+  set_args(k, cost_buffer, order_buffer, right_buffer, right_masks, right_sums, cl_int(previous),
+           left_buffer, left_masks, left_sums, cl_int(current), cl_int(column), distance_table_,
+           cl_uint(kGamma), cl_uint(kOpaqueAlpha), cl_int(kMismatchExtra),
+           cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
   launch(k, "update_table_row", current, kRowGroup);
   read_buffer(context_.queue(), cost_out, cost);
   read_buffer(context_.queue(), argmin_out, argmin);

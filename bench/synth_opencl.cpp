@@ -1,0 +1,177 @@
+// DP rows on the OpenCL backend (PoCL here) against the CPU reference: ms per row for the
+// paper's exemplar sizes (199x82 and 325x64, from samples/exemplars/), time versus the number
+// of pieces N and versus the exemplar width W (the paper's performance figure), ratios to the
+// paper's GTX 580 figures (30 ms and 650 ms per row) and to the CPU backend, and where the
+// OpenCL time goes (device time per kernel from profiling events). Prints numbers only.
+//
+// usage: bench_synth_opencl [--quick | --cases]   (--quick: fewer rows and sizes; --cases: the
+// two exemplars only, 3 rows each)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/log.hpp"
+#include "ribbon/ribbon.hpp"
+#include "synth/detail/cpu_backend.hpp"
+#include "synth/detail/dp.hpp"
+#include "synth/detail/footprint.hpp"
+#include "synth/detail/opencl_backend.hpp"
+#include "synth/exemplar.hpp"
+
+namespace {
+
+using namespace tw;
+using detail::CostTexels;
+
+// A gentle arc (radius 400 texels) sliced into `pieces` pieces of 12 texels, ribbon width = H
+// texels (C = H, the paper's typical case), one texel per metre.
+detail::DpInput make_input(const CostTexels& texels, int pieces) {
+  const double delta = 12.0, width = texels.height, radius = 400.0;
+  const double length = delta * pieces;
+  Curve curve;
+  for (int i = 0; i <= 4 * pieces; ++i) {
+    const double a = length / radius * i / (4.0 * pieces);
+    curve.points.push_back({radius * std::sin(a), radius * (1 - std::cos(a))});
+  }
+  const Ribbon ribbon = make_ribbon(curve, {width, delta});
+  GridSpec canvas;
+  canvas.width = canvas.height = 16;
+  detail::DpInput input;
+  input.texels = &texels;
+  const int column = detail::column_count(width, 1.0);
+  input.space = {texels.width, texels.height, column};
+  for (const Piece& piece : ribbon.pieces)
+    input.pieces.push_back(detail::make_piece_footprint(piece, 1.0, column, canvas, nullptr));
+  input.allow_empty = true;
+  return input;
+}
+
+CostTexels crop(const CostTexels& texels, int width) {
+  CostTexels out{width, texels.height, {}, texels.binary_alpha};
+  for (int y = 0; y < texels.height; ++y)
+    for (int x = 0; x < width; ++x)
+      out.rgba.push_back(texels.rgba[y * texels.width + x % texels.width]);
+  return out;
+}
+
+// A chain-like pattern when the sample exemplars are missing: elliptic links on transparent.
+CostTexels generated_chain(int width, int height) {
+  CostTexels t{width, height, std::vector<std::uint32_t>(std::size_t(width) * height, 0), true};
+  const int link = height / 2;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double cx = (x / link + 0.5) * link, cy = height / 2.0;
+      const double e = std::hypot((x + 0.5 - cx) / (0.6 * link), (y + 0.5 - cy) / (0.35 * height));
+      if (e > 0.65 && e < 1.0) {
+        const std::uint32_t v = std::uint32_t(90 + 150 * (1 - e)) & 255;
+        t.rgba[std::size_t(y) * width + x] = v | v << 8 | (v / 2) << 16 | 255u << 24;
+      }
+    }
+  return t;
+}
+
+CostTexels exemplar_texels(const std::string& name, int width, int height) {
+  const std::filesystem::path path =
+      std::filesystem::path(TERRAWEAVE_SOURCE_DIR) / "samples/exemplars" / name;
+  if (std::filesystem::exists(path)) return load_exemplar(path.string()).cost;
+  std::printf("  (%s missing: generated %dx%d chain)\n", path.c_str(), width, height);
+  return generated_chain(width, height);
+}
+
+struct RowTiming {
+  double ms_per_row = 0;  // find + compact + extract + update, per DP row
+  double update_ms_per_row = 0;
+  double mean_valid = 0;
+  std::int64_t cost = 0;
+};
+
+RowTiming time_dp(detail::Backend& backend, const detail::DpInput& input) {
+  const detail::DpResult r = detail::run_dp(backend, input);
+  const detail::DpTimings& t = r.timings;
+  RowTiming out;
+  const double rows = std::max(1, t.rows);
+  out.ms_per_row = (t.find_valid_ms + t.compact_ms + t.extract_ms + t.update_ms) / rows;
+  out.update_ms_per_row = t.update_ms / rows;
+  double valid = 0;
+  for (int v : r.valid_counts) valid += v;
+  out.mean_valid = valid / std::max<std::size_t>(1, r.valid_counts.size());
+  out.cost = r.total_cost;
+  return out;
+}
+
+void print_kernel_times(const detail::OpenCLBackend& backend, int rows) {
+  for (const auto& [name, timing] : backend.timings()) {
+    std::printf("    %-24s %9.2f ms/row device time (%lld launches)\n", name.c_str(),
+                timing.milliseconds / std::max(1, rows), (long long)timing.launches);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool cases_only = argc > 1 && std::strcmp(argv[1], "--cases") == 0;
+  const bool quick = cases_only || (argc > 1 && std::strcmp(argv[1], "--quick") == 0);
+  tw::set_log_level(spdlog::level::warn);
+  std::string why;
+  auto context = OpenCLContext::create_default(&why);
+  if (!context) {
+    std::printf("no OpenCL device: %s\n", why.c_str());
+    return 1;
+  }
+  std::printf("OpenCL device: %s\n", context->device_name().c_str());
+  detail::OpenCLBackend opencl(*context);
+  auto cpu = detail::make_cpu_backend();
+  {  // first use compiles the kernels (PoCL caches them in ~/.cache/pocl): not timed
+    const CostTexels warm = generated_chain(40, 20);
+    detail::run_dp(opencl, make_input(warm, 3));
+  }
+
+  struct Case {
+    const char* file;
+    int width, height;
+    double paper_ms;
+  };
+  const Case cases[] = {{"chain_199x82.png", 199, 82, 30.0}, {"braid_325x64.png", 325, 64, 650.0}};
+  const int rows = cases_only ? 3 : quick ? 4 : 10;
+  std::printf("\nms per DP row (N = %d pieces, C = H, gentle arc); paper: GTX 580\n", rows + 1);
+  for (const Case& c : cases) {
+    const CostTexels texels = exemplar_texels(c.file, c.width, c.height);
+    const detail::DpInput input = make_input(texels, rows + 1);
+    opencl.reset_timings();
+    const RowTiming cl = time_dp(opencl, input);
+    const RowTiming ref = time_dp(*cpu, input);
+    std::printf("  %dx%d C=%d  valid/row %.0f of U=%lld\n", texels.width, texels.height,
+                input.space.column, cl.mean_valid, (long long)input.space.count());
+    std::printf("    opencl %8.1f ms/row (update %8.1f)  cpu %8.1f ms/row (update %8.1f)\n",
+                cl.ms_per_row, cl.update_ms_per_row, ref.ms_per_row, ref.update_ms_per_row);
+    std::printf("    opencl/paper %.2fx  cpu/paper %.2fx  opencl/cpu %.2fx  same optimum: %s\n",
+                cl.ms_per_row / c.paper_ms, ref.ms_per_row / c.paper_ms,
+                cl.ms_per_row / ref.ms_per_row, cl.cost == ref.cost ? "yes" : "NO");
+    print_kernel_times(opencl, rows);
+  }
+
+  if (cases_only) return 0;
+  const CostTexels chain = exemplar_texels("chain_199x82.png", 199, 82);
+  std::printf("\ntime vs N (199x82): total ms of the DP rows\n");
+  for (int n : quick ? std::vector<int>{2, 4, 8} : std::vector<int>{2, 5, 10, 20, 40}) {
+    const detail::DpInput input = make_input(chain, n);
+    const RowTiming cl = time_dp(opencl, input);
+    const RowTiming ref = time_dp(*cpu, input);
+    std::printf("  N=%3d  opencl %9.1f ms  cpu %9.1f ms\n", n, cl.ms_per_row * (n - 1),
+                ref.ms_per_row * (n - 1));
+  }
+  std::printf("\ntime vs W (chain, H = 82, N = %d): ms per row\n", rows + 1);
+  for (int w : quick ? std::vector<int>{50, 199} : std::vector<int>{50, 100, 150, 199, 300}) {
+    const CostTexels texels = crop(chain, w);
+    const detail::DpInput input = make_input(texels, rows + 1);
+    const RowTiming cl = time_dp(opencl, input);
+    const RowTiming ref = time_dp(*cpu, input);
+    std::printf("  W=%3d  valid/row %6.0f  opencl %8.1f ms  cpu %8.1f ms\n", w, cl.mean_valid,
+                cl.ms_per_row, ref.ms_per_row);
+  }
+  return 0;
+}
