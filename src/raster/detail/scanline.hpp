@@ -50,6 +50,7 @@ struct RowBuckets {
 RowBuckets bucket_edges(const std::vector<ScanEdge>& edges, int row_begin, int row_end,
                         int block_rows);
 
+// `edges` must list each shape's edges contiguously, shapes in ascending order (EdgeBuilder does).
 // Calls span(row, shape, col_begin, col_end) for every even-odd span of every shape on rows
 // [row_begin, row_end), clipped to [col_begin, col_end) and non-empty. Blocks of `block_rows`
 // rows (block starts aligned to row_begin) run in parallel; within a block rows are visited in
@@ -80,7 +81,14 @@ void scan_spans(const std::vector<ScanEdge>& edges, int row_begin, int row_end, 
       }
       for (int row = r0; row < r1; ++row) {
         auto& crossings = row_crossings[std::size_t(row - r0)];
-        std::sort(crossings.begin(), crossings.end());
+        // Bucket edge ids ascend and shapes' edges are contiguous, so crossings already come
+        // grouped by ascending shape: only each (small) group needs sorting by x.
+        for (auto group = crossings.begin(); group != crossings.end();) {
+          auto group_end = group + 1;
+          while (group_end != crossings.end() && group_end->shape == group->shape) ++group_end;
+          std::sort(group, group_end);
+          group = group_end;
+        }
         for (std::size_t i = 0; i + 1 < crossings.size();) {
           if (crossings[i].shape != crossings[i + 1].shape) {  // odd count: numerical leftover
             ++i;
