@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "terrain/detail/profiles.hpp"
 #include "terrain_test_support.hpp"
 
 namespace tw {
@@ -187,6 +188,9 @@ TEST(ShapeTerrain, RoadsSharingAnEndpointMeetLevelWithoutASpike) {
       EXPECT_LE(std::abs(h.at(col, row + 1) - h.at(col, row)), 0.08f * 1.5f + 0.01f)
           << col << " " << row;
     }
+  // The plan pins both profiles to one height at the shared end (they differ unpinned).
+  const TerrainPlan plan = plan_terrain(before, grid, {east, north}, {});
+  EXPECT_EQ(plan.profiles[0].back(), plan.profiles[1].front());
   // Both roads end at the same height: the two centre pixels beside the junction agree.
   EXPECT_NEAR(h.at(int(jp.x) - 1, int(jp.y)), h.at(int(jp.x), int(jp.y) - 1), 0.2);
 }
@@ -219,7 +223,12 @@ TEST(ShapeTerrain, ATributaryIsEasedDownToTheMainRiverSurface) {
   const GridSpec grid = test::unit_grid(kSize);
   // The main river runs east along a valley floor; the tributary comes down a side slope and
   // would end well above the main surface if nothing joined them.
-  auto valley = [](double x, double y) { return 50.0 - 0.02 * x + 0.3 * std::abs(y - 60.0); };
+  // A hollow upstream on the valley floor keeps the main river's surface below the floor
+  // downstream of it (the running minimum), so the tributary arrives too high.
+  auto valley = [](double x, double y) {
+    return 50.0 - 0.02 * x + 0.3 * std::abs(y - 60.0) -
+           3.0 * std::exp(-std::pow((x - 40.0) / 8.0, 2));
+  };
   const Raster<float> before = test::heights_from(grid, valley);
   Raster<float> h = before;
   auto main = test::feature(FeatureKind::river, 1, {{5.0, 60.5}, {195.0, 60.5}}, 8.0);
@@ -231,9 +240,13 @@ TEST(ShapeTerrain, ATributaryIsEasedDownToTheMainRiverSurface) {
   const int col = 100;
   for (int row = kSize - 189; row < kSize - 62; ++row)
     EXPECT_LE(h.at(col, row + 1), h.at(col, row) + 1e-4) << row;
-  // At the confluence the beds meet: no step between the tributary's mouth and the main bed.
-  const int mouth_row = kSize - 66;  // 5 m upstream of the main centerline
-  EXPECT_LE(h.at(col, mouth_row) - h.at(col, kSize - 61), 1.1);
+  // The water surfaces (bed + depth) meet at the mouth: no waterfall in the plan, although
+  // the tributary's own terrain ends 1.8 m above the main surface there.
+  const TerrainPlan plan = plan_terrain(before, grid, {main, trib}, {});
+  const double main_surface = detail::profile_at(plan.profiles[0], plan.steps[0], 95.5) + 2.0;
+  EXPECT_NEAR(plan.profiles[1].back() + 1.0, main_surface, 0.01);
+  // Held down by the hollow upstream (its floor at x = 40, 0.5 m off the valley axis).
+  EXPECT_NEAR(main_surface, 50.0 - 0.8 - 3.0 + 0.15, 0.05);
 }
 
 TEST(ShapeTerrain, TilesAndThreadCountsGiveIdenticalBits) {
