@@ -53,7 +53,7 @@ TEST(PipelineConfig, ReadsValuesAndFillsDefaults) {
   EXPECT_EQ(roads.layer, "roads");
   EXPECT_EQ(roads.kind, FeatureKind::road);
   EXPECT_DOUBLE_EQ(roads.width, 8.0);
-  EXPECT_DOUBLE_EQ(roads.profile.max_grade, ProfileConfig{}.max_grade);
+  EXPECT_DOUBLE_EQ(roads.road.max_grade, RoadProfile{}.max_grade);
   EXPECT_FALSE(roads.synthesis.has_value());
   EXPECT_TRUE(c.existing.empty());
 }
@@ -61,7 +61,7 @@ TEST(PipelineConfig, ReadsValuesAndFillsDefaults) {
 TEST(PipelineConfig, ReadsEveryNestedSection) {
   const PipelineConfig c = parse(R"(version: 1
 seed: 3
-generate: { width: 300, height: 200, cell_size: 2.5, relief: 50, origin: [1000, 9000] }
+generate: { width: 300, height: 200, pixel_size: 2.5, relief: 50, origin: [1000, 9000] }
 resolution: 4
 output: { dir: /tmp/o, exr: false, geotiff: true, preview: false }
 backend: cpu
@@ -70,7 +70,7 @@ features:
   roads: { source: m.gpkg, kind: road, width_attribute: w, where: "type = 'a'",
            profile: { max_grade: 0.05, shoulder_width: 2, falloff: 10, smoothing: 30 },
            synthesis: { exemplar: [a.png, b.png], delta: 3, scale: 6, stitch: false, backend: opencl } }
-  ridges: { source: m.gpkg, layer: ridges, kind: ridge, width: 40, profile: { depth: 12 } }
+  ridges: { source: m.gpkg, layer: ridges, kind: ridge, width: 40, profile: { height: 12, sharpness: 2 } }
   rivers: { source: m.gpkg, layer: rivers, kind: river, width: 12,
             synthesis: { exemplar: r.png, seed: 99 } }
 existing:
@@ -80,7 +80,7 @@ existing:
   EXPECT_FALSE(c.heightfield.has_value());
   EXPECT_EQ(c.generate.width, 300);
   EXPECT_EQ(c.generate.height, 200);
-  EXPECT_DOUBLE_EQ(c.generate.cell_size, 2.5);
+  EXPECT_DOUBLE_EQ(c.generate.pixel_size, 2.5);
   EXPECT_DOUBLE_EQ(c.generate.origin_x, 1000.0);
   EXPECT_DOUBLE_EQ(c.generate.origin_y, 9000.0);
   EXPECT_DOUBLE_EQ(*c.resolution, 4.0);
@@ -95,8 +95,8 @@ existing:
   const FeatureClassConfig& roads = c.features[2];
   EXPECT_EQ(roads.width_attribute, "w");
   EXPECT_EQ(roads.where, "type = 'a'");
-  EXPECT_DOUBLE_EQ(roads.profile.max_grade, 0.05);
-  EXPECT_DOUBLE_EQ(roads.profile.smoothing, 30.0);
+  EXPECT_DOUBLE_EQ(roads.road.max_grade, 0.05);
+  EXPECT_DOUBLE_EQ(roads.road.smoothing, 30.0);
   ASSERT_TRUE(roads.synthesis.has_value());
   EXPECT_EQ(roads.synthesis->exemplars,
             (std::vector<fs::path>{"/base/dir/a.png", "/base/dir/b.png"}));
@@ -106,7 +106,8 @@ existing:
   EXPECT_EQ(roads.synthesis->backend, "opencl");
   EXPECT_EQ(c.features[1].synthesis->seed, 99u);
   EXPECT_EQ(c.features[1].synthesis->backend, "");
-  EXPECT_DOUBLE_EQ(c.features[0].profile.depth, 12.0);
+  EXPECT_DOUBLE_EQ(c.features[0].ridge.height, 12.0);
+  EXPECT_DOUBLE_EQ(c.features[0].ridge.sharpness, 2.0);
   ASSERT_EQ(c.existing.size(), 2u);
   EXPECT_EQ(c.existing[0].layer, "existing");
   EXPECT_EQ(c.existing[1].source, fs::path("/abs/lines.shp"));

@@ -1,0 +1,253 @@
+// The terraweave command line on bad inputs (issue #2 item 11): exit code 1 and one line
+// "terraweave: error: ..." naming the file, key or FID, and nothing written. Usage errors exit 2.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw::test {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+const char* const kPipeline = R"(version: 1
+seed: 1
+heightfield: dem.tif
+output: { dir: out, preview: false }
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }
+  rivers: { source: map.gpkg, layer: rivers, kind: river, width_attribute: width, width: 8 }
+existing:
+  - { source: map.gpkg, layer: existing }
+)";
+
+const VectorFeature kRoad{"LINESTRING (500100 5000100, 500300 5000300, 500500 5000350)", 6.0};
+const VectorFeature kRiver{"LINESTRING (500050 5000600, 500320 5000400, 500600 5000050)", 8.0};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every file under a folder with its contents.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  if (!fs::exists(dir)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file()) files[entry.path().string()] = read_file(entry.path());
+  }
+  return files;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_dem(dir / "dem.tif");
+    write_layer(dir / "map.gpkg", "roads", {kRoad});
+    write_layer(dir / "map.gpkg", "rivers", {kRiver});
+    write_layer(dir / "map.gpkg", "existing",
+                {{"POLYGON ((500400 5000500, 500450 5000500, 500450 5000550, 500400 5000550, "
+                  "500400 5000500))"}});
+    write_pipeline(kPipeline);
+    // A previous run's outputs, which a failing run must leave exactly as they are.
+    fs::create_directories(dir / "out");
+    std::ofstream(dir / "out/height.exr") << "previous height";
+    std::ofstream(dir / "out/notes.txt") << "kept";
+  }
+
+  void write_pipeline(const std::string& text) { std::ofstream(dir / "pipeline.yaml") << text; }
+
+  CommandResult terraweave(const std::string& args) {
+    return run_command("cd '" + dir.path().string() + "' && '" + binary().string() + "' " + args);
+  }
+
+  // TERRAWEAVE_BINARY, or the build tree's CLI beside this test (tests/CMakeLists.txt passes
+  // both variables as one ENVIRONMENT list to gtest_discover_tests, which keeps only the first).
+  static fs::path binary() {
+    if (std::getenv("TERRAWEAVE_BINARY") != nullptr) return terraweave_binary();
+    return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "src/terraweave";
+  }
+
+  // Runs the pipeline with `args` and checks the failure: exit 1, one line, naming `what`,
+  // and the output folder untouched.
+  void expect_failure(const std::string& args, const std::vector<std::string>& what) {
+    const auto before = snapshot(dir / "out");
+    const CommandResult r = terraweave("-q run " + args);
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const std::vector<std::string> lines = lines_of(r.output);
+    ASSERT_EQ(lines.size(), 1u) << r.output;
+    EXPECT_THAT(lines[0], StartsWith("terraweave: error: "));
+    for (const std::string& w : what) EXPECT_THAT(lines[0], HasSubstr(w));
+    EXPECT_EQ(snapshot(dir / "out"), before) << "a failing run wrote into the output folder";
+  }
+
+  // Replaces the roads with `roads` in a fresh file (a Shapefile for a layer without CRS).
+  void expect_bad_roads(const std::vector<VectorFeature>& roads,
+                        const std::vector<std::string>& what,
+                        const std::string& crs = "EPSG:32631") {
+    const fs::path file =
+        dir / ("bad" + std::to_string(++bad_files) + (crs.empty() ? ".shp" : ".gpkg"));
+    write_layer(file, crs.empty() ? file.stem().string() : "roads", roads, crs);
+    expect_failure("pipeline.yaml --set features.roads.source=" + file.string() +
+                       (crs.empty() ? " --set features.roads.layer=" + file.stem().string() : ""),
+                   what);
+  }
+
+  int bad_files = 0;
+
+  TempDir dir;
+};
+
+TEST_F(Cli, GoodRunWritesEveryLayerAndKeepsOtherFiles) {
+  const CommandResult r = terraweave("-q run pipeline.yaml --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* name : {"height.exr", "height.tif", "splat.exr", "splat.tif", "avoidance.exr",
+                           "avoidance.tif", "report.json"}) {
+    EXPECT_TRUE(fs::exists(dir / "out" / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out/preview.png"));  // output.preview: false
+  EXPECT_NE(read_file(dir / "out/height.exr"), "previous height");
+  EXPECT_EQ(read_file(dir / "out/notes.txt"), "kept");
+  EXPECT_THAT(read_file(dir / "out/report.json"), HasSubstr("\"name\": \"rivers\""));
+}
+
+TEST_F(Cli, OutAndSetOverrideThePipeline) {
+  const CommandResult r =
+      terraweave("-q run pipeline.yaml --out other --set output.preview=true --backend cpu");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "other/preview.png"));
+  EXPECT_EQ(read_file(dir / "out/height.exr"), "previous height");
+}
+
+TEST_F(Cli, ValidateChecksInputsAndWritesNothing) {
+  const auto before = snapshot(dir.path());
+  CommandResult r = terraweave("validate pipeline.yaml --set output.dir=fresh");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("pipeline.yaml: ok (2 feature classes, 2 features"));
+  EXPECT_EQ(snapshot(dir.path()), before);
+  r = terraweave("validate pipeline.yaml --set heightfield=" + (dir / "none.tif").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("none.tif"));
+}
+
+TEST_F(Cli, MissingOrUnreadableFiles) {
+  expect_failure("missing.yaml", {"missing.yaml: cannot read the pipeline file"});
+  expect_failure("pipeline.yaml --set heightfield=" + (dir / "none.tif").string(),
+                 {"none.tif: cannot open as a raster"});
+  std::ofstream(dir / "garbage.tif") << "this is not a raster";
+  expect_failure("pipeline.yaml --set heightfield=" + (dir / "garbage.tif").string(),
+                 {"garbage.tif: cannot open as a raster"});
+  expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "none.gpkg").string(),
+                 {"none.gpkg: cannot open as vector data"});
+  expect_failure("pipeline.yaml --set features.rivers.layer=lakes", {"map.gpkg: no layer 'lakes'"});
+}
+
+TEST_F(Cli, UnknownKeyOrWrongTypeNamesFileLineAndColumn) {
+  std::string text = kPipeline;
+  text.replace(text.find("width: 6"), 5, "widht");
+  write_pipeline(text);
+  expect_failure("pipeline.yaml",
+                 {"pipeline.yaml:6:56: features.roads.widht: unknown key (did you mean 'width'?)"});
+  text = kPipeline;
+  text.replace(text.find("width: 6"), 8, "width: six");
+  write_pipeline(text);
+  expect_failure("pipeline.yaml",
+                 {"pipeline.yaml:6:63: features.roads.width: expected a number, got 'six'"});
+  write_pipeline(kPipeline);
+  expect_failure("pipeline.yaml --set features.roads.colour=red",
+                 {"--set features.roads.colour=red: features.roads.colour: unknown key"});
+}
+
+TEST_F(Cli, MissingOrIncompatibleCrs) {
+  DemSpec no_crs;
+  no_crs.crs = "";
+  write_dem(dir / "nocrs.tif", no_crs);
+  expect_failure("pipeline.yaml --set heightfield=" + (dir / "nocrs.tif").string(),
+                 {"nocrs.tif: has no CRS"});
+  expect_bad_roads({kRoad}, {"bad1.shp:bad1: layer has no CRS"}, "");
+  // The same numbers in a UTM zone of the other hemisphere land thousands of km away.
+  expect_bad_roads({kRoad}, {"bad2.gpkg:roads", "no line feature on the heightfield"},
+                   "EPSG:31985");
+}
+
+TEST_F(Cli, EmptyLayer) {
+  expect_bad_roads({}, {"features.roads:", "bad1.gpkg:roads: no line feature on the heightfield"});
+  expect_failure("pipeline.yaml --set \"features.rivers.where=width > 100\"",
+                 {"features.rivers:", "no line feature"});
+}
+
+TEST_F(Cli, PointsOrPolygonsWhereLinesAreExpected) {
+  expect_bad_roads({kRoad, {"POINT (500100 5000100)", 5.0}},
+                   {"bad1.gpkg:roads: FID 2: is a Point where lines"});
+  expect_bad_roads(
+      {{"POLYGON ((500100 5000100, 500200 5000100, 500200 5000200, 500100 5000100))", 5.0}},
+      {"bad2.gpkg:roads: FID 1: is a Polygon where lines"});
+}
+
+TEST_F(Cli, ZeroLengthOrSelfIntersectingLines) {
+  expect_bad_roads({{"LINESTRING (500100 5000100, 500100 5000100)", 5.0}},
+                   {"bad1.gpkg:roads: FID 1: part 0 has zero length"});
+  expect_bad_roads(
+      {kRoad, {"LINESTRING (500100 5000100, 500300 5000300, 500300 5000100, 500100 5000300)", 5.0}},
+      {"bad2.gpkg:roads: FID 2: part 0 intersects itself"});
+}
+
+TEST_F(Cli, NanOrHugeCoordinates) {
+  expect_bad_roads({{"LINESTRING (500100 5000100, 1e300 5000300)", 5.0}},
+                   {"bad1.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
+  expect_bad_roads({VectorFeature({{500100, 5000100}, {std::nan(""), 5000300}}, 5.0)},
+                   {"bad2.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
+}
+
+TEST_F(Cli, DemAllNodata) {
+  DemSpec empty;
+  empty.nodata = -9999.0;
+  empty.all_nodata = true;
+  write_dem(dir / "empty.tif", empty);
+  expect_failure("pipeline.yaml --set heightfield=" + (dir / "empty.tif").string(),
+                 {"empty.tif: every cell is nodata"});
+}
+
+TEST_F(Cli, WidthNotPositive) {
+  expect_failure("pipeline.yaml --set features.roads.width=0",
+                 {"--set features.roads.width=0: features.roads.width: must be > 0, got 0"});
+  write_layer(dir / "bad.gpkg", "rivers",
+              {kRiver, {"LINESTRING (500100 5000500, 500200 5000450)", -3.0}});
+  expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "bad.gpkg").string(),
+                 {"bad.gpkg:rivers: FID 2: width must be a positive number of metres, got -3"});
+}
+
+TEST_F(Cli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(terraweave("run").exit_code, 2);
+  EXPECT_EQ(terraweave("frobnicate pipeline.yaml").exit_code, 2);
+  EXPECT_EQ(terraweave("run pipeline.yaml --threads 0").exit_code, 2);
+  EXPECT_EQ(terraweave("run pipeline.yaml --backend gpu").exit_code, 2);
+  EXPECT_EQ(snapshot(dir / "out").size(), 2u);
+}
+
+TEST_F(Cli, VersionNamesTheLibraries) {
+  const CommandResult r = terraweave("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("terraweave 0.1.0 (GDAL"));
+}
+
+}  // namespace
+}  // namespace tw::test

@@ -1,0 +1,256 @@
+// The demo pipeline end to end through the library: georeferenced layers, splat weights that
+// sum to 1, heights changed along rivers and roads and nowhere beyond the features' reach,
+// and the same bytes for any thread count.
+#include "pipeline/run.hpp"
+
+#include <gdal_priv.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <ogr_spatialref.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "geo/features.hpp"
+#include "geo/heightfield.hpp"
+#include "layers/write.hpp"
+#include "pipeline/detail/stages.hpp"
+#include "raster/rasterize.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kResolution = 15.0;  // metres: 480 x 480 cells, a fast run
+
+PipelineConfig demo_config(const fs::path& out) {
+  return load_pipeline(test::source_dir() / "pipelines/demo.yaml",
+                       {{"resolution", std::to_string(kResolution)}, {"output.dir", out.string()}});
+}
+
+// One run of the demo shared by the tests of this suite.
+class DemoRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = new test::TempDir;
+    config_ = new PipelineConfig(demo_config(out_->path()));
+    report_ = new RunReport(run_pipeline(*config_));
+    HeightfieldOptions options;
+    options.resolution = kResolution;
+    original_ = new Heightfield(read_heightfield(config_->heightfield->string(), options));
+  }
+  static void TearDownTestSuite() {
+    delete original_;
+    delete report_;
+    delete config_;
+    delete out_;
+  }
+
+  static fs::path out(const std::string& name) { return out_->path() / name; }
+
+  // The lines of the class `name`, read as the run read them.
+  static std::vector<LineFeature> lines_of(const std::string& name) {
+    for (const FeatureClassConfig& c : config_->features) {
+      if (c.name != name) continue;
+      return read_line_features(
+          {c.name, {c.source.string(), c.layer, c.where}, c.width_attribute, c.width}, *original_);
+    }
+    ADD_FAILURE() << "no class " << name;
+    return {};
+  }
+
+  static test::TempDir* out_;
+  static PipelineConfig* config_;
+  static RunReport* report_;
+  static Heightfield* original_;
+};
+
+test::TempDir* DemoRun::out_ = nullptr;
+PipelineConfig* DemoRun::config_ = nullptr;
+RunReport* DemoRun::report_ = nullptr;
+Heightfield* DemoRun::original_ = nullptr;
+
+TEST_F(DemoRun, WritesEveryLayerAndAReport) {
+  for (const char* name : {"height.exr", "height.tif", "splat.exr", "splat.tif", "avoidance.exr",
+                           "avoidance.tif", "preview.png", "report.json"}) {
+    EXPECT_TRUE(fs::exists(out(name))) << name;
+  }
+  EXPECT_EQ(report_->outputs.size(), 8u);
+  std::vector<std::string> stages;
+  for (const auto& s : report_->stages) stages.push_back(s.stage);
+  EXPECT_EQ(stages,
+            (std::vector<std::string>{"ingest", "ribbons", "avoidance", "terrain", "layers"}));
+
+  std::ifstream in(out("report.json"));
+  const nlohmann::json json = nlohmann::json::parse(in);
+  EXPECT_EQ(json["seed"], 7);
+  ASSERT_EQ(json["classes"].size(), 3u);
+  EXPECT_EQ(json["classes"][0]["name"], "ridges");
+  EXPECT_EQ(json["classes"][2]["name"], "roads");
+  EXPECT_EQ(json["classes"][2]["features"].size(), 5u);  // samples/README.md: 5 roads
+  for (const auto& f : json["classes"][2]["features"]) {
+    EXPECT_GT(f["length_m"].get<double>(), 100.0);
+    EXPECT_EQ(f["pieces"].get<int>(), int(std::ceil(f["length_m"].get<double>() / 4.0)));
+  }
+  EXPECT_GT(json["forbidden_pixels"].get<std::int64_t>(), 0);
+}
+
+TEST_F(DemoRun, LayersAreGeoreferencedLikeTheHeightfield) {
+  const GridSpec& grid = original_->grid;
+  EXPECT_EQ(report_->grid, grid);
+  OGRSpatialReference expected;
+  ASSERT_EQ(expected.importFromWkt(original_->crs_wkt.c_str()), OGRERR_NONE);
+  for (const char* name : {"height.tif", "splat.tif", "avoidance.tif"}) {
+    SCOPED_TRACE(name);
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(out(name).c_str(), GDAL_OF_RASTER));
+    ASSERT_NE(ds, nullptr);
+    EXPECT_EQ(ds->GetRasterXSize(), grid.width);
+    EXPECT_EQ(ds->GetRasterYSize(), grid.height);
+    double gt[6];
+    ASSERT_EQ(ds->GetGeoTransform(gt), CE_None);
+    const auto want = grid.geotransform();
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(gt[i], want[i], 1e-6) << i;
+    ASSERT_NE(ds->GetSpatialRef(), nullptr);
+    EXPECT_TRUE(ds->GetSpatialRef()->IsSame(&expected));
+  }
+  const ExrContents exr = read_exr(out("height.exr"));
+  EXPECT_EQ(exr.crs_wkt, original_->crs_wkt);
+  EXPECT_DOUBLE_EQ(exr.origin.x, grid.origin_x);
+  EXPECT_DOUBLE_EQ(exr.origin.y, grid.origin_y);
+  EXPECT_DOUBLE_EQ(exr.pixel_size.x, grid.pixel_width);
+}
+
+TEST_F(DemoRun, SplatWeightsSumToOneAndShowTheFeatures) {
+  const ExrContents splat = read_exr(out("splat.exr"));
+  ASSERT_FALSE(splat.bands.empty());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < splat.bands[0].pixels.size(); ++i) {
+    double sum = 0.0;
+    for (const auto& band : splat.bands) sum += band.pixels[i];
+    worst = std::max(worst, std::abs(sum - 1.0));
+  }
+  EXPECT_LT(worst, 1e-5);
+  for (const char* material : {"splat.road", "splat.riverbed", "splat.ridge_rock"}) {
+    const auto it = std::find(splat.channels.begin(), splat.channels.end(), material);
+    ASSERT_NE(it, splat.channels.end()) << material;
+    const auto& band = splat.bands[it - splat.channels.begin()];
+    // Roads are narrower than the 15 m pixels: partial coverage.
+    EXPECT_GT(*std::max_element(band.pixels.begin(), band.pixels.end()), 0.5f) << material;
+  }
+}
+
+// Heights of the run's output and of the input at points along `lines` (every pixel).
+struct Samples {
+  std::vector<float> before, after;
+};
+Samples sample_along(const std::vector<LineFeature>& lines, const Heightfield& original,
+                     const Raster<float>& after) {
+  Samples s;
+  for (const LineFeature& line : lines) {
+    for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
+      const double length = distance(line.points[i], line.points[i + 1]);
+      for (double t = 0.0; t < length; t += original.grid.pixel_width) {
+        const Vec2 p =
+            original.grid.world_to_pixel(lerp(line.points[i], line.points[i + 1], t / length));
+        const int col = int(p.x), row = int(p.y);
+        if (!after.inside(col, row)) continue;
+        s.before.push_back(original.height.at(col, row));
+        s.after.push_back(after.at(col, row));
+      }
+    }
+  }
+  return s;
+}
+
+TEST_F(DemoRun, RiversAreCarvedAndRoadsGraded) {
+  const ExrContents height = read_exr(out("height.exr"));
+  ASSERT_EQ(height.bands.size(), 1u);
+  const Samples rivers = sample_along(lines_of("rivers"), *original_, height.bands[0]);
+  ASSERT_GT(rivers.before.size(), 100u);
+  std::size_t carved = 0;
+  for (std::size_t i = 0; i < rivers.before.size(); ++i)
+    carved += rivers.after[i] < rivers.before[i] - 1.0f;
+  EXPECT_GT(double(carved) / rivers.before.size(), 0.9) << carved << " of " << rivers.before.size();
+
+  const Samples roads = sample_along(lines_of("roads"), *original_, height.bands[0]);
+  ASSERT_GT(roads.before.size(), 100u);
+  std::size_t graded = 0;
+  for (std::size_t i = 0; i < roads.before.size(); ++i)
+    graded += std::abs(roads.after[i] - roads.before[i]) > 0.05f;
+  EXPECT_GT(double(graded) / roads.before.size(), 0.5) << graded << " of " << roads.before.size();
+}
+
+TEST_F(DemoRun, NothingChangesBeyondTheFeaturesReach) {
+  std::vector<std::vector<LineFeature>> lines;
+  for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
+  const std::vector<TerrainFeature> features = detail::terrain_features(*config_, lines);
+  std::vector<std::vector<Vec2>> centerlines;
+  std::vector<double> widths;
+  const double margin = 2.0 * original_->grid.pixel_width;
+  for (const TerrainFeature& f : features) {
+    centerlines.push_back(f.centerline.points);
+    if (f.centerline.closed) centerlines.back().push_back(f.centerline.points.front());
+    widths.push_back(2.0 * (feature_reach(f) + margin));
+  }
+  Raster<std::uint8_t> near;
+  burn_buffered_lines(centerlines, widths, original_->grid, Window::whole(original_->grid), near,
+                      1);
+  const ExrContents height = read_exr(out("height.exr"));
+  std::size_t far = 0, changed = 0;
+  for (std::size_t i = 0; i < near.pixels.size(); ++i) {
+    if (near.pixels[i]) continue;
+    ++far;
+    changed += height.bands[0].pixels[i] != original_->height.pixels[i];
+  }
+  EXPECT_GT(far, near.pixels.size() / 4);
+  EXPECT_EQ(changed, 0u) << "of " << far << " pixels beyond reach";
+}
+
+TEST(PipelineRun, SameBytesForAnyThreadCount) {
+  test::TempDir one, two;
+  PipelineConfig config = demo_config(one.path());
+  config.resolution = 40.0;
+  RunOptions options;
+  options.threads = 1;
+  run_pipeline(config, options);
+  options.threads = 2;
+  options.output_dir = two.path();
+  run_pipeline(config, options);
+  for (const char* name : {"height.exr", "splat.exr", "avoidance.exr"}) {
+    const ExrContents a = read_exr(one / name), b = read_exr(two / name);
+    ASSERT_EQ(a.bands.size(), b.bands.size()) << name;
+    for (std::size_t i = 0; i < a.bands.size(); ++i) {
+      EXPECT_EQ(std::memcmp(a.bands[i].pixels.data(), b.bands[i].pixels.data(),
+                            a.bands[i].pixels.size() * sizeof(float)),
+                0)
+          << name << " " << a.channels[i];
+    }
+  }
+}
+
+TEST(PipelineRun, AFailingRunWritesNothing) {
+  test::TempDir out;
+  PipelineConfig config = demo_config(out.path());
+  config.features.back().source = out / "missing.gpkg";
+  EXPECT_THROW(run_pipeline(config), Error);
+  EXPECT_TRUE(fs::is_empty(out.path()));
+}
+
+TEST(PipelineRun, ValidateOnlyReadsAndWritesNothing) {
+  test::TempDir out;
+  RunOptions options;
+  options.write_outputs = false;
+  const RunReport report = run_pipeline(demo_config(out / "never"), options);
+  EXPECT_FALSE(fs::exists(out / "never"));
+  EXPECT_EQ(report.classes.size(), 3u);
+  EXPECT_TRUE(report.outputs.empty());
+}
+
+}  // namespace
+}  // namespace tw
