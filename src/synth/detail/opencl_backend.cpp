@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <numeric>
+#include <string>
+#include <unordered_map>
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
@@ -85,6 +87,40 @@ ColumnStats column_stats(const ColumnSet& set, std::size_t count) {
     stats.sums[j] = sum;
   }
   return stats;
+}
+
+// Previous positions grouped by exact opaque mask (ranks ascending within a group), and the
+// group of each current column's mask (-1 when no previous position shares it).
+struct MaskGroups {
+  std::vector<cl_int> start{0};  // groups + 1
+  std::vector<cl_int> ranks;
+  std::vector<cl_int> of_left;
+};
+
+MaskGroups group_by_mask(const ColumnStats& previous, std::size_t previous_count,
+                         const ColumnStats& left, std::size_t left_count, std::size_t words) {
+  auto key = [words](const ColumnStats& stats, std::size_t j) {
+    return std::string(reinterpret_cast<const char*>(stats.masks.data() + j * words),
+                       words * sizeof(cl_ulong));
+  };
+  std::unordered_map<std::string, int> group_of;
+  std::vector<std::vector<cl_int>> members;
+  for (std::size_t r = 0; r < previous_count; ++r) {
+    auto [it, added] = group_of.try_emplace(key(previous, r), int(members.size()));
+    if (added) members.emplace_back();
+    members[std::size_t(it->second)].push_back(cl_int(r));
+  }
+  MaskGroups groups;
+  for (const auto& group : members) {
+    groups.ranks.insert(groups.ranks.end(), group.begin(), group.end());
+    groups.start.push_back(cl_int(groups.ranks.size()));
+  }
+  groups.of_left.resize(left_count);
+  for (std::size_t j = 0; j < left_count; ++j) {
+    auto found = group_of.find(key(left, j));
+    groups.of_left[j] = found == group_of.end() ? -1 : found->second;
+  }
+  return groups;
 }
 
 std::size_t round_up(std::size_t value, std::size_t multiple) {
@@ -336,6 +372,8 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
 
   const ColumnStats right_stats = column_stats(sorted_set, previous);
   const ColumnStats left_stats = column_stats(left, current);
+  const MaskGroups groups =
+      group_by_mask(right_stats, previous, left_stats, current, (std::size_t(column) + 63) / 64);
 
   const cl::Context& context = context_.context();
   cl::Buffer cost_buffer = input_buffer(context, sorted_cost);
@@ -343,6 +381,9 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
   cl::Buffer right_buffer = input_buffer(context, sorted_set.samples);
   cl::Buffer right_masks = input_buffer(context, right_stats.masks);
   cl::Buffer right_sums = input_buffer(context, right_stats.sums);
+  cl::Buffer group_start = input_buffer(context, groups.start);
+  cl::Buffer group_ranks = input_buffer(context, groups.ranks);
+  cl::Buffer left_group = input_buffer(context, groups.of_left);
   cl::Buffer left_buffer = input_buffer(context, left.samples);
   cl::Buffer left_masks = input_buffer(context, left_stats.masks);
   cl::Buffer left_sums = input_buffer(context, left_stats.sums);
@@ -350,9 +391,9 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
   cl::Buffer argmin_out = output_buffer(context, current * sizeof(cl_int));
   cl::Kernel& k = kernel("row_update", "update_table_row");
   set_args(k, cost_buffer, order_buffer, right_buffer, right_masks, right_sums, cl_int(previous),
-           left_buffer, left_masks, left_sums, cl_int(current), cl_int(column), distance_table_,
-           cl_uint(kGamma), cl_uint(kOpaqueAlpha), cl_int(kMismatchExtra),
-           cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
+           group_start, group_ranks, left_buffer, left_masks, left_sums, left_group,
+           cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma), cl_uint(kOpaqueAlpha),
+           cl_int(kMismatchExtra), cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
   launch(k, "update_table_row", current, kRowGroup);
   read_buffer(context_.queue(), cost_out, cost);
   read_buffer(context_.queue(), argmin_out, argmin);

@@ -1,6 +1,9 @@
 #pragma once
 // The OpenCL implementation of the DP stages (kernels/*.cl). Each kernel has exactly one host
 // wrapper here and a CPU twin in the CPU backend; tests/synth/test_opencl_*.cpp compare them.
+// Backtracking stays on the host (synth/detail/dp.cpp): it follows one argmin per row, a
+// strictly sequential chain of N dependent reads with nothing to parallelize, and the argmins
+// are already on the host after each row.
 #include <cstdint>
 #include <map>
 #include <memory>
