@@ -212,6 +212,27 @@ TEST_F(DemoRun, NothingChangesBeyondTheFeaturesReach) {
   EXPECT_EQ(changed, 0u) << "of " << far << " pixels beyond reach";
 }
 
+TEST_F(DemoRun, WindowedAvoidanceEqualsTheWholeGridMap) {
+  std::vector<std::vector<LineFeature>> lines;
+  for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
+  const detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(*config_, lines, original_->grid);
+  const detail::ExistingFeatures existing = detail::load_existing(config_->existing, *original_);
+  AvoidanceInputs inputs;
+  inputs.polygons = existing.polygons;
+  inputs.junction_discs = ribbons.junction_discs;
+  for (const auto& class_ribbons : ribbons.ribbons) {
+    for (const Ribbon& r : class_ribbons) inputs.ribbons.push_back(&r);
+  }
+  const AvoidanceMap expected =
+      build_avoidance_map(inputs, original_->grid, Window::whole(original_->grid));
+  const AvoidanceMap actual = detail::build_run_avoidance(existing, ribbons, original_->grid);
+  EXPECT_EQ(actual.forbidden.pixels, expected.forbidden.pixels);
+  EXPECT_EQ(actual.distance.pixels, expected.distance.pixels);
+  EXPECT_EQ(std::count(actual.forbidden.pixels.begin(), actual.forbidden.pixels.end(), 1),
+            report_->forbidden_pixels);
+}
+
 TEST(PipelineRun, SameBytesForAnyThreadCount) {
   test::TempDir one, two;
   PipelineConfig config = demo_config(one.path());
