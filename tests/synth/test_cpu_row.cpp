@@ -48,7 +48,7 @@ TEST(CpuRow, PrunedEqualsNaiveOnRandomRows) {
     update_table_row_pruned(p, right, left, pruned_cost, pruned_arg, &evaluated);
     ASSERT_EQ(naive_cost, pruned_cost) << "seed " << seed;
     ASSERT_EQ(naive_arg, pruned_arg) << "seed " << seed;
-    EXPECT_LE(evaluated, std::int64_t(previous) * current);
+    EXPECT_LE(evaluated, std::int64_t(previous + 2) * current);  // + two early guesses per entry
   }
 }
 

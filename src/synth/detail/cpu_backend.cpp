@@ -42,6 +42,38 @@ std::int64_t edge_cost_capped(const std::uint32_t* right, const std::uint32_t* l
   return sum;
 }
 
+// Lower bounds on D for `length` previous positions from r0 against current position j.
+// Vectorized (clones for AVX-512 / AVX2); the bound only decides what to skip, so the
+// instruction set cannot change any result.
+__attribute__((target_clones("avx512f", "avx2", "default"), optimize("O3", "no-math-errno"))) void
+chunk_bounds(const EdgeStats& right, const EdgeStats& left, int r0, int length, int j, bool binary,
+             float* bound) {
+  for (int r = 0; r < length; ++r) bound[r] = 0.0f;
+  for (int b = 0; b < right.blocks; ++b) {
+    const std::size_t base = std::size_t(b) * right.count + r0;
+    const std::size_t at = std::size_t(b) * left.count + j;
+    const float lo = left.opaque[at], lr = left.red[at], lg = left.green[at], lb = left.blue[at];
+    const float size = right.block_size[b];
+    const float* ro = right.opaque.data() + base;
+    const float* rr = right.red.data() + base;
+    const float* rg = right.green.data() + base;
+    const float* rb = right.blue.data() + base;
+    if (binary) {
+      for (int r = 0; r < length; ++r) {
+        const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
+        const float colour = 16.0f * std::sqrt(dr * dr + dg * dg + db * db) - size;
+        const float mismatch = std::fabs(ro[r] - lo);
+        bound[r] += std::max(float(kGamma) * mismatch, colour + kMismatchExtra * mismatch);
+      }
+    } else {
+      for (int r = 0; r < length; ++r) {
+        const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
+        bound[r] += std::max(16.0f * std::sqrt(dr * dr + dg * dg + db * db) - size, 0.0f);
+      }
+    }
+  }
+}
+
 class CpuBackend final : public Backend {
  public:
   std::string name() const override { return "cpu"; }
@@ -161,74 +193,100 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
   argmin.assign(std::size_t(count), -1);
   if (previous == 0 || count == 0) return;
 
-  // Visit order: increasing (P[v], v), with costs and samples copied into that order.
+  // Groups by the number of opaque samples n (binary alpha; one group otherwise): a pair whose
+  // counts differ by d has D >= gamma * d, so for each j groups are visited outward from its
+  // own count and dropped once min P + gamma * d cannot win. Inside a group: increasing (P, v).
+  auto opaque_count = [C](const std::uint32_t* samples) {
+    int n = 0;
+    for (int k = 0; k < C; ++k) n += is_opaque(samples[k]) ? 1 : 0;
+    return n;
+  };
+  const int groups = binary ? C + 1 : 1;
+  std::vector<int> group_of(static_cast<std::size_t>(previous), 0);
+  if (binary)
+    for (int v = 0; v < previous; ++v)
+      group_of[std::size_t(v)] = opaque_count(right.samples.data() + std::size_t(v) * C);
   std::vector<std::int32_t> order(static_cast<std::size_t>(previous));
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    if (group_of[a] != group_of[b]) return group_of[a] < group_of[b];
     return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
   });
+  std::vector<int> group_begin(std::size_t(groups) + 1, previous);
+  for (int r = previous - 1; r >= 0; --r) group_begin[std::size_t(group_of[order[r]])] = r;
+  for (int g = groups - 1; g >= 0; --g)
+    group_begin[std::size_t(g)] =
+        std::min(group_begin[std::size_t(g)], group_begin[std::size_t(g) + 1]);
   std::vector<std::int64_t> sorted_cost(static_cast<std::size_t>(previous));
   std::vector<std::uint32_t> sorted_samples(static_cast<std::size_t>(previous) * C);
+  std::vector<std::int32_t> rank(static_cast<std::size_t>(previous));  // v -> place in order
   for (int r = 0; r < previous; ++r) {
     sorted_cost[r] = previous_cost[order[r]];
+    rank[std::size_t(order[r])] = r;
     std::copy_n(right.samples.data() + std::size_t(order[r]) * C, C,
                 sorted_samples.data() + std::size_t(r) * C);
   }
+  const std::int64_t min_cost = *std::min_element(previous_cost.begin(), previous_cost.end());
   const EdgeStats right_stats = make_edge_stats(right, order);
   const EdgeStats left_stats = make_edge_stats(left);
-  const int blocks = right_stats.blocks;
   std::atomic<std::int64_t> evaluated{0};
 
-  tbb::parallel_for(tbb::blocked_range<int>(0, count, 8), [&](auto range) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, count, 32), [&](auto range) {
     float bound[kChunk];
     std::int64_t local_evaluated = 0;
+    std::int32_t neighbour = -1;  // argmin of the previous j in this task
     for (int j = range.begin(); j < range.end(); ++j) {
       const std::uint32_t* left_samples = left.samples.data() + std::size_t(j) * C;
       std::int64_t best = kNoCost;
       std::int32_t best_index = kNoIndex;
-      for (int r0 = 0; r0 < previous && sorted_cost[r0] <= best; r0 += kChunk) {
-        const int length = std::min(kChunk, previous - r0);
-        std::fill_n(bound, length, 0.0f);
-        for (int b = 0; b < blocks; ++b) {
-          const std::size_t base = std::size_t(b) * right_stats.count + r0;
-          const std::size_t at = std::size_t(b) * left_stats.count + j;
-          const float lo = left_stats.opaque[at], lr = left_stats.red[at];
-          const float lg = left_stats.green[at], lb = left_stats.blue[at];
-          const float size = right_stats.block_size[b];
-          const float* ro = right_stats.opaque.data() + base;
-          const float* rr = right_stats.red.data() + base;
-          const float* rg = right_stats.green.data() + base;
-          const float* rb = right_stats.blue.data() + base;
+      auto consider = [&](int r, std::int32_t v) {
+        const std::int64_t p = sorted_cost[r];
+        const std::int64_t limit = best == kNoCost ? kNoCost : best - p;
+        ++local_evaluated;
+        const std::int64_t d = edge_cost_capped(sorted_samples.data() + std::size_t(r) * C,
+                                                left_samples, C, binary, limit);
+        if (d <= limit && improves(p + d, v, best, best_index)) {
+          best = p + d;
+          best_index = v;
+        }
+      };
+      // A good first guess makes the bounds prune from the start: consecutive current positions
+      // are usually exemplar neighbours, and so are their optimal predecessors. Exact
+      // regardless: a guess is only a real candidate evaluated early.
+      if (neighbour >= 0) {
+        if (neighbour + 1 < previous) consider(rank[std::size_t(neighbour) + 1], neighbour + 1);
+        consider(rank[std::size_t(neighbour)], neighbour);
+      }
+      // Visits group g whose opaque count differs from j's by d (gap = gamma * d <= D).
+      auto visit_group = [&](int g, std::int64_t gap) {
+        const int end = group_begin[std::size_t(g) + 1];
+        for (int r0 = group_begin[std::size_t(g)]; r0 < end && sorted_cost[r0] + gap <= best;
+             r0 += kChunk) {
+          const int length = std::min(kChunk, end - r0);
+          chunk_bounds(right_stats, left_stats, r0, length, j, binary, bound);
           for (int r = 0; r < length; ++r) {
-            const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
-            const float colour = 16.0f * __builtin_sqrtf(dr * dr + dg * dg + db * db) - size;
-            const float mismatch = __builtin_fabsf(ro[r] - lo);
-            const float term =
-                binary ? std::max(float(kGamma) * mismatch, colour + kMismatchExtra * mismatch)
-                       : std::max(colour, 0.0f);
-            bound[r] += term;
+            const std::int64_t p = sorted_cost[r0 + r];
+            if (p + gap > best) break;
+            const std::int32_t v = order[r0 + r];
+            const float margin_bound = bound[r] * (1.0f - 1e-5f) - 1.0f;
+            const std::int64_t lower =
+                p + std::max<std::int64_t>(gap, std::int64_t(std::max(0.0f, margin_bound)));
+            if (lower > best || (lower == best && v > best_index)) continue;
+            consider(r0 + r, v);
           }
         }
-        for (int r = 0; r < length; ++r) {
-          const std::int64_t p = sorted_cost[r0 + r];
-          if (p > best) break;
-          const std::int32_t v = order[r0 + r];
-          const float margin_bound = bound[r] * (1.0f - 1e-5f) - 1.0f;
-          const std::int64_t lower = p + std::max<std::int64_t>(0, std::int64_t(margin_bound));
-          if (lower > best || (lower == best && v > best_index)) continue;
-          ++local_evaluated;
-          const std::int64_t limit = best == kNoCost ? kNoCost : best - p;
-          const std::int64_t d = edge_cost_capped(sorted_samples.data() + std::size_t(r0 + r) * C,
-                                                  left_samples, C, binary, limit);
-          if (d > limit) continue;
-          if (improves(p + d, v, best, best_index)) {
-            best = p + d;
-            best_index = v;
-          }
-        }
+      };
+      const int own = binary ? opaque_count(left_samples) : 0;
+      for (int d = 0; d < groups; ++d) {
+        const std::int64_t gap = binary ? std::int64_t(kGamma) * d : 0;
+        if (best != kNoCost && min_cost + gap > best) break;
+        if (own - d < 0 && own + d >= groups) break;
+        if (own - d >= 0) visit_group(own - d, gap);
+        if (d > 0 && own + d < groups) visit_group(own + d, gap);
       }
       cost[j] = best;
       argmin[j] = best_index;
+      neighbour = best_index;
     }
     evaluated += local_evaluated;
   });

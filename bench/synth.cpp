@@ -1,0 +1,210 @@
+// The CPU backend of the synthesizer on the paper's workloads: ms per DP row and valid
+// positions for exemplars 199x82 and 325x64 (samples/exemplars/), the pruned row against the
+// naive exact row, time versus the number of pieces (156x64, C = 90: linear) and versus the
+// exemplar width (H = 64, N = 23, C = 90: quadratic), peak memory, and ratios to the paper's
+// GTX 580 figures (30 ms and 650 ms per row). Prints numbers only; never fails on time.
+//
+// usage: bench_synth [--quick] [--pictures DIR]   (DIR: write synth_*.png result pictures)
+#include <OpenImageIO/imageio.h>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "ribbon/ribbon.hpp"
+#include "synth/baseline.hpp"
+#include "synth/detail/cpu_backend.hpp"
+#include "synth/detail/footprint.hpp"
+#include "synth/render.hpp"
+#include "synth/shapes.hpp"
+#include "synth/synthesize.hpp"
+
+namespace {
+
+using namespace tw;
+using Clock = std::chrono::steady_clock;
+
+std::string sample(const std::string& name) {
+  return std::string(TERRAWEAVE_SOURCE_DIR) + "/samples/exemplars/" + name;
+}
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+// A gentle arc (radius 400 m) of `pieces` pieces of `delta` m, one texel per metre.
+Ribbon arc_ribbon(int pieces, double width, double delta) {
+  const double radius = 400.0, length = delta * pieces;
+  Curve curve;
+  for (int i = 0; i <= 4 * pieces; ++i) {
+    const double a = length / radius * i / (4.0 * pieces);
+    curve.points.push_back({radius * std::sin(a), radius * (1 - std::cos(a))});
+  }
+  return make_ribbon(curve, {width, delta});
+}
+
+GridSpec canvas_for(const Ribbon& ribbon, double pixel) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Piece& p : ribbon.pieces)
+    for (Vec2 v : {p.top_left, p.bottom_left, p.bottom_right, p.top_right}) {
+      x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+      y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+    }
+  GridSpec g;
+  g.origin_x = x0 - 2 * pixel;
+  g.origin_y = y1 + 2 * pixel;
+  g.pixel_width = g.pixel_height = pixel;
+  g.width = int(std::ceil((x1 - x0) / pixel)) + 4;
+  g.height = int(std::ceil((y1 - y0) / pixel)) + 4;
+  return g;
+}
+
+Synthesis run(const Exemplar& e, const Ribbon& r, double scale = 1.0) {
+  auto backend = detail::make_cpu_backend();
+  SynthParams params;
+  params.scale = scale;
+  params.allow_empty_pieces = true;
+  return detail::synthesize_on(*backend, e, r, canvas_for(r, 1.0 / scale), nullptr, params);
+}
+
+double mean(const std::vector<int>& v) {
+  double s = 0;
+  for (int x : v) s += x;
+  return v.empty() ? 0 : s / v.size();
+}
+
+Exemplar crop(const Exemplar& e, int width) {
+  const int n = e.channel_count();
+  std::vector<float> t;
+  for (int y = 0; y < e.height; ++y)
+    t.insert(t.end(), e.texels.begin() + (std::size_t(y) * e.width) * n,
+             e.texels.begin() + (std::size_t(y) * e.width + width) * n);
+  return make_exemplar(width, e.height, e.channel_names, std::move(t), e.path + " (cropped)");
+}
+
+void per_row(const std::string& file, double paper_ms, int pieces, bool naive) {
+  const Exemplar e = load_exemplar(sample(file));
+  const Ribbon ribbon = arc_ribbon(pieces, 90.0, 12.0);
+  const Synthesis s = run(e, ribbon);
+  const double row = s.timings.update_ms / std::max(1, s.timings.rows);
+  const double other = (s.timings.find_valid_ms + s.timings.compact_ms + s.timings.extract_ms) /
+                       std::max(1, s.timings.rows);
+  std::printf(
+      "%-22s %4dx%-3d C=%d N=%d  valid/piece %7.0f of U=%d (%4.1f %%)  row update %8.1f ms"
+      "  other stages %6.1f ms/row  paper %5.0f ms  ratio %.2fx\n",
+      file.c_str(), e.width, e.height, s.column, pieces, mean(s.valid_counts),
+      e.width * (e.height + s.column),
+      100.0 * mean(s.valid_counts) / (e.width * (e.height + s.column)), row, other, paper_ms,
+      row / paper_ms);
+  if (!naive) return;
+  // One naive exact row (every pair, every sample) on the same columns, for the speed-up.
+  detail::ColumnSet right, left;
+  auto backend = detail::make_cpu_backend();
+  detail::PositionSpace space{e.width, e.height, s.column};
+  const auto fp =
+      detail::make_piece_footprint(ribbon.pieces[0], 1.0, s.column, GridSpec{}, nullptr);
+  std::vector<std::uint8_t> flags;
+  std::vector<std::int32_t> idx;
+  backend->find_valid_positions(e.cost, space, fp, flags);
+  backend->compact_valid_positions(flags, idx);
+  backend->extract_right_columns(e.cost, space, fp, idx, right);
+  backend->extract_left_columns(e.cost, space, idx, left);
+  std::vector<std::int64_t> previous(idx.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) previous[i] = std::int64_t((i * 7919) % 50000);
+  std::vector<std::int64_t> c1, c2;
+  std::vector<std::int32_t> a1, a2;
+  auto t0 = Clock::now();
+  std::int64_t evaluated = 0;
+  detail::update_table_row_pruned(previous, right, left, c1, a1, &evaluated);
+  const double pruned_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  t0 = Clock::now();
+  detail::update_table_row_naive(previous, right, left, c2, a2);
+  const double naive_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  std::printf(
+      "  synthetic row V=%zu: pruned %.1f ms (%.3f %% of pairs fully evaluated), naive %.1f"
+      " ms, speed-up %.1fx, identical: %s\n",
+      idx.size(), pruned_ms, 100.0 * evaluated / (double(idx.size()) * idx.size()), naive_ms,
+      naive_ms / pruned_ms, (c1 == c2 && a1 == a2) ? "yes" : "NO");
+}
+
+void write_png(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgba) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return;
+  out->open(path, OIIO::ImageSpec(w, h, 4, OIIO::TypeDesc::UINT8));
+  out->write_image(OIIO::TypeDesc::UINT8, rgba.data());
+  out->close();
+}
+
+// The result over a light background, the ribbon cage in red (the paper's Figure 2).
+void picture(const Exemplar& e, const std::string& shape, double size, double width, double delta,
+             const std::string& path, bool parametric = false) {
+  const Ribbon ribbon = make_ribbon(make_shape(shape, size), {width, delta});
+  const GridSpec canvas = canvas_for(ribbon, 1.0);
+  const Synthesis s = parametric ? parametric_baseline(e, ribbon, 1.0) : run(e, ribbon);
+  const Window all = Window::whole(canvas);
+  const RenderedPattern p = render_pattern(e, ribbon, s, canvas, all, !parametric);
+  const Raster<float> cage = render_cage(ribbon, canvas, all);
+  std::vector<std::uint8_t> rgba(std::size_t(all.width) * all.height * 4);
+  for (int y = 0; y < all.height; ++y)
+    for (int x = 0; x < all.width; ++x) {
+      const float a = p.coverage.at(x, y);
+      std::uint8_t* px = rgba.data() + (std::size_t(y) * all.width + x) * 4;
+      for (int c = 0; c < 3; ++c) {
+        float v = 0.95f * (1 - a) + p.channels[std::size_t(c)].at(x, y) * a;
+        if (cage.at(x, y) > 0) v = c == 0 ? 0.9f : 0.3f * v + 0.1f;
+        px[c] = std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+      }
+      px[3] = 255;
+    }
+  write_png(path, all.width, all.height, rgba);
+  std::printf("picture %s: %s, %zu pieces, mean seam %.1f -> stitched %.1f\n", path.c_str(),
+              shape.c_str(), ribbon.pieces.size(), s.mean_seam_cost, s.mean_seam_cost_stitched);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  std::string pictures;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--quick")) quick = true;
+    if (!std::strcmp(argv[i], "--pictures") && i + 1 < argc) pictures = argv[++i];
+  }
+  if (!pictures.empty()) {
+    const Exemplar chain = load_exemplar(sample("chain_199x82.png"));
+    picture(chain, "s-curve", 700, 90, 14, pictures + "/synth_chain_scurve.png");
+    picture(chain, "heart", 700, 90, 14, pictures + "/synth_chain_heart.png");
+    picture(chain, "hairpin", 600, 90, 14, pictures + "/synth_chain_hairpin.png");
+    picture(chain, "s-curve", 700, 90, 14, pictures + "/synth_chain_scurve_parametric.png", true);
+    return 0;
+  }
+  std::printf(
+      "CPU backend, %d pieces per exemplar row test (1 texel per metre, C = 90, delta = 12)\n",
+      quick ? 4 : 8);
+  per_row("chain_199x82.png", 30.0, quick ? 4 : 8, !quick);
+  per_row("braid_325x64.png", 650.0, quick ? 3 : 6, false);
+
+  std::printf("\ntime vs number of pieces (zigzag 156x64, C = 90, delta = 12): expected linear\n");
+  const Exemplar zigzag = load_exemplar(sample("zigzag_156x64.png"));
+  for (int n : quick ? std::vector<int>{5, 10} : std::vector<int>{5, 10, 20, 40}) {
+    const Synthesis s = run(zigzag, arc_ribbon(n, 90.0, 12.0));
+    std::printf("  N=%3d  total %8.1f ms  DP rows %8.1f ms  (%.1f ms/row)\n", n, s.timings.total_ms,
+                s.timings.update_ms, s.timings.update_ms / std::max(1, s.timings.rows));
+  }
+  std::printf(
+      "\ntime vs exemplar width (braid cropped, H = 64, N = 23, C = 90): expected quadratic\n");
+  const Exemplar braid = load_exemplar(sample("braid_325x64.png"));
+  for (int w : quick ? std::vector<int>{80, 160} : std::vector<int>{80, 160, 240, 325}) {
+    const Synthesis s = run(crop(braid, w), arc_ribbon(23, 90.0, 12.0));
+    std::printf("  W=%3d  valid/piece %6.0f  total %8.1f ms  DP rows %8.1f ms\n", w,
+                mean(s.valid_counts), s.timings.total_ms, s.timings.update_ms);
+  }
+  std::printf("\npeak memory (max RSS): %.1f MB\n", peak_rss_mb());
+  return 0;
+}
