@@ -13,6 +13,7 @@
 #include "core/log.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
 
 namespace {
@@ -91,6 +92,23 @@ int main(int argc, char** argv) {
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
 
+  tw::SynthCommand synth_args;
+  CLI::App* synth = app.add_subcommand(
+      "synth", "synthesize a pattern along one curve into a PNG (the ribbon cage in red)");
+  synth->add_option("--exemplar", synth_args.exemplar, "exemplar image with alpha")->required();
+  synth
+      ->add_option("--curve", synth_args.curve,
+                   "line, arc, s-curve, circle, heart, hairpin, or an OGR source path[:layer]")
+      ->required();
+  synth->add_option("--length", synth_args.length, "size of a built-in shape, metres");
+  synth->add_option("--width", synth_args.width, "ribbon width b, metres")->required();
+  synth->add_option("--delta", synth_args.delta, "piece length, metres")->required();
+  synth->add_option("--scale", synth_args.scale, "exemplar texels per metre")->required();
+  synth->add_option("--backend", synth_args.backend, "cpu, opencl or auto")
+      ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
+  synth->add_option("--seed", synth_args.seed, "0: the global optimum; else a seeded start");
+  synth->add_option("-o,--output", synth_args.output, "PNG to write")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -110,6 +128,13 @@ int main(int argc, char** argv) {
       return run_command(run_args, run_options);
     }
     if (validate->parsed()) return validate_command(validate_args);
+    if (synth->parsed()) {
+      const tw::Synthesis result = tw::run_synth_command(synth_args);
+      std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",
+                  result.placements.size(), static_cast<long long>(result.total_cost),
+                  result.mean_seam_cost, result.mean_seam_cost_stitched, result.backend.c_str());
+      return 0;
+    }
   } catch (const std::exception& e) {
     std::fflush(stdout);
     std::fprintf(stderr, "terraweave: error: %s\n", e.what());

@@ -235,6 +235,26 @@ TEST_F(Cli, WidthNotPositive) {
                  {"bad.gpkg:rivers: FID 2: width must be a positive number of metres, got -3"});
 }
 
+TEST_F(Cli, SynthDrawsOneRibbonOrNamesTheBadInput) {
+  const std::string exemplar = (source_dir() / "samples/exemplars/chain_199x82.png").string();
+  CommandResult r = terraweave("-q synth --exemplar " + exemplar +
+                               " --curve line --length 12 --width 4 --delta 3 --scale 4 "
+                               "--backend cpu -o synth.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("4 pieces, Omega "));
+  EXPECT_GT(fs::file_size(dir / "synth.png"), 0u);
+  r = terraweave(
+      "-q synth --exemplar none.png --curve line --width 4 --delta 3 --scale 4 -o x.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(lines_of(r.output), ::testing::ElementsAre(StartsWith("terraweave: error: ")));
+  EXPECT_THAT(r.output, HasSubstr("none.png"));
+  r = terraweave("-q synth --exemplar " + exemplar +
+                 " --curve map.gpkg:nolayer --width 4 --delta 3 --scale 4 -o x.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("map.gpkg: no layer 'nolayer'"));
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST_F(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(terraweave("run").exit_code, 2);
   EXPECT_EQ(terraweave("frobnicate pipeline.yaml").exit_code, 2);

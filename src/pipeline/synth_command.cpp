@@ -1,0 +1,143 @@
+#include "pipeline/synth_command.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "core/atomic_output.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "synth/exemplar.hpp"
+#include "synth/render.hpp"
+#include "synth/shapes.hpp"
+
+namespace tw {
+
+namespace {
+
+bool is_shape(const std::string& name) {
+  for (const char* s : {"line", "arc", "s-curve", "circle", "heart", "hairpin"}) {
+    if (name == s) return true;
+  }
+  return false;
+}
+
+// The first feature of "path" or "path:layer" as a curve (a closed ring stays closed).
+Curve read_first_line(const std::string& source) {
+  GDALAllRegister();
+  std::string path = source, layer_name;
+  if (const auto colon = source.rfind(':'); colon != std::string::npos && colon > 1) {
+    path = source.substr(0, colon);
+    layer_name = source.substr(colon + 1);
+  }
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  if (!ds)
+    fail(
+        "{}: cannot open as vector data (or name a shape: line, arc, s-curve, circle, heart, "
+        "hairpin)",
+        path);
+  OGRLayer* layer = layer_name.empty() ? ds->GetLayer(0) : ds->GetLayerByName(layer_name.c_str());
+  if (!layer) fail("{}: no layer '{}'", path, layer_name);
+  const OGRSpatialReference* srs = layer->GetSpatialRef();
+  if (!srs || !srs->IsProjected())
+    fail("{}:{}: needs a projected CRS in metres", path, layer->GetName());
+  OGRFeatureUniquePtr feature(layer->GetNextFeature());
+  if (!feature) fail("{}:{}: empty layer", path, layer->GetName());
+  const OGRGeometry* g = feature->GetGeometryRef();
+  if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString) {
+    fail("{}:{}: FID {}: is not a LineString", path, layer->GetName(), feature->GetFID());
+  }
+  const auto* line = g->toLineString();
+  Curve curve;
+  for (int i = 0; i < line->getNumPoints(); ++i)
+    curve.points.push_back({line->getX(i), line->getY(i)});
+  if (curve.points.size() > 2 && curve.points.front() == curve.points.back()) {
+    curve.points.pop_back();
+    curve.closed = true;
+  }
+  return without_duplicates(curve);
+}
+
+// A canvas of one pixel per exemplar texel around the ribbon, with a margin of a width.
+GridSpec canvas_around(const Curve& curve, double width, double scale) {
+  Vec2 lo = curve.points.front(), hi = lo;
+  for (const Vec2 p : curve.points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  GridSpec grid;
+  grid.pixel_width = grid.pixel_height = 1.0 / scale;
+  grid.origin_x = lo.x - width;
+  grid.origin_y = hi.y + width;
+  grid.width = int(std::ceil((hi.x - lo.x + 2 * width) * scale));
+  grid.height = int(std::ceil((hi.y - lo.y + 2 * width) * scale));
+  if (grid.cell_count() > 64ll * 1024 * 1024) {
+    fail("synth: a canvas of {} x {} pixels is too large; lower --scale or --length", grid.width,
+         grid.height);
+  }
+  return grid;
+}
+
+void write_png(const std::filesystem::path& path, int width, int height,
+               const std::vector<std::uint8_t>& rgb) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
+  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+      !out->close()) {
+    fail("{}: cannot write: {}", path.string(), out->geterror());
+  }
+}
+
+}  // namespace
+
+Synthesis run_synth_command(const SynthCommand& c) {
+  if (!(c.width > 0)) fail("synth: --width must be > 0 metres, got {}", c.width);
+  if (!(c.delta > 0)) fail("synth: --delta must be > 0 metres, got {}", c.delta);
+  if (!(c.scale > 0)) fail("synth: --scale must be > 0 texels per metre, got {}", c.scale);
+  if (!(c.length > 0)) fail("synth: --length must be > 0 metres, got {}", c.length);
+  const Exemplar exemplar = load_exemplar(c.exemplar.string());
+  const Curve curve = is_shape(c.curve) ? make_shape(c.curve, c.length) : read_first_line(c.curve);
+  const Ribbon ribbon = make_ribbon(curve, {c.width, c.delta, 0.0});
+  const GridSpec canvas = canvas_around(curve, c.width, c.scale);
+  SynthParams params;
+  params.scale = c.scale;
+  params.seed = c.seed;
+  params.stitch = c.stitch;
+  params.backend = detail::parse_backend_kind(c.backend);
+  params.feature_label = c.curve;
+  const Synthesis synthesis = synthesize(exemplar, ribbon, canvas, nullptr, params);
+
+  const Window whole = Window::whole(canvas);
+  const RenderedPattern pattern =
+      render_pattern(exemplar, ribbon, synthesis, canvas, whole, c.stitch);
+  const Raster<float> cage = render_cage(ribbon, canvas, whole);
+  const int r = exemplar.channel_index("R"), g = exemplar.channel_index("G"),
+            b = exemplar.channel_index("B");
+  std::vector<std::uint8_t> rgb(std::size_t(canvas.width) * canvas.height * 3);
+  for (std::size_t i = 0; i < cage.pixels.size(); ++i) {
+    const float alpha = pattern.coverage.pixels[i];
+    for (int k = 0; k < 3; ++k) {
+      const int channel = k == 0 ? r : k == 1 ? g : b;
+      // Channels are alpha-weighted means: colour over white is channel * alpha + (1 - alpha).
+      const float colour = channel >= 0 ? pattern.channels[channel].pixels[i] : 0.0f;
+      float v = colour * alpha + (1.0f - alpha);
+      if (cage.pixels[i] > 0.5f) v = k == 0 ? 0.85f : 0.1f;  // the cage in red
+      rgb[i * 3 + k] = std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
+  }
+  OutputTransaction transaction;
+  write_png(transaction.stage(c.output), canvas.width, canvas.height, rgb);
+  transaction.commit();
+  logger().info("synth: {} pieces, Omega {} ({:.2f} per seam, {:.2f} stitched), backend {}",
+                ribbon.pieces.size(), synthesis.total_cost, synthesis.mean_seam_cost,
+                synthesis.mean_seam_cost_stitched, synthesis.backend);
+  return synthesis;
+}
+
+}  // namespace tw

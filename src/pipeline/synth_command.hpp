@@ -1,0 +1,31 @@
+#pragma once
+// `terraweave synth`: one ribbon along a built-in shape or the first line of an OGR layer,
+// synthesized from an exemplar and drawn (pattern over white, ribbon cage on top) into a PNG.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "synth/synthesize.hpp"
+
+namespace tw {
+
+struct SynthCommand {
+  std::filesystem::path exemplar;
+  // A shape of synth/shapes.hpp (line, arc, s-curve, circle, heart, hairpin) or an OGR source
+  // "path" or "path:layer" in a projected CRS (metres); its first feature is used.
+  std::string curve;
+  double length = 200.0;  // metres, the size of a built-in shape
+  double width = 0.0;     // b, metres
+  double delta = 0.0;     // piece length, metres
+  double scale = 0.0;     // exemplar texels per metre; the canvas has one pixel per texel
+  std::string backend = "auto";
+  std::uint64_t seed = 0;
+  bool stitch = true;
+  std::filesystem::path output;  // .png
+};
+
+// Throws tw::Error naming the exemplar, the curve source or the value at fault. The PNG is
+// written atomically. Returns the synthesis (costs, valid positions, timings).
+Synthesis run_synth_command(const SynthCommand& command);
+
+}  // namespace tw
