@@ -18,7 +18,10 @@ std::uint32_t to_byte(float v) {
 // Reads all channels of `path` as float (OIIO normalizes integer formats to 0..1).
 std::vector<float> read_float_image(const std::string& path, OIIO::ImageSpec& spec,
                                     std::size_t budget, int extra_channels) {
-  auto input = OIIO::ImageInput::open(path);
+  // Straight (unassociated) colours: ask readers not to premultiply (PNG, TIFF, ...).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path, &config);
   if (!input) fail("exemplar {}: cannot read ({})", path, OIIO::geterror());
   spec = input->spec();
   const std::size_t bytes =
@@ -29,6 +32,16 @@ std::vector<float> read_float_image(const std::string& path, OIIO::ImageSpec& sp
   std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
     fail("exemplar {}: cannot read pixels ({})", path, input->geterror());
+  // Formats that store associated alpha (EXR) come back premultiplied: divide it out.
+  if (spec.alpha_channel >= 0 && !spec.get_int_attribute("oiio:UnassociatedAlpha", 0)) {
+    const int n = spec.nchannels, a = spec.alpha_channel;
+    for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i) {
+      float* t = pixels.data() + i * n;
+      if (t[a] <= 0.0f) continue;
+      for (int c = 0; c < std::min(n, 3); ++c)
+        if (c != a) t[c] /= t[a];
+    }
+  }
   return pixels;
 }
 
