@@ -330,6 +330,22 @@ TEST(OpenCLContext, UnknownDeviceAndMissingKernelNameTheCulprit) {
   }
 }
 
+TEST(OpenCLContext, SelectsDevicesByIndexOrNameSubstring) {
+  TW_REQUIRE_OPENCL(context);
+  const std::string name = context->device_name();
+  EXPECT_EQ(OpenCLContext::create({"0", ""}).device_name(), name);
+  // The last word of the label, in upper case: matching ignores case.
+  std::string word = name.substr(name.find_last_of(' ') + 1);
+  std::transform(word.begin(), word.end(), word.begin(), ::toupper);
+  EXPECT_EQ(OpenCLContext::create({word, ""}).device_name(), name);
+  try {
+    OpenCLContext::create({"999", ""});
+    FAIL() << "expected tw::Error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("999"), std::string::npos) << error.what();
+  }
+}
+
 TEST(OpenCLContext, BuildFailureCarriesTheBuildLog) {
   TW_REQUIRE_OPENCL(context);
   TempDir dir;

@@ -1,7 +1,6 @@
 #include "synth/detail/opencl_backend.hpp"
 
 #include <algorithm>
-#include <array>
 #include <numeric>
 #include <string>
 #include <unordered_map>
@@ -13,10 +12,9 @@ namespace tw::detail {
 
 namespace {
 
-constexpr std::uint32_t kOpaqueAlpha = 128;  // binary alpha: A >= 128 is opaque
-constexpr std::size_t kScanGroup = 256;      // work-group size of the compaction scan
-constexpr std::size_t kColumnGroup = 64;     // one work-item per column
-constexpr std::size_t kRowGroup = 16;        // small groups balance the pruned walks
+constexpr std::size_t kScanGroup = 256;   // work-group size of the compaction scan
+constexpr std::size_t kColumnGroup = 64;  // one work-item per column
+constexpr std::size_t kRowGroup = 16;     // small groups balance the pruned walks
 constexpr std::uint32_t kMaxColourDistance2 = 3 * 255 * 255;
 // A mismatched sample costs gamma, at least this much more than 16 |p - q| - 1.
 constexpr std::int32_t kMismatchExtra = kGamma - kMaxColourTerm - 1;
@@ -257,7 +255,7 @@ void OpenCLBackend::find_valid_positions(const CostTexels& texels, const Positio
   cl::Kernel& k = kernel("valid_positions", "find_valid_positions");
   set_args(k, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column), clear,
            cl_int(piece.must_be_clear.size()), interior, cl_int(piece.interior.size()),
-           cl_uint(kOpaqueAlpha), out);
+           cl_uint(kOpaqueAlphaMin), out);
   launch(k, "find_valid_positions", count, kColumnGroup);
   read_buffer(context_.queue(), out, flags);
 }
@@ -392,8 +390,9 @@ void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_c
   cl::Kernel& k = kernel("row_update", "update_table_row");
   set_args(k, cost_buffer, order_buffer, right_buffer, right_masks, right_sums, cl_int(previous),
            group_start, group_ranks, left_buffer, left_masks, left_sums, left_group,
-           cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma), cl_uint(kOpaqueAlpha),
-           cl_int(kMismatchExtra), cl_int(left.binary_alpha ? 1 : 0), cost_out, argmin_out);
+           cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma),
+           cl_uint(kOpaqueAlphaMin), cl_int(kMismatchExtra), cl_int(left.binary_alpha ? 1 : 0),
+           cost_out, argmin_out);
   launch(k, "update_table_row", current, kRowGroup);
   read_buffer(context_.queue(), cost_out, cost);
   read_buffer(context_.queue(), argmin_out, argmin);
