@@ -14,14 +14,12 @@ namespace fs = std::filesystem;
 
 fs::path source_dir() {
   const char* dir = std::getenv("TERRAWEAVE_SOURCE_DIR");
-  if (dir == nullptr) ADD_FAILURE() << "TERRAWEAVE_SOURCE_DIR is not set (run the tests with ctest)";
-  return dir ? fs::path(dir) : fs::current_path();
+  return dir ? fs::path(dir) : fs::path(TERRAWEAVE_SOURCE_DIR_DEFAULT);
 }
 
 fs::path terraweave_binary() {
   const char* bin = std::getenv("TERRAWEAVE_BINARY");
-  if (bin == nullptr) ADD_FAILURE() << "TERRAWEAVE_BINARY is not set (run the tests with ctest)";
-  return bin ? fs::path(bin) : fs::path("terraweave");
+  return bin ? fs::path(bin) : fs::path(TERRAWEAVE_BINARY_DEFAULT);
 }
 
 TempDir::TempDir() {

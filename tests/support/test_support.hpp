@@ -5,9 +5,9 @@
 
 namespace tw::test {
 
-// The repository root (from TERRAWEAVE_SOURCE_DIR, set by ctest).
+// The repository root (TERRAWEAVE_SOURCE_DIR overrides the build-time default).
 std::filesystem::path source_dir();
-// The built terraweave executable (from TERRAWEAVE_BINARY, set by ctest).
+// The built terraweave executable (TERRAWEAVE_BINARY overrides the build-time default).
 std::filesystem::path terraweave_binary();
 
 // A fresh folder removed at the end of the test.
