@@ -76,14 +76,8 @@ class Cli : public ::testing::Test {
   void write_pipeline(const std::string& text) { std::ofstream(dir / "pipeline.yaml") << text; }
 
   CommandResult terraweave(const std::string& args) {
-    return run_command("cd '" + dir.path().string() + "' && '" + binary().string() + "' " + args);
-  }
-
-  // TERRAWEAVE_BINARY, or the build tree's CLI beside this test (tests/CMakeLists.txt passes
-  // both variables as one ENVIRONMENT list to gtest_discover_tests, which keeps only the first).
-  static fs::path binary() {
-    if (std::getenv("TERRAWEAVE_BINARY") != nullptr) return terraweave_binary();
-    return fs::read_symlink("/proc/self/exe").parent_path().parent_path() / "src/terraweave";
+    return run_command("cd '" + dir.path().string() + "' && '" + terraweave_binary().string() +
+                       "' " + args);
   }
 
   // Runs the pipeline with `args` and checks the failure: exit 1, one line, naming `what`,
