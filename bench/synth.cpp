@@ -178,10 +178,10 @@ int main(int argc, char** argv) {
   }
   if (!pictures.empty()) {
     const Exemplar chain = load_exemplar(sample("chain_199x82.png"));
-    picture(chain, "s-curve", 700, 90, 14, pictures + "/synth_chain_scurve.png");
-    picture(chain, "heart", 700, 90, 14, pictures + "/synth_chain_heart.png");
-    picture(chain, "hairpin", 600, 90, 14, pictures + "/synth_chain_hairpin.png");
-    picture(chain, "s-curve", 700, 90, 14, pictures + "/synth_chain_scurve_parametric.png", true);
+    picture(chain, "s-curve", 500, 90, 40, pictures + "/synth_chain_scurve.png");
+    picture(chain, "heart", 500, 90, 40, pictures + "/synth_chain_heart.png");
+    picture(chain, "hairpin", 500, 90, 40, pictures + "/synth_chain_hairpin.png");
+    picture(chain, "s-curve", 500, 90, 40, pictures + "/synth_chain_scurve_parametric.png", true);
     return 0;
   }
   std::printf(
