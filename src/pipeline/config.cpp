@@ -106,10 +106,43 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
   s.delta = m.positive_or("delta", s.delta);
   s.scale = m.positive_or("scale", s.scale);
   s.stitch = m.bool_or("stitch", s.stitch);
+  if (m.has("width")) s.width = m.positive("width");
+  s.empty_pieces = m.bool_or("empty_pieces", s.empty_pieces);
   s.seed =
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
   if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
   s.height_detail = m.non_negative_or("height_detail", s.height_detail);
+  if (m.has("choose")) {
+    const std::string choose = m.string("choose");
+    if (choose == "seed") {
+      s.choice = ExemplarChoice::by_seed;
+    } else if (choose == "best") {
+      s.choice = ExemplarChoice::best;
+    } else {
+      m.source().fail(m.get("choose"), m.path("choose"),
+                      fmt::format("unknown choice '{}', expected seed or best", choose));
+    }
+  }
+  if (m.has("channels")) {
+    const YAML::Node channels = m.get("channels");
+    const std::string key = m.path("channels");
+    if (!channels.IsMap() || channels.size() == 0) {
+      m.source().fail(channels, key, "expected a mapping of exemplar channels to outputs");
+    }
+    for (const auto& entry : channels) {
+      std::string channel = detail::read_string(m.source(), entry.first, key);
+      const std::string entry_key = key + "." + channel;
+      const std::string target = detail::read_string(m.source(), entry.second, entry_key);
+      const bool splat = target.rfind("splat.", 0) == 0 && target.size() > 6;
+      if (target != "height" && !splat) {
+        m.source().fail(
+            entry.second, entry_key,
+            fmt::format("unknown output '{}', expected height or splat.<material>", target));
+      }
+      if (channel == "alpha") channel = "A";
+      s.channels.push_back({channel, target});
+    }
+  }
   return s;
 }
 
@@ -125,10 +158,11 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
-    f.synthesis = read_synthesis(
-        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                  {"exemplar", "delta", "scale", "stitch", "seed", "backend", "height_detail"}),
-        seed);
+    f.synthesis =
+        read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
+                                 {"exemplar", "choose", "width", "delta", "scale", "stitch",
+                                  "empty_pieces", "seed", "backend", "height_detail", "channels"}),
+                       seed);
   }
   return f;
 }
@@ -178,10 +212,50 @@ void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& fe
   features = std::move(ordered);
 }
 
+// `synthesis_order`: each class with synthesis exactly once; default precedence order.
+void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
+  std::vector<std::string> with_synthesis;
+  for (const auto& f : c.features) {
+    if (f.synthesis) with_synthesis.push_back(f.name);
+  }
+  if (!root.has("synthesis_order")) {
+    c.synthesis_order = with_synthesis;
+    return;
+  }
+  const YAML::Node list = root.get("synthesis_order");
+  const std::string list_path = root.path("synthesis_order");
+  if (!list.IsSequence()) root.source().fail(list, list_path, "expected a list of feature classes");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string key = list_path + "." + std::to_string(i);
+    const std::string name = detail::read_string(root.source(), list[i], key);
+    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) !=
+        c.synthesis_order.end()) {
+      root.source().fail(list[i], key, fmt::format("'{}' is listed twice", name));
+    }
+    if (std::find(with_synthesis.begin(), with_synthesis.end(), name) == with_synthesis.end()) {
+      const std::string hint = detail::closest_match(name, with_synthesis);
+      root.source().fail(
+          list[i], key,
+          fmt::format("'{}' is not a feature class with synthesis{}", name,
+                      hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+    }
+    c.synthesis_order.push_back(name);
+  }
+  for (const std::string& name : with_synthesis) {
+    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) ==
+        c.synthesis_order.end()) {
+      root.source().fail(
+          list, list_path,
+          fmt::format("feature class '{}' (with synthesis) is missing from the list", name));
+    }
+  }
+}
+
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
-  const MapReader root(src, tree, "",
-                       {"version", "seed", "heightfield", "generate", "resolution", "output",
-                        "backend", "precedence", "features", "existing"});
+  const MapReader root(
+      src, tree, "",
+      {"version", "seed", "heightfield", "generate", "resolution", "output", "backend",
+       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -223,6 +297,10 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   }
   if (c.features.empty()) src.fail(root.get("features"), "features", "no feature classes");
   apply_precedence(root, c.features);
+  if (root.has("synthesis_resolution")) {
+    c.synthesis_resolution = root.positive("synthesis_resolution");
+  }
+  read_synthesis_order(root, c);
   if (root.has("existing")) {
     const YAML::Node list = root.get("existing");
     if (!list.IsSequence()) src.fail(list, "existing", "expected a list of {source, layer}");

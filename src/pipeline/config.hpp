@@ -25,14 +25,36 @@ struct GenerateConfig {
 };
 
 // Curvilinear pattern synthesis (Zhou et al. 2013) along a feature class (issue #4).
+// Where one exemplar channel goes: "height" (metres added to the terrain) or "splat.<material>"
+// (a splat weight: the pattern's coverage times the channel, taken from the other materials).
+struct ChannelMapping {
+  std::string channel;  // exemplar channel name: A (alias alpha), R, G, B, height, ...
+  std::string target;   // "height" or "splat.<material>"
+};
+
+enum class ExemplarChoice {
+  by_seed,  // each feature uses exemplars[feature seed % count]
+  best,     // each feature runs every exemplar and keeps the lowest Omega / N
+};
+
 struct SynthesisConfig {
-  std::vector<std::filesystem::path> exemplars;  // one or more; the first is used for now
-  double delta = 4.0;                            // piece length, metres
-  double scale = 8.0;                            // exemplar texels per metre of ribbon
+  // One or more; NAME_height.tif beside NAME.png, when present, is read as channel "height".
+  std::vector<std::filesystem::path> exemplars;
+  ExemplarChoice choice = ExemplarChoice::by_seed;
+  double delta = 4.0;  // piece length, metres
+  double scale = 8.0;  // exemplar texels per metre of ribbon
+  // Ribbon width of the synthesis in metres; absent = each feature's width (attribute or
+  // `width`). s * width texels of the exemplar span the ribbon.
+  std::optional<double> width;
   bool stitch = true;
+  // A piece with no valid position (a junction disc, an earlier pattern) stays empty; false:
+  // such a piece is an error naming the feature and the piece.
+  bool empty_pieces = true;
   std::uint64_t seed = 0;
   std::string backend;         // "" = the pipeline's backend
-  double height_detail = 0.0;  // metres of relief the exemplar's height channel adds; 0 = none
+  double height_detail = 1.0;  // factor on the metres of the exemplar's channels mapped to height
+  // Empty = the default mapping: A -> splat.<class>_pattern, height -> height (when present).
+  std::vector<ChannelMapping> channels;
 };
 
 struct FeatureClassConfig {
@@ -76,6 +98,12 @@ struct PipelineConfig {
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
   std::vector<ExistingConfig> existing;
+  // Synthesis canvas cell size in metres, independent of `resolution` (placements never
+  // depend on the output grid).
+  double synthesis_resolution = 1.0;
+  // Classes with synthesis, in the order they are synthesized: each avoids the patterns of
+  // the classes before it. Default: precedence order.
+  std::vector<std::string> synthesis_order;
 };
 
 // One `--set key.path=value` (value parsed as a YAML scalar or flow collection).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <map>
 
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
@@ -12,9 +13,11 @@
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "raster/avoidance.hpp"
+#include "synth/placements_io.hpp"
 #include "terrain/height_ops.hpp"
 #include "terrain/splat.hpp"
 
@@ -104,9 +107,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
-      report.classes[c].features.push_back({lines[c][i].fid, ribbons.lengths[c][i],
-                                            lines[c][i].width,
-                                            int(ribbons.ribbons[c][i].pieces.size())});
+      report.classes[c].features.push_back(
+          {lines[c][i].fid, ribbons.lengths[c][i], lines[c][i].width,
+           int(ribbons.ribbons[c][i].pieces.size()), std::nullopt});
     }
   }
   clock.stop();
@@ -122,12 +125,25 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       std::count(avoidance.forbidden.pixels.begin(), avoidance.forbidden.pixels.end(), 1);
   clock.stop();
 
+  detail::PatternRun patterns;
+  if (!config.synthesis_order.empty()) {
+    clock.start("synthesis");
+    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, {options.backend});
+    for (const detail::FeaturePattern& p : patterns.patterns) {
+      FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
+      feature.synthesis = p.report;
+      report.pattern_violations += p.report.violations;
+    }
+    clock.stop();
+  }
+
   clock.start("terrain");
   const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
   const TerrainParams params = detail::terrain_params(config);
   const Window whole = Window::whole(heightfield.grid);
   shape_terrain(heightfield.height, heightfield.grid, whole, features, params);
   SplatLayers splat = compute_splat(heightfield.grid, whole, features, params);
+  detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
   clock.stop();
 
   clock.start("layers");
@@ -149,6 +165,20 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     std::vector<std::vector<Vec2>> centerlines;
     for (const auto& feature : features) centerlines.push_back(feature.centerline.points);
     write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
+  }
+  // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
+  // field is left out so that every backend writes the same bytes.
+  std::map<std::string, int> parts;
+  for (const detail::FeaturePattern& p : patterns.patterns) {
+    const FeatureClassConfig& c = config.features[p.class_index];
+    std::string name = fmt::format("{}_{}", c.name, lines[p.class_index][p.feature_index].fid);
+    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
+    const std::string file = "placements/" + name + ".json";
+    Synthesis saved = p.synthesis;
+    saved.backend.clear();
+    save_placements(saved, patterns.exemplars[p.exemplar_index].path,
+                    transaction.stage(dir / file).string());
+    report.classes[p.class_index].features[p.feature_index].synthesis->placements = file;
   }
   clock.stop();
 

@@ -1,6 +1,6 @@
 #pragma once
-// Runs a pipeline: ingest -> ribbons -> avoidance -> terrain -> layers, each stage timed,
-// every output staged in one OutputTransaction and committed at the very end (a run that
+// Runs a pipeline: ingest -> ribbons -> avoidance -> synthesis -> terrain -> layers, each stage
+// timed, every output staged in one OutputTransaction and committed at the very end (a run that
 // fails writes nothing; a killed run leaves the previous outputs in place).
 #include <cstdint>
 #include <filesystem>
@@ -25,11 +25,28 @@ struct StageTiming {
   double seconds = 0.0;
 };
 
+// One feature's pattern synthesis (issue #4, docs/patterns.md).
+struct FeatureSynthesisReport {
+  std::string exemplar;               // the exemplar used
+  std::uint64_t seed = 0;             // the feature's seed: hash(run seed, class seed, FID)
+  std::string backend;                // cpu or opencl (what ran)
+  double mean_valid_positions = 0.0;  // per piece
+  std::int64_t omega = 0;             // optimal cost, cost units
+  double mean_seam_cost = 0.0;        // Omega / N in colour units, before stitching
+  double mean_seam_cost_stitched = 0.0;
+  std::int64_t violations = 0;  // opaque canvas pixels on forbidden ones (must be 0)
+  int empty_pieces = 0;         // pieces left empty (no valid position: junctions, avoidance)
+  int canvas_width = 0, canvas_height = 0;  // the synthesis window, cells
+  double avoidance_seconds = 0.0, synthesis_seconds = 0.0, render_seconds = 0.0;
+  std::string placements;  // file name under the output folder
+};
+
 struct FeatureReport {
   std::int64_t fid = 0;
   double length_m = 0.0;  // in the grid's metric CRS
   double width_m = 0.0;
   int pieces = 0;  // ribbon pieces of length delta (0 when shorter than one piece)
+  std::optional<FeatureSynthesisReport> synthesis;
 };
 
 struct FeatureClassReport {
@@ -50,6 +67,7 @@ struct RunReport {
   std::vector<FeatureClassReport> classes;
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
+  std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)
   double total_seconds = 0.0;
 };
 

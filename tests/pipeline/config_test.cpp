@@ -175,6 +175,45 @@ TEST(PipelineConfig, PrecedenceMustNameEachClassOnce) {
               HasSubstr("'rivers' is listed twice"));
 }
 
+TEST(PipelineConfig, SynthesisKeys) {
+  const std::string classes = R"(version: 1
+features:
+  roads: { source: m.gpkg, kind: road, width: 6,
+           synthesis: { exemplar: [a.png, b.png], choose: best, width: 12, empty_pieces: false,
+                        channels: { alpha: splat.marking, height: height }, height_detail: 0.5 } }
+  rivers: { source: m.gpkg, kind: river, width: 9, synthesis: { exemplar: r.png } }
+  ridges: { source: m.gpkg, kind: ridge, width: 40 }
+)";
+  const PipelineConfig c = parse(classes + "synthesis_resolution: 0.5\n");
+  EXPECT_DOUBLE_EQ(c.synthesis_resolution, 0.5);
+  EXPECT_EQ(c.synthesis_order, (std::vector<std::string>{"roads", "rivers"}));
+  const SynthesisConfig& s = *c.features[0].synthesis;
+  EXPECT_EQ(s.choice, ExemplarChoice::best);
+  EXPECT_DOUBLE_EQ(*s.width, 12.0);
+  EXPECT_FALSE(s.empty_pieces);
+  EXPECT_DOUBLE_EQ(s.height_detail, 0.5);
+  ASSERT_EQ(s.channels.size(), 2u);
+  EXPECT_EQ(s.channels[0].channel, "A");
+  EXPECT_EQ(s.channels[0].target, "splat.marking");
+  EXPECT_EQ(s.channels[1].channel, "height");
+  EXPECT_TRUE(c.features[1].synthesis->channels.empty());
+  EXPECT_DOUBLE_EQ(c.features[1].synthesis->height_detail, 1.0);
+  EXPECT_FALSE(c.features[1].synthesis->width.has_value());
+
+  EXPECT_EQ(parse(classes + "synthesis_order: [rivers, roads]\n").synthesis_order,
+            (std::vector<std::string>{"rivers", "roads"}));
+  EXPECT_THAT(error_of(classes + "synthesis_order: [rivers]\n"),
+              HasSubstr("synthesis_order: feature class 'roads' (with synthesis) is missing"));
+  EXPECT_THAT(error_of(classes + "synthesis_order: [rivers, roads, ridges]\n"),
+              HasSubstr("synthesis_order.2: 'ridges' is not a feature class with synthesis"));
+  EXPECT_THAT(error_of(classes + "synthesis_order: [roads, roads]\n"),
+              HasSubstr("'roads' is listed twice"));
+  EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.channels", "{A: colour}"}}),
+              HasSubstr("features.rivers.synthesis.channels.A: unknown output 'colour'"));
+  EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.choose", "worst"}}),
+              HasSubstr("unknown choice 'worst'"));
+}
+
 TEST(PipelineConfig, OverridesReplaceAddAndResolveAgainstTheCurrentFolder) {
   const PipelineConfig c = parse(
       kMinimal,

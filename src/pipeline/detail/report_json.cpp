@@ -16,8 +16,27 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
     json features = json::array();
     double total_length = 0.0;
     for (const FeatureReport& f : c.features) {
-      features.push_back(
-          {{"fid", f.fid}, {"length_m", f.length_m}, {"width_m", f.width_m}, {"pieces", f.pieces}});
+      json feature = {
+          {"fid", f.fid}, {"length_m", f.length_m}, {"width_m", f.width_m}, {"pieces", f.pieces}};
+      if (f.synthesis) {
+        const FeatureSynthesisReport& s = *f.synthesis;
+        feature["synthesis"] = {{"exemplar", s.exemplar},
+                                {"seed", s.seed},
+                                {"backend", s.backend},
+                                {"mean_valid_positions", s.mean_valid_positions},
+                                {"omega", s.omega},
+                                {"mean_seam_cost", s.mean_seam_cost},
+                                {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
+                                {"empty_pieces", s.empty_pieces},
+                                {"violations", s.violations},
+                                {"canvas", {s.canvas_width, s.canvas_height}},
+                                {"placements", s.placements},
+                                {"seconds",
+                                 {{"avoidance", s.avoidance_seconds},
+                                  {"synthesis", s.synthesis_seconds},
+                                  {"render", s.render_seconds}}}};
+      }
+      features.push_back(feature);
       total_length += f.length_m;
     }
     classes.push_back({{"name", c.name},
@@ -45,6 +64,9 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"stages", stages},
       {"total_seconds", report.total_seconds},
       {"forbidden_pixels", report.forbidden_pixels},
+      {"synthesis_resolution", config.synthesis_resolution},
+      {"synthesis_order", config.synthesis_order},
+      {"pattern_violations", report.pattern_violations},
       {"classes", classes},
   };
 }

@@ -18,6 +18,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   FeatureRibbons out;
   std::vector<Curve> curves;
   std::vector<double> widths;
+  std::vector<double> synthesis_widths;  // the synthesis ribbon's width where it has its own
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& feature_class = config.features[c];
     const double delta =
@@ -38,6 +39,9 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
       }
       curves.push_back(curve);
       widths.push_back(line.width);
+      synthesis_widths.push_back(feature_class.synthesis && feature_class.synthesis->width
+                                     ? std::max(line.width, *feature_class.synthesis->width)
+                                     : line.width);
     }
   }
   // Meeting points closer than a pixel are one junction; the disc covers the widest member
@@ -51,13 +55,19 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
     radii.push_back(junction_disc_radius(member_widths, pixel));
   }
   out.junction_discs = junction_discs(junctions, radii);
+  const double cell = config.synthesis_resolution;
+  const std::vector<Junction> synthesis_junctions = find_junctions(curves, cell);
+  std::vector<double> synthesis_radii;
+  for (const Junction& j : synthesis_junctions) {
+    std::vector<double> member_widths;
+    for (const JunctionMember& m : j.members) member_widths.push_back(synthesis_widths[m.curve]);
+    synthesis_radii.push_back(junction_disc_radius(member_widths, cell));
+  }
+  out.synthesis_junction_discs = junction_discs(synthesis_junctions, synthesis_radii);
   logger().info("ribbons: {} features, {} junctions", curves.size(), junctions.size());
   return out;
 }
 
-namespace {
-
-// The pixels of `grid` that the ribbon's pieces can touch, plus a pixel; empty when outside.
 Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
   double min_col = grid.width, min_row = grid.height, max_col = 0.0, max_row = 0.0;
   for (const Piece& piece : ribbon.pieces) {
@@ -77,6 +87,8 @@ Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
   if (col1 <= col0 || row1 <= row0) return {};
   return {col0, row0, col1 - col0, row1 - row0};
 }
+
+namespace {
 
 void add_window(Raster<std::uint8_t>& whole, const Window& window,
                 const Raster<std::uint8_t>& part) {

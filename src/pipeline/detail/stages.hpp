@@ -18,7 +18,10 @@ struct FeatureRibbons {
   std::vector<double> delta;                 // piece length of each class, metres
   std::vector<std::vector<double>> lengths;  // metres, of the feature as read
   std::vector<std::vector<Ribbon>> ribbons;  // no pieces when shorter than delta
-  std::vector<Polygon> junction_discs;       // where features meet
+  std::vector<Polygon> junction_discs;       // where features meet (output grid's tolerance)
+  // The same found with the synthesis canvas's cell as tolerance and margin: independent of
+  // the output grid, for the synthesis avoidance.
+  std::vector<Polygon> synthesis_junction_discs;
 };
 
 // Slices every feature into pieces of its class's delta (the synthesis delta, or its default)
@@ -26,6 +29,9 @@ struct FeatureRibbons {
 FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const std::vector<std::vector<LineFeature>>& lines,
                                     const GridSpec& grid);
+
+// The pixels of `grid` that the ribbon's pieces can touch, plus a pixel; empty when outside.
+Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid);
 
 // Existing features, every ribbon's footprint and fold-overs, and the junction discs.
 AvoidanceMap build_run_avoidance(const ExistingFeatures& existing, const FeatureRibbons& ribbons,

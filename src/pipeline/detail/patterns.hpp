@@ -1,0 +1,69 @@
+#pragma once
+// The synthesis stage of a run (issue #4, docs/patterns.md): every feature of a class with
+// `synthesis` gets a pattern synthesized on its own canvas in world metres (cells of
+// `synthesis_resolution`, on a lattice fixed in world coordinates, windowed to the feature),
+// avoiding existing features, junction discs, its own fold-overs and the opaque coverage of the
+// features synthesized before it; then the patterns are rendered into the output grid.
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/stages.hpp"
+#include "pipeline/run.hpp"
+#include "synth/exemplar.hpp"
+#include "synth/synthesize.hpp"
+#include "terrain/splat.hpp"
+
+namespace tw::detail {
+
+// The feature's synthesis seed: splitmix64 over (run seed, class seed, FID), never 0 (0 would
+// ask the synthesizer for the seedless global optimum).
+std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid);
+
+// Cells of `resolution` metres whose edges lie on multiples of `resolution` in world
+// coordinates, covering the ribbon's pieces plus `halo_m`: the same cells whatever the output
+// grid, so placements never depend on it.
+GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m);
+
+// Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
+Exemplar load_exemplar_with_height(const std::filesystem::path& path);
+
+struct FeaturePattern {
+  std::size_t class_index = 0;     // in config.features
+  std::size_t feature_index = 0;   // in the class's lines / ribbons
+  std::size_t exemplar_index = 0;  // in PatternRun::exemplars
+  Ribbon ribbon;                   // the synthesis ribbon (synthesis.width, or the feature's)
+  Synthesis synthesis;
+  GridSpec canvas;
+  Raster<std::uint8_t> opaque;  // canvas-sized: 1 where the rendered pattern has coverage > 0
+  FeatureSynthesisReport report;
+};
+
+struct PatternRun {
+  std::deque<Exemplar> exemplars;
+  std::vector<FeaturePattern> patterns;  // in synthesis order
+};
+
+struct PatternOptions {
+  std::optional<std::string> backend;  // replaces every class's backend (RunOptions::backend)
+};
+
+// Throws tw::Error naming the class and FID (and the piece) of a feature without room for its
+// pattern, or when a pattern puts an opaque pixel on a forbidden one (a bug).
+PatternRun synthesize_patterns(const PipelineConfig& config,
+                               const std::vector<std::vector<LineFeature>>& lines,
+                               const FeatureRibbons& ribbons, const ExistingFeatures& existing,
+                               const PatternOptions& options = {});
+
+// Renders the patterns into `grid` (whole) and applies their channel mappings: height detail on
+// top of `height` (never on NaN nodata cells) and splat materials that take their share from
+// the others proportionally (weights keep summing to 1).
+void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
+                    Raster<float>& height, SplatLayers& splat);
+
+}  // namespace tw::detail

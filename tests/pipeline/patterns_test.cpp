@@ -1,0 +1,247 @@
+// Pattern synthesis inside the pipeline (issue #4) on a small world: a 640 m DEM, two roads
+// crossing (a junction), a closed ring road, and a 60 x 56 crop of the cobble exemplar with its
+// height channel, so that every run takes a second or two.
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "layers/write.hpp"
+#include "pipeline/detail/patterns.hpp"
+#include "pipeline/run.hpp"
+#include "synth/placements_io.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// Crops `src` to its first `width` columns (GDAL's translate, the library call of gdal_translate).
+void crop(const fs::path& src, const fs::path& dst, const char* format, int width, int height) {
+  GDALAllRegister();
+  GDALDatasetH in = GDALOpen(src.c_str(), GA_ReadOnly);
+  ASSERT_NE(in, nullptr) << src;
+  const std::string w = std::to_string(width), h = std::to_string(height);
+  const char* args[] = {"-of", format, "-srcwin", "0", "0", w.c_str(), h.c_str(), nullptr};
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(const_cast<char**>(args), nullptr);
+  GDALDatasetH out = GDALTranslate(dst.c_str(), in, options, nullptr);
+  GDALTranslateOptionsFree(options);
+  ASSERT_NE(out, nullptr) << dst;
+  GDALClose(out);
+  GDALClose(in);
+}
+
+constexpr const char* kPipeline = R"(
+version: 1
+seed: 11
+heightfield: dem.tif
+resolution: 10
+output: { dir: out }
+synthesis_resolution: 1
+features:
+  roads:
+    source: map.gpkg
+    layer: roads
+    kind: road
+    width_attribute: width
+    width: 6
+    synthesis:
+      exemplar: cobble.png
+      width: 8
+      scale: 6
+      delta: 6
+      channels: { alpha: splat.cobble, height: height }
+)";
+
+// The small world in a temporary folder.
+class SmallWorld : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_dem(dir_ / "dem.tif");  // 64 x 64 cells of 10 m from (500000, 5000640)
+    test::write_layer(dir_ / "map.gpkg", "roads",
+                      {{"LINESTRING (500050 5000300, 500590 5000330)", 6.0},
+                       {"LINESTRING (500310 5000050, 500330 5000590)", 6.0},
+                       {ring(500320, 5000320, 200), 6.0}});
+    const fs::path exemplars = test::source_dir() / "samples/exemplars";
+    crop(exemplars / "cobble_edging_200x56.png", dir_ / "cobble.png", "PNG", 60, 56);
+    crop(exemplars / "cobble_edging_200x56_height.tif", dir_ / "cobble_height.tif", "GTiff", 60,
+         56);
+  }
+
+  static std::string ring(double cx, double cy, double r) {
+    std::ostringstream wkt;
+    wkt.precision(10);
+    wkt << "LINESTRING (";
+    for (int i = 0; i <= 48; ++i) {
+      const double a = 2.0 * M_PI * (i % 48) / 48.0;
+      wkt << (i ? ", " : "") << cx + r * std::cos(a) << ' ' << cy + r * std::sin(a);
+    }
+    wkt << ")";
+    return wkt.str();
+  }
+
+  PipelineConfig config(std::vector<Override> overrides = {}) const {
+    overrides.push_back({"output.dir", (dir_ / "out").string()});
+    return parse_pipeline(kPipeline, "small.yaml", dir_.path(), overrides);
+  }
+
+  static std::string bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  static nlohmann::json report_of(const fs::path& out) {
+    std::ifstream in(out / "report.json");
+    return nlohmann::json::parse(in);
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(SmallWorld, PatternsBecomeSplatAndHeightWithoutViolations) {
+  const RunReport report = run_pipeline(config());
+  const fs::path out = dir_ / "out";
+  EXPECT_EQ(report.pattern_violations, 0);
+  const nlohmann::json json = report_of(out);
+  ASSERT_EQ(json["classes"][0]["features"].size(), 3u);
+  for (const auto& f : json["classes"][0]["features"]) {
+    const auto& s = f["synthesis"];
+    EXPECT_EQ(s["violations"], 0);
+    EXPECT_GT(s["mean_valid_positions"].get<double>(), 10.0);
+    EXPECT_GT(s["omega"].get<std::int64_t>(), 0);
+    EXPECT_LE(s["mean_seam_cost_stitched"].get<double>(), s["mean_seam_cost"].get<double>());
+    const Synthesis placements =
+        load_placements((out / s["placements"].get<std::string>()).string());
+    EXPECT_EQ(int(placements.placements.size()), f["pieces"].get<int>());
+  }
+  EXPECT_EQ(json["pattern_violations"], 0);
+  // The ring road is closed and synthesized as a cycle.
+  EXPECT_TRUE(load_placements((out / "placements/roads_3.json").string()).closed);
+
+  const ExrContents splat = read_exr(out / "splat.exr");
+  const auto cobble = std::find(splat.channels.begin(), splat.channels.end(), "splat.cobble");
+  ASSERT_NE(cobble, splat.channels.end());
+  const auto& pattern = splat.bands[cobble - splat.channels.begin()];
+  double worst = 0.0;
+  std::size_t covered = 0;
+  for (std::size_t i = 0; i < pattern.pixels.size(); ++i) {
+    double sum = 0.0;
+    for (const auto& band : splat.bands) sum += band.pixels[i];
+    worst = std::max(worst, std::abs(sum - 1.0));
+    covered += pattern.pixels[i] > 0.0f;
+  }
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_GT(covered, 100u);
+
+  // Height detail: the same run without the height mapping differs only where the pattern
+  // covers, and somewhere it does.
+  const ExrContents with_detail = read_exr(out / "height.exr");
+  run_pipeline(config({{"features.roads.synthesis.channels", "{alpha: splat.cobble}"}}));
+  const ExrContents without = read_exr(out / "height.exr");
+  std::size_t raised = 0, outside = 0;
+  for (std::size_t i = 0; i < pattern.pixels.size(); ++i) {
+    const float d = with_detail.bands[0].pixels[i] - without.bands[0].pixels[i];
+    if (d != 0.0f) {
+      ++raised;
+      outside += pattern.pixels[i] == 0.0f;
+      EXPECT_GT(d, 0.0f);
+    }
+  }
+  EXPECT_GT(raised, 50u);
+  EXPECT_EQ(outside, 0u);
+}
+
+TEST_F(SmallWorld, SameBytesOnEveryBackendAndThreadCount) {
+  const char* files[] = {"height.exr", "splat.exr", "placements/roads_1.json",
+                         "placements/roads_2.json", "placements/roads_3.json"};
+  std::vector<std::string> reference;
+  int run = 0;
+  for (const char* backend : {"cpu", "opencl"}) {
+    for (const int threads : {1, 2}) {
+      RunOptions options;
+      options.backend = backend;
+      options.threads = threads;
+      options.output_dir = dir_ / ("run" + std::to_string(run++));
+      run_pipeline(config(), options);
+      const nlohmann::json json = report_of(*options.output_dir);
+      EXPECT_EQ(json["classes"][0]["features"][0]["synthesis"]["backend"], backend);
+      std::vector<std::string> contents;
+      for (const char* f : files) contents.push_back(bytes(*options.output_dir / f));
+      if (reference.empty()) {
+        reference = contents;
+        continue;
+      }
+      for (std::size_t i = 0; i < contents.size(); ++i) {
+        EXPECT_TRUE(contents[i] == reference[i])
+            << files[i] << " on " << backend << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
+TEST_F(SmallWorld, PlacementsDoNotDependOnTheOutputResolution) {
+  RunOptions options;
+  options.output_dir = dir_ / "fine";
+  run_pipeline(config({{"resolution", "5"}}), options);
+  options.output_dir = dir_ / "coarse";
+  run_pipeline(config({{"resolution", "20"}}), options);
+  for (const char* f : {"roads_1.json", "roads_2.json", "roads_3.json"}) {
+    EXPECT_TRUE(bytes(dir_ / "fine/placements" / f) == bytes(dir_ / "coarse/placements" / f)) << f;
+  }
+  EXPECT_EQ(read_exr(dir_ / "fine/height.exr").bands[0].width, 128);
+}
+
+TEST_F(SmallWorld, SeedsGiveDifferentValidResults) {
+  RunOptions options;
+  options.output_dir = dir_ / "a";
+  run_pipeline(config(), options);
+  options.output_dir = dir_ / "b";
+  const RunReport other = run_pipeline(config({{"seed", "12"}}), options);
+  EXPECT_EQ(other.pattern_violations, 0);
+  EXPECT_FALSE(bytes(dir_ / "a/placements/roads_1.json") ==
+               bytes(dir_ / "b/placements/roads_1.json"));
+  EXPECT_NE(detail::feature_seed(11, 11, 1), detail::feature_seed(11, 11, 2));
+  EXPECT_NE(detail::feature_seed(11, 11, 1), detail::feature_seed(12, 11, 1));
+  EXPECT_EQ(detail::feature_seed(11, 11, 1), detail::feature_seed(11, 11, 1));
+}
+
+TEST_F(SmallWorld, AFeatureWithoutRoomFailsNamingItsFid) {
+  // Only the first road (FID 1), under an existing polygon that covers all of it.
+  test::write_layer(dir_ / "map.gpkg", "cover",
+                    {{"POLYGON ((500000 5000260, 500640 5000260, 500640 5000370, 500000 5000370, "
+                      "500000 5000260))"}});
+  const std::vector<Override> overrides = {{"existing", "[{source: map.gpkg, layer: cover}]"},
+                                           {"features.roads.where", "fid = 1"}};
+  try {
+    run_pipeline(config(overrides));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("features.roads: FID 1"));
+    EXPECT_THAT(e.what(), HasSubstr("no room"));
+  }
+  auto strict = overrides;
+  strict.push_back({"features.roads.synthesis.empty_pieces", "false"});
+  try {
+    run_pipeline(config(strict));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("FID 1"));
+    EXPECT_THAT(e.what(), HasSubstr("piece 0"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out/report.json"));
+}
+
+}  // namespace
+}  // namespace tw
