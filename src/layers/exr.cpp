@@ -7,6 +7,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <ImfVecAttribute.h>
 #include <fmt/format.h>
 
@@ -19,8 +20,27 @@ namespace tw {
 
 namespace {
 
+// OpenEXR runs its (de)compression tasks on a global pool that starts with no threads: the
+// per-file thread count only sizes the line buffers. Without this, every write is serial.
 int exr_threads() {
-  return int(std::max(1u, std::thread::hardware_concurrency()));
+  static const int threads = [] {
+    const int n = int(std::max(1u, std::thread::hardware_concurrency()));
+    Imf::setGlobalThreadCount(n);
+    return n;
+  }();
+  return threads;
+}
+
+Imf::Compression imf_compression(ExrCompression compression) {
+  switch (compression) {
+    case ExrCompression::none:
+      return Imf::NO_COMPRESSION;
+    case ExrCompression::rle:
+      return Imf::RLE_COMPRESSION;
+    case ExrCompression::zip:
+      return Imf::ZIP_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
 }
 
 std::string geotransform_string(const GridSpec& grid) {
@@ -33,10 +53,16 @@ std::string geotransform_string(const GridSpec& grid) {
 
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                int zip_level) {
+  write_exr(set, layer, path, ExrCompression::zip, zip_level);
+}
+
+void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
+               ExrCompression compression, int zip_level) {
   const GridSpec& g = set.grid;
   try {
+    const int threads = exr_threads();
     Imf::Header header(g.width, g.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = imf_compression(compression);
     header.zipCompressionLevel() = zip_level;
     header.insert(kExrCrsAttribute, Imf::StringAttribute(set.crs_wkt));
     header.insert(kExrGeotransformAttribute, Imf::StringAttribute(geotransform_string(g)));
@@ -52,7 +78,7 @@ void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::p
       frame.insert(layer.channels[i], Imf::Slice(Imf::FLOAT, base, sizeof(float),
                                                  sizeof(float) * std::size_t(g.width)));
     }
-    Imf::OutputFile file(path.c_str(), header, exr_threads());
+    Imf::OutputFile file(path.c_str(), header, threads);
     file.setFrameBuffer(frame);
     file.writePixels(g.height);
   } catch (const std::exception& e) {

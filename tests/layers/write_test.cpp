@@ -1,5 +1,7 @@
 #include "layers/write.hpp"
 
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
@@ -101,6 +103,40 @@ TEST(WriteLayers, ExrRoundTripsPixelsAndGeoreferencing) {
   ASSERT_EQ(height.channels, std::vector<std::string>{"height"});
   EXPECT_TRUE(std::isnan(height.bands[0].at(3, 3)));  // nodata stays NaN in the EXR
   EXPECT_EQ(height.bands[0].at(100, 60), set.layers[0].bands[0].at(100, 60));
+}
+
+TEST(WriteLayers, EveryExrCompressionKeepsTheExactFloatsAndIsRecordedInTheHeader) {
+  test::TempDir dir;
+  const LayerSet set = sample_set();
+  const struct {
+    ExrCompression compression;
+    Imf::Compression expected;
+  } cases[] = {{ExrCompression::none, Imf::NO_COMPRESSION},
+               {ExrCompression::rle, Imf::RLE_COMPRESSION},
+               {ExrCompression::zip, Imf::ZIP_COMPRESSION}};
+  std::vector<std::uintmax_t> splat_sizes;
+  for (const auto& c : cases) {
+    for (const Layer& layer : set.layers) {
+      const fs::path path = dir / (layer.name + std::to_string(int(c.expected)) + ".exr");
+      write_exr(set, layer, path, c.compression);
+      EXPECT_EQ(Imf::InputFile(path.c_str()).header().compression(), c.expected) << path;
+      const ExrContents exr = read_exr(path);
+      ASSERT_EQ(exr.bands.size(), layer.bands.size());
+      for (std::size_t i = 0; i < layer.bands.size(); ++i) {
+        const auto it = std::find(exr.channels.begin(), exr.channels.end(), layer.channels[i]);
+        ASSERT_NE(it, exr.channels.end()) << layer.channels[i];
+        const auto& band = exr.bands[std::size_t(it - exr.channels.begin())];
+        EXPECT_EQ(0, std::memcmp(band.pixels.data(), layer.bands[i].pixels.data(),
+                                 band.pixels.size() * 4))
+            << layer.channels[i] << " " << path;
+      }
+      if (layer.name == "splat") splat_sizes.push_back(fs::file_size(path));
+    }
+  }
+  // Splat weights are runs of 0 and 1: RLE and ZIP both pack them well below raw floats.
+  ASSERT_EQ(splat_sizes.size(), 3u);
+  EXPECT_LT(splat_sizes[1], splat_sizes[0] / 2);
+  EXPECT_LT(splat_sizes[2], splat_sizes[0] / 2);
 }
 
 TEST(WriteLayers, GeoTiffTwinIsGeoreferencedWithNamedBandsAndNodata) {
