@@ -125,6 +125,39 @@ std::int64_t check_and_mark_opaque(const Exemplar& exemplar, const Ribbon& ribbo
   return violations;
 }
 
+// A closed curve starting at its first piece whose corners all lie on free canvas cells: the
+// synthesizer's closed mode needs piece 0 to have a valid position, and a ring often starts
+// where it meets another road (a junction disc). Unchanged when no piece is clear.
+Curve start_in_the_clear(const Curve& curve, const Ribbon& ribbon, const GridSpec& canvas,
+                         const Raster<std::uint8_t>& forbidden) {
+  auto free_at = [&](Vec2 world) {
+    const Vec2 p = canvas.world_to_pixel(world);
+    const int col = int(std::floor(p.x)), row = int(std::floor(p.y));
+    return !forbidden.inside(col, row) || !forbidden.at(col, row);
+  };
+  for (std::size_t k = 0; k < ribbon.pieces.size(); ++k) {
+    const Piece& piece = ribbon.pieces[k];
+    const Vec2 centre =
+        0.25 * (piece.top_left + piece.bottom_left + piece.bottom_right + piece.top_right);
+    if (!(free_at(piece.top_left) && free_at(piece.bottom_left) && free_at(piece.bottom_right) &&
+          free_at(piece.top_right) && free_at(centre))) {
+      continue;
+    }
+    if (k == 0) return curve;
+    const std::vector<double> cumulative = cumulative_lengths(curve);
+    const double start = double(k) * ribbon.delta;
+    Curve rotated;
+    rotated.closed = true;
+    rotated.points.push_back(point_at(curve, cumulative, start));
+    const std::size_t n = curve.points.size();
+    std::size_t first = 0;
+    while (first < n && cumulative[first] <= start) ++first;
+    for (std::size_t i = 0; i < n; ++i) rotated.points.push_back(curve.points[(first + i) % n]);
+    return without_duplicates(rotated);
+  }
+  return curve;
+}
+
 }  // namespace
 
 std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid) {
@@ -193,10 +226,10 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       if (ribbons.ribbons[plan.class_index][f].pieces.empty()) continue;
       const std::string label = pattern_label(feature_class, line.fid);
       FeaturePattern pattern;
-      pattern.ribbon = synthesis.width ? make_ribbon(Curve{line.points, line.closed},
-                                                     {*synthesis.width, synthesis.delta, 0.0})
+      const Curve curve{line.points, line.closed};
+      const double width = synthesis.width.value_or(line.width);
+      pattern.ribbon = synthesis.width ? make_ribbon(curve, {width, synthesis.delta, 0.0})
                                        : ribbons.ribbons[plan.class_index][f];
-      const Ribbon& ribbon = pattern.ribbon;
       pattern.class_index = plan.class_index;
       pattern.feature_index = f;
       FeatureSynthesisReport& report = pattern.report;
@@ -204,20 +237,25 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
 
       // Avoidance on the feature's canvas: a halo of a cell beyond the pieces.
       auto started = std::chrono::steady_clock::now();
-      pattern.canvas = synthesis_canvas(ribbon, cell, cell);
+      pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell);
       const GridSpec& canvas = pattern.canvas;
       const Window whole = Window::whole(canvas);
       Raster<std::uint8_t> forbidden(canvas.width, canvas.height, 0);
       burn_polygons(existing.polygons, canvas, whole, forbidden, 1);
       burn_buffered_lines(existing.lines, existing.line_widths, canvas, whole, forbidden, 1);
       burn_polygons(ribbons.synthesis_junction_discs, canvas, whole, forbidden, 1);
-      const Raster<std::uint8_t> folds = foldover_mask(ribbon, canvas, whole);
-      for (std::size_t i = 0; i < folds.pixels.size(); ++i) forbidden.pixels[i] |= folds.pixels[i];
       for (const FeaturePattern& earlier : run.patterns) {
         if (overlaps(earlier.canvas, canvas)) {
           add_on_lattice(earlier.opaque, earlier.canvas, forbidden, canvas);
         }
       }
+      if (curve.closed) {
+        pattern.ribbon = make_ribbon(start_in_the_clear(curve, pattern.ribbon, canvas, forbidden),
+                                     {width, synthesis.delta, 0.0});
+      }
+      const Ribbon& ribbon = pattern.ribbon;
+      const Raster<std::uint8_t> folds = foldover_mask(ribbon, canvas, whole);
+      for (std::size_t i = 0; i < folds.pixels.size(); ++i) forbidden.pixels[i] |= folds.pixels[i];
       report.avoidance_seconds = seconds_since(started);
 
       // Synthesis: by seed one exemplar, or every exemplar and the lowest Omega / N.
