@@ -11,6 +11,8 @@
 #include <ImfVecAttribute.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstring>
 #include <thread>
 
 #include "core/error.hpp"
@@ -33,6 +35,7 @@ int exr_threads() {
 
 Imf::Compression imf_compression(ExrCompression compression) {
   switch (compression) {
+    case ExrCompression::automatic:  // resolved per layer before this; none as a fallback
     case ExrCompression::none:
       return Imf::NO_COMPRESSION;
     case ExrCompression::rle:
@@ -51,6 +54,21 @@ std::string geotransform_string(const GridSpec& grid) {
 
 }  // namespace
 
+ExrCompression exr_compression_for(const Layer& layer) {
+  // Every 64th row is plenty to tell runs from noise, and costs nothing next to the write.
+  constexpr int kRowStep = 64;
+  std::size_t repeats = 0, sampled = 0;
+  for (const Raster<float>& band : layer.bands) {
+    for (int row = 0; row < band.height; row += kRowStep) {
+      const float* line = band.pixels.data() + std::size_t(row) * band.width;
+      for (int c = 1; c < band.width; ++c)
+        repeats += std::memcmp(&line[c], &line[c - 1], sizeof(float)) == 0;
+      sampled += std::size_t(std::max(0, band.width - 1));
+    }
+  }
+  return 4 * repeats >= sampled && sampled > 0 ? ExrCompression::rle : ExrCompression::none;
+}
+
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                int zip_level) {
   write_exr(set, layer, path, ExrCompression::zip, zip_level);
@@ -62,7 +80,8 @@ void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::p
   try {
     const int threads = exr_threads();
     Imf::Header header(g.width, g.height);
-    header.compression() = imf_compression(compression);
+    header.compression() = imf_compression(
+        compression == ExrCompression::automatic ? exr_compression_for(layer) : compression);
     header.zipCompressionLevel() = zip_level;
     header.insert(kExrCrsAttribute, Imf::StringAttribute(set.crs_wkt));
     header.insert(kExrGeotransformAttribute, Imf::StringAttribute(geotransform_string(g)));

@@ -17,16 +17,18 @@ inline constexpr const char* kExrGeotransformAttribute =
 inline constexpr const char* kExrOriginAttribute = "terraweave:origin";         // V2d (x, y)
 inline constexpr const char* kExrPixelSizeAttribute = "terraweave:pixel_size";  // V2d (w, h)
 
-// How EXR pixels are compressed. Heights and distances are noisy floats: ZIP (zlib) saves
-// about a fifth of their bytes at ~25x the cost of RLE, which still packs splat weights and
-// masks (runs of 0 and 1) to a few percent. docs/performance.md has the measurements.
-enum class ExrCompression { none, rle, zip };
+// How EXR pixels are compressed. Heights and distances are noisy floats: ZIP (zlib) saves only
+// about a fifth of their bytes at ~20x the cost of RLE, and RLE saves nothing on them; splat
+// weights and masks are runs, which RLE packs to a few percent. `automatic` picks per layer:
+// rle when at least a quarter of sampled pixels repeat their left neighbour, else none.
+// docs/performance.md has the measurements.
+enum class ExrCompression { automatic, none, rle, zip };
 
 struct WriteOptions {
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
-  ExrCompression exr_compression = ExrCompression::rle;
+  ExrCompression exr_compression = ExrCompression::automatic;
   int exr_zip_level = 1;                         // zlib level when exr_compression is zip (1-9)
   int preview_max_size = 2048;                   // longest side of preview.png in pixels
   std::vector<std::vector<Vec2>> preview_lines;  // world metres, drawn on the preview
@@ -44,12 +46,16 @@ std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                int zip_level = 1);
 // The same with any compression; all use every core (OpenEXR's global thread pool).
+// automatic resolves through exr_compression_for(layer).
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                ExrCompression compression, int zip_level = 1);
 void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
 // Hillshade of "height" tinted by "splat" with `lines` (world metres) drawn on top; 8-bit RGB.
 void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
                        const std::vector<std::vector<Vec2>>& lines = {}, int max_size = 2048);
+
+// What `automatic` picks for this layer: rle or none (never automatic).
+ExrCompression exr_compression_for(const Layer& layer);
 
 // What an EXR holds, read back (for tests and tools).
 struct ExrContents {

@@ -139,6 +139,27 @@ TEST(WriteLayers, EveryExrCompressionKeepsTheExactFloatsAndIsRecordedInTheHeader
   EXPECT_LT(splat_sizes[2], splat_sizes[0] / 2);
 }
 
+TEST(WriteLayers, AutomaticExrCompressionPacksRunsAndLeavesNoiseRaw) {
+  const LayerSet set = sample_set();
+  // Smooth heights never repeat exactly: RLE would only cost time.
+  EXPECT_EQ(exr_compression_for(set.layers[0]), ExrCompression::none);
+  // Splat weights are mostly exact 0 and 1 away from the features.
+  EXPECT_EQ(exr_compression_for(set.layers[1]), ExrCompression::rle);
+  Layer mask{"mask", {"forbidden"}, {Raster<float>(set.grid.width, set.grid.height, 0.0f)}};
+  for (int c = 40; c < 60; ++c) mask.bands[0].at(c, 7) = 1.0f;
+  EXPECT_EQ(exr_compression_for(mask), ExrCompression::rle);
+
+  test::TempDir dir;
+  OutputTransaction tx;
+  write_layer_set(set, dir.path(), tx, only(true, false, false));  // automatic by default
+  tx.commit();
+  EXPECT_EQ(Imf::InputFile((dir / "height.exr").c_str()).header().compression(),
+            Imf::NO_COMPRESSION);
+  EXPECT_EQ(Imf::InputFile((dir / "splat.exr").c_str()).header().compression(),
+            Imf::RLE_COMPRESSION);
+  EXPECT_EQ(read_exr(dir / "height.exr").bands[0].at(100, 60), set.layers[0].bands[0].at(100, 60));
+}
+
 TEST(WriteLayers, GeoTiffTwinIsGeoreferencedWithNamedBandsAndNodata) {
   test::TempDir dir;
   const LayerSet set = sample_set();
