@@ -1,6 +1,9 @@
 // The pruned DP row equals the naive one, and the pruning bound never exceeds the true D.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
+#include <cmath>
 #include <random>
 
 #include "synth/detail/cost.hpp"
@@ -52,6 +55,83 @@ TEST(CpuRow, PrunedEqualsNaiveOnRandomRows) {
   }
 }
 
+// Long edges (several mask words), wide cost spreads (walks across mask groups), both alphas.
+TEST(CpuRow, PrunedEqualsNaiveOnLongEdges) {
+  const int columns[] = {63, 64, 65, 90, 128, 130};
+  for (int seed = 0; seed < 12; ++seed) {
+    std::mt19937 rng(500 + seed);
+    const bool binary = seed % 6 != 5;
+    const int C = columns[seed % 6];
+    const ColumnSet right = random_columns(rng, 300, C, binary);
+    const ColumnSet left = random_columns(rng, 200, C, binary);
+    std::vector<std::int64_t> p(300);
+    std::uniform_int_distribution<std::int64_t> spread(0, seed % 3 == 0 ? 10 : 4 * kGamma);
+    for (auto& x : p) x = spread(rng);
+    std::vector<std::int64_t> naive_cost, pruned_cost;
+    std::vector<std::int32_t> naive_arg, pruned_arg;
+    update_table_row_naive(p, right, left, naive_cost, naive_arg);
+    update_table_row_pruned(p, right, left, pruned_cost, pruned_arg);
+    ASSERT_EQ(naive_cost, pruned_cost) << "seed " << seed;
+    ASSERT_EQ(naive_arg, pruned_arg) << "seed " << seed;
+  }
+}
+
+// Results do not depend on the thread count (tasks start from different neighbour guesses).
+TEST(CpuRow, PrunedIsIdenticalOnOneThread) {
+  std::mt19937 rng(77);
+  const ColumnSet right = random_columns(rng, 400, 90, true);
+  const ColumnSet left = random_columns(rng, 300, 90, true);
+  std::vector<std::int64_t> p(400);
+  std::uniform_int_distribution<std::int64_t> spread(0, 3 * kGamma);
+  for (auto& x : p) x = spread(rng);
+  std::vector<std::int64_t> many_cost, one_cost;
+  std::vector<std::int32_t> many_arg, one_arg;
+  update_table_row_pruned(p, right, left, many_cost, many_arg);
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    update_table_row_pruned(p, right, left, one_cost, one_arg);
+  }
+  EXPECT_EQ(many_cost, one_cost);
+  EXPECT_EQ(many_arg, one_arg);
+}
+
+// The vectorized integer square root gives colour_term for every reachable squared distance,
+// and the capped D is exact up to the limit and above it past the limit.
+TEST(CpuRow, CappedEdgeCostIsExact) {
+  std::vector<bool> reachable(3 * 255 * 255 + 1, false);
+  for (int r = 0; r < 256; ++r)
+    for (int g = 0; g < 256; ++g)
+      for (int b = 0; b < 256; ++b) reachable[std::size_t(r * r + g * g + b * b)] = true;
+  int checked = 0;
+  for (int r = 0; r < 256; ++r)
+    for (int g = 0; g <= r; ++g)
+      for (int b = 0; b <= g; ++b) {
+        const int d2 = r * r + g * g + b * b;
+        if (!reachable[std::size_t(d2)]) continue;
+        reachable[std::size_t(d2)] = false;  // once per d2
+        const std::uint32_t p = pack_rgba(255, 255, 255, 255),
+                            q = pack_rgba(255 - r, 255 - g, 255 - b, 255);
+        ASSERT_EQ(edge_cost_capped(&p, &q, 1, true, kGamma), colour_term(p, q)) << d2;
+        ++checked;
+      }
+  EXPECT_GT(checked, 100000);
+  std::mt19937 rng(9);
+  for (bool binary : {true, false}) {
+    const ColumnSet a = random_columns(rng, 50, 90, binary),
+                    b = random_columns(rng, 50, 90, binary);
+    for (int i = 0; i < 50; ++i) {
+      const std::uint32_t* x = a.samples.data() + i * 90;
+      const std::uint32_t* y = b.samples.data() + i * 90;
+      const std::int64_t d = edge_cost(x, y, 90, binary);
+      EXPECT_EQ(edge_cost_capped(x, y, 90, binary, d), d);
+      EXPECT_EQ(edge_cost_capped(x, y, 90, binary, INT64_MAX), d);
+      if (d > 0) {
+        EXPECT_GT(edge_cost_capped(x, y, 90, binary, d - 1), d - 1);
+      }
+    }
+  }
+}
+
 TEST(CpuRow, BoundNeverExceedsTrueCost) {
   for (int seed = 0; seed < 20; ++seed) {
     std::mt19937 rng(100 + seed);
@@ -64,7 +144,13 @@ TEST(CpuRow, BoundNeverExceedsTrueCost) {
       for (int j = 0; j < 60; ++j) {
         const std::int64_t d =
             edge_cost(a.samples.data() + i * C, b.samples.data() + j * C, C, binary);
-        EXPECT_LE(std::int64_t(edge_cost_bound(sa, i, sb, j, binary)), d);
+        EXPECT_LE(edge_cost_bound(sa, i, sb, j, binary), d);
+        EXPECT_LE(std::int64_t(std::floor(block_colour_bound(sa, i, sb, j))), d);
+        const int m = binary ? mismatched_samples(sa, i, sb, j) : 0;
+        EXPECT_FALSE(whole_edge_bound_exceeds(sa, i, sb, j, m, d)) << i << " " << j;
+        if (binary) {
+          EXPECT_LE(std::int64_t(kGamma) * m, d);
+        }
       }
     }
   }

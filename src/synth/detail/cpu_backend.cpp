@@ -17,61 +17,9 @@ namespace {
 
 constexpr std::int64_t kNoCost = std::numeric_limits<std::int64_t>::max();
 constexpr std::int32_t kNoIndex = std::numeric_limits<std::int32_t>::max();
-constexpr int kChunk = 64;  // previous positions bounded together (a vectorizable loop)
 
 int column_count(const ColumnSet& set) {
   return set.column > 0 ? int(set.samples.size() / std::size_t(set.column)) : 0;
-}
-
-// Lexicographic (cost, index) improvement.
-bool improves(std::int64_t cost, std::int32_t index, std::int64_t best, std::int32_t best_index) {
-  return cost < best || (cost == best && index < best_index);
-}
-
-// D with early exit: returns a value > limit as soon as the partial sum exceeds it.
-std::int64_t edge_cost_capped(const std::uint32_t* right, const std::uint32_t* left, int count,
-                              bool binary_alpha, std::int64_t limit) {
-  std::int64_t sum = 0;
-  for (int k0 = 0; k0 < count; k0 += kBoundBlock) {
-    const int k1 = std::min(count, k0 + kBoundBlock);
-    std::int32_t block = 0;
-    for (int k = k0; k < k1; ++k) block += xi(right[k], left[k], binary_alpha);
-    sum += block;
-    if (sum > limit) return sum;
-  }
-  return sum;
-}
-
-// Lower bounds on D for `length` previous positions from r0 against current position j.
-// Vectorized (clones for AVX-512 / AVX2); the bound only decides what to skip, so the
-// instruction set cannot change any result.
-__attribute__((target_clones("avx512f", "avx2", "default"), optimize("O3", "no-math-errno"))) void
-chunk_bounds(const EdgeStats& right, const EdgeStats& left, int r0, int length, int j, bool binary,
-             float* bound) {
-  for (int r = 0; r < length; ++r) bound[r] = 0.0f;
-  for (int b = 0; b < right.blocks; ++b) {
-    const std::size_t base = std::size_t(b) * right.count + r0;
-    const std::size_t at = std::size_t(b) * left.count + j;
-    const float lo = left.opaque[at], lr = left.red[at], lg = left.green[at], lb = left.blue[at];
-    const float size = right.block_size[b];
-    const float* ro = right.opaque.data() + base;
-    const float* rr = right.red.data() + base;
-    const float* rg = right.green.data() + base;
-    const float* rb = right.blue.data() + base;
-    if (binary) {
-      for (int r = 0; r < length; ++r) {
-        const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
-        const float colour = 16.0f * std::sqrt(dr * dr + dg * dg + db * db) - size;
-        const float mismatch = std::fabs(ro[r] - lo);
-        bound[r] += std::max(float(kGamma) * mismatch, colour + kMismatchExtra * mismatch);
-      }
-    } else {
-      for (int r = 0; r < length; ++r) {
-        const float dr = rr[r] - lr, dg = rg[r] - lg, db = rb[r] - lb;
-        bound[r] += std::max(16.0f * std::sqrt(dr * dr + dg * dg + db * db) - size, 0.0f);
-      }
-    }
-  }
 }
 
 class CpuBackend final : public Backend {
@@ -182,6 +130,99 @@ void update_table_row_naive(const std::vector<std::int64_t>& previous_cost, cons
   });
 }
 
+namespace {
+
+// The previous positions of a row regrouped for the pruned update: grouped by exact opaque mask
+// (one group with continuous alpha), groups in increasing min P, members in increasing (P, v),
+// their samples and statistics contiguous in that "slot" order.
+struct PreviousByMask {
+  std::vector<std::int32_t> position;        // slot -> v
+  std::vector<std::int64_t> cost;            // slot -> P[v]
+  std::vector<std::uint32_t> samples;        // C per slot
+  EdgeStats stats;                           // per slot
+  std::vector<std::int32_t> group_begin;     // group g = slots [group_begin[g], group_begin[g + 1])
+  std::vector<std::int32_t> groups_by_mask;  // group ids in increasing mask (for look-ups)
+  std::vector<std::int32_t> slot_of;         // v -> slot
+};
+
+bool mask_less(const std::uint64_t* a, const std::uint64_t* b, int words) {
+  return std::lexicographical_compare(a, a + words, b, b + words);
+}
+
+PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
+                             const ColumnSet& right) {
+  const int previous = int(previous_cost.size());
+  const int C = right.column;
+  std::vector<std::int32_t> order(static_cast<std::size_t>(previous));  // rank -> v
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
+  });
+  const EdgeStats by_rank = make_edge_stats(right, order);
+  const int words = by_rank.words;
+  auto mask = [&](int rank) { return by_rank.masks.data() + std::size_t(rank) * words; };
+  std::vector<std::int32_t> ranks(order.size());
+  std::iota(ranks.begin(), ranks.end(), 0);
+  std::sort(ranks.begin(), ranks.end(), [&](std::int32_t a, std::int32_t b) {
+    if (mask_less(mask(a), mask(b), words)) return true;
+    if (mask_less(mask(b), mask(a), words)) return false;
+    return a < b;
+  });
+  // Runs of equal masks, each starting at its lowest rank; then groups by that rank.
+  std::vector<std::int32_t> run_begin;
+  for (int i = 0; i < previous; ++i)
+    if (i == 0 || !std::equal(mask(ranks[i]), mask(ranks[i]) + words, mask(ranks[i - 1])))
+      run_begin.push_back(i);
+  const int groups = int(run_begin.size());
+  run_begin.push_back(previous);
+  std::vector<std::int32_t> by_min_rank(static_cast<std::size_t>(groups));
+  std::iota(by_min_rank.begin(), by_min_rank.end(), 0);
+  std::sort(by_min_rank.begin(), by_min_rank.end(),
+            [&](int a, int b) { return ranks[run_begin[a]] < ranks[run_begin[b]]; });
+
+  PreviousByMask out;
+  std::vector<std::int32_t> slot_order;  // slot -> v
+  slot_order.reserve(order.size());
+  out.group_begin.reserve(std::size_t(groups) + 1);
+  out.groups_by_mask.assign(std::size_t(groups), 0);
+  for (int g = 0; g < groups; ++g) {
+    const int run = by_min_rank[std::size_t(g)];
+    out.groups_by_mask[std::size_t(run)] = g;  // runs are in mask order
+    out.group_begin.push_back(std::int32_t(slot_order.size()));
+    for (int i = run_begin[run]; i < run_begin[run + 1]; ++i) slot_order.push_back(order[ranks[i]]);
+  }
+  out.group_begin.push_back(previous);
+  out.position = slot_order;
+  out.cost.resize(slot_order.size());
+  out.samples.resize(slot_order.size() * std::size_t(C));
+  out.slot_of.resize(slot_order.size());
+  for (int s = 0; s < previous; ++s) {
+    const std::int32_t v = slot_order[std::size_t(s)];
+    out.cost[std::size_t(s)] = previous_cost[std::size_t(v)];
+    out.slot_of[std::size_t(v)] = s;
+    std::copy_n(right.samples.data() + std::size_t(v) * C, C,
+                out.samples.data() + std::size_t(s) * C);
+  }
+  out.stats = make_edge_stats(right, slot_order);
+  return out;
+}
+
+// The group whose mask equals left position j's, or -1.
+int group_of_left(const PreviousByMask& prev, const EdgeStats& left, int j) {
+  const int words = left.words;
+  const std::uint64_t* key = left.masks.data() + std::size_t(j) * words;
+  auto group_mask = [&](int g) {
+    return prev.stats.masks.data() + std::size_t(prev.group_begin[std::size_t(g)]) * words;
+  };
+  const auto it =
+      std::lower_bound(prev.groups_by_mask.begin(), prev.groups_by_mask.end(), 0,
+                       [&](std::int32_t g, int) { return mask_less(group_mask(g), key, words); });
+  if (it == prev.groups_by_mask.end() || !std::equal(key, key + words, group_mask(*it))) return -1;
+  return *it;
+}
+
+}  // namespace
+
 void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
                              const ColumnSet& left, std::vector<std::int64_t>& cost,
                              std::vector<std::int32_t>& argmin, std::int64_t* pairs_evaluated) {
@@ -191,102 +232,77 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
   const bool binary = left.binary_alpha;
   cost.assign(std::size_t(count), kNoCost);
   argmin.assign(std::size_t(count), -1);
+  if (pairs_evaluated) *pairs_evaluated = 0;
   if (previous == 0 || count == 0) return;
 
-  // Groups by the number of opaque samples n (binary alpha; one group otherwise): a pair whose
-  // counts differ by d has D >= gamma * d, so for each j groups are visited outward from its
-  // own count and dropped once min P + gamma * d cannot win. Inside a group: increasing (P, v).
-  auto opaque_count = [C](const std::uint32_t* samples) {
-    int n = 0;
-    for (int k = 0; k < C; ++k) n += is_opaque(samples[k]) ? 1 : 0;
-    return n;
-  };
-  const int groups = binary ? C + 1 : 1;
-  std::vector<int> group_of(static_cast<std::size_t>(previous), 0);
-  if (binary)
-    for (int v = 0; v < previous; ++v)
-      group_of[std::size_t(v)] = opaque_count(right.samples.data() + std::size_t(v) * C);
-  std::vector<std::int32_t> order(static_cast<std::size_t>(previous));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-    if (group_of[a] != group_of[b]) return group_of[a] < group_of[b];
-    return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
-  });
-  std::vector<int> group_begin(std::size_t(groups) + 1, previous);
-  for (int r = previous - 1; r >= 0; --r) group_begin[std::size_t(group_of[order[r]])] = r;
-  for (int g = groups - 1; g >= 0; --g)
-    group_begin[std::size_t(g)] =
-        std::min(group_begin[std::size_t(g)], group_begin[std::size_t(g) + 1]);
-  std::vector<std::int64_t> sorted_cost(static_cast<std::size_t>(previous));
-  std::vector<std::uint32_t> sorted_samples(static_cast<std::size_t>(previous) * C);
-  std::vector<std::int32_t> rank(static_cast<std::size_t>(previous));  // v -> place in order
-  for (int r = 0; r < previous; ++r) {
-    sorted_cost[r] = previous_cost[order[r]];
-    rank[std::size_t(order[r])] = r;
-    std::copy_n(right.samples.data() + std::size_t(order[r]) * C, C,
-                sorted_samples.data() + std::size_t(r) * C);
-  }
-  const std::int64_t min_cost = *std::min_element(previous_cost.begin(), previous_cost.end());
-  const EdgeStats right_stats = make_edge_stats(right, order);
+  const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
+  const int groups = int(prev.group_begin.size()) - 1;
+  const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 32), [&](auto range) {
-    float bound[kChunk];
     std::int64_t local_evaluated = 0;
     std::int32_t neighbour = -1;  // argmin of the previous j in this task
     for (int j = range.begin(); j < range.end(); ++j) {
       const std::uint32_t* left_samples = left.samples.data() + std::size_t(j) * C;
       std::int64_t best = kNoCost;
-      std::int32_t best_index = kNoIndex;
-      auto consider = [&](int r, std::int32_t v) {
-        const std::int64_t p = sorted_cost[r];
-        const std::int64_t limit = best == kNoCost ? kNoCost : best - p;
-        ++local_evaluated;
-        const std::int64_t d = edge_cost_capped(sorted_samples.data() + std::size_t(r) * C,
-                                                left_samples, C, binary, limit);
-        if (d <= limit && improves(p + d, v, best, best_index)) {
-          best = p + d;
-          best_index = v;
+      std::int32_t best_v = kNoIndex;
+      // Considers slot s (m mismatched samples); false once P alone exceeds the best, so that
+      // no later slot of an increasing-P walk can win.
+      auto consider = [&](int s, int m) {
+        const std::int64_t p = prev.cost[std::size_t(s)];
+        if (p > best) return false;
+        const std::int32_t v = prev.position[std::size_t(s)];
+        const std::int64_t limit = best - p - (v > best_v ? 1 : 0);  // ties go to the lowest v
+        if (limit < 0) return true;
+        if (best_v != kNoIndex) {
+          if (std::int64_t(kGamma) * m > limit) return true;
+          if (whole_edge_bound_exceeds(prev.stats, s, left_stats, j, m, limit)) return true;
+          if (double(block_colour_bound(prev.stats, s, left_stats, j)) > double(limit)) return true;
         }
+        ++local_evaluated;
+        const std::int64_t d = edge_cost_capped(prev.samples.data() + std::size_t(s) * C,
+                                                left_samples, C, binary, limit);
+        if (d <= limit) {  // strictly better, or equal with a lower v
+          best = p + d;
+          best_v = v;
+        }
+        return true;
       };
       // A good first guess makes the bounds prune from the start: consecutive current positions
       // are usually exemplar neighbours, and so are their optimal predecessors. Exact
       // regardless: a guess is only a real candidate evaluated early.
       if (neighbour >= 0) {
-        if (neighbour + 1 < previous) consider(rank[std::size_t(neighbour) + 1], neighbour + 1);
-        consider(rank[std::size_t(neighbour)], neighbour);
-      }
-      // Visits group g whose opaque count differs from j's by d (gap = gamma * d <= D).
-      auto visit_group = [&](int g, std::int64_t gap) {
-        const int end = group_begin[std::size_t(g) + 1];
-        for (int r0 = group_begin[std::size_t(g)]; r0 < end && sorted_cost[r0] + gap <= best;
-             r0 += kChunk) {
-          const int length = std::min(kChunk, end - r0);
-          chunk_bounds(right_stats, left_stats, r0, length, j, binary, bound);
-          for (int r = 0; r < length; ++r) {
-            const std::int64_t p = sorted_cost[r0 + r];
-            if (p + gap > best) break;
-            const std::int32_t v = order[r0 + r];
-            const float margin_bound = bound[r] * (1.0f - 1e-5f) - 1.0f;
-            const std::int64_t lower =
-                p + std::max<std::int64_t>(gap, std::int64_t(std::max(0.0f, margin_bound)));
-            if (lower > best || (lower == best && v > best_index)) continue;
-            consider(r0 + r, v);
-          }
+        for (std::int32_t v : {neighbour, neighbour + 1}) {
+          if (v >= previous) continue;
+          const int s = prev.slot_of[std::size_t(v)];
+          consider(s, binary ? mismatched_samples(prev.stats, s, left_stats, j) : 0);
         }
-      };
-      const int own = binary ? opaque_count(left_samples) : 0;
-      for (int d = 0; d < groups; ++d) {
-        const std::int64_t gap = binary ? std::int64_t(kGamma) * d : 0;
-        if (best != kNoCost && min_cost + gap > best) break;
-        if (own - d < 0 && own + d >= groups) break;
-        if (own - d >= 0) visit_group(own - d, gap);
-        if (d > 0 && own + d < groups) visit_group(own + d, gap);
       }
-      cost[j] = best;
-      argmin[j] = best_index;
-      neighbour = best_index;
+      // The group of j's own mask: no mismatched sample, D is colours only.
+      const int own = group_of_left(prev, left_stats, j);
+      if (own >= 0)
+        for (int s = prev.group_begin[std::size_t(own)]; s < prev.group_begin[std::size_t(own) + 1];
+             ++s)
+          if (!consider(s, 0)) break;
+      // Every other group has m >= 1 mismatched samples, so D >= gamma * m: visit groups (in
+      // increasing min P) only while min P + gamma * m can still win.
+      if (own < 0 || best - min_cost >= kGamma) {
+        for (int g = 0; g < groups; ++g) {
+          if (g == own) continue;
+          const int begin = prev.group_begin[std::size_t(g)];
+          const int end = prev.group_begin[std::size_t(g) + 1];
+          if (prev.cost[std::size_t(begin)] + kGamma > best) break;
+          const int m = mismatched_samples(prev.stats, begin, left_stats, j);
+          const std::int64_t gap = std::int64_t(kGamma) * m;
+          for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
+            if (!consider(s, m)) break;
+        }
+      }
+      cost[std::size_t(j)] = best;
+      argmin[std::size_t(j)] = best_v;
+      neighbour = best_v;
     }
     evaluated += local_evaluated;
   });
