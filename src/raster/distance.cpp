@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "core/error.hpp"
@@ -61,32 +62,47 @@ Raster<float> distance_to_mask(const Raster<std::uint8_t>& mask, double pixel_w,
   const int w = mask.width, h = mask.height;
   Raster<float> out(w, h, 0.0f);
   if (w == 0 || h == 0) return out;
-  // Squared distances along columns first (metres^2), then along rows.
-  std::vector<double> columns(std::size_t(w) * h);
-  // Columns are gathered kChunk at a time so reads and writes walk rows, not strides.
-  constexpr int kChunk = 16;
+  // Squared distances along columns first (metres^2), then along rows. On a binary mask the
+  // column pass is the squared distance to the nearest non-zero pixel of the column, found by
+  // one scan down and one up (row-major, no division); it gives exactly the lower envelope's
+  // values: the envelope's winner is the nearest pixel (ties are equally far), and both
+  // evaluate w2 * dq * dq + 0.
+  // Every cell is written by the column pass: no zero-fill (half a gigabyte at 8k^2).
+  const auto columns = std::make_unique_for_overwrite<double[]>(std::size_t(w) * h);
+  const double w2 = pixel_h * pixel_h;
+  constexpr int kChunk = 256;
   tbb::parallel_for(tbb::blocked_range<int>(0, (w + kChunk - 1) / kChunk),
                     [&](const tbb::blocked_range<int>& range) {
-                      Envelope envelope;
-                      std::vector<double> f(std::size_t(kChunk) * h), d(std::size_t(kChunk) * h);
+                      std::vector<int> nearest(kChunk);
                       for (int chunk = range.begin(); chunk != range.end(); ++chunk) {
-                        const int c0 = chunk * kChunk, c1 = std::min(w, c0 + kChunk);
-                        for (int r = 0; r < h; ++r)
-                          for (int c = c0; c < c1; ++c)
-                            f[std::size_t(c - c0) * h + r] = mask.at(c, r) ? 0.0 : kInf;
-                        for (int c = c0; c < c1; ++c)
-                          envelope.transform(&f[std::size_t(c - c0) * h], h, pixel_h * pixel_h,
-                                             &d[std::size_t(c - c0) * h]);
-                        for (int r = 0; r < h; ++r)
-                          for (int c = c0; c < c1; ++c)
-                            columns[std::size_t(r) * w + c] = d[std::size_t(c - c0) * h + r];
+                        const int c0 = chunk * kChunk, n = std::min(w, c0 + kChunk) - c0;
+                        std::fill(nearest.begin(), nearest.end(), -1);
+                        for (int r = 0; r < h; ++r) {
+                          const std::uint8_t* m = mask.pixels.data() + std::size_t(r) * w + c0;
+                          double* d = columns.get() + std::size_t(r) * w + c0;
+                          for (int i = 0; i < n; ++i) {
+                            if (m[i]) nearest[i] = r;
+                            const double dq = double(r - nearest[i]);
+                            d[i] = nearest[i] < 0 ? kInf : w2 * dq * dq;
+                          }
+                        }
+                        std::fill(nearest.begin(), nearest.end(), -1);
+                        for (int r = h - 1; r >= 0; --r) {
+                          const std::uint8_t* m = mask.pixels.data() + std::size_t(r) * w + c0;
+                          double* d = columns.get() + std::size_t(r) * w + c0;
+                          for (int i = 0; i < n; ++i) {
+                            if (m[i]) nearest[i] = r;
+                            const double dq = double(r - nearest[i]);
+                            if (nearest[i] >= 0) d[i] = std::min(d[i], w2 * dq * dq);
+                          }
+                        }
                       }
                     });
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& range) {
     Envelope envelope;
     std::vector<double> d(static_cast<std::size_t>(w));
     for (int r = range.begin(); r != range.end(); ++r) {
-      envelope.transform(columns.data() + std::size_t(r) * w, w, pixel_w * pixel_w, d.data());
+      envelope.transform(columns.get() + std::size_t(r) * w, w, pixel_w * pixel_w, d.data());
       for (int c = 0; c < w; ++c) out.at(c, r) = float(std::sqrt(d[c]));
     }
   });
