@@ -71,6 +71,11 @@ void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesyste
                          GDT_Float32, 0, 0) != CE_None)
         fail("cannot write band '{}' of {}: {}", layer.channels[b], path.string(),
              CPLGetLastErrorMsg());
+      // Compress and write out this row of tiles now (on NUM_THREADS workers): left in GDAL's
+      // block cache, dirty tiles pile up to GDAL_CACHEMAX (5 % of RAM) on top of the layers.
+      if (band->FlushCache(false) != CE_None)
+        fail("cannot write band '{}' of {}: {}", layer.channels[b], path.string(),
+             CPLGetLastErrorMsg());
     }
   }
   ds.reset();  // flush and close; errors surface here
