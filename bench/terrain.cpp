@@ -153,6 +153,23 @@ void run(int size, const std::filesystem::path& dir) {
     std::printf("    %-6s %7.2f / %7.2f\n", names[i], all[i].wall, all[i].cpu);
   std::printf("    peak RSS %.0f MiB = %.2f x the layers written (%.0f MiB)\n", peak_rss_mib(),
               peak_rss_mib() / layer_mib, layer_mib);
+  // The EXR compression trade-off per layer (docs/performance.md): seconds and size.
+  std::filesystem::create_directories(dir);
+  const std::pair<ExrCompression, const char*> compressions[] = {
+      {ExrCompression::none, "none"}, {ExrCompression::rle, "rle"}, {ExrCompression::zip, "zip1"}};
+  for (const Layer& layer : set.layers) {
+    const double raw_mb = 4.0 * double(size) * size * double(layer.bands.size()) / 1e6;
+    std::printf("    exr %-6s (%4.0f MB raw, automatic = %s):", layer.name.c_str(), raw_mb,
+                exr_compression_for(layer) == ExrCompression::rle ? "rle" : "none");
+    for (const auto& [compression, name] : compressions) {
+      const auto path = dir / ("compression-" + layer.name + ".exr");
+      const Timing t = timed([&] { write_exr(set, layer, path, compression); });
+      std::printf("  %s %.2f s / %.2f cpu %5.1f%%", name, t.wall, t.cpu,
+                  100.0 * double(std::filesystem::file_size(path)) / (raw_mb * 1e6));
+      std::filesystem::remove(path);
+    }
+    std::printf("\n");
+  }
   std::fflush(stdout);
 }
 
