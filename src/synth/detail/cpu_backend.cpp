@@ -158,9 +158,11 @@ PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
   std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
     return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
   });
-  const EdgeStats by_rank = make_edge_stats(right, order);
-  const int words = by_rank.words;
-  auto mask = [&](int rank) { return by_rank.masks.data() + std::size_t(rank) * words; };
+  const EdgeStats by_position = make_edge_stats(right);
+  const int words = by_position.words;
+  auto mask = [&](int rank) {
+    return by_position.masks.data() + std::size_t(order[std::size_t(rank)]) * words;
+  };
   std::vector<std::int32_t> ranks(order.size());
   std::iota(ranks.begin(), ranks.end(), 0);
   std::sort(ranks.begin(), ranks.end(), [&](std::int32_t a, std::int32_t b) {
@@ -203,7 +205,7 @@ PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
     std::copy_n(right.samples.data() + std::size_t(v) * C, C,
                 out.samples.data() + std::size_t(s) * C);
   }
-  out.stats = make_edge_stats(right, slot_order);
+  out.stats = permute_edge_stats(by_position, slot_order);
   return out;
 }
 

@@ -1,7 +1,9 @@
 #include "synth/detail/edge_bound.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "synth/detail/cost.hpp"
@@ -19,57 +21,52 @@ EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32
   stats.masks.assign(std::size_t(stats.count) * stats.words, 0);
   stats.sums.assign(std::size_t(stats.count) * 3, 0);
   stats.block_sums.assign(std::size_t(stats.count) * stats.blocks * 3, 0.0f);
-  for (int j = 0; j < stats.count; ++j) {
-    const std::size_t source = order.empty() ? std::size_t(j) : std::size_t(order[j]);
-    const std::uint32_t* samples = columns.samples.data() + source * C;
-    std::uint64_t* mask = stats.masks.data() + std::size_t(j) * stats.words;
-    std::int32_t* sums = stats.sums.data() + std::size_t(j) * 3;
-    float* block_sums = stats.block_sums.data() + std::size_t(j) * stats.blocks * 3;
-    for (int k = 0; k < C; ++k) {
-      if (columns.binary_alpha && is_opaque(samples[k]))
-        mask[k / 64] |= std::uint64_t(1) << (k % 64);
-      for (int c = 0; c < 3; ++c) {
-        sums[c] += std::int32_t(channel_of(samples[k], c));
-        block_sums[(k / kBoundBlock) * 3 + c] += float(channel_of(samples[k], c));
+  tbb::parallel_for(tbb::blocked_range<int>(0, stats.count, 256), [&](auto range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const std::size_t source = order.empty() ? std::size_t(j) : std::size_t(order[j]);
+      const std::uint32_t* samples = columns.samples.data() + source * C;
+      std::uint64_t* mask = stats.masks.data() + std::size_t(j) * stats.words;
+      std::int32_t* sums = stats.sums.data() + std::size_t(j) * 3;
+      float* block_sums = stats.block_sums.data() + std::size_t(j) * stats.blocks * 3;
+      for (int b = 0; b < stats.blocks; ++b) {
+        std::int32_t red = 0, green = 0, blue = 0;
+        for (int k = b * kBoundBlock; k < std::min(C, (b + 1) * kBoundBlock); ++k) {
+          const std::uint32_t t = samples[k];
+          if (columns.binary_alpha && is_opaque(t)) mask[k / 64] |= std::uint64_t(1) << (k % 64);
+          red += std::int32_t(t & 255u);
+          green += std::int32_t((t >> 8) & 255u);
+          blue += std::int32_t((t >> 16) & 255u);
+        }
+        block_sums[3 * b] = float(red);
+        block_sums[3 * b + 1] = float(green);
+        block_sums[3 * b + 2] = float(blue);
+        sums[0] += red;
+        sums[1] += green;
+        sums[2] += blue;
       }
     }
-  }
+  });
   return stats;
 }
 
-int mismatched_samples(const EdgeStats& right, int a, const EdgeStats& left, int b) {
-  const std::uint64_t* ra = right.masks.data() + std::size_t(a) * right.words;
-  const std::uint64_t* lb = left.masks.data() + std::size_t(b) * left.words;
-  int m = 0;
-  for (int w = 0; w < right.words; ++w) m += std::popcount(ra[w] ^ lb[w]);
-  return m;
-}
-
-bool whole_edge_bound_exceeds(const EdgeStats& right, int a, const EdgeStats& left, int b, int m,
-                              std::int64_t limit) {
-  // 16 ||dS|| - C + extra * m > limit  <=>  16 ||dS|| > rhs  <=>  256 ||dS||^2 > rhs^2.
-  const std::int64_t rhs = limit + right.column - std::int64_t(kMismatchExtra) * m;
-  if (rhs < 0) return true;
-  if (rhs >= (std::int64_t(1) << 31)) return false;  // 16 ||dS|| <= 7068 C stays far below
-  const std::int32_t* ra = right.sums.data() + std::size_t(a) * 3;
-  const std::int32_t* lb = left.sums.data() + std::size_t(b) * 3;
-  std::int64_t d2 = 0;
-  for (int c = 0; c < 3; ++c) d2 += std::int64_t(ra[c] - lb[c]) * (ra[c] - lb[c]);
-  return 256 * d2 > rhs * rhs;
-}
-
-float block_colour_bound(const EdgeStats& right, int a, const EdgeStats& left, int b) {
-  const float* ra = right.block_sums.data() + std::size_t(a) * right.blocks * 3;
-  const float* lb = left.block_sums.data() + std::size_t(b) * left.blocks * 3;
-  float bound = 0.0f;
-  for (int block = 0; block < right.blocks; ++block) {
-    const float dr = ra[3 * block] - lb[3 * block], dg = ra[3 * block + 1] - lb[3 * block + 1];
-    const float db = ra[3 * block + 2] - lb[3 * block + 2];
-    const float size =
-        float(std::min(right.column, (block + 1) * kBoundBlock) - block * kBoundBlock);
-    bound += std::max(0.0f, 16.0f * std::sqrt(dr * dr + dg * dg + db * db) - size);
+EdgeStats permute_edge_stats(const EdgeStats& stats, const std::vector<std::int32_t>& order) {
+  EdgeStats out;
+  out.count = int(order.size());
+  out.column = stats.column;
+  out.words = stats.words;
+  out.blocks = stats.blocks;
+  const std::size_t words = std::size_t(stats.words), block_floats = std::size_t(stats.blocks) * 3;
+  out.masks.resize(order.size() * words);
+  out.sums.resize(order.size() * 3);
+  out.block_sums.resize(order.size() * block_floats);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::size_t from = std::size_t(order[i]);
+    std::copy_n(stats.masks.data() + from * words, words, out.masks.data() + i * words);
+    std::copy_n(stats.sums.data() + from * 3, 3, out.sums.data() + i * 3);
+    std::copy_n(stats.block_sums.data() + from * block_floats, block_floats,
+                out.block_sums.data() + i * block_floats);
   }
-  return bound * (1.0f - 1e-5f) - 1.0f;
+  return out;
 }
 
 std::int64_t edge_cost_bound(const EdgeStats& right, int a, const EdgeStats& left, int b,

@@ -13,6 +13,8 @@
 // With continuous alpha xi >= floor(16 ||p - q||) (gamma exceeds any colour term), so the
 // colour bounds hold with m = 0. The bounds only decide what to skip, never a cost, so the
 // float rounding of the block bound (lowered by a safety margin) cannot change results.
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -38,17 +40,61 @@ struct EdgeStats {
 // Masks are all zero with continuous alpha.
 EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32_t>& order = {});
 
+// The same statistics in another order: position i of the result is position order[i].
+EdgeStats permute_edge_stats(const EdgeStats& stats, const std::vector<std::int32_t>& order);
+
+// The bounds below are inline: they run for every candidate that survives the cost order.
+
+// The number of set bits, without a libgcc call when the target lacks POPCNT.
+inline int bit_count(std::uint64_t x) {
+#if defined(__POPCNT__)
+  return std::popcount(x);
+#else
+  x = x - ((x >> 1) & 0x5555555555555555ull);
+  x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full;
+  return int((x * 0x0101010101010101ull) >> 56);
+#endif
+}
+
 // The exact number of samples whose binary alphas differ.
-int mismatched_samples(const EdgeStats& right, int a, const EdgeStats& left, int b);
+inline int mismatched_samples(const EdgeStats& right, int a, const EdgeStats& left, int b) {
+  const std::uint64_t* ra = right.masks.data() + std::size_t(a) * right.words;
+  const std::uint64_t* lb = left.masks.data() + std::size_t(b) * left.words;
+  int m = 0;
+  for (int w = 0; w < right.words; ++w) m += bit_count(ra[w] ^ lb[w]);
+  return m;
+}
 
 // True when the whole-edge bound proves D(right a, left b) > limit, given m mismatched samples
 // (m = 0 with continuous alpha). Exact integer arithmetic.
-bool whole_edge_bound_exceeds(const EdgeStats& right, int a, const EdgeStats& left, int b, int m,
-                              std::int64_t limit);
+inline bool whole_edge_bound_exceeds(const EdgeStats& right, int a, const EdgeStats& left, int b,
+                                     int m, std::int64_t limit) {
+  // 16 ||dS|| - C + extra * m > limit  <=>  16 ||dS|| > rhs  <=>  256 ||dS||^2 > rhs^2.
+  const std::int64_t rhs = limit + right.column - std::int64_t(kMismatchExtra) * m;
+  if (rhs < 0) return true;
+  if (rhs >= (std::int64_t(1) << 31)) return false;  // 16 ||dS|| <= 7068 C stays far below
+  const std::int32_t* ra = right.sums.data() + std::size_t(a) * 3;
+  const std::int32_t* lb = left.sums.data() + std::size_t(b) * 3;
+  std::int64_t d2 = 0;
+  for (int c = 0; c < 3; ++c) d2 += std::int64_t(ra[c] - lb[c]) * (ra[c] - lb[c]);
+  return 256 * d2 > rhs * rhs;
+}
 
 // The block colour bound, lowered by the float safety margin (a valid integer bound after
 // floor): sum over blocks of max(0, 16 ||dS_b|| - n_b).
-float block_colour_bound(const EdgeStats& right, int a, const EdgeStats& left, int b);
+inline float block_colour_bound(const EdgeStats& right, int a, const EdgeStats& left, int b) {
+  const float* ra = right.block_sums.data() + std::size_t(a) * right.blocks * 3;
+  const float* lb = left.block_sums.data() + std::size_t(b) * left.blocks * 3;
+  float bound = 0.0f;
+  for (int block = 0; block < right.blocks; ++block) {
+    const float dr = ra[3 * block] - lb[3 * block], dg = ra[3 * block + 1] - lb[3 * block + 1];
+    const float db = ra[3 * block + 2] - lb[3 * block + 2];
+    const int size = std::min(right.column, (block + 1) * kBoundBlock) - block * kBoundBlock;
+    bound += std::max(0.0f, 16.0f * __builtin_sqrtf(dr * dr + dg * dg + db * db) - float(size));
+  }
+  return bound * (1.0f - 1e-5f) - 1.0f;
+}
 
 // The largest lower bound above (gamma * m, whole edge, blocks), as an integer <= D.
 std::int64_t edge_cost_bound(const EdgeStats& right, int a, const EdgeStats& left, int b,
