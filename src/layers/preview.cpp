@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "core/error.hpp"
 #include "layers/detail/gdal_init.hpp"
@@ -41,20 +42,25 @@ Rgb material_colour(const std::string& channel) {
   return {-1, -1, -1};  // base and unknown materials: the elevation tint
 }
 
-// Box average of a band over factor x factor blocks, ignoring NaN.
+// Box average of a band over factor x factor blocks, ignoring NaN. Whole input rows are read
+// in order (each output pixel still sums its block row by row, left to right).
 Raster<float> downsample(const Raster<float>& band, int factor, int w, int h) {
   Raster<float> out(w, h, std::numeric_limits<float>::quiet_NaN());
   tbb::parallel_for(0, h, [&](int r) {
-    for (int c = 0; c < w; ++c) {
-      double sum = 0.0;
-      int n = 0;
-      for (int y = r * factor; y < std::min(band.height, (r + 1) * factor); ++y)
-        for (int x = c * factor; x < std::min(band.width, (c + 1) * factor); ++x) {
-          const float v = band.at(x, y);
-          if (!std::isnan(v)) sum += v, ++n;
+    std::vector<double> sum(std::size_t(w), 0.0);
+    std::vector<int> count(std::size_t(w), 0);
+    for (int y = r * factor; y < std::min(band.height, (r + 1) * factor); ++y) {
+      const float* line = band.pixels.data() + std::size_t(y) * band.width;
+      for (int c = 0; c < w; ++c) {
+        const int x1 = std::min(band.width, (c + 1) * factor);
+        for (int x = c * factor; x < x1; ++x) {
+          const float v = line[x];
+          if (!std::isnan(v)) sum[c] += v, ++count[c];
         }
-      if (n > 0) out.at(c, r) = float(sum / n);
+      }
     }
+    for (int c = 0; c < w; ++c)
+      if (count[c] > 0) out.at(c, r) = float(sum[c] / count[c]);
   });
   return out;
 }
