@@ -103,6 +103,8 @@ TEST(CpuRow, CappedEdgeCostIsExact) {
     for (int g = 0; g < 256; ++g)
       for (int b = 0; b < 256; ++b) reachable[std::size_t(r * r + g * g + b * b)] = true;
   int checked = 0;
+  std::vector<std::uint32_t> right, left;
+  std::int64_t expected = 0;
   for (int r = 0; r < 256; ++r)
     for (int g = 0; g <= r; ++g)
       for (int b = 0; b <= g; ++b) {
@@ -112,6 +114,14 @@ TEST(CpuRow, CappedEdgeCostIsExact) {
         const std::uint32_t p = pack_rgba(255, 255, 255, 255),
                             q = pack_rgba(255 - r, 255 - g, 255 - b, 255);
         ASSERT_EQ(edge_cost_capped(&p, &q, 1, true, kGamma), colour_term(p, q)) << d2;
+        // 16 at a time through the vector path: every error would add up (never cancel).
+        right.push_back(p);
+        left.push_back(q);
+        expected += colour_term(p, q);
+        if (right.size() == 16) {
+          ASSERT_EQ(edge_cost_capped(right.data(), left.data(), 16, true, INT64_MAX), expected);
+          right.clear(), left.clear(), expected = 0;
+        }
         ++checked;
       }
   EXPECT_GT(checked, 100000);

@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "synth/detail/cost.hpp"
 
 namespace tw::detail {
@@ -86,34 +90,88 @@ std::int64_t edge_cost_bound(const EdgeStats& right, int a, const EdgeStats& lef
   return lo;
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"), optimize("O3", "no-math-errno")))
-std::int64_t
-edge_cost_capped(const std::uint32_t* right, const std::uint32_t* left, int count,
-                 bool binary_alpha, std::int64_t limit) {
+namespace {
+
+// floor(sqrt(x)) for x = 256 d2 (d2 = squared RGB distance): x is a multiple of 256 below 2^26,
+// so float(x) is exact and the correctly rounded square root truncates to floor(sqrt(x)) or one
+// more (when it rounds up to the next integer); one comparison corrects it.
+inline std::int32_t colour_term_from_squared(std::int32_t d2) {
+  const std::int32_t x = 256 * d2;
+  const std::int32_t r = std::int32_t(__builtin_sqrtf(float(x)));
+  return r * r > x ? r - 1 : r;
+}
+
+// xi for binary alpha. Opaque = alpha >= 128 = the top bit (kOpaqueAlphaMin == 128).
+inline std::int32_t binary_xi(std::uint32_t p, std::uint32_t q) {
+  if ((p ^ q) >> 31) return kGamma;
+  const std::int32_t dr = std::int32_t(p & 255u) - std::int32_t(q & 255u);
+  const std::int32_t dg = std::int32_t((p >> 8) & 255u) - std::int32_t((q >> 8) & 255u);
+  const std::int32_t db = std::int32_t((p >> 16) & 255u) - std::int32_t((q >> 16) & 255u);
+  return colour_term_from_squared(dr * dr + dg * dg + db * db);
+}
+
+std::int64_t edge_cost_capped_scalar(const std::uint32_t* right, const std::uint32_t* left,
+                                     int count, bool binary_alpha, std::int64_t limit) {
   std::int64_t sum = 0;
   for (int k0 = 0; k0 < count; k0 += kBoundBlock) {
     const int k1 = std::min(count, k0 + kBoundBlock);
     std::int32_t block = 0;
-    if (binary_alpha) {
-      for (int k = k0; k < k1; ++k) {
-        const std::uint32_t p = right[k], q = left[k];
-        const std::int32_t dr = std::int32_t(p & 255u) - std::int32_t(q & 255u);
-        const std::int32_t dg = std::int32_t((p >> 8) & 255u) - std::int32_t((q >> 8) & 255u);
-        const std::int32_t db = std::int32_t((p >> 16) & 255u) - std::int32_t((q >> 16) & 255u);
-        const std::int32_t x = 256 * (dr * dr + dg * dg + db * db);
-        std::int32_t r = std::int32_t(std::sqrt(float(x)));
-        r -= r * r > x ? 1 : 0;
-        r += (r + 1) * (r + 1) <= x ? 1 : 0;
-        // Opaque = alpha >= 128 = the top bit (kOpaqueAlphaMin == 128).
-        block += ((p ^ q) >> 31) ? kGamma : r;
-      }
-    } else {
-      for (int k = k0; k < k1; ++k) block += xi(right[k], left[k], false);
-    }
+    for (int k = k0; k < k1; ++k)
+      block += binary_alpha ? binary_xi(right[k], left[k]) : xi(right[k], left[k], false);
     sum += block;
     if (sum > limit) return sum;
   }
   return sum;
+}
+
+#if defined(__x86_64__)
+// The same sum, 8 samples per AVX2 instruction (binary alpha only), checked against the limit
+// every 16 samples.
+__attribute__((target("avx2"))) std::int64_t edge_cost_capped_avx2(const std::uint32_t* right,
+                                                                   const std::uint32_t* left,
+                                                                   int count, std::int64_t limit) {
+  const __m256i byte = _mm256_set1_epi32(255), gamma = _mm256_set1_epi32(kGamma);
+  auto xi8 = [&](int k) __attribute__((target("avx2"))) {
+    const __m256i p = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(right + k));
+    const __m256i q = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(left + k));
+    const __m256i dr = _mm256_sub_epi32(_mm256_and_si256(p, byte), _mm256_and_si256(q, byte));
+    const __m256i dg = _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(p, 8), byte),
+                                        _mm256_and_si256(_mm256_srli_epi32(q, 8), byte));
+    const __m256i db = _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(p, 16), byte),
+                                        _mm256_and_si256(_mm256_srli_epi32(q, 16), byte));
+    const __m256i d2 =
+        _mm256_add_epi32(_mm256_add_epi32(_mm256_mullo_epi32(dr, dr), _mm256_mullo_epi32(dg, dg)),
+                         _mm256_mullo_epi32(db, db));
+    const __m256i x = _mm256_slli_epi32(d2, 8);
+    __m256i r = _mm256_cvttps_epi32(_mm256_sqrt_ps(_mm256_cvtepi32_ps(x)));
+    r = _mm256_add_epi32(r, _mm256_cmpgt_epi32(_mm256_mullo_epi32(r, r), x));  // -1 if too big
+    const __m256i mismatch = _mm256_srai_epi32(_mm256_xor_si256(p, q), 31);
+    return _mm256_blendv_epi8(r, gamma, mismatch);
+  };
+  std::int64_t sum = 0;
+  int k = 0;
+  for (; k + 16 <= count; k += 16) {
+    const __m256i v = _mm256_add_epi32(xi8(k), xi8(k + 8));
+    __m128i h = _mm_add_epi32(_mm256_castsi256_si128(v), _mm256_extracti128_si256(v, 1));
+    h = _mm_add_epi32(h, _mm_shuffle_epi32(h, 0x4e));
+    h = _mm_add_epi32(h, _mm_shuffle_epi32(h, 0xb1));
+    sum += _mm_cvtsi128_si32(h);
+    if (sum > limit) return sum;
+  }
+  for (; k < count; ++k) sum += binary_xi(right[k], left[k]);
+  return sum;
+}
+#endif
+
+}  // namespace
+
+std::int64_t edge_cost_capped(const std::uint32_t* right, const std::uint32_t* left, int count,
+                              bool binary_alpha, std::int64_t limit) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (binary_alpha && avx2) return edge_cost_capped_avx2(right, left, count, limit);
+#endif
+  return edge_cost_capped_scalar(right, left, count, binary_alpha, limit);
 }
 
 static_assert(kOpaqueAlphaMin == 128, "edge_cost_capped reads opacity from the top bit");
