@@ -22,6 +22,71 @@ int column_count(const ColumnSet& set) {
   return set.column > 0 ? int(set.samples.size() / std::size_t(set.column)) : 0;
 }
 
+// The exemplar surrounded by a transparent black border wide enough for every read of a stage,
+// so the per-position loops need no bounds checks (texel_at's "outside reads as transparent
+// black" holds by construction).
+template <class T>
+struct PaddedPlane {
+  int left = 0, top = 0, stride = 0;  // border widths and row length
+  std::vector<T> values;
+  const T* at(int x, int y) const {
+    return values.data() + std::size_t(y + top) * stride + (x + left);
+  }
+};
+
+// Reads at texel (ux + dx, uy + dy) for ux in [0, W), uy in [-C, H) and dx in [dx0, dx1],
+// dy in [dy0, dy1]; `value` converts a packed texel.
+template <class T, class Convert>
+PaddedPlane<T> padded_plane(const CostTexels& texels, const PositionSpace& space, int dx0, int dx1,
+                            int dy0, int dy1, Convert value) {
+  PaddedPlane<T> plane;
+  plane.left = std::max(0, -dx0);
+  plane.top = std::max(0, space.column - dy0);
+  const int right = std::max(0, space.width - 1 + dx1 - (texels.width - 1));
+  const int bottom = std::max(0, space.height - 1 + dy1 - (texels.height - 1));
+  plane.stride = plane.left + texels.width + right;
+  plane.values.assign(std::size_t(plane.stride) * (plane.top + texels.height + bottom), T(0));
+  for (int y = 0; y < texels.height; ++y)
+    for (int x = 0; x < texels.width; ++x)
+      plane.values[std::size_t(y + plane.top) * plane.stride + x + plane.left] =
+          value(texels.rgba[std::size_t(y) * texels.width + x]);
+  return plane;
+}
+
+// Offsets as one array relative to a plane: the index step of texel offset o.
+std::vector<std::ptrdiff_t> plane_steps(const std::vector<TexelOffset>& offsets, int stride) {
+  std::vector<std::ptrdiff_t> steps;
+  steps.reserve(offsets.size());
+  for (const TexelOffset& o : offsets) steps.push_back(std::ptrdiff_t(o.dy) * stride + o.dx);
+  return steps;
+}
+
+// sample_bilinear of cost.hpp on a padded plane (same fixed-point formula, bit for bit).
+std::uint32_t bilinear_padded(const PaddedPlane<std::uint32_t>& plane, std::int32_t X,
+                              std::int32_t Y) {
+  const std::uint32_t fx = std::uint32_t(X & 255), fy = std::uint32_t(Y & 255);
+  const std::uint32_t* row0 = plane.at(X >> 8, Y >> 8);
+  const std::uint32_t* row1 = row0 + plane.stride;
+  const std::uint32_t t00 = row0[0], t10 = row0[1], t01 = row1[0], t11 = row1[1];
+  const std::uint32_t w00 = (256 - fx) * (256 - fy), w10 = fx * (256 - fy);
+  const std::uint32_t w01 = (256 - fx) * fy, w11 = fx * fy;
+  std::uint32_t out = 0;
+  for (int c = 0; c < 4; ++c) {
+    const std::uint32_t v = channel_of(t00, c) * w00 + channel_of(t10, c) * w10 +
+                            channel_of(t01, c) * w01 + channel_of(t11, c) * w11;
+    out |= ((v + 32768u) >> 16) << (8 * c);
+  }
+  return out;
+}
+
+template <class Offsets, class Dx, class Dy>
+void offset_extent(const Offsets& offsets, Dx dx, Dy dy, int& dx0, int& dx1, int& dy0, int& dy1) {
+  for (const auto& o : offsets) {
+    dx0 = std::min(dx0, dx(o)), dx1 = std::max(dx1, dx(o));
+    dy0 = std::min(dy0, dy(o)), dy1 = std::max(dy1, dy(o));
+  }
+}
+
 class CpuBackend final : public Backend {
  public:
   std::string name() const override { return "cpu"; }
@@ -30,20 +95,29 @@ class CpuBackend final : public Backend {
                             const PieceFootprint& piece,
                             std::vector<std::uint8_t>& flags) override {
     flags.assign(std::size_t(space.count()), 0);
+    int dx0 = 0, dx1 = 0, dy0 = 0, dy1 = 0;
+    auto dx = [](const TexelOffset& o) { return o.dx; };
+    auto dy = [](const TexelOffset& o) { return o.dy; };
+    offset_extent(piece.must_be_clear, dx, dy, dx0, dx1, dy0, dy1);
+    offset_extent(piece.interior, dx, dy, dx0, dx1, dy0, dy1);
+    const PaddedPlane<std::uint8_t> opaque = padded_plane<std::uint8_t>(
+        texels, space, dx0, dx1, dy0, dy1, [](std::uint32_t t) { return is_opaque(t) ? 1 : 0; });
+    const std::vector<std::ptrdiff_t> clear = plane_steps(piece.must_be_clear, opaque.stride);
+    const std::vector<std::ptrdiff_t> interior = plane_steps(piece.interior, opaque.stride);
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, space.count(), 256), [&](auto range) {
       for (std::int64_t index = range.begin(); index < range.end(); ++index) {
-        const int ux = space.ux(index), uy = space.uy(index);
+        const std::uint8_t* at = opaque.at(space.ux(index), space.uy(index));
         bool valid = true;
-        for (const TexelOffset& o : piece.must_be_clear) {
-          if (is_opaque(texel_at(texels, ux + o.dx, uy + o.dy))) {
+        for (std::ptrdiff_t step : clear) {
+          if (at[step]) {
             valid = false;
             break;
           }
         }
         if (!valid) continue;
         bool any_opaque = false;
-        for (const TexelOffset& o : piece.interior) {
-          if (is_opaque(texel_at(texels, ux + o.dx, uy + o.dy))) {
+        for (std::ptrdiff_t step : interior) {
+          if (at[step]) {
             any_opaque = true;
             break;
           }
@@ -67,13 +141,23 @@ class CpuBackend final : public Backend {
     out.column = C;
     out.binary_alpha = texels.binary_alpha;
     out.samples.resize(indices.size() * std::size_t(C));
+    // Sample k reads texels (x0, y0) .. (x0 + 1, y0 + 1), x0 = ux + ((fx - 128) >> 8).
+    int dx0 = 0, dx1 = 0, dy0 = 0, dy1 = 0;
+    for (int k = 0; k < C; ++k) {
+      dx0 = std::min(dx0, (piece.right_fx[k] - 128) >> 8);
+      dx1 = std::max(dx1, ((piece.right_fx[k] - 128) >> 8) + 1);
+      dy0 = std::min(dy0, (piece.right_fy[k] - 128) >> 8);
+      dy1 = std::max(dy1, ((piece.right_fy[k] - 128) >> 8) + 1);
+    }
+    const PaddedPlane<std::uint32_t> plane = padded_plane<std::uint32_t>(
+        texels, space, dx0, dx1, dy0, dy1, [](std::uint32_t t) { return t; });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 64), [&](auto range) {
       for (std::size_t j = range.begin(); j < range.end(); ++j) {
         const std::int32_t X0 = space.ux(indices[j]) * 256 - 128;
         const std::int32_t Y0 = space.uy(indices[j]) * 256 - 128;
         for (int k = 0; k < C; ++k)
           out.samples[j * C + k] =
-              sample_bilinear(texels, X0 + piece.right_fx[k], Y0 + piece.right_fy[k]);
+              bilinear_padded(plane, X0 + piece.right_fx[k], Y0 + piece.right_fy[k]);
       }
     });
   }
