@@ -4,14 +4,21 @@
 // exemplar width (H = 64, N = 23, C = 90: quadratic), peak memory, and ratios to the paper's
 // GTX 580 figures (30 ms and 650 ms per row). Prints numbers only; never fails on time.
 //
-// usage: bench_synth [--quick] [--pictures DIR]   (DIR: write synth_*.png result pictures)
+// usage: bench_synth [--quick] [--pictures DIR] [--rows [REPEATS]]
+//   --pictures DIR: write synth_*.png result pictures
+//   --rows: replay the recorded DP rows of both exemplars REPEATS times (default 5), CPU against
+//           OpenCL (when a device exists) on the same rows: best and median ms per row.
 #include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +26,8 @@
 #include "synth/baseline.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/footprint.hpp"
+#include "synth/detail/opencl_backend.hpp"
+#include "synth/opencl_context.hpp"
 #include "synth/render.hpp"
 #include "synth/shapes.hpp"
 #include "synth/synthesize.hpp"
@@ -133,6 +142,106 @@ void per_row(const std::string& file, double paper_ms, int pieces, bool naive) {
       naive_ms / pruned_ms, (c1 == c2 && a1 == a2) ? "yes" : "NO");
 }
 
+// Records the inputs of every DP row of a synthesis so that the row update can be replayed and
+// timed alone, repeatedly, on the very same rows (the machine is shared: best and median).
+class RecordingBackend final : public detail::Backend {
+ public:
+  struct Row {
+    std::vector<std::int64_t> previous;
+    detail::ColumnSet right, left;
+  };
+  std::vector<Row> rows;
+
+  std::string name() const override { return "recording cpu"; }
+  void find_valid_positions(const detail::CostTexels& t, const detail::PositionSpace& s,
+                            const detail::PieceFootprint& p,
+                            std::vector<std::uint8_t>& flags) override {
+    cpu_->find_valid_positions(t, s, p, flags);
+  }
+  void compact_valid_positions(const std::vector<std::uint8_t>& flags,
+                               std::vector<std::int32_t>& indices) override {
+    cpu_->compact_valid_positions(flags, indices);
+  }
+  void extract_right_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
+                             const detail::PieceFootprint& p, const std::vector<std::int32_t>& i,
+                             detail::ColumnSet& out) override {
+    cpu_->extract_right_columns(t, s, p, i, out);
+  }
+  void extract_left_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
+                            const std::vector<std::int32_t>& i, detail::ColumnSet& out) override {
+    cpu_->extract_left_columns(t, s, i, out);
+  }
+  void update_table_row(const std::vector<std::int64_t>& previous, const detail::ColumnSet& right,
+                        const detail::ColumnSet& left, std::vector<std::int64_t>& cost,
+                        std::vector<std::int32_t>& argmin) override {
+    rows.push_back({previous, right, left});
+    cpu_->update_table_row(previous, right, left, cost, argmin);
+  }
+
+ private:
+  std::unique_ptr<detail::Backend> cpu_ = detail::make_cpu_backend();
+};
+
+struct Spread {
+  double best = 0, median = 0;
+};
+Spread spread_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? Spread{} : Spread{v.front(), v[v.size() / 2]};
+}
+
+// ms per row update, CPU (pruned) against OpenCL (when a device exists) on the same recorded
+// rows: best and median over `repeats` passes, pairs fully evaluated, identical results.
+void replay_rows(const std::string& file, double paper_ms, int pieces, int repeats,
+                 detail::Backend* opencl) {
+  const Exemplar e = load_exemplar(sample(file));
+  const Ribbon ribbon = arc_ribbon(pieces, 90.0, 12.0);
+  RecordingBackend recorder;
+  SynthParams params;
+  params.scale = 1.0;
+  params.allow_empty_pieces = true;
+  const Synthesis s =
+      detail::synthesize_on(recorder, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
+  const double other = (s.timings.find_valid_ms + s.timings.compact_ms + s.timings.extract_ms) /
+                       std::max(1, s.timings.rows);
+  std::vector<double> cpu_ms, cl_ms;
+  double pairs = 0, evaluated = 0;
+  bool identical = true;
+  for (int pass = 0; pass < repeats; ++pass) {
+    double cpu_total = 0, cl_total = 0;
+    for (const RecordingBackend::Row& row : recorder.rows) {
+      std::vector<std::int64_t> cost, cl_cost;
+      std::vector<std::int32_t> argmin, cl_argmin;
+      std::int64_t count = 0;
+      auto t0 = Clock::now();
+      detail::update_table_row_pruned(row.previous, row.right, row.left, cost, argmin, &count);
+      cpu_total += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      if (pass == 0) {
+        evaluated += double(count);
+        pairs += double(row.previous.size()) * double(cost.size());
+      }
+      if (!opencl) continue;
+      t0 = Clock::now();
+      opencl->update_table_row(row.previous, row.right, row.left, cl_cost, cl_argmin);
+      cl_total += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      identical = identical && cost == cl_cost && argmin == cl_argmin;
+    }
+    const double rows = std::max<std::size_t>(1, recorder.rows.size());
+    cpu_ms.push_back(cpu_total / rows);
+    cl_ms.push_back(cl_total / rows);
+  }
+  const Spread cpu = spread_of(cpu_ms), cl = spread_of(cl_ms);
+  std::printf(
+      "%-17s %dx%d C=%d rows=%zu valid/piece %6.0f  row update ms: cpu best %6.1f median %6.1f",
+      file.c_str(), e.width, e.height, s.column, recorder.rows.size(), mean(s.valid_counts),
+      cpu.best, cpu.median);
+  if (opencl)
+    std::printf(" | opencl best %6.1f median %6.1f (same results: %s)", cl.best, cl.median,
+                identical ? "yes" : "NO");
+  std::printf(" | paper %.0f | fully evaluated %.4f %% of pairs | other stages %.1f ms/row (cpu)\n",
+              paper_ms, 100.0 * evaluated / std::max(1.0, pairs), other);
+}
+
 void write_png(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgba) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return;
@@ -172,9 +281,29 @@ void picture(const Exemplar& e, const std::string& shape, double size, double wi
 int main(int argc, char** argv) {
   bool quick = false;
   std::string pictures;
+  int rows = 0;
   for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--rows"))
+      rows = i + 1 < argc && std::isdigit(argv[i + 1][0]) ? std::atoi(argv[++i]) : 5;
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     if (!std::strcmp(argv[i], "--pictures") && i + 1 < argc) pictures = argv[++i];
+  }
+  if (rows > 0) {
+    std::string why;
+    auto context = OpenCLContext::create_default(&why);
+    std::unique_ptr<detail::Backend> opencl;
+    if (context) {
+      opencl = std::make_unique<detail::OpenCLBackend>(*context);
+      std::printf("OpenCL device: %s\n", context->device_name().c_str());
+      std::vector<std::int64_t> c;
+      std::vector<std::int32_t> a;
+      opencl->update_table_row({0}, {1, {0u}, true}, {1, {0u}, true}, c, a);  // build kernels
+    } else {
+      std::printf("no OpenCL device (%s): CPU only\n", why.c_str());
+    }
+    replay_rows("chain_199x82.png", 30.0, 9, rows, opencl.get());
+    replay_rows("braid_325x64.png", 650.0, 5, rows, opencl.get());
+    return 0;
   }
   if (!pictures.empty()) {
     const Exemplar chain = load_exemplar(sample("chain_199x82.png"));

@@ -45,7 +45,7 @@ PaddedPlane<T> padded_plane(const CostTexels& texels, const PositionSpace& space
   const int right = std::max(0, space.width - 1 + dx1 - (texels.width - 1));
   const int bottom = std::max(0, space.height - 1 + dy1 - (texels.height - 1));
   plane.stride = plane.left + texels.width + right;
-  plane.values.assign(std::size_t(plane.stride) * (plane.top + texels.height + bottom), T(0));
+  plane.values.assign(std::size_t(plane.stride) * (plane.top + texels.height + bottom), T{});
   for (int y = 0; y < texels.height; ++y)
     for (int x = 0; x < texels.width; ++x)
       plane.values[std::size_t(y + plane.top) * plane.stride + x + plane.left] =
@@ -61,22 +61,33 @@ std::vector<std::ptrdiff_t> plane_steps(const std::vector<TexelOffset>& offsets,
   return steps;
 }
 
-// sample_bilinear of cost.hpp on a padded plane (same fixed-point formula, bit for bit).
-std::uint32_t bilinear_padded(const PaddedPlane<std::uint32_t>& plane, std::int32_t X,
+// A texel's channels spread over 32-bit lanes (R, G in `low`; B, A in `high`), so that one 64-bit
+// multiply weighs two channels: weight * channel <= 65536 * 255 < 2^32 never carries over.
+struct SpreadTexel {
+  std::uint64_t low = 0, high = 0;
+};
+SpreadTexel spread(std::uint32_t t) {
+  return {std::uint64_t(t & 255u) | std::uint64_t((t >> 8) & 255u) << 32,
+          std::uint64_t((t >> 16) & 255u) | std::uint64_t(t >> 24) << 32};
+}
+
+// sample_bilinear of cost.hpp on a padded plane: the same fixed-point formula, bit for bit
+// (each channel (sum of weight * value + 2^15) >> 16), two channels per multiply.
+std::uint32_t bilinear_padded(const PaddedPlane<SpreadTexel>& plane, std::int32_t X,
                               std::int32_t Y) {
-  const std::uint32_t fx = std::uint32_t(X & 255), fy = std::uint32_t(Y & 255);
-  const std::uint32_t* row0 = plane.at(X >> 8, Y >> 8);
-  const std::uint32_t* row1 = row0 + plane.stride;
-  const std::uint32_t t00 = row0[0], t10 = row0[1], t01 = row1[0], t11 = row1[1];
-  const std::uint32_t w00 = (256 - fx) * (256 - fy), w10 = fx * (256 - fy);
-  const std::uint32_t w01 = (256 - fx) * fy, w11 = fx * fy;
-  std::uint32_t out = 0;
-  for (int c = 0; c < 4; ++c) {
-    const std::uint32_t v = channel_of(t00, c) * w00 + channel_of(t10, c) * w10 +
-                            channel_of(t01, c) * w01 + channel_of(t11, c) * w11;
-    out |= ((v + 32768u) >> 16) << (8 * c);
-  }
-  return out;
+  const std::uint64_t fx = std::uint64_t(X & 255), fy = std::uint64_t(Y & 255);
+  const SpreadTexel* row0 = plane.at(X >> 8, Y >> 8);
+  const SpreadTexel* row1 = row0 + plane.stride;
+  const std::uint64_t w00 = (256 - fx) * (256 - fy), w10 = fx * (256 - fy);
+  const std::uint64_t w01 = (256 - fx) * fy, w11 = fx * fy;
+  constexpr std::uint64_t kHalf = 32768u | std::uint64_t(32768u) << 32;
+  const std::uint64_t low =
+      (row0[0].low * w00 + row0[1].low * w10 + row1[0].low * w01 + row1[1].low * w11 + kHalf) >> 16;
+  const std::uint64_t high =
+      (row0[0].high * w00 + row0[1].high * w10 + row1[0].high * w01 + row1[1].high * w11 + kHalf) >>
+      16;
+  return std::uint32_t((low & 255u) | ((low >> 32) & 255u) << 8 | (high & 255u) << 16 |
+                       ((high >> 32) & 255u) << 24);
 }
 
 template <class Offsets, class Dx, class Dy>
@@ -101,7 +112,8 @@ class CpuBackend final : public Backend {
     offset_extent(piece.must_be_clear, dx, dy, dx0, dx1, dy0, dy1);
     offset_extent(piece.interior, dx, dy, dx0, dx1, dy0, dy1);
     const PaddedPlane<std::uint8_t> opaque = padded_plane<std::uint8_t>(
-        texels, space, dx0, dx1, dy0, dy1, [](std::uint32_t t) { return is_opaque(t) ? 1 : 0; });
+        texels, space, dx0, dx1, dy0, dy1,
+        [](std::uint32_t t) { return std::uint8_t(is_opaque(t) ? 1 : 0); });
     const std::vector<std::ptrdiff_t> clear = plane_steps(piece.must_be_clear, opaque.stride);
     const std::vector<std::ptrdiff_t> interior = plane_steps(piece.interior, opaque.stride);
     tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, space.count(), 256), [&](auto range) {
@@ -149,8 +161,8 @@ class CpuBackend final : public Backend {
       dy0 = std::min(dy0, (piece.right_fy[k] - 128) >> 8);
       dy1 = std::max(dy1, ((piece.right_fy[k] - 128) >> 8) + 1);
     }
-    const PaddedPlane<std::uint32_t> plane = padded_plane<std::uint32_t>(
-        texels, space, dx0, dx1, dy0, dy1, [](std::uint32_t t) { return t; });
+    const PaddedPlane<SpreadTexel> plane =
+        padded_plane<SpreadTexel>(texels, space, dx0, dx1, dy0, dy1, spread);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 64), [&](auto range) {
       for (std::size_t j = range.begin(); j < range.end(); ++j) {
         const std::int32_t X0 = space.ux(indices[j]) * 256 - 128;
