@@ -238,6 +238,8 @@ struct PreviousByMask {
   EdgeStats stats;                           // per slot
   std::vector<std::int32_t> group_begin;     // group g = slots [group_begin[g], group_begin[g + 1])
   std::vector<std::int32_t> groups_by_mask;  // group ids in increasing mask (for look-ups)
+  std::vector<std::int64_t> group_min;       // P of the first slot of each group
+  std::vector<std::uint64_t> group_masks;    // the mask of each group, contiguous
   std::vector<std::int32_t> slot_of;         // v -> slot
 };
 
@@ -302,7 +304,63 @@ PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
                 out.samples.data() + std::size_t(s) * C);
   }
   out.stats = permute_edge_stats(by_position, slot_order);
+  for (int g = 0; g < groups; ++g) {
+    const int first = out.group_begin[std::size_t(g)];
+    out.group_min.push_back(out.cost[std::size_t(first)]);
+    out.group_masks.insert(out.group_masks.end(),
+                           out.stats.masks.begin() + std::size_t(first) * words,
+                           out.stats.masks.begin() + std::size_t(first + 1) * words);
+  }
   return out;
+}
+
+// The groups (other than `own`, in increasing min P) that may hold a winner for a left mask:
+// min P + gamma * m <= best with m = popcount(group mask ^ left mask) >= 1. best only falls
+// while the groups are walked, so this list (made with the best at the time) is a superset.
+struct GroupScan {
+  const std::int64_t* group_min;
+  const std::uint64_t* group_masks;
+  int groups, words;
+};
+
+template <int Words>
+inline void scan_groups_for(const GroupScan& scan, const std::uint64_t* key, int own,
+                            std::int64_t best, std::vector<std::pair<int, int>>& out) {
+  const int words = Words > 0 ? Words : scan.words;
+  for (int g = 0; g < scan.groups; ++g) {
+    const std::int64_t gap_free = scan.group_min[g];
+    if (gap_free + kGamma > best) break;
+    const std::uint64_t* mask = scan.group_masks + std::size_t(g) * words;
+    int m = 0;
+    for (int w = 0; w < words; ++w) m += __builtin_popcountll(mask[w] ^ key[w]);
+    if (g != own && gap_free + std::int64_t(kGamma) * m <= best) out.emplace_back(g, m);
+  }
+}
+
+void scan_groups_generic(const GroupScan& scan, const std::uint64_t* key, int own,
+                         std::int64_t best, std::vector<std::pair<int, int>>& out) {
+  if (scan.words == 2) return scan_groups_for<2>(scan, key, own, best, out);
+  scan_groups_for<0>(scan, key, own, best, out);
+}
+
+#if defined(__x86_64__)
+__attribute__((target("popcnt"))) void scan_groups_popcnt(const GroupScan& scan,
+                                                          const std::uint64_t* key, int own,
+                                                          std::int64_t best,
+                                                          std::vector<std::pair<int, int>>& out) {
+  if (scan.words == 2) return scan_groups_for<2>(scan, key, own, best, out);
+  scan_groups_for<0>(scan, key, own, best, out);
+}
+#endif
+
+void scan_groups(const GroupScan& scan, const std::uint64_t* key, int own, std::int64_t best,
+                 std::vector<std::pair<int, int>>& out) {
+  out.clear();
+#if defined(__x86_64__)
+  static const bool popcnt = __builtin_cpu_supports("popcnt");
+  if (popcnt) return scan_groups_popcnt(scan, key, own, best, out);
+#endif
+  scan_groups_generic(scan, key, own, best, out);
 }
 
 // The group whose mask equals left position j's, or -1.
@@ -335,13 +393,15 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
 
   const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
-  const int groups = int(prev.group_begin.size()) - 1;
+  const GroupScan scan{prev.group_min.data(), prev.group_masks.data(),
+                       int(prev.group_begin.size()) - 1, left_stats.words};
   const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 32), [&](auto range) {
     std::int64_t local_evaluated = 0;
-    std::int32_t neighbour = -1;  // argmin of the previous j in this task
+    std::int32_t neighbour = -1;                  // argmin of the previous j in this task
+    std::vector<std::pair<int, int>> candidates;  // (group, mismatched samples)
     for (int j = range.begin(); j < range.end(); ++j) {
       const std::uint32_t* left_samples = left.samples.data() + std::size_t(j) * C;
       std::int64_t best = kNoCost;
@@ -387,13 +447,13 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
       // Every other group has m >= 1 mismatched samples, so D >= gamma * m: visit groups (in
       // increasing min P) only while min P + gamma * m can still win.
       if (own < 0 || best - min_cost >= kGamma) {
-        for (int g = 0; g < groups; ++g) {
-          if (g == own) continue;
+        scan_groups(scan, left_stats.masks.data() + std::size_t(j) * left_stats.words, own, best,
+                    candidates);
+        for (const auto& [g, m] : candidates) {
           const int begin = prev.group_begin[std::size_t(g)];
           const int end = prev.group_begin[std::size_t(g) + 1];
-          if (prev.cost[std::size_t(begin)] + kGamma > best) break;
-          const int m = mismatched_samples(prev.stats, begin, left_stats, j);
           const std::int64_t gap = std::int64_t(kGamma) * m;
+          if (prev.cost[std::size_t(begin)] + kGamma > best) break;
           for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
             if (!consider(s, m)) break;
         }
