@@ -323,9 +323,12 @@ struct GroupScan {
   int groups, words;
 };
 
+// Inlined into each caller so that its popcount uses the caller's instruction set.
 template <int Words>
-inline void scan_groups_for(const GroupScan& scan, const std::uint64_t* key, int own,
-                            std::int64_t best, std::vector<std::pair<int, int>>& out) {
+__attribute__((always_inline)) inline void scan_groups_for(const GroupScan& scan,
+                                                           const std::uint64_t* key, int own,
+                                                           std::int64_t best,
+                                                           std::vector<std::pair<int, int>>& out) {
   const int words = Words > 0 ? Words : scan.words;
   for (int g = 0; g < scan.groups; ++g) {
     const std::int64_t gap_free = scan.group_min[g];
