@@ -202,8 +202,7 @@ void replay_rows(const std::string& file, double paper_ms, int pieces, int repea
   params.allow_empty_pieces = true;
   const Synthesis s =
       detail::synthesize_on(recorder, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
-  const double other = (s.timings.find_valid_ms + s.timings.compact_ms + s.timings.extract_ms) /
-                       std::max(1, s.timings.rows);
+  const double per_row = 1.0 / std::max(1, s.timings.rows);
   std::vector<double> cpu_ms, cl_ms;
   double pairs = 0, evaluated = 0;
   bool identical = true;
@@ -238,8 +237,11 @@ void replay_rows(const std::string& file, double paper_ms, int pieces, int repea
   if (opencl)
     std::printf(" | opencl best %6.1f median %6.1f (same results: %s)", cl.best, cl.median,
                 identical ? "yes" : "NO");
-  std::printf(" | paper %.0f | fully evaluated %.4f %% of pairs | other stages %.1f ms/row (cpu)\n",
-              paper_ms, 100.0 * evaluated / std::max(1.0, pairs), other);
+  std::printf(
+      " | paper %.0f | fully evaluated %.4f %% of pairs | per row: find valid %.1f, compact %.1f,"
+      " extract %.1f ms (cpu)\n",
+      paper_ms, 100.0 * evaluated / std::max(1.0, pairs), s.timings.find_valid_ms * per_row,
+      s.timings.compact_ms * per_row, s.timings.extract_ms * per_row);
 }
 
 void write_png(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgba) {

@@ -180,10 +180,15 @@ class CpuBackend final : public Backend {
     out.column = C;
     out.binary_alpha = texels.binary_alpha;
     out.samples.resize(indices.size() * std::size_t(C));
-    for (std::size_t j = 0; j < indices.size(); ++j) {
-      const int ux = space.ux(indices[j]), uy = space.uy(indices[j]);
-      for (int k = 0; k < C; ++k) out.samples[j * C + k] = texel_at(texels, ux, uy + k);
-    }
+    const PaddedPlane<std::uint32_t> plane = padded_plane<std::uint32_t>(
+        texels, space, 0, 0, 0, C - 1, [](std::uint32_t t) { return t; });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](auto range) {
+      for (std::size_t j = range.begin(); j < range.end(); ++j) {
+        const std::uint32_t* texel = plane.at(space.ux(indices[j]), space.uy(indices[j]));
+        std::uint32_t* column = out.samples.data() + j * C;
+        for (int k = 0; k < C; ++k) column[k] = texel[std::ptrdiff_t(k) * plane.stride];
+      }
+    });
   }
 
   void update_table_row(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
