@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -53,14 +54,6 @@ PaddedPlane<T> padded_plane(const CostTexels& texels, const PositionSpace& space
   return plane;
 }
 
-// Offsets as one array relative to a plane: the index step of texel offset o.
-std::vector<std::ptrdiff_t> plane_steps(const std::vector<TexelOffset>& offsets, int stride) {
-  std::vector<std::ptrdiff_t> steps;
-  steps.reserve(offsets.size());
-  for (const TexelOffset& o : offsets) steps.push_back(std::ptrdiff_t(o.dy) * stride + o.dx);
-  return steps;
-}
-
 // A texel's channels spread over 32-bit lanes (R, G in `low`; B, A in `high`), so that one 64-bit
 // multiply weighs two channels: weight * channel <= 65536 * 255 < 2^32 never carries over.
 struct SpreadTexel {
@@ -102,6 +95,9 @@ class CpuBackend final : public Backend {
  public:
   std::string name() const override { return "cpu"; }
 
+  // Bit-parallel: 64 positions of a row of u at once. For every offset, the opaque bits of the
+  // texels under those 64 positions are one unaligned 64-bit window of a bit row of the padded
+  // exemplar; a position is blocked by any clear-required opaque bit and needs one interior one.
   void find_valid_positions(const CostTexels& texels, const PositionSpace& space,
                             const PieceFootprint& piece,
                             std::vector<std::uint8_t>& flags) override {
@@ -112,29 +108,49 @@ class CpuBackend final : public Backend {
     offset_extent(piece.must_be_clear, dx, dy, dx0, dx1, dy0, dy1);
     offset_extent(piece.interior, dx, dy, dx0, dx1, dy0, dy1);
     const PaddedPlane<std::uint8_t> opaque = padded_plane<std::uint8_t>(
-        texels, space, dx0, dx1, dy0, dy1,
+        texels, space, dx0, dx1 + 64, dy0, dy1,
         [](std::uint32_t t) { return std::uint8_t(is_opaque(t) ? 1 : 0); });
-    const std::vector<std::ptrdiff_t> clear = plane_steps(piece.must_be_clear, opaque.stride);
-    const std::vector<std::ptrdiff_t> interior = plane_steps(piece.interior, opaque.stride);
-    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, space.count(), 256), [&](auto range) {
-      for (std::int64_t index = range.begin(); index < range.end(); ++index) {
-        const std::uint8_t* at = opaque.at(space.ux(index), space.uy(index));
-        bool valid = true;
-        for (std::ptrdiff_t step : clear) {
-          if (at[step]) {
-            valid = false;
-            break;
+    const int rows = int(opaque.values.size() / std::size_t(opaque.stride));
+    const int words = (opaque.stride + 63) / 64 + 1;
+    std::vector<std::uint64_t> bits(std::size_t(rows) * words, 0);
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < opaque.stride; ++x)
+        if (opaque.values[std::size_t(y) * opaque.stride + x])
+          bits[std::size_t(y) * words + x / 64] |= std::uint64_t(1) << (x % 64);
+    // Offsets as (bit row, bit column) of the window of position (0, 0) of a row of u.
+    auto windows = [&](const std::vector<TexelOffset>& offsets) {
+      std::vector<std::pair<int, int>> out;
+      for (const TexelOffset& o : offsets) out.emplace_back(o.dy + opaque.top, o.dx + opaque.left);
+      return out;
+    };
+    const auto clear = windows(piece.must_be_clear), interior = windows(piece.interior);
+    const int rows_of_u = space.height + space.column, blocks = (space.width + 63) / 64;
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows_of_u, 4), [&](auto range) {
+      for (int row = range.begin(); row < range.end(); ++row) {
+        const int uy = row - space.column;
+        for (int b = 0; b < blocks; ++b) {
+          const int in_row = std::min(64, space.width - 64 * b);
+          const std::uint64_t all =
+              in_row == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << in_row) - 1;
+          auto window = [&](const std::pair<int, int>& w) {
+            const int x = 64 * b + w.second;
+            const std::uint64_t* at = bits.data() + std::size_t(uy + w.first) * words + x / 64;
+            const int shift = x % 64;
+            return shift ? (at[0] >> shift) | (at[1] << (64 - shift)) : at[0];
+          };
+          std::uint64_t blocked = 0;
+          for (const auto& w : clear)
+            if (((blocked |= window(w)) & all) == all) break;
+          const std::uint64_t open = all & ~blocked;
+          if (!open) continue;
+          std::uint64_t any = 0;
+          for (const auto& w : interior)
+            if (((any |= window(w)) & open) == open) break;
+          for (std::uint64_t valid = open & any; valid; valid &= valid - 1) {
+            const int ux = 64 * b + std::countr_zero(valid);
+            flags[std::size_t(row) * space.width + ux] = 1;
           }
         }
-        if (!valid) continue;
-        bool any_opaque = false;
-        for (std::ptrdiff_t step : interior) {
-          if (at[step]) {
-            any_opaque = true;
-            break;
-          }
-        }
-        flags[std::size_t(index)] = any_opaque ? 1 : 0;
       }
     });
   }
