@@ -1,5 +1,6 @@
 // The preview: a look, not data. Hillshaded heights (box-downsampled to at most max_size
-// pixels), tinted by elevation and by the splat materials, with feature lines on top;
+// pixels), tinted by elevation and by every splat material (patterns' too), with feature lines
+// on top;
 // 8-bit RGB through GDAL's PNG driver.
 #include <cpl_string.h>
 #include <gdal_priv.h>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -33,13 +35,12 @@ Rgb elevation_tint(float t) {
   return c;
 }
 
+// Every material but the base has a colour. Known ones keep theirs; any other (the materials a
+// synthesized pattern adds, e.g. "splat.road_marking") gets one from preview_material_colour.
 Rgb material_colour(const std::string& channel) {
-  if (channel == "splat.road") return {70, 70, 75};
-  if (channel == "splat.shoulder") return {165, 150, 125};
-  if (channel == "splat.riverbed") return {60, 125, 215};
-  if (channel == "splat.bank") return {110, 125, 80};
-  if (channel == "splat.ridge_rock") return {150, 140, 135};
-  return {-1, -1, -1};  // base and unknown materials: the elevation tint
+  if (channel == "splat.base") return {-1, -1, -1};  // the elevation tint
+  const Rgb8 c = preview_material_colour(channel);
+  return {float(c[0]), float(c[1]), float(c[2])};
 }
 
 // Box average of a band over factor x factor blocks, ignoring NaN. Whole input rows are read
@@ -66,6 +67,49 @@ Raster<float> downsample(const Raster<float>& band, int factor, int w, int h) {
 }
 
 }  // namespace
+
+Rgb8 preview_material_colour(const std::string& channel) {
+  if (channel == "splat.road") return {70, 70, 75};
+  if (channel == "splat.shoulder") return {165, 150, 125};
+  if (channel == "splat.riverbed") return {60, 125, 215};
+  if (channel == "splat.bank") return {110, 125, 80};
+  if (channel == "splat.ridge_rock") return {150, 140, 135};
+  // The demo's pattern materials: markings read white on the dark road, the band rust-red on
+  // the grey rock.
+  if (channel == "splat.road_marking") return {250, 245, 215};
+  if (channel == "splat.ridge_band") return {195, 85, 45};
+  // Any other: a saturated hue from a hash of the name (FNV-1a, the same on every platform),
+  // so a material keeps its colour from run to run.
+  std::uint32_t hash = 2166136261u;
+  for (const unsigned char ch : channel) hash = (hash ^ ch) * 16777619u;
+  const double hue = double(hash % 360u) / 60.0;  // sextant of the colour wheel
+  const double x = 1.0 - std::abs(std::fmod(hue, 2.0) - 1.0);
+  std::array<double, 3> rgb{};
+  switch (int(hue)) {
+    case 0:
+      rgb = {1, x, 0};
+      break;
+    case 1:
+      rgb = {x, 1, 0};
+      break;
+    case 2:
+      rgb = {0, 1, x};
+      break;
+    case 3:
+      rgb = {0, x, 1};
+      break;
+    case 4:
+      rgb = {x, 0, 1};
+      break;
+    default:
+      rgb = {1, 0, x};
+      break;
+  }
+  Rgb8 out;  // value 0.9, saturation 0.75: bright enough over the hillshade, never white
+  for (int i = 0; i < 3; ++i)
+    out[i] = std::uint8_t(std::lround(255.0 * 0.9 * (0.25 + 0.75 * rgb[i])));
+  return out;
+}
 
 void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
                        const std::vector<std::vector<Vec2>>& lines, int max_size) {
@@ -114,11 +158,19 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
       const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
       const double shade =
           std::clamp((-dzdx * sun.x - dzdy * sun.y + std::sin(altitude)) / norm, 0.0, 1.0);
-      Rgb colour = elevation_tint((v - lo) / range);
+      // The weighted mean of the material colours, the base (and whatever weight is missing)
+      // in the elevation tint: weights sum to 1, so a pattern's share shows as its share.
+      const Rgb tint = elevation_tint((v - lo) / range);
+      Rgb colour{0, 0, 0};
+      float covered = 0.0f;
       for (const auto& [mc, weights] : materials) {
-        const float m = std::isnan(weights.at(c, r)) ? 0.0f : weights.at(c, r);
-        for (int i = 0; i < 3; ++i) colour[i] += (mc[i] - colour[i]) * m;
+        const float m =
+            std::isnan(weights.at(c, r)) ? 0.0f : std::clamp(weights.at(c, r), 0.0f, 1.0f);
+        const float share = std::min(m, 1.0f - covered);
+        covered += share;
+        for (int i = 0; i < 3; ++i) colour[i] += mc[i] * share;
       }
+      for (int i = 0; i < 3; ++i) colour[i] += tint[i] * (1.0f - covered);
       const double light = 0.35 + 0.75 * shade;
       for (int i = 0; i < 3; ++i)
         rgb[i][k] = std::uint8_t(std::clamp(colour[i] * light, 0.0, 255.0));

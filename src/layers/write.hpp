@@ -2,7 +2,10 @@
 // Writers of a LayerSet: EXR (float32, ZIP, named channels, georeferencing attributes),
 // GeoTIFF twins through GDAL, and a PNG preview. Every file is staged in an
 // OutputTransaction, so a failed run leaves previous outputs untouched.
+#include <array>
+#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/atomic_output.hpp"
@@ -50,9 +53,15 @@ void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::p
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                ExrCompression compression, int zip_level = 1);
 void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesystem::path& path);
-// Hillshade of "height" tinted by "splat" with `lines` (world metres) drawn on top; 8-bit RGB.
+// Hillshade of "height" tinted by every "splat" material (weighted mean of their colours,
+// splat.base in an elevation tint) with `lines` (world metres) drawn on top; 8-bit RGB.
 void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
                        const std::vector<std::vector<Vec2>>& lines = {}, int max_size = 2048);
+
+// The preview colour (8-bit RGB) of a splat channel: fixed ones for the terrain's materials and
+// the demo's patterns, any other a distinct hue derived from its name (deterministic).
+using Rgb8 = std::array<std::uint8_t, 3>;
+Rgb8 preview_material_colour(const std::string& channel);
 
 // What `automatic` picks for this layer: rle or none (never automatic).
 ExrCompression exr_compression_for(const Layer& layer);

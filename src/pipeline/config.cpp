@@ -1,6 +1,7 @@
 #include "pipeline/config.hpp"
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <sstream>
 
@@ -251,11 +252,29 @@ void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
   }
 }
 
+// region: [min_x, min_y, max_x, max_y] in metres, each min below its max.
+RegionConfig read_region(const YamlSource& src, const YAML::Node& node) {
+  if (!node.IsSequence() || node.size() != 4) {
+    src.fail(node, "region", "expected [min_x, min_y, max_x, max_y] in metres");
+  }
+  std::array<double, 4> v{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    v[i] = detail::read_double(src, node[i], "region." + std::to_string(i));
+  }
+  if (v[0] >= v[2]) {
+    src.fail(node, "region", fmt::format("min_x {} is not below max_x {}", v[0], v[2]));
+  }
+  if (v[1] >= v[3]) {
+    src.fail(node, "region", fmt::format("min_y {} is not below max_y {}", v[1], v[3]));
+  }
+  return {v[0], v[1], v[2], v[3]};
+}
+
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   const MapReader root(
       src, tree, "",
       {"version", "seed", "heightfield", "generate", "resolution", "output", "backend",
-       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order"});
+       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order", "region"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -270,6 +289,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                                 {"width", "height", "pixel_size", "relief", "crs", "origin"}));
   }
   if (root.has("resolution")) c.resolution = root.positive("resolution");
+  if (root.has("region")) c.region = read_region(src, root.get("region"));
   if (root.has("output")) {
     const MapReader out(src, root.get("output"), "output", {"dir", "exr", "geotiff", "preview"});
     if (out.has("dir")) c.output.dir = out.file("dir");

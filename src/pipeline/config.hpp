@@ -87,13 +87,25 @@ struct OutputConfig {
   bool preview = true;
 };
 
+// A region of interest: the output grid covers only this rectangle, in metres of the
+// heightfield's CRS (its local metric frame when the source is geographic). Features are still
+// read, and patterns synthesized, over the whole heightfield, so a close-up shows the same
+// placements as the full run; only the terrain and the layers are limited to the region.
+struct RegionConfig {
+  double min_x = 0.0;
+  double min_y = 0.0;
+  double max_x = 0.0;
+  double max_y = 0.0;
+};
+
 struct PipelineConfig {
   std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
   int version = 1;
   std::uint64_t seed = 0;
   std::optional<std::filesystem::path> heightfield;  // absent -> generate
   GenerateConfig generate;
-  std::optional<double> resolution;  // output cell size in metres; absent = the heightfield's
+  std::optional<double> resolution;    // output cell size in metres; absent = the heightfield's
+  std::optional<RegionConfig> region;  // absent = the whole heightfield
   OutputConfig output;
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps

@@ -14,6 +14,7 @@
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "raster/avoidance.hpp"
@@ -99,6 +100,11 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
   detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
+  if (config.region) {  // features were read on the whole heightfield, the rest is the region
+    heightfield = detail::crop_to_region(heightfield, *config.region,
+                                         config.resolution.value_or(heightfield.grid.pixel_width));
+    report.grid = heightfield.grid;
+  }
   clock.stop();
 
   clock.start("ribbons");

@@ -155,6 +155,28 @@ features:
   EXPECT_THAT(error_of("version: [1\n"), HasSubstr("p.yaml:"));
 }
 
+TEST(PipelineConfig, RegionIsARectangleWithLocatedErrors) {
+  EXPECT_FALSE(parse(kMinimal).region.has_value());
+  const PipelineConfig c = parse(std::string(kMinimal) + "region: [1000, 2000.5, 1600, 2400]\n");
+  ASSERT_TRUE(c.region.has_value());
+  EXPECT_DOUBLE_EQ(c.region->min_x, 1000.0);
+  EXPECT_DOUBLE_EQ(c.region->min_y, 2000.5);
+  EXPECT_DOUBLE_EQ(c.region->max_x, 1600.0);
+  EXPECT_DOUBLE_EQ(c.region->max_y, 2400.0);
+  EXPECT_THAT(error_of(std::string(kMinimal) + "region: [1, 2, 3]\n"),
+              HasSubstr("p.yaml:6:9: region: expected [min_x, min_y, max_x, max_y] in metres"));
+  EXPECT_THAT(error_of(std::string(kMinimal) + "region: [1, 2, x, 4]\n"),
+              HasSubstr("region.2: expected a number, got 'x'"));
+  EXPECT_THAT(error_of(std::string(kMinimal) + "region: [5, 2, 3, 4]\n"),
+              HasSubstr("region: min_x 5 is not below max_x 3"));
+  EXPECT_THAT(error_of(std::string(kMinimal) + "region: [1, 4, 3, 4]\n"),
+              HasSubstr("region: min_y 4 is not below max_y 4"));
+  // --set can give a region too.
+  const PipelineConfig o = parse(kMinimal, {parse_override("region=[0, 0, 10, 10]")});
+  ASSERT_TRUE(o.region.has_value());
+  EXPECT_DOUBLE_EQ(o.region->max_x, 10.0);
+}
+
 TEST(PipelineConfig, MissingRequiredKeysAreNamed) {
   EXPECT_THAT(error_of("seed: 1\n"), HasSubstr("version: missing required key"));
   EXPECT_THAT(error_of("version: 1\n"), HasSubstr("features: missing required key"));

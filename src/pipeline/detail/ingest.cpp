@@ -8,14 +8,15 @@ namespace tw::detail {
 Heightfield load_heightfield(const PipelineConfig& config) {
   if (config.heightfield) {
     HeightfieldOptions options;
-    options.resolution = config.resolution;
+    // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
+    if (!config.region) options.resolution = config.resolution;
     return read_heightfield(config.heightfield->string(), options);
   }
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;
-  params.pixel_size = config.resolution.value_or(g.pixel_size);
+  params.pixel_size = config.region ? g.pixel_size : config.resolution.value_or(g.pixel_size);
   params.seed = config.seed;
   params.relief = g.relief;
   params.crs = g.crs;

@@ -1,0 +1,16 @@
+#pragma once
+// The output grid of a run with a `region` (config.hpp): the heightfield cropped to the region
+// and resampled to the run's resolution.
+#include "geo/heightfield.hpp"
+#include "pipeline/config.hpp"
+
+namespace tw::detail {
+
+// The region's cells at `resolution` metres, their edges on multiples of it in world
+// coordinates (so every close-up of a run lies on one lattice), heights read bilinearly from
+// the valid cells of `source` (NaN where none is). Throws tw::Error naming `region` when it
+// does not overlap the heightfield.
+Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region,
+                           double resolution);
+
+}  // namespace tw::detail
