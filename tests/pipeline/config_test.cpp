@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "pipeline/detail/region.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -175,6 +176,35 @@ TEST(PipelineConfig, RegionIsARectangleWithLocatedErrors) {
   const PipelineConfig o = parse(kMinimal, {parse_override("region=[0, 0, 10, 10]")});
   ASSERT_TRUE(o.region.has_value());
   EXPECT_DOUBLE_EQ(o.region->max_x, 10.0);
+}
+
+// What a region does to the output grid: cells on the resolution's lattice, heights read
+// bilinearly from the heightfield, an error naming the region when it misses the heightfield.
+TEST(PipelineConfig, RegionCropsAndResamplesTheHeightfield) {
+  Heightfield source;
+  source.grid = GridSpec{10, 10, 1000.0, 2100.0, 10.0, 10.0};  // x 1000..1100, y 2000..2100
+  source.height = Raster<float>(10, 10);
+  for (int r = 0; r < 10; ++r)
+    for (int c = 0; c < 10; ++c) source.height.at(c, r) = float(3 * c - 2 * r);  // a plane
+  const Heightfield crop = detail::crop_to_region(source, {1021.3, 2040.0, 1059.9, 2070.2}, 2.0);
+  EXPECT_DOUBLE_EQ(crop.grid.origin_x, 1020.0);
+  EXPECT_DOUBLE_EQ(crop.grid.origin_y, 2072.0);
+  EXPECT_EQ(crop.grid.width, 20);   // 1020..1060
+  EXPECT_EQ(crop.grid.height, 16);  // 2040..2072
+  // A plane in pixel-centre units: bilinear reads it exactly inside the source's centres.
+  for (int r = 0; r < crop.grid.height; ++r)
+    for (int c = 0; c < crop.grid.width; ++c) {
+      const Vec2 p = source.grid.world_to_pixel(crop.grid.pixel_to_world({c + 0.5, r + 0.5}));
+      EXPECT_NEAR(crop.height.at(c, r), 3.0 * (p.x - 0.5) - 2.0 * (p.y - 0.5), 1e-4);
+    }
+  // Clipped to the heightfield, and an error when nothing is left.
+  EXPECT_EQ(detail::crop_to_region(source, {900.0, 1900.0, 1010.0, 2010.0}, 5.0).grid.width, 2);
+  try {
+    detail::crop_to_region(source, {0.0, 0.0, 10.0, 10.0}, 1.0);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("region [0, 0, 10, 10]: does not overlap the heightfield"));
+  }
 }
 
 TEST(PipelineConfig, MissingRequiredKeysAreNamed) {
