@@ -40,10 +40,7 @@ double feature_width(const OGRFeature& feature, int width_field, const LineClass
 std::unique_ptr<OGRMultiLineString> line_parts(const OGRFeature& feature,
                                                const OpenVectorLayer& layer) {
   const std::int64_t fid = feature.GetFID();
-  const OGRGeometry* geometry = feature.GetGeometryRef();
-  if (!geometry || geometry->IsEmpty()) fail("{}: FID {}: has no geometry", layer.label, fid);
-  std::unique_ptr<OGRGeometry> linear(geometry->hasCurveGeometry() ? geometry->getLinearGeometry()
-                                                                   : geometry->clone());
+  const std::unique_ptr<OGRGeometry> linear = detail::linear_geometry(feature, layer);
   const OGRwkbGeometryType type = wkbFlatten(linear->getGeometryType());
   auto parts = std::make_unique<OGRMultiLineString>();
   if (type == wkbLineString) {

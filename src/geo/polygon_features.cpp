@@ -14,10 +14,7 @@ using detail::OpenVectorLayer;
 std::unique_ptr<OGRMultiPolygon> polygon_parts(const OGRFeature& feature,
                                                const OpenVectorLayer& layer) {
   const std::int64_t fid = feature.GetFID();
-  const OGRGeometry* geometry = feature.GetGeometryRef();
-  if (!geometry || geometry->IsEmpty()) fail("{}: FID {}: has no geometry", layer.label, fid);
-  std::unique_ptr<OGRGeometry> linear(geometry->hasCurveGeometry() ? geometry->getLinearGeometry()
-                                                                   : geometry->clone());
+  const std::unique_ptr<OGRGeometry> linear = detail::linear_geometry(feature, layer);
   const OGRwkbGeometryType type = wkbFlatten(linear->getGeometryType());
   auto parts = std::make_unique<OGRMultiPolygon>();
   if (type == wkbPolygon) {

@@ -151,4 +151,13 @@ std::vector<Vec2> distinct_points(const OGRSimpleCurve& curve) {
   return points;
 }
 
+std::unique_ptr<OGRGeometry> linear_geometry(const OGRFeature& feature,
+                                             const OpenVectorLayer& layer) {
+  const OGRGeometry* geometry = feature.GetGeometryRef();
+  if (!geometry || geometry->IsEmpty())
+    fail("{}: FID {}: has no geometry", layer.label, feature.GetFID());
+  return std::unique_ptr<OGRGeometry>(geometry->hasCurveGeometry() ? geometry->getLinearGeometry()
+                                                                   : geometry->clone());
+}
+
 }  // namespace tw::detail

@@ -27,6 +27,10 @@ struct OpenVectorLayer {
 // Throws tw::Error for a missing file, an unknown layer, a bad where clause or a missing CRS.
 OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of);
 
+// The feature's geometry with curves linearized; tw::Error naming label and fid when it has none.
+std::unique_ptr<OGRGeometry> linear_geometry(const OGRFeature& feature,
+                                             const OpenVectorLayer& layer);
+
 // The grid's extent, in the grid's CRS.
 OGRPolygon grid_extent_polygon(const GridSpec& grid);
 
