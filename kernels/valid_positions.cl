@@ -4,8 +4,8 @@
 //
 // A position is valid when every must-be-clear texel is transparent (the top and bottom edges
 // do not cut the pattern, nothing opaque lands on a forbidden canvas pixel) and at least one
-// interior texel is opaque (the piece is not empty). Texels outside the exemplar read as
-// transparent black.
+// min_opaque interior texels are opaque (the piece is not empty; the paper's rule is
+// min_opaque = 1). Texels outside the exemplar read as transparent black.
 
 uint texel_at(global const uint* texels, int width, int height, int x, int y) {
   return (x >= 0 && x < width && y >= 0 && y < height) ? texels[y * width + x] : 0u;
@@ -13,8 +13,8 @@ uint texel_at(global const uint* texels, int width, int height, int x, int y) {
 
 kernel void find_valid_positions(global const uint* texels, int width, int height, int column,
                                  global const int2* must_be_clear, int clear_count,
-                                 global const int2* interior, int interior_count, uint opaque_alpha,
-                                 global uchar* flags) {
+                                 global const int2* interior, int interior_count, int min_opaque,
+                                 uint opaque_alpha, global uchar* flags) {
   const int index = (int)get_global_id(0);
   if (index >= width * (height + column)) return;
   const int ux = index % width;
@@ -26,10 +26,10 @@ kernel void find_valid_positions(global const uint* texels, int width, int heigh
         texel_at(texels, width, height, ux + must_be_clear[i].x, uy + must_be_clear[i].y);
     valid = (t >> 24) < opaque_alpha;
   }
-  uchar filled = 0;
-  for (int i = 0; i < interior_count && valid && !filled; ++i) {
+  int opaque = 0;
+  for (int i = 0; i < interior_count && valid && opaque < min_opaque; ++i) {
     const uint t = texel_at(texels, width, height, ux + interior[i].x, uy + interior[i].y);
-    filled = (t >> 24) >= opaque_alpha;
+    opaque += (t >> 24) >= opaque_alpha;
   }
-  flags[index] = valid && filled;
+  flags[index] = valid && opaque >= min_opaque;
 }

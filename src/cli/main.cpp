@@ -108,6 +108,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
   synth->add_option("--seed", synth_args.seed, "0: the global optimum; else a seeded start");
   synth->add_option("-o,--output", synth_args.output, "PNG to write")->required();
+  synth->add_option("--placements", synth_args.placements,
+                    "also write the placements (JSON, docs/synthesis.md) to this file");
+  synth->add_option("--min-coverage", synth_args.min_coverage,
+                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
+  synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
 
   try {
     app.parse(argc, argv);

@@ -113,6 +113,12 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
   if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
   s.height_detail = m.non_negative_or("height_detail", s.height_detail);
+  s.min_coverage = m.non_negative_or("min_coverage", s.min_coverage);
+  if (s.min_coverage >= 1.0) {
+    m.source().fail(
+        m.get("min_coverage"), m.path("min_coverage"),
+        fmt::format("must be below 1 (a fraction of each piece), got {}", s.min_coverage));
+  }
   if (m.has("choose")) {
     const std::string choose = m.string("choose");
     if (choose == "seed") {
@@ -159,11 +165,11 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
-    f.synthesis =
-        read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                                 {"exemplar", "choose", "width", "delta", "scale", "stitch",
-                                  "empty_pieces", "seed", "backend", "height_detail", "channels"}),
-                       seed);
+    f.synthesis = read_synthesis(
+        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
+                  {"exemplar", "choose", "width", "delta", "scale", "stitch", "empty_pieces",
+                   "min_coverage", "seed", "backend", "height_detail", "channels"}),
+        seed);
   }
   return f;
 }

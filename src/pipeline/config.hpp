@@ -50,6 +50,8 @@ struct SynthesisConfig {
   // A piece with no valid position (a junction disc, an earlier pattern) stays empty; false:
   // such a piece is an error naming the feature and the piece.
   bool empty_pieces = true;
+  // The fraction of each piece that must be opaque at a valid position (SynthParams).
+  double min_coverage = 0.0;
   std::uint64_t seed = 0;
   std::string backend;         // "" = the pipeline's backend
   double height_detail = 1.0;  // factor on the metres of the exemplar's channels mapped to height

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "synth/exemplar.hpp"
+#include "synth/placements_io.hpp"
 #include "synth/render.hpp"
 #include "synth/shapes.hpp"
 
@@ -109,6 +110,7 @@ Synthesis run_synth_command(const SynthCommand& c) {
   params.scale = c.scale;
   params.seed = c.seed;
   params.stitch = c.stitch;
+  params.min_coverage = c.min_coverage;
   params.backend = detail::parse_backend_kind(c.backend);
   params.feature_label = c.curve;
   const Synthesis synthesis = synthesize(exemplar, ribbon, canvas, nullptr, params);
@@ -133,6 +135,9 @@ Synthesis run_synth_command(const SynthCommand& c) {
   }
   OutputTransaction transaction;
   write_png(transaction.stage(c.output), canvas.width, canvas.height, rgb);
+  if (!c.placements.empty()) {
+    save_placements(synthesis, c.exemplar.string(), transaction.stage(c.placements).string());
+  }
   transaction.commit();
   logger().info("synth: {} pieces, Omega {} ({:.2f} per seam, {:.2f} stitched), backend {}",
                 ribbon.pieces.size(), synthesis.total_cost, synthesis.mean_seam_cost,

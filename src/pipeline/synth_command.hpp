@@ -21,7 +21,9 @@ struct SynthCommand {
   std::string backend = "auto";
   std::uint64_t seed = 0;
   bool stitch = true;
-  std::filesystem::path output;  // .png
+  double min_coverage = 0.0;         // SynthParams::min_coverage
+  std::filesystem::path output;      // .png
+  std::filesystem::path placements;  // optional JSON of the placements (synth/placements_io.hpp)
 };
 
 // Throws tw::Error naming the exemplar, the curve source or the value at fault. The PNG is

@@ -27,6 +27,10 @@ struct SynthParams {
   detail::BackendKind backend = detail::BackendKind::cpu;
   ClosedMode closed_mode = ClosedMode::approximate;
   bool allow_empty_pieces = false;  // a piece without valid position stays empty (penalized)
+  // The fraction of a piece's interior texels that must be opaque at a valid position, in
+  // [0, 1). 0 is the paper's "not empty" (one texel); more keeps the optimum from choosing
+  // nearly empty pieces whose transparent edges seam for free.
+  double min_coverage = 0.0;
   std::optional<std::pair<int, int>> first_position;  // fixes piece 0 at (ux, uy)
   int stitch_penalty = 32;                            // the paper's P, in 0..255 colour units
   std::string feature_label;  // names the feature in messages, e.g. "feature 42"

@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "synth/placements_io.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -237,6 +238,23 @@ TEST_F(Cli, SynthDrawsOneRibbonOrNamesTheBadInput) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("4 pieces, Omega "));
   EXPECT_GT(fs::file_size(dir / "synth.png"), 0u);
+  // The placements file loads back with the same pieces and cost.
+  r = terraweave("-q synth --exemplar " + exemplar +
+                 " --curve line --length 12 --width 4 --delta 3 --scale 4 --min-coverage 0.2 "
+                 "--no-stitch --backend cpu -o synth2.png --placements synth2.json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string exemplar_in_file;
+  const Synthesis back = load_placements((dir / "synth2.json").string(), &exemplar_in_file);
+  EXPECT_EQ(back.placements.size(), 4u);
+  EXPECT_EQ(exemplar_in_file, exemplar);
+  EXPECT_THAT(r.output, HasSubstr("Omega " + std::to_string(back.total_cost) + ","));
+  EXPECT_EQ(back.mean_seam_cost_stitched, back.mean_seam_cost);  // --no-stitch
+  r = terraweave(
+      "-q synth --exemplar " + exemplar +
+      " --curve line --length 12 --width 4 --delta 3 --scale 4 --min-coverage 1 -o y.png");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("min_coverage must be in [0, 1)"));
+  EXPECT_FALSE(fs::exists(dir / "y.png"));
   r = terraweave(
       "-q synth --exemplar none.png --curve line --width 4 --delta 3 --scale 4 -o x.png");
   EXPECT_EQ(r.exit_code, 1);

@@ -5,11 +5,13 @@
 #include <functional>
 #include <limits>
 
+#include "synth/detail/cost.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/dp.hpp"
 #include "synth/detail/footprint.hpp"
 #include "synth/shapes.hpp"
 #include "synth_fixtures.hpp"
+#include "test_opencl_fixtures.hpp"
 
 namespace tw {
 namespace {
@@ -129,6 +131,47 @@ TEST(DpBruteForce, ValidPositionsOfAStraightPieceOverABand) {
     if (edges_clear && holds) expected.push_back(std::int32_t(i));
   }
   EXPECT_EQ(p.valid[0], expected);
+}
+
+TEST(DpBruteForce, MinimumOpaqueCountIsADirectCount) {
+  // The CPU backend's bit-parallel test and prefix-sum count against counting every interior
+  // texel of every position (offsets in any order, duplicates counted twice).
+  auto backend = detail::make_cpu_backend();
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    std::mt19937 rng(seed);
+    const int width = test::uniform(rng, 3, 140), height = test::uniform(rng, 2, 30);
+    const int column = test::uniform(rng, 1, 30);
+    const detail::CostTexels texels =
+        test::random_texels(rng, width, height, test::uniform(rng, 10, 95));
+    detail::PieceFootprint piece = test::random_piece(rng, column);
+    if (seed % 3 == 0) {  // a solid rectangle, sorted as the footprints make them
+      piece.interior.clear();
+      for (int dy = 0; dy < column; ++dy)
+        for (int dx = 0; dx < 9; ++dx) piece.interior.push_back({dx, dy});
+    }
+    if (seed % 2 == 0) piece.must_be_clear.clear();  // more positions open to the count
+    piece.min_opaque = test::uniform(rng, 1, int(piece.interior.size()) * 3 / 4 + 2);
+    const detail::PositionSpace space{width, height, column};
+    std::vector<std::uint8_t> flags;
+    backend->find_valid_positions(texels, space, piece, flags);
+    std::int64_t valid = 0;
+    for (std::int64_t i = 0; i < space.count(); ++i) {
+      const int ux = space.ux(i), uy = space.uy(i);
+      bool clear = true;
+      for (const auto& o : piece.must_be_clear)
+        clear = clear && !detail::is_opaque(detail::texel_at(texels, ux + o.dx, uy + o.dy));
+      int opaque = 0;
+      for (const auto& o : piece.interior)
+        opaque += detail::is_opaque(detail::texel_at(texels, ux + o.dx, uy + o.dy));
+      const bool expected = clear && opaque >= piece.min_opaque;
+      valid += expected;
+      ASSERT_EQ(flags[std::size_t(i)], expected ? 1 : 0)
+          << "seed " << seed << " position (" << ux << ", " << uy << ") opaque " << opaque
+          << " of min " << piece.min_opaque;
+    }
+    std::printf("seed %u: %lld of %lld positions valid with min_opaque %d\n", seed,
+                (long long)valid, (long long)space.count(), piece.min_opaque);
+  }
 }
 
 }  // namespace

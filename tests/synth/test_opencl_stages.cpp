@@ -53,6 +53,20 @@ TEST(OpenCLFindValidPositions, MatchesCpuOnRandomInputs) {
   }
 }
 
+TEST(OpenCLFindValidPositions, MatchesCpuWithAMinimumOpaqueCount) {
+  TW_BACKENDS(b);
+  for (unsigned seed = 11; seed <= 18; ++seed) {
+    std::mt19937 rng(seed);
+    const int width = uniform(rng, 8, 90), height = uniform(rng, 4, 40);
+    const int column = uniform(rng, 2, 40);
+    CostTexels texels = random_texels(rng, width, height, uniform(rng, 20, 90));
+    PieceFootprint piece = random_piece(rng, column);
+    piece.min_opaque = uniform(rng, 2, 30);
+    SCOPED_TRACE(testing::Message() << "seed " << seed << " min_opaque " << piece.min_opaque);
+    expect_same_valid_positions(b, texels, {width, height, column}, piece);
+  }
+}
+
 TEST(OpenCLFindValidPositions, MatchesCpuOnChainWithSlantedPiece) {
   TW_BACKENDS(b);
   CostTexels texels = chain_texels(120, 40, 3);
@@ -376,9 +390,9 @@ TEST(BackendFactory, ParsesKindsAndMakesBackends) {
   EXPECT_NE(detail::make_backend(detail::BackendKind::opencl, context)->name().find("opencl"),
             std::string::npos);
   // auto takes OpenCL on GPUs and accelerators, the (faster) CPU backend on CPU devices.
-  const bool cpu_device =
-      (context->device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
-  const std::string automatic = detail::make_backend(detail::BackendKind::automatic, context)->name();
+  const bool cpu_device = (context->device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+  const std::string automatic =
+      detail::make_backend(detail::BackendKind::automatic, context)->name();
   EXPECT_EQ(automatic.find("opencl") == std::string::npos, cpu_device) << automatic;
   EXPECT_EQ(detail::make_backend(detail::BackendKind::cpu, nullptr)->name(),
             detail::make_cpu_backend()->name());

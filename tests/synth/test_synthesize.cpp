@@ -10,6 +10,7 @@
 #include "synth/baseline.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/foldover.hpp"
+#include "synth/detail/footprint.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"
 #include "synth/shapes.hpp"
@@ -91,6 +92,61 @@ TEST(Synthesize, SeamsBeatTheParametricBaselineAndStitchingLowersThem) {
     EXPECT_EQ(double(s.total_cost) /
                   (ribbon.closed ? ribbon.pieces.size() : ribbon.pieces.size() - 1) / 16.0,
               s.mean_seam_cost);
+  }
+}
+
+TEST(Synthesize, MinCoverageKeepsTheOptimumOffNearlyEmptyPieces) {
+  // The real ridge band (samples/exemplars) has two stray opaque texels above the band: with
+  // the paper's rule ("not empty") a 48-texel piece holding only them is valid and seams for
+  // free with transparent edges, so the optimum (Omega = 0) shows almost nothing.
+  const Exemplar band =
+      load_exemplar((test::source_dir() / "samples/exemplars/ridge_band_200x64.png").string());
+  const Ribbon ribbon = make_ribbon(make_shape("s-curve", 400.0), {48.0, 40.0});
+  const GridSpec canvas = test::canvas_around(ribbon, 1.0, 4.0);
+  auto mean_coverage = [&](double min_coverage, Synthesis* out) {
+    SynthParams params;
+    params.scale = 1.0;
+    params.min_coverage = min_coverage;
+    *out = run(band, ribbon, canvas, nullptr, params);
+    const RenderedPattern r = render_pattern(band, ribbon, *out, canvas, Window::whole(canvas));
+    double sum = 0.0;
+    std::int64_t inside = 0;
+    for (int row = 0; row < canvas.height; ++row)
+      for (int col = 0; col < canvas.width; ++col) {
+        const Vec2 w = canvas.pixel_centre_world(col, row);
+        bool in_piece = false;
+        for (const Piece& p : ribbon.pieces)
+          in_piece = in_piece || detail::piece_winding(p, w) != 0;
+        if (!in_piece) continue;
+        ++inside;
+        sum += r.coverage.at(col, row);
+      }
+    return sum / double(inside);
+  };
+  Synthesis paper, covered;
+  const double paper_coverage = mean_coverage(0.0, &paper);
+  const double covered_coverage = mean_coverage(0.3, &covered);
+  std::printf(
+      "ridge band: min_coverage 0: Omega %lld, coverage %.3f, valid/piece %d; "
+      "0.3: Omega %lld, coverage %.3f, valid/piece %d\n",
+      (long long)paper.total_cost, paper_coverage, paper.valid_counts[1],
+      (long long)covered.total_cost, covered_coverage, covered.valid_counts[1]);
+  EXPECT_EQ(paper.total_cost, 0);
+  EXPECT_LT(paper_coverage, 0.01);
+  EXPECT_GT(covered.total_cost, 0);
+  EXPECT_GE(covered_coverage, 0.3 * 0.9);  // rendering resamples: a little below the texel rule
+  for (std::size_t i = 0; i < covered.valid_counts.size(); ++i)
+    EXPECT_LT(covered.valid_counts[i], paper.valid_counts[i]) << "piece " << i;
+
+  SynthParams bad;
+  bad.scale = 1.0;
+  bad.min_coverage = 1.0;
+  try {
+    run(band, ribbon, canvas, nullptr, bad);
+    FAIL() << "min_coverage 1 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("min_coverage must be in [0, 1)"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -266,6 +266,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       params.stitch = synthesis.stitch;
       params.backend = plan.backend;
       params.allow_empty_pieces = synthesis.empty_pieces;
+      params.min_coverage = synthesis.min_coverage;
       params.feature_label = label;
       std::vector<std::size_t> candidates = plan.exemplars;
       if (synthesis.choice == ExemplarChoice::by_seed) {

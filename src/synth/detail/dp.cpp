@@ -131,7 +131,8 @@ class Driver {
                return p.dx == q.dx && p.dy == q.dy;
              });
     };
-    return same(a.must_be_clear, b.must_be_clear) && same(a.interior, b.interior);
+    return a.min_opaque == b.min_opaque && same(a.must_be_clear, b.must_be_clear) &&
+           same(a.interior, b.interior);
   }
 
   void require_empty_allowed(int piece) const {

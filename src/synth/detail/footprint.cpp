@@ -89,7 +89,8 @@ Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int
 }
 
 PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
-                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden) {
+                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                                    double min_coverage) {
   const PieceFrame frame = piece_frame(piece, scale);
   const Vec2 q_top_left = to_exemplar(frame, piece.top_left);
   const Vec2 q_bottom_left = to_exemplar(frame, piece.bottom_left);
@@ -162,6 +163,8 @@ PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column
   }
   for (const auto& e : edges) blocked.erase(e);
   append(blocked, footprint.must_be_clear);
+  footprint.min_opaque =
+      std::max(1, int(std::ceil(min_coverage * double(footprint.interior.size()) - 1e-9)));
   return footprint;
 }
 

@@ -255,7 +255,7 @@ void OpenCLBackend::find_valid_positions(const CostTexels& texels, const Positio
   cl::Kernel& k = kernel("valid_positions", "find_valid_positions");
   set_args(k, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column), clear,
            cl_int(piece.must_be_clear.size()), interior, cl_int(piece.interior.size()),
-           cl_uint(kOpaqueAlphaMin), out);
+           cl_int(piece.min_opaque), cl_uint(kOpaqueAlphaMin), out);
   launch(k, "find_valid_positions", count, kColumnGroup);
   read_buffer(context_.queue(), out, flags);
 }

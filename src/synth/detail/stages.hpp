@@ -50,8 +50,10 @@ struct PieceFootprint {
   // Texels that must be transparent at a valid position: those crossed by the top and
   // bottom edges, and those that land on forbidden canvas pixels (avoidance, fold-overs).
   std::vector<TexelOffset> must_be_clear;
-  // Texels inside the piece: a valid position has at least one opaque texel among them.
+  // Texels inside the piece: a valid position has at least `min_opaque` opaque texels among
+  // them (the paper: 1, "not empty"; more with SynthParams::min_coverage).
   std::vector<TexelOffset> interior;
+  int min_opaque = 1;
 };
 
 // C samples per valid position, position-major: samples[j * C + k].

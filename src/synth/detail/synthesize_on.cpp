@@ -76,6 +76,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   if (!(params.scale > 0.0) || !std::isfinite(params.scale))
     fail("synthesis scale s must be > 0 exemplar texels per metre (got {})", params.scale);
   if (ribbon.pieces.empty()) fail("ribbon of {} has no pieces", params.feature_label);
+  if (!(params.min_coverage >= 0.0 && params.min_coverage < 1.0))
+    fail("synthesis min_coverage must be in [0, 1) (got {})", params.min_coverage);
   const std::string feature = params.feature_label.empty() ? "the curve" : params.feature_label;
   const int N = int(ribbon.pieces.size());
   const int C = column_count(ribbon.width, params.scale);
@@ -92,8 +94,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   input.space = space;
   input.pieces.resize(std::size_t(N));
   tbb::parallel_for(0, N, [&](int i) {
-    input.pieces[std::size_t(i)] =
-        make_piece_footprint(ribbon.pieces[std::size_t(i)], params.scale, C, canvas, &avoidance);
+    input.pieces[std::size_t(i)] = make_piece_footprint(ribbon.pieces[std::size_t(i)], params.scale,
+                                                        C, canvas, &avoidance, params.min_coverage);
   });
   out.timings.footprints_ms = ms_since(start);
   input.closed = ribbon.closed;
@@ -112,7 +114,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     const Vec2 at = lerp(piece.top_left, piece.bottom_right, 0.5);
     std::vector<std::uint8_t> flags;
     backend.find_valid_positions(
-        texels, space, make_piece_footprint(piece, params.scale, C, canvas, nullptr), flags);
+        texels, space,
+        make_piece_footprint(piece, params.scale, C, canvas, nullptr, params.min_coverage), flags);
     std::int64_t without = 0;
     for (auto f : flags) without += f;
     const std::string reason =
@@ -122,7 +125,10 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
                           without)
                     : fmt::format(
                           "no position where the top and bottom edges clear the "
-                          "pattern: ribbon width {} m x s = {} texels, exemplar {}x{}",
+                          "pattern{}: ribbon width {} m x s = {} texels, exemplar {}x{}",
+                          params.min_coverage > 0.0
+                              ? fmt::format(" with min_coverage {}", params.min_coverage)
+                              : std::string(),
                           ribbon.width, C, exemplar.width, exemplar.height);
     return fmt::format("piece {} of {} at ({:.2f}, {:.2f}): no valid position in exemplar {} ({})",
                        i, feature, at.x, at.y, exemplar.path, reason);
