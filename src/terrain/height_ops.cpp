@@ -186,7 +186,10 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       profiles[i] = {0.0};
       continue;
     }
-    if (f.kind == FeatureKind::road) {
+    if (f.kind == FeatureKind::road && f.centerline.closed) {
+      profiles[i] = detail::limit_grade_closed(
+          detail::moving_average_closed(terrain, step, f.road.smoothing), step, f.road.max_grade);
+    } else if (f.kind == FeatureKind::road) {
       profiles[i] = detail::limit_grade(detail::moving_average(terrain, step, f.road.smoothing),
                                         step, f.road.max_grade);
     } else {

@@ -98,6 +98,72 @@ TEST(ShapeTerrain, RoadIsLevelAcrossWithinGradeAlongAndMeetsTheTerrain) {
   EXPECT_GT(steepest, 1.0f);
 }
 
+TEST(ShapeTerrain, ARingRoadIsGradedAllAroundWithoutAStepWhereItCloses) {
+  // A closed road on a tilted plane: its profile is periodic, so the grade holds across the
+  // closing point too (an open profile would jump there by the tilt over the ring).
+  const GridSpec grid = test::unit_grid(kSize);
+  auto tilted = [](double x, double y) { return 50.0 + 0.25 * x + 3.0 * std::sin(y / 7.0); };
+  const Raster<float> before = test::heights_from(grid, tilted);
+  Raster<float> h = before;
+  const Vec2 centre{100.0, 100.0};
+  const double radius = 60.0;
+  std::vector<Vec2> ring;
+  for (int k = 0; k < 180; ++k) {
+    const double a = 2.0 * std::acos(-1.0) * k / 180.0;
+    ring.push_back(centre + Vec2{radius * std::cos(a), radius * std::sin(a)});
+  }
+  auto road = test::feature(FeatureKind::road, 5, ring, 6.0);
+  road.centerline.closed = true;
+  road.road = {0.06, 2.0, 10.0, 40.0};
+  shape_terrain(h, grid, Window::whole(grid), {road}, {});
+  // Sample the surface on the centreline every 2 degrees (about 2.1 m), through the start.
+  auto at = [&](double degrees) {
+    const double a = degrees * std::acos(-1.0) / 180.0;
+    const Vec2 p = grid.world_to_pixel(centre + Vec2{radius * std::cos(a), radius * std::sin(a)});
+    return detail::sample_height(h, grid, grid.pixel_to_world(p));
+  };
+  const double step = radius * 2.0 * std::acos(-1.0) / 180.0;
+  double steepest = 0.0;
+  for (int d = -90; d < 270; d += 2) {
+    const double rise = std::abs(at(d + 2) - at(d));
+    steepest = std::max(steepest, rise / step);
+    EXPECT_LE(rise, 0.06 * step + 0.03) << "between " << d << " and " << d + 2 << " degrees";
+  }
+  std::printf("ring road: steepest centreline grade %.4f (max_grade 0.06)\n", steepest);
+  // Graded, not flattened: the ring still climbs eastwards.
+  EXPECT_GT(at(0) - at(180), 5.0) << at(0) << " " << at(180);
+}
+
+TEST(Profiles, ClosedProfilesArePeriodicAndWithinGradeAcrossTheClosingPoint) {
+  // A loop of 101 samples (100 per period) climbing 30 m then dropping back at one point, the
+  // worst case for an open profile.
+  std::vector<double> v(101);
+  for (std::size_t i = 0; i < 100; ++i) v[i] = 0.3 * double(i);
+  v[100] = v[0];
+  const double step = 1.0, grade = 0.5;
+  const auto graded = detail::limit_grade_closed(v, step, grade);
+  EXPECT_DOUBLE_EQ(graded.front(), graded.back());
+  for (std::size_t i = 0; i + 1 < graded.size(); ++i)
+    EXPECT_LE(std::abs(graded[i + 1] - graded[i]), grade * step + 1e-12) << i;
+  // Where v is already within grade of all its loop neighbours it is kept: the middle of the
+  // climb moves by less than where the drop was.
+  EXPECT_LT(std::abs(graded[50] - v[50]), std::abs(graded[99] - v[99]));
+  // Open grading of the same samples keeps a step of metres between its last and first
+  // sample, which are the same point of the loop.
+  const auto open = detail::limit_grade(v, step, grade);
+  EXPECT_GT(std::abs(open.back() - open.front()), 10.0);
+
+  // Moving average: wraps (the average at 0 mixes the end of the loop), constant stays.
+  const auto smooth = detail::moving_average_closed(v, step, 10.0);  // 11 samples
+  EXPECT_DOUBLE_EQ(smooth.front(), smooth.back());
+  double expected = 0.0;
+  for (int k = -5; k <= 5; ++k) expected += v[std::size_t((k + 100) % 100)];
+  EXPECT_NEAR(smooth[0], expected / 11.0, 1e-9);
+  EXPECT_NEAR(smooth[50], v[50], 1e-9);  // linear part: the centred mean is the value
+  const auto flat = detail::moving_average_closed(std::vector<double>(101, 4.5), step, 400.0);
+  for (double x : flat) EXPECT_DOUBLE_EQ(x, 4.5);
+}
+
 TEST(ShapeTerrain, RidgeRaisesTheCrestByItsHeight) {
   const GridSpec grid = test::unit_grid(kSize);
   Raster<float> h(kSize, kSize, 10.0f);

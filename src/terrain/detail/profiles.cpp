@@ -77,6 +77,57 @@ std::vector<double> limit_grade(const std::vector<double>& v, double step, doubl
   return out;
 }
 
+std::vector<double> moving_average_closed(const std::vector<double>& v, double step,
+                                          double window) {
+  if (v.size() < 3) return v;
+  const auto n = std::ptrdiff_t(v.size() - 1);  // samples of one period
+  const auto half = std::ptrdiff_t(std::floor(0.5 * window / step));
+  std::vector<double> out(v.size());
+  if (2 * half + 1 >= n) {
+    double sum = 0.0;
+    for (std::ptrdiff_t i = 0; i < n; ++i) sum += v[std::size_t(i)];
+    std::fill(out.begin(), out.end(), sum / double(n));
+    return out;
+  }
+  if (half <= 0) return v;
+  // Prefix sums over three periods so every window [i - half, i + half] is one difference.
+  std::vector<double> prefix(std::size_t(3 * n) + 1, 0.0);
+  for (std::ptrdiff_t k = 0; k < 3 * n; ++k)
+    prefix[std::size_t(k) + 1] = prefix[std::size_t(k)] + v[std::size_t(k % n)];
+  for (std::ptrdiff_t i = 0; i < n; ++i)
+    out[std::size_t(i)] =
+        (prefix[std::size_t(n + i + half + 1)] - prefix[std::size_t(n + i - half)]) /
+        double(2 * half + 1);
+  out[std::size_t(n)] = out[0];
+  return out;
+}
+
+std::vector<double> limit_grade_closed(const std::vector<double>& v, double step, double grade) {
+  if (v.size() < 3) return v;
+  const std::size_t n = v.size() - 1;
+  const double rise = grade * step;
+  // Two laps each way reach every sample from every other along the shorter side.
+  std::vector<double> upper(v.begin(), v.end() - 1), lower = upper;
+  for (int lap = 0; lap < 2; ++lap) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = k, previous = (k + n - 1) % n;
+      upper[i] = std::max(upper[i], upper[previous] - rise);
+      lower[i] = std::min(lower[i], lower[previous] + rise);
+    }
+  }
+  for (int lap = 0; lap < 2; ++lap) {
+    for (std::size_t k = n; k-- > 0;) {
+      const std::size_t i = k, next = (k + 1) % n;
+      upper[i] = std::max(upper[i], upper[next] - rise);
+      lower[i] = std::min(lower[i], lower[next] + rise);
+    }
+  }
+  std::vector<double> out(v.size());
+  for (std::size_t i = 0; i < n; ++i) out[i] = 0.5 * (upper[i] + lower[i]);
+  out[n] = out[0];
+  return out;
+}
+
 std::vector<double> water_surface(const std::vector<double>& terrain, double step,
                                   double min_slope) {
   std::vector<double> s = terrain;

@@ -25,6 +25,15 @@ std::vector<double> moving_average(const std::vector<double>& v, double step, do
 // without a bias towards either direction.
 std::vector<double> limit_grade(const std::vector<double>& v, double step, double grade);
 
+// The same for a closed curve, whose samples 0 and n-1 are the same point: the profile is
+// periodic (out[0] == out[n-1]) and the grade also holds across the closing point.
+// Moving average: centred, wrapping around the loop (a window longer than the loop is the mean).
+std::vector<double> moving_average_closed(const std::vector<double>& v, double step, double window);
+// Grade limit: the mean of the lowest r-Lipschitz profile above v and the highest below it,
+// r = grade * step and distances measured around the loop (both envelopes are within grade,
+// so their mean is too).
+std::vector<double> limit_grade_closed(const std::vector<double>& v, double step, double grade);
+
 // Running minimum downstream with a minimum drop of min_slope per metre.
 std::vector<double> water_surface(const std::vector<double>& terrain, double step,
                                   double min_slope);
