@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "ribbon/junctions.hpp"
 #include "terrain/detail/feature_index.hpp"
 #include "terrain/detail/influence.hpp"
 #include "terrain/detail/junctions.hpp"
@@ -26,6 +27,51 @@ double profile_step(const GridSpec& grid, double length) {
   const double target = 0.5 * std::min(grid.pixel_width, grid.pixel_height);
   const double count = std::clamp(std::ceil(length / target), 1.0, 4.0e6);
   return length / count;
+}
+
+// Roads crossing through each other (X crossings, a road crossing itself) meet on one level
+// platform: every road passing through is held at the mean of their graded levels wherever
+// another crossing road's cut/fill reaches it. Two different levels there would make the
+// blend of the surfaces steeper than either road (docs/terrain.md, "Junctions").
+void add_crossing_pins(const TerrainPlan& plan, const std::vector<std::vector<double>>& profiles,
+                       std::vector<std::vector<Pin>>& pins) {
+  std::vector<Curve> roads;
+  std::vector<std::size_t> feature_of;
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    if (plan.features[i].kind != FeatureKind::road || plan.features[i].width <= 0.0) continue;
+    roads.push_back(plan.features[i].centerline);
+    feature_of.push_back(i);
+  }
+  if (roads.empty()) return;
+  std::vector<std::vector<double>> cumulative;
+  for (const Curve& c : roads) cumulative.push_back(cumulative_lengths(c));
+  // Below ~17 degrees the platform would grow without bound; such roads merge, not cross.
+  constexpr double kMinSine = 0.3;
+  for (const Junction& j : find_junctions(roads, 0.0)) {
+    if (!j.crossing) continue;
+    double sum = 0.0, reach = 0.0, sine = 1.0;
+    std::vector<const JunctionMember*> passing;
+    for (const JunctionMember& m : j.members) {
+      if (m.at_endpoint) continue;  // an end here is pinned by the end contacts
+      const std::size_t f = feature_of[m.curve];
+      sum += detail::profile_at(profiles[f], plan.steps[f], m.arc_length);
+      reach = std::max(reach, feature_reach(plan.features[f]));
+      passing.push_back(&m);
+    }
+    if (passing.size() < 2) continue;
+    const double h = 0.5 * std::min(plan.steps[feature_of[passing[0]->curve]], 1.0);
+    for (std::size_t a = 0; a < passing.size(); ++a)
+      for (std::size_t b = a + 1; b < passing.size(); ++b) {
+        const Vec2 ta = tangent_at(roads[passing[a]->curve], cumulative[passing[a]->curve],
+                                   passing[a]->arc_length, h);
+        const Vec2 tb = tangent_at(roads[passing[b]->curve], cumulative[passing[b]->curve],
+                                   passing[b]->arc_length, h);
+        sine = std::min(sine, std::abs(cross(ta, tb)));
+      }
+    const double flat = reach / std::max(sine, kMinSine);
+    for (const JunctionMember* m : passing)
+      pins[feature_of[m->curve]].push_back({m->arc_length, sum / double(passing.size()), flat});
+  }
 }
 
 // Roads meeting at their ends share one height there, so the blend of their surfaces is
@@ -73,8 +119,13 @@ void pin_road_junctions(TerrainPlan& plan, std::vector<std::vector<double>>& pro
       }
     }
   }
-  for (std::size_t i = 0; i < plan.features.size(); ++i)
-    detail::apply_pins(profiles[i], plan.steps[i], plan.features[i].road.max_grade, pins[i]);
+  add_crossing_pins(plan, profiles, pins);
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    const double period =
+        plan.features[i].centerline.closed ? double(profiles[i].size() - 1) * plan.steps[i] : 0.0;
+    detail::apply_pins(profiles[i], plan.steps[i], plan.features[i].road.max_grade, pins[i],
+                       period);
+  }
 }
 
 // A river continues into the river that starts at its mouth (that one's surface never starts

@@ -164,6 +164,59 @@ TEST(Profiles, ClosedProfilesArePeriodicAndWithinGradeAcrossTheClosingPoint) {
   for (double x : flat) EXPECT_DOUBLE_EQ(x, 4.5);
 }
 
+TEST(ShapeTerrain, CrossingRoadsMeetAtOneLevelWithinGrade) {
+  // Terrain waving along x only: the east-west road is graded nearly flat, the north-south road
+  // follows the terrain, so at the crossing their own levels differ by metres.
+  const GridSpec grid = test::unit_grid(kSize);
+  auto waves = [](double x, double) { return 50.0 + 10.0 * std::sin(x / 9.0); };
+  const Raster<float> before = test::heights_from(grid, waves);
+  Raster<float> h = before;
+  auto east_west = test::feature(FeatureKind::road, 1, {{10.0, 100.5}, {190.0, 100.5}}, 6.0);
+  auto north_south = test::feature(FeatureKind::road, 2, {{100.5, 10.0}, {100.5, 190.0}}, 6.0);
+  for (auto* road : {&east_west, &north_south}) road->road = {0.05, 1.0, 10.0, 30.0};
+  shape_terrain(h, grid, Window::whole(grid), {east_west, north_south}, {});
+  const int centre = kSize - 101;  // the row and column whose centres lie on the two roads
+  double steepest_ew = 0.0, steepest_ns = 0.0;
+  for (int k = 15; k < 185; ++k) {
+    steepest_ew = std::max(steepest_ew, double(std::abs(h.at(k + 1, centre) - h.at(k, centre))));
+    steepest_ns = std::max(steepest_ns, double(std::abs(h.at(100, k + 1) - h.at(100, k))));
+  }
+  std::printf("crossing: steepest grade east-west %.4f, north-south %.4f (max_grade 0.05)\n",
+              steepest_ew, steepest_ns);
+  EXPECT_LE(steepest_ew, 0.05 + 1e-3);
+  EXPECT_LE(steepest_ns, 0.05 + 1e-3);
+  double spread = 0.0;
+  for (int dr = -2; dr <= 2; ++dr)
+    for (int dc = -2; dc <= 2; ++dc)
+      spread = std::max(spread, double(std::abs(h.at(100 + dc, centre + dr) - h.at(100, centre))));
+  std::printf("crossing square spread %.4f\n", spread);
+  // One level over the crossing square (3 m either way of the centre).
+  for (int dr = -2; dr <= 2; ++dr)
+    for (int dc = -2; dc <= 2; ++dc)
+      EXPECT_NEAR(h.at(100 + dc, centre + dr), h.at(100, centre), 0.05 * 4.0) << dr << " " << dc;
+  // And the north-south road still follows the terrain away from the crossing.
+  EXPECT_GT(std::abs(h.at(100, 20) - h.at(100, centre)), 0.5);
+
+  // A diagonal road (45 degrees): its platform reaches further along each road.
+  Raster<float> d = before;
+  auto diagonal = test::feature(FeatureKind::road, 3, {{20.5, 20.5}, {180.5, 180.5}}, 6.0);
+  diagonal.road = north_south.road;
+  shape_terrain(d, grid, Window::whole(grid), {east_west, diagonal}, {});
+  double steepest_diagonal = 0.0;
+  steepest_ew = 0.0;
+  for (int k = 15; k < 185; ++k)
+    steepest_ew = std::max(steepest_ew, double(std::abs(d.at(k + 1, centre) - d.at(k, centre))));
+  for (double t = 30.0; t < 170.0; t += 1.0) {
+    const double a = detail::sample_height(d, grid, {t, t});
+    const double b = detail::sample_height(d, grid, {t + 1.0, t + 1.0});
+    steepest_diagonal = std::max(steepest_diagonal, std::abs(b - a) / std::sqrt(2.0));
+  }
+  std::printf("diagonal crossing: steepest grade east-west %.4f, diagonal %.4f\n", steepest_ew,
+              steepest_diagonal);
+  EXPECT_LE(steepest_ew, 0.05 + 1e-3);
+  EXPECT_LE(steepest_diagonal, 0.05 + 5e-3);  // bilinear reads between pixel centres
+}
+
 TEST(ShapeTerrain, RidgeRaisesTheCrestByItsHeight) {
   const GridSpec grid = test::unit_grid(kSize);
   Raster<float> h(kSize, kSize, 10.0f);

@@ -135,14 +135,20 @@ std::vector<double> water_surface(const std::vector<double>& terrain, double ste
   return s;
 }
 
-void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins) {
+void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins,
+                double period) {
   if (pins.empty()) return;
   for (std::size_t i = 0; i < v.size(); ++i) {
     const double s = double(i) * step;
     double upper = std::numeric_limits<double>::infinity();
     double lower = -upper;
     for (const Pin& p : pins) {
-      const double slack = grade * std::abs(s - p.s);
+      double distance = std::abs(s - p.s);
+      if (period > 0.0) {
+        const double wrapped = std::fmod(distance, period);
+        distance = std::min(wrapped, period - wrapped);
+      }
+      const double slack = grade * std::max(0.0, distance - p.flat);
       upper = std::min(upper, p.height + slack);
       lower = std::max(lower, p.height - slack);
     }

@@ -38,17 +38,21 @@ std::vector<double> limit_grade_closed(const std::vector<double>& v, double step
 std::vector<double> water_surface(const std::vector<double>& terrain, double step,
                                   double min_slope);
 
-// A pinned profile height (a junction) at arc length s.
+// A pinned profile height (a junction) at arc length s, held level `flat` metres either side.
 struct Pin {
   double s = 0.0;
   double height = 0.0;
+  double flat = 0.0;
 };
 // Clamps a grade-limited profile between the cones of its pins, so it passes through each
 // pin and stays within the grade (when the pins themselves are within grade of each other).
-void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins);
+// `period` > 0: a closed curve of that length, distances to the pins measured around it.
+void apply_pins(std::vector<double>& v, double step, double grade, const std::vector<Pin>& pins,
+                double period = 0.0);
 
 // Linear interpolation of a profile at arc length s (clamped to its ends).
-inline double profile_at(const std::vector<float>& v, double step, double s) {
+template <class T>
+double profile_at(const std::vector<T>& v, double step, double s) {
   const double x = std::max(0.0, s / step);
   const std::size_t i = std::min(std::size_t(x), v.size() - 1);
   if (i + 1 >= v.size()) return v.back();
