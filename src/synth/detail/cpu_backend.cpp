@@ -67,13 +67,25 @@ SpreadTexel spread(std::uint32_t t) {
 
 // sample_bilinear of cost.hpp on a padded plane: the same fixed-point formula, bit for bit
 // (each channel (sum of weight * value + 2^15) >> 16), two channels per multiply.
-std::uint32_t bilinear_padded(const PaddedPlane<SpreadTexel>& plane, std::int32_t X,
-                              std::int32_t Y) {
+// One right-edge sample of a piece relative to its position: the top-left texel of its 2 x 2
+// (as an offset in the padded plane) and the four weights, the same for every position since
+// positions are whole texels.
+struct BilinearTap {
+  std::ptrdiff_t offset = 0;
+  std::uint64_t w00 = 0, w10 = 0, w01 = 0, w11 = 0;
+};
+
+BilinearTap bilinear_tap(const PaddedPlane<SpreadTexel>& plane, std::int32_t X, std::int32_t Y) {
   const std::uint64_t fx = std::uint64_t(X & 255), fy = std::uint64_t(Y & 255);
-  const SpreadTexel* row0 = plane.at(X >> 8, Y >> 8);
-  const SpreadTexel* row1 = row0 + plane.stride;
-  const std::uint64_t w00 = (256 - fx) * (256 - fy), w10 = fx * (256 - fy);
-  const std::uint64_t w01 = (256 - fx) * fy, w11 = fx * fy;
+  return {std::ptrdiff_t(Y >> 8) * plane.stride + (X >> 8), (256 - fx) * (256 - fy),
+          fx * (256 - fy), (256 - fx) * fy, fx * fy};
+}
+
+std::uint32_t bilinear_padded(const SpreadTexel* row0, std::ptrdiff_t stride,
+                              const BilinearTap& tap) {
+  row0 += tap.offset;
+  const SpreadTexel* row1 = row0 + stride;
+  const std::uint64_t w00 = tap.w00, w10 = tap.w10, w01 = tap.w01, w11 = tap.w11;
   constexpr std::uint64_t kHalf = 32768u | std::uint64_t(32768u) << 32;
   const std::uint64_t low =
       (row0[0].low * w00 + row0[1].low * w10 + row1[0].low * w01 + row1[1].low * w11 + kHalf) >> 16;
@@ -207,13 +219,15 @@ class CpuBackend final : public Backend {
     }
     const PaddedPlane<SpreadTexel> plane =
         padded_plane<SpreadTexel>(texels, space, dx0, dx1, dy0, dy1, spread);
+    std::vector<BilinearTap> taps(static_cast<std::size_t>(C));
+    for (int k = 0; k < C; ++k)
+      taps[std::size_t(k)] = bilinear_tap(plane, piece.right_fx[k] - 128, piece.right_fy[k] - 128);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 64), [&](auto range) {
       for (std::size_t j = range.begin(); j < range.end(); ++j) {
-        const std::int32_t X0 = space.ux(indices[j]) * 256 - 128;
-        const std::int32_t Y0 = space.uy(indices[j]) * 256 - 128;
+        const SpreadTexel* corner = plane.at(space.ux(indices[j]), space.uy(indices[j]));
+        std::uint32_t* column = out.samples.data() + j * C;
         for (int k = 0; k < C; ++k)
-          out.samples[j * C + k] =
-              bilinear_padded(plane, X0 + piece.right_fx[k], Y0 + piece.right_fy[k]);
+          column[k] = bilinear_padded(corner, plane.stride, taps[std::size_t(k)]);
       }
     });
   }
@@ -226,11 +240,17 @@ class CpuBackend final : public Backend {
     out.samples.resize(indices.size() * std::size_t(C));
     const PaddedPlane<std::uint32_t> plane = padded_plane<std::uint32_t>(
         texels, space, 0, 0, 0, C - 1, [](std::uint32_t t) { return t; });
+    // Column-major copy: each left edge is then one contiguous run of C texels.
+    const std::size_t rows = plane.values.size() / std::size_t(plane.stride);
+    std::vector<std::uint32_t> by_column(plane.values.size());
+    for (std::size_t y = 0; y < rows; ++y)
+      for (std::size_t x = 0; x < std::size_t(plane.stride); ++x)
+        by_column[x * rows + y] = plane.values[y * std::size_t(plane.stride) + x];
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, indices.size(), 256), [&](auto range) {
       for (std::size_t j = range.begin(); j < range.end(); ++j) {
-        const std::uint32_t* texel = plane.at(space.ux(indices[j]), space.uy(indices[j]));
-        std::uint32_t* column = out.samples.data() + j * C;
-        for (int k = 0; k < C; ++k) column[k] = texel[std::ptrdiff_t(k) * plane.stride];
+        const std::size_t x = std::size_t(space.ux(indices[j]) + plane.left);
+        const std::size_t y = std::size_t(space.uy(indices[j]) + plane.top);
+        std::copy_n(by_column.data() + x * rows + y, C, out.samples.data() + j * C);
       }
     });
   }
