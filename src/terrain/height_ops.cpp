@@ -22,6 +22,16 @@ namespace {
 
 using detail::Pin;
 
+// Whether the feature's centreline, sampled every `step` metres, touches the grid.
+bool reaches_grid(const TerrainFeature& f, const GridSpec& grid, double step) {
+  const auto cumulative = cumulative_lengths(f.centerline);
+  for (double s = 0.0; s <= cumulative.back(); s += step) {
+    const Vec2 p = grid.world_to_pixel(point_at(f.centerline, cumulative, s));
+    if (p.x >= 0.0 && p.y >= 0.0 && p.x <= grid.width && p.y <= grid.height) return true;
+  }
+  return false;
+}
+
 // Profile samples about every half pixel, spaced to divide the length exactly.
 double profile_step(const GridSpec& grid, double length) {
   const double target = 0.5 * std::min(grid.pixel_width, grid.pixel_height);
@@ -231,8 +241,13 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
     }
     auto terrain = detail::terrain_along(height, grid, f.centerline, step);
     if (terrain.empty()) {
-      logger().warn("{} feature FID {} lies entirely over nodata; left out", to_string(f.kind),
-                    f.fid);
+      // Off this grid altogether (a close-up region, a tile) is expected; over nodata is not.
+      if (reaches_grid(f, grid, step)) {
+        logger().warn("{} feature FID {} lies entirely over nodata; left out", to_string(f.kind),
+                      f.fid);
+      } else {
+        logger().debug("{} feature FID {} lies outside the grid", to_string(f.kind), f.fid);
+      }
       over_nodata[i] = 1;
       profiles[i] = {0.0};
       continue;

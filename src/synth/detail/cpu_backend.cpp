@@ -65,8 +65,6 @@ SpreadTexel spread(std::uint32_t t) {
           std::uint64_t((t >> 16) & 255u) | std::uint64_t(t >> 24) << 32};
 }
 
-// sample_bilinear of cost.hpp on a padded plane: the same fixed-point formula, bit for bit
-// (each channel (sum of weight * value + 2^15) >> 16), two channels per multiply.
 // One right-edge sample of a piece relative to its position: the top-left texel of its 2 x 2
 // (as an offset in the padded plane) and the four weights, the same for every position since
 // positions are whole texels.
@@ -81,6 +79,9 @@ BilinearTap bilinear_tap(const PaddedPlane<SpreadTexel>& plane, std::int32_t X, 
           fx * (256 - fy), (256 - fx) * fy, fx * fy};
 }
 
+// sample_bilinear of cost.hpp on a padded plane, `row0` at the position's texel: the same
+// fixed-point formula, bit for bit (each channel (sum of weight * value + 2^15) >> 16), two
+// channels per multiply.
 std::uint32_t bilinear_padded(const SpreadTexel* row0, std::ptrdiff_t stride,
                               const BilinearTap& tap) {
   row0 += tap.offset;
@@ -138,7 +139,8 @@ class CpuBackend final : public Backend {
     };
     const auto clear = windows(piece.must_be_clear), interior = windows(piece.interior);
     // min_opaque > 1: count the opaque interior texels of each remaining candidate from
-    // per-row prefix sums over the interior's runs (offsets come sorted by row, then column).
+    // per-row prefix sums over runs of the interior (footprints list it row by row, so a run
+    // is a row's span; any order still counts every offset once).
     std::vector<std::int32_t> prefix;
     std::vector<std::array<int, 3>> runs;  // bit row, first and last bit column
     if (piece.min_opaque > 1) {
