@@ -113,6 +113,12 @@ int main(int argc, char** argv) {
   synth->add_option("--min-coverage", synth_args.min_coverage,
                     "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
+  synth
+      ->add_option_function<std::string>(
+          "--alpha",
+          [&synth_args](const std::string& a) { synth_args.continuous_alpha = a == "continuous"; },
+          "binary (opaque at alpha >= 0.5, the default) or continuous costs")
+      ->check(CLI::IsMember({"binary", "continuous"}));
 
   try {
     app.parse(argc, argv);

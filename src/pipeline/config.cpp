@@ -119,6 +119,14 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
         m.get("min_coverage"), m.path("min_coverage"),
         fmt::format("must be below 1 (a fraction of each piece), got {}", s.min_coverage));
   }
+  if (m.has("alpha")) {
+    const std::string alpha = m.string("alpha");
+    if (alpha != "binary" && alpha != "continuous") {
+      m.source().fail(m.get("alpha"), m.path("alpha"),
+                      fmt::format("unknown alpha '{}', expected binary or continuous", alpha));
+    }
+    s.continuous_alpha = alpha == "continuous";
+  }
   if (m.has("choose")) {
     const std::string choose = m.string("choose");
     if (choose == "seed") {
@@ -168,7 +176,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     f.synthesis = read_synthesis(
         MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
                   {"exemplar", "choose", "width", "delta", "scale", "stitch", "empty_pieces",
-                   "min_coverage", "seed", "backend", "height_detail", "channels"}),
+                   "min_coverage", "alpha", "seed", "backend", "height_detail", "channels"}),
         seed);
   }
   return f;

@@ -52,6 +52,9 @@ struct SynthesisConfig {
   bool empty_pieces = true;
   // The fraction of each piece that must be opaque at a valid position (SynthParams).
   double min_coverage = 0.0;
+  // Costs with alpha as a fraction (the paper's option for soft-edged exemplars) instead of
+  // opaque / transparent at alpha 0.5.
+  bool continuous_alpha = false;
   std::uint64_t seed = 0;
   std::string backend;         // "" = the pipeline's backend
   double height_detail = 1.0;  // factor on the metres of the exemplar's channels mapped to height

@@ -102,7 +102,9 @@ Synthesis run_synth_command(const SynthCommand& c) {
   if (!(c.delta > 0)) fail("synth: --delta must be > 0 metres, got {}", c.delta);
   if (!(c.scale > 0)) fail("synth: --scale must be > 0 texels per metre, got {}", c.scale);
   if (!(c.length > 0)) fail("synth: --length must be > 0 metres, got {}", c.length);
-  const Exemplar exemplar = load_exemplar(c.exemplar.string());
+  ExemplarOptions options;
+  options.continuous_alpha = c.continuous_alpha;
+  const Exemplar exemplar = load_exemplar(c.exemplar.string(), options);
   const Curve curve = is_shape(c.curve) ? make_shape(c.curve, c.length) : read_first_line(c.curve);
   const Ribbon ribbon = make_ribbon(curve, {c.width, c.delta, 0.0});
   const GridSpec canvas = canvas_around(curve, c.width, c.scale);

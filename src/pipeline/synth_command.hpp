@@ -22,6 +22,7 @@ struct SynthCommand {
   std::uint64_t seed = 0;
   bool stitch = true;
   double min_coverage = 0.0;         // SynthParams::min_coverage
+  bool continuous_alpha = false;     // ExemplarOptions::continuous_alpha
   std::filesystem::path output;      // .png
   std::filesystem::path placements;  // optional JSON of the placements (synth/placements_io.hpp)
 };

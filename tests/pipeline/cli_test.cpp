@@ -249,6 +249,16 @@ TEST_F(Cli, SynthDrawsOneRibbonOrNamesTheBadInput) {
   EXPECT_EQ(exemplar_in_file, exemplar);
   EXPECT_THAT(r.output, HasSubstr("Omega " + std::to_string(back.total_cost) + ","));
   EXPECT_EQ(back.mean_seam_cost_stitched, back.mean_seam_cost);  // --no-stitch
+  // Continuous alpha prices the chain's soft edges too: another optimum cost.
+  const std::string arc = " --curve arc --length 12 --width 4 --delta 3 --scale 4 --backend cpu";
+  const CommandResult binary = terraweave("-q synth --exemplar " + exemplar + arc + " -o b.png");
+  const CommandResult continuous =
+      terraweave("-q synth --exemplar " + exemplar + arc + " --alpha continuous -o c.png");
+  ASSERT_EQ(binary.exit_code, 0) << binary.output;
+  ASSERT_EQ(continuous.exit_code, 0) << continuous.output;
+  EXPECT_NE(binary.output, continuous.output);
+  EXPECT_EQ(
+      terraweave("-q synth --exemplar " + exemplar + arc + " --alpha soft -o d.png").exit_code, 2);
   r = terraweave(
       "-q synth --exemplar " + exemplar +
       " --curve line --length 12 --width 4 --delta 3 --scale 4 --min-coverage 1 -o y.png");

@@ -186,8 +186,9 @@ GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m
   return grid;
 }
 
-Exemplar load_exemplar_with_height(const fs::path& path) {
+Exemplar load_exemplar_with_height(const fs::path& path, bool continuous_alpha) {
   ExemplarOptions options;
+  options.continuous_alpha = continuous_alpha;
   const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
   if (fs::exists(height)) options.height_path = height.string();
   return load_exemplar(path.string(), options);
@@ -209,7 +210,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
     plan.class_index = std::size_t(it - config.features.begin());
     for (const fs::path& path : it->synthesis->exemplars) {
       plan.exemplars.push_back(run.exemplars.size());
-      run.exemplars.push_back(load_exemplar_with_height(path));
+      run.exemplars.push_back(load_exemplar_with_height(path, it->synthesis->continuous_alpha));
     }
     const std::string backend = options.backend.value_or(
         it->synthesis->backend.empty() ? config.backend : it->synthesis->backend);

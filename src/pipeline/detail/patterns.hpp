@@ -31,7 +31,7 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
 GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m);
 
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
-Exemplar load_exemplar_with_height(const std::filesystem::path& path);
+Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
 
 struct FeaturePattern {
   std::size_t class_index = 0;     // in config.features
