@@ -156,14 +156,31 @@ TEST(CpuRow, BoundNeverExceedsTrueCost) {
             edge_cost(a.samples.data() + i * C, b.samples.data() + j * C, C, binary);
         EXPECT_LE(edge_cost_bound(sa, i, sb, j, binary), d);
         EXPECT_LE(std::int64_t(std::floor(block_colour_bound(sa, i, sb, j))), d);
-        const int m = binary ? mismatched_samples(sa, i, sb, j) : 0;
+        const int m = mismatched_samples(sa, i, sb, j);
         EXPECT_FALSE(whole_edge_bound_exceeds(sa, i, sb, j, m, d)) << i << " " << j;
-        if (binary) {
-          EXPECT_LE(std::int64_t(kGamma) * m, d);
-        }
+        EXPECT_LE(mismatch_cost(binary) * m, d);
       }
     }
   }
+}
+
+// The per-mismatch constants of continuous alpha hold for every pair of alphas on either side
+// of 0.5, at the colour terms where they are tightest (0 and the largest).
+TEST(CpuRow, ContinuousMismatchBoundsHoldForEveryAlphaPair) {
+  EXPECT_EQ(mismatch_cost(false), 8192);
+  EXPECT_EQ(mismatch_extra(false), 4659);
+  int checked = 0;
+  for (std::uint32_t a = 128; a < 256; ++a)
+    for (std::uint32_t b = 0; b < 128; ++b)
+      for (const auto& [p, q] : {std::pair{pack_rgba(0, 0, 0, a), pack_rgba(0, 0, 0, b)},
+                                 std::pair{pack_rgba(255, 255, 255, a), pack_rgba(0, 0, 0, b)},
+                                 std::pair{pack_rgba(0, 0, 0, b), pack_rgba(255, 255, 255, a)}}) {
+        const std::int64_t x = xi(p, q, false);
+        ASSERT_GE(x, mismatch_cost(false)) << a << " " << b;
+        ASSERT_GE(x, colour_term(p, q) + mismatch_extra(false)) << a << " " << b;
+        ++checked;
+      }
+  EXPECT_EQ(checked, 128 * 128 * 3);
 }
 
 TEST(CpuRow, XiIsTheFlooredScaledDistance) {

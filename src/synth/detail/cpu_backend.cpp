@@ -300,7 +300,7 @@ void update_table_row_naive(const std::vector<std::int64_t>& previous_cost, cons
 namespace {
 
 // The previous positions of a row regrouped for the pruned update: grouped by exact opaque mask
-// (one group with continuous alpha), groups in increasing min P, members in increasing (P, v),
+// (alpha >= 128), groups in increasing min P, members in increasing (P, v),
 // their samples and statistics contiguous in that "slot" order.
 struct PreviousByMask {
   std::vector<std::int32_t> position;        // slot -> v
@@ -386,12 +386,14 @@ PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
 }
 
 // The groups (other than `own`, in increasing min P) that may hold a winner for a left mask:
-// min P + gamma * m <= best with m = popcount(group mask ^ left mask) >= 1. best only falls
-// while the groups are walked, so this list (made with the best at the time) is a superset.
+// min P + mismatch * m <= best with m = popcount(group mask ^ left mask) >= 1 and mismatch the
+// least xi of a mismatched sample. best only falls while the groups are walked, so this list
+// (made with the best at the time) is a superset.
 struct GroupScan {
   const std::int64_t* group_min;
   const std::uint64_t* group_masks;
   int groups, words;
+  std::int64_t mismatch;
 };
 
 // Inlined into each caller so that its popcount uses the caller's instruction set.
@@ -403,11 +405,11 @@ __attribute__((always_inline)) inline void scan_groups_for(const GroupScan& scan
   const int words = Words > 0 ? Words : scan.words;
   for (int g = 0; g < scan.groups; ++g) {
     const std::int64_t gap_free = scan.group_min[g];
-    if (gap_free + kGamma > best) break;
+    if (gap_free + scan.mismatch > best) break;
     const std::uint64_t* mask = scan.group_masks + std::size_t(g) * words;
     int m = 0;
     for (int w = 0; w < words; ++w) m += __builtin_popcountll(mask[w] ^ key[w]);
-    if (g != own && gap_free + std::int64_t(kGamma) * m <= best) out.emplace_back(g, m);
+    if (g != own && gap_free + scan.mismatch * m <= best) out.emplace_back(g, m);
   }
 }
 
@@ -460,6 +462,7 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
   const int count = column_count(left);
   const int previous = int(previous_cost.size());
   const bool binary = left.binary_alpha;
+  const std::int64_t mismatch = mismatch_cost(binary);
   cost.assign(std::size_t(count), kNoCost);
   argmin.assign(std::size_t(count), -1);
   if (pairs_evaluated) *pairs_evaluated = 0;
@@ -468,7 +471,7 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
   const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
   const GroupScan scan{prev.group_min.data(), prev.group_masks.data(),
-                       int(prev.group_begin.size()) - 1, left_stats.words};
+                       int(prev.group_begin.size()) - 1, left_stats.words, mismatch};
   const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
@@ -489,7 +492,7 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
         const std::int64_t limit = best - p - (v > best_v ? 1 : 0);  // ties go to the lowest v
         if (limit < 0) return true;
         if (best_v != kNoIndex) {
-          if (std::int64_t(kGamma) * m > limit) return true;
+          if (mismatch * m > limit) return true;
           if (whole_edge_bound_exceeds(prev.stats, s, left_stats, j, m, limit)) return true;
           if (double(block_colour_bound(prev.stats, s, left_stats, j)) > double(limit)) return true;
         }
@@ -509,25 +512,25 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
         for (std::int32_t v : {neighbour, neighbour + 1}) {
           if (v >= previous) continue;
           const int s = prev.slot_of[std::size_t(v)];
-          consider(s, binary ? mismatched_samples(prev.stats, s, left_stats, j) : 0);
+          consider(s, mismatched_samples(prev.stats, s, left_stats, j));
         }
       }
-      // The group of j's own mask: no mismatched sample, D is colours only.
+      // The group of j's own mask: no mismatched sample (binary alpha: D is colours only).
       const int own = group_of_left(prev, left_stats, j);
       if (own >= 0)
         for (int s = prev.group_begin[std::size_t(own)]; s < prev.group_begin[std::size_t(own) + 1];
              ++s)
           if (!consider(s, 0)) break;
-      // Every other group has m >= 1 mismatched samples, so D >= gamma * m: visit groups (in
-      // increasing min P) only while min P + gamma * m can still win.
-      if (own < 0 || best - min_cost >= kGamma) {
+      // Every other group has m >= 1 mismatched samples, so D >= mismatch * m: visit groups
+      // (in increasing min P) only while min P + mismatch * m can still win.
+      if (own < 0 || best - min_cost >= mismatch) {
         scan_groups(scan, left_stats.masks.data() + std::size_t(j) * left_stats.words, own, best,
                     candidates);
         for (const auto& [g, m] : candidates) {
           const int begin = prev.group_begin[std::size_t(g)];
           const int end = prev.group_begin[std::size_t(g) + 1];
-          const std::int64_t gap = std::int64_t(kGamma) * m;
-          if (prev.cost[std::size_t(begin)] + kGamma > best) break;
+          const std::int64_t gap = mismatch * m;
+          if (prev.cost[std::size_t(begin)] + mismatch > best) break;
           for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
             if (!consider(s, m)) break;
         }

@@ -22,6 +22,7 @@ EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32
       order.empty() ? int(columns.samples.size() / std::size_t(std::max(C, 1))) : int(order.size());
   stats.words = (C + 63) / 64;
   stats.blocks = (C + kBoundBlock - 1) / kBoundBlock;
+  stats.binary_alpha = columns.binary_alpha;
   stats.masks.assign(std::size_t(stats.count) * stats.words, 0);
   stats.sums.assign(std::size_t(stats.count) * 3, 0);
   stats.block_sums.assign(std::size_t(stats.count) * stats.blocks * 3, 0.0f);
@@ -36,7 +37,7 @@ EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32
         std::int32_t red = 0, green = 0, blue = 0;
         for (int k = b * kBoundBlock; k < std::min(C, (b + 1) * kBoundBlock); ++k) {
           const std::uint32_t t = samples[k];
-          if (columns.binary_alpha && is_opaque(t)) mask[k / 64] |= std::uint64_t(1) << (k % 64);
+          if (is_opaque(t)) mask[k / 64] |= std::uint64_t(1) << (k % 64);
           red += std::int32_t(t & 255u);
           green += std::int32_t((t >> 8) & 255u);
           blue += std::int32_t((t >> 16) & 255u);
@@ -59,6 +60,7 @@ EdgeStats permute_edge_stats(const EdgeStats& stats, const std::vector<std::int3
   out.column = stats.column;
   out.words = stats.words;
   out.blocks = stats.blocks;
+  out.binary_alpha = stats.binary_alpha;
   const std::size_t words = std::size_t(stats.words), block_floats = std::size_t(stats.blocks) * 3;
   out.masks.resize(order.size() * words);
   out.sums.resize(order.size() * 3);
@@ -75,8 +77,8 @@ EdgeStats permute_edge_stats(const EdgeStats& stats, const std::vector<std::int3
 
 std::int64_t edge_cost_bound(const EdgeStats& right, int a, const EdgeStats& left, int b,
                              bool binary_alpha) {
-  const int m = binary_alpha ? mismatched_samples(right, a, left, b) : 0;
-  std::int64_t bound = std::int64_t(kGamma) * m;
+  const int m = mismatched_samples(right, a, left, b);
+  std::int64_t bound = mismatch_cost(binary_alpha) * m;
   bound = std::max(bound, std::int64_t(std::floor(block_colour_bound(right, a, left, b))));
   // The largest limit the whole-edge test still rejects is a bound too: binary search it.
   std::int64_t lo = bound, hi = std::int64_t(kGamma) * right.column + 1;

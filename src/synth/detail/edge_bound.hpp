@@ -10,20 +10,37 @@
 //   D >= gamma * m
 //   D >= 16 ||sum p - sum q|| - C + kMismatchExtra * m          (whole edge, integer test)
 //   D >= sum over blocks b of max(0, 16 ||S_b(p) - S_b(q)|| - n_b)   (float, with a margin)
-// With continuous alpha xi >= floor(16 ||p - q||) (gamma exceeds any colour term), so the
-// colour bounds hold with m = 0. The bounds only decide what to skip, never a cost, so the
-// float rounding of the block bound (lowered by a safety margin) cannot change results.
+// With continuous alpha xi >= floor(16 ||p - q||) (gamma exceeds any colour term), and a
+// sample whose alphas fall on either side of 0.5 (a >= 128 > b) has a mismatch weight
+// a (255 - b) + (255 - a) b >= 128 * 128 + 127 * 127 = 32513 of 255^2, so the same bounds
+// hold with smaller per-mismatch constants (mismatch_cost, mismatch_extra below). The bounds
+// only decide what to skip, never a cost, so the float rounding of the block bound (lowered by
+// a safety margin) cannot change results.
 #include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <vector>
 
+#include "synth/detail/cost.hpp"
 #include "synth/detail/stages.hpp"
 
 namespace tw::detail {
 
 inline constexpr int kBoundBlock = 16;                // samples per block of the block bound
 inline constexpr std::int32_t kMismatchExtra = 9317;  // gamma - kMaxColourTerm - 1
+inline constexpr std::int64_t kMinMismatchWeight = 128 * 128 + 127 * 127;
+
+// The least xi of a mismatched sample: gamma (binary), floor(32513 gamma / 255^2) (continuous).
+constexpr std::int64_t mismatch_cost(bool binary_alpha) {
+  return binary_alpha ? kGamma : kMinMismatchWeight * kGamma / (255 * 255);
+}
+// What a mismatched sample adds at least to the colour-term bound 16 ||p - q|| - 1:
+// binary gamma - kMaxColourTerm - 1; continuous floor(32513 (gamma - kMaxColourTerm) / 255^2)
+// (xi = colour + floor(w_diff (gamma - colour) / 255^2) and the colour term is an integer).
+constexpr std::int64_t mismatch_extra(bool binary_alpha) {
+  return binary_alpha ? kMismatchExtra
+                      : kMinMismatchWeight * (kGamma - kMaxColourTerm) / (255 * 255);
+}
 
 // Per-position statistics of a set of columns (position-major).
 struct EdgeStats {
@@ -31,13 +48,13 @@ struct EdgeStats {
   int column = 0;                    // C
   int words = 0;                     // ceil(C / 64): opaque mask words per position
   int blocks = 0;                    // ceil(C / kBoundBlock)
-  std::vector<std::uint64_t> masks;  // bit k of word k / 64: sample k is opaque (binary alpha)
+  bool binary_alpha = true;          // selects the per-mismatch constants
+  std::vector<std::uint64_t> masks;  // bit k of word k / 64: sample k is opaque (alpha >= 128)
   std::vector<std::int32_t> sums;    // R, G, B sums over the whole edge (3 per position)
   std::vector<float> block_sums;     // R, G, B sums per block (3 * blocks per position)
 };
 
 // Statistics of the positions `order` of `columns` (all, in order, when `order` is empty).
-// Masks are all zero with continuous alpha.
 EdgeStats make_edge_stats(const ColumnSet& columns, const std::vector<std::int32_t>& order = {});
 
 // The same statistics in another order: position i of the result is position order[i].
@@ -57,7 +74,7 @@ inline int bit_count(std::uint64_t x) {
 #endif
 }
 
-// The exact number of samples whose binary alphas differ.
+// The exact number of samples whose alphas fall on different sides of 0.5.
 inline int mismatched_samples(const EdgeStats& right, int a, const EdgeStats& left, int b) {
   const std::uint64_t* ra = right.masks.data() + std::size_t(a) * right.words;
   const std::uint64_t* lb = left.masks.data() + std::size_t(b) * left.words;
@@ -67,11 +84,11 @@ inline int mismatched_samples(const EdgeStats& right, int a, const EdgeStats& le
 }
 
 // True when the whole-edge bound proves D(right a, left b) > limit, given m mismatched samples
-// (m = 0 with continuous alpha). Exact integer arithmetic.
+// (any m not above the true count is sound). Exact integer arithmetic.
 inline bool whole_edge_bound_exceeds(const EdgeStats& right, int a, const EdgeStats& left, int b,
                                      int m, std::int64_t limit) {
   // 16 ||dS|| - C + extra * m > limit  <=>  16 ||dS|| > rhs  <=>  256 ||dS||^2 > rhs^2.
-  const std::int64_t rhs = limit + right.column - std::int64_t(kMismatchExtra) * m;
+  const std::int64_t rhs = limit + right.column - mismatch_extra(right.binary_alpha) * m;
   if (rhs < 0) return true;
   if (rhs >= (std::int64_t(1) << 31)) return false;  // 16 ||dS|| <= 7068 C stays far below
   const std::int32_t* ra = right.sums.data() + std::size_t(a) * 3;
@@ -96,7 +113,7 @@ inline float block_colour_bound(const EdgeStats& right, int a, const EdgeStats& 
   return bound * (1.0f - 1e-5f) - 1.0f;
 }
 
-// The largest lower bound above (gamma * m, whole edge, blocks), as an integer <= D.
+// The largest lower bound above (mismatch_cost * m, whole edge, blocks), as an integer <= D.
 std::int64_t edge_cost_bound(const EdgeStats& right, int a, const EdgeStats& left, int b,
                              bool binary_alpha);
 
