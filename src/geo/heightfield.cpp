@@ -13,6 +13,7 @@
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/warp.hpp"
 #include "geo/metric_frame.hpp"
+#include "geo/resample.hpp"
 
 namespace tw {
 namespace {
@@ -109,6 +110,12 @@ Raster<float> read_heights(GDALRasterBand& band, double metres_per_unit, const s
   return heights;
 }
 
+void require_some_height(const Heightfield& field, const std::string& path) {
+  for (float h : field.height.pixels)
+    if (!std::isnan(h)) return;
+  fail("{}: every cell is nodata; there is no terrain to work on", path);
+}
+
 }  // namespace
 
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options) {
@@ -136,17 +143,38 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
 
   GdalDatasetPtr warped;
   GDALDataset* grid_source = source.get();
+  const bool cubic = options.resampling == Resampling::cubic;
+  const char* resampling = cubic ? "cubic" : "bilinear";
+  if (is_metric_north_up(*srs, gt) && options.resolution && cubic) {
+    // GDAL's cubic warp turns blocky within two cells of the DEM's edges; our Catmull-Rom
+    // replicates the edge cells instead. Same output grid as the warp: whole pixels from the
+    // north-west corner.
+    result.crs_wkt = detail::to_wkt(*srs);
+    const GridSpec native{
+        source->GetRasterXSize(), source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
+    const double r = *options.resolution;
+    result.grid = {int(std::ceil(native.width * native.pixel_width / r - 1e-9)),
+                   int(std::ceil(native.height * native.pixel_height / r - 1e-9)),
+                   gt[0],
+                   gt[3],
+                   r,
+                   r};
+    result.height = resample_heights(read_heights(*source->GetRasterBand(1), height_unit, path),
+                                     native, result.grid, Resampling::cubic);
+    require_some_height(result, path);
+    return result;
+  }
   if (is_metric_north_up(*srs, gt)) {
     result.crs_wkt = detail::to_wkt(*srs);
     if (options.resolution) {
       warped = detail::warp_to_metric_grid(
-          *source, {result.crs_wkt, *options.resolution, *options.resolution}, path);
+          *source, {result.crs_wkt, *options.resolution, *options.resolution}, path, resampling);
       grid_source = warped.get();
     }
   } else {
     const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
     result.crs_wkt = target.crs_wkt;
-    warped = detail::warp_to_metric_grid(*source, target, path);
+    warped = detail::warp_to_metric_grid(*source, target, path, resampling);
     grid_source = warped.get();
   }
   if (grid_source->GetGeoTransform(gt) != CE_None)
@@ -154,9 +182,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   result.grid = {
       grid_source->GetRasterXSize(), grid_source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
   result.height = read_heights(*grid_source->GetRasterBand(1), height_unit, path);
-  bool any_height = false;
-  for (float h : result.height.pixels) any_height = any_height || !std::isnan(h);
-  if (!any_height) fail("{}: every cell is nodata; there is no terrain to work on", path);
+  require_some_height(result, path);
   return result;
 }
 

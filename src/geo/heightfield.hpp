@@ -18,19 +18,26 @@ struct Heightfield {
   std::string source;                  // path or "generated:seed=N" for messages and reports
 };
 
+// How a heightfield is read between its cells when it is warped or resampled.
+enum class Resampling {
+  bilinear,  // continuous heights, slopes that break at every source cell (faceted light)
+  cubic,     // Catmull-Rom (GDAL's "cubic"): continuous slopes, exact on quadratics
+};
+
 struct HeightfieldOptions {
   // Output pixel size in metres; default: the source's, in metres (at the centre of the DEM
   // when the source is geographic).
   std::optional<double> resolution;
+  Resampling resampling = Resampling::bilinear;
 };
 
 // Reads band 1 of a GDAL raster. A metric north-up DEM keeps its grid and CRS (resampled,
-// bilinear and nodata-aware, when options.resolution is set); a geographic, non-metre or
-// rotated one is warped (bilinear, nodata kept) into local_transverse_mercator_wkt() centred on
-// the DEM (geo/metric_frame.hpp), with the source's pixel size at its centre measured as
-// geodesics, covering its whole footprint. Heights in feet (GDAL unit type "ft",
-// "US survey foot") become metres. Throws tw::Error naming the path when the file cannot be
-// read, has no CRS, or holds nothing but nodata.
+// with options.resampling and nodata-aware, when options.resolution is set); a geographic,
+// non-metre or rotated one is warped (options.resampling, nodata kept) into
+// local_transverse_mercator_wkt() centred on the DEM (geo/metric_frame.hpp), with the source's
+// pixel size at its centre measured as geodesics, covering its whole footprint. Heights in feet
+// (GDAL unit type "ft", "US survey foot") become metres. Throws tw::Error naming the path when the
+// file cannot be read, has no CRS, or holds nothing but nodata.
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options = {});
 
 struct GeneratedTerrain {

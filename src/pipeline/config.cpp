@@ -285,10 +285,10 @@ RegionConfig read_region(const YamlSource& src, const YAML::Node& node) {
 }
 
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
-  const MapReader root(
-      src, tree, "",
-      {"version", "seed", "heightfield", "generate", "resolution", "output", "backend",
-       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order", "region"});
+  const MapReader root(src, tree, "",
+                       {"version", "seed", "heightfield", "generate", "resolution", "output",
+                        "backend", "precedence", "features", "existing", "synthesis_resolution",
+                        "synthesis_order", "region", "resampling"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -304,6 +304,14 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   }
   if (root.has("resolution")) c.resolution = root.positive("resolution");
   if (root.has("region")) c.region = read_region(src, root.get("region"));
+  if (root.has("resampling")) {
+    const std::string r = root.string("resampling");
+    if (r != "bilinear" && r != "cubic") {
+      src.fail(root.get("resampling"), "resampling",
+               fmt::format("unknown resampling '{}', expected bilinear or cubic", r));
+    }
+    c.resampling = r == "cubic" ? Resampling::cubic : Resampling::bilinear;
+  }
   if (root.has("output")) {
     const MapReader out(src, root.get("output"), "output", {"dir", "exr", "geotiff", "preview"});
     if (out.has("dir")) c.output.dir = out.file("dir");

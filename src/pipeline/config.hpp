@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "geo/heightfield.hpp"
 #include "terrain/features.hpp"
 
 namespace tw {
@@ -111,6 +112,8 @@ struct PipelineConfig {
   GenerateConfig generate;
   std::optional<double> resolution;    // output cell size in metres; absent = the heightfield's
   std::optional<RegionConfig> region;  // absent = the whole heightfield
+  // How the heightfield is read between its cells when resampled to `resolution` or a region.
+  Resampling resampling = Resampling::bilinear;
   OutputConfig output;
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps

@@ -102,7 +102,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
     heightfield = detail::crop_to_region(heightfield, *config.region,
-                                         config.resolution.value_or(heightfield.grid.pixel_width));
+                                         config.resolution.value_or(heightfield.grid.pixel_width),
+                                         config.resampling);
     report.grid = heightfield.grid;
   }
   clock.stop();

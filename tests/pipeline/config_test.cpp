@@ -197,6 +197,44 @@ TEST(PipelineConfig, RegionCropsAndResamplesTheHeightfield) {
       const Vec2 p = source.grid.world_to_pixel(crop.grid.pixel_to_world({c + 0.5, r + 0.5}));
       EXPECT_NEAR(crop.height.at(c, r), 3.0 * (p.x - 0.5) - 2.0 * (p.y - 0.5), 1e-4);
     }
+  // Cubic: exact on a quadratic inside (bilinear sags between centres), and the same plane.
+  Heightfield bowl = source;
+  auto bowl_at = [](double c, double r) { return 0.5 * c * c + 0.25 * r * r - c * r; };
+  for (int r = 0; r < 10; ++r)
+    for (int c = 0; c < 10; ++c) bowl.height.at(c, r) = float(bowl_at(c, r));
+  const RegionConfig middle{1030.0, 2030.0, 1070.0, 2070.0};
+  const Heightfield cubic = detail::crop_to_region(bowl, middle, 2.0, Resampling::cubic);
+  const Heightfield linear = detail::crop_to_region(bowl, middle, 2.0, Resampling::bilinear);
+  double worst_cubic = 0.0, worst_linear = 0.0;
+  for (int r = 0; r < cubic.grid.height; ++r)
+    for (int c = 0; c < cubic.grid.width; ++c) {
+      const Vec2 p = source.grid.world_to_pixel(cubic.grid.pixel_to_world({c + 0.5, r + 0.5}));
+      const double expected = bowl_at(p.x - 0.5, p.y - 0.5);
+      worst_cubic = std::max(worst_cubic, std::abs(cubic.height.at(c, r) - expected));
+      worst_linear = std::max(worst_linear, std::abs(linear.height.at(c, r) - expected));
+    }
+  EXPECT_LT(worst_cubic, 1e-4);
+  EXPECT_GT(worst_linear, 0.05);
+  const Heightfield plane = detail::crop_to_region(source, middle, 2.0, Resampling::cubic);
+  for (int r = 0; r < plane.grid.height; ++r)
+    for (int c = 0; c < plane.grid.width; ++c) {
+      const Vec2 p = source.grid.world_to_pixel(plane.grid.pixel_to_world({c + 0.5, r + 0.5}));
+      EXPECT_NEAR(plane.height.at(c, r), 3.0 * (p.x - 0.5) - 2.0 * (p.y - 0.5), 1e-4);
+    }
+  // Next to nodata the cubic falls back to the bilinear read of the valid cells.
+  Heightfield holed = source;
+  holed.height.at(5, 5) = std::numeric_limits<float>::quiet_NaN();
+  const Heightfield around = detail::crop_to_region(holed, middle, 2.0, Resampling::cubic);
+  for (float h : around.height.pixels) {
+    if (!std::isnan(h)) {
+      EXPECT_TRUE(h > -30.0f && h < 40.0f) << h;
+    }
+  }
+  EXPECT_THAT(error_of(std::string(kMinimal) + "resampling: lanczos\n"),
+              HasSubstr("resampling: unknown resampling 'lanczos', expected bilinear or cubic"));
+  EXPECT_EQ(parse(std::string(kMinimal) + "resampling: cubic\n").resampling, Resampling::cubic);
+  EXPECT_EQ(parse(kMinimal).resampling, Resampling::bilinear);
+
   // Clipped to the heightfield, and an error when nothing is left.
   EXPECT_EQ(detail::crop_to_region(source, {900.0, 1900.0, 1010.0, 2010.0}, 5.0).grid.width, 2);
   try {

@@ -49,6 +49,7 @@ class DemoRun : public ::testing::Test {
     report_ = new RunReport(run_pipeline(*config_));
     HeightfieldOptions options;
     options.resolution = kResolution;
+    options.resampling = config_->resampling;  // the demo reads its DEM as the run does
     original_ = new Heightfield(read_heightfield(config_->heightfield->string(), options));
   }
   static void TearDownTestSuite() {

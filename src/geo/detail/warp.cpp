@@ -109,10 +109,10 @@ GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const
 }  // namespace
 
 GdalDatasetPtr warp_to_metric_grid(GDALDataset& full_source, const WarpTarget& target,
-                                   const std::string& label) {
+                                   const std::string& label, const char* resampling) {
   GdalDatasetPtr band_one;
   if (full_source.GetRasterCount() > 1) band_one = first_band_only(full_source, label);
-  return run_gdalwarp(band_one ? *band_one : full_source, target, "bilinear", label);
+  return run_gdalwarp(band_one ? *band_one : full_source, target, resampling, label);
 }
 
 }  // namespace tw::detail

@@ -12,12 +12,13 @@ struct WarpTarget {
   double pixel_height = 0.0;  // metres
 };
 
-// Band 1 of `source` warped (bilinear) into an in-memory Float32 dataset with NaN as nodata.
+// Band 1 of `source` warped (gdalwarp's `resampling`: "bilinear" or "cubic") into an
+// in-memory Float32 dataset with NaN as nodata.
 // GDAL's warper never mixes a nodata cell into a height (it weighs valid neighbours only) and
 // leaves an output cell nodata when the source cell under its centre is nodata, so holes
 // neither fill nor shrink (tests/geo/heightfield_test.cpp checks both). `label` names the
 // source in errors.
 GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
-                                   const std::string& label);
+                                   const std::string& label, const char* resampling = "bilinear");
 
 }  // namespace tw::detail

@@ -8,6 +8,7 @@ namespace tw::detail {
 Heightfield load_heightfield(const PipelineConfig& config) {
   if (config.heightfield) {
     HeightfieldOptions options;
+    options.resampling = config.resampling;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
     return read_heightfield(config.heightfield->string(), options);

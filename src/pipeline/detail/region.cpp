@@ -1,17 +1,15 @@
 #include "pipeline/detail/region.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "core/error.hpp"
-#include "terrain/detail/profiles.hpp"
+#include "geo/resample.hpp"
 
 namespace tw::detail {
 
-Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region,
-                           double resolution) {
+Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region, double resolution,
+                           Resampling resampling) {
   const GridSpec& from = source.grid;
   const double west = from.origin_x, north = from.origin_y;
   const double east = west + from.width * from.pixel_width;
@@ -33,14 +31,7 @@ Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region
   g.origin_y = std::ceil(max_y / resolution) * resolution;
   g.width = std::max(1, int(std::ceil((max_x - g.origin_x) / resolution - 1e-9)));
   g.height = std::max(1, int(std::ceil((g.origin_y - min_y) / resolution - 1e-9)));
-  out.height = Raster<float>(g.width, g.height);
-  // The same nodata-aware bilinear read the terrain stage samples profiles with.
-  tbb::parallel_for(0, g.height, [&](int row) {
-    for (int col = 0; col < g.width; ++col) {
-      const Vec2 world = g.pixel_to_world({col + 0.5, row + 0.5});
-      out.height.at(col, row) = float(sample_height(source.height, from, world));
-    }
-  });
+  out.height = resample_heights(source.height, from, g, resampling);
   return out;
 }
 

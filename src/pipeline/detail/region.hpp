@@ -7,10 +7,10 @@
 namespace tw::detail {
 
 // The region's cells at `resolution` metres, their edges on multiples of it in world
-// coordinates (so every close-up of a run lies on one lattice), heights read bilinearly from
-// the valid cells of `source` (NaN where none is). Throws tw::Error naming `region` when it
-// does not overlap the heightfield.
-Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region,
-                           double resolution);
+// coordinates (so every close-up of a run lies on one lattice), heights read from the valid
+// cells of `source` with geo/resample.hpp (NaN over nodata cells). Throws tw::Error naming
+// `region` when it does not overlap the heightfield.
+Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region, double resolution,
+                           Resampling resampling = Resampling::bilinear);
 
 }  // namespace tw::detail

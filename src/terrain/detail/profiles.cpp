@@ -4,25 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "geo/resample.hpp"
+
 namespace tw::detail {
 
 double sample_height(const Raster<float>& height, const GridSpec& grid, Vec2 world) {
-  const Vec2 p = grid.world_to_pixel(world) - Vec2{0.5, 0.5};  // in pixel-centre units
-  const double fx = std::floor(p.x), fy = std::floor(p.y);
-  const int c = int(fx), r = int(fy);
-  const double tx = p.x - fx, ty = p.y - fy;
-  double sum = 0.0, weight = 0.0;
-  for (int dy = 0; dy <= 1; ++dy)
-    for (int dx = 0; dx <= 1; ++dx) {
-      const int col = c + dx, row = r + dy;
-      if (!height.inside(col, row)) continue;
-      const float h = height.at(col, row);
-      if (std::isnan(h)) continue;
-      const double w = (dx ? tx : 1.0 - tx) * (dy ? ty : 1.0 - ty);
-      sum += w * h;
-      weight += w;
-    }
-  return weight > 1e-9 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+  return sample_height_bilinear(height, grid, world);
 }
 
 std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,

@@ -1,0 +1,24 @@
+#pragma once
+// Reading a heightfield between its cells, nodata-aware: NaN cells are never mixed into a
+// height. Used to resample a DEM onto another north-up grid of the same CRS (a finer output
+// resolution, a close-up region) and by the terrain stage to sample profiles.
+#include "core/grid.hpp"
+#include "geo/heightfield.hpp"
+
+namespace tw {
+
+// Bilinear from the valid cells among the four around `world` (weights renormalized); NaN when
+// none is valid or the point is off the grid.
+double sample_height_bilinear(const Raster<float>& height, const GridSpec& grid, Vec2 world);
+
+// Catmull-Rom (Keys' cubic convolution with a = -0.5, GDAL's "cubic") over the 4 x 4 cells
+// around `world`, cells beyond the grid's edge replicated from it; the bilinear read when any
+// of the 16 is nodata, or when `world` lies beyond the outer cell centres.
+double sample_height_cubic(const Raster<float>& height, const GridSpec& grid, Vec2 world);
+
+// `height` (over `from`) read at every cell centre of `to` (same CRS) with `resampling`; NaN
+// where the cell of `from` under the centre is nodata (holes neither fill nor shrink).
+Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from,
+                               const GridSpec& to, Resampling resampling);
+
+}  // namespace tw
