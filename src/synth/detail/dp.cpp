@@ -211,7 +211,10 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
 
   const int rows = input.closed ? N + 1 : N;
   std::unique_ptr<Progress> progress;
-  if (rows >= 64) progress = std::make_unique<Progress>("synthesis DP rows", rows - 1);
+  if (rows >= 64) {
+    progress = std::make_unique<Progress>(
+        input.label.empty() ? "synthesis DP rows" : input.label + ": DP rows", rows - 1);
+  }
   auto free_rows = [&](const std::vector<std::int32_t>& terminal) {
     return [&valid, &terminal, N](int r) -> const std::vector<std::int32_t>& {
       return r < N ? valid[std::size_t(r)] : terminal;

@@ -23,6 +23,7 @@ struct DpInput {
   bool allow_empty = false;  // a row with no valid position becomes an empty piece
   // Message of the tw::Error for a piece without any valid position.
   std::function<std::string(int piece)> no_valid_message;
+  std::string label;  // names the feature in progress lines, e.g. "features.roads: FID 3"
 };
 
 struct DpTimings {

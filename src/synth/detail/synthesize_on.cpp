@@ -102,6 +102,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   input.exact_cycle = params.closed_mode == ClosedMode::exact;
   input.seed = params.seed;
   input.allow_empty = params.allow_empty_pieces;
+  input.label = params.feature_label;
   if (params.first_position) {
     const auto [ux, uy] = *params.first_position;
     if (ux < 0 || ux >= space.width || uy < -C || uy >= space.height)
