@@ -249,6 +249,7 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
         logger().debug("{} feature FID {} lies outside the grid", to_string(f.kind), f.fid);
       }
       over_nodata[i] = 1;
+      plan.features[i].width = 0.0;  // marks "nothing to apply", and no crossing pins
       profiles[i] = {0.0};
       continue;
     }
@@ -262,17 +263,22 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       profiles[i] = detail::water_surface(terrain, step, f.river.min_slope);
     }
   }
-  const auto contacts =
+  auto contacts =
       detail::find_end_contacts(plan.features, 0.5 * std::max(grid.pixel_width, grid.pixel_height));
+  // A feature left out (over nodata, off a close-up grid) has no profile for others to meet.
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (over_nodata[i]) contacts[i].clear();
+    std::erase_if(contacts[i], [&](const detail::EndContact& c) {
+      return over_nodata[std::size_t(c.other)] != 0;
+    });
+  }
   pin_road_junctions(plan, profiles, contacts);
   join_rivers(plan, profiles, contacts);
 
   carve_river_beds(plan, profiles, contacts);
 
-  for (std::size_t i = 0; i < plan.features.size(); ++i) {
-    if (over_nodata[i]) plan.features[i].width = 0.0;  // marks "nothing to apply"
+  for (std::size_t i = 0; i < plan.features.size(); ++i)
     plan.profiles.emplace_back(profiles[i].begin(), profiles[i].end());
-  }
   return plan;
 }
 

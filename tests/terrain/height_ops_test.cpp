@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "terrain/detail/profiles.hpp"
@@ -215,6 +216,29 @@ TEST(ShapeTerrain, CrossingRoadsMeetAtOneLevelWithinGrade) {
               steepest_diagonal);
   EXPECT_LE(steepest_ew, 0.05 + 1e-3);
   EXPECT_LE(steepest_diagonal, 0.05 + 5e-3);  // bilinear reads between pixel centres
+}
+
+TEST(ShapeTerrain, FeaturesLeftOutOverNodataPullNothingDown) {
+  // The west half is nodata. A river and a road lying there are left out; the river that
+  // starts at the first one's mouth and the road that ends on the second one stay at the level
+  // of their own terrain (a left-out feature has no profile: reading it as 0 m would drag them
+  // down by the whole terrain height).
+  const GridSpec grid = test::unit_grid(kSize);
+  Raster<float> h = test::heights_from(grid, [](double x, double) { return 300.0 - 0.01 * x; });
+  for (int row = 0; row < kSize; ++row)
+    for (int col = 0; col < 80; ++col) h.at(col, row) = std::numeric_limits<float>::quiet_NaN();
+  const Raster<float> before = h;
+  auto feeder = test::feature(FeatureKind::river, 1, {{10.0, 60.5}, {70.0, 60.5}}, 4.0);
+  auto river = test::feature(FeatureKind::river, 2, {{70.0, 60.5}, {190.0, 60.5}}, 4.0);
+  river.river.depth = 2.0;
+  auto through = test::feature(FeatureKind::road, 3, {{20.0, 140.0}, {20.0, 180.0}}, 6.0);
+  auto spur = test::feature(FeatureKind::road, 4, {{20.0, 160.0}, {190.0, 160.0}}, 6.0);
+  shape_terrain(h, grid, Window::whole(grid), {feeder, river, through, spur}, {});
+  const int river_row = kSize - 61, road_row = kSize - 161;
+  for (int col = 100; col < 185; ++col) {
+    EXPECT_NEAR(h.at(col, river_row), before.at(col, river_row) - 2.0, 0.05) << col;
+    EXPECT_NEAR(h.at(col, road_row), before.at(col, road_row), 0.5) << col;
+  }
 }
 
 TEST(ShapeTerrain, RidgeRaisesTheCrestByItsHeight) {
