@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "geo/features.hpp"
+#include "geo/geodesic.hpp"
 #include "geo/heightfield.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/stages.hpp"
@@ -278,6 +279,31 @@ TEST(PipelineRun, ValidateOnlyReadsAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out / "never"));
   EXPECT_EQ(report.classes.size(), 3u);
   EXPECT_TRUE(report.outputs.empty());
+}
+
+// The geographic sample (EPSG:4326 DEM and lines): warped into a local transverse Mercator,
+// lengths in metres that agree with GeographicLib's geodesics, nodata kept outside the country.
+TEST(PipelineRun, GeographicSamplePipelineWorksInMetres) {
+  test::TempDir out;
+  const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
+                                              {{"output.dir", out.path().string()}});
+  const RunReport report = run_pipeline(config);
+  EXPECT_NE(report.crs_wkt.find("Transverse Mercator"), std::string::npos);
+  EXPECT_DOUBLE_EQ(report.grid.pixel_width, 50.0);
+  ASSERT_EQ(report.classes.size(), 2u);
+  const FeatureClassReport& roads = report.classes[1];
+  ASSERT_EQ(roads.name, "roads");
+  ASSERT_EQ(roads.features.size(), 1u);
+  const double geodesic =
+      geodesic_length({{6.17, 49.5}, {6.22, 49.55}, {6.27, 49.59}, {6.31, 49.64}});
+  EXPECT_NEAR(roads.features[0].length_m / geodesic, 1.0, 2e-3)
+      << roads.features[0].length_m << " m against " << geodesic << " m";
+  EXPECT_DOUBLE_EQ(roads.features[0].width_m, 7.0);
+  const ExrContents height = read_exr(out / "height.exr");
+  std::size_t nodata = 0;
+  for (float h : height.bands[0].pixels) nodata += std::isnan(h);
+  EXPECT_GT(nodata, height.bands[0].pixels.size() / 5);  // outside Luxembourg
+  EXPECT_LT(nodata, height.bands[0].pixels.size() * 3 / 4);
 }
 
 }  // namespace
