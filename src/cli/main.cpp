@@ -113,6 +113,8 @@ int main(int argc, char** argv) {
   synth->add_option("--min-coverage", synth_args.min_coverage,
                     "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
+  synth->add_option("--feather", synth_args.feather,
+                    "metres either side of each seam where colours blend (0: exact copies)");
   synth
       ->add_option_function<std::string>(
           "--alpha",

@@ -114,6 +114,7 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
   if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
   s.height_detail = m.non_negative_or("height_detail", s.height_detail);
   s.min_coverage = m.non_negative_or("min_coverage", s.min_coverage);
+  s.feather = m.non_negative_or("feather", s.feather);
   if (s.min_coverage >= 1.0) {
     m.source().fail(
         m.get("min_coverage"), m.path("min_coverage"),
@@ -173,11 +174,12 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
-    f.synthesis = read_synthesis(
-        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                  {"exemplar", "choose", "width", "delta", "scale", "stitch", "empty_pieces",
-                   "min_coverage", "alpha", "seed", "backend", "height_detail", "channels"}),
-        seed);
+    f.synthesis =
+        read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
+                                 {"exemplar", "choose", "width", "delta", "scale", "stitch",
+                                  "empty_pieces", "min_coverage", "alpha", "feather", "seed",
+                                  "backend", "height_detail", "channels"}),
+                       seed);
   }
   return f;
 }

@@ -56,6 +56,9 @@ struct SynthesisConfig {
   // Costs with alpha as a fraction (the paper's option for soft-edged exemplars) instead of
   // opaque / transparent at alpha 0.5.
   bool continuous_alpha = false;
+  // Metres either side of each seam over which the pattern's channels (not its coverage)
+  // blend into the next piece's (render_pattern); 0 = exact copies.
+  double feather = 0.0;
   std::uint64_t seed = 0;
   std::string backend;         // "" = the pipeline's backend
   double height_detail = 1.0;  // factor on the metres of the exemplar's channels mapped to height

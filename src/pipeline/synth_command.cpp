@@ -102,6 +102,7 @@ Synthesis run_synth_command(const SynthCommand& c) {
   if (!(c.delta > 0)) fail("synth: --delta must be > 0 metres, got {}", c.delta);
   if (!(c.scale > 0)) fail("synth: --scale must be > 0 texels per metre, got {}", c.scale);
   if (!(c.length > 0)) fail("synth: --length must be > 0 metres, got {}", c.length);
+  if (!(c.feather >= 0)) fail("synth: --feather must be >= 0 metres, got {}", c.feather);
   ExemplarOptions options;
   options.continuous_alpha = c.continuous_alpha;
   const Exemplar exemplar = load_exemplar(c.exemplar.string(), options);
@@ -119,7 +120,7 @@ Synthesis run_synth_command(const SynthCommand& c) {
 
   const Window whole = Window::whole(canvas);
   const RenderedPattern pattern =
-      render_pattern(exemplar, ribbon, synthesis, canvas, whole, c.stitch);
+      render_pattern(exemplar, ribbon, synthesis, canvas, whole, c.stitch, c.feather);
   const Raster<float> cage = render_cage(ribbon, canvas, whole);
   const int r = exemplar.channel_index("R"), g = exemplar.channel_index("G"),
             b = exemplar.channel_index("B");

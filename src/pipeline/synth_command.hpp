@@ -23,6 +23,7 @@ struct SynthCommand {
   bool stitch = true;
   double min_coverage = 0.0;         // SynthParams::min_coverage
   bool continuous_alpha = false;     // ExemplarOptions::continuous_alpha
+  double feather = 0.0;              // render_pattern's seam feathering, metres
   std::filesystem::path output;      // .png
   std::filesystem::path placements;  // optional JSON of the placements (synth/placements_io.hpp)
 };

@@ -21,9 +21,13 @@ struct RenderedPattern {
   std::vector<Raster<float>> channels;
 };
 
+// `feather` > 0 (metres): within that distance of a seam between two non-empty pieces, every
+// channel but alpha blends with the neighbouring piece's exemplar read on past its edge
+// (half and half on the seam), so height and colour details meet instead of stepping. The
+// coverage stays each piece's own, so avoidance is unchanged. 0: exact copies.
 RenderedPattern render_pattern(const Exemplar& exemplar, const Ribbon& ribbon,
                                const Synthesis& synthesis, const GridSpec& canvas,
-                               const Window& window, bool stitched = true);
+                               const Window& window, bool stitched = true, double feather = 0.0);
 
 // The ribbon cage (piece outlines) over a window: 1 on the edges, 0 elsewhere; for pictures.
 Raster<float> render_cage(const Ribbon& ribbon, const GridSpec& canvas, const Window& window);

@@ -271,7 +271,7 @@ features:
   roads: { source: m.gpkg, kind: road, width: 6,
            synthesis: { exemplar: [a.png, b.png], choose: best, width: 12, empty_pieces: false,
                         channels: { alpha: splat.marking, height: height }, height_detail: 0.5,
-                        min_coverage: 0.25, alpha: continuous } }
+                        min_coverage: 0.25, alpha: continuous, feather: 3 } }
   rivers: { source: m.gpkg, kind: river, width: 9, synthesis: { exemplar: r.png } }
   ridges: { source: m.gpkg, kind: ridge, width: 40 }
 )";
@@ -286,6 +286,8 @@ features:
   EXPECT_DOUBLE_EQ(s.min_coverage, 0.25);
   EXPECT_DOUBLE_EQ(c.features[1].synthesis->min_coverage, 0.0);
   EXPECT_TRUE(s.continuous_alpha);
+  EXPECT_DOUBLE_EQ(s.feather, 3.0);
+  EXPECT_DOUBLE_EQ(c.features[1].synthesis->feather, 0.0);
   EXPECT_FALSE(c.features[1].synthesis->continuous_alpha);
   ASSERT_EQ(s.channels.size(), 2u);
   EXPECT_EQ(s.channels[0].channel, "A");
@@ -307,6 +309,8 @@ features:
               HasSubstr("features.rivers.synthesis.channels.A: unknown output 'colour'"));
   EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.choose", "worst"}}),
               HasSubstr("unknown choice 'worst'"));
+  EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.feather", "-1"}}),
+              HasSubstr("features.rivers.synthesis.feather"));
   EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.alpha", "soft"}}),
               HasSubstr("features.rivers.synthesis.alpha: unknown alpha 'soft', expected binary "
                         "or continuous"));

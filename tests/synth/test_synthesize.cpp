@@ -150,6 +150,62 @@ TEST(Synthesize, MinCoverageKeepsTheOptimumOffNearlyEmptyPieces) {
   }
 }
 
+TEST(Synthesize, FeatheringMeetsChannelsAcrossSeamsAndKeepsTheCoverage) {
+  // The ridge band's pieces come from different parts of the exemplar: colours and heights
+  // step at the seams. Feathering blends the channels across each seam, never the coverage.
+  const Exemplar band = load_exemplar(
+      (test::source_dir() / "samples/exemplars/ridge_band_200x64.png").string(),
+      {.height_path =
+           (test::source_dir() / "samples/exemplars/ridge_band_200x64_height.tif").string()});
+  const Ribbon ribbon = make_ribbon(make_shape("s-curve", 400.0), {48.0, 40.0});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 4.0);
+  SynthParams params;
+  params.scale = 1.0;
+  params.min_coverage = 0.3;
+  const Synthesis s = run(band, ribbon, canvas, nullptr, params);
+  const Window whole = Window::whole(canvas);
+  const RenderedPattern sharp = render_pattern(band, ribbon, s, canvas, whole, true, 0.0);
+  const RenderedPattern soft = render_pattern(band, ribbon, s, canvas, whole, true, 6.0);
+  EXPECT_EQ(sharp.coverage.pixels, soft.coverage.pixels);
+  const int height = band.channel_index("height");
+  ASSERT_GE(height, 0);
+  // Mean |step| of the height channel between the pixels 0.5 m either side of every seam.
+  auto seam_step = [&](const RenderedPattern& r) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i + 1 < ribbon.pieces.size(); ++i) {
+      const Piece& p = ribbon.pieces[i];
+      const Vec2 along = normalized(p.top_right - p.top_left);
+      for (double t = 0.02; t < 1.0; t += 0.02) {
+        const Vec2 on = lerp(p.top_right, p.bottom_right, t);
+        const Vec2 a = canvas.world_to_pixel(on - along * 0.5);
+        const Vec2 b = canvas.world_to_pixel(on + along * 0.5);
+        const int ac = int(a.x), ar = int(a.y), bc = int(b.x), br = int(b.y);
+        if (r.coverage.at(ac, ar) < 0.9f || r.coverage.at(bc, br) < 0.9f) continue;
+        sum += std::abs(r.channels[std::size_t(height)].at(bc, br) -
+                        r.channels[std::size_t(height)].at(ac, ar));
+        ++count;
+      }
+    }
+    EXPECT_GT(count, 50);
+    return sum / count;
+  };
+  const double sharp_step = seam_step(sharp), soft_step = seam_step(soft);
+  std::printf("height step across seams: %.2f m sharp, %.2f m feathered over 6 m\n", sharp_step,
+              soft_step);
+  EXPECT_LT(soft_step, 0.5 * sharp_step);
+  // Away from every seam the pieces are exact copies either way.
+  for (std::size_t i = 0; i < ribbon.pieces.size(); ++i) {
+    const Piece& p = ribbon.pieces[i];
+    const Vec2 centre = canvas.world_to_pixel(
+        lerp(lerp(p.top_left, p.bottom_right, 0.5), lerp(p.top_right, p.bottom_left, 0.5), 0.5));
+    const int c = int(centre.x), r = int(centre.y);
+    EXPECT_EQ(sharp.channels[std::size_t(height)].at(c, r),
+              soft.channels[std::size_t(height)].at(c, r))
+        << "piece " << i;
+  }
+}
+
 TEST(Synthesize, SameSeedSameBytesOnAnyThreadCount) {
   const Exemplar chain = test::chain_exemplar(72, 28, 16);
   const Ribbon ribbon = make_ribbon(make_shape("s-curve", 60.0), {kWidth, kDelta});

@@ -353,7 +353,8 @@ void apply_patterns(const PatternRun& run, const PipelineConfig& config, const G
     const Window window = ribbon_window(ribbon, grid);
     if (window.width == 0) continue;
     const RenderedPattern rendered =
-        render_pattern(exemplar, ribbon, pattern.synthesis, grid, window, c.synthesis->stitch);
+        render_pattern(exemplar, ribbon, pattern.synthesis, grid, window, c.synthesis->stitch,
+                       c.synthesis->feather);
     for (const ChannelMapping& m : mappings_of(c, exemplar)) {
       const int channel = exemplar.channel_index(m.channel);
       if (channel < 0) {
