@@ -2,7 +2,8 @@
 // Rendering a synthesis onto a window of the canvas: every canvas pixel (supersampled when the
 // exemplar is finer than the canvas) -> the piece it lies in (lowest index on overlaps) ->
 // exemplar coordinates through the placement's rigid transform (+ stitching) -> bilinear read.
-// No distortion: each piece is an exact copy of an exemplar region.
+// No distortion: each piece is an exact copy of an exemplar region (with `feather`, its
+// channels blend into the neighbour's near the seams; its coverage never does).
 #include <cstdint>
 #include <vector>
 
