@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -16,24 +17,37 @@ using detail::YamlSource;
 
 namespace {
 
-FeatureKind read_kind(const MapReader& m) {
-  const std::string value = m.string("kind");
-  if (value == "road") return FeatureKind::road;
-  if (value == "river") return FeatureKind::river;
-  if (value == "ridge") return FeatureKind::ridge;
-  const std::string hint = detail::closest_match(value, {"road", "river", "ridge"});
-  m.source().fail(m.get("kind"), m.path("kind"),
-                  fmt::format("unknown kind '{}', expected road, river or ridge{}", value,
+// The index in `options` of the string at `key`; absent: `fallback`, or the reader's "missing
+// key" error without one. Anything else fails as "unknown <noun> 'x', expected a, b or c", with
+// a did-you-mean hint when one is close.
+std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_view noun,
+                        const std::vector<std::string>& options,
+                        std::optional<std::size_t> fallback = 0) {
+  if (!m.has(key) && fallback) return *fallback;
+  const std::string value = m.string(key);
+  for (std::size_t i = 0; i < options.size(); ++i)
+    if (value == options[i]) return i;
+  std::string expected = options.front();
+  for (std::size_t i = 1; i < options.size(); ++i)
+    expected += (i + 1 == options.size() ? " or " : ", ") + options[i];
+  const std::string hint = detail::closest_match(value, options);
+  m.source().fail(m.get(key), m.path(key),
+                  fmt::format("unknown {} '{}', expected {}{}", noun, value, expected,
                               hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
 }
 
+FeatureKind read_kind(const MapReader& m) {
+  static const std::vector<FeatureKind> kinds{FeatureKind::road, FeatureKind::river,
+                                              FeatureKind::ridge};
+  return kinds[read_one_of(m, "kind", "kind", {"road", "river", "ridge"}, std::nullopt)];
+}
+
 std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback) {
-  const std::string value = m.string_or(key, fallback);
-  if (value != "cpu" && value != "opencl" && value != "auto") {
-    m.source().fail(m.get(key), m.path(key),
-                    fmt::format("unknown backend '{}', expected cpu, opencl or auto", value));
-  }
-  return value;
+  static const std::vector<std::string> backends{"cpu", "opencl", "auto"};
+  const auto it = std::find(backends.begin(), backends.end(), fallback);
+  const std::optional<std::size_t> otherwise =
+      it == backends.end() ? std::nullopt : std::optional(std::size_t(it - backends.begin()));
+  return backends[read_one_of(m, key, "backend", backends, otherwise)];
 }
 
 GenerateConfig read_generate(const MapReader& m) {
@@ -120,25 +134,9 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
         m.get("min_coverage"), m.path("min_coverage"),
         fmt::format("must be below 1 (a fraction of each piece), got {}", s.min_coverage));
   }
-  if (m.has("alpha")) {
-    const std::string alpha = m.string("alpha");
-    if (alpha != "binary" && alpha != "continuous") {
-      m.source().fail(m.get("alpha"), m.path("alpha"),
-                      fmt::format("unknown alpha '{}', expected binary or continuous", alpha));
-    }
-    s.continuous_alpha = alpha == "continuous";
-  }
-  if (m.has("choose")) {
-    const std::string choose = m.string("choose");
-    if (choose == "seed") {
-      s.choice = ExemplarChoice::by_seed;
-    } else if (choose == "best") {
-      s.choice = ExemplarChoice::best;
-    } else {
-      m.source().fail(m.get("choose"), m.path("choose"),
-                      fmt::format("unknown choice '{}', expected seed or best", choose));
-    }
-  }
+  s.continuous_alpha = read_one_of(m, "alpha", "alpha", {"binary", "continuous"}) == 1;
+  s.choice = read_one_of(m, "choose", "choice", {"seed", "best"}) == 1 ? ExemplarChoice::best
+                                                                       : ExemplarChoice::by_seed;
   if (m.has("channels")) {
     const YAML::Node channels = m.get("channels");
     const std::string key = m.path("channels");
@@ -306,14 +304,9 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   }
   if (root.has("resolution")) c.resolution = root.positive("resolution");
   if (root.has("region")) c.region = read_region(src, root.get("region"));
-  if (root.has("resampling")) {
-    const std::string r = root.string("resampling");
-    if (r != "bilinear" && r != "cubic") {
-      src.fail(root.get("resampling"), "resampling",
-               fmt::format("unknown resampling '{}', expected bilinear or cubic", r));
-    }
-    c.resampling = r == "cubic" ? Resampling::cubic : Resampling::bilinear;
-  }
+  c.resampling = read_one_of(root, "resampling", "resampling", {"bilinear", "cubic"}) == 1
+                     ? Resampling::cubic
+                     : Resampling::bilinear;
   if (root.has("output")) {
     const MapReader out(src, root.get("output"), "output", {"dir", "exr", "geotiff", "preview"});
     if (out.has("dir")) c.output.dir = out.file("dir");
