@@ -44,10 +44,11 @@ FeatureKind read_kind(const MapReader& m) {
 
 std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback) {
   static const std::vector<std::string> backends{"cpu", "opencl", "auto"};
-  const auto it = std::find(backends.begin(), backends.end(), fallback);
-  const std::optional<std::size_t> otherwise =
-      it == backends.end() ? std::nullopt : std::optional(std::size_t(it - backends.begin()));
-  return backends[read_one_of(m, key, "backend", backends, otherwise)];
+  // Callers pass "auto" or an already validated backend as the fallback.
+  const auto fallback_index =
+      std::size_t(std::find(backends.begin(), backends.end(), fallback) - backends.begin());
+  return backends[read_one_of(m, key, "backend", backends,
+                              std::min<std::size_t>(fallback_index, 2))];
 }
 
 GenerateConfig read_generate(const MapReader& m) {
