@@ -141,42 +141,33 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   if (has_nodata) result.nodata_value = nodata;
   const double height_unit = metres_per_height_unit(*source->GetRasterBand(1), path);
 
-  GdalDatasetPtr warped;
-  GDALDataset* grid_source = source.get();
-  const bool cubic = options.resampling == Resampling::cubic;
-  const char* resampling = cubic ? "cubic" : "bilinear";
-  if (is_metric_north_up(*srs, gt) && options.resolution && cubic) {
-    // GDAL's cubic warp turns blocky within two cells of the DEM's edges; our Catmull-Rom
-    // replicates the edge cells instead. Same output grid as the warp: whole pixels from the
-    // north-west corner.
+  if (is_metric_north_up(*srs, gt)) {
+    // Same CRS: the cells as they are, or resampled on the same north-west corner (our
+    // resampler: GDAL's cubic warp turns blocky within two cells of a DEM's edges).
     result.crs_wkt = detail::to_wkt(*srs);
     const GridSpec native{
         source->GetRasterXSize(), source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
-    const double r = *options.resolution;
-    result.grid = {int(std::ceil(native.width * native.pixel_width / r - 1e-9)),
-                   int(std::ceil(native.height * native.pixel_height / r - 1e-9)),
-                   gt[0],
-                   gt[3],
-                   r,
-                   r};
-    result.height = resample_heights(read_heights(*source->GetRasterBand(1), height_unit, path),
-                                     native, result.grid, Resampling::cubic);
+    result.grid = native;
+    result.height = read_heights(*source->GetRasterBand(1), height_unit, path);
+    if (options.resolution) {
+      const double r = *options.resolution;
+      result.grid = {int(std::ceil(native.width * native.pixel_width / r - 1e-9)),
+                     int(std::ceil(native.height * native.pixel_height / r - 1e-9)),
+                     gt[0],
+                     gt[3],
+                     r,
+                     r};
+      result.height = resample_heights(result.height, native, result.grid, options.resampling);
+    }
     require_some_height(result, path);
     return result;
   }
-  if (is_metric_north_up(*srs, gt)) {
-    result.crs_wkt = detail::to_wkt(*srs);
-    if (options.resolution) {
-      warped = detail::warp_to_metric_grid(
-          *source, {result.crs_wkt, *options.resolution, *options.resolution}, path, resampling);
-      grid_source = warped.get();
-    }
-  } else {
-    const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
-    result.crs_wkt = target.crs_wkt;
-    warped = detail::warp_to_metric_grid(*source, target, path, resampling);
-    grid_source = warped.get();
-  }
+  // Geographic, non-metre or rotated: warped into a local metric frame by GDAL.
+  const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
+  result.crs_wkt = target.crs_wkt;
+  const GdalDatasetPtr warped = detail::warp_to_metric_grid(
+      *source, target, path, options.resampling == Resampling::cubic ? "cubic" : "bilinear");
+  GDALDataset* grid_source = warped.get();
   if (grid_source->GetGeoTransform(gt) != CE_None)
     fail("{}: warped grid has no geotransform", path);
   result.grid = {

@@ -31,8 +31,9 @@ struct HeightfieldOptions {
   Resampling resampling = Resampling::bilinear;
 };
 
-// Reads band 1 of a GDAL raster. A metric north-up DEM keeps its grid and CRS (resampled,
-// with options.resampling and nodata-aware, when options.resolution is set); a geographic,
+// Reads band 1 of a GDAL raster. A metric north-up DEM keeps its grid and CRS (resampled by
+// geo/resample.hpp when options.resolution is set: options.resampling, averaged when coarser,
+// nodata-aware); a geographic,
 // non-metre or rotated one is warped (options.resampling, nodata kept) into
 // local_transverse_mercator_wkt() centred on the DEM (geo/metric_frame.hpp), with the source's
 // pixel size at its centre measured as geodesics, covering its whole footprint. Heights in feet

@@ -60,20 +60,34 @@ double sample_height_cubic(const Raster<float>& height, const GridSpec& grid, Ve
 
 Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from,
                                const GridSpec& to, Resampling resampling) {
+  // A target cell larger than the source cells averages the interpolant over k x k points (the
+  // source cell centres when the lattices align), so downsampling does not alias.
+  const int kx = std::max(1, int(std::ceil(to.pixel_width / from.pixel_width - 1e-9)));
+  const int ky = std::max(1, int(std::ceil(to.pixel_height / from.pixel_height - 1e-9)));
+  auto sample = [&](Vec2 world) {
+    return resampling == Resampling::cubic ? sample_height_cubic(height, from, world)
+                                           : sample_height_bilinear(height, from, world);
+  };
   Raster<float> out(to.width, to.height);
   tbb::parallel_for(0, to.height, [&](int row) {
     for (int col = 0; col < to.width; ++col) {
-      const Vec2 world = to.pixel_centre_world(col, row);
       // As GDAL's warper: nodata under the centre stays nodata, so holes neither fill nor shrink.
-      const Vec2 p = from.world_to_pixel(world);
+      const Vec2 p = from.world_to_pixel(to.pixel_centre_world(col, row));
       const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
       if (height.inside(c, r) && std::isnan(height.at(c, r))) {
         out.at(col, row) = std::numeric_limits<float>::quiet_NaN();
         continue;
       }
-      out.at(col, row) =
-          float(resampling == Resampling::cubic ? sample_height_cubic(height, from, world)
-                                                : sample_height_bilinear(height, from, world));
+      double sum = 0.0;
+      int valid = 0;
+      for (int j = 0; j < ky; ++j)
+        for (int i = 0; i < kx; ++i) {
+          const double h = sample(to.pixel_to_world({col + (i + 0.5) / kx, row + (j + 0.5) / ky}));
+          if (std::isnan(h)) continue;
+          sum += h;
+          ++valid;
+        }
+      out.at(col, row) = valid ? float(sum / valid) : std::numeric_limits<float>::quiet_NaN();
     }
   });
   return out;

@@ -379,6 +379,27 @@ TEST(ReadHeightfield, CubicResamplingFollowsCurvedTerrainAndKeepsNodataOut) {
   EXPECT_LT(worst[1], 0.005);  // exact on quadratics up to float rounding
 }
 
+// Reading a DEM at a coarser resolution averages it (a checkerboard of +-10 m becomes about its
+// mean) in both modes, as GDAL's warper does, instead of picking every third cell.
+TEST(ReadHeightfield, CoarserResolutionAveragesInsteadOfAliasing) {
+  TempDir dir;
+  const std::string path = (dir / "checkerboard.tif").string();
+  DemSpec spec;
+  spec.width = 40;
+  spec.height = 40;
+  spec.value = [](int col, int row) { return (col + row) % 2 ? 90.0 : 110.0; };
+  test::write_geotiff(path, spec);
+  for (const Resampling r : {Resampling::bilinear, Resampling::cubic}) {
+    // 30 m cells: their centres fall on source cell centres, where a point read gives 90 or 110;
+    // the mean of 3 x 3 cells is within 20 / 9 of 100.
+    const Heightfield field = read_heightfield(path, {.resolution = 30.0, .resampling = r});
+    ASSERT_EQ(field.grid, (GridSpec{14, 14, 500000.0, 5000000.0, 30.0, 30.0}));
+    for (int row = 0; row < 13; ++row)  // the 14th row and column reach past the DEM
+      for (int col = 0; col < 13; ++col)
+        EXPECT_NEAR(field.height.at(col, row), 100.0f, 2.5f) << int(r) << " " << col << "," << row;
+  }
+}
+
 TEST(ReadHeightfield, ReadsBandOneOfAMultiBandDem) {
   TempDir dir;
   for (const std::string crs : {"EPSG:32631", "EPSG:4326"}) {

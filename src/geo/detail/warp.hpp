@@ -19,6 +19,6 @@ struct WarpTarget {
 // neither fill nor shrink (tests/geo/heightfield_test.cpp checks both). `label` names the
 // source in errors.
 GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
-                                   const std::string& label, const char* resampling = "bilinear");
+                                   const std::string& label, const char* resampling);
 
 }  // namespace tw::detail
