@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "geo/resample.hpp"
 #include "terrain/detail/profiles.hpp"
 #include "terrain_test_support.hpp"
 
@@ -121,7 +122,7 @@ TEST(ShapeTerrain, ARingRoadIsGradedAllAroundWithoutAStepWhereItCloses) {
   auto at = [&](double degrees) {
     const double a = degrees * std::acos(-1.0) / 180.0;
     const Vec2 p = grid.world_to_pixel(centre + Vec2{radius * std::cos(a), radius * std::sin(a)});
-    return detail::sample_height(h, grid, grid.pixel_to_world(p));
+    return sample_height_bilinear(h, grid, grid.pixel_to_world(p));
   };
   const double step = radius * 2.0 * std::acos(-1.0) / 180.0;
   double steepest = 0.0;
@@ -208,8 +209,8 @@ TEST(ShapeTerrain, CrossingRoadsMeetAtOneLevelWithinGrade) {
   for (int k = 15; k < 185; ++k)
     steepest_ew = std::max(steepest_ew, double(std::abs(d.at(k + 1, centre) - d.at(k, centre))));
   for (double t = 30.0; t < 170.0; t += 1.0) {
-    const double a = detail::sample_height(d, grid, {t, t});
-    const double b = detail::sample_height(d, grid, {t + 1.0, t + 1.0});
+    const double a = sample_height_bilinear(d, grid, {t, t});
+    const double b = sample_height_bilinear(d, grid, {t + 1.0, t + 1.0});
     steepest_diagonal = std::max(steepest_diagonal, std::abs(b - a) / std::sqrt(2.0));
   }
   std::printf("diagonal crossing: steepest grade east-west %.4f, diagonal %.4f\n", steepest_ew,

@@ -8,10 +8,6 @@
 
 namespace tw::detail {
 
-double sample_height(const Raster<float>& height, const GridSpec& grid, Vec2 world) {
-  return sample_height_bilinear(height, grid, world);
-}
-
 std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,
                                   const Curve& curve, double step) {
   const auto cumulative = cumulative_lengths(curve);
@@ -19,7 +15,8 @@ std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& g
   const std::size_t count = std::size_t(std::llround(total / step)) + 1;
   std::vector<double> v(count);
   for (std::size_t i = 0; i < count; ++i)
-    v[i] = sample_height(height, grid, point_at(curve, cumulative, std::min(total, i * step)));
+    v[i] = sample_height_bilinear(height, grid,
+                                  point_at(curve, cumulative, std::min(total, i * step)));
   // Bridge nodata: linear between valid neighbours, constant beyond the first / last valid.
   std::size_t previous = count;
   for (std::size_t i = 0; i < count; ++i) {

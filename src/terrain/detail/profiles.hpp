@@ -8,10 +8,6 @@
 
 namespace tw::detail {
 
-// Bilinear height at a world point from the valid (non-NaN) neighbours only; NaN when all
-// four neighbours are nodata or the point is off the grid.
-double sample_height(const Raster<float>& height, const GridSpec& grid, Vec2 world);
-
 // Heights every `step` metres along the curve (step divides L: count = L/step + 1);
 // nodata gaps are bridged linearly between valid samples, ends extended. Returns an empty
 // vector when the whole curve lies over nodata.
