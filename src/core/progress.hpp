@@ -9,9 +9,17 @@
 
 namespace tw {
 
+struct ProgressStyle {
+  bool terminal = false;  // redraw a bar on stderr instead of logging lines
+  // Log lines start only once the stage has run this long; a stage that logged also logs 100 %.
+  std::chrono::milliseconds quiet{2000};
+  static ProgressStyle for_stderr();  // a bar when stderr is a terminal, else lines
+};
+
 class Progress {
  public:
-  Progress(std::string label, std::int64_t total);
+  Progress(std::string label, std::int64_t total,
+           ProgressStyle style = ProgressStyle::for_stderr());
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -27,7 +35,7 @@ class Progress {
   std::atomic<int> last_decile_{-1};
   std::atomic<bool> logged_{false};
   std::chrono::steady_clock::time_point start_;
-  bool terminal_;
+  ProgressStyle style_;
 };
 
 }  // namespace tw
