@@ -46,20 +46,23 @@ int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   for (const auto& stage : report.stages)
     std::printf("%-10s %8.3f s\n", stage.stage.c_str(), stage.seconds);
+  if (!report.warnings.empty()) std::printf("%-10s %8zu\n", "warnings", report.warnings.size());
   std::printf("%-10s %8.3f s, %zu files in %s\n", "total", report.total_seconds,
               report.outputs.size(),
               report.outputs.empty() ? "-" : report.outputs.front().parent_path().c_str());
   return 0;
 }
 
-int validate_command(const PipelineArgs& args) {
+int validate_command(const PipelineArgs& args, bool strict) {
   tw::RunOptions options;
   options.write_outputs = false;
+  options.strict = strict;
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   std::size_t features = 0;
   for (const auto& c : report.classes) features += c.features.size();
-  std::printf("%s: ok (%zu feature classes, %zu features, grid %d x %d)\n", args.file.c_str(),
-              report.classes.size(), features, report.grid.width, report.grid.height);
+  std::printf("%s: ok (%zu feature classes, %zu features, grid %d x %d, %zu warnings)\n",
+              args.file.c_str(), report.classes.size(), features, report.grid.width,
+              report.grid.height, report.warnings.size());
   return 0;
 }
 
@@ -86,11 +89,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
   run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
       ->check(CLI::PositiveNumber);
+  run->add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
 
   PipelineArgs validate_args;
+  bool validate_strict = false;
   CLI::App* validate =
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
+  validate->add_flag("--strict", validate_strict, "fail on any warning");
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -140,7 +146,7 @@ int main(int argc, char** argv) {
       if (!backend.empty()) run_options.backend = backend;
       return run_command(run_args, run_options);
     }
-    if (validate->parsed()) return validate_command(validate_args);
+    if (validate->parsed()) return validate_command(validate_args, validate_strict);
     if (synth->parsed()) {
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",

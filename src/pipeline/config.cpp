@@ -289,7 +289,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   const MapReader root(src, tree, "",
                        {"version", "seed", "heightfield", "generate", "resolution", "output",
                         "backend", "precedence", "features", "existing", "synthesis_resolution",
-                        "synthesis_order", "region", "resampling"});
+                        "synthesis_order", "region", "resampling", "strict"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -321,6 +321,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     src.fail(root.get("output"), "output", "at least one of exr and geotiff must be true");
   }
   c.backend = read_backend(root, "backend", c.backend);
+  c.strict = root.bool_or("strict", c.strict);
   const YAML::Node features = root.get("features");
   if (!features.IsMap())
     src.fail(features, "features", "expected a mapping of class names to classes");

@@ -127,6 +127,8 @@ struct PipelineConfig {
   // Classes with synthesis, in the order they are synthesized: each avoids the patterns of
   // the classes before it. Default: precedence order.
   std::vector<std::string> synthesis_order;
+  // Any warning fails the run before anything is written (also `--strict`).
+  bool strict = false;
 };
 
 // One `--set key.path=value` (value parsed as a YAML scalar or flow collection).

@@ -64,6 +64,15 @@ Layer avoidance_layer(AvoidanceMap map) {
   return layer;
 }
 
+// Under strict, any warning is an error: raised before anything is staged for writing.
+void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
+  report.warnings = warnings.list();
+  if (strict && !report.warnings.empty()) {
+    fail("strict: {} warning{} (first: {}); nothing written", report.warnings.size(),
+         report.warnings.size() == 1 ? "" : "s", to_string(report.warnings.front()));
+  }
+}
+
 void write_report(const fs::path& path, const nlohmann::json& json) {
   std::ofstream out(path);
   out << json.dump(2) << '\n';
@@ -81,6 +90,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   RunReport report;
   report.seed = config.seed;
+  Warnings warnings;
+  const bool strict = options.strict || config.strict;
   StageClock clock(report.stages);
 
   clock.start("ingest");
@@ -91,7 +102,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
-    lines.push_back(detail::load_feature_class(feature_class, heightfield));
+    lines.push_back(detail::load_feature_class(feature_class, heightfield, warnings));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
@@ -121,6 +132,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   clock.stop();
   if (!options.write_outputs) {
+    finish_warnings(warnings, strict, report);
     report.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
     return report;
@@ -153,6 +165,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
   clock.stop();
 
+  finish_warnings(warnings, strict, report);
   clock.start("layers");
   const fs::path dir = options.output_dir.value_or(config.output.dir);
   LayerSet layers;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/warnings.hpp"
 #include "pipeline/config.hpp"
 
 namespace tw {
@@ -18,6 +19,7 @@ struct RunOptions {
   std::optional<std::string> backend;               // replaces backend (cpu | opencl | auto)
   int threads = 0;                                  // 0 = every core
   bool write_outputs = true;  // false: read and check every input, write nothing (validate)
+  bool strict = false;        // any warning fails the run (or config.strict)
 };
 
 struct StageTiming {
@@ -69,9 +71,11 @@ struct RunReport {
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
   std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)
   double total_seconds = 0.0;
+  std::vector<Warning> warnings;  // in the order they were raised (report.json `warnings`)
 };
 
-// Throws tw::Error naming the file, layer, FID or key of the first bad input.
+// Throws tw::Error naming the file, layer, FID or key of the first bad input; under strict
+// (options or config) also when the run raised any warning, before anything is written.
 RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options = {});
 
 }  // namespace tw

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -87,7 +89,11 @@ class Cli : public ::testing::Test {
     const auto before = snapshot(dir / "out");
     const CommandResult r = terraweave("-q run " + args);
     EXPECT_EQ(r.exit_code, 1) << r.output;
-    const std::vector<std::string> lines = lines_of(r.output);
+    std::vector<std::string> lines = lines_of(r.output);
+    // Under strict the warnings that fail the run are printed first, each once.
+    if (args.find("strict") != std::string::npos) {
+      std::erase_if(lines, [](const std::string& l) { return l.starts_with("[warning] "); });
+    }
     ASSERT_EQ(lines.size(), 1u) << r.output;
     EXPECT_THAT(lines[0], StartsWith("terraweave: error: "));
     for (const std::string& w : what) EXPECT_THAT(lines[0], HasSubstr(w));
@@ -96,13 +102,14 @@ class Cli : public ::testing::Test {
 
   // Replaces the roads with `roads` in a fresh file (a Shapefile for a layer without CRS).
   void expect_bad_roads(const std::vector<VectorFeature>& roads,
-                        const std::vector<std::string>& what,
-                        const std::string& crs = "EPSG:32631") {
+                        const std::vector<std::string>& what, const std::string& crs = "EPSG:32631",
+                        const std::string& extra = "") {
     const fs::path file =
         dir / ("bad" + std::to_string(++bad_files) + (crs.empty() ? ".shp" : ".gpkg"));
     write_layer(file, crs.empty() ? file.stem().string() : "roads", roads, crs);
     expect_failure("pipeline.yaml --set features.roads.source=" + file.string() +
-                       (crs.empty() ? " --set features.roads.layer=" + file.stem().string() : ""),
+                       (crs.empty() ? " --set features.roads.layer=" + file.stem().string() : "") +
+                       extra,
                    what);
   }
 
@@ -179,14 +186,44 @@ TEST_F(Cli, MissingOrIncompatibleCrs) {
                  {"nocrs.tif: has no CRS"});
   expect_bad_roads({kRoad}, {"bad1.shp:bad1: layer has no CRS"}, "");
   // The same numbers in a UTM zone of the other hemisphere land thousands of km away.
-  expect_bad_roads({kRoad}, {"bad2.gpkg:roads", "no line feature on the heightfield"},
-                   "EPSG:31985");
+  expect_bad_roads({kRoad},
+                   {"strict: 1 warning", "bad2.gpkg:roads", "no line feature on the heightfield"},
+                   "EPSG:31985", " --strict");
 }
 
-TEST_F(Cli, EmptyLayer) {
-  expect_bad_roads({}, {"features.roads:", "bad1.gpkg:roads: no line feature on the heightfield"});
-  expect_failure("pipeline.yaml --set \"features.rivers.where=width > 100\"",
+// A class with nothing on the heightfield is a warning: the run succeeds and lists it;
+// --strict (or `strict: true`) makes it fail and write nothing.
+TEST_F(Cli, EmptyClassIsAWarningUnlessStrict) {
+  expect_bad_roads({},
+                   {"strict: 1 warning",
+                    "features.roads: ", "bad1.gpkg:roads: no line feature on the heightfield"},
+                   "EPSG:32631", " --strict");
+  expect_failure("pipeline.yaml --strict --set \"features.rivers.where=width > 100\"",
                  {"features.rivers:", "no line feature"});
+  expect_failure("pipeline.yaml --set strict=true --set \"features.rivers.where=width > 100\"",
+                 {"features.rivers:", "no line feature"});
+
+  const CommandResult r =
+      terraweave("-q run pipeline.yaml --set \"features.rivers.where=width > 100\"");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("[warning] features.rivers: "));
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "out/report.json"));
+  EXPECT_EQ(report["warning_count"], 1);
+  ASSERT_EQ(report["warnings"].size(), 1u);
+  EXPECT_EQ(report["warnings"][0]["code"], "empty_class");
+  EXPECT_EQ(report["warnings"][0]["subject"], "features.rivers");
+  EXPECT_FALSE(report["warnings"][0].contains("fid"));
+  ASSERT_EQ(report["classes"].size(), 2u);
+  EXPECT_EQ(report["classes"][1]["features"].size(), 0u);
+  EXPECT_EQ(report["classes"][0]["features"].size(), 1u);
+
+  const CommandResult v =
+      terraweave("validate pipeline.yaml --set \"features.rivers.where=width > 100\"");
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_THAT(v.output, HasSubstr("1 warnings"));
+  const CommandResult vs =
+      terraweave("-q validate --strict pipeline.yaml --set \"features.rivers.where=width > 100\"");
+  EXPECT_EQ(vs.exit_code, 1) << vs.output;
 }
 
 TEST_F(Cli, PointsOrPolygonsWhereLinesAreExpected) {

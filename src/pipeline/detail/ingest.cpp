@@ -27,7 +27,7 @@ Heightfield load_heightfield(const PipelineConfig& config) {
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
-                                            const Heightfield& heightfield) {
+                                            const Heightfield& heightfield, Warnings& warnings) {
   LineClassSpec spec;
   spec.name = config.name;
   spec.source = {config.source.string(), config.layer, config.where};
@@ -35,10 +35,12 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
   spec.default_width = config.width;
   std::vector<LineFeature> lines = read_line_features(spec, heightfield);
   if (lines.empty()) {
-    fail(
-        "features.{}: {}{}{}: no line feature on the heightfield (empty layer, a where clause "
-        "that matches nothing, or lines outside the heightfield's extent)",
-        config.name, config.source.string(), config.layer.empty() ? "" : ":", config.layer);
+    warnings.add(
+        "empty_class", "features." + config.name, std::nullopt,
+        fmt::format("{}{}{}: no line feature on the heightfield (empty layer, a where "
+                    "clause that matches nothing, or lines outside the heightfield's "
+                    "extent); the class is left out",
+                    config.source.string(), config.layer.empty() ? "" : ":", config.layer));
   }
   return lines;
 }

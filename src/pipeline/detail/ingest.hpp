@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/config.hpp"
@@ -15,11 +16,12 @@ namespace tw::detail {
 // config.seed.
 Heightfield load_heightfield(const PipelineConfig& config);
 
-// The lines of one class. Throws tw::Error naming the class and its source when none of its
-// features lies on the heightfield (an empty layer, a where clause matching nothing, or a
-// layer beside the DEM), besides geo's per-feature errors.
+// The lines of one class. A class none of whose features lies on the heightfield (an empty
+// layer, a where clause matching nothing, or a layer beside the DEM) is a warning
+// ("empty_class"), not an error: a pipeline retargeted to another region still runs. Throws
+// geo's per-feature errors.
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
-                                            const Heightfield& heightfield);
+                                            const Heightfield& heightfield, Warnings& warnings);
 
 struct ExistingFeatures {
   std::vector<Polygon> polygons;

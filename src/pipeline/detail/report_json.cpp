@@ -47,6 +47,12 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                        {"ingest_seconds", c.ingest_seconds},
                        {"features", features}});
   }
+  json warnings = json::array();
+  for (const Warning& w : report.warnings) {
+    json entry = {{"code", w.code}, {"subject", w.subject}, {"message", w.message}};
+    if (w.fid) entry["fid"] = *w.fid;
+    warnings.push_back(std::move(entry));
+  }
   const GridSpec& g = report.grid;
   return {
       {"terraweave", kTerraweaveVersion},
@@ -68,6 +74,8 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"synthesis_order", config.synthesis_order},
       {"pattern_violations", report.pattern_violations},
       {"classes", classes},
+      {"warning_count", report.warnings.size()},
+      {"warnings", warnings},
   };
 }
 
