@@ -7,6 +7,7 @@
 #include "core/log.hpp"
 #include "geo/detail/line_clipping.hpp"
 #include "geo/detail/vector_layer.hpp"
+#include "geo/osm_tags.hpp"
 
 namespace tw {
 namespace {
@@ -23,17 +24,85 @@ int width_field_index(const LineClassSpec& spec, const OpenVectorLayer& layer) {
   return index;
 }
 
-double feature_width(const OGRFeature& feature, int width_field, const LineClassSpec& spec,
-                     const OpenVectorLayer& layer) {
+// The columns a feature's width, structure and layer are read from; -1 where absent.
+struct AttributeColumns {
+  int width_attribute = -1;
+  int osm_width = -1, lanes = -1, highway = -1, waterway = -1, natural = -1;
+  int bridge = -1, tunnel = -1, layer = -1;
+};
+
+AttributeColumns attribute_columns(const LineClassSpec& spec, const OpenVectorLayer& layer) {
+  const OGRFeatureDefn& definition = *layer.layer->GetLayerDefn();
+  auto column = [&](const char* name) { return definition.GetFieldIndex(name); };
+  AttributeColumns c;
+  c.width_attribute = width_field_index(spec, layer);
+  if (spec.osm_widths) {
+    c.osm_width = column("width");
+    c.lanes = column("lanes");
+    c.highway = column("highway");
+    c.waterway = column("waterway");
+    c.natural = column("natural");
+  }
+  c.bridge = column("bridge");
+  c.tunnel = column("tunnel");
+  c.layer = column("layer");
+  return c;
+}
+
+std::string text_of(const OGRFeature& feature, int column) {
+  return column >= 0 && feature.IsFieldSetAndNotNull(column) ? feature.GetFieldAsString(column)
+                                                             : "";
+}
+
+double feature_width(const OGRFeature& feature, const AttributeColumns& columns,
+                     const LineClassSpec& spec, const OpenVectorLayer& layer, Warnings& warnings) {
+  const int width_field = columns.width_attribute;
   const bool from_attribute = width_field >= 0 && feature.IsFieldSetAndNotNull(width_field);
-  const double width = from_attribute ? feature.GetFieldAsDouble(width_field) : spec.default_width;
+  double width = from_attribute ? feature.GetFieldAsDouble(width_field) : spec.default_width;
+  std::string from = from_attribute ? fmt::format("attribute '{}'", spec.width_attribute)
+                                    : fmt::format("the default width of class '{}'", spec.name);
+  if (!from_attribute && spec.osm_widths) {
+    const OsmWidth tagged =
+        osm_width({text_of(feature, columns.osm_width), text_of(feature, columns.lanes),
+                   text_of(feature, columns.highway), text_of(feature, columns.waterway),
+                   text_of(feature, columns.natural)});
+    if (!tagged.problem.empty()) {
+      warnings.add("osm_tag", "features." + spec.name, feature.GetFID(),
+                   fmt::format("{}: {}; width from {}", layer.label, tagged.problem,
+                               tagged.metres ? tagged.from : "the class default"));
+    }
+    if (tagged.metres) {
+      width = *tagged.metres;
+      from = "the OSM tag " + tagged.from;
+    } else if (spec.default_width <= 0.0) {
+      from = fmt::format(
+          "the OSM tag table (no width, lanes or known class) and class '{}' "
+          "has no default width",
+          spec.name);
+    }
+  }
   if (!(std::isfinite(width) && width > 0.0)) {
     fail("{}: FID {}: width must be a positive number of metres, got {} (from {})", layer.label,
-         feature.GetFID(), width,
-         from_attribute ? fmt::format("attribute '{}'", spec.width_attribute)
-                        : fmt::format("the default width of class '{}'", spec.name));
+         feature.GetFID(), width, from);
   }
   return width;
+}
+
+// bridge / tunnel / layer; a malformed layer is read as 0 with a warning.
+void read_structure(const OGRFeature& feature, const AttributeColumns& columns,
+                    const LineClassSpec& spec, const OpenVectorLayer& layer, Warnings& warnings,
+                    Structure& structure, int& level) {
+  structure = osm_structure(text_of(feature, columns.bridge), text_of(feature, columns.tunnel));
+  level = 0;
+  const std::string text = text_of(feature, columns.layer);
+  if (text.empty()) return;
+  if (const auto parsed = parse_osm_layer(text)) {
+    level = *parsed;
+  } else {
+    warnings.add(
+        "osm_tag", "features." + spec.name, feature.GetFID(),
+        fmt::format("{}: layer={} is not a whole number; read as layer 0", layer.label, text));
+  }
 }
 
 // The line parts of a feature's geometry (curves linearized); tw::Error for anything else.
@@ -68,13 +137,22 @@ void check_line_part(const OGRLineString& part, int part_index, const OpenVector
 }  // namespace
 
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of) {
+  Warnings logged_only;  // Warnings::add logs each one
+  return read_line_features(spec, grid_of, logged_only);
+}
+
+std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of,
+                                            Warnings& warnings) {
   OpenVectorLayer layer = detail::open_vector_layer(spec.source, grid_of);
-  const int width_field = width_field_index(spec, layer);
+  const AttributeColumns columns = attribute_columns(spec, layer);
   const OGRPolygon extent = detail::grid_extent_polygon(grid_of.grid);
   std::vector<LineFeature> lines;
   for (const auto& feature : *layer.layer) {
     const std::int64_t fid = feature->GetFID();
-    const double width = feature_width(*feature, width_field, spec, layer);
+    const double width = feature_width(*feature, columns, spec, layer, warnings);
+    Structure structure = Structure::ground;
+    int level = 0;
+    read_structure(*feature, columns, spec, layer, warnings, structure, level);
     std::unique_ptr<OGRMultiLineString> parts = line_parts(*feature, layer);
     detail::check_coordinates(*parts, layer, fid);
     for (int i = 0; i < parts->getNumGeometries(); ++i) {
@@ -84,7 +162,8 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
     const std::size_t before = lines.size();
     for (const OGRLineString* part : *parts) {
       for (detail::ClippedLine& piece : detail::clip_line(*part, extent, layer, fid)) {
-        lines.push_back({fid, std::move(piece.points), piece.closed, width, layer.label});
+        lines.push_back(
+            {fid, std::move(piece.points), piece.closed, width, layer.label, structure, level});
       }
     }
     if (lines.size() == before) {

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "core/vec2.hpp"
+#include "core/warnings.hpp"
 #include "geo/heightfield.hpp"
+#include "geo/structure.hpp"
 
 namespace tw {
 
@@ -21,6 +23,10 @@ struct LineFeature {
   bool closed = false;
   double width = 0.0;  // metres
   std::string source;  // "path:layer" for messages
+  // From the columns `bridge`, `tunnel` and `layer` when the source has them (any driver;
+  // OSM's conventions, geo/osm_tags.hpp); ground and layer 0 otherwise.
+  Structure structure = Structure::ground;
+  int layer = 0;
 };
 
 struct LineClassSpec {
@@ -28,6 +34,9 @@ struct LineClassSpec {
   VectorSource source;
   std::string width_attribute;  // empty = every feature gets default_width
   double default_width = 0.0;   // metres; used when the attribute is empty, null or unset
+  // Widths from the OSM tag table (geo/osm_tags.hpp: columns width, lanes, highway, waterway,
+  // natural) where width_attribute gives none, before default_width (0 = no default).
+  bool osm_widths = false;
 };
 
 // Reads LineString/MultiLineString features (each part becomes a LineFeature with the same
@@ -37,6 +46,10 @@ struct LineClassSpec {
 // Throws tw::Error naming file, layer and FID for: missing/unreadable file, unknown layer,
 // bad where clause, no CRS, non-line geometries, zero-length or self-intersecting lines,
 // non-finite or huge coordinates, width <= 0.
+// Unusable `width`, `lanes` or `layer` values are skipped with a warning (subject
+// "features.<spec.name>", the FID); the two-argument form only logs them.
+std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of,
+                                            Warnings& warnings);
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of);
 
 struct PolygonFeature {

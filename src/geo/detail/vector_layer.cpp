@@ -1,8 +1,12 @@
 #include "geo/detail/vector_layer.hpp"
 
 #include <cmath>
+#include <optional>
+
+#include <cpl_conv.h>
 
 #include "core/error.hpp"
+#include "geo/detail/osm_config.hpp"
 
 namespace tw::detail {
 namespace {
@@ -37,7 +41,15 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   ensure_gdal_registered();
   QuietGdalErrors quiet;
   OpenVectorLayer result;
-  result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  {
+    // OSM files get our osmconf.ini (its tags as columns) unless the user set their own.
+    std::optional<CPLConfigOptionSetter> osm_config;
+    if (!CPLGetConfigOption("OSM_CONFIG_FILE", nullptr)) {
+      osm_config.emplace("OSM_CONFIG_FILE", osm_config_file().c_str(),
+                         /*bSetOnlyIfUndefined=*/true);
+    }
+    result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  }
   if (!result.dataset) {
     fail("{}: cannot open as vector data: {}", source.path, last_gdal_error());
   }
