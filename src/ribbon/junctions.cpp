@@ -237,4 +237,40 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
   return junctions;
 }
 
+std::vector<Junction> at_grade(const std::vector<Junction>& junctions,
+                               const std::vector<CurveLevel>& levels) {
+  std::vector<Junction> out;
+  for (const Junction& j : junctions) {
+    std::vector<JunctionMember> members;
+    for (const JunctionMember& m : j.members) {
+      if (!m.at_endpoint && levels[m.curve].structure != Structure::ground) continue;
+      members.push_back(m);
+    }
+    const bool all_end = std::all_of(members.begin(), members.end(),
+                                     [](const JunctionMember& m) { return m.at_endpoint; });
+    std::vector<std::vector<JunctionMember>> groups;
+    if (all_end) {
+      groups.push_back(std::move(members));
+    } else {
+      std::vector<int> layers;
+      for (const JunctionMember& m : members) layers.push_back(levels[m.curve].layer);
+      std::sort(layers.begin(), layers.end());
+      layers.erase(std::unique(layers.begin(), layers.end()), layers.end());
+      for (const int layer : layers) {
+        auto& group = groups.emplace_back();
+        for (const JunctionMember& m : members)
+          if (levels[m.curve].layer == layer) group.push_back(m);
+      }
+    }
+    for (auto& group : groups) {
+      if (group.size() < 2) continue;
+      Junction kept{j.position, std::move(group), false};
+      kept.crossing = std::count_if(kept.members.begin(), kept.members.end(),
+                                    [](const JunctionMember& m) { return !m.at_endpoint; }) >= 2;
+      out.push_back(std::move(kept));
+    }
+  }
+  return out;
+}
+
 }  // namespace tw

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geo/structure.hpp"
 #include "ribbon/curve.hpp"
 
 namespace tw {
@@ -33,5 +34,19 @@ struct Junction {
 // (by first member). Throws tw::Error if tolerance_m < 0 or a point is not finite (names the
 // curve).
 std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m);
+
+// What a curve is, vertically: on the ground or a bridge / tunnel, and its layer.
+struct CurveLevel {
+  Structure structure = Structure::ground;
+  int layer = 0;
+};
+
+// The junctions where curves meet on the ground (docs/osm.md): a member passing through on a
+// bridge or in a tunnel is dropped (it passes over or under), and the other members meet only
+// with members of their own layer. Members that all end there always meet, whatever their
+// layers (OSM ways join at a bridge's ends). A junction left with fewer than two members is
+// dropped; `crossing` is recomputed. levels[i] is curve i's.
+std::vector<Junction> at_grade(const std::vector<Junction>& junctions,
+                               const std::vector<CurveLevel>& levels);
 
 }  // namespace tw
