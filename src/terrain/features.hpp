@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "geo/structure.hpp"
 #include "ribbon/curve.hpp"
 
 namespace tw {
@@ -45,6 +46,10 @@ struct TerrainFeature {
   std::int64_t fid = 0;  // named in error messages
   Curve centerline;      // world metres; for rivers, points run downstream
   double width = 0.0;    // metres: road surface, river bed, or ridge crest
+  // A bridge or tunnel leaves the ground under it untouched and paints no splat; its profile
+  // is its deck, straight between the features it joins at its ends (docs/osm.md).
+  Structure structure = Structure::ground;
+  int layer = 0;  // features on different layers never meet at grade
   RoadProfile road;
   RiverProfile river;
   RidgeProfile ridge;

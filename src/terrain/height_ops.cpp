@@ -15,6 +15,7 @@
 #include "terrain/detail/junctions.hpp"
 #include "terrain/detail/precedence.hpp"
 #include "terrain/detail/profiles.hpp"
+#include "terrain/detail/structures.hpp"
 
 namespace tw {
 
@@ -47,17 +48,21 @@ void add_crossing_pins(const TerrainPlan& plan, const std::vector<std::vector<do
                        std::vector<std::vector<Pin>>& pins) {
   std::vector<Curve> roads;
   std::vector<std::size_t> feature_of;
+  std::vector<CurveLevel> levels;
   for (std::size_t i = 0; i < plan.features.size(); ++i) {
-    if (plan.features[i].kind != FeatureKind::road || plan.features[i].width <= 0.0) continue;
-    roads.push_back(plan.features[i].centerline);
+    const TerrainFeature& f = plan.features[i];
+    if (f.kind != FeatureKind::road || f.width <= 0.0 || f.structure != Structure::ground)
+      continue;
+    roads.push_back(f.centerline);
     feature_of.push_back(i);
+    levels.push_back({f.structure, f.layer});
   }
   if (roads.empty()) return;
   std::vector<std::vector<double>> cumulative;
   for (const Curve& c : roads) cumulative.push_back(cumulative_lengths(c));
   // Below ~17 degrees the platform would grow without bound; such roads merge, not cross.
   constexpr double kMinSine = 0.3;
-  for (const Junction& j : find_junctions(roads, 0.0)) {
+  for (const Junction& j : at_grade(find_junctions(roads, 0.0), levels)) {
     if (!j.crossing) continue;
     double sum = 0.0, reach = 0.0, sine = 1.0;
     std::vector<const JunctionMember*> passing;
@@ -221,13 +226,17 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
     if (ranks[std::size_t(f.kind)] < 0)
       fail("{} feature FID {}: its kind is missing from the terrain precedence", to_string(f.kind),
            f.fid);
-    TerrainFeature copy = f;
-    copy.centerline = without_duplicates(f.centerline);
+  }
+  plan.source.resize(features.size());
+  std::iota(plan.source.begin(), plan.source.end(), std::size_t{0});
+  std::stable_sort(plan.source.begin(), plan.source.end(), [&](std::size_t a, std::size_t b) {
+    return ranks[std::size_t(features[a].kind)] < ranks[std::size_t(features[b].kind)];
+  });
+  for (const std::size_t i : plan.source) {
+    TerrainFeature copy = features[i];
+    copy.centerline = without_duplicates(features[i].centerline);
     plan.features.push_back(std::move(copy));
   }
-  std::stable_sort(plan.features.begin(), plan.features.end(), [&](const auto& a, const auto& b) {
-    return ranks[std::size_t(a.kind)] < ranks[std::size_t(b.kind)];
-  });
 
   std::vector<std::vector<double>> profiles(plan.features.size());
   std::vector<char> over_nodata(plan.features.size(), 0);
@@ -272,10 +281,14 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       return over_nodata[std::size_t(c.other)] != 0;
     });
   }
+  // Roads are graded without their bridges and tunnels, whose decks then follow them.
+  const auto contacts_with_structures = contacts;
+  detail::drop_road_structure_contacts(plan.features, contacts);
   pin_road_junctions(plan, profiles, contacts);
   join_rivers(plan, profiles, contacts);
 
   carve_river_beds(plan, profiles, contacts);
+  detail::lay_decks(plan.features, plan.steps, contacts_with_structures, profiles);
 
   for (std::size_t i = 0; i < plan.features.size(); ++i)
     plan.profiles.emplace_back(profiles[i].begin(), profiles[i].end());
@@ -306,7 +319,9 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
   std::vector<double> reach;
   for (const auto& f : plan.features) {
     curves.push_back(&f.centerline);
-    reach.push_back(f.width > 0.0 ? feature_reach(f) : -1.0);
+    // A bridge or tunnel leaves the ground under it untouched.
+    const bool shapes_ground = f.width > 0.0 && f.structure == Structure::ground;
+    reach.push_back(shapes_ground ? feature_reach(f) : -1.0);
   }
   const detail::FeatureIndex index(grid, window, curves, reach);
   const auto ranks = detail::precedence_ranks(plan.params);

@@ -19,8 +19,10 @@ struct TerrainParams {
 // seamless (a tile never sees its neighbours' edits).
 struct TerrainPlan {
   std::vector<TerrainFeature> features;  // validated copies, grouped by precedence
+  std::vector<std::size_t> source;       // features[i] is the input's features[source[i]]
   // One per feature: its profile every `step` metres of arc length (road surface height,
-  // river bed = water surface - depth, unused for ridges) and the step.
+  // river bed = water surface - depth, unused for ridges; a bridge's or tunnel's deck) and
+  // the step.
   std::vector<std::vector<float>> profiles;
   std::vector<double> steps;
   TerrainParams params;

@@ -49,7 +49,9 @@ SplatLayers compute_splat(const GridSpec& grid, const Window& window,
       fail("{} feature FID {}: its kind is missing from the terrain precedence", to_string(f.kind),
            f.fid);
     curves.push_back(&f.centerline);
-    reach.push_back(detail::splat_radii(f).outer + pixel);
+    // A bridge deck or tunnel paints nothing: the ground under it keeps its own materials.
+    reach.push_back(f.structure == Structure::ground ? detail::splat_radii(f).outer + pixel
+                                                      : -1.0);
   }
   SplatLayers out;
   out.materials = splat_materials();

@@ -1,0 +1,26 @@
+#pragma once
+// Bridges and tunnels in the terrain plan (docs/osm.md, "Bridges and tunnels"): the ground
+// roads they join are graded as if the structure were not there, and the structure's deck runs
+// straight between the graded heights at its two ends.
+#include <vector>
+
+#include "terrain/detail/junctions.hpp"
+#include "terrain/features.hpp"
+
+namespace tw::detail {
+
+// Removes the end contacts between a road and a bridge or tunnel road (both directions): a
+// road ending at a bridge is not pinned to the bridge, the bridge follows the road. Rivers
+// keep theirs, so a culvert still links its stream's reaches.
+void drop_road_structure_contacts(const std::vector<TerrainFeature>& features,
+                                  std::vector<std::vector<EndContact>>& contacts);
+
+// Replaces the profile of every bridge or tunnel road by its deck: the straight line between
+// its end heights, each the mean of the ground roads' profiles touching that end (at the touch),
+// else of a touching structure's resolved end (a structure split into several ways), else its
+// own profile's end (the graded terrain there). `contacts` are the unfiltered end contacts.
+void lay_decks(const std::vector<TerrainFeature>& features, const std::vector<double>& steps,
+               const std::vector<std::vector<EndContact>>& contacts,
+               std::vector<std::vector<double>>& profiles);
+
+}  // namespace tw::detail
