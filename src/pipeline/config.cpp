@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "geo/osm_tags.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -161,6 +162,51 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
   return s;
 }
 
+// tags: { key: [value, ...] } (a single value may stand alone).
+std::vector<TagSelection> read_tags(const MapReader& m) {
+  const YAML::Node node = m.get("tags");
+  const std::string key = m.path("tags");
+  if (!node.IsMap() || node.size() == 0) {
+    m.source().fail(node, key, "expected a mapping of tag keys to lists of values");
+  }
+  std::vector<TagSelection> tags;
+  for (const auto& entry : node) {
+    TagSelection& tag = tags.emplace_back();
+    tag.key = detail::read_string(m.source(), entry.first, key);
+    const std::string entry_key = key + "." + tag.key;
+    if (tag.key.empty()) m.source().fail(entry.first, key, "empty tag key");
+    if (entry.second.IsSequence()) {
+      if (entry.second.size() == 0) m.source().fail(entry.second, entry_key, "empty list");
+      for (std::size_t i = 0; i < entry.second.size(); ++i) {
+        tag.values.push_back(
+            detail::read_string(m.source(), entry.second[i], entry_key + "." + std::to_string(i)));
+      }
+    } else {
+      tag.values.push_back(detail::read_string(m.source(), entry.second, entry_key));
+    }
+  }
+  return tags;
+}
+
+// Without `kind`, the tag keys decide it (highway: road, waterway: river, natural: ridge).
+FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& tags) {
+  std::string kind;
+  for (const TagSelection& tag : tags) {
+    const std::string_view implied = osm_kind_of_key(tag.key);
+    if (implied.empty()) continue;
+    if (!kind.empty() && kind != implied) {
+      m.source().fail(m.get("tags"), m.path("tags"),
+                      fmt::format("the tag keys imply both {} and {}; give kind", kind, implied));
+    }
+    kind = implied;
+  }
+  if (kind == "river") return FeatureKind::river;
+  if (kind == "ridge") return FeatureKind::ridge;
+  if (kind == "road") return FeatureKind::road;
+  m.source().fail(m.get("tags"), m.path("tags"),
+                  "no tag key implies a kind (highway, waterway or natural); give kind");
+}
+
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,
                                       std::uint64_t seed) {
   FeatureClassConfig f;
@@ -168,9 +214,12 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   f.source = m.file("source");
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
-  f.kind = read_kind(m);
+  if (m.has("tags")) f.tags = read_tags(m);
+  f.kind = m.has("kind") || f.tags.empty() ? read_kind(m) : kind_from_tags(m, f.tags);
   f.width_attribute = m.string_or("width_attribute", "");
-  if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
+  if ((f.width_attribute.empty() && f.tags.empty()) || m.has("width")) {
+    f.width = m.positive("width");
+  }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
     f.synthesis =
@@ -188,6 +237,7 @@ ExistingConfig read_existing(const MapReader& m) {
   e.source = m.file("source");
   e.layer = m.string_or("layer", "");
   e.where = m.string_or("where", "");
+  if (m.has("tags")) e.tags = read_tags(m);
   e.width = m.positive_or("width", 0.0);
   return e;
 }
@@ -330,7 +380,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     const std::string path = "features." + name;
     c.features.push_back(
         read_feature_class(MapReader(src, entry.second, path,
-                                     {"source", "layer", "where", "kind", "width_attribute",
+                                     {"source", "layer", "where", "tags", "kind", "width_attribute",
                                       "width", "profile", "synthesis"}),
                            name, c.seed));
   }
@@ -345,14 +395,36 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     if (!list.IsSequence()) src.fail(list, "existing", "expected a list of {source, layer}");
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string key = "existing." + std::to_string(i);
-      c.existing.push_back(
-          read_existing(MapReader(src, list[i], key, {"source", "layer", "where", "width"})));
+      c.existing.push_back(read_existing(
+          MapReader(src, list[i], key, {"source", "layer", "where", "tags", "width"})));
     }
   }
   return c;
 }
 
 }  // namespace
+
+std::string selection_where(const std::vector<TagSelection>& tags, const std::string& where) {
+  auto quoted = [](std::string_view text, char quote) {
+    std::string out(1, quote);
+    for (const char c : text) {
+      out += c;
+      if (c == quote) out += quote;  // SQL doubles a quote inside quotes
+    }
+    return out + quote;
+  };
+  std::string sql;
+  for (const TagSelection& tag : tags) {
+    sql += sql.empty() ? "" : " AND ";
+    sql += quoted(tag.key, '"') + " IN (";
+    for (std::size_t i = 0; i < tag.values.size(); ++i) {
+      sql += (i ? ", " : "") + quoted(tag.values[i], '\'');
+    }
+    sql += ")";
+  }
+  if (where.empty()) return sql;
+  return sql.empty() ? where : sql + " AND (" + where + ")";
+}
 
 Override parse_override(std::string_view assignment) {
   const auto equals = assignment.find('=');

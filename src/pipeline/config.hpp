@@ -66,14 +66,27 @@ struct SynthesisConfig {
   std::vector<ChannelMapping> channels;
 };
 
+// An OSM-style tag selection (docs/osm.md): features whose column `key` holds one of
+// `values`. Several selections must all match; they are ANDed with `where`.
+struct TagSelection {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+// The OGR SQL attribute filter of `tags` and `where` together ("" when both are empty).
+std::string selection_where(const std::vector<TagSelection>& tags, const std::string& where);
+
 struct FeatureClassConfig {
   std::string name;  // the key under `features`, e.g. "roads"
   std::filesystem::path source;
   std::string layer;  // "" = the source's only layer
   std::string where;  // OGR attribute filter, "" = every feature
+  // With tags, `kind` defaults from their key and widths come from the OSM tag table.
+  std::vector<TagSelection> tags;
   FeatureKind kind = FeatureKind::road;
   std::string width_attribute;  // "" = every feature has `width`
-  double width = 0.0;           // metres, > 0 (fallback when the attribute is missing or null)
+  // Metres, > 0 (fallback when the attribute is missing or null); 0 = none (with tags only).
+  double width = 0.0;
   // The profile of `kind` (the others keep their defaults), from the `profile` key.
   RoadProfile road;
   RiverProfile river;
@@ -86,7 +99,8 @@ struct ExistingConfig {
   std::filesystem::path source;
   std::string layer;
   std::string where;
-  double width = 0.0;  // metres, required (> 0) when the layer holds lines
+  std::vector<TagSelection> tags;  // ANDed with where
+  double width = 0.0;              // metres, required (> 0) when the layer holds lines
 };
 
 struct OutputConfig {

@@ -73,6 +73,20 @@ void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   }
 }
 
+// The deck heights of bridges and tunnels; plan features come from terrain_features, which
+// lists the classes' features in report order.
+void report_decks(const TerrainPlan& plan, RunReport& report) {
+  std::vector<FeatureReport*> in_order;
+  for (FeatureClassReport& c : report.classes)
+    for (FeatureReport& f : c.features) in_order.push_back(&f);
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    const TerrainFeature& f = plan.features[i];
+    if (f.structure == Structure::ground || f.width <= 0.0) continue;
+    in_order[plan.source[i]]->deck_m = {double(plan.profiles[i].front()),
+                                        double(plan.profiles[i].back())};
+  }
+}
+
 void write_report(const fs::path& path, const nlohmann::json& json) {
   std::ofstream out(path);
   out << json.dump(2) << '\n';
@@ -127,7 +141,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
       report.classes[c].features.push_back(
           {lines[c][i].fid, ribbons.lengths[c][i], lines[c][i].width,
-           int(ribbons.ribbons[c][i].pieces.size()), std::nullopt});
+           int(ribbons.ribbons[c][i].pieces.size()), std::nullopt, lines[c][i].structure,
+           lines[c][i].layer, std::nullopt});
     }
   }
   clock.stop();
@@ -160,7 +175,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
   const TerrainParams params = detail::terrain_params(config);
   const Window whole = Window::whole(heightfield.grid);
-  shape_terrain(heightfield.height, heightfield.grid, whole, features, params);
+  const TerrainPlan plan = plan_terrain(heightfield.height, heightfield.grid, features, params);
+  apply_terrain(heightfield.height, heightfield.grid, whole, plan);
+  report_decks(plan, report);
   SplatLayers splat = compute_splat(heightfield.grid, whole, features, params);
   detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
   clock.stop();

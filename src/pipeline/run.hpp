@@ -2,6 +2,7 @@
 // Runs a pipeline: ingest -> ribbons -> avoidance -> synthesis -> terrain -> layers, each stage
 // timed, every output staged in one OutputTransaction and committed at the very end (a run that
 // fails writes nothing; a killed run leaves the previous outputs in place).
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -49,6 +50,10 @@ struct FeatureReport {
   double width_m = 0.0;
   int pieces = 0;  // ribbon pieces of length delta (0 when shorter than one piece)
   std::optional<FeatureSynthesisReport> synthesis;
+  Structure structure = Structure::ground;
+  int layer = 0;
+  // A bridge's or tunnel's deck height at its start and end (metres; straight between).
+  std::optional<std::array<double, 2>> deck_m;
 };
 
 struct FeatureClassReport {

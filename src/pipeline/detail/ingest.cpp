@@ -30,10 +30,11 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings) {
   LineClassSpec spec;
   spec.name = config.name;
-  spec.source = {config.source.string(), config.layer, config.where};
+  spec.source = {config.source.string(), config.layer, selection_where(config.tags, config.where)};
   spec.width_attribute = config.width_attribute;
   spec.default_width = config.width;
-  std::vector<LineFeature> lines = read_line_features(spec, heightfield);
+  spec.osm_widths = !config.tags.empty();
+  std::vector<LineFeature> lines = read_line_features(spec, heightfield, warnings);
   if (lines.empty()) {
     warnings.add(
         "empty_class", "features." + config.name, std::nullopt,
@@ -50,7 +51,7 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
   ExistingFeatures out;
   for (std::size_t i = 0; i < existing.size(); ++i) {
     const ExistingConfig& e = existing[i];
-    const VectorSource source{e.source.string(), e.layer, e.where};
+    const VectorSource source{e.source.string(), e.layer, selection_where(e.tags, e.where)};
     if (e.width > 0.0) {
       LineClassSpec spec;
       spec.name = "existing." + std::to_string(i);

@@ -18,6 +18,11 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
     for (const FeatureReport& f : c.features) {
       json feature = {
           {"fid", f.fid}, {"length_m", f.length_m}, {"width_m", f.width_m}, {"pieces", f.pieces}};
+      if (f.structure != Structure::ground) {
+        feature["structure"] = std::string(to_string(f.structure));
+        feature["layer"] = f.layer;
+        if (f.deck_m) feature["deck_m"] = {(*f.deck_m)[0], (*f.deck_m)[1]};
+      }
       if (f.synthesis) {
         const FeatureSynthesisReport& s = *f.synthesis;
         feature["synthesis"] = {{"exemplar", s.exemplar},

@@ -17,6 +17,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const GridSpec& grid) {
   FeatureRibbons out;
   std::vector<Curve> curves;
+  std::vector<CurveLevel> levels;  // bridges, tunnels and layers meet nothing they pass
   std::vector<double> widths;
   std::vector<double> synthesis_widths;  // the synthesis ribbon's width where it has its own
   for (std::size_t c = 0; c < config.features.size(); ++c) {
@@ -38,6 +39,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
         ribbons.push_back(make_ribbon(curve, {line.width, delta, 0.0}));
       }
       curves.push_back(curve);
+      levels.push_back({line.structure, line.layer});
       widths.push_back(line.width);
       synthesis_widths.push_back(feature_class.synthesis && feature_class.synthesis->width
                                      ? std::max(line.width, *feature_class.synthesis->width)
@@ -47,7 +49,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   // Meeting points closer than a pixel are one junction; the disc covers the widest member
   // plus a pixel of margin.
   const double pixel = std::max(grid.pixel_width, grid.pixel_height);
-  const std::vector<Junction> junctions = find_junctions(curves, pixel);
+  const std::vector<Junction> junctions = at_grade(find_junctions(curves, pixel), levels);
   std::vector<double> radii;
   for (const Junction& j : junctions) {
     std::vector<double> member_widths;
@@ -56,7 +58,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   }
   out.junction_discs = junction_discs(junctions, radii);
   const double cell = config.synthesis_resolution;
-  const std::vector<Junction> synthesis_junctions = find_junctions(curves, cell);
+  const std::vector<Junction> synthesis_junctions = at_grade(find_junctions(curves, cell), levels);
   std::vector<double> synthesis_radii;
   for (const Junction& j : synthesis_junctions) {
     std::vector<double> member_widths;
@@ -139,6 +141,8 @@ std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
       f.fid = line.fid;
       f.centerline = Curve{line.points, line.closed};
       f.width = line.width;
+      f.structure = line.structure;
+      f.layer = line.layer;
       f.road = feature_class.road;
       f.river = feature_class.river;
       f.ridge = feature_class.ridge;
