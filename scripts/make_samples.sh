@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the real sample data in samples/ (dem.tif, map.gpkg, dem_wgs84.tif,
-# lines_wgs84.geojson) and the exemplars in samples/exemplars/, plus the previews
+# lines_wgs84.geojson, olinda.osm) and the exemplars in samples/exemplars/, plus the previews
 # in docs/images/. Not part of the build or CI: run it by hand when the samples change.
 #
 # Sources, all from Debian packages (installed below, NOT listed in scripts/setup.sh):
@@ -26,3 +26,4 @@ trap 'rm -rf "$work"' EXIT
 
 $PY scripts/make_samples.py samples "$work/wdbii_rivers.txt" docs/images
 $PY scripts/make_exemplars.py samples/exemplars docs/images
+$PY scripts/make_osm_sample.py # samples/olinda.osm, drawn over dem.tif from map.gpkg
