@@ -143,5 +143,32 @@ TEST(Structures, ATunnelLeavesTheHillUntouchedBetweenItsPortals) {
   EXPECT_FLOAT_EQ(splat.weights[0].at(100, kRoadRow), 1.0f);  // base
 }
 
+TEST(Structures, ABridgeSplitIntoTwoWaysIsOneStraightDeck) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto valley = [](double x, double y) { return 40.0 + 0.3 * std::abs(x - 100.5) + 0.1 * y; };
+  const Raster<float> before = test::heights_from(grid, valley);
+  std::vector<TerrainFeature> features = road_with(Structure::bridge);
+  // Way 2 now ends mid-span, and way 4 continues it, drawn backwards (east to west).
+  features[1].centerline.points = {{60.0, 100.5}, {100.0, 100.5}};
+  TerrainFeature second = features[1];
+  second.fid = 4;
+  second.centerline.points = {{140.0, 100.5}, {100.0, 100.5}};
+  features.push_back(second);
+  const TerrainPlan plan = plan_terrain(before, grid, features, {});
+  std::size_t a = 0, s = 0, t = 0, b = 0;
+  by_fid(plan, 1, &a);
+  by_fid(plan, 2, &s);
+  by_fid(plan, 4, &t);
+  by_fid(plan, 3, &b);
+  const double west = plan.profiles[a].back(), east = plan.profiles[b].front();
+  EXPECT_FLOAT_EQ(plan.profiles[s].front(), float(west));
+  EXPECT_FLOAT_EQ(plan.profiles[t].front(), float(east));
+  // Mid-span both ways hold the middle of the straight deck, not the valley floor below.
+  const float middle = float(0.5 * (west + east));
+  EXPECT_NEAR(plan.profiles[s].back(), middle, 1e-4);
+  EXPECT_NEAR(plan.profiles[t].back(), middle, 1e-4);
+  EXPECT_GT(middle, before.at(100, kRoadRow) + 5.0f);
+}
+
 }  // namespace
 }  // namespace tw

@@ -45,34 +45,61 @@ void lay_decks(const std::vector<TerrainFeature>& features, const std::vector<do
       if (count > 0) ends[i][at_start ? 0 : 1] = sum / count;
     }
   }
-  // A structure split into several ways: an open end takes the resolved end it touches.
-  for (std::size_t pass = 0; pass < features.size(); ++pass) {
-    bool changed = false;
-    for (std::size_t i = 0; i < features.size(); ++i) {
-      if (!is_structure_road(features[i]) || features[i].width <= 0.0) continue;
-      for (const bool at_start : {true, false}) {
-        auto& end = ends[i][at_start ? 0 : 1];
-        if (end) continue;
-        for (const EndContact& c : contacts[i]) {
-          const std::size_t j = std::size_t(c.other);
-          if (c.at_start != at_start || !c.other_end || !is_structure_road(features[j])) continue;
-          const auto& other = ends[j][c.other_s == 0.0 ? 0 : 1];
-          if (!other) continue;
-          end = *other;
-          changed = true;
-          break;
-        }
-      }
-    }
-    if (!changed) break;
-  }
+  // Structures joined end to end (a bridge split into several ways) form one chain whose deck
+  // runs straight, by arc length, between the chain's two outer ends.
+  struct Link {
+    int other = -1;
+    bool other_at_start = false;
+  };
+  std::vector<std::array<Link, 2>> links(features.size());
   for (std::size_t i = 0; i < features.size(); ++i) {
     if (!is_structure_road(features[i]) || features[i].width <= 0.0) continue;
-    auto& p = profiles[i];
-    const double start = ends[i][0].value_or(p.front());
-    const double finish = ends[i][1].value_or(p.back());
-    const double last = double(std::max<std::size_t>(p.size(), 2) - 1);
-    for (std::size_t k = 0; k < p.size(); ++k) p[k] = start + (finish - start) * (double(k) / last);
+    for (const EndContact& c : contacts[i]) {
+      const std::size_t j = std::size_t(c.other);
+      if (!c.other_end || !is_structure_road(features[j]) || features[j].width <= 0.0) continue;
+      Link& link = links[i][c.at_start ? 0 : 1];
+      if (link.other < 0) link = {int(j), c.other_s == 0.0};
+    }
+  }
+  auto length_of = [&](std::size_t i) { return double(profiles[i].size() - 1) * steps[i]; };
+  std::vector<char> laid(features.size(), 0);
+  auto lay_chain = [&](std::size_t first, bool forward) {
+    std::vector<std::pair<std::size_t, bool>> chain;  // (feature, runs along the chain)
+    for (std::size_t i = first; !laid[i];) {
+      laid[i] = 1;
+      chain.emplace_back(i, forward);
+      const Link next = links[i][forward ? 1 : 0];
+      if (next.other < 0) break;
+      i = std::size_t(next.other);
+      forward = next.other_at_start;
+    }
+    auto outer = [&](std::size_t i, bool at_start) {
+      return ends[i][at_start ? 0 : 1].value_or(at_start ? profiles[i].front()
+                                                         : profiles[i].back());
+    };
+    const double h0 = outer(chain.front().first, chain.front().second);
+    const double h1 = outer(chain.back().first, !chain.back().second);
+    double total = 0.0;
+    for (const auto& [i, f] : chain) total += length_of(i);
+    double s = 0.0;
+    for (const auto& [i, f] : chain) {
+      auto& p = profiles[i];
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const double along = s + double(f ? k : p.size() - 1 - k) * steps[i];
+        p[k] = total > 0.0 ? h0 + (h1 - h0) * (along / total) : h0;
+      }
+      s += length_of(i);
+    }
+  };
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    if (!is_structure_road(features[i]) || features[i].width <= 0.0 || laid[i]) continue;
+    if (links[i][0].other < 0)
+      lay_chain(i, true);
+    else if (links[i][1].other < 0)
+      lay_chain(i, false);
+  }
+  for (std::size_t i = 0; i < features.size(); ++i) {  // rings of structures: start anywhere
+    if (is_structure_road(features[i]) && features[i].width > 0.0 && !laid[i]) lay_chain(i, true);
   }
 }
 

@@ -15,10 +15,11 @@ namespace tw::detail {
 void drop_road_structure_contacts(const std::vector<TerrainFeature>& features,
                                   std::vector<std::vector<EndContact>>& contacts);
 
-// Replaces the profile of every bridge or tunnel road by its deck: the straight line between
-// its end heights, each the mean of the ground roads' profiles touching that end (at the touch),
-// else of a touching structure's resolved end (a structure split into several ways), else its
-// own profile's end (the graded terrain there). `contacts` are the unfiltered end contacts.
+// Replaces the profile of every bridge or tunnel road by its deck: straight, by arc length,
+// between the heights at the outer ends of its chain (structures joined end to end, as when OSM
+// splits a bridge into several ways; usually just itself). Each outer end's height is the mean
+// of the ground roads' profiles touching it (at the touch), else the structure's own profile
+// end (the graded terrain there). `contacts` are the unfiltered end contacts.
 void lay_decks(const std::vector<TerrainFeature>& features, const std::vector<double>& steps,
                const std::vector<std::vector<EndContact>>& contacts,
                std::vector<std::vector<double>>& profiles);
