@@ -233,6 +233,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
                                        : ribbons.ribbons[plan.class_index][f];
       pattern.class_index = plan.class_index;
       pattern.feature_index = f;
+      pattern.on_ground = line.structure == Structure::ground;
       FeatureSynthesisReport& report = pattern.report;
       report.seed = feature_seed(config.seed, synthesis.seed, line.fid);
 
@@ -347,6 +348,7 @@ std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemp
 void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
                     Raster<float>& height, SplatLayers& splat) {
   for (const FeaturePattern& pattern : run.patterns) {
+    if (!pattern.on_ground) continue;  // a bridge's or tunnel's pattern is in its placements only
     const FeatureClassConfig& c = config.features[pattern.class_index];
     const Ribbon& ribbon = pattern.ribbon;
     const Exemplar& exemplar = run.exemplars[pattern.exemplar_index];

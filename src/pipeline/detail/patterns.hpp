@@ -37,6 +37,7 @@ struct FeaturePattern {
   std::size_t class_index = 0;     // in config.features
   std::size_t feature_index = 0;   // in the class's lines / ribbons
   std::size_t exemplar_index = 0;  // in PatternRun::exemplars
+  bool on_ground = true;           // false for a bridge or tunnel: not written into the layers
   Ribbon ribbon;                   // the synthesis ribbon (synthesis.width, or the feature's)
   Synthesis synthesis;
   GridSpec canvas;
@@ -62,7 +63,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
 
 // Renders the patterns into `grid` (whole) and applies their channel mappings: height detail on
 // top of `height` (never on NaN nodata cells) and splat materials that take their share from
-// the others proportionally (weights keep summing to 1).
+// the others proportionally (weights keep summing to 1). Patterns along bridges and tunnels are
+// left out: they lie on the deck, not on the ground (docs/osm.md).
 void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
                     Raster<float>& height, SplatLayers& splat);
 
