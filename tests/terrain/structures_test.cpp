@@ -114,6 +114,24 @@ TEST(Structures, ABridgeOverARoadIsNotPinnedToIt) {
   EXPECT_NE(at_grade.profiles[i], alone.profiles[0]);
 }
 
+TEST(Structures, ARoadEndingOnTheSideOfAnotherLayerIsNoTJunction) {
+  const GridSpec grid = test::unit_grid(kSize);
+  auto slope = [](double x, double y) { return 20.0 + 0.05 * x + 3.0 * std::sin(y / 12.0); };
+  const Raster<float> before = test::heights_from(grid, slope);
+  auto through = test::feature(FeatureKind::road, 1, {{10.0, 100.5}, {190.0, 100.5}}, 6.0);
+  auto ending = test::feature(FeatureKind::road, 2, {{100.5, 10.0}, {100.5, 100.5}}, 6.0);
+  for (auto* f : {&through, &ending}) f->road = {0.08, 1.0, 10.0, 20.0};
+  const TerrainPlan alone = plan_terrain(before, grid, {ending}, {});
+  const TerrainPlan t_junction = plan_terrain(before, grid, {through, ending}, {});
+  std::size_t i = 0;
+  by_fid(t_junction, 2, &i);
+  EXPECT_NE(t_junction.profiles[i], alone.profiles[0]);  // at grade: pinned to the through road
+  ending.layer = 1;
+  const TerrainPlan layered = plan_terrain(before, grid, {through, ending}, {});
+  by_fid(layered, 2, &i);
+  EXPECT_EQ(layered.profiles[i], alone.profiles[0]);
+}
+
 TEST(Structures, ATunnelLeavesTheHillUntouchedBetweenItsPortals) {
   const GridSpec grid = test::unit_grid(kSize);
   auto hill = [](double x, double y) {

@@ -20,7 +20,10 @@ void drop_road_structure_contacts(const std::vector<TerrainFeature>& features,
   for (std::size_t i = 0; i < features.size(); ++i) {
     if (features[i].kind != FeatureKind::road) continue;
     std::erase_if(contacts[i], [&](const EndContact& c) {
-      return is_structure_road(features[i]) || is_structure_road(features[std::size_t(c.other)]);
+      const TerrainFeature& other = features[std::size_t(c.other)];
+      // A road ending on another's side on a different layer passes over or under it.
+      const bool other_layer = !c.other_end && other.layer != features[i].layer;
+      return is_structure_road(features[i]) || is_structure_road(other) || other_layer;
     });
   }
 }

@@ -10,8 +10,9 @@
 namespace tw::detail {
 
 // Removes the end contacts between a road and a bridge or tunnel road (both directions): a
-// road ending at a bridge is not pinned to the bridge, the bridge follows the road. Rivers
-// keep theirs, so a culvert still links its stream's reaches.
+// road ending at a bridge is not pinned to the bridge, the bridge follows the road. Also a road
+// ending on the side of a road on another layer (not a T-junction). Rivers keep theirs, so a
+// culvert still links its stream's reaches.
 void drop_road_structure_contacts(const std::vector<TerrainFeature>& features,
                                   std::vector<std::vector<EndContact>>& contacts);
 
