@@ -12,13 +12,15 @@ the DEM's UTM 25S metres and converted to WGS 84 (OSM's CRS) with gdaltransform:
     (720 m between its portals), approach;
   - a closed highway=residential loop with a residential spur tagged width=6 m;
   - the crest of map.gpkg's `ridges` FID 2 as natural=ridge; a landuse=forest area.
-Run from the repository root: python3 scripts/make_osm_sample.py (needs gdal-bin).
+samples/olinda.osm.pbf is the same data as PBF, converted with osmconvert (Debian osmctools).
+Run from the repository root: python3 scripts/make_osm_sample.py (needs gdal-bin, osmctools).
 """
 import subprocess
 from xml.sax.saxutils import quoteattr
 
 GPKG = "samples/map.gpkg"
 OUT = "samples/olinda.osm"
+OUT_PBF = "samples/olinda.osm.pbf"
 
 
 def wkt_points(layer, fid, tolerance):
@@ -119,6 +121,7 @@ def main():
     osm.way(6001, [(x0, y0), (x0 + 400, y0), (x0 + 400, y0 + 400), (x0, y0 + 400)],
             {"landuse": "forest"}, closed=True)
     osm.write(OUT)
+    subprocess.run(["osmconvert", OUT, "--out-pbf", f"-o={OUT_PBF}"], check=True)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,7 @@ PY=/usr/bin/python3 # Debian's python, where python3-gdal/numpy/pil live
 if [[ "${1:-}" == "--install" ]]; then
   apt-get update -qq
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-    python3-numpy python3-pil python3-gdal r-cran-stars r-cran-terra gmt gmt-gshhg
+    python3-numpy python3-pil python3-gdal r-cran-stars r-cran-terra gmt gmt-gshhg osmctools
 fi
 
 work=$(mktemp -d)

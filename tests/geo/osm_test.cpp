@@ -198,5 +198,35 @@ TEST_F(OsmSource, StructureColumnsOfAGeoPackage) {
   EXPECT_EQ(lines[0].structure, Structure::bridge);
 }
 
+// The sample as XML and as PBF (the same ways, converted by osmconvert) reads the same.
+TEST(OsmSample, XmlAndPbfGiveTheSameFeatures) {
+  const Heightfield dem = read_heightfield((test::source_dir() / "samples/dem.tif").string());
+  auto read = [&](const char* file) {
+    LineClassSpec spec;
+    spec.name = "roads";
+    spec.source = {(test::source_dir() / "samples" / file).string(), "lines",
+                   "highway IS NOT NULL"};
+    spec.osm_widths = true;
+    return read_line_features(spec, dem);
+  };
+  const std::vector<LineFeature> xml = read("olinda.osm");
+  const std::vector<LineFeature> pbf = read("olinda.osm.pbf");
+  ASSERT_EQ(xml.size(), 8u);
+  ASSERT_EQ(pbf.size(), xml.size());
+  for (std::size_t i = 0; i < xml.size(); ++i) {
+    EXPECT_EQ(pbf[i].fid, xml[i].fid);
+    EXPECT_EQ(pbf[i].width, xml[i].width);
+    EXPECT_EQ(pbf[i].structure, xml[i].structure);
+    EXPECT_EQ(pbf[i].layer, xml[i].layer);
+    EXPECT_EQ(pbf[i].closed, xml[i].closed);
+    ASSERT_EQ(pbf[i].points.size(), xml[i].points.size());
+    for (std::size_t k = 0; k < xml[i].points.size(); ++k)
+      EXPECT_LT(distance(pbf[i].points[k], xml[i].points[k]), 1e-6) << xml[i].fid;
+  }
+  EXPECT_EQ(xml[1].fid, 2002);
+  EXPECT_EQ(xml[1].structure, Structure::bridge);
+  EXPECT_TRUE(xml[6].closed);  // the residential loop stays a line, closed
+}
+
 }  // namespace
 }  // namespace tw
