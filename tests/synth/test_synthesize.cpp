@@ -28,7 +28,9 @@ Synthesis run(const Exemplar& e, const Ribbon& r, const GridSpec& canvas,
               const Raster<std::uint8_t>* forbidden, SynthParams params = {}) {
   if (params.scale == 0.0) params.scale = kScale;
   auto backend = detail::make_cpu_backend();
-  return detail::synthesize_on(*backend, e, r, canvas, forbidden, params);
+  const SparseRaster<std::uint8_t> sparse =
+      forbidden ? sparse_from_dense(*forbidden) : SparseRaster<std::uint8_t>();
+  return detail::synthesize_on(*backend, e, r, canvas, forbidden ? &sparse : nullptr, params);
 }
 
 // A disc of forbidden pixels on the top half of the ribbon at 40 % of its length.
@@ -53,20 +55,26 @@ TEST_P(Shapes, NoOpaqueTexelOnForbiddenOrFoldedPixels) {
   params.allow_empty_pieces = true;
   const Synthesis s = run(chain, ribbon, canvas, &disc, params);
   const RenderedPattern out = render_pattern(chain, ribbon, s, canvas, Window::whole(canvas));
-  const Raster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &disc);
+  const SparseRaster<std::uint8_t> sparse_disc = sparse_from_dense(disc);
+  const SparseRaster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &sparse_disc);
   EXPECT_EQ(count_avoidance_violations(out, avoid), 0);
-  std::int64_t covered = 0, forbidden = 0;
-  for (std::size_t i = 0; i < avoid.pixels.size(); ++i) {
-    if (avoid.pixels[i]) {
-      ++forbidden;
-      ASSERT_EQ(out.coverage.pixels[i], 0.0f) << "pixel " << i;
+  std::int64_t covered = 0, forbidden = 0, folded = 0;
+  const SparseRaster<std::uint8_t> folds = detail::foldover_mask(ribbon, canvas);
+  for (int row = 0; row < canvas.height; ++row)
+    for (int col = 0; col < canvas.width; ++col) {
+      const float coverage = out.coverage.at(col, row);
+      if (avoid.at(col, row)) {
+        ++forbidden;
+        ASSERT_EQ(coverage, 0.0f) << "pixel " << col << ", " << row;
+      }
+      folded += folds.at(col, row);
+      covered += coverage > 0.5f;
     }
-    covered += out.coverage.pixels[i] > 0.5f;
-  }
   EXPECT_GT(forbidden, 10);
   EXPECT_GT(covered, 200);  // a real pattern was drawn
   if (std::string(GetParam()) == "hairpin") {
-    EXPECT_GT(forbidden, std::int64_t(detail::foldover_mask(ribbon, canvas).pixels.size() / 1000));
+    EXPECT_GT(folded, canvas.cell_count() / 1000);
+    EXPECT_GE(forbidden, folded);
   }
 }
 
