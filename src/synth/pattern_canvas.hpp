@@ -15,7 +15,8 @@
 
 namespace tw {
 
-// Cells around a piece's box that synthesis reads (one) plus one of slack.
+// Cells kept around each piece's box: synthesis loops over the box plus one cell (only cells
+// with a subsample inside the piece count), and one more of slack.
 inline constexpr int kCanvasHalo = 2;
 
 // Cells of `resolution` metres whose edges lie on multiples of `resolution` in world
