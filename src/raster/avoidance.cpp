@@ -13,10 +13,8 @@ void add_mask(Raster<std::uint8_t>& forbidden, const Raster<std::uint8_t>& more)
     forbidden.pixels[i] = std::uint8_t(forbidden.pixels[i] | (more.pixels[i] ? 1 : 0));
 }
 
-}  // namespace
-
-AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
-                                 const Window& window) {
+// The forbidden mask of build_avoidance_map (no distance yet).
+AvoidanceMap build_mask(const AvoidanceInputs& inputs, const GridSpec& grid, const Window& window) {
   if (inputs.lines.size() != inputs.line_widths.size())
     fail("avoidance map: {} lines but {} line widths", inputs.lines.size(),
          inputs.line_widths.size());
@@ -36,8 +34,25 @@ AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& 
   }
   if (inputs.current != nullptr && inputs.include_foldovers)
     add_mask(map.forbidden, foldover_mask(*inputs.current, grid, window));
+  return map;
+}
+
+}  // namespace
+
+AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
+                                 const Window& window) {
+  AvoidanceMap map = build_mask(inputs, grid, window);
   map.distance = distance_to_mask(map.forbidden, grid.pixel_width, grid.pixel_height);
   return map;
+}
+
+void burn_avoidance(const AvoidanceInputs& inputs, const GridSpec& grid,
+                    SparseRaster<std::uint8_t>& forbidden) {
+  for (const TileIndex t : forbidden.tiles()) {
+    const AvoidanceMap tile = build_mask(inputs, grid, forbidden.tile_window(t));
+    Raster<std::uint8_t>& cells = *forbidden.tile(t);
+    add_mask(cells, tile.forbidden);
+  }
 }
 
 }  // namespace tw

@@ -6,6 +6,7 @@
 
 #include "core/grid.hpp"
 #include "raster/polygon.hpp"
+#include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
 
 namespace tw {
@@ -31,5 +32,10 @@ struct AvoidanceInputs {
 // distance field. Throws tw::Error (naming the line) on mismatched widths.
 AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
                                  const Window& window);
+
+// The same union (no distance field) on the allocated tiles of `forbidden`, a sparse canvas over
+// `grid`: equal to build_avoidance_map's mask there.
+void burn_avoidance(const AvoidanceInputs& inputs, const GridSpec& grid,
+                    SparseRaster<std::uint8_t>& forbidden);
 
 }  // namespace tw

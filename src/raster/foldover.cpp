@@ -111,4 +111,12 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
   return mask;
 }
 
+void add_foldovers(const Ribbon& ribbon, const GridSpec& grid, SparseRaster<std::uint8_t>& mask) {
+  for (const TileIndex t : mask.tiles()) {
+    const Raster<std::uint8_t> folds = foldover_mask(ribbon, grid, mask.tile_window(t));
+    Raster<std::uint8_t>& tile = *mask.tile(t);
+    for (std::size_t i = 0; i < folds.pixels.size(); ++i) tile.pixels[i] |= folds.pixels[i];
+  }
+}
+
 }  // namespace tw

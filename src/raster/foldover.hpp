@@ -7,6 +7,7 @@
 
 #include "core/grid.hpp"
 #include "raster/polygon.hpp"
+#include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
 
 namespace tw {
@@ -18,6 +19,9 @@ namespace tw {
 // (a hairpin narrower than the ribbon) count. Seamless across windows like rasterize.hpp.
 Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& grid,
                                    const Window& window);
+
+// Sets 1 on the fold-over pixels of every allocated tile of `mask` (over `grid`).
+void add_foldovers(const Ribbon& ribbon, const GridSpec& grid, SparseRaster<std::uint8_t>& mask);
 
 // The pieces' quadrilaterals as polygons (the ribbon's footprint; a bow-tie piece is filled
 // even-odd).

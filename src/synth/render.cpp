@@ -175,14 +175,12 @@ Raster<float> render_cage(const Ribbon& ribbon, const GridSpec& canvas, const Wi
 }
 
 std::int64_t count_avoidance_violations(const RenderedPattern& pattern,
-                                        const Raster<std::uint8_t>& forbidden) {
+                                        const SparseRaster<std::uint8_t>& forbidden) {
   std::int64_t count = 0;
   const Window& w = pattern.window;
   for (int r = 0; r < w.height; ++r)
     for (int c = 0; c < w.width; ++c)
-      if (forbidden.inside(c + w.col0, r + w.row0) && forbidden.at(c + w.col0, r + w.row0) &&
-          pattern.coverage.at(c, r) >= 0.5f)
-        ++count;
+      if (forbidden.at(c + w.col0, r + w.row0) && pattern.coverage.at(c, r) >= 0.5f) ++count;
   return count;
 }
 

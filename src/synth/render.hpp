@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/synthesize.hpp"
@@ -36,6 +37,6 @@ Raster<float> render_cage(const Ribbon& ribbon, const GridSpec& canvas, const Wi
 // Opaque rendered pixels (coverage >= 0.5, i.e. a bilinear read of texels that are opaque for
 // the DP) on forbidden pixels; a correct synthesis gives 0. `forbidden` covers the canvas.
 std::int64_t count_avoidance_violations(const RenderedPattern& pattern,
-                                        const Raster<std::uint8_t>& forbidden);
+                                        const SparseRaster<std::uint8_t>& forbidden);
 
 }  // namespace tw

@@ -3,7 +3,7 @@
 namespace tw {
 
 Synthesis synthesize(const Exemplar& exemplar, const Ribbon& ribbon, const GridSpec& canvas,
-                     const Raster<std::uint8_t>* forbidden, const SynthParams& params,
+                     const SparseRaster<std::uint8_t>* forbidden, const SynthParams& params,
                      OpenCLContext* context) {
   auto backend = detail::make_backend(params.backend, context);
   return detail::synthesize_on(*backend, exemplar, ribbon, canvas, forbidden, params);

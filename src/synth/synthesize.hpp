@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
 #include "synth/detail/backend_factory.hpp"
 #include "synth/exemplar.hpp"
@@ -69,14 +70,17 @@ struct Synthesis {
   SynthTimings timings;
 };
 
+// `forbidden` (may be null): the avoidance map over `canvas`, non-zero = forbidden; it must hold
+// every tile within a pixel or two of a piece (ribbon_tiles with a halo of 2), absent tiles read
+// as free.
 Synthesis synthesize(const Exemplar& exemplar, const Ribbon& ribbon, const GridSpec& canvas,
-                     const Raster<std::uint8_t>* forbidden, const SynthParams& params,
+                     const SparseRaster<std::uint8_t>* forbidden, const SynthParams& params,
                      OpenCLContext* context = nullptr);
 
 namespace detail {
 // The same on a given backend.
 Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
-                        const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                        const GridSpec& canvas, const SparseRaster<std::uint8_t>* forbidden,
                         const SynthParams& params);
 }  // namespace detail
 

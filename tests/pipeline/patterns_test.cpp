@@ -11,11 +11,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.hpp"
+#include "core/warnings.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/stages.hpp"
 #include "pipeline/run.hpp"
+#include "raster/foldover.hpp"
 #include "synth/placements_io.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
@@ -243,6 +248,73 @@ TEST_F(SmallWorld, AFeatureWithoutRoomFailsNamingItsFid) {
     EXPECT_THAT(e.what(), HasSubstr("piece 0"));
   }
   EXPECT_FALSE(fs::exists(dir_ / "out/report.json"));
+}
+
+// The sparse canvas (16-cell tiles along each ribbon, most of the canvas absent) gives the dense
+// canvas's results (one tile over the whole canvas) bit for bit, on roads with a junction, a
+// closed ring that starts where it crosses another road, and a hairpin that folds over itself.
+TEST_F(SmallWorld, SparseCanvasEqualsTheDenseCanvas) {
+  test::write_layer(dir_ / "hairpin.gpkg", "roads",
+                    {{"LINESTRING (500050 5000300, 500590 5000330)", 6.0},
+                     {ring(500320, 5000320, 150), 6.0},
+                     {"LINESTRING (500100 5000560, 500300 5000560, 500304 5000557, "
+                      "500300 5000554, 500100 5000554)",
+                      6.0}});
+  const PipelineConfig c = config({{"features.roads.source", (dir_ / "hairpin.gpkg").string()},
+                                   {"features.roads.synthesis.empty_pieces", "true"}});
+  Warnings warnings;
+  const Heightfield heightfield = detail::load_heightfield(c);
+  const std::vector<std::vector<LineFeature>> lines = {
+      detail::load_feature_class(c.features[0], heightfield, warnings)};
+  const detail::ExistingFeatures existing = detail::load_existing(c.existing, heightfield);
+  const detail::FeatureRibbons ribbons = detail::make_feature_ribbons(c, lines, heightfield.grid);
+  ASSERT_FALSE(ribbons.synthesis_junction_discs.empty());
+  detail::PatternOptions dense_options;
+  dense_options.backend = "cpu";
+  dense_options.canvas_tile = 0;
+  detail::PatternOptions sparse_options = dense_options;
+  sparse_options.canvas_tile = 16;
+  const detail::PatternRun dense =
+      detail::synthesize_patterns(c, lines, ribbons, existing, dense_options);
+  const detail::PatternRun sparse =
+      detail::synthesize_patterns(c, lines, ribbons, existing, sparse_options);
+  ASSERT_EQ(dense.patterns.size(), 3u);
+  ASSERT_EQ(sparse.patterns.size(), 3u);
+  std::int64_t folded = 0;
+  for (std::size_t p = 0; p < 3; ++p) {
+    const detail::FeaturePattern& a = sparse.patterns[p];
+    const detail::FeaturePattern& b = dense.patterns[p];
+    ASSERT_EQ(a.canvas, b.canvas);
+    const GridSpec& canvas = a.canvas;
+    EXPECT_EQ(a.report.omega, b.report.omega) << p;
+    EXPECT_EQ(a.report.violations, 0);
+    EXPECT_EQ(a.synthesis.valid_counts, b.synthesis.valid_counts) << p;
+    ASSERT_EQ(a.synthesis.placements.size(), b.synthesis.placements.size());
+    for (std::size_t i = 0; i < a.synthesis.placements.size(); ++i) {
+      const Placement& x = a.synthesis.placements[i];
+      const Placement& y = b.synthesis.placements[i];
+      EXPECT_EQ(std::tie(x.ux, x.uy, x.empty, x.stitch), std::tie(y.ux, y.uy, y.empty, y.stitch))
+          << "feature " << p << ", piece " << i;
+      EXPECT_EQ(x.origin, y.origin);
+    }
+    // The opaque coverage that later features avoid, cell by cell.
+    std::int64_t opaque = 0;
+    for (int row = 0; row < canvas.height; ++row)
+      for (int col = 0; col < canvas.width; ++col) {
+        ASSERT_EQ(a.opaque.at(col, row), b.opaque.at(col, row)) << p << ": " << col << ", " << row;
+        opaque += a.opaque.at(col, row);
+      }
+    EXPECT_GT(opaque, 100) << p;
+    EXPECT_EQ(b.opaque.tiles_x() * b.opaque.tiles_y(), 1);
+    const std::size_t all_tiles = std::size_t(a.opaque.tiles_x() * a.opaque.tiles_y());
+    EXPECT_LE(a.opaque.tile_count(), all_tiles);
+    if (p == 1) {  // the ring leaves its middle out
+      EXPECT_LT(a.opaque.tile_count(), all_tiles / 2);
+    }
+    for (const auto v : foldover_mask(a.ribbon, canvas, Window::whole(canvas)).pixels) folded += v;
+  }
+  EXPECT_GT(folded, 20);  // the hairpin
+  EXPECT_TRUE(lines[0][1].closed);
 }
 
 }  // namespace

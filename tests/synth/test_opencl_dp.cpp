@@ -87,7 +87,7 @@ GridSpec canvas_around(const Curve& curve) {
 detail::DpInput dp_input(const Curve& curve, const detail::CostTexels& texels) {
   const Ribbon ribbon = make_ribbon(curve, {kWidth, kDelta});
   const GridSpec canvas = canvas_around(curve);
-  const Raster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, nullptr);
+  const SparseRaster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, nullptr);
   detail::DpInput input;
   input.texels = &texels;
   const int column = detail::column_count(kWidth, kScale);

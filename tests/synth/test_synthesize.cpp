@@ -11,6 +11,7 @@
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/foldover.hpp"
 #include "synth/detail/footprint.hpp"
+#include "synth/pattern_canvas.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"
 #include "synth/shapes.hpp"
@@ -24,11 +25,19 @@ namespace {
 constexpr double kScale = 2.0;  // texels per metre
 constexpr double kWidth = 10.0, kDelta = 3.0;
 
-Synthesis run(const Exemplar& e, const Ribbon& r, const GridSpec& canvas,
-              const Raster<std::uint8_t>* forbidden, SynthParams params = {}) {
+Synthesis run_sparse(const Exemplar& e, const Ribbon& r, const GridSpec& canvas,
+                     const SparseRaster<std::uint8_t>* forbidden, SynthParams params = {}) {
   if (params.scale == 0.0) params.scale = kScale;
   auto backend = detail::make_cpu_backend();
   return detail::synthesize_on(*backend, e, r, canvas, forbidden, params);
+}
+
+// On a dense canvas: one tile covering it (these canvases are under 256 cells a side).
+Synthesis run(const Exemplar& e, const Ribbon& r, const GridSpec& canvas,
+              const Raster<std::uint8_t>* forbidden, SynthParams params = {}) {
+  const SparseRaster<std::uint8_t> one_tile =
+      forbidden ? sparse_from_dense(*forbidden, std::uint8_t(0), 0) : SparseRaster<std::uint8_t>();
+  return run_sparse(e, r, canvas, forbidden ? &one_tile : nullptr, params);
 }
 
 // A disc of forbidden pixels on the top half of the ribbon at 40 % of its length.
@@ -53,21 +62,75 @@ TEST_P(Shapes, NoOpaqueTexelOnForbiddenOrFoldedPixels) {
   params.allow_empty_pieces = true;
   const Synthesis s = run(chain, ribbon, canvas, &disc, params);
   const RenderedPattern out = render_pattern(chain, ribbon, s, canvas, Window::whole(canvas));
-  const Raster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &disc);
+  const SparseRaster<std::uint8_t> sparse_disc = sparse_from_dense(disc);
+  const SparseRaster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &sparse_disc);
   EXPECT_EQ(count_avoidance_violations(out, avoid), 0);
-  std::int64_t covered = 0, forbidden = 0;
-  for (std::size_t i = 0; i < avoid.pixels.size(); ++i) {
-    if (avoid.pixels[i]) {
-      ++forbidden;
-      ASSERT_EQ(out.coverage.pixels[i], 0.0f) << "pixel " << i;
+  std::int64_t covered = 0, forbidden = 0, folded = 0;
+  const SparseRaster<std::uint8_t> folds = detail::foldover_mask(ribbon, canvas);
+  for (int row = 0; row < canvas.height; ++row)
+    for (int col = 0; col < canvas.width; ++col) {
+      const float coverage = out.coverage.at(col, row);
+      if (avoid.at(col, row)) {
+        ++forbidden;
+        ASSERT_EQ(coverage, 0.0f) << "pixel " << col << ", " << row;
+      }
+      folded += folds.at(col, row);
+      covered += coverage > 0.5f;
     }
-    covered += out.coverage.pixels[i] > 0.5f;
-  }
   EXPECT_GT(forbidden, 10);
   EXPECT_GT(covered, 200);  // a real pattern was drawn
   if (std::string(GetParam()) == "hairpin") {
-    EXPECT_GT(forbidden, std::int64_t(detail::foldover_mask(ribbon, canvas).pixels.size() / 1000));
+    EXPECT_GT(folded, canvas.cell_count() / 1000);
+    EXPECT_GE(forbidden, folded);
   }
+}
+
+// Synthesis reads the canvas only on the tiles within kCanvasHalo of a piece: 8-cell tiles there
+// and nothing else give the dense canvas's result, even where the dense one forbids every cell
+// off those tiles.
+TEST_P(Shapes, SparseCanvasOnTheRibbonsTilesGivesTheDenseResult) {
+  const Exemplar chain = test::chain_exemplar(72, 28, 16);
+  const Ribbon ribbon = make_ribbon(make_shape(GetParam(), 60.0), {kWidth, kDelta});
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  const Raster<std::uint8_t> disc = forbidden_disc(ribbon, canvas);
+  constexpr int kTile = 8;
+  const std::vector<TileIndex> tiles = canvas_tiles(ribbon, canvas, kTile);
+  SparseRaster<std::uint8_t> sparse(canvas.width, canvas.height, 0, kTile);
+  add_tiles(sparse, tiles);
+  Raster<std::uint8_t> dense = disc;
+  for (int row = 0; row < canvas.height; ++row)
+    for (int col = 0; col < canvas.width; ++col) {
+      if (sparse.has_tile({col / kTile, row / kTile})) {
+        sparse.set(col, row, disc.at(col, row));
+      } else {
+        dense.at(col, row) = 1;
+      }
+    }
+  const int all_tiles = sparse.tiles_x() * sparse.tiles_y();
+  // A straight ribbon fills its box; the curved ones leave tiles out.
+  if (std::string(GetParam()) != "line") {
+    EXPECT_LT(int(tiles.size()), all_tiles);
+  }
+  SynthParams params;
+  params.allow_empty_pieces = true;
+  const Synthesis a = run_sparse(chain, ribbon, canvas, &sparse, params);
+  const Synthesis b = run(chain, ribbon, canvas, &dense, params);
+  EXPECT_EQ(a.total_cost, b.total_cost);
+  EXPECT_EQ(a.valid_counts, b.valid_counts);
+  ASSERT_EQ(a.placements.size(), b.placements.size());
+  int stitched = 0;
+  for (std::size_t i = 0; i < a.placements.size(); ++i) {
+    EXPECT_EQ(a.placements[i].ux, b.placements[i].ux) << i;
+    EXPECT_EQ(a.placements[i].uy, b.placements[i].uy) << i;
+    EXPECT_EQ(a.placements[i].empty, b.placements[i].empty) << i;
+    EXPECT_EQ(a.placements[i].stitch, b.placements[i].stitch) << i;
+    stitched += !a.placements[i].stitch.empty();
+  }
+  EXPECT_GT(stitched, 0);
+  // The check reads the same tiles: no violation on the sparse canvas either.
+  const RenderedPattern out = render_pattern(chain, ribbon, a, canvas, Window::whole(canvas));
+  EXPECT_EQ(count_avoidance_violations(out, detail::combined_avoidance(ribbon, canvas, &sparse)),
+            0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Synth, Shapes,

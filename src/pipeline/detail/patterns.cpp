@@ -8,9 +8,10 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "raster/avoidance.hpp"
 #include "raster/foldover.hpp"
-#include "raster/rasterize.hpp"
 #include "synth/detail/backend_factory.hpp"
+#include "synth/pattern_canvas.hpp"
 #include "synth/render.hpp"
 
 namespace tw::detail {
@@ -28,23 +29,6 @@ std::uint64_t splitmix64(std::uint64_t x) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Copies the 1s of `source` (on its canvas) onto `target` (on `target_grid`); both canvases lie
-// on the same world lattice, so the offset between them is a whole number of cells.
-void add_on_lattice(const Raster<std::uint8_t>& source, const GridSpec& source_grid,
-                    Raster<std::uint8_t>& target, const GridSpec& target_grid) {
-  const int dc =
-      int(std::lround((source_grid.origin_x - target_grid.origin_x) / target_grid.pixel_width));
-  const int dr =
-      int(std::lround((target_grid.origin_y - source_grid.origin_y) / target_grid.pixel_height));
-  const int row0 = std::max(0, -dr), row1 = std::min(source.height, target.height - dr);
-  const int col0 = std::max(0, -dc), col1 = std::min(source.width, target.width - dc);
-  for (int row = row0; row < row1; ++row) {
-    for (int col = col0; col < col1; ++col) {
-      if (source.at(col, row)) target.at(col + dc, row + dr) = 1;
-    }
-  }
 }
 
 bool overlaps(const GridSpec& a, const GridSpec& b) {
@@ -78,86 +62,6 @@ std::string pattern_label(const FeatureClassConfig& c, std::int64_t fid) {
   return fmt::format("features.{}: FID {}", c.name, fid);
 }
 
-// Renders the pattern on its canvas tile by tile (memory bounded by a tile, whatever the
-// feature's length), skipping tiles far from every piece; counts opaque pixels on forbidden
-// ones with the synthesizer's criterion and marks every covered pixel in `opaque`.
-std::int64_t check_and_mark_opaque(const Exemplar& exemplar, const Ribbon& ribbon,
-                                   const Synthesis& synthesis, const GridSpec& canvas,
-                                   const Raster<std::uint8_t>& forbidden, bool stitch,
-                                   Raster<std::uint8_t>& opaque) {
-  constexpr int kTile = 512;
-  const int tiles_x = (canvas.width + kTile - 1) / kTile;
-  const int tiles_y = (canvas.height + kTile - 1) / kTile;
-  std::vector<std::uint8_t> touched(std::size_t(tiles_x) * tiles_y, 0);
-  for (const Piece& piece : ribbon.pieces) {
-    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-    for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = canvas.world_to_pixel(c);
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
-    const int tx0 = std::clamp(int(std::floor(lo.x - 1)) / kTile, 0, tiles_x - 1);
-    const int tx1 = std::clamp(int(std::floor(hi.x + 1)) / kTile, 0, tiles_x - 1);
-    const int ty0 = std::clamp(int(std::floor(lo.y - 1)) / kTile, 0, tiles_y - 1);
-    const int ty1 = std::clamp(int(std::floor(hi.y + 1)) / kTile, 0, tiles_y - 1);
-    for (int ty = ty0; ty <= ty1; ++ty) {
-      for (int tx = tx0; tx <= tx1; ++tx) touched[std::size_t(ty) * tiles_x + tx] = 1;
-    }
-  }
-  std::int64_t violations = 0;
-  for (int ty = 0; ty < tiles_y; ++ty) {
-    for (int tx = 0; tx < tiles_x; ++tx) {
-      if (!touched[std::size_t(ty) * tiles_x + tx]) continue;
-      const Window window{tx * kTile, ty * kTile, std::min(kTile, canvas.width - tx * kTile),
-                          std::min(kTile, canvas.height - ty * kTile)};
-      const RenderedPattern rendered =
-          render_pattern(exemplar, ribbon, synthesis, canvas, window, stitch);
-      for (int row = 0; row < window.height; ++row) {
-        for (int col = 0; col < window.width; ++col) {
-          if (rendered.coverage.at(col, row) > 0.0f) {
-            opaque.at(window.col0 + col, window.row0 + row) = 1;
-          }
-        }
-      }
-      violations += count_avoidance_violations(rendered, forbidden);
-    }
-  }
-  return violations;
-}
-
-// A closed curve starting at its first piece whose corners all lie on free canvas cells: the
-// synthesizer's closed mode needs piece 0 to have a valid position, and a ring often starts
-// where it meets another road (a junction disc). Unchanged when no piece is clear.
-Curve start_in_the_clear(const Curve& curve, const Ribbon& ribbon, const GridSpec& canvas,
-                         const Raster<std::uint8_t>& forbidden) {
-  auto free_at = [&](Vec2 world) {
-    const Vec2 p = canvas.world_to_pixel(world);
-    const int col = int(std::floor(p.x)), row = int(std::floor(p.y));
-    return !forbidden.inside(col, row) || !forbidden.at(col, row);
-  };
-  for (std::size_t k = 0; k < ribbon.pieces.size(); ++k) {
-    const Piece& piece = ribbon.pieces[k];
-    const Vec2 centre =
-        0.25 * (piece.top_left + piece.bottom_left + piece.bottom_right + piece.top_right);
-    if (!(free_at(piece.top_left) && free_at(piece.bottom_left) && free_at(piece.bottom_right) &&
-          free_at(piece.top_right) && free_at(centre))) {
-      continue;
-    }
-    if (k == 0) return curve;
-    const std::vector<double> cumulative = cumulative_lengths(curve);
-    const double start = double(k) * ribbon.delta;
-    Curve rotated;
-    rotated.closed = true;
-    rotated.points.push_back(point_at(curve, cumulative, start));
-    const std::size_t n = curve.points.size();
-    std::size_t first = 0;
-    while (first < n && cumulative[first] <= start) ++first;
-    for (std::size_t i = 0; i < n; ++i) rotated.points.push_back(curve.points[(first + i) % n]);
-    return without_duplicates(rotated);
-  }
-  return curve;
-}
-
 }  // namespace
 
 std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid) {
@@ -165,25 +69,6 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
   h = splitmix64(h ^ class_seed);
   h = splitmix64(h ^ std::uint64_t(fid));
   return h == 0 ? 1 : h;
-}
-
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m) {
-  Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-  for (const Piece& piece : ribbon.pieces) {
-    for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
-      hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
-    }
-  }
-  const double x0 = std::floor((lo.x - halo_m) / resolution) * resolution;
-  const double y1 = std::ceil((hi.y + halo_m) / resolution) * resolution;
-  GridSpec grid;
-  grid.pixel_width = grid.pixel_height = resolution;
-  grid.origin_x = x0;
-  grid.origin_y = y1;
-  grid.width = int(std::ceil((hi.x + halo_m - x0) / resolution));
-  grid.height = int(std::ceil((y1 - (lo.y - halo_m)) / resolution));
-  return grid;
 }
 
 Exemplar load_exemplar_with_height(const fs::path& path, bool continuous_alpha) {
@@ -217,6 +102,14 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
     plan.backend = parse_backend_kind(backend);
   }
 
+  // What every pattern avoids besides its own fold-overs and the patterns before it.
+  AvoidanceInputs fixed;
+  fixed.polygons = existing.polygons;
+  fixed.lines = existing.lines;
+  fixed.line_widths = existing.line_widths;
+  fixed.junction_discs = ribbons.synthesis_junction_discs;
+  fixed.include_foldovers = false;
+
   Backends backends;
   const double cell = config.synthesis_resolution;
   for (const ClassPlan& plan : plans) {
@@ -237,27 +130,39 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       FeatureSynthesisReport& report = pattern.report;
       report.seed = feature_seed(config.seed, synthesis.seed, line.fid);
 
-      // Avoidance on the feature's canvas: a halo of a cell beyond the pieces.
+      // Avoidance on the feature's canvas (a halo of a cell beyond the pieces), on the tiles
+      // the synthesis reads.
       auto started = std::chrono::steady_clock::now();
       pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell);
       const GridSpec& canvas = pattern.canvas;
-      const Window whole = Window::whole(canvas);
-      Raster<std::uint8_t> forbidden(canvas.width, canvas.height, 0);
-      burn_polygons(existing.polygons, canvas, whole, forbidden, 1);
-      burn_buffered_lines(existing.lines, existing.line_widths, canvas, whole, forbidden, 1);
-      burn_polygons(ribbons.synthesis_junction_discs, canvas, whole, forbidden, 1);
-      for (const FeaturePattern& earlier : run.patterns) {
-        if (overlaps(earlier.canvas, canvas)) {
-          add_on_lattice(earlier.opaque, earlier.canvas, forbidden, canvas);
+      auto forbidden_on = [&](const std::vector<TileIndex>& tiles) {
+        SparseRaster<std::uint8_t> forbidden(canvas.width, canvas.height, 0, options.canvas_tile);
+        add_tiles(forbidden, tiles);
+        burn_avoidance(fixed, canvas, forbidden);
+        for (const FeaturePattern& earlier : run.patterns) {
+          if (overlaps(earlier.canvas, canvas)) {
+            add_on_lattice(earlier.opaque, earlier.canvas, forbidden, canvas);
+          }
         }
-      }
+        return forbidden;
+      };
+      std::vector<TileIndex> tiles = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
+      SparseRaster<std::uint8_t> forbidden = forbidden_on(tiles);
       if (curve.closed) {
         pattern.ribbon = make_ribbon(start_in_the_clear(curve, pattern.ribbon, canvas, forbidden),
                                      {width, synthesis.delta, 0.0});
+        // The rotated ribbon's pieces differ: it may read a tile more.
+        std::vector<TileIndex> more = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
+        more.erase(std::remove_if(more.begin(), more.end(),
+                                  [&](TileIndex t) { return forbidden.has_tile(t); }),
+                   more.end());
+        if (!more.empty()) {
+          tiles.insert(tiles.end(), more.begin(), more.end());
+          forbidden = forbidden_on(tiles);
+        }
       }
       const Ribbon& ribbon = pattern.ribbon;
-      const Raster<std::uint8_t> folds = foldover_mask(ribbon, canvas, whole);
-      for (std::size_t i = 0; i < folds.pixels.size(); ++i) forbidden.pixels[i] |= folds.pixels[i];
+      add_foldovers(ribbon, canvas, forbidden);
       report.avoidance_seconds = seconds_since(started);
 
       // Synthesis: by seed one exemplar, or every exemplar and the lowest Omega / N.
@@ -300,9 +205,10 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       // The check: opaque pattern pixels on forbidden canvas pixels, by the synthesizer's own
       // criterion; then the opaque coverage that later features avoid.
       started = std::chrono::steady_clock::now();
-      pattern.opaque = Raster<std::uint8_t>(canvas.width, canvas.height, 0);
-      report.violations = check_and_mark_opaque(exemplar, ribbon, result, canvas, forbidden,
-                                                synthesis.stitch, pattern.opaque);
+      PatternCheck check =
+          check_pattern(exemplar, ribbon, result, canvas, forbidden, synthesis.stitch);
+      pattern.opaque = std::move(check.opaque);
+      report.violations = check.violations;
       if (report.violations != 0) {
         fail("{}: the pattern puts {} opaque pixels on forbidden ones (a synthesis bug)", label,
              report.violations);
@@ -323,10 +229,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       report.canvas_height = canvas.height;
       logger().info(
           "{}: {} pieces, {:.0f} valid positions per piece, Omega {}, {:.2f} per seam ({:.2f} "
-          "stitched), {} empty, {} violations, canvas {}x{}, {:.2f} s",
+          "stitched), {} empty, {} violations, canvas {}x{} ({} tiles, {:.1f} MB), {:.2f} s",
           label, ribbon.pieces.size(), report.mean_valid_positions, report.omega,
           report.mean_seam_cost, report.mean_seam_cost_stitched, empty, report.violations,
-          canvas.width, canvas.height,
+          canvas.width, canvas.height, forbidden.tile_count(),
+          double(forbidden.allocated_bytes()) / 1e6,
           report.avoidance_seconds + report.synthesis_seconds + report.render_seconds);
       run.patterns.push_back(std::move(pattern));
     }
@@ -347,52 +254,64 @@ std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemp
 
 void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
                     Raster<float>& height, SplatLayers& splat) {
+  // Tile by tile over the cells near the ribbon: a pixel's render never depends on the window,
+  // so memory follows the ribbon on the output grid too, with the same bits.
+  constexpr int kTile = 256;
   for (const FeaturePattern& pattern : run.patterns) {
     if (!pattern.on_ground) continue;  // a bridge's or tunnel's pattern is in its placements only
     const FeatureClassConfig& c = config.features[pattern.class_index];
     const Ribbon& ribbon = pattern.ribbon;
     const Exemplar& exemplar = run.exemplars[pattern.exemplar_index];
-    const Window window = ribbon_window(ribbon, grid);
-    if (window.width == 0) continue;
-    const RenderedPattern rendered =
-        render_pattern(exemplar, ribbon, pattern.synthesis, grid, window, c.synthesis->stitch,
-                       c.synthesis->feather);
-    for (const ChannelMapping& m : mappings_of(c, exemplar)) {
+    if (ribbon_window(ribbon, grid).width == 0) continue;  // off the grid: no band is added
+    const std::vector<ChannelMapping> mappings = mappings_of(c, exemplar);
+    std::vector<int> channels;
+    for (const ChannelMapping& m : mappings) {
       const int channel = exemplar.channel_index(m.channel);
       if (channel < 0) {
         fail("features.{}.synthesis.channels.{}: exemplar {} has no channel '{}' (it has {})",
              c.name, m.channel, exemplar.path, m.channel, fmt::join(exemplar.channel_names, ", "));
       }
-      const Raster<float>& values = rendered.channels[channel];
-      if (m.target == "height") {
-        const float factor = float(c.synthesis->height_detail);
+      channels.push_back(channel);
+    }
+    const SparseRaster<std::uint8_t> layout(grid.width, grid.height, 0, kTile);
+    for (const TileIndex t : ribbon_tiles(ribbon, grid, kTile, kCanvasHalo)) {
+      const Window window = layout.tile_window(t);
+      const RenderedPattern rendered =
+          render_pattern(exemplar, ribbon, pattern.synthesis, grid, window, c.synthesis->stitch,
+                         c.synthesis->feather);
+      for (std::size_t k = 0; k < mappings.size(); ++k) {
+        const ChannelMapping& m = mappings[k];
+        const Raster<float>& values = rendered.channels[std::size_t(channels[k])];
+        if (m.target == "height") {
+          const float factor = float(c.synthesis->height_detail);
+          for (int row = 0; row < window.height; ++row) {
+            for (int col = 0; col < window.width; ++col) {
+              const float coverage = rendered.coverage.at(col, row);
+              float& h = height.at(window.col0 + col, window.row0 + row);
+              if (coverage > 0.0f && !std::isnan(h)) h += factor * values.at(col, row) * coverage;
+            }
+          }
+          continue;
+        }
+        const std::string material = m.target.substr(6);  // after "splat."
+        auto it = std::find(splat.materials.begin(), splat.materials.end(), material);
+        if (it == splat.materials.end()) {
+          splat.materials.push_back(material);
+          splat.weights.emplace_back(grid.width, grid.height, 0.0f);
+          it = splat.materials.end() - 1;
+        }
+        const std::size_t target = std::size_t(it - splat.materials.begin());
+        const bool is_alpha = m.channel == "A";
         for (int row = 0; row < window.height; ++row) {
           for (int col = 0; col < window.width; ++col) {
             const float coverage = rendered.coverage.at(col, row);
-            float& h = height.at(window.col0 + col, window.row0 + row);
-            if (coverage > 0.0f && !std::isnan(h)) h += factor * values.at(col, row) * coverage;
+            if (!(coverage > 0.0f)) continue;
+            const float share =
+                std::clamp(is_alpha ? coverage : coverage * values.at(col, row), 0.0f, 1.0f);
+            const int x = window.col0 + col, y = window.row0 + row;
+            for (auto& band : splat.weights) band.at(x, y) *= 1.0f - share;
+            splat.weights[target].at(x, y) += share;
           }
-        }
-        continue;
-      }
-      const std::string material = m.target.substr(6);  // after "splat."
-      auto it = std::find(splat.materials.begin(), splat.materials.end(), material);
-      if (it == splat.materials.end()) {
-        splat.materials.push_back(material);
-        splat.weights.emplace_back(grid.width, grid.height, 0.0f);
-        it = splat.materials.end() - 1;
-      }
-      const std::size_t target = std::size_t(it - splat.materials.begin());
-      const bool is_alpha = m.channel == "A";
-      for (int row = 0; row < window.height; ++row) {
-        for (int col = 0; col < window.width; ++col) {
-          const float coverage = rendered.coverage.at(col, row);
-          if (!(coverage > 0.0f)) continue;
-          const float share =
-              std::clamp(is_alpha ? coverage : coverage * values.at(col, row), 0.0f, 1.0f);
-          const int x = window.col0 + col, y = window.row0 + row;
-          for (auto& band : splat.weights) band.at(x, y) *= 1.0f - share;
-          splat.weights[target].at(x, y) += share;
         }
       }
     }

@@ -15,6 +15,7 @@
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/run.hpp"
+#include "raster/sparse_raster.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/synthesize.hpp"
 #include "terrain/splat.hpp"
@@ -24,11 +25,6 @@ namespace tw::detail {
 // The feature's synthesis seed: splitmix64 over (run seed, class seed, FID), never 0 (0 would
 // ask the synthesizer for the seedless global optimum).
 std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid);
-
-// Cells of `resolution` metres whose edges lie on multiples of `resolution` in world
-// coordinates, covering the ribbon's pieces plus `halo_m`: the same cells whatever the output
-// grid, so placements never depend on it.
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m);
 
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
 Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
@@ -40,8 +36,8 @@ struct FeaturePattern {
   bool on_ground = true;           // false for a bridge or tunnel: not written into the layers
   Ribbon ribbon;                   // the synthesis ribbon (synthesis.width, or the feature's)
   Synthesis synthesis;
-  GridSpec canvas;
-  Raster<std::uint8_t> opaque;  // canvas-sized: 1 where the rendered pattern has coverage > 0
+  GridSpec canvas;                    // synthesis_canvas (synth/pattern_canvas.hpp)
+  SparseRaster<std::uint8_t> opaque;  // over canvas: 1 where the rendered pattern has coverage > 0
   FeatureSynthesisReport report;
 };
 
@@ -52,6 +48,9 @@ struct PatternRun {
 
 struct PatternOptions {
   std::optional<std::string> backend;  // replaces every class's backend (RunOptions::backend)
+  // Cells per side of a canvas tile; 0: one tile for the whole canvas (the dense canvas, for
+  // tests: the same results).
+  int canvas_tile = SparseRaster<std::uint8_t>::kDefaultTileSize;
 };
 
 // Throws tw::Error naming the class and FID (and the piece) of a feature without room for its

@@ -9,9 +9,11 @@
 
 namespace tw::detail {
 
-Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& canvas) {
-  Raster<std::uint8_t> coverage(canvas.width, canvas.height, 0);  // saturating piece count
-  Raster<std::uint8_t> mask(canvas.width, canvas.height, 0);
+SparseRaster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& canvas,
+                                         int tile_size) {
+  // Saturating piece count per pixel, on the tiles the pieces touch.
+  SparseRaster<std::uint8_t> coverage(canvas.width, canvas.height, 0, tile_size);
+  SparseRaster<std::uint8_t> mask(canvas.width, canvas.height, 0, tile_size);
   for (const Piece& piece : ribbon.pieces) {
     double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
     for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
@@ -27,25 +29,37 @@ Raster<std::uint8_t> foldover_mask(const Ribbon& ribbon, const GridSpec& canvas)
       for (int col = c0; col <= c1; ++col) {
         const int w = piece_winding(piece, canvas.pixel_centre_world(col, row));
         if (w == 0) continue;
-        if (w < 0 || std::abs(w) > 1) mask.at(col, row) = 1;
-        std::uint8_t& count = coverage.at(col, row);
-        if (count > 0) mask.at(col, row) = 1;
-        count = std::uint8_t(std::min(255, count + 1));
+        const std::uint8_t count = coverage.at(col, row);
+        if (w < 0 || std::abs(w) > 1 || count > 0) mask.set(col, row, 1);
+        coverage.set(col, row, std::uint8_t(std::min(255, count + 1)));
       }
     }
   }
   return mask;
 }
 
-Raster<std::uint8_t> combined_avoidance(const Ribbon& ribbon, const GridSpec& canvas,
-                                        const Raster<std::uint8_t>* forbidden) {
-  Raster<std::uint8_t> mask = foldover_mask(ribbon, canvas);
+SparseRaster<std::uint8_t> combined_avoidance(const Ribbon& ribbon, const GridSpec& canvas,
+                                              const SparseRaster<std::uint8_t>* forbidden) {
+  if (forbidden && (forbidden->width() != canvas.width || forbidden->height() != canvas.height))
+    fail("avoidance map is {}x{} pixels but the canvas is {}x{}", forbidden->width(),
+         forbidden->height(), canvas.width, canvas.height);
+  if (forbidden && forbidden->background() != 0)
+    fail("avoidance map: absent tiles must read as free (background 0)");
+  const int tile_size =
+      forbidden ? forbidden->tile_size() : SparseRaster<std::uint8_t>::kDefaultTileSize;
+  const SparseRaster<std::uint8_t> folds = foldover_mask(ribbon, canvas, tile_size);
+  SparseRaster<std::uint8_t> mask(canvas.width, canvas.height, 0, tile_size);
   if (forbidden) {
-    if (forbidden->width != canvas.width || forbidden->height != canvas.height)
-      fail("avoidance map is {}x{} pixels but the canvas is {}x{}", forbidden->width,
-           forbidden->height, canvas.width, canvas.height);
-    for (std::size_t i = 0; i < mask.pixels.size(); ++i)
-      mask.pixels[i] = (mask.pixels[i] || forbidden->pixels[i]) ? 1 : 0;
+    for (const TileIndex t : forbidden->tiles()) {
+      const Raster<std::uint8_t>& from = *forbidden->tile(t);
+      Raster<std::uint8_t>& to = mask.add_tile(t);
+      for (std::size_t i = 0; i < from.pixels.size(); ++i) to.pixels[i] = from.pixels[i] ? 1 : 0;
+    }
+  }
+  for (const TileIndex t : folds.tiles()) {
+    const Raster<std::uint8_t>& from = *folds.tile(t);
+    Raster<std::uint8_t>& to = mask.add_tile(t);
+    for (std::size_t i = 0; i < from.pixels.size(); ++i) to.pixels[i] |= from.pixels[i];
   }
   return mask;
 }

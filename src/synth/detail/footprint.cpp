@@ -89,7 +89,8 @@ Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int
 }
 
 PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
-                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                                    const GridSpec& canvas,
+                                    const SparseRaster<std::uint8_t>* forbidden,
                                     double min_coverage) {
   const PieceFrame frame = piece_frame(piece, scale);
   const Vec2 q_top_left = to_exemplar(frame, piece.top_left);
@@ -130,7 +131,7 @@ PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column
       // A texel of the piece whose centre lands on a forbidden pixel must stay transparent.
       const Vec2 pixel = canvas.world_to_pixel(to_world(frame, centre));
       const int col = int(std::floor(pixel.x)), row = int(std::floor(pixel.y));
-      if (forbidden->inside(col, row) && forbidden->at(col, row)) blocked.insert({y, x});
+      if (forbidden->at(col, row)) blocked.insert({y, x});
     }
   }
 
@@ -145,9 +146,9 @@ PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column
       pmin_y = std::min(pmin_y, p.y), pmax_y = std::max(pmax_y, p.y);
     }
     const int c0 = std::max(0, int(std::floor(pmin_x)) - 1);
-    const int c1 = std::min(forbidden->width - 1, int(std::floor(pmax_x)) + 1);
+    const int c1 = std::min(forbidden->width() - 1, int(std::floor(pmax_x)) + 1);
     const int r0 = std::max(0, int(std::floor(pmin_y)) - 1);
-    const int r1 = std::min(forbidden->height - 1, int(std::floor(pmax_y)) + 1);
+    const int r1 = std::min(forbidden->height() - 1, int(std::floor(pmax_y)) + 1);
     for (int row = r0; row <= r1; ++row) {
       for (int col = c0; col <= c1; ++col) {
         if (!forbidden->at(col, row)) continue;

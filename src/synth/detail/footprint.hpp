@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "core/grid.hpp"
+#include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
 #include "synth/detail/stages.hpp"
 
@@ -36,11 +37,13 @@ int piece_winding(const Piece& piece, Vec2 world);
 int supersampling(double scale, const GridSpec& canvas);
 Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int n);
 
-// The footprint of `piece`. `forbidden` (over `canvas`, non-zero = forbidden) may be null.
+// The footprint of `piece`. `forbidden` (over `canvas`, non-zero = forbidden) may be null; it
+// is read within a pixel of the piece's box.
 // `min_coverage` in [0, 1): the fraction of interior texels that must be opaque at a valid
 // position (at least one texel whatever the fraction).
 PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column,
-                                    const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                                    const GridSpec& canvas,
+                                    const SparseRaster<std::uint8_t>* forbidden,
                                     double min_coverage = 0.0);
 
 }  // namespace tw::detail

@@ -38,7 +38,7 @@ std::vector<std::uint32_t> left_samples(const CostTexels& texels, int C, int ux,
 // Does the stitched mapping of piece i keep every forbidden subsample on transparent texels?
 bool stitch_respects_avoidance(const CostTexels& texels, const Placement& placement,
                                const Piece& piece, const GridSpec& canvas,
-                               const Raster<std::uint8_t>& avoidance, int n) {
+                               const SparseRaster<std::uint8_t>& avoidance, int n) {
   double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
   for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
     const Vec2 p = canvas.world_to_pixel(w);
@@ -70,7 +70,7 @@ bool stitch_respects_avoidance(const CostTexels& texels, const Placement& placem
 }  // namespace
 
 Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
-                        const GridSpec& canvas, const Raster<std::uint8_t>* forbidden,
+                        const GridSpec& canvas, const SparseRaster<std::uint8_t>* forbidden,
                         const SynthParams& params) {
   const auto start = Clock::now();
   if (!(params.scale > 0.0) || !std::isfinite(params.scale))
@@ -88,7 +88,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   out.backend = backend.name();
   out.column = C;
   out.closed = ribbon.closed;
-  const Raster<std::uint8_t> avoidance = combined_avoidance(ribbon, canvas, forbidden);
+  const SparseRaster<std::uint8_t> avoidance = combined_avoidance(ribbon, canvas, forbidden);
   DpInput input;
   input.texels = &texels;
   input.space = space;

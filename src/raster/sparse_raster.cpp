@@ -1,0 +1,72 @@
+#include "raster/sparse_raster.hpp"
+
+#include <cmath>
+
+namespace tw {
+
+std::vector<TileIndex> ribbon_tiles(const Ribbon& ribbon, const GridSpec& grid, int tile_size,
+                                    int halo) {
+  if (grid.width <= 0 || grid.height <= 0) return {};
+  if (tile_size <= 0) tile_size = std::max(grid.width, grid.height);
+  const int tiles_x = (grid.width + tile_size - 1) / tile_size;
+  const int tiles_y = (grid.height + tile_size - 1) / tile_size;
+  std::vector<std::uint8_t> met(std::size_t(tiles_x) * tiles_y, 0);
+  for (const Piece& piece : ribbon.pieces) {
+    double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
+    for (const Vec2 w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
+      const Vec2 p = grid.world_to_pixel(w);
+      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+    }
+    if (!(std::isfinite(min_x) && std::isfinite(max_x) && std::isfinite(min_y) &&
+          std::isfinite(max_y)))
+      continue;
+    // In double first: a corner far off the grid must not overflow an int.
+    const double c0 = std::floor(min_x) - halo, c1 = std::floor(max_x) + halo;
+    const double r0 = std::floor(min_y) - halo, r1 = std::floor(max_y) + halo;
+    if (c1 < 0 || r1 < 0 || c0 >= grid.width || r0 >= grid.height) continue;
+    const int tx0 = int(std::max(0.0, c0)) / tile_size;
+    const int tx1 = int(std::min(double(grid.width - 1), c1)) / tile_size;
+    const int ty0 = int(std::max(0.0, r0)) / tile_size;
+    const int ty1 = int(std::min(double(grid.height - 1), r1)) / tile_size;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) met[std::size_t(ty) * tiles_x + tx] = 1;
+  }
+  std::vector<TileIndex> tiles;
+  for (int ty = 0; ty < tiles_y; ++ty)
+    for (int tx = 0; tx < tiles_x; ++tx)
+      if (met[std::size_t(ty) * tiles_x + tx]) tiles.push_back({tx, ty});
+  return tiles;
+}
+
+void add_on_lattice(const SparseRaster<std::uint8_t>& source, const GridSpec& source_grid,
+                    SparseRaster<std::uint8_t>& target, const GridSpec& target_grid) {
+  const int dc =
+      int(std::lround((source_grid.origin_x - target_grid.origin_x) / target_grid.pixel_width));
+  const int dr =
+      int(std::lround((target_grid.origin_y - source_grid.origin_y) / target_grid.pixel_height));
+  const int size = target.tile_size();
+  for (const TileIndex s : source.tiles()) {
+    const Window from = source.tile_window(s);
+    const Raster<std::uint8_t>& cells = *source.tile(s);
+    // The source tile in target cells, clipped to the target.
+    const int col0 = std::max(0, from.col0 + dc),
+              col1 = std::min(target.width(), from.col_end() + dc);
+    const int row0 = std::max(0, from.row0 + dr),
+              row1 = std::min(target.height(), from.row_end() + dr);
+    if (col0 >= col1 || row0 >= row1) continue;
+    for (int ty = row0 / size; ty <= (row1 - 1) / size; ++ty) {
+      for (int tx = col0 / size; tx <= (col1 - 1) / size; ++tx) {
+        Raster<std::uint8_t>* to = target.tile({tx, ty});
+        if (to == nullptr) continue;
+        const Window w = target.tile_window({tx, ty});
+        for (int row = std::max(row0, w.row0); row < std::min(row1, w.row_end()); ++row)
+          for (int col = std::max(col0, w.col0); col < std::min(col1, w.col_end()); ++col)
+            if (cells.at(col - dc - from.col0, row - dr - from.row0))
+              to->at(col - w.col0, row - w.row0) = 1;
+      }
+    }
+  }
+}
+
+}  // namespace tw
