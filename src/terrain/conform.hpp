@@ -1,0 +1,37 @@
+#pragma once
+// Conformance of a vector line to the DEM: a river centreline drawn at 1:250 000 crosses the
+// spurs of a 90 m DEM; moving it onto the valley floor (or a ridge line onto its crest) within
+// a corridor keeps the carve shallow. The method is a least-cost path over the DEM cells of the
+// corridor (docs/terrain.md, "Conformance", cites the stream-burning literature behind it).
+#include "core/grid.hpp"
+#include "ribbon/curve.hpp"
+
+namespace tw {
+
+enum class ConformTarget { valley_floor, crest };
+
+struct ConformOptions {
+  double corridor = 0.0;  // metres either side of the line; <= 0: the line is kept
+  ConformTarget target = ConformTarget::valley_floor;
+};
+
+struct ConformResult {
+  Curve line;                     // the conformed line; the given one when not moved
+  bool conformed = false;         // false: kept as given (see `kept_because`)
+  const char* kept_because = "";  // why not conformed (closed, over nodata, ...), "" otherwise
+  double max_move = 0.0;          // metres: the largest distance between the two lines
+  double mean_move = 0.0;         // metres: mean distance of the conformed line from the given one
+};
+
+// The least-cost 8-connected path over the non-nodata cells within `corridor` metres of the
+// line, from the cell of its first point to the cell of its last, smoothed; the ends keep their
+// exact positions (clipped ends and junctions stay where they are). Closed lines, lines whose
+// ends lie over nodata or off the grid, and corridors that nodata cuts in two are kept as given.
+// Deterministic (ties broken by the lowest cell index).
+ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,
+                           const ConformOptions& options);
+
+// Metres from `p` to the nearest point of the polyline.
+double distance_to_line(const Curve& line, Vec2 p);
+
+}  // namespace tw
