@@ -49,6 +49,10 @@ struct FeatureReport {
   double width_m = 0.0;
   int pieces = 0;  // ribbon pieces of length delta (0 when shorter than one piece)
   std::optional<FeatureSynthesisReport> synthesis;
+  // Conformance (docs/terrain.md): how far the line was moved onto the DEM (0: as drawn), and
+  // the largest cut (below the terrain) and fill (above it) of its centreline profile.
+  double moved_max_m = 0.0, moved_mean_m = 0.0;
+  double cut_max_m = 0.0, fill_max_m = 0.0;
 };
 
 struct FeatureClassReport {

@@ -22,13 +22,13 @@ constexpr double kDistanceWeight = 4.0;         // times kLengthWeight at the co
 constexpr std::int64_t kMaxCells = 20'000'000;  // beyond this the corridor is not searched
 
 struct CorridorCell {
-  std::int64_t id = 0;  // row * grid.width + col
-  double height = 0.0;
+  std::int64_t id = 0;    // row * grid.width + col
+  double height = 0.0;    // NaN over nodata
   double distance = 0.0;  // metres from the given line
   double along = 0.0;     // arc length of the nearest point of the given line
 };
 
-// The non-nodata cells whose centres lie within `corridor` of the line, sorted by id.
+// The cells whose centres lie within `corridor` of the line, sorted by id.
 std::vector<CorridorCell> corridor_cells(const Raster<float>& height, const GridSpec& grid,
                                          const Curve& line, double corridor) {
   double x0 = line.points[0].x, x1 = x0, y0 = line.points[0].y, y1 = y0;
@@ -54,7 +54,7 @@ std::vector<CorridorCell> corridor_cells(const Raster<float>& height, const Grid
         for (int c = 0; c < tile.width; ++c) {
           const auto& n = s[std::size_t(r) * tile.width + c];
           const float h = height.at(tile.col0 + c, tile.row0 + r);
-          if (!std::isfinite(n.distance) || std::isnan(h)) continue;
+          if (!std::isfinite(n.distance)) continue;
           cells.push_back(
               {std::int64_t(tile.row0 + r) * grid.width + tile.col0 + c, h, n.distance, n.along});
         }
@@ -66,7 +66,8 @@ std::vector<CorridorCell> corridor_cells(const Raster<float>& height, const Grid
 }
 
 // Per cell, the cost per metre: height above the lowest (below the highest) cell of the
-// corridor within one corridor width along the line, plus the length term.
+// corridor within one corridor width along the line, plus the length term. A river along a
+// border (the DEM's nodata edge) may run over nodata, where nothing is carved.
 std::vector<double> cost_density(const std::vector<CorridorCell>& cells, double corridor,
                                  ConformTarget target) {
   const double sign = target == ConformTarget::valley_floor ? 1.0 : -1.0;
@@ -76,7 +77,7 @@ std::vector<double> cost_density(const std::vector<CorridorCell>& cells, double 
   std::vector<double> floor(bins, std::numeric_limits<double>::infinity());
   for (const auto& c : cells) {
     double& f = floor[std::size_t(c.along / corridor)];
-    f = std::min(f, sign * c.height);
+    if (!std::isnan(c.height)) f = std::min(f, sign * c.height);
   }
   std::vector<double> density(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -84,32 +85,22 @@ std::vector<double> cost_density(const std::vector<CorridorCell>& cells, double 
     double local = floor[b];
     if (b > 0) local = std::min(local, floor[b - 1]);
     if (b + 1 < bins) local = std::min(local, floor[b + 1]);
-    density[i] = sign * cells[i].height - local +
-                 kLengthWeight * (1.0 + kDistanceWeight * cells[i].distance / corridor);
+    // Nodata is never carved (nor read as a height): crossing it costs its length only.
+    const double above = std::isnan(cells[i].height) ? 0.0 : sign * cells[i].height - local;
+    density[i] = above + kLengthWeight * (1.0 + kDistanceWeight * cells[i].distance / corridor);
   }
   return density;
 }
 
-// Index in `cells` of the cell holding p, or the corridor cell nearest to it; -1 if none is
-// within one cell diagonal.
-std::ptrdiff_t end_cell(const std::vector<CorridorCell>& cells, const GridSpec& grid, Vec2 p) {
+// Index in `cells` of the corridor cell holding p, or -1.
+std::ptrdiff_t cell_at(const std::vector<CorridorCell>& cells, const GridSpec& grid, Vec2 p) {
   const Vec2 px = grid.world_to_pixel(p);
-  const int col = int(std::floor(px.x)), row = int(std::floor(px.y));
-  std::ptrdiff_t best = -1;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int dr = -1; dr <= 1; ++dr)
-    for (int dc = -1; dc <= 1; ++dc) {
-      const int c = col + dc, r = row + dr;
-      if (c < 0 || r < 0 || c >= grid.width || r >= grid.height) continue;
-      const std::int64_t id = std::int64_t(r) * grid.width + c;
-      const auto it =
-          std::lower_bound(cells.begin(), cells.end(), id,
-                           [](const CorridorCell& x, std::int64_t v) { return x.id < v; });
-      if (it == cells.end() || it->id != id) continue;
-      const double d = distance(grid.pixel_centre_world(c, r), p) + (dr != 0 || dc != 0 ? 1e-9 : 0);
-      if (d < best_d) best_d = d, best = it - cells.begin();
-    }
-  return best;
+  const double col = std::floor(px.x), row = std::floor(px.y);
+  if (!(col >= 0.0 && row >= 0.0 && col < grid.width && row < grid.height)) return -1;
+  const std::int64_t id = std::int64_t(row) * grid.width + std::int64_t(col);
+  const auto it = std::lower_bound(cells.begin(), cells.end(), id,
+                                   [](const CorridorCell& x, std::int64_t v) { return x.id < v; });
+  return it != cells.end() && it->id == id ? it - cells.begin() : -1;
 }
 
 // Dijkstra over the 8-connected corridor cells; the cells of the cheapest path, start to
@@ -159,9 +150,8 @@ std::vector<std::size_t> least_cost_path(const std::vector<CorridorCell>& cells,
   return path;
 }
 
-// A moving average over +-2 vertices takes the staircase out of a cell path; ends are pinned,
-// and a vertex that the average would put over nodata (a corner cut) stays on its cell.
-Curve smoothed(std::vector<Vec2> points, const Raster<float>& height, const GridSpec& grid) {
+// A moving average over +-2 vertices takes the staircase out of a cell path; ends are pinned.
+Curve smoothed(std::vector<Vec2> points) {
   constexpr int kHalf = 2;
   const auto n = std::ptrdiff_t(points.size());
   std::vector<Vec2> out = points;
@@ -169,11 +159,7 @@ Curve smoothed(std::vector<Vec2> points, const Raster<float>& height, const Grid
     const std::ptrdiff_t h = std::min<std::ptrdiff_t>({kHalf, i, n - 1 - i});
     Vec2 sum{0.0, 0.0};
     for (std::ptrdiff_t k = i - h; k <= i + h; ++k) sum += points[std::size_t(k)];
-    const Vec2 mean = sum / double(2 * h + 1);
-    const Vec2 px = grid.world_to_pixel(mean);
-    const int col = std::clamp(int(std::floor(px.x)), 0, grid.width - 1);
-    const int row = std::clamp(int(std::floor(px.y)), 0, grid.height - 1);
-    if (!std::isnan(height.at(col, row))) out[std::size_t(i)] = mean;
+    out[std::size_t(i)] = sum / double(2 * h + 1);
   }
   return without_duplicates(Curve{std::move(out), false});
 }
@@ -219,29 +205,53 @@ ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, co
   }
   const auto cells = corridor_cells(height, grid, given, options.corridor);
   if (cells.empty()) {
-    result.kept_because = "no DEM cell in its corridor (off the grid, nodata, or too many cells)";
+    result.kept_because = "no DEM cell in its corridor (off the grid, or too many cells)";
     return result;
   }
-  const std::ptrdiff_t start = end_cell(cells, grid, given.points.front());
-  const std::ptrdiff_t goal = end_cell(cells, grid, given.points.back());
-  if (start < 0 || goal < 0) {
-    result.kept_because = "an end lies off the grid or over nodata";
+  if (std::all_of(cells.begin(), cells.end(), [](const auto& c) { return std::isnan(c.height); })) {
+    result.kept_because = "its corridor lies over nodata";
+    return result;
+  }
+  // The line is conformed between the first and the last of its points on the grid; beyond
+  // them (a line clipped with a margin) it is kept.
+  const auto cumulative = cumulative_lengths(given);
+  const double total = cumulative.back();
+  const double sample = 0.5 * std::min(grid.pixel_width, grid.pixel_height);
+  const std::size_t count = std::size_t(std::ceil(total / sample)) + 1;
+  std::ptrdiff_t start = -1, goal = -1;
+  double s_start = 0.0, s_goal = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double s = std::min(total, double(i) * sample);
+    const std::ptrdiff_t c = cell_at(cells, grid, point_at(given, cumulative, s));
+    if (c < 0) continue;
+    if (start < 0) start = c, s_start = s;
+    goal = c, s_goal = s;
+  }
+  if (start < 0 || s_goal <= s_start) {
+    result.kept_because = "it lies off the grid";
     return result;
   }
   const auto path = least_cost_path(cells, cost_density(cells, options.corridor, options.target),
                                     grid, std::size_t(start), std::size_t(goal));
   if (path.empty()) {
-    result.kept_because = "nodata cuts its corridor in two";
+    result.kept_because = "its corridor is cut in two by the grid's edge";
     return result;
   }
-  // The exact ends take the place of their cells' centres.
-  std::vector<Vec2> points{given.points.front()};
+  // The exact points where the conformed stretch begins and ends take the place of their
+  // cells' centres.
+  std::vector<Vec2> middle{point_at(given, cumulative, s_start)};
   for (std::size_t k = 1; k + 1 < path.size(); ++k) {
     const auto id = cells[path[k]].id;
-    points.push_back(grid.pixel_centre_world(int(id % grid.width), int(id / grid.width)));
+    middle.push_back(grid.pixel_centre_world(int(id % grid.width), int(id / grid.width)));
   }
-  points.push_back(given.points.back());
-  result.line = smoothed(std::move(points), height, grid);
+  middle.push_back(point_at(given, cumulative, s_goal));
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < given.points.size() && cumulative[i] < s_start; ++i)
+    points.push_back(given.points[i]);
+  for (const Vec2 p : smoothed(std::move(middle)).points) points.push_back(p);
+  for (std::size_t i = 0; i < given.points.size(); ++i)
+    if (cumulative[i] > s_goal) points.push_back(given.points[i]);
+  result.line = without_duplicates(Curve{std::move(points), false});
   if (result.line.points.size() < 2) result.line = given;
   result.conformed = true;
 

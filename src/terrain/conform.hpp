@@ -23,11 +23,12 @@ struct ConformResult {
   double mean_move = 0.0;         // metres: mean distance of the conformed line from the given one
 };
 
-// The least-cost 8-connected path over the non-nodata cells within `corridor` metres of the
-// line, from the cell of its first point to the cell of its last, smoothed; the ends keep their
-// exact positions (clipped ends and junctions stay where they are). Closed lines, lines whose
-// ends lie over nodata or off the grid, and corridors that nodata cuts in two are kept as given.
-// Deterministic (ties broken by the lowest cell index).
+// The least-cost 8-connected path over the cells within `corridor` metres of the line, from
+// the cell of its first point on the grid to the cell of its last, smoothed; those two points
+// keep their exact positions (clipped ends and junctions stay where they are). Nodata cells
+// may be crossed at the cost of their length only: nothing is carved there (a river along a
+// border, the DEM's nodata edge, keeps to it). Closed lines and corridors wholly over nodata
+// are kept as given. Deterministic (ties broken by the lowest cell index).
 ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,
                            const ConformOptions& options);
 

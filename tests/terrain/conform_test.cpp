@@ -87,10 +87,11 @@ TEST(Conform, ARidgeLineSnapsToTheCrest) {
   }
 }
 
-TEST(Conform, NodataCellsAreNotPartOfTheCorridor) {
+TEST(Conform, NodataIsCrossedAtTheCostOfItsLengthOnly) {
   const GridSpec grid = ten_metre_grid();
   Raster<float> h = test::heights_from(grid, valley);
-  // The valley floor is nodata between y = 800 and 1200: the line must go round it.
+  // The valley floor is nodata between y = 800 and 1200 (a lake cut out of the DEM): the
+  // line stays in the valley through it rather than climbing onto the slopes beside it.
   for (int row = 0; row < grid.height; ++row)
     for (int col = 0; col < grid.width; ++col) {
       const Vec2 p = grid.pixel_centre_world(col, row);
@@ -99,10 +100,18 @@ TEST(Conform, NodataCellsAreNotPartOfTheCorridor) {
     }
   const ConformResult r = conform_line(h, grid, kOffsetRiver, {400.0});
   ASSERT_TRUE(r.conformed);
+  int inside = 0;
   for (const Vec2 p : r.line.points) {
-    const Vec2 px = grid.world_to_pixel(p);
-    EXPECT_FALSE(std::isnan(h.at(int(px.x), int(px.y)))) << p.x << ", " << p.y;
+    if (p.y < 850.0 || p.y > 1150.0) continue;
+    ++inside;
+    EXPECT_LT(std::abs(p.x - 805.0), 60.0) << p.y;
   }
+  EXPECT_GT(inside, 20);
+  // A corridor wholly over nodata keeps the line.
+  const Raster<float> none(grid.width, grid.height, std::numeric_limits<float>::quiet_NaN());
+  const ConformResult kept = conform_line(none, grid, kOffsetRiver, {400.0});
+  EXPECT_FALSE(kept.conformed);
+  EXPECT_EQ(kept.line.points, kOffsetRiver.points);
 }
 
 // A spur 60 m high across the river's line (at y = 1000) on a plain falling to the south.
@@ -150,13 +159,13 @@ TEST(CarveLimit, TheBedIsNeverMoreThanMaxCarveBelowTheTerrain) {
   EXPECT_NEAR(e.cut_limited.along, 950.0, 20.0);
 }
 
-TEST(CarveLimit, TheDefaultIsFourDepthsAndAnUnboundedRiverCutsTheSpur) {
+TEST(CarveLimit, TheDefaultIsFiveDepthsAndAnUnboundedRiverCutsTheSpur) {
   const GridSpec grid = ten_metre_grid();
   const Raster<float> before = test::heights_from(grid, spur);
   Raster<float> bounded = before, unbounded = before;
   shape_terrain(bounded, grid, Window::whole(grid), {spur_river(std::nullopt)}, {});
-  EXPECT_LE(deepest_lowering(before, bounded), 4.0 * 2.5 + 1e-3);
-  EXPECT_GT(deepest_lowering(before, bounded), 4.0 * 2.5 - 0.1);
+  EXPECT_LE(deepest_lowering(before, bounded), 5.0 * 2.5 + 1e-3);
+  EXPECT_GT(deepest_lowering(before, bounded), 5.0 * 2.5 - 0.1);
   shape_terrain(unbounded, grid, Window::whole(grid), {spur_river(1e9)}, {});
   EXPECT_NEAR(deepest_lowering(before, unbounded), unbounded_cut_at_the_spur(), 0.2);  // as before
 }
