@@ -177,17 +177,44 @@ std::vector<double> distances_along(const Curve& from, const Curve& to, double s
 
 }  // namespace
 
-double distance_to_line(const Curve& line, Vec2 p) {
+Vec2 nearest_point(const Curve& line, Vec2 p) {
   double best = std::numeric_limits<double>::infinity();
+  Vec2 nearest = line.points.front();
   const std::size_t n = line.points.size();
   const std::size_t segments = line.closed ? n : n - 1;
   for (std::size_t i = 0; i < segments; ++i) {
     const Vec2 a = line.points[i], ab = line.points[(i + 1) % n] - a;
     const double l2 = dot(ab, ab);
     const double t = l2 > 0.0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-    best = std::min(best, distance(a + ab * t, p));
+    const Vec2 q = a + ab * t;
+    if (const double d = distance(q, p); d < best) best = d, nearest = q;
   }
-  return best;
+  return nearest;
+}
+
+double distance_to_line(const Curve& line, Vec2 p) {
+  return distance(nearest_point(line, p), p);
+}
+
+void reattach_ends(const std::vector<Curve>& drawn, std::vector<Curve>& conformed,
+                   const std::vector<double>& tolerance) {
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    if (drawn[i].closed || drawn[i].points.size() < 2) continue;
+    for (const bool at_start : {true, false}) {
+      const Vec2 end = at_start ? drawn[i].points.front() : drawn[i].points.back();
+      for (std::size_t j = 0; j < drawn.size(); ++j) {
+        if (j == i || conformed[j].points == drawn[j].points) continue;
+        const auto& other = drawn[j].points;
+        const bool near_an_end = distance(end, other.front()) <= tolerance[i] ||
+                                 distance(end, other.back()) <= tolerance[i];
+        if (near_an_end || distance_to_line(drawn[j], end) > tolerance[i]) continue;
+        Vec2& moved = at_start ? conformed[i].points.front() : conformed[i].points.back();
+        moved = nearest_point(conformed[j], end);
+        break;  // the first line it touches, in order: deterministic
+      }
+    }
+    conformed[i] = without_duplicates(conformed[i]);
+  }
 }
 
 ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,

@@ -3,6 +3,8 @@
 // spurs of a 90 m DEM; moving it onto the valley floor (or a ridge line onto its crest) within
 // a corridor keeps the carve shallow. The method is a least-cost path over the DEM cells of the
 // corridor (docs/terrain.md, "Conformance", cites the stream-burning literature behind it).
+#include <vector>
+
 #include "core/grid.hpp"
 #include "ribbon/curve.hpp"
 
@@ -32,7 +34,15 @@ struct ConformResult {
 ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,
                            const ConformOptions& options);
 
-// Metres from `p` to the nearest point of the polyline.
+// A tributary drawn ending on a trunk's interior still meets it after conformance: each end
+// of line i that lay within `tolerance[i]` metres of the interior of another line j as drawn
+// (and not near one of j's ends, which conformance keeps) moves to the nearest point of j as
+// conformed. `drawn` and `conformed` are parallel; lines kept as drawn are left alone.
+void reattach_ends(const std::vector<Curve>& drawn, std::vector<Curve>& conformed,
+                   const std::vector<double>& tolerance);
+
+// The nearest point of the polyline to `p`, and the distance to it in metres.
+Vec2 nearest_point(const Curve& line, Vec2 p);
 double distance_to_line(const Curve& line, Vec2 p);
 
 }  // namespace tw

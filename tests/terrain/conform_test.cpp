@@ -114,6 +114,22 @@ TEST(Conform, NodataIsCrossedAtTheCostOfItsLengthOnly) {
   EXPECT_EQ(kept.line.points, kOffsetRiver.points);
 }
 
+TEST(Conform, ATributaryEndingOnTheTrunkStillMeetsItAfterBothMove) {
+  const GridSpec grid = ten_metre_grid();
+  const Raster<float> h = test::heights_from(grid, valley);
+  const Curve tributary{{{1600.0, 1000.0}, {1300.0, 1005.0}, {1005.0, 1000.0}}, false};
+  const std::vector<Curve> drawn = {kOffsetRiver, tributary};
+  std::vector<Curve> conformed;
+  for (const Curve& c : drawn) conformed.push_back(conform_line(h, grid, c, {400.0}).line);
+  ASSERT_GT(distance_to_line(conformed[0], tributary.points.back()), 150.0);  // left behind
+  const Curve trunk = conformed[0];
+  reattach_ends(drawn, conformed, {10.0, 10.0});
+  EXPECT_LT(distance_to_line(conformed[0], conformed[1].points.back()), 1e-9);
+  EXPECT_NEAR(conformed[1].points.back().x, 805.0, 10.0);  // on the valley floor
+  EXPECT_EQ(conformed[1].points.front(), tributary.points.front());
+  EXPECT_EQ(conformed[0].points, trunk.points);  // the trunk's ends touch no interior
+}
+
 // A spur 60 m high across the river's line (at y = 1000) on a plain falling to the south.
 double spur(double, double y) {
   return 50.0 + 0.005 * y + 60.0 * std::exp(-std::pow((y - 1000.0) / 150.0, 2.0));

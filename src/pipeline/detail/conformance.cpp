@@ -21,16 +21,28 @@ std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
     const ConformOptions options{feature_class.conform_corridor,
                                  ridge ? ConformTarget::crest : ConformTarget::valley_floor};
     const std::string subject = "features." + feature_class.name;
+    std::vector<Curve> drawn, conformed;
+    std::vector<double> tolerance;
+    for (const LineFeature& line : lines[c]) {
+      drawn.push_back(Curve{line.points, line.closed});
+      tolerance.push_back(0.5 * line.width + half_cell);  // as terrain's end contacts
+    }
+    conformed = drawn;
+    std::vector<ConformResult> results;
+    for (std::size_t i = 0; i < lines[c].size(); ++i) {
+      results.push_back(conform_line(heightfield.height, heightfield.grid, drawn[i], options));
+      if (results.back().conformed) conformed[i] = results.back().line;
+    }
+    reattach_ends(drawn, conformed, tolerance);
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
       LineFeature& line = lines[c][i];
-      const ConformResult r = conform_line(heightfield.height, heightfield.grid,
-                                           Curve{line.points, line.closed}, options);
+      const ConformResult& r = results[i];
+      line.points = conformed[i].points;  // a line kept as drawn may still be reattached
       if (!r.conformed) {
         warnings.add("not_conformed", subject, line.fid,
                      fmt::format("kept as drawn: {}", r.kept_because));
         continue;
       }
-      line.points = r.line.points;
       moves[c][i] = {r.max_move, r.mean_move};
       if (r.max_move > half_cell) {
         warnings.add("conformed", subject, line.fid,
