@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "core/error.hpp"
 #include "geo/heightfield.hpp"
@@ -23,14 +26,21 @@ struct Lowering {
 };
 
 // The rivers alone, with the corridor given (0: as drawn), run into `out`.
-RunReport run_rivers(const std::filesystem::path& out, double corridor) {
+RunReport run_rivers(const std::filesystem::path& out, double corridor, int threads = 0) {
   PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
                                         {{"output.dir", out.string()}});
   std::erase_if(config.features, [](const auto& c) { return c.kind != FeatureKind::river; });
   config.features.at(0).conform_corridor = corridor;
   config.output.preview = false;
   config.output.exr = false;
-  return run_pipeline(config);
+  RunOptions options;
+  options.threads = threads;
+  return run_pipeline(config, options);
+}
+
+std::string bytes_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Cells lowered by more than a centimetre, against the DEM read as the run reads it.
@@ -91,6 +101,14 @@ TEST(Conformance, TheMoselleMovesOntoItsValleyAndCarvesLess) {
     ASSERT_NE(find_warning(conformed, "conformed", fid), nullptr);
     EXPECT_EQ(find_warning(drawn, "conformed", fid), nullptr);
   }
+}
+
+TEST(Conformance, SameBytesForAnyThreadCount) {
+  test::TempDir one, two;
+  run_rivers(one.path(), 2000.0, 1);
+  run_rivers(two.path(), 2000.0, 2);
+  for (const char* file : {"height.tif", "splat.tif"})
+    EXPECT_EQ(bytes_of(one.path() / file), bytes_of(two.path() / file)) << file;
 }
 
 const char* const kPipeline = R"(version: 1
