@@ -111,6 +111,28 @@ TEST(Conformance, SameBytesForAnyThreadCount) {
     EXPECT_EQ(bytes_of(one.path() / file), bytes_of(two.path() / file)) << file;
 }
 
+TEST(Conformance, ARoadsCutAndFillBoundsAreReportedAndWarned) {
+  test::TempDir out;
+  PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
+                                        {{"output.dir", out.path().string()},
+                                         {"features.roads.profile.max_cut", "1"},
+                                         {"features.roads.profile.max_fill", "0.5"}});
+  std::erase_if(config.features, [](const auto& c) { return c.kind != FeatureKind::road; });
+  config.output.preview = false;
+  const RunReport r = run_pipeline(config);
+  const FeatureReport& road = r.classes.at(0).features.at(0);
+  EXPECT_EQ(road.fid, 3);
+  EXPECT_NEAR(road.cut_max_m, 1.0, 1e-9);
+  EXPECT_NEAR(road.fill_max_m, 0.5, 1e-9);
+  EXPECT_EQ(road.moved_max_m, 0.0);  // roads keep their line
+  const Warning* cut = find_warning(r, "cut_limited", 3);
+  const Warning* fill = find_warning(r, "fill_limited", 3);
+  ASSERT_NE(cut, nullptr);
+  ASSERT_NE(fill, nullptr);
+  EXPECT_THAT(cut->message, HasSubstr("at most 1 m below the terrain"));
+  EXPECT_THAT(fill->message, HasSubstr("at most 0.5 m above the terrain"));
+}
+
 const char* const kPipeline = R"(version: 1
 heightfield: dem.tif
 features:
