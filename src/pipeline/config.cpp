@@ -81,19 +81,25 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
                   FeatureClassConfig& f) {
   switch (f.kind) {
     case FeatureKind::road: {
-      const MapReader m(src, node, path, {"max_grade", "shoulder_width", "falloff", "smoothing"});
+      const MapReader m(
+          src, node, path,
+          {"max_grade", "shoulder_width", "falloff", "smoothing", "max_cut", "max_fill"});
       f.road.max_grade = m.positive_or("max_grade", f.road.max_grade);
       f.road.shoulder_width = m.non_negative_or("shoulder_width", f.road.shoulder_width);
       f.road.falloff = m.non_negative_or("falloff", f.road.falloff);
       f.road.smoothing = m.non_negative_or("smoothing", f.road.smoothing);
+      if (m.has("max_cut")) f.road.max_cut = m.non_negative_or("max_cut", 0.0);
+      if (m.has("max_fill")) f.road.max_fill = m.non_negative_or("max_fill", 0.0);
       break;
     }
     case FeatureKind::river: {
-      const MapReader m(src, node, path, {"depth", "bank_width", "falloff", "min_slope"});
+      const MapReader m(src, node, path,
+                        {"depth", "bank_width", "falloff", "min_slope", "max_carve"});
       f.river.depth = m.non_negative_or("depth", f.river.depth);
       f.river.bank_width = m.non_negative_or("bank_width", f.river.bank_width);
       f.river.falloff = m.non_negative_or("falloff", f.river.falloff);
       f.river.min_slope = m.non_negative_or("min_slope", f.river.min_slope);
+      if (m.has("max_carve")) f.river.max_carve = m.non_negative_or("max_carve", 0.0);
       break;
     }
     case FeatureKind::ridge: {
@@ -221,6 +227,15 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     f.width = m.positive("width");
   }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
+  if (m.has("conform")) {
+    if (f.kind == FeatureKind::road) {
+      m.source().fail(m.get("conform"), m.path("conform"),
+                      "roads keep their line (bound their earthwork with profile.max_cut and "
+                      "profile.max_fill); conform applies to rivers and ridges");
+    }
+    const MapReader conform(m.source(), m.get("conform"), m.path("conform"), {"corridor"});
+    f.conform_corridor = conform.positive("corridor");
+  }
   if (m.has("synthesis")) {
     f.synthesis =
         read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
@@ -381,7 +396,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.features.push_back(
         read_feature_class(MapReader(src, entry.second, path,
                                      {"source", "layer", "where", "tags", "kind", "width_attribute",
-                                      "width", "profile", "synthesis"}),
+                                      "width", "profile", "conform", "synthesis"}),
                            name, c.seed));
   }
   if (c.features.empty()) src.fail(root.get("features"), "features", "no feature classes");

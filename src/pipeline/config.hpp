@@ -91,6 +91,9 @@ struct FeatureClassConfig {
   RoadProfile road;
   RiverProfile river;
   RidgeProfile ridge;
+  // `conform.corridor`: metres either side of each line within which it moves onto the DEM's
+  // valley floor (rivers) or crest (ridges) before anything is built on it; 0 = as drawn.
+  double conform_corridor = 0.0;
   std::optional<SynthesisConfig> synthesis;
 };
 

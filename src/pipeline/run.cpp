@@ -12,6 +12,7 @@
 #include "core/log.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/region.hpp"
@@ -82,8 +83,8 @@ void report_decks(const TerrainPlan& plan, RunReport& report) {
   for (std::size_t i = 0; i < plan.features.size(); ++i) {
     const TerrainFeature& f = plan.features[i];
     if (f.structure == Structure::ground || f.width <= 0.0) continue;
-    in_order[plan.source[i]]->deck_m = {double(plan.profiles[i].front()),
-                                        double(plan.profiles[i].back())};
+    in_order[plan.input_index[i]]->deck_m = {double(plan.profiles[i].front()),
+                                             double(plan.profiles[i].back())};
   }
 }
 
@@ -124,6 +125,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     class_report.ingest_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
+  // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
+  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
   detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
     heightfield = detail::crop_to_region(heightfield, *config.region,
@@ -139,10 +142,15 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
-      report.classes[c].features.push_back(
-          {lines[c][i].fid, ribbons.lengths[c][i], lines[c][i].width,
-           int(ribbons.ribbons[c][i].pieces.size()), std::nullopt, lines[c][i].structure,
-           lines[c][i].layer, std::nullopt});
+      FeatureReport& feature = report.classes[c].features.emplace_back();
+      feature.fid = lines[c][i].fid;
+      feature.length_m = ribbons.lengths[c][i];
+      feature.width_m = lines[c][i].width;
+      feature.pieces = int(ribbons.ribbons[c][i].pieces.size());
+      feature.moved_max_m = moves[c][i].max_m;
+      feature.moved_mean_m = moves[c][i].mean_m;
+      feature.structure = lines[c][i].structure;
+      feature.layer = lines[c][i].layer;
     }
   }
   clock.stop();
@@ -175,10 +183,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
   const TerrainParams params = detail::terrain_params(config);
   const Window whole = Window::whole(heightfield.grid);
-  const TerrainPlan plan = plan_terrain(heightfield.height, heightfield.grid, features, params);
-  apply_terrain(heightfield.height, heightfield.grid, whole, plan);
-  report_decks(plan, report);
-  SplatLayers splat = compute_splat(heightfield.grid, whole, features, params);
+  const TerrainPlan terrain_plan =
+      plan_terrain(heightfield.height, heightfield.grid, features, params);
+  detail::report_earthwork(config, lines, terrain_plan, report, warnings);
+  report_decks(terrain_plan, report);
+  apply_terrain(heightfield.height, heightfield.grid, whole, terrain_plan);
+  SplatLayers splat = compute_splat(heightfield.grid, whole, features, params, heightfield.height);
   detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
   clock.stop();
 

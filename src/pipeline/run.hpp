@@ -54,6 +54,10 @@ struct FeatureReport {
   int layer = 0;
   // A bridge's or tunnel's deck height at its start and end (metres; straight between).
   std::optional<std::array<double, 2>> deck_m;
+  // Conformance (docs/terrain.md): how far the line was moved onto the DEM (0: as drawn), and
+  // the largest cut (below the terrain) and fill (above it) of its centreline profile.
+  double moved_max_m = 0.0, moved_mean_m = 0.0;
+  double cut_max_m = 0.0, fill_max_m = 0.0;
 };
 
 struct FeatureClassReport {

@@ -57,6 +57,8 @@ void validate_feature(const TerrainFeature& f) {
       require(f.road.falloff >= 0.0 && std::isfinite(f.road.falloff), f, "falloff", f.road.falloff);
       require(f.road.smoothing >= 0.0 && std::isfinite(f.road.smoothing), f, "smoothing",
               f.road.smoothing);
+      require(f.road.max_cut.value_or(0.0) >= 0.0, f, "max_cut", f.road.max_cut.value_or(0.0));
+      require(f.road.max_fill.value_or(0.0) >= 0.0, f, "max_fill", f.road.max_fill.value_or(0.0));
       break;
     case FeatureKind::river:
       require(f.river.depth >= 0.0 && std::isfinite(f.river.depth), f, "depth", f.river.depth);
@@ -65,6 +67,7 @@ void validate_feature(const TerrainFeature& f) {
               f.river.falloff);
       require(f.river.min_slope >= 0.0 && std::isfinite(f.river.min_slope), f, "min_slope",
               f.river.min_slope);
+      require(max_carve(f.river) >= 0.0, f, "max_carve", max_carve(f.river));
       break;
     case FeatureKind::ridge:
       require(std::isfinite(f.ridge.height), f, "height", f.ridge.height);

@@ -2,6 +2,7 @@
 // Linear terrain features (roads, rivers, ridges) as the terrain module sees them: a
 // centerline in world metres, a width and the profile parameters of the feature's kind.
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "geo/structure.hpp"
@@ -21,6 +22,11 @@ struct RoadProfile {
   double shoulder_width = 3.0;  // metres on each side of the road surface
   double falloff = 15.0;        // metres of cut/fill slope beyond the shoulders
   double smoothing = 60.0;      // metres of the moving average along the centerline
+  // Bounds on the earthwork (metres below / above the terrain): where grading would cut or
+  // fill more, the road follows the terrain at that bound, breaking the grade locally (a
+  // warning). Unset: unbounded.
+  std::optional<double> max_cut;
+  std::optional<double> max_fill;
 };
 
 // A carved river: the water surface follows the terrain downstream (the centerline's
@@ -31,7 +37,17 @@ struct RiverProfile {
   double bank_width = 6.0;  // metres of bank on each side
   double falloff = 20.0;    // metres beyond the banks
   double min_slope = 0.0;   // the surface drops at least this much per metre downstream
+  // The bed is never more than this below the terrain: where the never-rising surface would
+  // cut deeper (a line across a spur), the surface rises to meet the terrain (a warning).
+  // Unset: kDefaultCarveDepths x depth.
+  std::optional<double> max_carve;
 };
+
+inline constexpr double kDefaultCarveDepths = 5.0;
+// The bound in metres (max_carve, or its default).
+inline double max_carve(const RiverProfile& river) {
+  return river.max_carve.value_or(kDefaultCarveDepths * river.depth);
+}
 
 // A raised ridge: the crest (the width) is raised by `height`, the flanks fall off over
 // `falloff` metres; a larger `sharpness` gives a narrower, more pointed crest.

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -51,8 +53,7 @@ void add_crossing_pins(const TerrainPlan& plan, const std::vector<std::vector<do
   std::vector<CurveLevel> levels;
   for (std::size_t i = 0; i < plan.features.size(); ++i) {
     const TerrainFeature& f = plan.features[i];
-    if (f.kind != FeatureKind::road || f.width <= 0.0 || f.structure != Structure::ground)
-      continue;
+    if (f.kind != FeatureKind::road || f.width <= 0.0 || f.structure != Structure::ground) continue;
     roads.push_back(f.centerline);
     feature_of.push_back(i);
     levels.push_back({f.structure, f.layer});
@@ -211,6 +212,62 @@ void carve_river_beds(TerrainPlan& plan, std::vector<std::vector<double>>& profi
   }
 }
 
+// The feature's bound below (cut) and above (fill) the terrain, metres (infinite: none).
+std::pair<double, double> earthwork_bounds(const TerrainFeature& f) {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  switch (f.kind) {
+    case FeatureKind::road:
+      return {f.road.max_cut.value_or(kNone), f.road.max_fill.value_or(kNone)};
+    case FeatureKind::river:
+      return {max_carve(f.river), kNone};
+    case FeatureKind::ridge:
+      break;
+  }
+  return {kNone, kNone};
+}
+
+// Holds each profile within its bounds of the terrain along the centreline (the last word,
+// after junctions: a bound breaks the grade or the never-rising surface locally rather than
+// cut a canyon), records where, and measures the largest cut and fill.
+void bound_earthwork(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
+                     const std::vector<std::vector<double>>& terrains) {
+  plan.earthwork.assign(plan.features.size(), FeatureEarthwork{});
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    const TerrainFeature& f = plan.features[i];
+    FeatureEarthwork& e = plan.earthwork[i];
+    if (f.kind == FeatureKind::ridge) {
+      if (f.width > 0.0) e.max_fill = std::max(0.0, f.ridge.height);
+      continue;
+    }
+    if (terrains[i].empty()) continue;  // left out: nothing applied
+    const auto [cut_bound, fill_bound] = earthwork_bounds(f);
+    const auto cumulative = cumulative_lengths(f.centerline);
+    auto& p = profiles[i];
+    const double step = plan.steps[i];
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const double t = terrains[i][k];
+      const double cut = t - p[k];
+      ProfileLimit* limit = nullptr;
+      double excess = 0.0;
+      if (cut > cut_bound) {
+        limit = &e.cut_limited, excess = cut - cut_bound, p[k] = t - cut_bound;
+      } else if (-cut > fill_bound) {
+        limit = &e.fill_limited, excess = -cut - fill_bound, p[k] = t + fill_bound;
+      }
+      if (limit) {
+        limit->length += step;
+        if (excess > limit->excess) {
+          limit->excess = excess;
+          limit->along = double(k) * step;
+          limit->at = point_at(f.centerline, cumulative, limit->along);
+        }
+      }
+      e.max_cut = std::max(e.max_cut, t - p[k]);
+      e.max_fill = std::max(e.max_fill, p[k] - t);
+    }
+  }
+}
+
 }  // namespace
 
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
@@ -227,18 +284,19 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       fail("{} feature FID {}: its kind is missing from the terrain precedence", to_string(f.kind),
            f.fid);
   }
-  plan.source.resize(features.size());
-  std::iota(plan.source.begin(), plan.source.end(), std::size_t{0});
-  std::stable_sort(plan.source.begin(), plan.source.end(), [&](std::size_t a, std::size_t b) {
+  plan.input_index.resize(features.size());
+  std::iota(plan.input_index.begin(), plan.input_index.end(), std::size_t(0));
+  std::stable_sort(plan.input_index.begin(), plan.input_index.end(), [&](auto a, auto b) {
     return ranks[std::size_t(features[a].kind)] < ranks[std::size_t(features[b].kind)];
   });
-  for (const std::size_t i : plan.source) {
+  for (const std::size_t i : plan.input_index) {
     TerrainFeature copy = features[i];
     copy.centerline = without_duplicates(features[i].centerline);
     plan.features.push_back(std::move(copy));
   }
 
   std::vector<std::vector<double>> profiles(plan.features.size());
+  std::vector<std::vector<double>> terrains(plan.features.size());
   std::vector<char> over_nodata(plan.features.size(), 0);
   for (std::size_t i = 0; i < plan.features.size(); ++i) {
     const auto& f = plan.features[i];
@@ -271,6 +329,7 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
     } else {
       profiles[i] = detail::water_surface(terrain, step, f.river.min_slope);
     }
+    terrains[i] = std::move(terrain);
   }
   auto contacts =
       detail::find_end_contacts(plan.features, 0.5 * std::max(grid.pixel_width, grid.pixel_height));
@@ -289,6 +348,7 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
 
   carve_river_beds(plan, profiles, contacts);
   detail::lay_decks(plan.features, plan.steps, contacts_with_structures, profiles);
+  bound_earthwork(plan, profiles, terrains);
 
   for (std::size_t i = 0; i < plan.features.size(); ++i)
     plan.profiles.emplace_back(profiles[i].begin(), profiles[i].end());
@@ -302,6 +362,9 @@ struct KindAccumulator {
   double weight_sum = 0.0;
   double value_sum = 0.0;
   double weight_max = 0.0;
+  // The tightest earthwork bounds of the features holding the pixel (metres of cut, fill).
+  double cut_bound = std::numeric_limits<double>::infinity();
+  double fill_bound = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace
@@ -315,13 +378,15 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
       window.row_end() > grid.height)
     fail("shape_terrain: window ({}, {}, {} x {}) is outside the {} x {} grid", window.col0,
          window.row0, window.width, window.height, grid.width, grid.height);
+  const double pixel = std::min(grid.pixel_width, grid.pixel_height);
   std::vector<const Curve*> curves;
   std::vector<double> reach;
   for (const auto& f : plan.features) {
     curves.push_back(&f.centerline);
-    // A bridge or tunnel leaves the ground under it untouched.
+    // A bridge or tunnel leaves the ground under it untouched. The weight is a pixel's
+    // average: it reaches half a pixel further than the feature.
     const bool shapes_ground = f.width > 0.0 && f.structure == Structure::ground;
-    reach.push_back(shapes_ground ? feature_reach(f) : -1.0);
+    reach.push_back(shapes_ground ? feature_reach(f) + 0.5 * pixel : -1.0);
   }
   const detail::FeatureIndex index(grid, window, curves, reach);
   const auto ranks = detail::precedence_ranks(plan.params);
@@ -340,9 +405,10 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
         const auto& profile = plan.profiles[std::size_t(fi)];
         const double step = plan.steps[std::size_t(fi)];
         const std::size_t rank = std::size_t(ranks[std::size_t(f.kind)]);
+        const auto [cut_bound, fill_bound] = earthwork_bounds(f);
         for (std::size_t k = 0; k < n; ++k) {
           if (!std::isfinite(s[k].distance)) continue;
-          const double w = detail::height_weight(f, s[k].distance);
+          const double w = detail::cell_height_weight(f, s[k].distance, pixel);
           if (w <= 0.0) continue;
           double value = f.ridge.height;
           if (f.kind != FeatureKind::ridge) value = detail::profile_at(profile, step, s[k].along);
@@ -350,6 +416,8 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
           a.weight_sum += w;
           a.value_sum += w * value;
           a.weight_max = std::max(a.weight_max, w);
+          a.cut_bound = std::min(a.cut_bound, cut_bound);
+          a.fill_bound = std::min(a.fill_bound, fill_bound);
         }
       });
       for (int r = 0; r < tile.height; ++r)
@@ -363,11 +431,13 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
             if (a.weight_max <= 0.0) continue;
             const double mean = a.value_sum / a.weight_sum;
             double target = mean;
+            // A bank on a hillside is held to the same bounds as the centreline.
             switch (plan.params.precedence[rank]) {
               case FeatureKind::road:
+                target = std::clamp(mean, h - a.cut_bound, h + a.fill_bound);
                 break;
               case FeatureKind::river:
-                target = std::min(h, mean);
+                target = std::max(std::min(h, mean), h - a.cut_bound);
                 break;  // rivers only carve
               case FeatureKind::ridge:
                 target = h + mean;

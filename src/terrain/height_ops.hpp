@@ -14,17 +14,37 @@ struct TerrainParams {
   std::vector<FeatureKind> precedence = {FeatureKind::ridge, FeatureKind::river, FeatureKind::road};
 };
 
+// Where a bound on the earthwork (a river's max_carve, a road's max_cut or max_fill) held a
+// feature's centreline profile: over how many metres, and its worst point.
+struct ProfileLimit {
+  double length = 0.0;  // metres of centreline; 0: the bound never held
+  double excess = 0.0;  // metres beyond the bound the unbounded profile went, at worst
+  double along = 0.0;   // arc length of the worst point
+  Vec2 at{};            // world position of the worst point
+};
+
+// One feature's earthwork along its centreline, after the bounds: the largest cut (profile
+// below the terrain: a river bed, a road cutting) and fill (above: a road embankment, a ridge).
+struct FeatureEarthwork {
+  double max_cut = 0.0;
+  double max_fill = 0.0;
+  ProfileLimit cut_limited;   // rivers: max_carve; roads: max_cut
+  ProfileLimit fill_limited;  // roads: max_fill
+};
+
 // The longitudinal profiles of every feature, sampled from the terrain before any change.
 // Computing them once for the whole grid and applying them window by window keeps tiles
 // seamless (a tile never sees its neighbours' edits).
 struct TerrainPlan {
   std::vector<TerrainFeature> features;  // validated copies, grouped by precedence
-  std::vector<std::size_t> source;       // features[i] is the input's features[source[i]]
   // One per feature: its profile every `step` metres of arc length (road surface height,
   // river bed = water surface - depth, unused for ridges; a bridge's or tunnel's deck) and
   // the step.
   std::vector<std::vector<float>> profiles;
   std::vector<double> steps;
+  // One per feature: its index in the features given to plan_terrain, and its earthwork.
+  std::vector<std::size_t> input_index;
+  std::vector<FeatureEarthwork> earthwork;
   TerrainParams params;
 };
 

@@ -36,9 +36,14 @@ struct KindCoverage {
 
 }  // namespace
 
-SplatLayers compute_splat(const GridSpec& grid, const Window& window,
-                          const std::vector<TerrainFeature>& features,
-                          const TerrainParams& params) {
+namespace {
+
+SplatLayers splat_over(const GridSpec& grid, const Window& window,
+                       const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                       const Raster<float>* height) {
+  if (height && (height->width != grid.width || height->height != grid.height))
+    fail("compute_splat: height raster is {} x {}, the grid is {} x {}", height->width,
+         height->height, grid.width, grid.height);
   const auto ranks = detail::precedence_ranks(params);
   std::vector<const Curve*> curves;
   std::vector<double> reach;
@@ -90,6 +95,10 @@ SplatLayers compute_splat(const GridSpec& grid, const Window& window,
           const std::size_t k = std::size_t(r) * tile.width + c;
           std::array<double, material_count> w{};
           w[base] = 1.0;
+          if (height && std::isnan(height->at(tile.col0 + c, tile.row0 + r))) {
+            out.weights[base].at(tile.col0 - window.col0 + c, tile.row0 - window.row0 + r) = 1.0f;
+            continue;  // nothing is painted on nodata
+          }
           // Each kind, in precedence order, covers what lies under it.
           for (std::size_t rank = 0; rank < kinds; ++rank) {
             const auto& cv = cover[k * kinds + rank];
@@ -116,6 +125,20 @@ SplatLayers compute_splat(const GridSpec& grid, const Window& window,
     }
   });
   return out;
+}
+
+}  // namespace
+
+SplatLayers compute_splat(const GridSpec& grid, const Window& window,
+                          const std::vector<TerrainFeature>& features,
+                          const TerrainParams& params) {
+  return splat_over(grid, window, features, params, nullptr);
+}
+
+SplatLayers compute_splat(const GridSpec& grid, const Window& window,
+                          const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                          const Raster<float>& height) {
+  return splat_over(grid, window, features, params, &height);
 }
 
 }  // namespace tw

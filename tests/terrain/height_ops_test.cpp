@@ -24,7 +24,7 @@ TEST(ShapeTerrain, RiverBedIsDepthBelowTheSurfaceAndBanksMeetTheTerrain) {
   const Raster<float> before = test::heights_from(grid, plane);
   Raster<float> h = before;
   auto river = test::feature(FeatureKind::river, 7, {{20.0, 100.5}, {180.0, 100.5}}, 6.0);
-  river.river = {2.5, 4.0, 10.0, 0.0};
+  river.river = {2.5, 4.0, 10.0, 0.0, {}};
   shape_terrain(h, grid, Window::whole(grid), {river}, {});
   const int centre_row = kSize - 101;  // centres at y = 100.5
   // A spring, not a pit: the depth eases in over width + bank + falloff = 20 m.
@@ -74,7 +74,7 @@ TEST(ShapeTerrain, RoadIsLevelAcrossWithinGradeAlongAndMeetsTheTerrain) {
   const Raster<float> before = test::heights_from(grid, hills);
   Raster<float> h = before;
   auto road = test::feature(FeatureKind::road, 11, {{10.0, 100.0}, {190.0, 100.0}}, 6.0);
-  road.road = {0.08, 2.0, 10.0, 30.0};
+  road.road = {0.08, 2.0, 10.0, 30.0, {}, {}};
   shape_terrain(h, grid, Window::whole(grid), {road}, {});
   const int north = kSize - 101, south = kSize - 100;  // rows either side of y = 100
   for (int col = 10; col < 190; ++col) {
@@ -116,7 +116,7 @@ TEST(ShapeTerrain, ARingRoadIsGradedAllAroundWithoutAStepWhereItCloses) {
   }
   auto road = test::feature(FeatureKind::road, 5, ring, 6.0);
   road.centerline.closed = true;
-  road.road = {0.06, 2.0, 10.0, 40.0};
+  road.road = {0.06, 2.0, 10.0, 40.0, {}, {}};
   shape_terrain(h, grid, Window::whole(grid), {road}, {});
   // Sample the surface on the centreline every 2 degrees (about 2.1 m), through the start.
   auto at = [&](double degrees) {
@@ -175,7 +175,7 @@ TEST(ShapeTerrain, CrossingRoadsMeetAtOneLevelWithinGrade) {
   Raster<float> h = before;
   auto east_west = test::feature(FeatureKind::road, 1, {{10.0, 100.5}, {190.0, 100.5}}, 6.0);
   auto north_south = test::feature(FeatureKind::road, 2, {{100.5, 10.0}, {100.5, 190.0}}, 6.0);
-  for (auto* road : {&east_west, &north_south}) road->road = {0.05, 1.0, 10.0, 30.0};
+  for (auto* road : {&east_west, &north_south}) road->road = {0.05, 1.0, 10.0, 30.0, {}, {}};
   shape_terrain(h, grid, Window::whole(grid), {east_west, north_south}, {});
   const int centre = kSize - 101;  // the row and column whose centres lie on the two roads
   double steepest_ew = 0.0, steepest_ns = 0.0;
@@ -250,7 +250,9 @@ TEST(ShapeTerrain, RidgeRaisesTheCrestByItsHeight) {
   shape_terrain(h, grid, Window::whole(grid), {ridge}, {});
   const int crest = 100;  // centres at x = 100.5
   EXPECT_FLOAT_EQ(h.at(crest, 100), 18.0f);
-  EXPECT_FLOAT_EQ(h.at(crest + 2, 100), 18.0f);  // within the crest width
+  EXPECT_FLOAT_EQ(h.at(crest + 1, 100), 18.0f);  // within the crest width
+  // Centred on the crest's edge: the cell's mean weight is just below 1 (docs/terrain.md).
+  EXPECT_NEAR(h.at(crest + 2, 100), 18.0f, 0.01f);
   for (int dc = 2; dc < 32; ++dc) EXPECT_LE(h.at(crest + dc + 1, 100), h.at(crest + dc, 100));
   EXPECT_GT(h.at(crest + 15, 100), 10.0f);
   EXPECT_EQ(h.at(crest + 33, 100), 10.0f);

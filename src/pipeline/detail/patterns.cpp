@@ -309,6 +309,7 @@ void apply_patterns(const PatternRun& run, const PipelineConfig& config, const G
             const float share =
                 std::clamp(is_alpha ? coverage : coverage * values.at(col, row), 0.0f, 1.0f);
             const int x = window.col0 + col, y = window.row0 + row;
+            if (std::isnan(height.at(x, y))) continue;  // nothing is painted on nodata
             for (auto& band : splat.weights) band.at(x, y) *= 1.0f - share;
             splat.weights[target].at(x, y) += share;
           }

@@ -16,8 +16,14 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
     json features = json::array();
     double total_length = 0.0;
     for (const FeatureReport& f : c.features) {
-      json feature = {
-          {"fid", f.fid}, {"length_m", f.length_m}, {"width_m", f.width_m}, {"pieces", f.pieces}};
+      json feature = {{"fid", f.fid},
+                      {"length_m", f.length_m},
+                      {"width_m", f.width_m},
+                      {"pieces", f.pieces},
+                      {"moved_max_m", f.moved_max_m},
+                      {"moved_mean_m", f.moved_mean_m},
+                      {"cut_max_m", f.cut_max_m},
+                      {"fill_max_m", f.fill_max_m}};
       if (f.structure != Structure::ground) {
         feature["structure"] = std::string(to_string(f.structure));
         feature["layer"] = f.layer;

@@ -1,0 +1,182 @@
+// Conformance through the pipeline on real data: the WDBII Moselle centreline (drawn at
+// 1:250 000, 0.01 degree vertices) over Luxembourg's 30" DEM (pipelines/luxembourg.yaml).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "core/error.hpp"
+#include "geo/heightfield.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct Lowering {
+  double largest = 0.0, median = 0.0;
+  std::size_t cells = 0;
+};
+
+// The rivers alone, with the corridor given (0: as drawn), run into `out`.
+RunReport run_rivers(const std::filesystem::path& out, double corridor, int threads = 0) {
+  PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
+                                        {{"output.dir", out.string()}});
+  std::erase_if(config.features, [](const auto& c) { return c.kind != FeatureKind::river; });
+  config.features.at(0).conform_corridor = corridor;
+  config.output.preview = false;
+  config.output.exr = false;
+  RunOptions options;
+  options.threads = threads;
+  return run_pipeline(config, options);
+}
+
+std::string bytes_of(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Cells lowered by more than a centimetre, against the DEM read as the run reads it.
+Lowering lowering(const std::filesystem::path& out) {
+  HeightfieldOptions options;
+  options.resolution = 50.0;
+  options.resampling = Resampling::cubic;
+  const Heightfield before =
+      read_heightfield((test::source_dir() / "samples/dem_wgs84.tif").string(), options);
+  const Heightfield after = read_heightfield((out / "height.tif").string());
+  EXPECT_EQ(before.grid, after.grid);
+  std::vector<double> lowered;
+  for (std::size_t i = 0; i < before.height.pixels.size(); ++i) {
+    const double d = double(before.height.pixels[i]) - after.height.pixels[i];
+    if (d > 0.01) lowered.push_back(d);
+  }
+  std::sort(lowered.begin(), lowered.end());
+  if (lowered.empty()) return {};
+  return {lowered.back(), lowered[lowered.size() / 2], lowered.size()};
+}
+
+const Warning* find_warning(const RunReport& r, const std::string& code, std::int64_t fid) {
+  for (const Warning& w : r.warnings)
+    if (w.code == code && w.fid == fid) return &w;
+  return nullptr;
+}
+
+TEST(Conformance, TheMoselleMovesOntoItsValleyAndCarvesLess) {
+  test::TempDir drawn_dir, conformed_dir;
+  const RunReport drawn = run_rivers(drawn_dir.path(), 0.0);
+  const RunReport conformed = run_rivers(conformed_dir.path(), 2000.0);
+  const Lowering before = lowering(drawn_dir.path());
+  const Lowering after = lowering(conformed_dir.path());
+  // The bound holds with and without conformance (depth 4 m: max_carve 5 x 4 m)...
+  EXPECT_LE(before.largest, 20.0 + 1e-3);
+  EXPECT_LE(after.largest, 20.0 + 1e-3);
+  // ...and the conformed river carves fewer cells, less deeply (bench_conformance prints
+  // the numbers).
+  EXPECT_LT(after.median, 0.8 * before.median);
+  EXPECT_LT(after.cells, before.cells);
+
+  const auto& features = conformed.classes.at(0).features;
+  ASSERT_EQ(features.size(), 3u);
+  for (const FeatureReport& f : drawn.classes.at(0).features) EXPECT_EQ(f.moved_max_m, 0.0);
+  for (const std::int64_t fid : {1, 2}) {
+    const FeatureReport& f = features[std::size_t(fid)];
+    EXPECT_EQ(f.fid, fid);
+    EXPECT_GT(f.moved_max_m, 100.0);
+    EXPECT_LE(f.moved_max_m, 2000.0 + 50.0 * std::sqrt(2.0));
+    EXPECT_GT(f.moved_mean_m, 0.0);
+    EXPECT_LT(f.moved_mean_m, f.moved_max_m);
+    EXPECT_NEAR(f.cut_max_m, 20.0, 1e-9);  // held by max_carve...
+    const Warning* limited = find_warning(conformed, "carve_limited", fid);
+    ASSERT_NE(limited, nullptr) << "FID " << fid;  // ...and said so, with where and by how much
+    EXPECT_EQ(limited->subject, "features.rivers");
+    EXPECT_THAT(limited->message, HasSubstr("at most 20 m below the terrain"));
+    EXPECT_THAT(limited->message, HasSubstr("m along (x "));
+    ASSERT_NE(find_warning(conformed, "conformed", fid), nullptr);
+    EXPECT_EQ(find_warning(drawn, "conformed", fid), nullptr);
+  }
+}
+
+TEST(Conformance, SameBytesForAnyThreadCount) {
+  test::TempDir one, two;
+  run_rivers(one.path(), 2000.0, 1);
+  run_rivers(two.path(), 2000.0, 2);
+  for (const char* file : {"height.tif", "splat.tif"})
+    EXPECT_EQ(bytes_of(one.path() / file), bytes_of(two.path() / file)) << file;
+}
+
+TEST(Conformance, ARoadsCutAndFillBoundsAreReportedAndWarned) {
+  test::TempDir out;
+  PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
+                                        {{"output.dir", out.path().string()},
+                                         {"features.roads.profile.max_cut", "1"},
+                                         {"features.roads.profile.max_fill", "0.5"}});
+  std::erase_if(config.features, [](const auto& c) { return c.kind != FeatureKind::road; });
+  config.output.preview = false;
+  const RunReport r = run_pipeline(config);
+  const FeatureReport& road = r.classes.at(0).features.at(0);
+  EXPECT_EQ(road.fid, 3);
+  EXPECT_NEAR(road.cut_max_m, 1.0, 1e-9);
+  EXPECT_NEAR(road.fill_max_m, 0.5, 1e-9);
+  EXPECT_EQ(road.moved_max_m, 0.0);  // roads keep their line
+  const Warning* cut = find_warning(r, "cut_limited", 3);
+  const Warning* fill = find_warning(r, "fill_limited", 3);
+  ASSERT_NE(cut, nullptr);
+  ASSERT_NE(fill, nullptr);
+  EXPECT_THAT(cut->message, HasSubstr("at most 1 m below the terrain"));
+  EXPECT_THAT(fill->message, HasSubstr("at most 0.5 m above the terrain"));
+}
+
+const char* const kPipeline = R"(version: 1
+heightfield: dem.tif
+features:
+  rivers:
+    source: map.gpkg
+    kind: river
+    width: 8
+    profile: { depth: 2, max_carve: 7 }
+    conform: { corridor: 300 }
+  roads:
+    source: map.gpkg
+    kind: road
+    width: 6
+    profile: { max_cut: 4, max_fill: 3 }
+)";
+
+TEST(Conformance, KeysAreReadAndCheckedWhereTheyAre) {
+  const PipelineConfig c = parse_pipeline(kPipeline, "p.yaml", "/base");
+  EXPECT_EQ(c.features.at(0).conform_corridor, 300.0);
+  EXPECT_EQ(c.features.at(0).river.max_carve, 7.0);
+  EXPECT_EQ(c.features.at(1).conform_corridor, 0.0);
+  EXPECT_EQ(c.features.at(1).road.max_cut, 4.0);
+  EXPECT_EQ(c.features.at(1).road.max_fill, 3.0);
+  EXPECT_FALSE(c.features.at(1).river.max_carve.has_value());
+
+  auto error_of = [](const std::vector<Override>& overrides) -> std::string {
+    try {
+      parse_pipeline(kPipeline, "p.yaml", "/base", overrides);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_THAT(error_of({{"features.roads.conform.corridor", "100"}}),
+              HasSubstr("features.roads.conform: roads keep their line"));
+  EXPECT_THAT(error_of({{"features.rivers.conform.corridor", "0"}}),
+              HasSubstr("features.rivers.conform.corridor"));
+  EXPECT_THAT(error_of({{"features.rivers.conform.width", "1"}}),
+              HasSubstr("features.rivers.conform"));
+  EXPECT_THAT(error_of({{"features.rivers.profile.max_carve", "-1"}}),
+              HasSubstr("features.rivers.profile.max_carve"));
+  EXPECT_THAT(error_of({{"features.roads.profile.max_fill", "-1"}}),
+              HasSubstr("features.roads.profile.max_fill"));
+}
+
+}  // namespace
+}  // namespace tw
