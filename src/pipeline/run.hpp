@@ -1,6 +1,6 @@
 #pragma once
 // Runs a pipeline: ingest -> ribbons -> avoidance -> synthesis -> terrain -> layers, each stage
-// timed, every output staged in one OutputTransaction and committed at the very end (a run that
+// timed, every output staged in one OutputFolder and committed at the very end (a run that
 // fails writes nothing; a killed run leaves the previous outputs in place).
 #include <cstdint>
 #include <filesystem>
