@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
+#include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
@@ -93,6 +94,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   Warnings warnings;
   const bool strict = options.strict || config.strict;
   StageClock clock(report.stages);
+  set_network_access(options.allow_network);
+  check_input_paths(config, options.allow_network);
   // Locked first where terraweave wrote before, so that a second run into it fails at once.
   const fs::path dir = options.output_dir.value_or(config.output.dir);
   std::unique_ptr<OutputFolder> output =

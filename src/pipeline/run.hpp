@@ -18,8 +18,9 @@ struct RunOptions {
   std::optional<std::filesystem::path> output_dir;  // replaces output.dir
   std::optional<std::string> backend;               // replaces backend (cpu | opencl | auto)
   int threads = 0;                                  // 0 = every core
-  bool write_outputs = true;  // false: read and check every input, write nothing (validate)
-  bool strict = false;        // any warning fails the run (or config.strict)
+  bool write_outputs = true;   // false: read and check every input, write nothing (validate)
+  bool strict = false;         // any warning fails the run (or config.strict)
+  bool allow_network = false;  // inputs may be URLs (/vsicurl/...), CRSs may be fetched
 };
 
 struct StageTiming {
