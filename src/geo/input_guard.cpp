@@ -26,6 +26,12 @@ constexpr std::array<std::string_view, 9> kNetworkFileSystems = {
 // path is normalised, "http:/x").
 constexpr std::array<std::string_view, 4> kSchemes = {"http:", "https:", "ftp:", "ftps:"};
 
+// Connection strings of GDAL drivers that talk to a server, as a name's first characters.
+constexpr std::array<std::string_view, 19> kServerDrivers = {
+    "pg:",    "mysql:", "mssql:",  "oci:",      "odbc:",      "mongodbv3:", "elastic:",
+    "carto:", "wfs:",   "wms:",    "wcs:",      "oapif:",     "eeda:",      "ngw:",
+    "hana:",  "daas:",  "stacit:", "plscenes:", "amigocloud:"};
+
 }  // namespace
 
 std::string network_part_of(std::string_view path) {
@@ -34,6 +40,9 @@ std::string network_part_of(std::string_view path) {
                  [](unsigned char c) { return char(std::tolower(c)); });
   for (std::string_view prefix : kNetworkFileSystems) {
     if (lower.find(prefix) != std::string::npos) return std::string(prefix);
+  }
+  for (std::string_view driver : kServerDrivers) {
+    if (lower.starts_with(driver)) return std::string(driver);
   }
   for (std::string_view scheme : kSchemes) {
     for (std::size_t at = lower.find(scheme); at != std::string::npos;

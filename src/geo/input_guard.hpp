@@ -11,8 +11,8 @@ class OGRSpatialReference;
 namespace tw {
 
 // The part of `path` that reaches the network: a GDAL network file system ("/vsicurl",
-// "/vsis3", ..., also nested as in /vsizip//vsicurl/...) or a URL scheme ("https:"); "" for
-// a local path.
+// "/vsis3", ..., also nested as in /vsizip//vsicurl/...), a URL scheme ("https:") or a
+// server driver's connection string ("pg:" for "PG:host=..."); "" for a local path.
 std::string network_part_of(std::string_view path);
 
 // Throws tw::Error "<key>: <path> reaches the network (<part>); ..." unless allowed.

@@ -25,7 +25,9 @@ TEST(InputGuard, NamesTheNetworkPartOfAPath) {
   }
   EXPECT_EQ(network_part_of("https://example.com/roads.gpkg"), "https:");
   EXPECT_EQ(network_part_of("FTP://example.com/roads.gpkg"), "ftp:");
-  EXPECT_EQ(network_part_of("WFS:http://example.com/wfs"), "http:");
+  EXPECT_EQ(network_part_of("WFS:http://example.com/wfs"), "wfs:");
+  EXPECT_EQ(network_part_of("PG:host=db.example.com dbname=gis"), "pg:");
+  EXPECT_EQ(network_part_of("MySQL:gis,host=db"), "mysql:");
   EXPECT_EQ(network_part_of("/base/dir/http:/example.com/x.tif"), "http:");  // normalised
   EXPECT_EQ(network_part_of("EPSG:32631"), "");
   // Local names that merely look alike stay local.
