@@ -1,6 +1,7 @@
 #include "core/output_folder.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <ctime>
 #include <random>
+#include <regex>
 #include <set>
 
 #include "core/error.hpp"
@@ -54,8 +56,19 @@ int generation_number(const std::string& generation) {
   return std::atoi(generation.c_str() + 4);
 }
 
-// Deletes our links in <dir>/<folder> that resolve to nothing (outputs of no complete run), then
-// the folder itself when that leaves it empty. Never follows a link out of the folder.
+// A temporary of an older terraweave (".height.tmp<pid>.exr", written beside the outputs)
+// whose process is gone.
+bool is_dead_legacy_temporary(const std::string& name) {
+  static const std::regex pattern(R"(\.[^/]+\.tmp([0-9]+)(\.[A-Za-z0-9]+)?)");
+  std::smatch match;
+  if (!std::regex_match(name, match, pattern)) return false;
+  const long pid = std::atol(match[1].str().c_str());
+  return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
+}
+
+// Deletes our links in <dir>/<folder> that resolve to nothing (outputs of no complete run) and
+// dead runs' temporaries of older versions, then the folder itself when that leaves it empty.
+// Never follows a link out of the folder.
 void delete_dangling_links(const fs::path& dir, const fs::path& folder) {
   const fs::path path = dir / folder;
   std::error_code ec;
@@ -64,6 +77,10 @@ void delete_dangling_links(const fs::path& dir, const fs::path& folder) {
   for (auto it = fs::directory_iterator(path, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
     std::error_code entry_ec;
+    if (it->symlink_status(entry_ec).type() == fs::file_type::regular &&
+        is_dead_legacy_temporary(it->path().filename().string())) {
+      dangling.push_back(it->path());
+    }
     if (!it->is_symlink(entry_ec)) continue;
     const fs::path relative = folder / it->path().filename();
     if (fs::read_symlink(it->path(), entry_ec) != link_target(relative)) continue;  // not ours
@@ -74,7 +91,8 @@ void delete_dangling_links(const fs::path& dir, const fs::path& folder) {
 }
 
 // What runs no longer alive left (the caller holds the lock): every generation but the current
-// one, every staging entry, and the links of their files that resolve to nothing.
+// one, every staging entry, and in the folders any generation used, links that resolve to
+// nothing and older versions' temporaries.
 void delete_stale(const fs::path& dir, const fs::path& meta) {
   const std::string current = current_generation(meta);
   std::set<fs::path> folders{fs::path()};
@@ -83,12 +101,12 @@ void delete_stale(const fs::path& dir, const fs::path& meta) {
   for (auto it = fs::directory_iterator(meta, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name == current || !(name.starts_with("gen-") || name.starts_with("staging-"))) continue;
+    if (!(name.starts_with("gen-") || name.starts_with("staging-"))) continue;
     std::error_code entry_ec;
     if (it->symlink_status(entry_ec).type() == fs::file_type::directory) {
       for (const fs::path& file : files_under(it->path())) folders.insert(file.parent_path());
     }
-    stale.push_back(it->path());
+    if (name != current) stale.push_back(it->path());
   }
   for (const fs::path& path : stale) fs::remove_all(path, ec);
   for (const fs::path& folder : folders) delete_dangling_links(dir, folder);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -220,7 +221,17 @@ TEST_F(OutputFolderGuarantee, AKilledRunLeavesOneCompleteRunAndTheNextCleansUp) 
 TEST_F(OutputFolderGuarantee, OutputsTheNewRunDoesNotWriteDisappear) {
   fs::create_directories(dir / "out");
   std::ofstream(dir / "out/notes.txt") << "kept";
+  // Temporaries of an older terraweave: of a dead process (deleted) and of a live one (kept).
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const std::string dead_temporary = ".height.tmp" + std::to_string(dead) + ".exr";
+  const std::string live_temporary = ".height.tmp" + std::to_string(::getpid()) + ".exr";
+  std::ofstream(dir / "out" / dead_temporary) << "half";
+  std::ofstream(dir / "out" / live_temporary) << "being written";
   complete_run("out", "");
+  EXPECT_FALSE(fs::exists(dir / "out" / dead_temporary));
+  EXPECT_TRUE(fs::remove(dir / "out" / live_temporary));  // it was still there
   const Outputs b = complete_run("out", kRunB);
   EXPECT_FALSE(b.contains("preview.png"));
   EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "out/preview.png")));  // not even a link
