@@ -16,8 +16,7 @@ OutputTransaction::~OutputTransaction() {
 fs::path OutputTransaction::stage(const fs::path& final_path) {
   std::error_code ec;
   if (final_path.has_parent_path()) fs::create_directories(final_path.parent_path(), ec);
-  if (ec)
-    fail("cannot create output folder {}: {}", final_path.parent_path().string(), ec.message());
+  if (ec) fail("cannot create output folder {}: {}", final_path.parent_path().string(), ec.message());
   fs::path temporary = final_path;
   temporary.replace_filename("." + final_path.stem().string() + ".tmp" +
                              std::to_string(::getpid()) + final_path.extension().string());
