@@ -1,15 +1,19 @@
 // Network and file access of inputs (issue #9 item 8, docs/robustness.md "Network and files").
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
 
 #include <fstream>
 
 #include "core/error.hpp"
+#include "geo/heightfield.hpp"
 #include "geo/input_guard.hpp"
 #include "test_support.hpp"
 
 namespace tw {
 namespace {
+
+using ::testing::HasSubstr;
 
 TEST(InputGuard, NamesTheNetworkPartOfAPath) {
   EXPECT_EQ(network_part_of("/vsicurl/https://example.com/dem.tif"), "/vsicurl");
@@ -48,6 +52,18 @@ TEST(InputGuard, RefusesNetworkPathsNamingTheKeyUnlessAllowed) {
   }
   EXPECT_NO_THROW(check_input_path("/vsis3/bucket/dem.tif", "heightfield", true));
   EXPECT_NO_THROW(check_input_path("/data/dem.tif", "heightfield", false));
+}
+
+// The geo readers check too, for library callers that skip the pipeline.
+TEST(InputGuard, TheReadersRefuseNetworkPathsWhileNetworkIsOff) {
+  set_network_access(false);
+  try {
+    read_heightfield("/vsicurl/http://127.0.0.1:9/dem.tif");
+    ADD_FAILURE() << "not refused";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("heightfield: '/vsicurl/http://127.0.0.1:9/dem.tif' reaches "
+                                    "the network (/vsicurl)"));
+  }
 }
 
 // A CRS string is never read from a file: OGR would otherwise read any local file named there

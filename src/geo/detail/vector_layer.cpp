@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "geo/input_guard.hpp"
 
 namespace tw::detail {
 namespace {
@@ -37,6 +38,7 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   ensure_gdal_registered();
   QuietGdalErrors quiet;
   OpenVectorLayer result;
+  check_input_path(source.path, "vector source", network_access_allowed());
   result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   if (!result.dataset) {
     fail("{}: cannot open as vector data: {}", source.path, last_gdal_error());
