@@ -57,12 +57,15 @@ int generation_number(const std::string& generation) {
 }
 
 // A temporary of an older terraweave (".height.tmp<pid>.exr", written beside the outputs)
-// whose process is gone.
-bool is_dead_legacy_temporary(const std::string& name) {
-  static const std::regex pattern(R"(\.[^/]+\.tmp([0-9]+)(\.[A-Za-z0-9]+)?)");
+// whose process is gone. Only names a pipeline wrote: the layers, the report, placements.
+bool is_dead_legacy_temporary(const fs::path& relative) {
+  static const std::regex pattern(
+      R"((\.(height|splat|avoidance|preview|report)|placements/\.[A-Za-z0-9_-]+))"
+      R"(\.tmp([0-9]+)\.(exr|tif|png|json))");
   std::smatch match;
+  const std::string name = relative.generic_string();
   if (!std::regex_match(name, match, pattern)) return false;
-  const long pid = std::atol(match[1].str().c_str());
+  const long pid = std::atol(match[3].str().c_str());
   return pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH;
 }
 
@@ -78,7 +81,7 @@ void delete_dangling_links(const fs::path& dir, const fs::path& folder) {
        it.increment(ec)) {
     std::error_code entry_ec;
     if (it->symlink_status(entry_ec).type() == fs::file_type::regular &&
-        is_dead_legacy_temporary(it->path().filename().string())) {
+        is_dead_legacy_temporary(folder / it->path().filename())) {
       dangling.push_back(it->path());
     }
     if (!it->is_symlink(entry_ec)) continue;

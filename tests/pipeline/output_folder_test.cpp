@@ -229,9 +229,12 @@ TEST_F(OutputFolderGuarantee, OutputsTheNewRunDoesNotWriteDisappear) {
   const std::string live_temporary = ".height.tmp" + std::to_string(::getpid()) + ".exr";
   std::ofstream(dir / "out" / dead_temporary) << "half";
   std::ofstream(dir / "out" / live_temporary) << "being written";
+  const std::string users_file = ".notes.tmp" + std::to_string(dead) + ".exr";  // not an output
+  std::ofstream(dir / "out" / users_file) << "mine";
   complete_run("out", "");
   EXPECT_FALSE(fs::exists(dir / "out" / dead_temporary));
-  EXPECT_TRUE(fs::remove(dir / "out" / live_temporary));  // it was still there
+  EXPECT_TRUE(fs::remove(dir / "out" / live_temporary));  // they were still there
+  EXPECT_TRUE(fs::remove(dir / "out" / users_file));
   const Outputs b = complete_run("out", kRunB);
   EXPECT_FALSE(b.contains("preview.png"));
   EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "out/preview.png")));  // not even a link
