@@ -7,15 +7,16 @@
 //   <dir>/.terraweave/staging-<pid>-<random>/   where a run writes every file
 //   <dir>/.terraweave/gen-<N>/        a complete run (the staging folder, renamed when complete)
 //   <dir>/.terraweave/current         symlink -> gen-<N>: THE commit is one rename(2) of it
-//   <dir>/<name>                      symlink -> .terraweave/current/<name> (height.tif,
-//   report.json,
-//                                     placements/<x>.json: <dir>/placements holds such links)
+//   <dir>/<name>                      symlink -> .terraweave/current/<name>, for height.tif,
+//                                     report.json, placements/<x>.json, ...
 // Before the swap of `current`, every name the new run produces already has its link (one that
 // does not resolve yet reads as absent); after it, the previous run's links that no longer
 // resolve, and its generation, are deleted. So at every moment a reader sees, through the
 // links, exactly the files of one complete run, the old or the new, and report.json names
 // exactly those. A killed run leaves only .terraweave/ entries (and links that resolve to
-// nothing); the next run, holding the lock (so no other run is alive), deletes them.
+// nothing); the next run, holding the lock (so no other run is alive), deletes them, and the
+// temporaries an older terraweave left beside its outputs (.height.tmp<pid>.exr, dead pid).
+// Not fsync'ed: the guarantee holds against kills, not against a power loss.
 #include <filesystem>
 #include <memory>
 #include <string>
