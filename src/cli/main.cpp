@@ -53,10 +53,11 @@ int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   return 0;
 }
 
-int validate_command(const PipelineArgs& args, bool strict) {
+int validate_command(const PipelineArgs& args, bool strict, bool allow_network) {
   tw::RunOptions options;
   options.write_outputs = false;
   options.strict = strict;
+  options.allow_network = allow_network;
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   std::size_t features = 0;
   for (const auto& c : report.classes) features += c.features.size();
@@ -90,6 +91,9 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
       ->check(CLI::PositiveNumber);
   run->add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
+  const char* const network_help =
+      "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
+  run->add_flag("--allow-network", run_options.allow_network, network_help);
 
   PipelineArgs validate_args;
   bool validate_strict = false;
@@ -97,6 +101,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
   validate->add_flag("--strict", validate_strict, "fail on any warning");
+  bool validate_allow_network = false;
+  validate->add_flag("--allow-network", validate_allow_network, network_help);
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -119,6 +125,7 @@ int main(int argc, char** argv) {
   synth->add_option("--min-coverage", synth_args.min_coverage,
                     "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
+  synth->add_flag("--allow-network", synth_args.allow_network, network_help);
   synth->add_option("--feather", synth_args.feather,
                     "metres either side of each seam where colours blend (0: exact copies)");
   synth
@@ -146,7 +153,8 @@ int main(int argc, char** argv) {
       if (!backend.empty()) run_options.backend = backend;
       return run_command(run_args, run_options);
     }
-    if (validate->parsed()) return validate_command(validate_args, validate_strict);
+    if (validate->parsed())
+      return validate_command(validate_args, validate_strict, validate_allow_network);
     if (synth->parsed()) {
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",

@@ -1,23 +1,31 @@
 #pragma once
-// All-or-nothing outputs. Every file of a run is first written under a temporary name in
-// its final folder; commit() renames them all into place. A run that throws, or is killed,
-// leaves the previous outputs untouched (and the destructor removes the temporaries).
+// All-or-nothing outputs of loose files (`synth -o x.png`, tests, benchmarks). Every file is
+// first written under a temporary name in its final folder; commit() renames them one by one,
+// so each file is old or new, never half-written. A pipeline's output folder, whose files must
+// change together, is an OutputFolder (core/output_folder.hpp).
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace tw {
 
-class OutputTransaction {
+// What a writer needs: where to write instead of the final path.
+class OutputStager {
+ public:
+  virtual ~OutputStager() = default;
+  virtual std::filesystem::path stage(const std::filesystem::path& final_path) = 0;
+};
+
+class OutputTransaction final : public OutputStager {
  public:
   OutputTransaction() = default;
-  ~OutputTransaction();
+  ~OutputTransaction() override;
   OutputTransaction(const OutputTransaction&) = delete;
   OutputTransaction& operator=(const OutputTransaction&) = delete;
 
   // The temporary path to write instead of `final_path` (same folder, same extension so
   // format drivers that look at the extension still work). Creates the folder.
-  std::filesystem::path stage(const std::filesystem::path& final_path);
+  std::filesystem::path stage(const std::filesystem::path& final_path) override;
   // Renames every staged file into place.
   void commit();
   const std::vector<std::filesystem::path>& committed() const { return committed_; }

@@ -37,10 +37,7 @@ LengthCheck check_metric_length(const std::vector<Vec2>& lon_lat_degrees,
   geographic.SetWellKnownGeogCS("WGS84");
   geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   OGRSpatialReference metric;
-  if (metric.SetFromUserInput(metric_crs.c_str()) != OGRERR_NONE) {
-    fail("unknown CRS '{}'", metric_crs);
-  }
-  metric.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (!detail::import_traditional_srs(metric, metric_crs)) fail("unknown CRS '{}'", metric_crs);
   std::unique_ptr<OGRCoordinateTransformation> transform(
       OGRCreateCoordinateTransformation(&geographic, &metric));
   if (!transform) fail("no transformation from WGS84 to '{}'", metric_crs);

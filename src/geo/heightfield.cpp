@@ -12,6 +12,7 @@
 #include "core/log.hpp"
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/warp.hpp"
+#include "geo/input_guard.hpp"
 #include "geo/metric_frame.hpp"
 #include "geo/resample.hpp"
 
@@ -124,6 +125,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   if (options.resolution && !(std::isfinite(*options.resolution) && *options.resolution > 0.0)) {
     fail("{}: resolution must be a positive number of metres, got {}", path, *options.resolution);
   }
+  check_input_path(path, "heightfield", network_access_allowed());  // also for library callers
   GdalDatasetPtr source(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!source) fail("{}: cannot open as a raster: {}", path, detail::last_gdal_error());
   if (source->GetRasterCount() < 1) fail("{}: has no raster band", path);

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "geo/input_guard.hpp"
 #include "layers/detail/gdal_init.hpp"
 #include "layers/write.hpp"
 
@@ -43,7 +44,7 @@ void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesyste
   ds->SetGeoTransform(gt.data());
   if (!set.crs_wkt.empty()) {
     OGRSpatialReference srs;
-    if (srs.SetFromUserInput(set.crs_wkt.c_str()) != OGRERR_NONE)
+    if (!import_crs(srs, set.crs_wkt))
       fail("layer set: cannot parse the CRS WKT for {}", path.string());
     ds->SetSpatialRef(&srs);
   }

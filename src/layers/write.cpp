@@ -6,8 +6,7 @@ namespace tw {
 
 std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
                                                    const std::filesystem::path& dir,
-                                                   OutputTransaction& tx,
-                                                   const WriteOptions& options) {
+                                                   OutputStager& tx, const WriteOptions& options) {
   validate_layer_set(set);
   std::vector<std::filesystem::path> written;
   for (const auto& layer : set.layers) {

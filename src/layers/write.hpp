@@ -1,7 +1,7 @@
 #pragma once
 // Writers of a LayerSet: EXR (float32, ZIP, named channels, georeferencing attributes),
-// GeoTIFF twins through GDAL, and a PNG preview. Every file is staged in an
-// OutputTransaction, so a failed run leaves previous outputs untouched.
+// GeoTIFF twins through GDAL, and a PNG preview. Every file is staged (an OutputTransaction
+// or an OutputFolder), so a failed run leaves previous outputs untouched.
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -41,7 +41,7 @@ struct WriteOptions {
 // `tx` (the caller commits). Returns the final paths.
 std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
                                                    const std::filesystem::path& dir,
-                                                   OutputTransaction& tx,
+                                                   OutputStager& tx,
                                                    const WriteOptions& options = {});
 
 // Single-file writers (they write `path` directly; stage it first for atomicity).

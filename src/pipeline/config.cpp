@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <fstream>
 #include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
@@ -17,6 +19,14 @@ using detail::MapReader;
 using detail::YamlSource;
 
 namespace {
+
+bool is_identifier(const std::string& name) {
+  const auto letter = [](char c) { return std::isalpha((unsigned char)c) || c == '_'; };
+  const auto other = [&](char c) {
+    return letter(c) || std::isdigit((unsigned char)c) || c == '-';
+  };
+  return !name.empty() && letter(name[0]) && std::all_of(name.begin() + 1, name.end(), other);
+}
 
 // The index in `options` of the string at `key`; absent: `fallback`, or the reader's "missing
 // key" error without one. Anything else fails as "unknown <noun> 'x', expected a, b or c", with
@@ -393,6 +403,12 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   for (const auto& entry : features) {
     const std::string name = detail::read_string(src, entry.first, "features");
     const std::string path = "features." + name;
+    // The name becomes file names (placements/<class>_<fid>.json) and splat channels.
+    if (!is_identifier(name)) {
+      src.fail(entry.first, path,
+               "a class name must start with a letter or '_' and hold only letters, digits, '_' "
+               "and '-'");
+    }
     c.features.push_back(
         read_feature_class(MapReader(src, entry.second, path,
                                      {"source", "layer", "where", "tags", "kind", "width_attribute",
@@ -453,6 +469,28 @@ PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& fil
                               const fs::path& base_dir, const std::vector<Override>& overrides) {
   const YamlSource src(file_label, base_dir, overrides);
   return read_pipeline(src, src.load(yaml_text));
+}
+
+void check_input_paths(const PipelineConfig& config, bool allow_network) {
+  if (config.heightfield)
+    check_input_path(config.heightfield->string(), "heightfield", allow_network);
+  if (!config.heightfield) check_input_path(config.generate.crs, "generate.crs", allow_network);
+  for (const FeatureClassConfig& f : config.features) {
+    const std::string key = "features." + f.name;
+    check_input_path(f.source.string(), key + ".source", allow_network);
+    if (!f.synthesis) continue;
+    const auto& exemplars = f.synthesis->exemplars;
+    for (std::size_t i = 0; i < exemplars.size(); ++i) {
+      check_input_path(exemplars[i].string(),
+                       key + ".synthesis.exemplar" +
+                           (exemplars.size() > 1 ? "." + std::to_string(i) : std::string()),
+                       allow_network);
+    }
+  }
+  for (std::size_t i = 0; i < config.existing.size(); ++i) {
+    check_input_path(config.existing[i].source.string(), fmt::format("existing.{}.source", i),
+                     allow_network);
+  }
 }
 
 PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides) {

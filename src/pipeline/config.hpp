@@ -166,4 +166,8 @@ PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& fil
                               const std::filesystem::path& base_dir,
                               const std::vector<Override>& overrides = {});
 
+// Throws tw::Error naming the key (heightfield, features.<class>.source, ...) of the first input
+// path that reaches the network (geo/input_guard.hpp), unless `allow_network`.
+void check_input_paths(const PipelineConfig& config, bool allow_network);
+
 }  // namespace tw

@@ -7,9 +7,10 @@
 #include <fstream>
 #include <map>
 
-#include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/output_folder.hpp"
+#include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/conformance.hpp"
@@ -108,6 +109,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   Warnings warnings;
   const bool strict = options.strict || config.strict;
   StageClock clock(report.stages);
+  set_network_access(options.allow_network);
+  check_input_paths(config, options.allow_network);
+  // Locked first where terraweave wrote before, so that a second run into it fails at once.
+  const fs::path dir = options.output_dir.value_or(config.output.dir);
+  std::unique_ptr<OutputFolder> output =
+      options.write_outputs ? OutputFolder::lock_if_used(dir) : nullptr;
 
   clock.start("ingest");
   Heightfield heightfield = detail::load_heightfield(config);
@@ -194,7 +201,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   finish_warnings(warnings, strict, report);
   clock.start("layers");
-  const fs::path dir = options.output_dir.value_or(config.output.dir);
+  if (!output) output = std::make_unique<OutputFolder>(dir);
+  OutputFolder& transaction = *output;
   LayerSet layers;
   layers.grid = heightfield.grid;
   layers.crs_wkt = heightfield.crs_wkt;
@@ -202,7 +210,6 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   layers.layers.push_back(height_layer(std::move(heightfield.height)));
   layers.layers.push_back(splat_layer(std::move(splat)));
   layers.layers.push_back(avoidance_layer(std::move(avoidance)));
-  OutputTransaction transaction;
   WriteOptions write_options;
   write_options.exr = config.output.exr;
   write_options.geotiff = config.output.geotiff;

@@ -1,6 +1,6 @@
 #pragma once
 // Runs a pipeline: ingest -> ribbons -> avoidance -> synthesis -> terrain -> layers, each stage
-// timed, every output staged in one OutputTransaction and committed at the very end (a run that
+// timed, every output staged in one OutputFolder and committed at the very end (a run that
 // fails writes nothing; a killed run leaves the previous outputs in place).
 #include <array>
 #include <cstdint>
@@ -19,8 +19,9 @@ struct RunOptions {
   std::optional<std::filesystem::path> output_dir;  // replaces output.dir
   std::optional<std::string> backend;               // replaces backend (cpu | opencl | auto)
   int threads = 0;                                  // 0 = every core
-  bool write_outputs = true;  // false: read and check every input, write nothing (validate)
-  bool strict = false;        // any warning fails the run (or config.strict)
+  bool write_outputs = true;   // false: read and check every input, write nothing (validate)
+  bool strict = false;         // any warning fails the run (or config.strict)
+  bool allow_network = false;  // inputs may be URLs (/vsicurl/...), CRSs may be fetched
 };
 
 struct StageTiming {

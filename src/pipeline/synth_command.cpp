@@ -11,6 +11,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "geo/input_guard.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"
@@ -103,6 +104,9 @@ Synthesis run_synth_command(const SynthCommand& c) {
   if (!(c.scale > 0)) fail("synth: --scale must be > 0 texels per metre, got {}", c.scale);
   if (!(c.length > 0)) fail("synth: --length must be > 0 metres, got {}", c.length);
   if (!(c.feather >= 0)) fail("synth: --feather must be >= 0 metres, got {}", c.feather);
+  set_network_access(c.allow_network);
+  check_input_path(c.exemplar.string(), "--exemplar", c.allow_network);
+  if (!is_shape(c.curve)) check_input_path(c.curve, "--curve", c.allow_network);
   ExemplarOptions options;
   options.continuous_alpha = c.continuous_alpha;
   const Exemplar exemplar = load_exemplar(c.exemplar.string(), options);

@@ -26,6 +26,7 @@ struct SynthCommand {
   double feather = 0.0;              // render_pattern's seam feathering, metres
   std::filesystem::path output;      // .png
   std::filesystem::path placements;  // optional JSON of the placements (synth/placements_io.hpp)
+  bool allow_network = false;        // --exemplar and --curve may be URLs (/vsicurl/...)
 };
 
 // Throws tw::Error naming the exemplar, the curve source or the value at fault. The PNG is

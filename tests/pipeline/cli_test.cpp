@@ -44,12 +44,18 @@ std::string read_file(const fs::path& path) {
   return s.str();
 }
 
-// Every file under a folder with its contents.
+// Every file under a folder with its contents (outputs through their links), but terraweave's
+// own .terraweave/ (where any run that locks the folder writes its pid into the lock).
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
   if (!fs::exists(dir)) return files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_regular_file()) files[entry.path().string()] = read_file(entry.path());
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator();
+       ++it) {
+    if (it->path().filename() == ".terraweave") {
+      it.disable_recursion_pending();
+    } else if (it->is_regular_file()) {
+      files[it->path().string()] = read_file(it->path());
+    }
   }
   return files;
 }
@@ -130,6 +136,16 @@ TEST_F(Cli, GoodRunWritesEveryLayerAndKeepsOtherFiles) {
   EXPECT_NE(read_file(dir / "out/height.exr"), "previous height");
   EXPECT_EQ(read_file(dir / "out/notes.txt"), "kept");
   EXPECT_THAT(read_file(dir / "out/report.json"), HasSubstr("\"name\": \"rivers\""));
+}
+
+// After a good run (outputs are links into .terraweave/), a failing one still changes nothing.
+TEST_F(Cli, AFailingRunAfterAGoodOneLeavesItsOutputs) {
+  ASSERT_EQ(terraweave("-q run pipeline.yaml").exit_code, 0);
+  const std::string height = read_file(dir / "out/height.exr");
+  // Fails in ingest, after the run has locked the folder.
+  expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "none.gpkg").string(),
+                 {"none.gpkg: cannot open as vector data"});
+  EXPECT_EQ(read_file(dir / "out/height.exr"), height);
 }
 
 TEST_F(Cli, OutAndSetOverrideThePipeline) {

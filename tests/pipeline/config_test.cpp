@@ -368,6 +368,61 @@ TEST(PipelineConfig, LoadsAFileAndResolvesAgainstItsFolder) {
   }
 }
 
+// Class names become file names (placements/<class>_<fid>.json): `../../x` would write
+// outside --out (issue #9 item 8).
+TEST(PipelineConfig, ClassNamesAreSafeIdentifiers) {
+  const std::string good =
+      std::string(kMinimal) + "  Big_roads-2: { source: m.gpkg, kind: road, width: 8 }\n";
+  EXPECT_EQ(parse(good).features.back().name, "Big_roads-2");
+  for (const char* name : {"../../x", "a/b", "2roads", "-x", "\"r d\"", "\"\""}) {
+    SCOPED_TRACE(name);
+    EXPECT_THAT(error_of(std::string(kMinimal) + "  " + name +
+                         ": { source: m.gpkg, kind: road, width: 8 }\n"),
+                HasSubstr("a class name must start with a letter or '_' and hold only letters, "
+                          "digits, '_' and '-'"));
+  }
+  EXPECT_THAT(
+      error_of(kMinimal, {{"features", "{\"../x\": {source: m.gpkg, kind: road, width: 3}}"}}),
+      HasSubstr("features.../x: a class name must"));
+}
+
+// Network paths are refused naming the key, before any input is opened (issue #9 item 8).
+TEST(PipelineConfig, NetworkInputsAreRefusedNamingTheKey) {
+  const auto refusal = [](const std::vector<Override>& overrides, bool allow = false) {
+    try {
+      check_input_paths(parse(kMinimal, overrides), allow);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(refusal({}), "");
+  EXPECT_EQ(refusal({{"heightfield", "/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif"}}),
+            "heightfield: '/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif' reaches the network "
+            "(/vsicurl); terraweave reads local files unless run with --allow-network");
+  // Kept as written (the nested "//" intact) for GDAL when allowed.
+  EXPECT_EQ(parse(kMinimal, {{"heightfield", "/vsizip//vsicurl/https://example.com/d.zip/d.tif"}})
+                .heightfield->string(),
+            "/vsizip//vsicurl/https://example.com/d.zip/d.tif");
+  EXPECT_THAT(refusal({{"features.roads.source", "https://example.com/roads.gpkg"}}),
+              HasSubstr("features.roads.source: 'https://example.com/roads.gpkg' reaches the "
+                        "network (https:)"));
+  EXPECT_THAT(refusal({{"existing", "[{source: /vsis3/bucket/houses.gpkg}]"}}),
+              HasSubstr("existing.0.source: '/vsis3/bucket/houses.gpkg' reaches the network"));
+  EXPECT_THAT(refusal({{"features.roads.synthesis", "{exemplar: /vsigs/b/cobble.png}"}}),
+              HasSubstr("features.roads.synthesis.exemplar: '/vsigs/b/cobble.png'"));
+  const std::string generated =
+      "version: 1\ngenerate: { crs: \"http://example.com/crs\" }\n"
+      "features:\n  roads: { source: m.gpkg, kind: road, width: 8 }\n";
+  try {
+    check_input_paths(parse(generated), false);
+    ADD_FAILURE() << "a URL CRS passed";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("generate.crs: 'http://example.com/crs' reaches the network"));
+  }
+  EXPECT_EQ(refusal({{"heightfield", "/vsicurl/https://example.com/dem.tif"}}, true), "");
+}
+
 TEST(PipelineConfig, ShippedPipelinesParse) {
   int parsed = 0;
   for (const auto& entry : fs::directory_iterator(test::source_dir() / "pipelines")) {

@@ -166,6 +166,14 @@ TEST_F(SmallWorld, PatternsBecomeSplatAndHeightWithoutViolations) {
   }
   EXPECT_GT(raised, 50u);
   EXPECT_EQ(outside, 0u);
+
+  // A run with fewer features leaves none of the previous run's placements (issue #9 item 7).
+  run_pipeline(config({{"features.roads.where", "fid = 3"}}));
+  std::vector<std::string> placements;
+  for (const auto& entry : fs::directory_iterator(out / "placements"))
+    placements.push_back(entry.path().filename().string());
+  EXPECT_EQ(placements, std::vector<std::string>{"roads_3.json"});
+  EXPECT_EQ(report_of(out)["classes"][0]["features"].size(), 1u);
 }
 
 TEST_F(SmallWorld, SameBytesOnEveryBackendAndThreadCount) {

@@ -4,6 +4,8 @@
 
 #include <mutex>
 
+#include "geo/input_guard.hpp"
+
 namespace tw::detail {
 
 void ensure_gdal_registered() {
@@ -26,8 +28,7 @@ std::string last_gdal_error() {
 }
 
 bool import_traditional_srs(OGRSpatialReference& srs, const std::string& user_input) {
-  if (user_input.empty()) return false;
-  if (srs.SetFromUserInput(user_input.c_str()) != OGRERR_NONE) return false;
+  if (!import_crs(srs, user_input)) return false;
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   return true;
 }

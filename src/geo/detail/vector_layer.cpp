@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "geo/detail/osm_config.hpp"
+#include "geo/input_guard.hpp"
 
 namespace tw::detail {
 namespace {
@@ -41,6 +42,7 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   ensure_gdal_registered();
   QuietGdalErrors quiet;
   OpenVectorLayer result;
+  check_input_path(source.path, "vector source", network_access_allowed());
   {
     // OSM files get our osmconf.ini (its tags as columns) unless the user set their own.
     std::optional<CPLConfigOptionSetter> osm_config;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "geo/input_guard.hpp"
 
 namespace tw::detail {
 
@@ -147,6 +148,9 @@ void YamlSource::fail(const YAML::Node& node, const std::string& key_path,
 }
 
 fs::path YamlSource::resolve(const std::string& value, const std::string& key_path) const {
+  // GDAL's virtual file systems and URLs are names, not paths ("/vsizip//vsicurl/..." must keep
+  // its "//"); whether they may be opened is check_input_paths' business.
+  if (value.starts_with("/vsi") || !network_part_of(value).empty()) return value;
   const fs::path path(value);
   if (path.is_absolute()) return path.lexically_normal();
   const fs::path base = override_for(key_path) ? fs::current_path() : base_dir_;
