@@ -16,7 +16,7 @@ constexpr int kSize = 200;
 constexpr int kRoadRow = 99;
 
 std::vector<TerrainFeature> road_with(Structure structure) {
-  RoadProfile profile{0.08, 1.0, 10.0, 20.0};
+  RoadProfile profile{0.08, 1.0, 10.0, 20.0, std::nullopt, std::nullopt};
   auto a = test::feature(FeatureKind::road, 1, {{5.0, 100.5}, {60.0, 100.5}}, 6.0);
   auto s = test::feature(FeatureKind::road, 2, {{60.0, 100.5}, {140.0, 100.5}}, 6.0);
   auto b = test::feature(FeatureKind::road, 3, {{140.0, 100.5}, {195.0, 100.5}}, 6.0);
@@ -29,7 +29,7 @@ std::vector<TerrainFeature> road_with(Structure structure) {
 // A river flowing south along x = 100.5 (width 8, depth 2: reach 4 + 3 + 5 = 12 m).
 TerrainFeature river() {
   auto r = test::feature(FeatureKind::river, 10, {{100.5, 195.0}, {100.5, 5.0}}, 8.0);
-  r.river = {2.0, 3.0, 5.0, 0.0};
+  r.river = {2.0, 3.0, 5.0, 0.0, std::nullopt};
   return r;
 }
 
@@ -92,7 +92,7 @@ TEST(Structures, ABridgeOverARoadIsNotPinnedToIt) {
   auto slope = [](double x, double y) { return 20.0 + 0.06 * y + 2.0 * std::sin(x / 15.0); };
   const Raster<float> before = test::heights_from(grid, slope);
   auto under = test::feature(FeatureKind::road, 20, {{100.5, 10.0}, {100.5, 190.0}}, 6.0);
-  under.road = {0.08, 1.0, 10.0, 20.0};
+  under.road = {0.08, 1.0, 10.0, 20.0, std::nullopt, std::nullopt};
   std::vector<TerrainFeature> features = road_with(Structure::bridge);
   features.push_back(under);
   const TerrainPlan with_bridge = plan_terrain(before, grid, features, {});
@@ -120,7 +120,7 @@ TEST(Structures, ARoadEndingOnTheSideOfAnotherLayerIsNoTJunction) {
   const Raster<float> before = test::heights_from(grid, slope);
   auto through = test::feature(FeatureKind::road, 1, {{10.0, 100.5}, {190.0, 100.5}}, 6.0);
   auto ending = test::feature(FeatureKind::road, 2, {{100.5, 10.0}, {100.5, 100.5}}, 6.0);
-  for (auto* f : {&through, &ending}) f->road = {0.08, 1.0, 10.0, 20.0};
+  for (auto* f : {&through, &ending}) f->road = {0.08, 1.0, 10.0, 20.0, std::nullopt, std::nullopt};
   const TerrainPlan alone = plan_terrain(before, grid, {ending}, {});
   const TerrainPlan t_junction = plan_terrain(before, grid, {through, ending}, {});
   std::size_t i = 0;
