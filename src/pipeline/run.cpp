@@ -13,6 +13,7 @@
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
@@ -95,7 +96,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   StageClock clock(report.stages);
 
   clock.start("ingest");
-  Heightfield heightfield = detail::load_heightfield(config);
+  detail::check_inputs(config);
+  Heightfield heightfield = detail::load_heightfield(config, warnings);
   report.grid = heightfield.grid;
   report.crs_wkt = heightfield.crs_wkt;
   report.heightfield = heightfield.source;
@@ -110,7 +112,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     class_report.ingest_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
-  detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
+  detail::ExistingFeatures existing =
+      detail::load_existing(config.existing, heightfield, config.repair, warnings);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
     heightfield = detail::crop_to_region(heightfield, *config.region,
                                          config.resolution.value_or(heightfield.grid.pixel_width),
@@ -160,7 +163,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
   const TerrainParams params = detail::terrain_params(config);
   const Window whole = Window::whole(heightfield.grid);
-  shape_terrain(heightfield.height, heightfield.grid, whole, features, params);
+  shape_terrain(heightfield.height, heightfield.grid, whole, features, params, warnings);
   SplatLayers splat = compute_splat(heightfield.grid, whole, features, params);
   detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
   clock.stop();

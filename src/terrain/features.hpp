@@ -2,6 +2,7 @@
 // Linear terrain features (roads, rivers, ridges) as the terrain module sees them: a
 // centerline in world metres, a width and the profile parameters of the feature's kind.
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "ribbon/curve.hpp"
@@ -43,6 +44,7 @@ struct RidgeProfile {
 struct TerrainFeature {
   FeatureKind kind = FeatureKind::road;
   std::int64_t fid = 0;  // named in error messages
+  std::string subject;   // the key warnings name, e.g. "features.rivers"; empty = the kind
   Curve centerline;      // world metres; for rivers, points run downstream
   double width = 0.0;    // metres: road surface, river bed, or ridge crest
   RoadProfile road;

@@ -210,6 +210,13 @@ void carve_river_beds(TerrainPlan& plan, std::vector<std::vector<double>>& profi
 
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params) {
+  Warnings warnings;  // logged as they are raised
+  return plan_terrain(height, grid, features, params, warnings);
+}
+
+TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                         Warnings& warnings) {
   if (height.width != grid.width || height.height != grid.height)
     fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
          height.height, grid.width, grid.height);
@@ -243,8 +250,8 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
     if (terrain.empty()) {
       // Off this grid altogether (a close-up region, a tile) is expected; over nodata is not.
       if (reaches_grid(f, grid, step)) {
-        logger().warn("{} feature FID {} lies entirely over nodata; left out", to_string(f.kind),
-                      f.fid);
+        warnings.add("over_nodata", f.subject.empty() ? std::string(to_string(f.kind)) : f.subject,
+                     f.fid, "lies entirely over nodata; left out");
       } else {
         logger().debug("{} feature FID {} lies outside the grid", to_string(f.kind), f.fid);
       }
@@ -369,6 +376,12 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
 void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const std::vector<TerrainFeature>& features, const TerrainParams& params) {
   apply_terrain(height, grid, window, plan_terrain(height, grid, features, params));
+}
+
+void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
+                   const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                   Warnings& warnings) {
+  apply_terrain(height, grid, window, plan_terrain(height, grid, features, params, warnings));
 }
 
 void shape_heightfield(Heightfield& heightfield, const std::vector<TerrainFeature>& features,

@@ -1,17 +1,39 @@
 #include "pipeline/detail/ingest.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "terrain/features.hpp"
 
 namespace tw::detail {
+namespace {
 
-Heightfield load_heightfield(const PipelineConfig& config) {
+// Metres beyond a feature's half width that the later stages reach (the terrain profile's
+// banks or shoulders and falloff, a wider synthesis ribbon) plus one cell: what the clip halo
+// must keep so a feature just off the heightfield still shapes its edge.
+double clip_margin(const FeatureClassConfig& config, double cell) {
+  TerrainFeature profile;
+  profile.kind = config.kind;
+  profile.road = config.road;
+  profile.river = config.river;
+  profile.ridge = config.ridge;
+  double margin = feature_reach(profile);  // width 0: the reach beyond the half width
+  if (config.synthesis && config.synthesis->width) {
+    margin = std::max(margin, 0.5 * *config.synthesis->width);
+  }
+  return margin + cell;
+}
+
+}  // namespace
+
+Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
-    return read_heightfield(config.heightfield->string(), options);
+    return read_heightfield(config.heightfield->string(), options, warnings);
   }
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
@@ -30,10 +52,14 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings) {
   LineClassSpec spec;
   spec.name = config.name;
+  spec.subject = "features." + config.name;
   spec.source = {config.source.string(), config.layer, config.where};
   spec.width_attribute = config.width_attribute;
   spec.default_width = config.width;
-  std::vector<LineFeature> lines = read_line_features(spec, heightfield);
+  spec.clip_margin =
+      clip_margin(config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height));
+  spec.repair = config.repair;
+  std::vector<LineFeature> lines = read_line_features(spec, heightfield, warnings);
   if (lines.empty()) {
     warnings.add(
         "empty_class", "features." + config.name, std::nullopt,
@@ -46,7 +72,8 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
 }
 
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
-                               const Heightfield& heightfield) {
+                               const Heightfield& heightfield, const LineRepair& repair,
+                               Warnings& warnings) {
   ExistingFeatures out;
   for (std::size_t i = 0; i < existing.size(); ++i) {
     const ExistingConfig& e = existing[i];
@@ -56,13 +83,15 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
       spec.name = "existing." + std::to_string(i);
       spec.source = source;
       spec.default_width = e.width;
-      for (LineFeature& line : read_line_features(spec, heightfield)) {
+      spec.repair = repair;
+      for (LineFeature& line : read_line_features(spec, heightfield, warnings)) {
         if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
         out.lines.push_back(std::move(line.points));
         out.line_widths.push_back(e.width);
       }
     } else {
-      for (PolygonFeature& polygon : read_polygon_features(source, heightfield)) {
+      for (PolygonFeature& polygon :
+           read_polygon_features(source, heightfield, "existing." + std::to_string(i), warnings)) {
         out.polygons.push_back(std::move(polygon.rings));
       }
     }
