@@ -38,5 +38,35 @@ TEST(RealRiversRun, WdbRiversOverTheLuxembourgDemRun) {
   EXPECT_FALSE(report.outputs.empty());
 }
 
+// The 7 real segments that are not simple, over a generated terrain that holds them all
+// (UTM 31N, 1 km cells): the run succeeds and warns once per segment, naming its FID.
+TEST(RealRiversRun, EveryMessyWdbRiverIsRepairedAndTheRunSucceeds) {
+  const test::TempDir out;
+  const std::string rivers = (test::source_dir() / "tests/data/wdb2_rivers_messy.geojson").string();
+  const PipelineConfig config = parse_pipeline(
+      "version: 1\n"
+      "generate: { width: 450, height: 320, pixel_size: 1000, origin: [400000, 5500000] }\n"
+      "output: { preview: false }\n"
+      "features:\n"
+      "  rivers: { source: " +
+          rivers + ", kind: river, width: 30 }\n",
+      "messy.yaml", out.path());
+  RunOptions options;
+  options.output_dir = out.path();
+  const RunReport report = run_pipeline(config, options);
+  const std::set<std::int64_t> messy{4, 27, 33, 77, 104, 110, 123};
+  std::set<std::int64_t> fids, repaired;
+  for (const FeatureReport& f : report.classes[0].features) fids.insert(f.fid);
+  for (const Warning& w : report.warnings) {
+    EXPECT_EQ(w.code, "repaired");
+    EXPECT_EQ(w.subject, "features.rivers");
+    if (w.fid) repaired.insert(*w.fid);
+  }
+  EXPECT_EQ(fids, messy);
+  EXPECT_EQ(repaired, messy);
+  EXPECT_EQ(report.warnings.size(), messy.size());
+  EXPECT_FALSE(report.outputs.empty());
+}
+
 }  // namespace
 }  // namespace tw
