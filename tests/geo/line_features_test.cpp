@@ -170,6 +170,27 @@ TEST_F(LineFeatures, CurvedGeometriesAreLinearized) {
   }
 }
 
+// GeoPackage's other curve types: a CompoundCurve (straight + arc) and a MultiCurve.
+TEST_F(LineFeatures, CompoundCurvesAndMultiCurvesAreLinearized) {
+  const std::string path = write({{4,
+                                   "COMPOUNDCURVE ((500100 4999500,500300 4999500),"
+                                   "CIRCULARSTRING (500300 4999500,500500 4999700,500700 4999500))",
+                                   5.0},
+                                  {5,
+                                   "MULTICURVE ((500100 4999100,500200 4999100),"
+                                   "CIRCULARSTRING (500300 4999200,500400 4999300,500500 4999200))",
+                                   5.0}});
+  const std::vector<LineFeature> lines = read_line_features(spec_for(path), grid, warnings);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0].fid, 4);
+  EXPECT_NEAR(planar_length(lines[0].points), 200.0 + std::numbers::pi * 200.0, 1.0);
+  EXPECT_EQ(lines[1].fid, 5);
+  EXPECT_THAT(lines[1].points, ElementsAre(Vec2{500100, 4999100}, Vec2{500200, 4999100}));
+  EXPECT_EQ(lines[2].fid, 5);
+  EXPECT_NEAR(planar_length(lines[2].points), std::numbers::pi * 100.0, 1.0);
+  EXPECT_TRUE(warnings.empty());
+}
+
 // Clipped to the grid grown by half the width (2.5 m) plus clip_margin (7.5 m): 10 m halo.
 TEST_F(LineFeatures, ClipsToTheGridExtentPlusTheHalo) {
   const std::string path = write({
