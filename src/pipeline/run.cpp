@@ -135,6 +135,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   clock.stop();
   if (!options.write_outputs) {
+    // Validate plans the terrain too (applying nothing) for its warnings: a feature over nodata.
+    plan_terrain(heightfield.height, heightfield.grid, detail::terrain_features(config, lines),
+                 detail::terrain_params(config), warnings);
     finish_warnings(warnings, strict, report);
     report.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();

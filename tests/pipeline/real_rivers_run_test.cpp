@@ -36,6 +36,11 @@ TEST(RealRiversRun, WdbRiversOverTheLuxembourgDemRun) {
   EXPECT_EQ(report.warnings[0].subject, "features.rivers");
   EXPECT_EQ(report.warnings[0].fid, 1);
   EXPECT_FALSE(report.outputs.empty());
+  // validate (nothing written) reports the same warning.
+  options.write_outputs = false;
+  const RunReport validated = run_pipeline(config, options);
+  ASSERT_EQ(validated.warnings.size(), 1u);
+  EXPECT_EQ(to_string(validated.warnings[0]), to_string(report.warnings[0]));
 }
 
 // The 7 real segments that are not simple, over a generated terrain that holds them all
