@@ -64,9 +64,13 @@ std::string warning_subject(const LineClassSpec& spec) {
 void repair_pieces(std::vector<detail::ClippedLine>& pieces, const LineClassSpec& spec,
                    const OpenVectorLayer& layer, std::int64_t fid, Warnings& warnings) {
   detail::RepairCounts counts;
-  std::erase_if(pieces, [&](detail::ClippedLine& piece) {
-    return !detail::repair_line(piece.points, piece.closed, spec.repair, counts);
-  });
+  try {
+    std::erase_if(pieces, [&](detail::ClippedLine& piece) {
+      return !detail::repair_line(piece.points, piece.closed, spec.repair, counts);
+    });
+  } catch (const Error& e) {
+    fail("{}: FID {}: {}", layer.label, fid, e.what());
+  }
   if (counts.changed()) {
     warnings.add("repaired", warning_subject(spec), fid,
                  fmt::format("{}: {}", layer.label, detail::describe(counts)));

@@ -27,7 +27,8 @@ struct RepairCounts {
 std::string describe(const RepairCounts& counts);
 
 // Repairs `points` in place (a closed ring does not repeat its first point; its first vertex
-// stays). Returns false when nothing with length is left (the piece is to be dropped).
+// stays). Returns false when nothing with length is left (the piece is to be dropped). Throws
+// tw::Error when GEOS cannot node a line that meets itself.
 bool repair_line(std::vector<Vec2>& points, bool closed, const LineRepair& options,
                  RepairCounts& counts);
 
