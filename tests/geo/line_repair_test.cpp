@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "geo/detail/line_repair.hpp"
 #include "geo/features.hpp"
 #include "geo_test_data.hpp"
 #include "test_support.hpp"
@@ -162,6 +163,19 @@ TEST_F(LineRepairs, ClosedRingKeepsItsFirstVertexAndLosesItsSpike) {
                                            Vec2{500300, 4999300}, Vec2{500100, 4999300}));
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_THAT(warnings.list()[0].message, HasSubstr("removed 2 spikes"));
+}
+
+TEST(RepairMessage, SaysWhatChangedInOneLine) {
+  detail::RepairCounts counts;
+  counts.spikes = 1;
+  counts.loops = {0.8};
+  EXPECT_EQ(detail::describe(counts), "removed 1 spike and 1 loop of 0.8 m");
+  counts.duplicates = 3;
+  counts.loops = {0.5, 1.8, 1.2, 250.0};
+  counts.zero_length_parts = 2;
+  EXPECT_EQ(detail::describe(counts),
+            "removed 3 duplicate vertices, 1 spike, 4 loops of 0.5 to 250 m and 2 zero-length "
+            "parts");
 }
 
 }  // namespace

@@ -160,10 +160,17 @@ std::string describe(const RepairCounts& counts) {
     parts.push_back(plural(counts.duplicates, "duplicate vertex", "duplicate vertices"));
   if (counts.spikes > 0) parts.push_back(plural(counts.spikes, "spike", "spikes"));
   if (!counts.loops.empty()) {
+    auto metres = [](double loop) {
+      return loop < 100.0 ? fmt::format("{:.2g}", loop) : fmt::format("{:.0f}", loop);
+    };
     std::string lengths;
-    for (const double loop : counts.loops) {
-      lengths += lengths.empty() ? "" : ", ";
-      lengths += loop < 100.0 ? fmt::format("{:.2g}", loop) : fmt::format("{:.0f}", loop);
+    if (counts.loops.size() <= 3) {
+      for (const double loop : counts.loops)
+        lengths += (lengths.empty() ? "" : ", ") + metres(loop);
+    } else {
+      const auto [shortest, longest] =
+          std::minmax_element(counts.loops.begin(), counts.loops.end());
+      lengths = metres(*shortest) + " to " + metres(*longest);
     }
     parts.push_back(
         fmt::format("{} of {} m", plural(int(counts.loops.size()), "loop", "loops"), lengths));
