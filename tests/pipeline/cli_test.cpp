@@ -161,7 +161,10 @@ TEST_F(Cli, MissingOrUnreadableFiles) {
                  {": features.rivers.source: ", "none.gpkg: file does not exist"});
   expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "garbage.tif").string(),
                  {": features.rivers.source: ", "garbage.tif: cannot be opened as vector data"});
-  expect_failure("pipeline.yaml --set features.rivers.layer=lakes", {"map.gpkg: no layer 'lakes'"});
+  expect_failure("pipeline.yaml --set features.rivers.layer=lakes",
+                 {"error: features.rivers: ", "map.gpkg: no layer 'lakes'"});
+  expect_failure("pipeline.yaml --set existing.0.layer=lakes",
+                 {"error: existing.0: ", "map.gpkg: no layer 'lakes'"});
   // Named in the file: the message gives the key's line and column.
   std::string text = kPipeline;
   text.replace(text.find("heightfield: dem.tif"), 20, "heightfield: dme.tif");
@@ -276,7 +279,7 @@ TEST_F(Cli, EmptyClassIsAWarningUnlessStrict) {
 
 TEST_F(Cli, PointsOrPolygonsWhereLinesAreExpected) {
   expect_bad_roads({kRoad, {"POINT (500100 5000100)", 5.0}},
-                   {"bad1.gpkg:roads: FID 2: is a Point where lines"});
+                   {"error: features.roads: ", "bad1.gpkg:roads: FID 2: is a Point where lines"});
   expect_bad_roads(
       {{"POLYGON ((500100 5000100, 500200 5000100, 500200 5000200, 500100 5000100))", 5.0}},
       {"bad2.gpkg:roads: FID 1: is a Polygon where lines"});
@@ -315,7 +318,8 @@ TEST_F(Cli, MessyLinesAreRepairedAndSelfCrossingRoadsRun) {
 
 TEST_F(Cli, NanOrHugeCoordinates) {
   expect_bad_roads({{"LINESTRING (500100 5000100, 1e300 5000300)", 5.0}},
-                   {"bad1.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
+                   {"error: features.roads: ", "bad1.gpkg:roads: FID 1",
+                    "non-finite or out-of-range coordinate"});
   expect_bad_roads({VectorFeature({{500100, 5000100}, {std::nan(""), 5000300}}, 5.0)},
                    {"bad2.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
 }

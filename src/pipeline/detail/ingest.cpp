@@ -59,7 +59,12 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
   spec.clip_margin =
       clip_margin(config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height));
   spec.repair = config.repair;
-  std::vector<LineFeature> lines = read_line_features(spec, heightfield, warnings);
+  std::vector<LineFeature> lines;
+  try {
+    lines = read_line_features(spec, heightfield, warnings);
+  } catch (const Error& e) {
+    fail("{}: {}", spec.subject, e.what());  // the key too: file, layer and FID are named
+  }
   if (lines.empty()) {
     warnings.add(
         "empty_class", "features." + config.name, std::nullopt,
@@ -77,23 +82,27 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
   ExistingFeatures out;
   for (std::size_t i = 0; i < existing.size(); ++i) {
     const ExistingConfig& e = existing[i];
+    const std::string key = "existing." + std::to_string(i);
     const VectorSource source{e.source.string(), e.layer, e.where};
-    if (e.width > 0.0) {
-      LineClassSpec spec;
-      spec.name = "existing." + std::to_string(i);
-      spec.source = source;
-      spec.default_width = e.width;
-      spec.repair = repair;
-      for (LineFeature& line : read_line_features(spec, heightfield, warnings)) {
-        if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
-        out.lines.push_back(std::move(line.points));
-        out.line_widths.push_back(e.width);
+    try {
+      if (e.width > 0.0) {
+        LineClassSpec spec;
+        spec.name = key;
+        spec.source = source;
+        spec.default_width = e.width;
+        spec.repair = repair;
+        for (LineFeature& line : read_line_features(spec, heightfield, warnings)) {
+          if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
+          out.lines.push_back(std::move(line.points));
+          out.line_widths.push_back(e.width);
+        }
+      } else {
+        for (PolygonFeature& polygon : read_polygon_features(source, heightfield, key, warnings)) {
+          out.polygons.push_back(std::move(polygon.rings));
+        }
       }
-    } else {
-      for (PolygonFeature& polygon :
-           read_polygon_features(source, heightfield, "existing." + std::to_string(i), warnings)) {
-        out.polygons.push_back(std::move(polygon.rings));
-      }
+    } catch (const Error& error) {
+      fail("{}: {}", key, error.what());
     }
   }
   logger().info("existing: {} polygons, {} lines", out.polygons.size(), out.lines.size());

@@ -20,7 +20,8 @@ Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning
 // ("empty_class"), not an error: a pipeline retargeted to another region still runs. Lines are
 // clipped to the heightfield plus the halo the later stages reach, then repaired with
-// config.repair (read_line_features). Throws geo's per-feature errors.
+// config.repair (read_line_features). Throws geo's per-feature errors, prefixed with the key
+// ("features.roads: map.gpkg:roads: FID 2: ...").
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings);
 
@@ -31,7 +32,7 @@ struct ExistingFeatures {
 };
 
 // Entries with a width are read as lines buffered by it (repaired with `repair`), the others as
-// polygons (invalid ones made valid). Warnings name `existing.<index>`.
+// polygons (invalid ones made valid). Warnings and errors name `existing.<index>`.
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
                                const Heightfield& heightfield, const LineRepair& repair,
                                Warnings& warnings);
