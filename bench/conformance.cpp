@@ -40,7 +40,7 @@ Lowering measure(PipelineConfig config, std::optional<double> max_carve, double 
     c.conform_corridor = corridor;
   }
   Warnings warnings;
-  const Heightfield heightfield = detail::load_heightfield(config);
+  const Heightfield heightfield = detail::load_heightfield(config, warnings);
   std::vector<std::vector<LineFeature>> lines;
   for (const auto& c : config.features)
     lines.push_back(detail::load_feature_class(c, heightfield, warnings));

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geo/detail/line_clipping.hpp"
+#include "geo/detail/line_repair.hpp"
 #include "geo/detail/vector_layer.hpp"
 #include "geo/osm_tags.hpp"
 
@@ -123,14 +124,29 @@ std::unique_ptr<OGRMultiLineString> line_parts(const OGRFeature& feature,
   return parts;
 }
 
-void check_line_part(const OGRLineString& part, int part_index, const OpenVectorLayer& layer,
-                     std::int64_t fid) {
-  if (detail::distinct_points(part).size() < 2) {
-    fail("{}: FID {}: part {} has zero length", layer.label, fid, part_index);
+std::string warning_subject(const LineClassSpec& spec) {
+  return spec.subject.empty() ? spec.name : spec.subject;
+}
+
+// Judges the clipped pieces of one feature: repairs each, drops those left without length,
+// and says once what changed.
+void repair_pieces(std::vector<detail::ClippedLine>& pieces, const LineClassSpec& spec,
+                   const OpenVectorLayer& layer, std::int64_t fid, Warnings& warnings) {
+  detail::RepairCounts counts;
+  try {
+    std::erase_if(pieces, [&](detail::ClippedLine& piece) {
+      return !detail::repair_line(piece.points, piece.closed, spec.repair, counts);
+    });
+  } catch (const Error& e) {
+    fail("{}: FID {}: {}", layer.label, fid, e.what());
   }
-  detail::QuietGdalErrors quiet;
-  if (!part.IsSimple()) {
-    fail("{}: FID {}: part {} intersects itself", layer.label, fid, part_index);
+  if (counts.changed()) {
+    warnings.add("repaired", warning_subject(spec), fid,
+                 fmt::format("{}: {}", layer.label, detail::describe(counts)));
+  }
+  if (counts.self_crossings > 0) {
+    logger().info("{}: FID {} crosses itself at {} place{}: a junction", layer.label, fid,
+                  counts.self_crossings, counts.self_crossings == 1 ? "" : "s");
   }
 }
 
@@ -145,7 +161,6 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
                                             Warnings& warnings) {
   OpenVectorLayer layer = detail::open_vector_layer(spec.source, grid_of);
   const AttributeColumns columns = attribute_columns(spec, layer);
-  const OGRPolygon extent = detail::grid_extent_polygon(grid_of.grid);
   std::vector<LineFeature> lines;
   for (const auto& feature : *layer.layer) {
     const std::int64_t fid = feature->GetFID();
@@ -154,20 +169,30 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
     int level = 0;
     read_structure(*feature, columns, spec, layer, warnings, structure, level);
     std::unique_ptr<OGRMultiLineString> parts = line_parts(*feature, layer);
-    detail::check_coordinates(*parts, layer, fid);
-    for (int i = 0; i < parts->getNumGeometries(); ++i) {
-      check_line_part(*parts->getGeometryRef(i), i, layer, fid);
+    if (detail::drop_z_and_m(*parts)) {
+      warnings.add(
+          "dropped_zm", warning_subject(spec), std::nullopt,
+          fmt::format("{}: Z/M values dropped (heights come from the heightfield)", layer.label));
     }
+    detail::check_coordinates(*parts, layer, fid);
     detail::transform_to_grid(*parts, layer, fid);
-    const std::size_t before = lines.size();
+    // Clip first, then judge: nothing outside the world (and its halo) can fail a run.
+    const OGRPolygon extent =
+        detail::grid_extent_polygon(grid_of.grid, 0.5 * width + spec.clip_margin);
+    std::vector<detail::ClippedLine> pieces;
     for (const OGRLineString* part : *parts) {
       for (detail::ClippedLine& piece : detail::clip_line(*part, extent, layer, fid)) {
-        lines.push_back(
-            {fid, std::move(piece.points), piece.closed, width, layer.label, structure, level});
+        pieces.push_back(std::move(piece));
       }
     }
-    if (lines.size() == before) {
+    if (pieces.empty()) {
       logger().info("{}: FID {} lies outside the grid; skipped", layer.label, fid);
+      continue;
+    }
+    repair_pieces(pieces, spec, layer, fid, warnings);
+    for (detail::ClippedLine& piece : pieces) {
+      lines.push_back(
+          {fid, std::move(piece.points), piece.closed, width, layer.label, structure, level});
     }
   }
   return lines;

@@ -29,6 +29,14 @@ struct LineFeature {
   int layer = 0;
 };
 
+// How messy lines are cleaned after clipping (docs/pipeline.md, "repair"). Lengths in metres of
+// the grid's CRS.
+struct LineRepair {
+  double merge_distance = 0.01;  // consecutive vertices closer than this are one vertex
+  double spike_angle = 170.0;    // degrees: a vertex turning back by more is a spike, removed
+  double min_loop = 2.0;         // a loop (the line meets itself) shorter than this is cut out
+};
+
 struct LineClassSpec {
   std::string name;
   VectorSource source;
@@ -37,17 +45,25 @@ struct LineClassSpec {
   // Widths from the OSM tag table (geo/osm_tags.hpp: columns width, lanes, highway, waterway,
   // natural) where width_attribute gives none, before default_width (0 = no default).
   bool osm_widths = false;
+  std::string subject;  // the key warnings name, e.g. "features.rivers"; empty = name
+  // Features are clipped to the grid's extent grown by half their width plus this many metres
+  // (the reach of the stages beyond the width, e.g. banks and falloff).
+  double clip_margin = 0.0;
+  LineRepair repair;
 };
 
 // Reads LineString/MultiLineString features (each part becomes a LineFeature with the same
-// FID), reprojects them to the grid's CRS, clips them to the grid's extent (a part that leaves
-// the extent and comes back becomes several LineFeatures), and skips (with a log line)
-// features fully outside. Closed rings fully inside stay closed curves.
+// FID; curves are linearized, Z/M dropped with a `dropped_zm` warning), reprojects them to the
+// grid's CRS, clips them to the grid's extent grown by half the width plus spec.clip_margin (a
+// part that leaves it and comes back becomes several LineFeatures), and skips (with a log line)
+// features fully outside. Closed rings fully inside stay closed curves. Only then is each piece
+// judged: duplicate vertices, spikes, loops shorter than repair.min_loop and zero-length parts
+// are removed with one `repaired` warning per FID saying what changed; a line that still crosses
+// itself is kept (a self-crossing: a junction for the later stages).
 // Throws tw::Error naming file, layer and FID for: missing/unreadable file, unknown layer,
-// bad where clause, no CRS, non-line geometries, zero-length or self-intersecting lines,
-// non-finite or huge coordinates, width <= 0.
+// bad where clause, no CRS, non-line geometries, non-finite or huge coordinates, width <= 0.
 // Unusable `width`, `lanes` or `layer` values are skipped with a warning (subject
-// "features.<spec.name>", the FID); the two-argument form only logs them.
+// "features.<spec.name>", the FID); the two-argument form only logs its warnings.
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of,
                                             Warnings& warnings);
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of);
@@ -60,8 +76,11 @@ struct PolygonFeature {
 };
 
 // Reads Polygon/MultiPolygon features (each part becomes a PolygonFeature with the same FID),
-// reprojected to the grid's CRS and clipped to its extent. Same errors as read_line_features.
+// reprojected to the grid's CRS and clipped to its extent. An invalid polygon on the grid
+// (self-intersecting or badly nested rings) is made valid by GEOS with a `repaired` warning
+// under `subject`. Same errors as read_line_features.
 std::vector<PolygonFeature> read_polygon_features(const VectorSource& source,
-                                                  const Heightfield& grid_of);
+                                                  const Heightfield& grid_of,
+                                                  const std::string& subject, Warnings& warnings);
 
 }  // namespace tw

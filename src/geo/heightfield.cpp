@@ -73,7 +73,7 @@ detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialRefe
 
 // Metres per unit of the band's values, from GDAL's unit type (GeoTIFF's vertical units).
 // DEMs of the USA often hold feet; an empty or unknown unit is taken as metres.
-double metres_per_height_unit(GDALRasterBand& band, const std::string& path) {
+double metres_per_height_unit(GDALRasterBand& band, const std::string& path, Warnings& warnings) {
   std::string unit = band.GetUnitType() ? band.GetUnitType() : "";
   for (char& c : unit) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" ||
@@ -86,7 +86,8 @@ double metres_per_height_unit(GDALRasterBand& band, const std::string& path) {
   if (unit == "us-ft" || unit == "ftus" || unit == "us survey foot" || unit == "us_survey_foot") {
     return 1200.0 / 3937.0;
   }
-  logger().warn("{}: unknown height unit '{}'; taking heights as metres", path, unit);
+  warnings.add("unknown_unit", "heightfield", std::nullopt,
+               fmt::format("{}: unknown height unit '{}'; taking heights as metres", path, unit));
   return 1.0;
 }
 
@@ -120,6 +121,12 @@ void require_some_height(const Heightfield& field, const std::string& path) {
 }  // namespace
 
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options) {
+  Warnings warnings;  // logged as they are raised
+  return read_heightfield(path, options, warnings);
+}
+
+Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options,
+                             Warnings& warnings) {
   detail::ensure_gdal_registered();
   detail::QuietGdalErrors quiet;
   if (options.resolution && !(std::isfinite(*options.resolution) && *options.resolution > 0.0)) {
@@ -141,7 +148,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   int has_nodata = 0;
   const double nodata = source->GetRasterBand(1)->GetNoDataValue(&has_nodata);
   if (has_nodata) result.nodata_value = nodata;
-  const double height_unit = metres_per_height_unit(*source->GetRasterBand(1), path);
+  const double height_unit = metres_per_height_unit(*source->GetRasterBand(1), path, warnings);
 
   if (is_metric_north_up(*srs, gt)) {
     // Same CRS: the cells as they are, or resampled on the same north-west corner (our

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/grid.hpp"
+#include "core/warnings.hpp"
 
 namespace tw {
 
@@ -38,7 +39,11 @@ struct HeightfieldOptions {
 // local_transverse_mercator_wkt() centred on the DEM (geo/metric_frame.hpp), with the source's
 // pixel size at its centre measured as geodesics, covering its whole footprint. Heights in feet
 // (GDAL unit type "ft", "US survey foot") become metres. Throws tw::Error naming the path when the
-// file cannot be read, has no CRS, or holds nothing but nodata.
+// file cannot be read, has no CRS, or holds nothing but nodata. An unknown height unit is taken
+// as metres with an `unknown_unit` warning (subject `heightfield`).
+Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options,
+                             Warnings& warnings);
+// The same, its warnings only logged.
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options = {});
 
 struct GeneratedTerrain {

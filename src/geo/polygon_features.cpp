@@ -11,8 +11,8 @@ namespace {
 using detail::OpenVectorLayer;
 
 // The polygon parts of a feature's geometry (curves linearized); tw::Error for anything else.
-std::unique_ptr<OGRMultiPolygon> polygon_parts(const OGRFeature& feature,
-                                               const OpenVectorLayer& layer) {
+std::unique_ptr<OGRGeometry> polygon_parts(const OGRFeature& feature,
+                                           const OpenVectorLayer& layer) {
   const std::int64_t fid = feature.GetFID();
   const std::unique_ptr<OGRGeometry> linear = detail::linear_geometry(feature, layer);
   const OGRwkbGeometryType type = wkbFlatten(linear->getGeometryType());
@@ -40,6 +40,33 @@ void collect_polygons(const OGRGeometry& geometry, std::vector<const OGRPolygon*
   // Lines and points (where a polygon only touches the border) cover no area: dropped.
 }
 
+// `parts` itself when valid; else GEOS's MakeValid of it (its polygons; lines and points that
+// the repair splits off cover no area) with a `repaired` warning.
+std::unique_ptr<OGRGeometry> valid_polygons(std::unique_ptr<OGRGeometry> parts,
+                                            const OpenVectorLayer& layer, std::int64_t fid,
+                                            const std::string& subject, Warnings& warnings) {
+  detail::QuietGdalErrors quiet;
+  if (parts->IsValid()) return parts;
+  if (!OGRGeometryFactory::haveGEOS()) {
+    fail("{}: FID {}: is not a valid polygon and GDAL was built without GEOS to repair it",
+         layer.label, fid);
+  }
+  std::unique_ptr<OGRGeometry> valid(parts->MakeValid());
+  if (!valid || !valid->IsValid()) {
+    fail("{}: FID {}: is not a valid polygon and cannot be repaired: {}", layer.label, fid,
+         detail::last_gdal_error());
+  }
+  std::vector<const OGRPolygon*> polygons;
+  collect_polygons(*valid, polygons);
+  auto multi = std::make_unique<OGRMultiPolygon>();
+  for (const OGRPolygon* polygon : polygons) multi->addGeometry(polygon);
+  warnings.add("repaired", subject, fid,
+               fmt::format("{}: invalid polygon (self-intersecting or badly nested rings) made "
+                           "valid: {} polygon{}",
+                           layer.label, polygons.size(), polygons.size() == 1 ? "" : "s"));
+  return multi;
+}
+
 std::vector<Vec2> open_ring(const OGRLinearRing& ring) {
   std::vector<Vec2> points = detail::distinct_points(ring);
   if (points.size() >= 2 && points.front() == points.back()) points.pop_back();
@@ -49,29 +76,38 @@ std::vector<Vec2> open_ring(const OGRLinearRing& ring) {
 }  // namespace
 
 std::vector<PolygonFeature> read_polygon_features(const VectorSource& source,
-                                                  const Heightfield& grid_of) {
+                                                  const Heightfield& grid_of,
+                                                  const std::string& subject, Warnings& warnings) {
   OpenVectorLayer layer = detail::open_vector_layer(source, grid_of);
   const OGRPolygon extent = detail::grid_extent_polygon(grid_of.grid);
+  OGREnvelope extent_box;
+  extent.getEnvelope(&extent_box);
   std::vector<PolygonFeature> result;
   for (const auto& feature : *layer.layer) {
     const std::int64_t fid = feature->GetFID();
-    std::unique_ptr<OGRMultiPolygon> parts = polygon_parts(*feature, layer);
+    std::unique_ptr<OGRGeometry> parts = polygon_parts(*feature, layer);
+    if (detail::drop_z_and_m(*parts)) {
+      warnings.add(
+          "dropped_zm", subject, std::nullopt,
+          fmt::format("{}: Z/M values dropped (heights come from the heightfield)", layer.label));
+    }
     detail::check_coordinates(*parts, layer, fid);
-    {
-      detail::QuietGdalErrors quiet;
-      if (!parts->IsValid()) {
-        fail("{}: FID {}: is not a valid polygon (self-intersecting or badly nested rings)",
-             layer.label, fid);
-      }
-    }
     detail::transform_to_grid(*parts, layer, fid);
-    detail::QuietGdalErrors quiet;
-    std::unique_ptr<OGRGeometry> inside(parts->Intersection(&extent));
-    if (!inside) {
-      fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid, detail::last_gdal_error());
-    }
+    OGREnvelope box;
+    parts->getEnvelope(&box);
     std::vector<const OGRPolygon*> polygons;
-    collect_polygons(*inside, polygons);
+    std::unique_ptr<OGRGeometry> inside;
+    // Clip first, then judge: a polygon off the grid is skipped whatever its shape.
+    if (box.Intersects(extent_box)) {
+      parts = valid_polygons(std::move(parts), layer, fid, subject, warnings);
+      detail::QuietGdalErrors quiet;
+      inside.reset(parts->Intersection(&extent));
+      if (!inside) {
+        fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid,
+             detail::last_gdal_error());
+      }
+      collect_polygons(*inside, polygons);
+    }
     if (polygons.empty()) {
       logger().info("{}: FID {} lies outside the grid; skipped", layer.label, fid);
     }

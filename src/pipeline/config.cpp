@@ -47,6 +47,31 @@ std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_
                               hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
 }
 
+// m.file(key), recorded as an input of `kind`.
+fs::path input_file(const MapReader& m, const std::string& key, InputFile::Kind kind,
+                    std::vector<InputFile>& inputs) {
+  const fs::path path = m.file(key);
+  inputs.push_back({path, kind, m.source().named_at(m.get(key), m.path(key))});
+  return path;
+}
+
+// `repair` (top level or per class): each key overrides `base`.
+LineRepair read_repair(const MapReader& m, LineRepair base) {
+  base.merge_distance = m.non_negative_or("merge_distance", base.merge_distance);
+  base.min_loop = m.non_negative_or("min_loop", base.min_loop);
+  base.spike_angle = m.positive_or("spike_angle", base.spike_angle);
+  if (base.spike_angle >= 180.0) {
+    m.source().fail(m.get("spike_angle"), m.path("spike_angle"),
+                    fmt::format("must be below 180 degrees, got {}", base.spike_angle));
+  }
+  return base;
+}
+
+MapReader repair_reader(const MapReader& parent) {
+  return MapReader(parent.source(), parent.get("repair"), parent.path("repair"),
+                   {"merge_distance", "min_loop", "spike_angle"});
+}
+
 FeatureKind read_kind(const MapReader& m) {
   static const std::vector<FeatureKind> kinds{FeatureKind::road, FeatureKind::river,
                                               FeatureKind::ridge};
@@ -122,7 +147,8 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
   }
 }
 
-SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
+SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
+                               std::vector<InputFile>& inputs) {
   SynthesisConfig s;
   const YAML::Node exemplar = m.get("exemplar");
   if (exemplar.IsSequence()) {
@@ -132,9 +158,11 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
       const std::string value = detail::read_string(m.source(), exemplar[i], key);
       if (value.empty()) m.source().fail(exemplar[i], key, "empty path");
       s.exemplars.push_back(m.source().resolve(value, key));
+      inputs.push_back(
+          {s.exemplars.back(), InputFile::Kind::exemplar, m.source().named_at(exemplar[i], key)});
     }
   } else {
-    s.exemplars.push_back(m.file("exemplar"));
+    s.exemplars.push_back(input_file(m, "exemplar", InputFile::Kind::exemplar, inputs));
   }
   s.delta = m.positive_or("delta", s.delta);
   s.scale = m.positive_or("scale", s.scale);
@@ -224,10 +252,11 @@ FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& 
 }
 
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,
-                                      std::uint64_t seed) {
+                                      std::uint64_t seed, const LineRepair& repair,
+                                      std::vector<InputFile>& inputs) {
   FeatureClassConfig f;
   f.name = name;
-  f.source = m.file("source");
+  f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
   if (m.has("tags")) f.tags = read_tags(m);
@@ -246,20 +275,21 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     const MapReader conform(m.source(), m.get("conform"), m.path("conform"), {"corridor"});
     f.conform_corridor = conform.positive("corridor");
   }
+  f.repair = m.has("repair") ? read_repair(repair_reader(m), repair) : repair;
   if (m.has("synthesis")) {
     f.synthesis =
         read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
                                  {"exemplar", "choose", "width", "delta", "scale", "stitch",
                                   "empty_pieces", "min_coverage", "alpha", "feather", "seed",
                                   "backend", "height_detail", "channels"}),
-                       seed);
+                       seed, inputs);
   }
   return f;
 }
 
-ExistingConfig read_existing(const MapReader& m) {
+ExistingConfig read_existing(const MapReader& m, std::vector<InputFile>& inputs) {
   ExistingConfig e;
-  e.source = m.file("source");
+  e.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   e.layer = m.string_or("layer", "");
   e.where = m.string_or("where", "");
   if (m.has("tags")) e.tags = read_tags(m);
@@ -364,7 +394,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   const MapReader root(src, tree, "",
                        {"version", "seed", "heightfield", "generate", "resolution", "output",
                         "backend", "precedence", "features", "existing", "synthesis_resolution",
-                        "synthesis_order", "region", "resampling", "strict"});
+                        "synthesis_order", "region", "resampling", "strict", "repair"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -372,7 +402,9 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   if (root.has("heightfield") && root.has("generate")) {
     src.fail(root.get("generate"), "generate", "give either heightfield or generate, not both");
   }
-  if (root.has("heightfield")) c.heightfield = root.file("heightfield");
+  if (root.has("heightfield")) {
+    c.heightfield = input_file(root, "heightfield", InputFile::Kind::raster, c.inputs);
+  }
   if (root.has("generate")) {
     c.generate =
         read_generate(MapReader(src, root.get("generate"), "generate",
@@ -397,6 +429,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   }
   c.backend = read_backend(root, "backend", c.backend);
   c.strict = root.bool_or("strict", c.strict);
+  if (root.has("repair")) c.repair = read_repair(repair_reader(root), c.repair);
   const YAML::Node features = root.get("features");
   if (!features.IsMap())
     src.fail(features, "features", "expected a mapping of class names to classes");
@@ -412,8 +445,8 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.features.push_back(
         read_feature_class(MapReader(src, entry.second, path,
                                      {"source", "layer", "where", "tags", "kind", "width_attribute",
-                                      "width", "profile", "conform", "synthesis"}),
-                           name, c.seed));
+                                      "width", "profile", "conform", "synthesis", "repair"}),
+                           name, c.seed, c.repair, c.inputs));
   }
   if (c.features.empty()) src.fail(root.get("features"), "features", "no feature classes");
   apply_precedence(root, c.features);
@@ -427,7 +460,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string key = "existing." + std::to_string(i);
       c.existing.push_back(read_existing(
-          MapReader(src, list[i], key, {"source", "layer", "where", "tags", "width"})));
+          MapReader(src, list[i], key, {"source", "layer", "where", "tags", "width"}), c.inputs));
     }
   }
   return c;
@@ -472,24 +505,9 @@ PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& fil
 }
 
 void check_input_paths(const PipelineConfig& config, bool allow_network) {
-  if (config.heightfield)
-    check_input_path(config.heightfield->string(), "heightfield", allow_network);
   if (!config.heightfield) check_input_path(config.generate.crs, "generate.crs", allow_network);
-  for (const FeatureClassConfig& f : config.features) {
-    const std::string key = "features." + f.name;
-    check_input_path(f.source.string(), key + ".source", allow_network);
-    if (!f.synthesis) continue;
-    const auto& exemplars = f.synthesis->exemplars;
-    for (std::size_t i = 0; i < exemplars.size(); ++i) {
-      check_input_path(exemplars[i].string(),
-                       key + ".synthesis.exemplar" +
-                           (exemplars.size() > 1 ? "." + std::to_string(i) : std::string()),
-                       allow_network);
-    }
-  }
-  for (std::size_t i = 0; i < config.existing.size(); ++i) {
-    check_input_path(config.existing[i].source.string(), fmt::format("existing.{}.source", i),
-                     allow_network);
+  for (const InputFile& input : config.inputs) {
+    check_input_path(input.path.string(), input.named_at, allow_network);
   }
 }
 

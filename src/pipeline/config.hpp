@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "terrain/features.hpp"
 
@@ -95,6 +96,7 @@ struct FeatureClassConfig {
   // valley floor (rivers) or crest (ridges) before anything is built on it; 0 = as drawn.
   double conform_corridor = 0.0;
   std::optional<SynthesisConfig> synthesis;
+  LineRepair repair;  // the pipeline's `repair`, overridden key by key by the class's own
 };
 
 // Avoidance input: polygons are burnt as they are, lines are buffered by `width`.
@@ -124,6 +126,15 @@ struct RegionConfig {
   double max_y = 0.0;
 };
 
+// A file a run opens, and where the pipeline names it, so that a missing or unreadable one is
+// reported at its key (check_inputs).
+struct InputFile {
+  enum class Kind { raster, vector, exemplar };
+  std::filesystem::path path;
+  Kind kind = Kind::raster;
+  std::string named_at;  // "file:line:col: key.path" or "--set key=value: key.path"
+};
+
 struct PipelineConfig {
   std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
   int version = 1;
@@ -146,6 +157,8 @@ struct PipelineConfig {
   std::vector<std::string> synthesis_order;
   // Any warning fails the run before anything is written (also `--strict`).
   bool strict = false;
+  LineRepair repair;              // `repair`: how messy lines are cleaned (each class may override)
+  std::vector<InputFile> inputs;  // every file named, in the order of the keys read
 };
 
 // One `--set key.path=value` (value parsed as a YAML scalar or flow collection).

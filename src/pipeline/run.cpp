@@ -15,6 +15,7 @@
 #include "layers/write.hpp"
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
@@ -117,7 +118,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       options.write_outputs ? OutputFolder::lock_if_used(dir) : nullptr;
 
   clock.start("ingest");
-  Heightfield heightfield = detail::load_heightfield(config);
+  detail::check_inputs(config);
+  Heightfield heightfield = detail::load_heightfield(config, warnings);
   report.grid = heightfield.grid;
   report.crs_wkt = heightfield.crs_wkt;
   report.heightfield = heightfield.source;
@@ -134,7 +136,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
-  detail::ExistingFeatures existing = detail::load_existing(config.existing, heightfield);
+  detail::ExistingFeatures existing =
+      detail::load_existing(config.existing, heightfield, config.repair, warnings);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
     heightfield = detail::crop_to_region(heightfield, *config.region,
                                          config.resolution.value_or(heightfield.grid.pixel_width),
@@ -162,6 +165,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   clock.stop();
   if (!options.write_outputs) {
+    // Validate plans the terrain too (applying nothing) for its warnings: a feature over
+    // nodata, a bound on the earthwork.
+    const TerrainPlan plan =
+        plan_terrain(heightfield.height, heightfield.grid, detail::terrain_features(config, lines),
+                     detail::terrain_params(config), warnings);
+    detail::report_earthwork(config, lines, plan, report, warnings);
     finish_warnings(warnings, strict, report);
     report.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
@@ -191,7 +200,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const TerrainParams params = detail::terrain_params(config);
   const Window whole = Window::whole(heightfield.grid);
   const TerrainPlan terrain_plan =
-      plan_terrain(heightfield.height, heightfield.grid, features, params);
+      plan_terrain(heightfield.height, heightfield.grid, features, params, warnings);
   detail::report_earthwork(config, lines, terrain_plan, report, warnings);
   report_decks(terrain_plan, report);
   apply_terrain(heightfield.height, heightfield.grid, whole, terrain_plan);

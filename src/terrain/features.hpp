@@ -3,6 +3,7 @@
 // centerline in world metres, a width and the profile parameters of the feature's kind.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "geo/structure.hpp"
@@ -60,6 +61,7 @@ struct RidgeProfile {
 struct TerrainFeature {
   FeatureKind kind = FeatureKind::road;
   std::int64_t fid = 0;  // named in error messages
+  std::string subject;   // the key warnings name, e.g. "features.rivers"; empty = the kind
   Curve centerline;      // world metres; for rivers, points run downstream
   double width = 0.0;    // metres: road surface, river bed, or ridge crest
   // A bridge or tunnel leaves the ground under it untouched and paints no splat; its profile

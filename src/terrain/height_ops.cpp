@@ -190,6 +190,52 @@ void join_rivers(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
   }
 }
 
+// A river crossing itself (a loop in the line, docs/junctions.md) meets itself at one water
+// level, as two rivers meet at a confluence: the level of its later (downstream) pass. The
+// stretch from the first pass to the second is held at or below it, and the drop before the
+// first pass is eased in over width + bank + falloff metres, so the surface never rises
+// downstream and has no step.
+void level_river_self_crossings(const TerrainPlan& plan,
+                                std::vector<std::vector<double>>& profiles) {
+  std::vector<Curve> rivers;
+  std::vector<std::size_t> feature_of;
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    if (plan.features[i].kind != FeatureKind::river || plan.features[i].width <= 0.0) continue;
+    rivers.push_back(plan.features[i].centerline);
+    feature_of.push_back(i);
+  }
+  if (rivers.empty()) return;
+  for (const Junction& j : find_junctions(rivers, 0.0)) {
+    for (std::size_t c = 0; c < rivers.size(); ++c) {
+      double first = std::numeric_limits<double>::infinity(), last = -first;
+      int passes = 0;
+      for (const JunctionMember& m : j.members) {
+        if (m.curve != c) continue;
+        first = std::min(first, m.arc_length);
+        last = std::max(last, m.arc_length);
+        ++passes;
+      }
+      if (passes < 2) continue;
+      const std::size_t f = feature_of[c];
+      auto& p = profiles[f];
+      const double step = plan.steps[f];
+      const double level = detail::profile_at(p, step, last);
+      const double excess = detail::profile_at(p, step, first) - level;
+      if (!(excess > 0.0)) continue;
+      const auto& r = plan.features[f].river;
+      const double ramp = std::max(plan.features[f].width + r.bank_width + r.falloff, step);
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const double s = double(k) * step;
+        if (s < first) {
+          p[k] -= excess * std::clamp((s - (first - ramp)) / ramp, 0.0, 1.0);
+        } else if (s <= last) {
+          p[k] = std::min(p[k], level);
+        }
+      }
+    }
+  }
+}
+
 // Bed = water surface - depth. A river whose source joins no other river starts at a spring:
 // its depth eases in from 0 over width + bank + falloff metres instead of a round pit.
 void carve_river_beds(TerrainPlan& plan, std::vector<std::vector<double>>& profiles,
@@ -272,6 +318,13 @@ void bound_earthwork(TerrainPlan& plan, std::vector<std::vector<double>>& profil
 
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params) {
+  Warnings warnings;  // logged as they are raised
+  return plan_terrain(height, grid, features, params, warnings);
+}
+
+TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                         Warnings& warnings) {
   if (height.width != grid.width || height.height != grid.height)
     fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
          height.height, grid.width, grid.height);
@@ -310,8 +363,8 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
     if (terrain.empty()) {
       // Off this grid altogether (a close-up region, a tile) is expected; over nodata is not.
       if (reaches_grid(f, grid, step)) {
-        logger().warn("{} feature FID {} lies entirely over nodata; left out", to_string(f.kind),
-                      f.fid);
+        warnings.add("over_nodata", f.subject.empty() ? std::string(to_string(f.kind)) : f.subject,
+                     f.fid, "lies entirely over nodata; left out");
       } else {
         logger().debug("{} feature FID {} lies outside the grid", to_string(f.kind), f.fid);
       }
@@ -345,6 +398,7 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
   detail::drop_road_structure_contacts(plan.features, contacts);
   pin_road_junctions(plan, profiles, contacts);
   join_rivers(plan, profiles, contacts);
+  level_river_self_crossings(plan, profiles);
 
   carve_river_beds(plan, profiles, contacts);
   detail::lay_decks(plan.features, plan.steps, contacts_with_structures, profiles);
@@ -454,6 +508,12 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
 void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const std::vector<TerrainFeature>& features, const TerrainParams& params) {
   apply_terrain(height, grid, window, plan_terrain(height, grid, features, params));
+}
+
+void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
+                   const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                   Warnings& warnings) {
+  apply_terrain(height, grid, window, plan_terrain(height, grid, features, params, warnings));
 }
 
 void shape_heightfield(Heightfield& heightfield, const std::vector<TerrainFeature>& features,

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/warnings.hpp"
 #include "geo/heightfield.hpp"
 #include "terrain/features.hpp"
 
@@ -49,7 +50,12 @@ struct TerrainPlan {
 };
 
 // Samples and grades the profiles (junctions included, see docs/terrain.md). `height`
-// covers the whole grid; NaN cells are never read as heights.
+// covers the whole grid; NaN cells are never read as heights. A feature on the grid but only
+// over nodata is left out with an `over_nodata` warning (its subject, FID).
+TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                         Warnings& warnings);
+// The same, its warnings only logged.
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params);
 
@@ -59,6 +65,9 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
                    const TerrainPlan& plan);
 
 // plan_terrain + apply_terrain.
+void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
+                   const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                   Warnings& warnings);
 void shape_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const std::vector<TerrainFeature>& features, const TerrainParams& params);
 

@@ -428,6 +428,23 @@ TEST(ReadHeightfield, HeightsInFeetBecomeMetres) {
   EXPECT_EQ(*field.nodata_value, -9999.0);
 }
 
+TEST(ReadHeightfield, AnUnknownHeightUnitIsTakenAsMetresWithAWarning) {
+  TempDir dir;
+  const std::string path = (dir / "fathoms.tif").string();
+  DemSpec spec;
+  spec.unit = "fathom";
+  test::write_geotiff(path, spec);
+  Warnings warnings;
+  const Heightfield field = read_heightfield(path, {}, warnings);
+  EXPECT_FLOAT_EQ(field.height.at(5, 5), 100.0f);
+  ASSERT_EQ(warnings.size(), 1u);
+  const Warning w = warnings.list()[0];
+  EXPECT_EQ(w.code, "unknown_unit");
+  EXPECT_EQ(w.subject, "heightfield");
+  EXPECT_FALSE(w.fid.has_value());
+  EXPECT_THAT(w.message, AllOf(HasSubstr("fathoms.tif"), HasSubstr("'fathom'")));
+}
+
 TEST(ReadHeightfield, AllNodataIsAnErrorNamingTheFile) {
   TempDir dir;
   const std::string path = (dir / "empty_dem.tif").string();

@@ -28,6 +28,7 @@ class PolygonFeatures : public ::testing::Test {
  protected:
   Heightfield grid = test::small_utm_grid();
   TempDir dir;
+  Warnings warnings;
   VectorSource write(const std::vector<test::TestFeature>& features,
                      const std::string& name = "areas.gpkg") {
     const std::string path = (dir / name).string();
@@ -41,7 +42,8 @@ TEST_F(PolygonFeatures, RingsAndHolesInsideTheGrid) {
       {{5,
         "POLYGON ((500100 4999100,500500 4999100,500500 4999500,500100 4999500,500100 4999100),"
         "(500200 4999200,500300 4999200,500300 4999300,500200 4999300,500200 4999200))"}});
-  const std::vector<PolygonFeature> polygons = read_polygon_features(source, grid);
+  const std::vector<PolygonFeature> polygons =
+      read_polygon_features(source, grid, "existing.0", warnings);
   ASSERT_EQ(polygons.size(), 1u);
   EXPECT_EQ(polygons[0].fid, 5);
   ASSERT_EQ(polygons[0].rings.size(), 2u);
@@ -59,7 +61,8 @@ TEST_F(PolygonFeatures, ClippedToTheGridAndOutsideSkipped) {
        {3,
         "MULTIPOLYGON (((500100 4999100,500200 4999100,500200 4999200,500100 4999100)),"
         "((500300 4999100,500400 4999100,500400 4999200,500300 4999100)))"}});
-  const std::vector<PolygonFeature> polygons = read_polygon_features(source, grid);
+  const std::vector<PolygonFeature> polygons =
+      read_polygon_features(source, grid, "existing.0", warnings);
   ASSERT_EQ(polygons.size(), 3u);
   EXPECT_EQ(polygons[0].fid, 1);
   EXPECT_NEAR(ring_area(polygons[0].rings[0]), 200.0 * 200.0, 1e-6);
@@ -72,16 +75,46 @@ TEST_F(PolygonFeatures, ClippedToTheGridAndOutsideSkipped) {
   EXPECT_NEAR(ring_area(polygons[1].rings[0]), 5000.0, 1e-6);
 }
 
-TEST_F(PolygonFeatures, LinesAndInvalidPolygonsNameFileAndFid) {
+TEST_F(PolygonFeatures, LinesWhereAreasAreExpectedNameFileAndFid) {
   VectorSource source = write({{8, "LINESTRING (500100 4999500,500200 4999500)"}}, "line.gpkg");
-  EXPECT_THAT(error_of([&] { read_polygon_features(source, grid); }),
+  EXPECT_THAT(error_of([&] { read_polygon_features(source, grid, "existing.0", warnings); }),
               AllOf(HasSubstr("line.gpkg"), HasSubstr("FID 8"), HasSubstr("Line String")));
-  source = write(
+}
+
+// A bow tie (its ring crosses itself at 500150 4999150) is made valid by GEOS: two triangles
+// of 50 x 100 / 2 m² each, with a warning naming the key and the FID.
+TEST_F(PolygonFeatures, InvalidPolygonsAreMadeValidWithAWarning) {
+  const VectorSource source = write(
       {{9,
-        "POLYGON ((500100 4999100,500200 4999200,500200 4999100,500100 4999200,500100 4999100))"}},
+        "POLYGON ((500100 4999100,500200 4999200,500200 4999100,500100 4999200,500100 4999100))"},
+       {10, "POLYGON ((500300 4999300,500400 4999300,500400 4999400,500300 4999300))"}},
       "bowtie.gpkg");
-  EXPECT_THAT(error_of([&] { read_polygon_features(source, grid); }),
-              AllOf(HasSubstr("bowtie.gpkg"), HasSubstr("FID 9"), HasSubstr("valid")));
+  const std::vector<PolygonFeature> polygons =
+      read_polygon_features(source, grid, "existing.0", warnings);
+  double area = 0.0;
+  int of_nine = 0;
+  for (const PolygonFeature& p : polygons) {
+    if (p.fid != 9) continue;
+    ++of_nine;
+    area += ring_area(p.rings[0]);
+  }
+  EXPECT_EQ(of_nine, 2);
+  EXPECT_NEAR(area, 2 * 2500.0, 1e-6);
+  ASSERT_EQ(warnings.size(), 1u);
+  const Warning w = warnings.list()[0];
+  EXPECT_EQ(w.code, "repaired");
+  EXPECT_EQ(w.subject, "existing.0");
+  EXPECT_EQ(w.fid, 9);
+  EXPECT_THAT(w.message, AllOf(HasSubstr("bowtie.gpkg"), HasSubstr("made valid")));
+}
+
+// An invalid polygon off the grid is skipped without being judged.
+TEST_F(PolygonFeatures, InvalidPolygonsOffTheGridAreNotJudged) {
+  const VectorSource source = write(
+      {{4,
+        "POLYGON ((510100 4999100,510200 4999200,510200 4999100,510100 4999200,510100 4999100))"}});
+  EXPECT_TRUE(read_polygon_features(source, grid, "existing.0", warnings).empty());
+  EXPECT_TRUE(warnings.empty());
 }
 
 }  // namespace

@@ -36,10 +36,11 @@ TEST(Samples, LuxembourgLinesKeepTheirGeodesicLengthInTheDemsMetricFrame) {
   EXPECT_NEAR(dem.grid.pixel_height, 926.8, 1.0);
   ASSERT_TRUE(dem.nodata_value.has_value());
 
+  Warnings warnings;
   LineClassSpec spec;
   spec.source.path = samples + "/lines_wgs84.geojson";
   spec.width_attribute = "width";
-  const std::vector<LineFeature> lines = read_line_features(spec, dem);
+  const std::vector<LineFeature> lines = read_line_features(spec, dem, warnings);
   const auto reference = lon_lat_lines(spec.source.path);
   ASSERT_FALSE(lines.empty());
   int compared = 0;
@@ -79,10 +80,11 @@ TEST(Samples, OlindaDemResampledToSixMetres) {
     ASSERT_LE(h, high + 1e-3f);
   }
   // Roads are read onto it whole (the ring road stays a closed curve).
+  Warnings warnings;
   LineClassSpec roads;
   roads.source = {samples + "/map.gpkg", "roads", ""};
   roads.width_attribute = "width";
-  const std::vector<LineFeature> lines = read_line_features(roads, fine);
+  const std::vector<LineFeature> lines = read_line_features(roads, fine, warnings);
   EXPECT_EQ(lines.size(), 5u);
   int closed = 0;
   for (const LineFeature& line : lines) closed += line.closed;

@@ -144,7 +144,7 @@ TEST_F(Cli, AFailingRunAfterAGoodOneLeavesItsOutputs) {
   const std::string height = read_file(dir / "out/height.exr");
   // Fails in ingest, after the run has locked the folder.
   expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "none.gpkg").string(),
-                 {"none.gpkg: cannot open as vector data"});
+                 {"none.gpkg: file does not exist"});
   EXPECT_EQ(read_file(dir / "out/height.exr"), height);
 }
 
@@ -170,13 +170,64 @@ TEST_F(Cli, ValidateChecksInputsAndWritesNothing) {
 TEST_F(Cli, MissingOrUnreadableFiles) {
   expect_failure("missing.yaml", {"missing.yaml: cannot read the pipeline file"});
   expect_failure("pipeline.yaml --set heightfield=" + (dir / "none.tif").string(),
-                 {"none.tif: cannot open as a raster"});
+                 {"--set heightfield=", ": heightfield: ", "none.tif: file does not exist"});
   std::ofstream(dir / "garbage.tif") << "this is not a raster";
   expect_failure("pipeline.yaml --set heightfield=" + (dir / "garbage.tif").string(),
-                 {"garbage.tif: cannot open as a raster"});
+                 {": heightfield: ", "garbage.tif: cannot be opened as raster data"});
   expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "none.gpkg").string(),
-                 {"none.gpkg: cannot open as vector data"});
-  expect_failure("pipeline.yaml --set features.rivers.layer=lakes", {"map.gpkg: no layer 'lakes'"});
+                 {": features.rivers.source: ", "none.gpkg: file does not exist"});
+  expect_failure("pipeline.yaml --set features.rivers.source=" + (dir / "garbage.tif").string(),
+                 {": features.rivers.source: ", "garbage.tif: cannot be opened as vector data"});
+  expect_failure("pipeline.yaml --set features.rivers.layer=lakes",
+                 {"error: features.rivers: ", "map.gpkg: no layer 'lakes'"});
+  expect_failure("pipeline.yaml --set existing.0.layer=lakes",
+                 {"error: existing.0: ", "map.gpkg: no layer 'lakes'"});
+  // Named in the file: the message gives the key's line and column.
+  std::string text = kPipeline;
+  text.replace(text.find("heightfield: dem.tif"), 20, "heightfield: dme.tif");
+  write_pipeline(text);
+  expect_failure("pipeline.yaml",
+                 {"pipeline.yaml:3:14: heightfield: ", "dme.tif: file does not exist"});
+}
+
+// validate opens every file a run would: a wrong exemplar path, an exemplar that is not an
+// image and a NAME_height.tif twin that is not one fail at the key that names them.
+TEST_F(Cli, ValidateChecksExemplarsAndTheirHeightTwins) {
+  const fs::path exemplars = source_dir() / "samples/exemplars";
+  fs::copy_file(exemplars / "chain_199x82.png", dir / "chain.png");
+  auto pipeline_with = [&](const std::string& second) {
+    std::string text = kPipeline;
+    const std::string roads = "  roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }\n";
+    text.replace(text.find(roads), roads.size(),
+                 "  roads:\n    source: map.gpkg\n    layer: roads\n    kind: road\n    width: 6\n"
+                 "    synthesis: { exemplar: [chain.png, " +
+                     second + "], delta: 4 }\n");
+    write_pipeline(text);
+  };
+  auto expect_validate_failure = [&](const std::vector<std::string>& what) {
+    const CommandResult r = terraweave("-q validate pipeline.yaml");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const std::vector<std::string> lines = lines_of(r.output);
+    ASSERT_EQ(lines.size(), 1u) << r.output;
+    for (const std::string& w : what) EXPECT_THAT(lines[0], HasSubstr(w));
+  };
+  pipeline_with("chian.png");
+  expect_validate_failure({"pipeline.yaml:11:40: features.roads.synthesis.exemplar.1: ",
+                           "chian.png: file does not exist"});
+  std::ofstream(dir / "text.png") << "not an image";
+  pipeline_with("text.png");
+  expect_validate_failure(
+      {"pipeline.yaml:11:40: features.roads.synthesis.exemplar.1: cannot be used as an exemplar",
+       "text.png"});
+  fs::copy_file(exemplars / "chain_199x82.png", dir / "twin.png");
+  std::ofstream(dir / "twin_height.tif") << "not a raster";
+  pipeline_with("twin.png");
+  expect_validate_failure(
+      {"pipeline.yaml:11:40: features.roads.synthesis.exemplar.1: cannot be used as an exemplar",
+       "twin_height.tif"});
+  pipeline_with("chain.png");
+  const CommandResult ok = terraweave("-q validate pipeline.yaml");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
 }
 
 TEST_F(Cli, UnknownKeyOrWrongTypeNamesFileLineAndColumn) {
@@ -245,23 +296,47 @@ TEST_F(Cli, EmptyClassIsAWarningUnlessStrict) {
 
 TEST_F(Cli, PointsOrPolygonsWhereLinesAreExpected) {
   expect_bad_roads({kRoad, {"POINT (500100 5000100)", 5.0}},
-                   {"bad1.gpkg:roads: FID 2: is a Point where lines"});
+                   {"error: features.roads: ", "bad1.gpkg:roads: FID 2: is a Point where lines"});
   expect_bad_roads(
       {{"POLYGON ((500100 5000100, 500200 5000100, 500200 5000200, 500100 5000100))", 5.0}},
       {"bad2.gpkg:roads: FID 1: is a Polygon where lines"});
 }
 
-TEST_F(Cli, ZeroLengthOrSelfIntersectingLines) {
-  expect_bad_roads({{"LINESTRING (500100 5000100, 500100 5000100)", 5.0}},
-                   {"bad1.gpkg:roads: FID 1: part 0 has zero length"});
-  expect_bad_roads(
-      {kRoad, {"LINESTRING (500100 5000100, 500300 5000300, 500300 5000100, 500100 5000300)", 5.0}},
-      {"bad2.gpkg:roads: FID 2: part 0 intersects itself"});
+// Messy lines are repaired with a warning naming the FID, a road crossing itself (a loop ramp)
+// runs as drawn, and --strict turns the repair into a failure that writes nothing.
+TEST_F(Cli, MessyLinesAreRepairedAndSelfCrossingRoadsRun) {
+  const fs::path roads = dir / "messy.gpkg";
+  write_layer(roads, "roads",
+              {{"LINESTRING (500100 5000100, 500100 5000100)", 5.0},
+               {"LINESTRING (500100 5000100, 500300 5000300, 500300 5000100, 500100 5000300)", 5.0},
+               {"LINESTRING (500100 5000500, 500300 5000500, 500300 5000520, 500300.3 5000500, "
+                "500500 5000500)",
+                5.0}});
+  const std::string args = "pipeline.yaml --set features.roads.source=" + roads.string();
+  const CommandResult r = terraweave("-q run " + args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "out/report.json"));
+  ASSERT_EQ(report["warning_count"], 2) << report["warnings"].dump();
+  for (const auto& [i, fid, says] : {std::tuple{0, 1, "1 duplicate vertex and 1 zero-length part"},
+                                     std::tuple{1, 3, "removed 1 spike"}}) {
+    const nlohmann::json& w = report["warnings"][i];
+    EXPECT_EQ(w["code"], "repaired");
+    EXPECT_EQ(w["subject"], "features.roads");
+    EXPECT_EQ(w["fid"], fid);
+    EXPECT_THAT(w["message"].get<std::string>(), HasSubstr(says));
+  }
+  std::vector<std::int64_t> fids;
+  for (const auto& c : report["classes"])
+    if (c["name"] == "roads")
+      for (const auto& f : c["features"]) fids.push_back(f["fid"]);
+  EXPECT_EQ(fids, (std::vector<std::int64_t>{2, 3}));
+  expect_failure("--strict " + args, {"strict: 2 warnings", "features.roads: FID 1"});
 }
 
 TEST_F(Cli, NanOrHugeCoordinates) {
   expect_bad_roads({{"LINESTRING (500100 5000100, 1e300 5000300)", 5.0}},
-                   {"bad1.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
+                   {"error: features.roads: ", "bad1.gpkg:roads: FID 1",
+                    "non-finite or out-of-range coordinate"});
   expect_bad_roads({VectorFeature({{500100, 5000100}, {std::nan(""), 5000300}}, 5.0)},
                    {"bad2.gpkg:roads: FID 1", "non-finite or out-of-range coordinate"});
 }

@@ -398,7 +398,8 @@ TEST(PipelineConfig, NetworkInputsAreRefusedNamingTheKey) {
   };
   EXPECT_EQ(refusal({}), "");
   EXPECT_EQ(refusal({{"heightfield", "/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif"}}),
-            "heightfield: '/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif' reaches the network "
+            "--set heightfield=/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif: heightfield: "
+            "'/vsicurl?url=http%3A%2F%2Fexample.com%2Fdem.tif' reaches the network "
             "(/vsicurl); terraweave reads local files unless run with --allow-network");
   // Kept as written (the nested "//" intact) for GDAL when allowed.
   EXPECT_EQ(parse(kMinimal, {{"heightfield", "/vsizip//vsicurl/https://example.com/d.zip/d.tif"}})
@@ -434,6 +435,61 @@ TEST(PipelineConfig, ShippedPipelinesParse) {
     EXPECT_FALSE(c.features.empty());
   }
   EXPECT_GE(parsed, 4);  // demo, demo_closeup, generated, luxembourg
+}
+
+TEST(PipelineConfig, RepairDefaultsTopLevelAndPerClassKeys) {
+  const PipelineConfig defaults = parse(kMinimal);
+  EXPECT_DOUBLE_EQ(defaults.features[0].repair.min_loop, LineRepair{}.min_loop);
+  EXPECT_DOUBLE_EQ(defaults.features[0].repair.merge_distance, LineRepair{}.merge_distance);
+  EXPECT_DOUBLE_EQ(defaults.features[0].repair.spike_angle, LineRepair{}.spike_angle);
+  // The class's own keys override the pipeline's one by one.
+  const PipelineConfig c = parse(R"(version: 1
+heightfield: dem.tif
+repair: { min_loop: 5, spike_angle: 160 }
+features:
+  roads: { source: map.gpkg, kind: road, width: 8 }
+  rivers: { source: map.gpkg, kind: river, width: 8, repair: { min_loop: 40 } }
+)");
+  EXPECT_DOUBLE_EQ(c.repair.min_loop, 5.0);
+  EXPECT_DOUBLE_EQ(c.features[0].repair.min_loop, 5.0);
+  EXPECT_DOUBLE_EQ(c.features[0].repair.spike_angle, 160.0);
+  EXPECT_DOUBLE_EQ(c.features[1].repair.min_loop, 40.0);
+  EXPECT_DOUBLE_EQ(c.features[1].repair.spike_angle, 160.0);
+  EXPECT_DOUBLE_EQ(c.features[1].repair.merge_distance, LineRepair{}.merge_distance);
+  EXPECT_DOUBLE_EQ(
+      parse(kMinimal, {{"features.roads.repair.min_loop", "0.5"}}).features[0].repair.min_loop,
+      0.5);
+  EXPECT_THAT(error_of(std::string(kMinimal) + "repair: { spike_angle: 180 }\n"),
+              HasSubstr("p.yaml:6:24: repair.spike_angle: must be below 180 degrees"));
+  EXPECT_THAT(error_of(std::string(kMinimal) + "repair: { min_loop: -1 }\n"),
+              HasSubstr("repair.min_loop"));
+  EXPECT_THAT(error_of(std::string(kMinimal) + "repair: { min_lop: 1 }\n"),
+              HasSubstr("did you mean 'min_loop'"));
+}
+
+// Every file a run opens is listed with the key (and line) that names it.
+TEST(PipelineConfig, InputsNameTheirKeys) {
+  const PipelineConfig c = parse(R"(version: 1
+heightfield: dem.tif
+features:
+  roads:
+    source: map.gpkg
+    kind: road
+    width: 8
+    synthesis: { exemplar: [a.png, b.png] }
+existing:
+  - { source: areas.gpkg }
+)");
+  ASSERT_EQ(c.inputs.size(), 5u);
+  EXPECT_EQ(c.inputs[0].path, fs::path("/base/dir/dem.tif"));
+  EXPECT_EQ(c.inputs[0].kind, InputFile::Kind::raster);
+  EXPECT_EQ(c.inputs[0].named_at, "p.yaml:2:14: heightfield");
+  EXPECT_EQ(c.inputs[1].named_at, "p.yaml:5:13: features.roads.source");
+  EXPECT_EQ(c.inputs[1].kind, InputFile::Kind::vector);
+  EXPECT_EQ(c.inputs[3].path, fs::path("/base/dir/b.png"));
+  EXPECT_EQ(c.inputs[3].kind, InputFile::Kind::exemplar);
+  EXPECT_EQ(c.inputs[3].named_at, "p.yaml:8:36: features.roads.synthesis.exemplar.1");
+  EXPECT_EQ(c.inputs[4].named_at, "p.yaml:10:15: existing.0.source");
 }
 
 }  // namespace

@@ -109,12 +109,13 @@ TEST(NetworkSwitch, TheCliRefusesUrlsWithoutAllowNetwork) {
   test::CommandResult r = test::run_command(command);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.output,
-            "terraweave: error: heightfield: '/vsicurl/http://127.0.0.1:9/dem.tif' reaches the "
+            "terraweave: error: p.yaml:2:14: heightfield: '/vsicurl/http://127.0.0.1:9/dem.tif' "
+            "reaches the "
             "network (/vsicurl); terraweave reads local files unless run with --allow-network\n");
   r = test::run_command("GDAL_HTTP_TIMEOUT=1 GDAL_HTTP_MAX_RETRY=0 " + command +
                         " --allow-network");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.output, HasSubstr("terraweave: error: /vsicurl/http://127.0.0.1:9/dem.tif: "));
+  EXPECT_THAT(r.output, HasSubstr("heightfield: /vsicurl/http://127.0.0.1:9/dem.tif: "));
   EXPECT_THAT(r.output, ::testing::Not(HasSubstr("reaches the network")));
 }
 

@@ -271,10 +271,11 @@ TEST_F(SmallWorld, SparseCanvasEqualsTheDenseCanvas) {
   const PipelineConfig c = config({{"features.roads.source", (dir_ / "hairpin.gpkg").string()},
                                    {"features.roads.synthesis.empty_pieces", "true"}});
   Warnings warnings;
-  const Heightfield heightfield = detail::load_heightfield(c);
+  const Heightfield heightfield = detail::load_heightfield(c, warnings);
   const std::vector<std::vector<LineFeature>> lines = {
       detail::load_feature_class(c.features[0], heightfield, warnings)};
-  const detail::ExistingFeatures existing = detail::load_existing(c.existing, heightfield);
+  const detail::ExistingFeatures existing =
+      detail::load_existing(c.existing, heightfield, c.repair, warnings);
   const detail::FeatureRibbons ribbons = detail::make_feature_ribbons(c, lines, heightfield.grid);
   ASSERT_FALSE(ribbons.synthesis_junction_discs.empty());
   detail::PatternOptions dense_options;

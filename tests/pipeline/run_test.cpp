@@ -19,6 +19,7 @@
 #include "geo/geodesic.hpp"
 #include "geo/heightfield.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "raster/rasterize.hpp"
 #include "test_support.hpp"
@@ -66,8 +67,8 @@ class DemoRun : public ::testing::Test {
   static std::vector<LineFeature> lines_of(const std::string& name) {
     for (const FeatureClassConfig& c : config_->features) {
       if (c.name != name) continue;
-      return read_line_features(
-          {c.name, {c.source.string(), c.layer, c.where}, c.width_attribute, c.width}, *original_);
+      Warnings warnings;
+      return detail::load_feature_class(c, *original_, warnings);
     }
     ADD_FAILURE() << "no class " << name;
     return {};
@@ -225,7 +226,9 @@ TEST_F(DemoRun, WindowedAvoidanceEqualsTheWholeGridMap) {
   for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
   const detail::FeatureRibbons ribbons =
       detail::make_feature_ribbons(*config_, lines, original_->grid);
-  const detail::ExistingFeatures existing = detail::load_existing(config_->existing, *original_);
+  Warnings warnings;
+  const detail::ExistingFeatures existing =
+      detail::load_existing(config_->existing, *original_, config_->repair, warnings);
   AvoidanceInputs inputs;
   inputs.polygons = existing.polygons;
   inputs.junction_discs = ribbons.junction_discs;

@@ -17,7 +17,7 @@ void check_finite(const std::vector<Vec2>& points, const OpenVectorLayer& layer,
 }
 
 ClippedLine whole_line(const OGRLineString& line) {
-  ClippedLine result{distinct_points(line), false};
+  ClippedLine result{curve_points(line), false};
   if (result.points.size() >= 4 && result.points.front() == result.points.back()) {
     result.points.pop_back();
     result.closed = true;
@@ -28,7 +28,7 @@ ClippedLine whole_line(const OGRLineString& line) {
 void collect_lines(const OGRGeometry& geometry, std::vector<std::vector<Vec2>>& pieces) {
   const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
   if (type == wkbLineString) {
-    std::vector<Vec2> points = distinct_points(*geometry.toLineString());
+    std::vector<Vec2> points = curve_points(*geometry.toLineString());
     if (points.size() >= 2) pieces.push_back(std::move(points));
   } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
     for (const OGRGeometry* part : *geometry.toGeometryCollection()) collect_lines(*part, pieces);

@@ -14,8 +14,9 @@ struct ClippedLine {
 };
 
 // The pieces of `line` inside `extent`, in the line's direction. A line fully inside comes back
-// whole (closed if it is a ring); a line crossing the border comes back as the pieces inside,
-// those meeting at a vertex joined again; a line fully outside gives no piece.
+// whole (closed if it is a ring), vertices as they are (repair_line judges them); a line crossing
+// the border comes back as the pieces inside, those meeting at a vertex joined again; a line fully
+// outside gives no piece.
 std::vector<ClippedLine> clip_line(const OGRLineString& line, const OGRPolygon& extent,
                                    const OpenVectorLayer& layer, std::int64_t fid);
 

@@ -89,11 +89,11 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   return result;
 }
 
-OGRPolygon grid_extent_polygon(const GridSpec& grid) {
-  const double west = grid.origin_x;
-  const double north = grid.origin_y;
-  const double east = grid.origin_x + grid.width * grid.pixel_width;
-  const double south = grid.origin_y - grid.height * grid.pixel_height;
+OGRPolygon grid_extent_polygon(const GridSpec& grid, double margin) {
+  const double west = grid.origin_x - margin;
+  const double north = grid.origin_y + margin;
+  const double east = grid.origin_x + grid.width * grid.pixel_width + margin;
+  const double south = grid.origin_y - grid.height * grid.pixel_height - margin;
   OGRLinearRing ring;
   ring.addPoint(west, south);
   ring.addPoint(east, south);
@@ -153,6 +153,22 @@ void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std:
          last_gdal_error());
   }
   check_geometry(geometry, false, layer, fid);
+}
+
+std::vector<Vec2> curve_points(const OGRSimpleCurve& curve) {
+  std::vector<Vec2> points(std::size_t(curve.getNumPoints()));
+  for (int i = 0; i < curve.getNumPoints(); ++i)
+    points[std::size_t(i)] = {curve.getX(i), curve.getY(i)};
+  return points;
+}
+
+bool drop_z_and_m(OGRGeometry& geometry) {
+  const bool had = geometry.Is3D() || geometry.IsMeasured();
+  if (had) {
+    geometry.flattenTo2D();
+    geometry.setMeasured(FALSE);
+  }
+  return had;
 }
 
 std::vector<Vec2> distinct_points(const OGRSimpleCurve& curve) {

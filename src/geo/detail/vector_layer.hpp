@@ -27,12 +27,13 @@ struct OpenVectorLayer {
 // Throws tw::Error for a missing file, an unknown layer, a bad where clause or a missing CRS.
 OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of);
 
-// The feature's geometry with curves linearized; tw::Error naming label and fid when it has none.
+// The feature's geometry with curves (CircularString, CompoundCurve, MultiCurve...) linearized;
+// tw::Error naming label and fid when it has none.
 std::unique_ptr<OGRGeometry> linear_geometry(const OGRFeature& feature,
                                              const OpenVectorLayer& layer);
 
-// The grid's extent, in the grid's CRS.
-OGRPolygon grid_extent_polygon(const GridSpec& grid);
+// The grid's extent grown by `margin` metres on every side, in the grid's CRS.
+OGRPolygon grid_extent_polygon(const GridSpec& grid, double margin = 0.0);
 
 // Every vertex finite and plausible (|lat| <= 90 and |lon| <= 540 for geographic layers,
 // |x|, |y| < 1e9 otherwise), else tw::Error naming label and fid. Call it on the geometry as
@@ -43,7 +44,13 @@ void check_coordinates(const OGRGeometry& geometry, const OpenVectorLayer& layer
 // tw::Error naming label and fid when PROJ cannot.
 void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid);
 
+// The vertices of a line string, as they are.
+std::vector<Vec2> curve_points(const OGRSimpleCurve& curve);
+
 // The vertices of a line string, dropping consecutive duplicates.
 std::vector<Vec2> distinct_points(const OGRSimpleCurve& curve);
+
+// Drops Z and M values (heights come from the heightfield); true when there were any.
+bool drop_z_and_m(OGRGeometry& geometry);
 
 }  // namespace tw::detail

@@ -1,17 +1,39 @@
 #include "pipeline/detail/ingest.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "terrain/features.hpp"
 
 namespace tw::detail {
+namespace {
 
-Heightfield load_heightfield(const PipelineConfig& config) {
+// Metres beyond a feature's half width that the later stages reach (the terrain profile's
+// banks or shoulders and falloff, a wider synthesis ribbon) plus one cell: what the clip halo
+// must keep so a feature just off the heightfield still shapes its edge.
+double clip_margin(const FeatureClassConfig& config, double cell) {
+  TerrainFeature profile;
+  profile.kind = config.kind;
+  profile.road = config.road;
+  profile.river = config.river;
+  profile.ridge = config.ridge;
+  double margin = feature_reach(profile);  // width 0: the reach beyond the half width
+  if (config.synthesis && config.synthesis->width) {
+    margin = std::max(margin, 0.5 * *config.synthesis->width);
+  }
+  return margin + cell;
+}
+
+}  // namespace
+
+Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
-    return read_heightfield(config.heightfield->string(), options);
+    return read_heightfield(config.heightfield->string(), options, warnings);
   }
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
@@ -30,11 +52,20 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings) {
   LineClassSpec spec;
   spec.name = config.name;
+  spec.subject = "features." + config.name;
   spec.source = {config.source.string(), config.layer, selection_where(config.tags, config.where)};
   spec.width_attribute = config.width_attribute;
   spec.default_width = config.width;
   spec.osm_widths = !config.tags.empty();
-  std::vector<LineFeature> lines = read_line_features(spec, heightfield, warnings);
+  spec.clip_margin =
+      clip_margin(config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height));
+  spec.repair = config.repair;
+  std::vector<LineFeature> lines;
+  try {
+    lines = read_line_features(spec, heightfield, warnings);
+  } catch (const Error& e) {
+    fail("{}: {}", spec.subject, e.what());  // the key too: file, layer and FID are named
+  }
   if (lines.empty()) {
     warnings.add(
         "empty_class", "features." + config.name, std::nullopt,
@@ -47,25 +78,32 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
 }
 
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
-                               const Heightfield& heightfield) {
+                               const Heightfield& heightfield, const LineRepair& repair,
+                               Warnings& warnings) {
   ExistingFeatures out;
   for (std::size_t i = 0; i < existing.size(); ++i) {
     const ExistingConfig& e = existing[i];
+    const std::string key = "existing." + std::to_string(i);
     const VectorSource source{e.source.string(), e.layer, selection_where(e.tags, e.where)};
-    if (e.width > 0.0) {
-      LineClassSpec spec;
-      spec.name = "existing." + std::to_string(i);
-      spec.source = source;
-      spec.default_width = e.width;
-      for (LineFeature& line : read_line_features(spec, heightfield)) {
-        if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
-        out.lines.push_back(std::move(line.points));
-        out.line_widths.push_back(e.width);
+    try {
+      if (e.width > 0.0) {
+        LineClassSpec spec;
+        spec.name = key;
+        spec.source = source;
+        spec.default_width = e.width;
+        spec.repair = repair;
+        for (LineFeature& line : read_line_features(spec, heightfield, warnings)) {
+          if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
+          out.lines.push_back(std::move(line.points));
+          out.line_widths.push_back(e.width);
+        }
+      } else {
+        for (PolygonFeature& polygon : read_polygon_features(source, heightfield, key, warnings)) {
+          out.polygons.push_back(std::move(polygon.rings));
+        }
       }
-    } else {
-      for (PolygonFeature& polygon : read_polygon_features(source, heightfield)) {
-        out.polygons.push_back(std::move(polygon.rings));
-      }
+    } catch (const Error& error) {
+      fail("{}: {}", key, error.what());
     }
   }
   logger().info("existing: {} polygons, {} lines", out.polygons.size(), out.lines.size());

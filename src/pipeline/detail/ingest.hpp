@@ -14,12 +14,14 @@ namespace tw::detail {
 
 // Reads config.heightfield (at config.resolution) or generates one from config.generate and
 // config.seed.
-Heightfield load_heightfield(const PipelineConfig& config);
+Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
 
 // The lines of one class. A class none of whose features lies on the heightfield (an empty
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning
-// ("empty_class"), not an error: a pipeline retargeted to another region still runs. Throws
-// geo's per-feature errors.
+// ("empty_class"), not an error: a pipeline retargeted to another region still runs. Lines are
+// clipped to the heightfield plus the halo the later stages reach, then repaired with
+// config.repair (read_line_features). Throws geo's per-feature errors, prefixed with the key
+// ("features.roads: map.gpkg:roads: FID 2: ...").
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings);
 
@@ -29,8 +31,10 @@ struct ExistingFeatures {
   std::vector<double> line_widths;  // metres, one per line
 };
 
-// Entries with a width are read as lines buffered by it, the others as polygons.
+// Entries with a width are read as lines buffered by it (repaired with `repair`), the others as
+// polygons (invalid ones made valid). Warnings and errors name `existing.<index>`.
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
-                               const Heightfield& heightfield);
+                               const Heightfield& heightfield, const LineRepair& repair,
+                               Warnings& warnings);
 
 }  // namespace tw::detail

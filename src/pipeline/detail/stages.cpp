@@ -139,6 +139,7 @@ std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
       TerrainFeature& f = features.emplace_back();
       f.kind = feature_class.kind;
       f.fid = line.fid;
+      f.subject = "features." + feature_class.name;
       f.centerline = Curve{line.points, line.closed};
       f.width = line.width;
       f.structure = line.structure;

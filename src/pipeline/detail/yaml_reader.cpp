@@ -141,6 +141,11 @@ std::string YamlSource::location(const YAML::Node& node, const std::string& key_
   return fmt::format("{}:{}:{}", file_label_, mark.line + 1, mark.column + 1);
 }
 
+std::string YamlSource::named_at(const YAML::Node& node, const std::string& key_path) const {
+  return fmt::format("{}: {}", location(node, key_path),
+                     key_path.empty() ? "(top level)" : key_path);
+}
+
 void YamlSource::fail(const YAML::Node& node, const std::string& key_path,
                       const std::string& problem) const {
   tw::fail("{}: {}: {}", location(node, key_path), key_path.empty() ? "(top level)" : key_path,

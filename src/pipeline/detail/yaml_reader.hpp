@@ -24,6 +24,9 @@ class YamlSource {
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key_path,
                          const std::string& problem) const;
+  // "file:line:col: key.path" (or "--set key=value: key.path"): the prefix of fail's messages,
+  // for problems found later (an input file that cannot be opened).
+  std::string named_at(const YAML::Node& node, const std::string& key_path) const;
   // A path value: relative ones resolve against the file's folder, or the current folder
   // for values given with --set.
   std::filesystem::path resolve(const std::string& value, const std::string& key_path) const;

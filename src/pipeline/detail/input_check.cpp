@@ -1,0 +1,56 @@
+#include "pipeline/detail/input_check.hpp"
+
+#include <gdal_priv.h>
+
+#include "core/error.hpp"
+#include "pipeline/detail/patterns.hpp"
+
+namespace tw::detail {
+namespace {
+
+struct DatasetCloser {
+  void operator()(GDALDatasetH dataset) const { GDALClose(dataset); }
+};
+
+// The GDAL message of the last failure, or a generic one.
+std::string gdal_reason(const char* fallback) {
+  const char* message = CPLGetLastErrorMsg();
+  return message && *message ? message : fallback;
+}
+
+void check_gdal_input(const InputFile& input) {
+  const bool raster = input.kind == InputFile::Kind::raster;
+  CPLErrorReset();
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  const std::unique_ptr<void, DatasetCloser> dataset(
+      GDALOpenEx(input.path.c_str(), (raster ? GDAL_OF_RASTER : GDAL_OF_VECTOR) | GDAL_OF_READONLY,
+                 nullptr, nullptr, nullptr));
+  CPLPopErrorHandler();
+  if (!dataset) {
+    fail("{}: {}: cannot be opened as {} data: {}", input.named_at, input.path.string(),
+         raster ? "raster" : "vector", gdal_reason("no GDAL driver recognizes it"));
+  }
+}
+
+}  // namespace
+
+void check_inputs(const PipelineConfig& config) {
+  GDALAllRegister();
+  for (const InputFile& input : config.inputs) {
+    VSIStatBufL stat;
+    if (VSIStatL(input.path.c_str(), &stat) != 0) {
+      fail("{}: {}: file does not exist", input.named_at, input.path.string());
+    }
+    if (input.kind != InputFile::Kind::exemplar) {
+      check_gdal_input(input);
+      continue;
+    }
+    try {
+      load_exemplar_with_height(input.path, false);
+    } catch (const Error& e) {
+      fail("{}: cannot be used as an exemplar: {}", input.named_at, e.what());
+    }
+  }
+}
+
+}  // namespace tw::detail

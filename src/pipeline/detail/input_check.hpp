@@ -1,0 +1,13 @@
+#pragma once
+// Every file a run will open, checked before any stage starts: a missing or unreadable one is
+// reported at the pipeline key that names it ("file:line:col: key: ..."), by run and validate.
+#include "pipeline/config.hpp"
+
+namespace tw::detail {
+
+// Throws tw::Error "<file:line:col>: <key>: <path>: <problem>" for the first input that does
+// not exist or cannot be opened as what its key expects: raster data (heightfield), vector
+// data (sources), an exemplar image (read whole, with its NAME_height.tif twin when present).
+void check_inputs(const PipelineConfig& config);
+
+}  // namespace tw::detail
