@@ -1,11 +1,11 @@
 #include "geo/detail/warp.hpp"
 
+#include <cpl_string.h>
 #include <gdal_utils.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
-
 #include <vector>
 
 #include "core/error.hpp"
@@ -13,17 +13,18 @@
 namespace tw::detail {
 namespace {
 
-std::vector<char*> argv_of(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
+// The argument vector of a GDAL utility, owning copies of its strings: GDAL's *OptionsNew read
+// them after the caller's temporaries are gone.
+CPLStringList gdal_arguments(const std::vector<std::string>& args) {
+  CPLStringList argv;
+  for (const std::string& arg : args) argv.AddString(arg.c_str());
   return argv;
 }
 
 // GDAL 3.6's gdalwarp has no -b: a virtual dataset of band 1 alone stands in for the source.
 GdalDatasetPtr first_band_only(GDALDataset& source, const std::string& label) {
-  std::vector<char*> argv = argv_of({"-of", "VRT", "-b", "1"});
-  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.data(), nullptr);
+  CPLStringList argv = gdal_arguments({"-of", "VRT", "-b", "1"});
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.List(), nullptr);
   int usage_error = 0;
   GDALDatasetH band = GDALTranslate("", GDALDataset::ToHandle(&source), options, &usage_error);
   GDALTranslateOptionsFree(options);
@@ -93,8 +94,8 @@ GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const
       "-tr", number(target.pixel_width), number(target.pixel_height),
       "-r", resampling, "-ot", "Float32", "-dstnodata", "nan"};
   // clang-format on
-  std::vector<char*> argv = argv_of(args);
-  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv.data(), nullptr);
+  CPLStringList argv = gdal_arguments(args);
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv.List(), nullptr);
   if (!options) fail("{}: bad warp options: {}", label, last_gdal_error());
   GDALDatasetH source_handle = GDALDataset::ToHandle(&source);
   int usage_error = 0;
