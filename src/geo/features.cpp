@@ -27,11 +27,16 @@ double feature_width(const OGRFeature& feature, int width_field, const LineClass
                      const OpenVectorLayer& layer) {
   const bool from_attribute = width_field >= 0 && feature.IsFieldSetAndNotNull(width_field);
   const double width = from_attribute ? feature.GetFieldAsDouble(width_field) : spec.default_width;
+  const std::string origin = from_attribute
+                                 ? fmt::format("attribute '{}'", spec.width_attribute)
+                                 : fmt::format("the default width of class '{}'", spec.name);
   if (!(std::isfinite(width) && width > 0.0)) {
     fail("{}: FID {}: width must be a positive number of metres, got {} (from {})", layer.label,
-         feature.GetFID(), width,
-         from_attribute ? fmt::format("attribute '{}'", spec.width_attribute)
-                        : fmt::format("the default width of class '{}'", spec.name));
+         feature.GetFID(), width, origin);
+  }
+  if (width > kMaxFeatureWidth) {
+    fail("{}: FID {}: width {:g} m is over the limit of {:g} m (from {})", layer.label,
+         feature.GetFID(), width, kMaxFeatureWidth, origin);
   }
   return width;
 }

@@ -23,6 +23,10 @@ struct LineFeature {
   std::string source;  // "path:layer" for messages
 };
 
+// The widest feature accepted (100 km): wider is a units mistake, and its pixel footprint
+// would overflow the raster stages.
+inline constexpr double kMaxFeatureWidth = 1e5;
+
 struct LineClassSpec {
   std::string name;
   VectorSource source;
@@ -36,7 +40,7 @@ struct LineClassSpec {
 // features fully outside. Closed rings fully inside stay closed curves.
 // Throws tw::Error naming file, layer and FID for: missing/unreadable file, unknown layer,
 // bad where clause, no CRS, non-line geometries, zero-length or self-intersecting lines,
-// non-finite or huge coordinates, width <= 0.
+// non-finite or huge coordinates, width <= 0 or over kMaxFeatureWidth.
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of);
 
 struct PolygonFeature {

@@ -21,6 +21,8 @@ struct OpenVectorLayer {
   // Null when the layer is already in the grid's CRS.
   std::unique_ptr<OGRCoordinateTransformation> to_grid;
   bool source_is_geographic = false;
+  std::string crs_name;     // the layer's CRS, for messages
+  bool is_geojson = false;  // GeoJSON reads a CRS unknown to PROJ as WGS 84
 };
 
 // Opens the layer (the first when source.layer is empty) and applies source.where.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 
 namespace tw::detail {
 namespace {
@@ -74,8 +75,20 @@ Extent covering_extent(GDALDataset& source, const WarpTarget& target, const std:
     fail("{}: cannot find its extent in the metric grid: {}", label, last_gdal_error());
   }
   // Whole pixels from the north-west corner; 1e-9 keeps an exact fit from gaining a pixel.
-  const double width = std::ceil((bounds.east - bounds.west) / target.pixel_width - 1e-9);
-  const double height = std::ceil((bounds.north - bounds.south) / target.pixel_height - 1e-9);
+  const double span_x = (bounds.east - bounds.west) / target.pixel_width;
+  const double span_y = (bounds.north - bounds.south) / target.pixel_height;
+  if (span_x < 0.5 || span_y < 0.5) {
+    fail(
+        "{}: {:.6g} x {:.6g} m pixels are coarser than its extent ({:.6g} x {:.6g} m); the grid "
+        "would be under one cell",
+        label, target.pixel_width, target.pixel_height, bounds.east - bounds.west,
+        bounds.north - bounds.south);
+  }
+  const double width = std::ceil(span_x - 1e-9);
+  const double height = std::ceil(span_y - 1e-9);
+  require_grid_size(
+      width, height,
+      fmt::format("{}: {:.6g} x {:.6g} m pixels", label, target.pixel_width, target.pixel_height));
   return {bounds.west, bounds.north - height * target.pixel_height,
           bounds.west + width * target.pixel_width, bounds.north};
 }
