@@ -99,4 +99,25 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
   return lines;
 }
 
+LineFeature read_first_line_feature(const VectorSource& source) {
+  const OpenVectorLayer layer = detail::open_vector_layer(source);
+  const OGRSpatialReference* srs = layer.layer->GetSpatialRef();
+  if (!srs->IsProjected() || std::abs(srs->GetLinearUnits() - 1.0) > 1e-12)
+    fail("{}: needs a projected CRS in metres", layer.label);
+  layer.layer->ResetReading();
+  const OGRFeatureUniquePtr feature(layer.layer->GetNextFeature());
+  if (!feature) fail("{}: empty layer", layer.label);
+  const std::int64_t fid = feature->GetFID();
+  const std::unique_ptr<OGRMultiLineString> parts = line_parts(*feature, layer);
+  detail::check_coordinates(*parts, layer, fid);
+  const OGRLineString& line = *parts->getGeometryRef(0);
+  check_line_part(line, 0, layer, fid);
+  LineFeature result{fid, detail::distinct_points(line), false, 0.0, layer.label};
+  if (result.points.size() > 2 && result.points.front() == result.points.back()) {
+    result.points.pop_back();
+    result.closed = true;
+  }
+  return result;
+}
+
 }  // namespace tw

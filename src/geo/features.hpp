@@ -43,6 +43,12 @@ struct LineClassSpec {
 // non-finite or huge coordinates, width <= 0 or over kMaxFeatureWidth.
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of);
 
+// The first part of the first line feature of `source`, in the layer's own CRS (which must
+// be projected, in metres), with read_line_features' checks on it (finite and plausible
+// coordinates, non-zero length, no self-intersection); a closed ring becomes a closed curve.
+// `terraweave synth` draws it. width is 0.
+LineFeature read_first_line_feature(const VectorSource& source);
+
 struct PolygonFeature {
   std::int64_t fid = 0;
   std::vector<std::vector<Vec2>> rings;  // [0] outer, rest holes; grid CRS metres, not repeating

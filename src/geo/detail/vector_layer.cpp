@@ -33,7 +33,7 @@ void apply_where(OGRLayer& layer, const std::string& where, const std::string& l
 
 }  // namespace
 
-OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
+OpenVectorLayer open_vector_layer(const VectorSource& source) {
   ensure_gdal_registered();
   QuietGdalErrors quiet;
   OpenVectorLayer result;
@@ -63,6 +63,14 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   result.source_is_geographic = from.IsGeographic();
   result.crs_name = from.GetName() ? from.GetName() : "unnamed";
   result.is_geojson = std::string_view(result.dataset->GetDriverName()) == "GeoJSON";
+  return result;
+}
+
+OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
+  OpenVectorLayer result = open_vector_layer(source);
+  QuietGdalErrors quiet;
+  OGRSpatialReference from(*result.layer->GetSpatialRef());
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   OGRSpatialReference to;
   if (!import_traditional_srs(to, grid_of.crs_wkt)) {
     fail("{}: the heightfield '{}' has no usable CRS", result.label, grid_of.source);

@@ -28,6 +28,8 @@ struct OpenVectorLayer {
 // Opens the layer (the first when source.layer is empty) and applies source.where.
 // Throws tw::Error for a missing file, an unknown layer, a bad where clause or a missing CRS.
 OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of);
+// The same, staying in the layer's own CRS (to_grid is null).
+OpenVectorLayer open_vector_layer(const VectorSource& source);
 
 // The feature's geometry with curves linearized; tw::Error naming label and fid when it has none.
 std::unique_ptr<OGRGeometry> linear_geometry(const OGRFeature& feature,
