@@ -4,9 +4,9 @@
 #include <array>
 #include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "geo/features.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -36,6 +36,16 @@ std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_
                               hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
 }
 
+// A width in metres: positive and at most kMaxFeatureWidth (geo/features.hpp).
+double read_width(const MapReader& m, const std::string& key) {
+  const double width = m.positive(key);
+  if (width > kMaxFeatureWidth) {
+    m.source().fail(m.get(key), m.path(key),
+                    fmt::format("must be at most {:g} m, got {:g}", kMaxFeatureWidth, width));
+  }
+  return width;
+}
+
 FeatureKind read_kind(const MapReader& m) {
   static const std::vector<FeatureKind> kinds{FeatureKind::road, FeatureKind::river,
                                               FeatureKind::ridge};
@@ -63,6 +73,10 @@ GenerateConfig read_generate(const MapReader& m) {
   }
   g.pixel_size = m.positive_or("pixel_size", g.pixel_size);
   g.relief = m.non_negative_or("relief", g.relief);
+  if (g.relief > kMaxGeneratedRelief) {
+    m.source().fail(m.get("relief"), m.path("relief"),
+                    fmt::format("must be at most {:g} m, got {:g}", kMaxGeneratedRelief, g.relief));
+  }
   g.crs = m.string_or("crs", g.crs);
   if (m.has("origin")) {
     const YAML::Node origin = m.get("origin");
@@ -122,7 +136,7 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed) {
   s.delta = m.positive_or("delta", s.delta);
   s.scale = m.positive_or("scale", s.scale);
   s.stitch = m.bool_or("stitch", s.stitch);
-  if (m.has("width")) s.width = m.positive("width");
+  if (m.has("width")) s.width = read_width(m, "width");
   s.empty_pieces = m.bool_or("empty_pieces", s.empty_pieces);
   s.seed =
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
@@ -170,7 +184,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   f.where = m.string_or("where", "");
   f.kind = read_kind(m);
   f.width_attribute = m.string_or("width_attribute", "");
-  if (f.width_attribute.empty() || m.has("width")) f.width = m.positive("width");
+  if (f.width_attribute.empty() || m.has("width")) f.width = read_width(m, "width");
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("synthesis")) {
     f.synthesis =
@@ -188,7 +202,7 @@ ExistingConfig read_existing(const MapReader& m) {
   e.source = m.file("source");
   e.layer = m.string_or("layer", "");
   e.where = m.string_or("where", "");
-  e.width = m.positive_or("width", 0.0);
+  e.width = m.has("width") ? read_width(m, "width") : 0.0;
   return e;
 }
 
@@ -359,6 +373,9 @@ Override parse_override(std::string_view assignment) {
   if (equals == std::string_view::npos || equals == 0) {
     fail("--set {}: expected key.path=value", assignment);
   }
+  if (equals + 1 == assignment.size()) {  // YAML would read it as null: the key as if unset
+    fail("--set {}: empty value (for an empty string write {}\"\")", assignment, assignment);
+  }
   return {std::string(assignment.substr(0, equals)), std::string(assignment.substr(equals + 1))};
 }
 
@@ -369,13 +386,31 @@ PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& fil
 }
 
 PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides) {
+  // Only a regular file of bounded size: a folder, a device (/dev/zero) or a FIFO would read
+  // nothing useful, or forever.
+  std::error_code error;
+  const fs::file_status status = fs::status(file, error);
+  if (!fs::exists(status)) fail("{}: cannot read the pipeline file: no such file", file.string());
+  if (fs::is_directory(status))
+    fail("{}: is a folder; give the pipeline file (YAML) itself", file.string());
+  if (!fs::is_regular_file(status))
+    fail("{}: not a regular file; a pipeline is a YAML file", file.string());
+  const auto too_large = [&] {
+    fail("{}: over {} MiB; a pipeline file is a few KiB of YAML", file.string(),
+         kMaxPipelineFileBytes >> 20);
+  };
+  if (fs::file_size(file, error) > kMaxPipelineFileBytes) too_large();
   std::ifstream in(file, std::ios::binary);
   if (!in) fail("{}: cannot read the pipeline file", file.string());
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  std::array<char, 65536> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {  // bounded, should it grow
+    text.append(chunk.data(), std::size_t(in.gcount()));
+    if (text.size() > kMaxPipelineFileBytes) too_large();
+  }
   if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
   const fs::path folder = fs::absolute(file).parent_path();
-  PipelineConfig config = parse_pipeline(text.str(), file.string(), folder, overrides);
+  PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides);
   config.file = file;
   return config;
 }

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 #include "core/log.hpp"
 #include "raster/foldover.hpp"
 #include "raster/rasterize.hpp"
@@ -167,7 +168,8 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
   return h == 0 ? 1 : h;
 }
 
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m) {
+GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m,
+                          const std::string& label) {
   Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
   for (const Piece& piece : ribbon.pieces) {
     for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
@@ -181,8 +183,12 @@ GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m
   grid.pixel_width = grid.pixel_height = resolution;
   grid.origin_x = x0;
   grid.origin_y = y1;
-  grid.width = int(std::ceil((hi.x + halo_m - x0) / resolution));
-  grid.height = int(std::ceil((y1 - (lo.y - halo_m)) / resolution));
+  const double columns = std::ceil((hi.x + halo_m - x0) / resolution);
+  const double rows = std::ceil((y1 - (lo.y - halo_m)) / resolution);
+  require_grid_size(columns, rows,
+                    fmt::format("{}: a synthesis canvas of {} m cells", label, resolution));
+  grid.width = int(columns);
+  grid.height = int(rows);
   return grid;
 }
 
@@ -238,7 +244,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
 
       // Avoidance on the feature's canvas: a halo of a cell beyond the pieces.
       auto started = std::chrono::steady_clock::now();
-      pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell);
+      pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell, label);
       const GridSpec& canvas = pattern.canvas;
       const Window whole = Window::whole(canvas);
       Raster<std::uint8_t> forbidden(canvas.width, canvas.height, 0);

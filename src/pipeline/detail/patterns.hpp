@@ -27,8 +27,10 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
 
 // Cells of `resolution` metres whose edges lie on multiples of `resolution` in world
 // coordinates, covering the ribbon's pieces plus `halo_m`: the same cells whatever the output
-// grid, so placements never depend on it.
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m);
+// grid, so placements never depend on it. A canvas over kMaxGridCells (core/grid_limits.hpp)
+// is a tw::Error starting with `label` (the feature).
+GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m,
+                          const std::string& label);
 
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
 Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
