@@ -90,29 +90,41 @@ GenerateConfig read_generate(const MapReader& m) {
 }
 
 // The `profile` keys are those of the feature's kind (terrain/features.hpp).
+// A length in metres >= 0 and at most `limit` (heights and depths: kMaxAbsHeight; widths:
+// kMaxFeatureWidth), so the terrain's heights stay finite floats.
+double metres_or(const MapReader& m, const std::string& key, double fallback, double limit) {
+  const double value = m.non_negative_or(key, fallback);
+  if (value > limit) {
+    m.source().fail(m.get(key), m.path(key),
+                    fmt::format("must be at most {:g} m, got {:g}", limit, value));
+  }
+  return value;
+}
+
 void read_profile(const detail::YamlSource& src, const YAML::Node& node, const std::string& path,
                   FeatureClassConfig& f) {
   switch (f.kind) {
     case FeatureKind::road: {
       const MapReader m(src, node, path, {"max_grade", "shoulder_width", "falloff", "smoothing"});
       f.road.max_grade = m.positive_or("max_grade", f.road.max_grade);
-      f.road.shoulder_width = m.non_negative_or("shoulder_width", f.road.shoulder_width);
-      f.road.falloff = m.non_negative_or("falloff", f.road.falloff);
-      f.road.smoothing = m.non_negative_or("smoothing", f.road.smoothing);
+      f.road.shoulder_width =
+          metres_or(m, "shoulder_width", f.road.shoulder_width, kMaxFeatureWidth);
+      f.road.falloff = metres_or(m, "falloff", f.road.falloff, kMaxFeatureWidth);
+      f.road.smoothing = metres_or(m, "smoothing", f.road.smoothing, kMaxFeatureWidth);
       break;
     }
     case FeatureKind::river: {
       const MapReader m(src, node, path, {"depth", "bank_width", "falloff", "min_slope"});
-      f.river.depth = m.non_negative_or("depth", f.river.depth);
-      f.river.bank_width = m.non_negative_or("bank_width", f.river.bank_width);
-      f.river.falloff = m.non_negative_or("falloff", f.river.falloff);
+      f.river.depth = metres_or(m, "depth", f.river.depth, kMaxAbsHeight);
+      f.river.bank_width = metres_or(m, "bank_width", f.river.bank_width, kMaxFeatureWidth);
+      f.river.falloff = metres_or(m, "falloff", f.river.falloff, kMaxFeatureWidth);
       f.river.min_slope = m.non_negative_or("min_slope", f.river.min_slope);
       break;
     }
     case FeatureKind::ridge: {
       const MapReader m(src, node, path, {"height", "falloff", "sharpness"});
-      f.ridge.height = m.non_negative_or("height", f.ridge.height);
-      f.ridge.falloff = m.non_negative_or("falloff", f.ridge.falloff);
+      f.ridge.height = metres_or(m, "height", f.ridge.height, kMaxAbsHeight);
+      f.ridge.falloff = metres_or(m, "falloff", f.ridge.falloff, kMaxFeatureWidth);
       f.ridge.sharpness = m.positive_or("sharpness", f.ridge.sharpness);
       break;
     }

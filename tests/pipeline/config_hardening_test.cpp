@@ -80,6 +80,13 @@ features:
   EXPECT_EQ(parse_error(kMinimal, {parse_override("features.roads.width=1e12")}),
             "--set features.roads.width=1e12: features.roads.width: must be at most 100000 m, "
             "got 1e+12");
+  // Profile heights and lengths too: a ridge of 1e308 m made every height infinite.
+  EXPECT_EQ(parse_error(R"(version: 1
+heightfield: dem.tif
+features:
+  ridges: { source: map.gpkg, kind: ridge, width: 8, profile: { height: 1e308 } }
+)"),
+            "p.yaml:4:73: features.ridges.profile.height: must be at most 100000 m, got 1e+308");
 }
 
 TEST(PipelineConfigHardening, OnlyARegularFileOfBoundedSizeIsLoaded) {
