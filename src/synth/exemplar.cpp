@@ -16,8 +16,8 @@ std::uint32_t to_byte(float v) {
   return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-// Every error OIIO holds for this read, taken (so none is left pending: an unread error string
-// leaked) and joined on one line: the reader's own and the global one.
+// Every error OIIO holds for this read, taken (so none is left pending) and joined on one line:
+// the reader's own and the global one.
 std::string oiio_errors(const OIIO::ImageInput* input) {
   std::string text = input ? input->geterror() : std::string();
   const std::string global = OIIO::geterror();
