@@ -1,6 +1,6 @@
 // terraweave's command line: a thin parse over library calls (pipeline/, synth/).
-// Every tw::Error becomes one line "terraweave: error: <message>" and exit code 1; usage
-// errors exit with 2.
+// Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
+// code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
 #include <CLI/CLI.hpp>
 
@@ -49,7 +49,9 @@ int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   if (!report.warnings.empty()) std::printf("%-10s %8zu\n", "warnings", report.warnings.size());
   std::printf("%-10s %8.3f s, %zu files in %s\n", "total", report.total_seconds,
               report.outputs.size(),
-              report.outputs.empty() ? "-" : report.outputs.front().parent_path().c_str());
+              report.outputs.empty()
+                  ? "-"
+                  : tw::single_line(report.outputs.front().parent_path().string()).c_str());
   return 0;
 }
 
@@ -62,8 +64,8 @@ int validate_command(const PipelineArgs& args, bool strict, bool allow_network) 
   std::size_t features = 0;
   for (const auto& c : report.classes) features += c.features.size();
   std::printf("%s: ok (%zu feature classes, %zu features, grid %d x %d, %zu warnings)\n",
-              args.file.c_str(), report.classes.size(), features, report.grid.width,
-              report.grid.height, report.warnings.size());
+              tw::single_line(args.file).c_str(), report.classes.size(), features,
+              report.grid.width, report.grid.height, report.warnings.size());
   return 0;
 }
 
@@ -79,17 +81,21 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("-q,--quiet", quiet, "warnings and errors only");
 
+  const CLI::Validator non_empty(
+      [](const std::string& value) { return value.empty() ? std::string("empty path") : ""; },
+      "PATH");
+
   PipelineArgs run_args;
   tw::RunOptions run_options;
   std::string out_dir;
   std::string backend;
   CLI::App* run = app.add_subcommand("run", "run a pipeline and write its layers");
   add_pipeline_args(*run, run_args);
-  run->add_option("--out", out_dir, "output folder (replaces output.dir)");
+  run->add_option("--out", out_dir, "output folder (replaces output.dir)")->check(non_empty);
   run->add_option("--backend", backend, "synthesis backend")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
   run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, tw::kMaxThreads));
   run->add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
   const char* const network_help =
       "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
@@ -139,8 +145,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
+  } catch (const CLI::ParseError& e) {  // one line, whatever the arguments held
+    std::fprintf(stderr, "terraweave: usage error: %s (see terraweave --help)\n",
+                 tw::single_line(e.what()).c_str());
     return 2;
   }
 
@@ -149,7 +156,7 @@ int main(int argc, char** argv) {
                             : spdlog::level::info);
   try {
     if (run->parsed()) {
-      if (!out_dir.empty()) run_options.output_dir = out_dir;
+      if (run->count("--out")) run_options.output_dir = out_dir;
       if (!backend.empty()) run_options.backend = backend;
       return run_command(run_args, run_options);
     }
@@ -164,7 +171,7 @@ int main(int argc, char** argv) {
     }
   } catch (const std::exception& e) {
     std::fflush(stdout);
-    std::fprintf(stderr, "terraweave: error: %s\n", e.what());
+    std::fprintf(stderr, "terraweave: error: %s\n", tw::single_line(e.what()).c_str());
     return 1;
   }
   return 2;

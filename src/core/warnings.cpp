@@ -14,14 +14,6 @@ bool same(const Warning& a, const Warning& b) {
   return a.code == b.code && a.subject == b.subject && a.fid == b.fid && a.message == b.message;
 }
 
-// One line whatever the message holds: a newline in a value (a key, a path) must not let a
-// warning forge another log line.
-std::string one_line(std::string text) {
-  std::replace_if(
-      text.begin(), text.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  return text;
-}
-
 }  // namespace
 
 std::string to_string(const Warning& warning) {
@@ -29,7 +21,9 @@ std::string to_string(const Warning& warning) {
   if (!warning.subject.empty()) out += warning.subject + ": ";
   if (warning.fid) out += fmt::format("FID {}: ", *warning.fid);
   out += warning.message;
-  return one_line(std::move(out));
+  // One line whatever the message holds: a newline in a value (a key, a path) must not let a
+  // warning forge another line.
+  return single_line(out);
 }
 
 Warnings::Warnings(const Warnings& other) : list_(other.list()) {}

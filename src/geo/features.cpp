@@ -86,6 +86,10 @@ double feature_width(const OGRFeature& feature, const AttributeColumns& columns,
     fail("{}: FID {}: width must be a positive number of metres, got {} (from {})", layer.label,
          feature.GetFID(), width, from);
   }
+  if (width > kMaxFeatureWidth) {
+    fail("{}: FID {}: width {:g} m is over the limit of {:g} m (from {})", layer.label,
+         feature.GetFID(), width, kMaxFeatureWidth, from);
+  }
   return width;
 }
 
@@ -196,6 +200,30 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
     }
   }
   return lines;
+}
+
+LineFeature read_first_line_feature(const VectorSource& source) {
+  const OpenVectorLayer layer = detail::open_vector_layer(source);
+  const OGRSpatialReference* srs = layer.layer->GetSpatialRef();
+  if (!srs->IsProjected() || std::abs(srs->GetLinearUnits() - 1.0) > 1e-12)
+    fail("{}: needs a projected CRS in metres", layer.label);
+  layer.layer->ResetReading();
+  const OGRFeatureUniquePtr feature(layer.layer->GetNextFeature());
+  if (!feature) fail("{}: empty layer", layer.label);
+  const std::int64_t fid = feature->GetFID();
+  const std::unique_ptr<OGRMultiLineString> parts = line_parts(*feature, layer);
+  detail::check_coordinates(*parts, layer, fid);
+  const OGRLineString& line = *parts->getGeometryRef(0);
+  // As the pipeline: a zero-length line is refused; one crossing itself is drawn as it is.
+  if (detail::distinct_points(line).size() < 2) {
+    fail("{}: FID {}: part 0 has zero length", layer.label, fid);
+  }
+  LineFeature result{fid, detail::distinct_points(line), false, 0.0, layer.label};
+  if (result.points.size() > 2 && result.points.front() == result.points.back()) {
+    result.points.pop_back();
+    result.closed = true;
+  }
+  return result;
 }
 
 }  // namespace tw

@@ -37,6 +37,10 @@ struct LineRepair {
   double min_loop = 2.0;         // a loop (the line meets itself) shorter than this is cut out
 };
 
+// The widest feature accepted (100 km): wider is a units mistake, and its pixel footprint
+// would overflow the raster stages.
+inline constexpr double kMaxFeatureWidth = 1e5;
+
 struct LineClassSpec {
   std::string name;
   VectorSource source;
@@ -61,12 +65,20 @@ struct LineClassSpec {
 // are removed with one `repaired` warning per FID saying what changed; a line that still crosses
 // itself is kept (a self-crossing: a junction for the later stages).
 // Throws tw::Error naming file, layer and FID for: missing/unreadable file, unknown layer,
-// bad where clause, no CRS, non-line geometries, non-finite or huge coordinates, width <= 0.
+// bad where clause, no CRS, non-line geometries, non-finite or huge coordinates, width <= 0 or over
+// kMaxFeatureWidth.
 // Unusable `width`, `lanes` or `layer` values are skipped with a warning (subject
 // "features.<spec.name>", the FID); the two-argument form only logs its warnings.
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of,
                                             Warnings& warnings);
 std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Heightfield& grid_of);
+
+// The first part of the first line feature of `source`, in the layer's own CRS (which must
+// be projected, in metres), with read_line_features' checks on it (finite and plausible
+// coordinates, non-zero length; a line crossing itself is kept); a closed ring becomes a
+// closed curve.
+// `terraweave synth` draws it. width is 0.
+LineFeature read_first_line_feature(const VectorSource& source);
 
 struct PolygonFeature {
   std::int64_t fid = 0;

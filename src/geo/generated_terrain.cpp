@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/gradient_noise.hpp"
 #include "geo/heightfield.hpp"
@@ -17,19 +18,27 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
   if (params.width <= 0 || params.height <= 0) {
     fail("{}: size must be positive, got {} x {}", name, params.width, params.height);
   }
+  require_grid_size(params.width, params.height, name);
   if (!(std::isfinite(params.pixel_size) && params.pixel_size > 0.0)) {
     fail("{}: pixel_size must be a positive number of metres, got {}", name, params.pixel_size);
   }
   if (!(std::isfinite(params.feature_size) && params.feature_size > 0.0)) {
     fail("{}: feature_size must be a positive number of metres, got {}", name, params.feature_size);
   }
-  if (!(std::isfinite(params.origin_x) && std::isfinite(params.origin_y)) ||
-      std::abs(params.origin_x / params.pixel_size) > 1e15 ||
-      std::abs(params.origin_y / params.pixel_size) > 1e15) {
+  if (!(std::isfinite(params.origin_x) && std::isfinite(params.origin_y))) {
     fail("{}: origin ({}, {}) is not a usable coordinate", name, params.origin_x, params.origin_y);
   }
-  if (!(std::isfinite(params.relief) && params.relief >= 0.0)) {
-    fail("{}: relief must be >= 0 metres, got {}", name, params.relief);
+  // Noise is indexed by world pixel in 64-bit integers: the origin must lie within 1e15 pixels.
+  if (std::abs(params.origin_x / params.pixel_size) > 1e15 ||
+      std::abs(params.origin_y / params.pixel_size) > 1e15) {
+    fail(
+        "{}: pixel_size {} m is too small for origin ({}, {}): the origin lies over 1e15 pixels "
+        "from 0",
+        name, params.pixel_size, params.origin_x, params.origin_y);
+  }
+  if (!(std::isfinite(params.relief) && params.relief >= 0.0 &&
+        params.relief <= kMaxGeneratedRelief)) {
+    fail("{}: relief must be in [0, {}] metres, got {}", name, kMaxGeneratedRelief, params.relief);
   }
   detail::ensure_gdal_registered();
   detail::QuietGdalErrors quiet;

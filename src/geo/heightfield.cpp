@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 #include "core/log.hpp"
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/warp.hpp"
@@ -105,11 +106,34 @@ Raster<float> read_heights(GDALRasterBand& band, double metres_per_unit, const s
     for (int x = 0; x < heights.width; ++x) {
       const double value = row[x];
       const bool missing = !std::isfinite(value) || (has_nodata && value == nodata);
-      heights.at(x, y) =
-          missing ? std::numeric_limits<float>::quiet_NaN() : float(value * metres_per_unit);
+      const double metres = value * metres_per_unit;
+      if (!missing && !(std::abs(metres) <= kMaxAbsHeight)) {
+        fail(
+            "{}: cell ({}, {}) holds a height of {:.6g} m, beyond +-{:g} m (an undeclared "
+            "nodata value? declare it, e.g. gdal_edit.py -a_nodata)",
+            path, x, y, metres, kMaxAbsHeight);
+      }
+      heights.at(x, y) = missing ? std::numeric_limits<float>::quiet_NaN() : float(metres);
     }
   }
   return heights;
+}
+
+// The grid of `resolution` m pixels on the native grid's north-west corner, covering it. A
+// resolution coarser than the whole extent is refused: its one cell would lie half outside.
+GridSpec resampled_grid(const GridSpec& native, double resolution, const std::string& path) {
+  const double extent_x = native.width * native.pixel_width;
+  const double extent_y = native.height * native.pixel_height;
+  if (resolution > extent_x * (1 + 1e-9) || resolution > extent_y * (1 + 1e-9)) {
+    fail(
+        "{}: resolution {} m is coarser than the heightfield's extent ({:.6g} x {:.6g} m); the "
+        "grid would be under one cell",
+        path, resolution, extent_x, extent_y);
+  }
+  const double columns = std::ceil(extent_x / resolution - 1e-9);
+  const double rows = std::ceil(extent_y / resolution - 1e-9);
+  require_grid_size(columns, rows, fmt::format("{}: resolution {} m", path, resolution));
+  return {int(columns), int(rows), native.origin_x, native.origin_y, resolution, resolution};
 }
 
 void require_some_height(const Heightfield& field, const std::string& path) {
@@ -134,7 +158,7 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   }
   check_input_path(path, "heightfield", network_access_allowed());  // also for library callers
   GdalDatasetPtr source(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!source) fail("{}: cannot open as a raster: {}", path, detail::last_gdal_error());
+  if (!source) fail("{}: cannot open as a raster: {}", path, detail::open_failure(path));
   if (source->GetRasterCount() < 1) fail("{}: has no raster band", path);
   const OGRSpatialReference* srs = source->GetSpatialRef();
   if (!srs || srs->IsEmpty()) {
@@ -157,15 +181,10 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
     const GridSpec native{
         source->GetRasterXSize(), source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
     result.grid = native;
+    require_grid_size(native.width, native.height, path);
+    if (options.resolution) result.grid = resampled_grid(native, *options.resolution, path);
     result.height = read_heights(*source->GetRasterBand(1), height_unit, path);
     if (options.resolution) {
-      const double r = *options.resolution;
-      result.grid = {int(std::ceil(native.width * native.pixel_width / r - 1e-9)),
-                     int(std::ceil(native.height * native.pixel_height / r - 1e-9)),
-                     gt[0],
-                     gt[3],
-                     r,
-                     r};
       result.height = resample_heights(result.height, native, result.grid, options.resampling);
     }
     require_some_height(result, path);

@@ -11,6 +11,12 @@
 
 namespace tw {
 
+// Heights beyond +-kMaxAbsHeight metres are refused on reading (they are undeclared nodata
+// values such as -3.4e38, or corrupt data) and generated relief is capped at
+// kMaxGeneratedRelief: every later difference, slope and sum of heights stays finite.
+inline constexpr double kMaxAbsHeight = 1e5;
+inline constexpr double kMaxGeneratedRelief = 1e5;
+
 struct Heightfield {
   GridSpec grid;                       // north-up, metric (metres), square-ish pixels
   std::string crs_wkt;                 // WKT of the grid's (metric) CRS
@@ -39,8 +45,10 @@ struct HeightfieldOptions {
 // local_transverse_mercator_wkt() centred on the DEM (geo/metric_frame.hpp), with the source's
 // pixel size at its centre measured as geodesics, covering its whole footprint. Heights in feet
 // (GDAL unit type "ft", "US survey foot") become metres. Throws tw::Error naming the path when the
-// file cannot be read, has no CRS, or holds nothing but nodata. An unknown height unit is taken
-// as metres with an `unknown_unit` warning (subject `heightfield`).
+// file cannot be read, has no CRS, holds nothing but nodata or a height beyond kMaxAbsHeight,
+// or when the resolution gives a grid under one cell or over kMaxGridCells
+// (core/grid_limits.hpp). An unknown height unit is taken as metres with an `unknown_unit`
+// warning (subject `heightfield`).
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options,
                              Warnings& warnings);
 // The same, its warnings only logged.

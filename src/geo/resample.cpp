@@ -62,8 +62,12 @@ Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from
                                const GridSpec& to, Resampling resampling) {
   // A target cell larger than the source cells averages the interpolant over k x k points (the
   // source cell centres when the lattices align), so downsampling does not alias.
-  const int kx = std::max(1, int(std::ceil(to.pixel_width / from.pixel_width - 1e-9)));
-  const int ky = std::max(1, int(std::ceil(to.pixel_height / from.pixel_height - 1e-9)));
+  // Clamped in double: the ratio of an absurd resolution overflows int.
+  const auto samples = [](double ratio) {
+    return int(std::clamp(std::ceil(ratio - 1e-9), 1.0, double(kMaxSamplesPerSide)));
+  };
+  const int kx = samples(to.pixel_width / from.pixel_width);
+  const int ky = samples(to.pixel_height / from.pixel_height);
   auto sample = [&](Vec2 world) {
     return resampling == Resampling::cubic ? sample_height_cubic(height, from, world)
                                            : sample_height_bilinear(height, from, world);

@@ -16,10 +16,13 @@ double sample_height_bilinear(const Raster<float>& height, const GridSpec& grid,
 // of the 16 is nodata, or when `world` lies beyond the outer cell centres.
 double sample_height_cubic(const Raster<float>& height, const GridSpec& grid, Vec2 world);
 
+inline constexpr int kMaxSamplesPerSide = 32;
+
 // `height` (over `from`) read at every cell of `to` (same CRS) with `resampling`: at its centre,
 // or, for cells larger than the source's, the mean over ceil(ratio)^2 points spread over the
-// cell (no aliasing when downsampling). NaN where the cell of `from` under the centre is nodata
-// (holes neither fill nor shrink).
+// cell (no aliasing when downsampling), at most kMaxSamplesPerSide^2 of them so the work per
+// cell stays bounded whatever the ratio. NaN where the cell of `from` under the centre is
+// nodata (holes neither fill nor shrink).
 Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from,
                                const GridSpec& to, Resampling resampling);
 

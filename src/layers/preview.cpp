@@ -23,13 +23,13 @@ namespace {
 
 using Rgb = std::array<float, 3>;
 
-// Hypsometric tint from low (green) to high (pale tan).
-Rgb elevation_tint(float t) {
+// Hypsometric tint from low (green) to high (pale tan); t outside [0, 1] or NaN is clamped.
+Rgb elevation_tint(double t) {
   static constexpr std::array<Rgb, 4> stops = {
       {{96, 140, 80}, {150, 170, 100}, {190, 170, 120}, {225, 215, 200}}};
-  t = std::clamp(t, 0.0f, 1.0f) * 3.0f;
+  t = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0) * 3.0;
   const int i = std::min(2, int(t));
-  const float f = t - float(i);
+  const float f = float(t - i);
   Rgb c;
   for (int k = 0; k < 3; ++k) c[k] = stops[i][k] + (stops[i + 1][k] - stops[i][k]) * f;
   return c;
@@ -122,10 +122,12 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
   const int w = std::max(1, g.width / factor), h = std::max(1, g.height / factor);
   const Raster<float> z = downsample(height->bands[0], factor, w, h);
 
-  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  // Non-finite heights draw as nodata. The range is in double: the difference of two finite
+  // floats (even +-3e38) is finite there.
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const float v : z.pixels)
-    if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  const float range = hi > lo ? hi - lo : 1.0f;
+    if (std::isfinite(v)) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+  const double range = hi > lo ? hi - lo : 1.0;
 
   std::vector<std::pair<Rgb, Raster<float>>> materials;
   if (const Layer* splat = find_layer(set, "splat")) {
@@ -141,23 +143,24 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
   const Vec2 sun{std::sin(azimuth) * std::cos(altitude), std::cos(azimuth) * std::cos(altitude)};
   std::array<std::vector<std::uint8_t>, 3> rgb;
   for (auto& channel : rgb) channel.assign(std::size_t(w) * h, 0);
-  auto at = [&](int c, int r, float fallback) {
+  auto at = [&](int c, int r, double fallback) {
     const float v = z.at(std::clamp(c, 0, w - 1), std::clamp(r, 0, h - 1));
-    return std::isnan(v) ? fallback : v;
+    return std::isfinite(v) ? double(v) : fallback;
   };
   tbb::parallel_for(0, h, [&](int r) {
     for (int c = 0; c < w; ++c) {
       const std::size_t k = std::size_t(r) * w + c;
-      const float v = z.at(c, r);
-      if (std::isnan(v)) {  // nodata: a dark neutral grey
+      const double v = z.at(c, r);
+      if (!std::isfinite(v)) {  // nodata: a dark neutral grey
         for (auto& channel : rgb) channel[k] = 40;
         continue;
       }
       const double dzdx = 2.0 * (at(c + 1, r, v) - at(c - 1, r, v)) / (2.0 * cell_x);
       const double dzdy = 2.0 * (at(c, r - 1, v) - at(c, r + 1, v)) / (2.0 * cell_y);  // north up
       const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
-      const double shade =
-          std::clamp((-dzdx * sun.x - dzdy * sun.y + std::sin(altitude)) / norm, 0.0, 1.0);
+      // Slopes of extreme heights overflow to infinity: their shade (NaN) is full light.
+      const double lit = (-dzdx * sun.x - dzdy * sun.y + std::sin(altitude)) / norm;
+      const double shade = std::isnan(lit) ? 1.0 : std::clamp(lit, 0.0, 1.0);
       // The weighted mean of the material colours, the base (and whatever weight is missing)
       // in the elevation tint: weights sum to 1, so a pattern's share shows as its share.
       const Rgb tint = elevation_tint((v - lo) / range);

@@ -5,9 +5,9 @@
 #include <cctype>
 #include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "core/error.hpp"
+#include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
@@ -72,6 +72,16 @@ MapReader repair_reader(const MapReader& parent) {
                    {"merge_distance", "min_loop", "spike_angle"});
 }
 
+// A width in metres: positive and at most kMaxFeatureWidth (geo/features.hpp).
+double read_width(const MapReader& m, const std::string& key) {
+  const double width = m.positive(key);
+  if (width > kMaxFeatureWidth) {
+    m.source().fail(m.get(key), m.path(key),
+                    fmt::format("must be at most {:g} m, got {:g}", kMaxFeatureWidth, width));
+  }
+  return width;
+}
+
 FeatureKind read_kind(const MapReader& m) {
   static const std::vector<FeatureKind> kinds{FeatureKind::road, FeatureKind::river,
                                               FeatureKind::ridge};
@@ -99,6 +109,10 @@ GenerateConfig read_generate(const MapReader& m) {
   }
   g.pixel_size = m.positive_or("pixel_size", g.pixel_size);
   g.relief = m.non_negative_or("relief", g.relief);
+  if (g.relief > kMaxGeneratedRelief) {
+    m.source().fail(m.get("relief"), m.path("relief"),
+                    fmt::format("must be at most {:g} m, got {:g}", kMaxGeneratedRelief, g.relief));
+  }
   g.crs = m.string_or("crs", g.crs);
   if (m.has("origin")) {
     const YAML::Node origin = m.get("origin");
@@ -112,6 +126,17 @@ GenerateConfig read_generate(const MapReader& m) {
 }
 
 // The `profile` keys are those of the feature's kind (terrain/features.hpp).
+// A length in metres >= 0 and at most `limit` (heights and depths: kMaxAbsHeight; widths:
+// kMaxFeatureWidth), so the terrain's heights stay finite floats.
+double metres_or(const MapReader& m, const std::string& key, double fallback, double limit) {
+  const double value = m.non_negative_or(key, fallback);
+  if (value > limit) {
+    m.source().fail(m.get(key), m.path(key),
+                    fmt::format("must be at most {:g} m, got {:g}", limit, value));
+  }
+  return value;
+}
+
 void read_profile(const detail::YamlSource& src, const YAML::Node& node, const std::string& path,
                   FeatureClassConfig& f) {
   switch (f.kind) {
@@ -120,27 +145,28 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
           src, node, path,
           {"max_grade", "shoulder_width", "falloff", "smoothing", "max_cut", "max_fill"});
       f.road.max_grade = m.positive_or("max_grade", f.road.max_grade);
-      f.road.shoulder_width = m.non_negative_or("shoulder_width", f.road.shoulder_width);
-      f.road.falloff = m.non_negative_or("falloff", f.road.falloff);
-      f.road.smoothing = m.non_negative_or("smoothing", f.road.smoothing);
-      if (m.has("max_cut")) f.road.max_cut = m.non_negative_or("max_cut", 0.0);
-      if (m.has("max_fill")) f.road.max_fill = m.non_negative_or("max_fill", 0.0);
+      f.road.shoulder_width =
+          metres_or(m, "shoulder_width", f.road.shoulder_width, kMaxFeatureWidth);
+      f.road.falloff = metres_or(m, "falloff", f.road.falloff, kMaxFeatureWidth);
+      f.road.smoothing = metres_or(m, "smoothing", f.road.smoothing, kMaxFeatureWidth);
+      if (m.has("max_cut")) f.road.max_cut = metres_or(m, "max_cut", 0.0, kMaxAbsHeight);
+      if (m.has("max_fill")) f.road.max_fill = metres_or(m, "max_fill", 0.0, kMaxAbsHeight);
       break;
     }
     case FeatureKind::river: {
       const MapReader m(src, node, path,
                         {"depth", "bank_width", "falloff", "min_slope", "max_carve"});
-      f.river.depth = m.non_negative_or("depth", f.river.depth);
-      f.river.bank_width = m.non_negative_or("bank_width", f.river.bank_width);
-      f.river.falloff = m.non_negative_or("falloff", f.river.falloff);
+      f.river.depth = metres_or(m, "depth", f.river.depth, kMaxAbsHeight);
+      f.river.bank_width = metres_or(m, "bank_width", f.river.bank_width, kMaxFeatureWidth);
+      f.river.falloff = metres_or(m, "falloff", f.river.falloff, kMaxFeatureWidth);
       f.river.min_slope = m.non_negative_or("min_slope", f.river.min_slope);
       if (m.has("max_carve")) f.river.max_carve = m.non_negative_or("max_carve", 0.0);
       break;
     }
     case FeatureKind::ridge: {
       const MapReader m(src, node, path, {"height", "falloff", "sharpness"});
-      f.ridge.height = m.non_negative_or("height", f.ridge.height);
-      f.ridge.falloff = m.non_negative_or("falloff", f.ridge.falloff);
+      f.ridge.height = metres_or(m, "height", f.ridge.height, kMaxAbsHeight);
+      f.ridge.falloff = metres_or(m, "falloff", f.ridge.falloff, kMaxFeatureWidth);
       f.ridge.sharpness = m.positive_or("sharpness", f.ridge.sharpness);
       break;
     }
@@ -167,7 +193,7 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
   s.delta = m.positive_or("delta", s.delta);
   s.scale = m.positive_or("scale", s.scale);
   s.stitch = m.bool_or("stitch", s.stitch);
-  if (m.has("width")) s.width = m.positive("width");
+  if (m.has("width")) s.width = read_width(m, "width");
   s.empty_pieces = m.bool_or("empty_pieces", s.empty_pieces);
   s.seed =
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
@@ -263,7 +289,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   f.kind = m.has("kind") || f.tags.empty() ? read_kind(m) : kind_from_tags(m, f.tags);
   f.width_attribute = m.string_or("width_attribute", "");
   if ((f.width_attribute.empty() && f.tags.empty()) || m.has("width")) {
-    f.width = m.positive("width");
+    f.width = read_width(m, "width");
   }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("conform")) {
@@ -293,7 +319,7 @@ ExistingConfig read_existing(const MapReader& m, std::vector<InputFile>& inputs)
   e.layer = m.string_or("layer", "");
   e.where = m.string_or("where", "");
   if (m.has("tags")) e.tags = read_tags(m);
-  e.width = m.positive_or("width", 0.0);
+  e.width = m.has("width") ? read_width(m, "width") : 0.0;
   return e;
 }
 
@@ -495,6 +521,9 @@ Override parse_override(std::string_view assignment) {
   if (equals == std::string_view::npos || equals == 0) {
     fail("--set {}: expected key.path=value", assignment);
   }
+  if (equals + 1 == assignment.size()) {  // YAML would read it as null: the key as if unset
+    fail("--set {}: empty value (for an empty string write {}\"\")", assignment, assignment);
+  }
   return {std::string(assignment.substr(0, equals)), std::string(assignment.substr(equals + 1))};
 }
 
@@ -512,13 +541,31 @@ void check_input_paths(const PipelineConfig& config, bool allow_network) {
 }
 
 PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides) {
+  // Only a regular file of bounded size: a folder, a device (/dev/zero) or a FIFO would read
+  // nothing useful, or forever.
+  std::error_code error;
+  const fs::file_status status = fs::status(file, error);
+  if (!fs::exists(status)) fail("{}: cannot read the pipeline file: no such file", file.string());
+  if (fs::is_directory(status))
+    fail("{}: is a folder; give the pipeline file (YAML) itself", file.string());
+  if (!fs::is_regular_file(status))
+    fail("{}: not a regular file; a pipeline is a YAML file", file.string());
+  const auto too_large = [&] {
+    fail("{}: over {} MiB; a pipeline file is a few KiB of YAML", file.string(),
+         kMaxPipelineFileBytes >> 20);
+  };
+  if (fs::file_size(file, error) > kMaxPipelineFileBytes) too_large();
   std::ifstream in(file, std::ios::binary);
   if (!in) fail("{}: cannot read the pipeline file", file.string());
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  std::array<char, 65536> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {  // bounded, should it grow
+    text.append(chunk.data(), std::size_t(in.gcount()));
+    if (text.size() > kMaxPipelineFileBytes) too_large();
+  }
   if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
   const fs::path folder = fs::absolute(file).parent_path();
-  PipelineConfig config = parse_pipeline(text.str(), file.string(), folder, overrides);
+  PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides);
   config.file = file;
   return config;
 }

@@ -170,8 +170,13 @@ struct Override {
 // Splits "key.path=value"; throws tw::Error when there is no '=' or the key is empty.
 Override parse_override(std::string_view assignment);
 
+// The largest pipeline file read (16 MiB).
+inline constexpr std::uintmax_t kMaxPipelineFileBytes = std::uintmax_t(16) << 20;
+
 // Reads and validates a pipeline file, applying `overrides` first. Throws tw::Error with
-// "file:line:col: key.path: problem" (or "--set key.path=value: ...") on any problem.
+// "file:line:col: key.path: problem" (or "--set key.path=value: ...") on any problem, and
+// for a path that is not a regular file or is over kMaxPipelineFileBytes. Every mapping must
+// hold each key once, and the file one YAML document.
 PipelineConfig load_pipeline(const std::filesystem::path& file,
                              const std::vector<Override>& overrides = {});
 // The same from text; relative paths resolve against `base_dir`, messages name `file_label`.

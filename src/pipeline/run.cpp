@@ -102,6 +102,9 @@ void write_report(const fs::path& path, const nlohmann::json& json) {
 RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) {
   const auto run_started = std::chrono::steady_clock::now();
   std::optional<tbb::global_control> thread_limit;
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    fail("threads: must be in [1, {}] (0: every core), got {}", kMaxThreads, options.threads);
+  }
   if (options.threads > 0) {
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   }
@@ -148,7 +151,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   clock.start("ribbons");
   const detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(config, lines, heightfield.grid);
+      detail::make_feature_ribbons(config, lines, heightfield.grid, warnings);
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {

@@ -15,10 +15,13 @@
 
 namespace tw {
 
+// The most worker threads a run accepts (more is a typo, and TBB would start them all).
+inline constexpr int kMaxThreads = 1024;
+
 struct RunOptions {
   std::optional<std::filesystem::path> output_dir;  // replaces output.dir
   std::optional<std::string> backend;               // replaces backend (cpu | opencl | auto)
-  int threads = 0;                                  // 0 = every core
+  int threads = 0;                                  // 0 = every core; at most kMaxThreads
   bool write_outputs = true;   // false: read and check every input, write nothing (validate)
   bool strict = false;         // any warning fails the run (or config.strict)
   bool allow_network = false;  // inputs may be URLs (/vsicurl/...), CRSs may be fetched

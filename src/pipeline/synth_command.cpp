@@ -1,8 +1,6 @@
 #include "pipeline/synth_command.hpp"
 
 #include <OpenImageIO/imageio.h>
-#include <gdal_priv.h>
-#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/placements_io.hpp"
@@ -28,41 +27,17 @@ bool is_shape(const std::string& name) {
   return false;
 }
 
-// The first feature of "path" or "path:layer" as a curve (a closed ring stays closed).
+// The first line of "path" or "path:layer" as a curve (a closed ring stays closed), with the
+// pipeline's checks on its coordinates.
 Curve read_first_line(const std::string& source) {
-  GDALAllRegister();
-  std::string path = source, layer_name;
+  VectorSource vector;
+  vector.path = source;
   if (const auto colon = source.rfind(':'); colon != std::string::npos && colon > 1) {
-    path = source.substr(0, colon);
-    layer_name = source.substr(colon + 1);
+    vector.path = source.substr(0, colon);
+    vector.layer = source.substr(colon + 1);
   }
-  std::unique_ptr<GDALDataset> ds(
-      GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  if (!ds)
-    fail(
-        "{}: cannot open as vector data (or name a shape: line, arc, s-curve, circle, heart, "
-        "hairpin)",
-        path);
-  OGRLayer* layer = layer_name.empty() ? ds->GetLayer(0) : ds->GetLayerByName(layer_name.c_str());
-  if (!layer) fail("{}: no layer '{}'", path, layer_name);
-  const OGRSpatialReference* srs = layer->GetSpatialRef();
-  if (!srs || !srs->IsProjected())
-    fail("{}:{}: needs a projected CRS in metres", path, layer->GetName());
-  OGRFeatureUniquePtr feature(layer->GetNextFeature());
-  if (!feature) fail("{}:{}: empty layer", path, layer->GetName());
-  const OGRGeometry* g = feature->GetGeometryRef();
-  if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString) {
-    fail("{}:{}: FID {}: is not a LineString", path, layer->GetName(), feature->GetFID());
-  }
-  const auto* line = g->toLineString();
-  Curve curve;
-  for (int i = 0; i < line->getNumPoints(); ++i)
-    curve.points.push_back({line->getX(i), line->getY(i)});
-  if (curve.points.size() > 2 && curve.points.front() == curve.points.back()) {
-    curve.points.pop_back();
-    curve.closed = true;
-  }
-  return without_duplicates(curve);
+  LineFeature line = read_first_line_feature(vector);
+  return without_duplicates(Curve{std::move(line.points), line.closed});
 }
 
 // A canvas of one pixel per exemplar texel around the ribbon, with a margin of a width.
@@ -76,12 +51,17 @@ GridSpec canvas_around(const Curve& curve, double width, double scale) {
   grid.pixel_width = grid.pixel_height = 1.0 / scale;
   grid.origin_x = lo.x - width;
   grid.origin_y = hi.y + width;
-  grid.width = int(std::ceil((hi.x - lo.x + 2 * width) * scale));
-  grid.height = int(std::ceil((hi.y - lo.y + 2 * width) * scale));
-  if (grid.cell_count() > 64ll * 1024 * 1024) {
-    fail("synth: a canvas of {} x {} pixels is too large; lower --scale or --length", grid.width,
-         grid.height);
+  // Sized in double: a huge width or scale must not overflow int before the check.
+  const double columns = std::ceil((hi.x - lo.x + 2 * width) * scale);
+  const double rows = std::ceil((hi.y - lo.y + 2 * width) * scale);
+  if (!(columns * rows <= 64.0 * 1024 * 1024)) {
+    fail(
+        "synth: a canvas of {:.6g} x {:.6g} pixels is too large (at most 64 Mi); lower --scale, "
+        "--width or --length",
+        columns, rows);
   }
+  grid.width = int(columns);
+  grid.height = int(rows);
   return grid;
 }
 

@@ -24,24 +24,29 @@ struct Candidate {
   std::vector<JunctionMember> members;
 };
 
-// A uniform grid of segment bounding boxes (grown by the tolerance): only segments sharing a
-// cell are ever compared.
+// A uniform grid of segments: each is walked in steps of a cell, and each step's box, grown by
+// `grow`, is added, so a long diagonal segment covers a band of cells, not the square of its
+// bounding box.
 class SegmentGrid {
  public:
-  SegmentGrid(const std::vector<Segment>& segments, double cell, double grow)
-      : cell_(cell), grow_(grow) {
-    for (std::uint32_t s = 0; s < segments.size(); ++s) {
-      const auto [c0, r0, c1, r1] = cell_range(segments[s]);
-      for (std::int64_t r = r0; r <= r1; ++r)
-        for (std::int64_t c = c0; c <= c1; ++c) cells_[key(c, r)].push_back(s);
+  SegmentGrid(const std::vector<Segment>& segments, double cell, double grow) : cell_(cell) {
+    for (std::uint32_t id = 0; id < segments.size(); ++id) {
+      const Segment& s = segments[id];
+      const double span = std::max(std::abs(s.b.x - s.a.x), std::abs(s.b.y - s.a.y));
+      const int steps = int(std::min(1e7, std::max(1.0, std::ceil(span / cell))));
+      for (int k = 0; k < steps; ++k) {
+        const Vec2 p = lerp(s.a, s.b, double(k) / steps);
+        const Vec2 q = lerp(s.a, s.b, double(k + 1) / steps);
+        for (std::int64_t r = coord(std::min(p.y, q.y) - grow);
+             r <= coord(std::max(p.y, q.y) + grow); ++r) {
+          for (std::int64_t c = coord(std::min(p.x, q.x) - grow);
+               c <= coord(std::max(p.x, q.x) + grow); ++c) {
+            std::vector<std::uint32_t>& ids = cells_[key(c, r)];
+            if (ids.empty() || ids.back() != id) ids.push_back(id);  // once per cell
+          }
+        }
+      }
     }
-  }
-  struct Range {
-    std::int64_t c0, r0, c1, r1;
-  };
-  Range cell_range(const Segment& s) const {
-    return {coord(std::min(s.a.x, s.b.x) - grow_), coord(std::min(s.a.y, s.b.y) - grow_),
-            coord(std::max(s.a.x, s.b.x) + grow_), coord(std::max(s.a.y, s.b.y) + grow_)};
   }
   std::int64_t coord(double v) const { return std::int64_t(std::floor(v / cell_)); }
   static std::int64_t key(std::int64_t c, std::int64_t r) {
@@ -56,9 +61,27 @@ class SegmentGrid {
   }
 
  private:
-  double cell_, grow_;
+  double cell_;
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
 };
+
+// The pairs of segments that share a cell of about one segment's length, sorted and unique:
+// a cell holds a few segments even where vertices are far closer than the junction tolerance
+// (cells of the tolerance's size held every segment of a 100 000-vertex line over 100 m,
+// compared pair by pair: minutes). Boxes grow by a millionth of a cell, so two segments
+// meeting on a cell border share a cell whatever the rounding.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> crossing_pairs(
+    const std::vector<Segment>& segments, double total_length) {
+  const double cell = std::max(total_length / double(segments.size()), 1e-6);
+  const SegmentGrid grid(segments, cell, 1e-6 * cell);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (const auto& [key, ids] : grid.cells())
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      for (std::size_t j = i + 1; j < ids.size(); ++j) pairs.emplace_back(ids[i], ids[j]);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
 
 double closest_parameter(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;
@@ -129,30 +152,24 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
     return j - i <= 1 || (curves[s.curve].closed && i == 0 && j == n - 1);
   };
 
-  const double cell = std::max({total_length / double(segments.size()), 2.0 * tolerance_m, 1e-6});
-  const SegmentGrid grid(segments, cell, tolerance_m);
   std::vector<Candidate> candidates;
 
-  // Crossings: each pair is tested once, in the cell holding the lowest corner of the overlap of
-  // the two (grown) boxes.
-  for (const auto& [cell_key, ids] : grid.cells()) {
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      for (std::size_t j = i + 1; j < ids.size(); ++j) {
-        const Segment& s = segments[ids[i]];
-        const Segment& t = segments[ids[j]];
-        if (adjacent(s, t)) continue;
-        const auto rs = grid.cell_range(s), rt = grid.cell_range(t);
-        if (SegmentGrid::key(std::max(rs.c0, rt.c0), std::max(rs.r0, rt.r0)) != cell_key) continue;
-        double u, v;
-        if (!segment_intersection(s.a, s.b, t.a, t.b, u, v)) continue;
-        const double arc_s = s.arc0 + u * distance(s.a, s.b);
-        const double arc_t = t.arc0 + v * distance(t.a, t.b);
-        if (s.curve == t.curve && std::abs(arc_s - arc_t) <= tolerance_m) continue;
-        candidates.push_back({lerp(s.a, s.b, u), {member(s.curve, arc_s), member(t.curve, arc_t)}});
-      }
-    }
+  // Crossings (exact: touching included, no tolerance), each pair of segments tested once.
+  for (const auto& [first, second] : crossing_pairs(segments, total_length)) {
+    const Segment& s = segments[first];
+    const Segment& t = segments[second];
+    if (adjacent(s, t)) continue;
+    double u, v;
+    if (!segment_intersection(s.a, s.b, t.a, t.b, u, v)) continue;
+    const double arc_s = s.arc0 + u * distance(s.a, s.b);
+    const double arc_t = t.arc0 + v * distance(t.a, t.b);
+    if (s.curve == t.curve && std::abs(arc_s - arc_t) <= tolerance_m) continue;
+    candidates.push_back({lerp(s.a, s.b, u), {member(s.curve, arc_s), member(t.curve, arc_t)}});
   }
-  // Endpoints of open curves near any other part of any curve (shared ends, T-junctions).
+  // Endpoints of open curves near any other part of any curve (shared ends, T-junctions): in
+  // cells of at least twice the tolerance holding the boxes grown by it, one cell per endpoint.
+  const double cell = std::max({total_length / double(segments.size()), 2.0 * tolerance_m, 1e-6});
+  const SegmentGrid grid(segments, cell, tolerance_m);
   for (std::size_t c = 0; c < curves.size(); ++c) {
     if (curves[c].closed || curves[c].points.empty()) continue;
     for (const bool last : {false, true}) {
@@ -160,6 +177,11 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
       const double arc_e = last ? lengths[c] : 0.0;
       const auto* ids = grid.at(e);
       if (ids == nullptr) continue;
+      struct Hit {
+        std::size_t curve;
+        double arc, gap;
+      };
+      std::vector<Hit> hits;
       for (const std::uint32_t id : *ids) {
         const Segment& s = segments[id];
         const double u = closest_parameter(e, s.a, s.b);
@@ -167,7 +189,23 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
         if (distance(e, q) > tolerance_m) continue;
         const double arc_s = s.arc0 + u * distance(s.a, s.b);
         if (s.curve == c && std::abs(arc_s - arc_e) <= 2.0 * tolerance_m + 1e-9) continue;
-        candidates.push_back({e, {member(c, arc_e), member(s.curve, arc_s)}});
+        hits.push_back({s.curve, arc_s, distance(e, q)});
+      }
+      // One member per passage of a curve near the endpoint, at its closest point: where
+      // vertices are denser than the tolerance, many segments of one passage are near it.
+      std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+        return a.curve != b.curve ? a.curve < b.curve : a.arc < b.arc;
+      });
+      for (std::size_t first = 0; first < hits.size();) {
+        std::size_t end = first + 1, closest = first;
+        while (end < hits.size() && hits[end].curve == hits[first].curve &&
+               hits[end].arc - hits[end - 1].arc <= tolerance_m) {
+          if (hits[end].gap < hits[closest].gap) closest = end;
+          ++end;
+        }
+        candidates.push_back(
+            {e, {member(c, arc_e), member(hits[closest].curve, hits[closest].arc)}});
+        first = end;
       }
     }
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
@@ -15,6 +16,22 @@ std::uint32_t to_byte(float v) {
   return std::uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
+// Every error OIIO holds for this read, taken (so none is left pending) and joined on one line:
+// the reader's own and the global one.
+std::string oiio_errors(const OIIO::ImageInput* input) {
+  std::string text = input ? input->geterror() : std::string();
+  const std::string global = OIIO::geterror();
+  if (!global.empty()) text += (text.empty() ? "" : "\n") + global;
+  std::string joined;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    if (end > start) joined += (joined.empty() ? "" : "; ") + text.substr(start, end - start);
+    start = end + 1;
+  }
+  return joined.empty() ? "unknown error" : joined;
+}
+
 // Reads all channels of `path` as float (OIIO normalizes integer formats to 0..1).
 std::vector<float> read_float_image(const std::string& path, OIIO::ImageSpec& spec,
                                     std::size_t budget, int extra_channels) {
@@ -22,7 +39,7 @@ std::vector<float> read_float_image(const std::string& path, OIIO::ImageSpec& sp
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto input = OIIO::ImageInput::open(path, &config);
-  if (!input) fail("exemplar {}: cannot read ({})", path, OIIO::geterror());
+  if (!input) fail("exemplar {}: cannot read ({})", path, oiio_errors(nullptr));
   spec = input->spec();
   const std::size_t bytes =
       std::size_t(spec.width) * spec.height * (spec.nchannels + extra_channels) * sizeof(float);
@@ -31,7 +48,7 @@ std::vector<float> read_float_image(const std::string& path, OIIO::ImageSpec& sp
          path, spec.width, spec.height, spec.nchannels + extra_channels, bytes, budget);
   std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    fail("exemplar {}: cannot read pixels ({})", path, input->geterror());
+    fail("exemplar {}: cannot read pixels ({})", path, oiio_errors(input.get()));
   // Formats that store associated alpha (EXR) come back premultiplied: divide it out.
   if (spec.alpha_channel >= 0 && !spec.get_int_attribute("oiio:UnassociatedAlpha", 0)) {
     const int n = spec.nchannels, a = spec.alpha_channel;

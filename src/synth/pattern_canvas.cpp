@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.hpp"
 #include "synth/render.hpp"
 
 namespace tw {
 
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m) {
+GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m,
+                          const std::string& label) {
   Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
   for (const Piece& piece : ribbon.pieces) {
     for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
@@ -21,8 +23,19 @@ GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m
   grid.pixel_width = grid.pixel_height = resolution;
   grid.origin_x = x0;
   grid.origin_y = y1;
-  grid.width = int(std::ceil((hi.x + halo_m - x0) / resolution));
-  grid.height = int(std::ceil((y1 - (lo.y - halo_m)) / resolution));
+  // Sized in double before any int conversion: an absurd width or resolution is an error.
+  const double columns = std::ceil((hi.x + halo_m - x0) / resolution);
+  const double rows = std::ceil((y1 - (lo.y - halo_m)) / resolution);
+  constexpr double kMaxSide = 2147483647.0;
+  if (!(columns >= 1.0 && rows >= 1.0 && columns <= kMaxSide && rows <= kMaxSide &&
+        columns * rows <= kMaxCanvasCells)) {
+    fail(
+        "{}: a synthesis canvas of {} m cells would span {:.3g} x {:.3g} cells (at most {:.3g} "
+        "cells); raise synthesis_resolution or check the feature's width",
+        label, resolution, columns, rows, kMaxCanvasCells);
+  }
+  grid.width = int(columns);
+  grid.height = int(rows);
   return grid;
 }
 

@@ -5,6 +5,7 @@
 // synthesis reads (valid positions, stitching, rendering for the violation check) lies within
 // that halo of a piece, so a sparse canvas gives the same bits as a dense one.
 #include <cstdint>
+#include <string>
 
 #include "core/grid.hpp"
 #include "raster/sparse_raster.hpp"
@@ -19,10 +20,17 @@ namespace tw {
 // with a subsample inside the piece count), and one more of slack.
 inline constexpr int kCanvasHalo = 2;
 
+// The largest canvas bounding box: the canvas is sparse, so its box may exceed kMaxGridCells
+// (a 100 km diagonal river at 1 m holds 4e9 cells), but the tile directory (4 bytes a tile)
+// grows with it: 2^42 cells is a 2000 km square at 1 m, a 256 MiB directory of 256² tiles.
+inline constexpr double kMaxCanvasCells = 4398046511104.0;  // 2^42
+
 // Cells of `resolution` metres whose edges lie on multiples of `resolution` in world
 // coordinates, covering the ribbon's pieces plus `halo_m`: the same cells whatever the output
-// grid, so placements never depend on it.
-GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m);
+// grid, so placements never depend on it. A box over kMaxCanvasCells, or with a side beyond an
+// int, is a tw::Error starting with `label` (the feature).
+GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m,
+                          const std::string& label);
 
 // The canvas tiles a synthesis of `ribbon` reads: ribbon_tiles with kCanvasHalo.
 std::vector<TileIndex> canvas_tiles(const Ribbon& ribbon, const GridSpec& canvas, int tile_size);

@@ -25,7 +25,7 @@ TEST(Warnings, FormatsSubjectFidAndMessageOnOneLine) {
             "features.rivers: FID 7: spike removed");
   EXPECT_EQ(to_string({"empty_class", "features.ridges", std::nullopt, "none"}),
             "features.ridges: none");
-  EXPECT_EQ(to_string({"x", "", std::nullopt, "a\nterraweave: ok"}), "a terraweave: ok");
+  EXPECT_EQ(to_string({"x", "", std::nullopt, "a\nterraweave: ok\r"}), "a\\nterraweave: ok\\r");
 }
 
 TEST(Warnings, CollectsFromManyThreads) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "layers/write.hpp"
@@ -90,6 +91,24 @@ TEST(Preview, HalfAWeightShowsHalfTheColour) {
   const Rgb8 half = pixel(dir / "half.png", 5, 10);
   for (int i = 0; i < 3; ++i)
     EXPECT_NEAR(int(half[i]), (int(base_only[i]) + int(paint[i])) / 2, 2) << "channel " << i;
+}
+
+// Finite but extreme heights (undeclared float nodata, +-3e38) overflow a float difference:
+// the tint runs from the lowest to the highest stop all the same, and infinities draw as
+// nodata (this crashed on an index of INT_MIN).
+TEST(Preview, ExtremeHeightsTintFromLowToHighAndInfinitiesAreNodata) {
+  test::TempDir dir;
+  LayerSet set;
+  set.grid = GridSpec{40, 20, 500000.0, 5000040.0, 2.0, 2.0};
+  Raster<float> z(40, 20, -3e38f);
+  for (int r = 0; r < 20; ++r)
+    for (int c = 20; c < 40; ++c) z.at(c, r) = 3e38f;
+  z.at(39, 0) = std::numeric_limits<float>::infinity();
+  set.layers.push_back(height_layer(std::move(z)));
+  write_preview_png(set, dir / "extreme.png");
+  expect_near(pixel(dir / "extreme.png", 5, 10), lit_flat({96, 140, 80}));     // lowest stop
+  expect_near(pixel(dir / "extreme.png", 30, 10), lit_flat({225, 215, 200}));  // highest stop
+  EXPECT_EQ(pixel(dir / "extreme.png", 39, 0), (Rgb8{40, 40, 40}));
 }
 
 TEST(Preview, UnknownMaterialsGetDistinctStableColours) {

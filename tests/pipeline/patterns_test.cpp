@@ -276,7 +276,8 @@ TEST_F(SmallWorld, SparseCanvasEqualsTheDenseCanvas) {
       detail::load_feature_class(c.features[0], heightfield, warnings)};
   const detail::ExistingFeatures existing =
       detail::load_existing(c.existing, heightfield, c.repair, warnings);
-  const detail::FeatureRibbons ribbons = detail::make_feature_ribbons(c, lines, heightfield.grid);
+  const detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(c, lines, heightfield.grid, warnings);
   ASSERT_FALSE(ribbons.synthesis_junction_discs.empty());
   detail::PatternOptions dense_options;
   dense_options.backend = "cpu";

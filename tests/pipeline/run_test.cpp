@@ -224,9 +224,9 @@ TEST_F(DemoRun, NothingChangesBeyondTheFeaturesReach) {
 TEST_F(DemoRun, WindowedAvoidanceEqualsTheWholeGridMap) {
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
-  const detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(*config_, lines, original_->grid);
   Warnings warnings;
+  const detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(*config_, lines, original_->grid, warnings);
   const detail::ExistingFeatures existing =
       detail::load_existing(config_->existing, *original_, config_->repair, warnings);
   AvoidanceInputs inputs;

@@ -98,5 +98,29 @@ TEST(Junctions, RejectsBadInput) {
   EXPECT_TRUE(find_junctions({}, 0.1).empty());
 }
 
+// Vertices 125 times closer than the tolerance (a 5000-vertex line over 20 m with a
+// 0.5 m tolerance), crossed by one long diagonal segment and met by a T: the same junctions as
+// with two vertices (the crossing test no longer compares every pair of segments within a
+// tolerance-sized cell, which took minutes at 100 000 vertices) and the T has one member on the
+// dense line, at its closest point (it had two, a "crossing").
+TEST(Junctions, DenseVerticesFindTheSameJunctionsAsSparseOnes) {
+  Curve dense{{}, false};
+  for (int i = 0; i <= 5000; ++i) dense.points.push_back({-10.0 + 20.0 * i / 5000, 0.0});
+  const Curve sparse{{{-10, 0}, {10, 0}}, false};
+  const Curve diagonal{{{-1000, -999.01}, {20, 20.99}}, false};  // y = 0 at x = -0.99
+  const Curve t{{{5, 0.2}, {5, 3}}, false};
+  for (const Curve& line : {sparse, dense}) {
+    const auto js = find_junctions({line, diagonal, t}, 0.5);
+    ASSERT_EQ(js.size(), 2u) << line.points.size();
+    EXPECT_TRUE(js[0].crossing);
+    EXPECT_NEAR(js[0].position.x, -0.99, 1e-9);
+    EXPECT_NEAR(js[0].position.y, 0.0, 1e-9);
+    EXPECT_NEAR(js[0].members[0].arc_length, 9.01, 1e-9);
+    EXPECT_FALSE(js[1].crossing);
+    EXPECT_NEAR(js[1].members[0].arc_length, 15.0, 1e-9);
+    EXPECT_EQ(js[1].members[1].curve, 2u);
+  }
+}
+
 }  // namespace
 }  // namespace tw

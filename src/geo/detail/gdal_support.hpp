@@ -28,6 +28,10 @@ class QuietGdalErrors {
 // The last GDAL error message, or "unknown GDAL error" when GDAL gave none.
 std::string last_gdal_error();
 
+// Why GDALDataset::Open(path) just failed: GDAL's message when it gave one, else "no such
+// file", "is a folder, not a file" or "not a format GDAL can read" (GDAL is silent for these).
+std::string open_failure(const std::string& path);
+
 // Sets srs from WKT, "EPSG:n", a PROJ string... with x = easting/longitude and y =
 // northing/latitude whatever the authority's axis order says (OAMS_TRADITIONAL_GIS_ORDER).
 // False when the text is empty or not a CRS.

@@ -38,7 +38,7 @@ void apply_where(OGRLayer& layer, const std::string& where, const std::string& l
 
 }  // namespace
 
-OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
+OpenVectorLayer open_vector_layer(const VectorSource& source) {
   ensure_gdal_registered();
   QuietGdalErrors quiet;
   OpenVectorLayer result;
@@ -53,7 +53,7 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
     result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   }
   if (!result.dataset) {
-    fail("{}: cannot open as vector data: {}", source.path, last_gdal_error());
+    fail("{}: cannot open as vector data: {}", source.path, open_failure(source.path));
   }
   if (source.layer.empty()) {
     if (result.dataset->GetLayerCount() < 1) fail("{}: has no vector layer", source.path);
@@ -75,6 +75,16 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
   OGRSpatialReference from(*layer_srs);
   from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   result.source_is_geographic = from.IsGeographic();
+  result.crs_name = from.GetName() ? from.GetName() : "unnamed";
+  result.is_geojson = std::string_view(result.dataset->GetDriverName()) == "GeoJSON";
+  return result;
+}
+
+OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of) {
+  OpenVectorLayer result = open_vector_layer(source);
+  QuietGdalErrors quiet;
+  OGRSpatialReference from(*result.layer->GetSpatialRef());
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   OGRSpatialReference to;
   if (!import_traditional_srs(to, grid_of.crs_wkt)) {
     fail("{}: the heightfield '{}' has no usable CRS", result.label, grid_of.source);
@@ -107,14 +117,29 @@ OGRPolygon grid_extent_polygon(const GridSpec& grid, double margin) {
 
 namespace {
 
-void check_curve(const OGRSimpleCurve& curve, bool geographic, const OpenVectorLayer& layer,
-                 std::int64_t fid) {
+// `reprojected`: the curve is in the grid's CRS after transform_to_grid; an implausible vertex
+// there means the layer's CRS does not describe its coordinates (or PROJ does not know it).
+void check_curve(const OGRSimpleCurve& curve, bool geographic, bool reprojected,
+                 const OpenVectorLayer& layer, std::int64_t fid) {
   for (int i = 0; i < curve.getNumPoints(); ++i) {
     const double x = curve.getX(i);
     const double y = curve.getY(i);
     const bool finite = std::isfinite(x) && std::isfinite(y);
     const bool plausible = geographic ? std::abs(x) <= 540.0 && std::abs(y) <= 90.0
                                       : std::abs(x) < 1e9 && std::abs(y) < 1e9;
+    if (finite && !plausible && geographic) {
+      fail(
+          "{}: FID {}: vertex {} ({}, {}) is no longitude/latitude, yet the layer's CRS ({}) is "
+          "geographic: is the CRS right?{}",
+          layer.label, fid, i, x, y, layer.crs_name,
+          layer.is_geojson ? " (GeoJSON reads a CRS that PROJ does not know as WGS 84)" : "");
+    }
+    if ((!finite || !plausible) && reprojected) {
+      fail(
+          "{}: FID {}: vertex {} lands at ({}, {}) in the grid's CRS: the layer's CRS ({}) does "
+          "not fit its coordinates or cannot be transformed to the grid's",
+          layer.label, fid, i, x, y, layer.crs_name);
+    }
     if (!finite || !plausible) {
       fail("{}: FID {}: vertex {} has a non-finite or out-of-range coordinate ({}, {})",
            layer.label, fid, i, x, y);
@@ -122,18 +147,18 @@ void check_curve(const OGRSimpleCurve& curve, bool geographic, const OpenVectorL
   }
 }
 
-void check_geometry(const OGRGeometry& geometry, bool geographic, const OpenVectorLayer& layer,
-                    std::int64_t fid) {
+void check_geometry(const OGRGeometry& geometry, bool geographic, bool reprojected,
+                    const OpenVectorLayer& layer, std::int64_t fid) {
   const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
   if (type == wkbLineString || type == wkbLinearRing) {
-    check_curve(*geometry.toSimpleCurve(), geographic, layer, fid);
+    check_curve(*geometry.toSimpleCurve(), geographic, reprojected, layer, fid);
   } else if (type == wkbPolygon) {
     for (const OGRLinearRing* ring : *geometry.toPolygon()) {
-      check_curve(*ring, geographic, layer, fid);
+      check_curve(*ring, geographic, reprojected, layer, fid);
     }
   } else if (OGR_GT_IsSubClassOf(type, wkbGeometryCollection)) {
     for (const OGRGeometry* part : *geometry.toGeometryCollection()) {
-      check_geometry(*part, geographic, layer, fid);
+      check_geometry(*part, geographic, reprojected, layer, fid);
     }
   }
 }
@@ -142,7 +167,7 @@ void check_geometry(const OGRGeometry& geometry, bool geographic, const OpenVect
 
 void check_coordinates(const OGRGeometry& geometry, const OpenVectorLayer& layer,
                        std::int64_t fid) {
-  check_geometry(geometry, layer.source_is_geographic, layer, fid);
+  check_geometry(geometry, layer.source_is_geographic, false, layer, fid);
 }
 
 void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid) {
@@ -152,7 +177,7 @@ void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std:
     fail("{}: FID {}: cannot reproject into the grid's CRS: {}", layer.label, fid,
          last_gdal_error());
   }
-  check_geometry(geometry, false, layer, fid);
+  check_geometry(geometry, false, true, layer, fid);
 }
 
 std::vector<Vec2> curve_points(const OGRSimpleCurve& curve) {

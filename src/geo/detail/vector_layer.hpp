@@ -21,11 +21,15 @@ struct OpenVectorLayer {
   // Null when the layer is already in the grid's CRS.
   std::unique_ptr<OGRCoordinateTransformation> to_grid;
   bool source_is_geographic = false;
+  std::string crs_name;     // the layer's CRS, for messages
+  bool is_geojson = false;  // GeoJSON reads a CRS unknown to PROJ as WGS 84
 };
 
 // Opens the layer (the first when source.layer is empty) and applies source.where.
 // Throws tw::Error for a missing file, an unknown layer, a bad where clause or a missing CRS.
 OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield& grid_of);
+// The same, staying in the layer's own CRS (to_grid is null).
+OpenVectorLayer open_vector_layer(const VectorSource& source);
 
 // The feature's geometry with curves (CircularString, CompoundCurve, MultiCurve...) linearized;
 // tw::Error naming label and fid when it has none.

@@ -1,29 +1,31 @@
 #include "geo/detail/warp.hpp"
 
+#include <cpl_string.h>
 #include <gdal_utils.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
-
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 
 namespace tw::detail {
 namespace {
 
-std::vector<char*> argv_of(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
-  argv.push_back(nullptr);
+// The argument vector of a GDAL utility, owning copies of its strings: GDAL's *OptionsNew read
+// them after the caller's temporaries are gone.
+CPLStringList gdal_arguments(const std::vector<std::string>& args) {
+  CPLStringList argv;
+  for (const std::string& arg : args) argv.AddString(arg.c_str());
   return argv;
 }
 
 // GDAL 3.6's gdalwarp has no -b: a virtual dataset of band 1 alone stands in for the source.
 GdalDatasetPtr first_band_only(GDALDataset& source, const std::string& label) {
-  std::vector<char*> argv = argv_of({"-of", "VRT", "-b", "1"});
-  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.data(), nullptr);
+  CPLStringList argv = gdal_arguments({"-of", "VRT", "-b", "1"});
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.List(), nullptr);
   int usage_error = 0;
   GDALDatasetH band = GDALTranslate("", GDALDataset::ToHandle(&source), options, &usage_error);
   GDALTranslateOptionsFree(options);
@@ -73,8 +75,20 @@ Extent covering_extent(GDALDataset& source, const WarpTarget& target, const std:
     fail("{}: cannot find its extent in the metric grid: {}", label, last_gdal_error());
   }
   // Whole pixels from the north-west corner; 1e-9 keeps an exact fit from gaining a pixel.
-  const double width = std::ceil((bounds.east - bounds.west) / target.pixel_width - 1e-9);
-  const double height = std::ceil((bounds.north - bounds.south) / target.pixel_height - 1e-9);
+  const double span_x = (bounds.east - bounds.west) / target.pixel_width;
+  const double span_y = (bounds.north - bounds.south) / target.pixel_height;
+  if (span_x < 0.5 || span_y < 0.5) {
+    fail(
+        "{}: {:.6g} x {:.6g} m pixels are coarser than its extent ({:.6g} x {:.6g} m); the grid "
+        "would be under one cell",
+        label, target.pixel_width, target.pixel_height, bounds.east - bounds.west,
+        bounds.north - bounds.south);
+  }
+  const double width = std::ceil(span_x - 1e-9);
+  const double height = std::ceil(span_y - 1e-9);
+  require_grid_size(
+      width, height,
+      fmt::format("{}: {:.6g} x {:.6g} m pixels", label, target.pixel_width, target.pixel_height));
   return {bounds.west, bounds.north - height * target.pixel_height,
           bounds.west + width * target.pixel_width, bounds.north};
 }
@@ -93,8 +107,8 @@ GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const
       "-tr", number(target.pixel_width), number(target.pixel_height),
       "-r", resampling, "-ot", "Float32", "-dstnodata", "nan"};
   // clang-format on
-  std::vector<char*> argv = argv_of(args);
-  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv.data(), nullptr);
+  CPLStringList argv = gdal_arguments(args);
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv.List(), nullptr);
   if (!options) fail("{}: bad warp options: {}", label, last_gdal_error());
   GDALDatasetH source_handle = GDALDataset::ToHandle(&source);
   int usage_error = 0;

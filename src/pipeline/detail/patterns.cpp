@@ -133,7 +133,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       // Avoidance on the feature's canvas (a halo of a cell beyond the pieces), on the tiles
       // the synthesis reads.
       auto started = std::chrono::steady_clock::now();
-      pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell);
+      pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell, label);
       const GridSpec& canvas = pattern.canvas;
       auto forbidden_on = [&](const std::vector<TileIndex>& tiles) {
         SparseRaster<std::uint8_t> forbidden(canvas.width, canvas.height, 0, options.canvas_tile);

@@ -14,7 +14,7 @@ namespace tw::detail {
 
 FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const std::vector<std::vector<LineFeature>>& lines,
-                                    const GridSpec& grid) {
+                                    const GridSpec& grid, Warnings& warnings) {
   FeatureRibbons out;
   std::vector<Curve> curves;
   std::vector<CurveLevel> levels;  // bridges, tunnels and layers meet nothing they pass
@@ -32,8 +32,10 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
       const double length = arc_length(curve);
       lengths.push_back(length);
       if (length < delta) {
-        logger().info("features.{}: FID {}: {:.2f} m, shorter than one piece of {} m: no ribbon",
-                      feature_class.name, line.fid, length, delta);
+        warnings.add("shorter_than_delta", "features." + feature_class.name, line.fid,
+                     fmt::format("{:.2f} m long, shorter than one piece (delta {} m): it gets no "
+                                 "ribbon, so no pattern and no avoidance footprint",
+                                 length, delta));
         ribbons.push_back({curve, line.width, delta, line.closed, {}});
       } else {
         ribbons.push_back(make_ribbon(curve, {line.width, delta, 0.0}));
@@ -82,10 +84,15 @@ Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
       max_row = std::max(max_row, p.y);
     }
   }
-  const int col0 = std::max(0, int(std::floor(min_col)) - 1);
-  const int row0 = std::max(0, int(std::floor(min_row)) - 1);
-  const int col1 = std::min(grid.width, int(std::ceil(max_col)) + 1);
-  const int row1 = std::min(grid.height, int(std::ceil(max_row)) + 1);
+  // Clamped in double before the conversion: a corner far outside the grid (a huge width)
+  // must not overflow int.
+  const auto clamped = [](double pixel, int limit) {
+    return int(std::clamp(pixel, 0.0, double(limit)));
+  };
+  const int col0 = clamped(std::floor(min_col) - 1, grid.width);
+  const int row0 = clamped(std::floor(min_row) - 1, grid.height);
+  const int col1 = clamped(std::ceil(max_col) + 1, grid.width);
+  const int row1 = clamped(std::ceil(max_row) + 1, grid.height);
   if (col1 <= col0 || row1 <= row0) return {};
   return {col0, row0, col1 - col0, row1 - row0};
 }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
@@ -25,10 +26,11 @@ struct FeatureRibbons {
 };
 
 // Slices every feature into pieces of its class's delta (the synthesis delta, or its default)
-// and finds the junctions between all features.
+// and finds the junctions between all features. A feature shorter than one piece gets no
+// pieces and a "shorter_than_delta" warning.
 FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const std::vector<std::vector<LineFeature>>& lines,
-                                    const GridSpec& grid);
+                                    const GridSpec& grid, Warnings& warnings);
 
 // The pixels of `grid` that the ribbon's pieces can touch, plus a pixel; empty when outside.
 Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid);

@@ -59,6 +59,31 @@ T convert(const YamlSource& src, const YAML::Node& node, const std::string& key_
   return value;
 }
 
+// yaml-cpp keeps every entry of a mapping with a repeated key and looks up the first: a
+// repeated key would be silently ignored, so it is an error, in every mapping of the tree.
+void require_unique_keys(const YAML::Node& node, const std::string& file_label) {
+  if (node.IsSequence()) {
+    for (const YAML::Node& item : node) require_unique_keys(item, file_label);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::vector<std::pair<std::string, int>> seen;  // key, line (1-based)
+  for (const auto& entry : node) {
+    const YAML::Node& key = entry.first;
+    if (key.IsScalar()) {
+      const std::string name = key.Scalar();
+      const auto first =
+          std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == name; });
+      if (first != seen.end()) {
+        tw::fail("{}:{}:{}: {}: duplicate key (first at line {})", file_label, key.Mark().line + 1,
+                 key.Mark().column + 1, name, first->second);
+      }
+      seen.emplace_back(name, key.Mark().line + 1);
+    }
+    require_unique_keys(entry.second, file_label);
+  }
+}
+
 }  // namespace
 
 YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides)
@@ -67,12 +92,19 @@ YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Ov
       overrides_(std::move(overrides)) {}
 
 YAML::Node YamlSource::load(std::string_view text) const {
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(std::string(text));
+    documents = YAML::LoadAll(std::string(text));
   } catch (const YAML::Exception& e) {
     tw::fail("{}:{}:{}: invalid YAML: {}", file_label_, e.mark.line + 1, e.mark.column + 1, e.msg);
   }
+  if (documents.size() > 1) {
+    const YAML::Mark mark = documents[1].Mark();
+    tw::fail("{}:{}: a second YAML document: a pipeline file holds one (remove the '---')",
+             file_label_, mark.is_null() ? std::string("end") : std::to_string(mark.line + 1));
+  }
+  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
+  require_unique_keys(root, file_label_);
   if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   for (const Override& o : overrides_) {
     YAML::Node value;
