@@ -29,13 +29,6 @@ features:
   roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }
 )";
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 class CliHardening : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -37,13 +37,6 @@ existing:
 const VectorFeature kRoad{"LINESTRING (500100 5000100, 500300 5000300, 500500 5000350)", 6.0};
 const VectorFeature kRiver{"LINESTRING (500050 5000600, 500320 5000400, 500600 5000050)", 8.0};
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Every file under a folder with its contents (outputs through their links), but terraweave's
 // own .terraweave/ (where any run that locks the folder writes its pid into the lock).
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
@@ -58,13 +51,6 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
     }
   }
   return files;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
 }
 
 class Cli : public ::testing::Test {

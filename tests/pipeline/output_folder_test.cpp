@@ -40,13 +40,6 @@ const char* const kRunB =
     " --set output.geotiff=true --set output.preview=false"
     " --set features.roads.width=12";
 
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // report.json without what changes from run to run (timings).
 std::string report_without_timings(const std::string& text) {
   nlohmann::json json = nlohmann::json::parse(text);

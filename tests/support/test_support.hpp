@@ -2,6 +2,7 @@
 // Helpers shared by every test executable.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tw::test {
 
@@ -30,5 +31,10 @@ struct CommandResult {
 };
 // Runs a shell command line and captures what it prints.
 CommandResult run_command(const std::string& command_line);
+
+// A file's bytes ("" when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
+// The lines of a text, without their line breaks.
+std::vector<std::string> lines_of(const std::string& text);
 
 }  // namespace tw::test
