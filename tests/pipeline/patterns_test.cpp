@@ -31,21 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-// Crops `src` to its first `width` columns (GDAL's translate, the library call of gdal_translate).
-void crop(const fs::path& src, const fs::path& dst, const char* format, int width, int height) {
-  GDALAllRegister();
-  GDALDatasetH in = GDALOpen(src.c_str(), GA_ReadOnly);
-  ASSERT_NE(in, nullptr) << src;
-  const std::string w = std::to_string(width), h = std::to_string(height);
-  const char* args[] = {"-of", format, "-srcwin", "0", "0", w.c_str(), h.c_str(), nullptr};
-  GDALTranslateOptions* options = GDALTranslateOptionsNew(const_cast<char**>(args), nullptr);
-  GDALDatasetH out = GDALTranslate(dst.c_str(), in, options, nullptr);
-  GDALTranslateOptionsFree(options);
-  ASSERT_NE(out, nullptr) << dst;
-  GDALClose(out);
-  GDALClose(in);
-}
-
 constexpr const char* kPipeline = R"(
 version: 1
 seed: 11
@@ -78,9 +63,9 @@ class SmallWorld : public ::testing::Test {
                        {"LINESTRING (500310 5000050, 500330 5000590)", 6.0},
                        {ring(500320, 5000320, 150), 6.0}});
     const fs::path exemplars = test::source_dir() / "samples/exemplars";
-    crop(exemplars / "cobble_edging_200x56.png", dir_ / "cobble.png", "PNG", 60, 56);
-    crop(exemplars / "cobble_edging_200x56_height.tif", dir_ / "cobble_height.tif", "GTiff", 60,
-         56);
+    test::crop_raster(exemplars / "cobble_edging_200x56.png", dir_ / "cobble.png", "PNG", 60, 56);
+    test::crop_raster(exemplars / "cobble_edging_200x56_height.tif", dir_ / "cobble_height.tif",
+                      "GTiff", 60, 56);
   }
 
   static std::string ring(double cx, double cy, double r) {

@@ -18,19 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void crop(const fs::path& src, const fs::path& dst, const char* format) {
-  GDALAllRegister();
-  GDALDatasetH in = GDALOpen(src.c_str(), GA_ReadOnly);
-  ASSERT_NE(in, nullptr) << src;
-  const char* args[] = {"-of", format, "-srcwin", "0", "0", "60", "56", nullptr};
-  GDALTranslateOptions* options = GDALTranslateOptionsNew(const_cast<char**>(args), nullptr);
-  GDALDatasetH out = GDALTranslate(dst.c_str(), in, options, nullptr);
-  GDALTranslateOptionsFree(options);
-  ASSERT_NE(out, nullptr) << dst;
-  GDALClose(out);
-  GDALClose(in);
-}
-
 constexpr const char* kPipeline = R"(
 version: 1
 seed: 5
@@ -68,8 +55,9 @@ TEST(StructurePatterns, ABridgesPatternIsInItsPlacementsButNotOnTheGround) {
     GDALClose(gpkg);
   }
   const fs::path exemplars = test::source_dir() / "samples/exemplars";
-  crop(exemplars / "cobble_edging_200x56.png", dir / "cobble.png", "PNG");
-  crop(exemplars / "cobble_edging_200x56_height.tif", dir / "cobble_height.tif", "GTiff");
+  test::crop_raster(exemplars / "cobble_edging_200x56.png", dir / "cobble.png", "PNG", 60, 56);
+  test::crop_raster(exemplars / "cobble_edging_200x56_height.tif", dir / "cobble_height.tif",
+                    "GTiff", 60, 56);
 
   auto run = [&](const std::string& out, std::vector<Override> overrides) {
     overrides.push_back({"output.dir", (dir / out).string()});

@@ -1,6 +1,7 @@
 #include "test_world.hpp"
 
 #include <gdal_priv.h>
+#include <gdal_utils.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
@@ -72,6 +73,21 @@ void write_layer(const fs::path& path, const std::string& layer_name,
     if (f.width) feature.SetField("width", *f.width);
     ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
   }
+}
+
+void crop_raster(const fs::path& src, const fs::path& dst, const char* format, int width,
+                 int height) {
+  GDALAllRegister();
+  GDALDatasetH in = GDALOpen(src.c_str(), GA_ReadOnly);
+  ASSERT_NE(in, nullptr) << src;
+  const std::string w = std::to_string(width), h = std::to_string(height);
+  const char* args[] = {"-of", format, "-srcwin", "0", "0", w.c_str(), h.c_str(), nullptr};
+  GDALTranslateOptions* options = GDALTranslateOptionsNew(const_cast<char**>(args), nullptr);
+  GDALDatasetH out = GDALTranslate(dst.c_str(), in, options, nullptr);
+  GDALTranslateOptionsFree(options);
+  ASSERT_NE(out, nullptr) << dst;
+  GDALClose(out);
+  GDALClose(in);
 }
 
 }  // namespace tw::test

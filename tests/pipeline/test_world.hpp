@@ -39,4 +39,9 @@ struct VectorFeature {
 void write_layer(const std::filesystem::path& path, const std::string& layer,
                  const std::vector<VectorFeature>& features, const std::string& crs = "EPSG:32631");
 
+// Copies the top-left `width` x `height` pixels of a raster into `dst` in GDAL driver `format`
+// (GDALTranslate, the library call of gdal_translate): a small exemplar cut from a sample.
+void crop_raster(const std::filesystem::path& src, const std::filesystem::path& dst,
+                 const char* format, int width, int height);
+
 }  // namespace tw::test
