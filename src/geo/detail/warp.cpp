@@ -22,7 +22,8 @@ std::vector<char*> argv_of(const std::vector<std::string>& args) {
 
 // GDAL 3.6's gdalwarp has no -b: a virtual dataset of band 1 alone stands in for the source.
 GdalDatasetPtr first_band_only(GDALDataset& source, const std::string& label) {
-  std::vector<char*> argv = argv_of({"-of", "VRT", "-b", "1"});
+  const std::vector<std::string> args{"-of", "VRT", "-b", "1"};  // argv points into these
+  std::vector<char*> argv = argv_of(args);
   GDALTranslateOptions* options = GDALTranslateOptionsNew(argv.data(), nullptr);
   int usage_error = 0;
   GDALDatasetH band = GDALTranslate("", GDALDataset::ToHandle(&source), options, &usage_error);
