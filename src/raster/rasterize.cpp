@@ -66,7 +66,11 @@ Raster<float> polygon_coverage(const std::vector<Polygon>& polygons, const GridS
       edges, sub_window.row0, sub_window.row_end(), sub_window.col0, sub_window.col_end(), block,
       [&](int, std::uint32_t, int c0, int c1) { scratch.local().spans.emplace_back(c0, c1); },
       [&](int sub_row) {
-        auto& [spans, whole] = scratch.local();
+        // Named references, not a structured binding: clang before 16 cannot capture one in
+        // the lambda below (the fuzz build uses Debian 12's clang 14).
+        Scratch& local = scratch.local();
+        auto& spans = local.spans;
+        auto& whole = local.whole;
         std::uint16_t* out =
             hits.pixels.data() + std::size_t(sub_row / s - window.row0) * hits.width;
         // Sub-columns [a, b) relative to the window: partial pixels directly, whole ones in

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <limits>
 
 #include "core/error.hpp"
 
@@ -15,6 +16,19 @@ constexpr int kVersion = 1;
 
 json vec(Vec2 v) {
   return json::array({v.x, v.y});
+}
+
+// nlohmann's get<int>() casts a float (or an integer too large for int64) with a plain cast,
+// undefined outside int's range: integers are checked before they are converted.
+template <class Int>
+Int integer(const json& j, const std::string& path, const std::string& key) {
+  const bool fits = j.is_number_unsigned()
+                        ? j.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<Int>::max())
+                        : j.is_number_integer() &&
+                              j.get<std::int64_t>() >= std::numeric_limits<Int>::min() &&
+                              j.get<std::int64_t>() <= std::numeric_limits<Int>::max();
+  if (!fits) fail("placements {}: key \"{}\": expected an integer, got {}", path, key, j.dump());
+  return Int(j.get<std::int64_t>());
 }
 
 }  // namespace
@@ -65,33 +79,34 @@ Synthesis load_placements(const std::string& path, std::string* exemplar_path) {
     if (doc.at(key).get<std::string>() != kFormat)
       fail("placements {}: key \"format\" is not \"{}\"", path, kFormat);
     key = "version";
-    if (doc.at(key).get<int>() != kVersion)
+    if (integer<int>(doc.at(key), path, key) != kVersion)
       fail("placements {}: unsupported version {}", path, doc.at(key).dump());
     Synthesis s;
     key = "exemplar";
     const std::string exemplar = doc.at(key).get<std::string>();
     if (exemplar_path) *exemplar_path = exemplar;
     key = "column";
-    s.column = doc.at(key).get<int>();
+    s.column = integer<int>(doc.at(key), path, key);
     key = "closed";
     s.closed = doc.at(key).get<bool>();
     key = "backend";
     s.backend = doc.at(key).get<std::string>();
     key = "total_cost";
-    s.total_cost = doc.at(key).get<std::int64_t>();
+    s.total_cost = integer<std::int64_t>(doc.at(key), path, key);
     key = "mean_seam_cost";
     s.mean_seam_cost = doc.at(key).get<double>();
     key = "mean_seam_cost_stitched";
     s.mean_seam_cost_stitched = doc.at(key).get<double>();
     key = "valid_counts";
-    s.valid_counts = doc.at(key).get<std::vector<int>>();
+    for (const json& count : doc.at(key).get_ref<const json::array_t&>())
+      s.valid_counts.push_back(integer<int>(count, path, key));
     const json& list = doc.at("placements");
     for (std::size_t i = 0; i < list.size(); ++i) {
       const json& j = list[i];
       key = fmt::format("placements[{}]", i);
       Placement p;
-      p.ux = j.at("ux").get<int>();
-      p.uy = j.at("uy").get<int>();
+      p.ux = integer<int>(j.at("ux"), path, key + ".ux");
+      p.uy = integer<int>(j.at("uy"), path, key + ".uy");
       p.empty = j.at("empty").get<bool>();
       auto v = [&](const char* name) {
         const auto a = j.at(name).get<std::vector<double>>();

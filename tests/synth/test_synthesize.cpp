@@ -4,6 +4,8 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
+
 #include <fstream>
 
 #include "core/error.hpp"
@@ -334,6 +336,17 @@ TEST(Synthesize, PlacementsRoundTripThroughJson) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("exemplar"), std::string::npos);
+  }
+  // A position beyond int (found by fuzz/placements_loader; UBSan: float-cast-overflow) is
+  // refused by name, never cast.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(path));
+  doc["placements"][0]["uy"] = -3.92e20;
+  std::ofstream(dir / "huge.json") << doc.dump();
+  try {
+    load_placements((dir / "huge.json").string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("placements[0].uy"), std::string::npos) << e.what();
   }
 }
 
