@@ -1,6 +1,7 @@
 #include "geo/input_guard.hpp"
 
 #include <cpl_conv.h>
+#include <cpl_http.h>
 #include <ogr_spatialref.h>
 #include <ogr_srs_api.h>
 
@@ -69,8 +70,24 @@ void check_input_path(const std::string& path, const std::string& key, bool allo
   }
 }
 
+namespace {
+
+// Every CPLHTTPFetch (GeoJSON `crs` links, WFS/WMS drivers, OSR URL imports) ends here while
+// the network is off: a failed request, no connection. /vsicurl does not use CPLHTTPFetch.
+CPLHTTPResult* refuse_http(const char* url, CSLConstList, GDALProgressFunc, void*,
+                           CPLHTTPFetchWriteFunc, void*, void*) {
+  auto* result = static_cast<CPLHTTPResult*>(CPLCalloc(1, sizeof(CPLHTTPResult)));
+  result->nStatus = 1;
+  result->pszErrBuf = CPLStrdup(
+      CPLSPrintf("%s: network access is off (terraweave --allow-network)", url ? url : ""));
+  return result;
+}
+
+}  // namespace
+
 void set_network_access(bool allowed) {
   network_allowed = allowed;
+  CPLHTTPSetFetchCallback(allowed ? nullptr : refuse_http, nullptr);
   // Only names ending in this extension may be opened through /vsicurl and the other network
   // file systems: none is, so none is opened (a VRT or a GPKG can name a URL inside).
   CPLSetConfigOption("CPL_VSIL_CURL_ALLOWED_EXTENSIONS",

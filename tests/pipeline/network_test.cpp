@@ -9,7 +9,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <fstream>
+#include <thread>
 
 #include "core/error.hpp"
 #include "pipeline/run.hpp"
@@ -93,6 +96,52 @@ features:
   options.allow_network = false;
   EXPECT_THROW(run_pipeline(config, options), Error);  // and off again
   EXPECT_EQ(listener.connections(), 0);
+}
+
+// A local GeoJSON whose `crs` is a link: GDAL's reader fetches it with CPLHTTPFetch (not
+// /vsicurl), so the path check cannot see it; the HTTP fetch switch refuses it.
+TEST(NetworkSwitch, AGeoJsonCrsLinkSendsNoRequestUnlessAllowed) {
+  test::TempDir dir;
+  test::write_dem(dir / "dem.tif");
+  Listener listener;
+  std::ofstream(dir / "roads.geojson")
+      << R"({"type": "FeatureCollection", "crs": {"type": "link", "properties": {"href": "http://127.0.0.1:)"
+      << listener.port() << R"(/crs.wkt", "type": "ogcwkt"}}, "features": [{"type": "Feature",
+    "properties": {}, "geometry": {"type": "LineString",
+    "coordinates": [[500100, 5000100], [500300, 5000300]]}}]})";
+  const PipelineConfig config = parse_pipeline(R"(version: 1
+heightfield: dem.tif
+output: { dir: out }
+features:
+  roads: { source: roads.geojson, kind: road, width: 6 }
+)",
+                                               "link.yaml", dir.path());
+  RunOptions options;
+  options.write_outputs = false;
+  try {
+    run_pipeline(config, options);
+  } catch (const Error&) {  // without its CRS the layer may be refused: either way, no request
+  }
+  EXPECT_EQ(listener.connections(), 0);
+
+  // The control: allowed, GDAL asks. Each connection is closed at once, so that the fetch
+  // fails fast instead of waiting out OSR's own 10 s timeout.
+  std::atomic<bool> done = false;
+  std::atomic<int> answered = 0;
+  std::thread closer([&] {
+    while (!done) {
+      answered += listener.connections();
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  });
+  options.allow_network = true;
+  try {
+    run_pipeline(config, options);
+  } catch (const Error&) {
+  }
+  done = true;
+  closer.join();
+  EXPECT_GE(answered + listener.connections(), 1);
 }
 
 // The CLI flag reaches the run: the same URL heightfield is refused without it, with a message
