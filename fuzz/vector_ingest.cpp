@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/warnings.hpp"
 #include "fuzz_support.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
@@ -29,10 +30,11 @@ const tw::Heightfield& grid() {
   return heightfield;
 }
 
-// Inside the grid's extent, allowing for the rounding of the clipper.
-void expect_on_grid(const tw::Vec2& p) {
+// Inside the grid's extent grown by `halo` metres (lines are clipped to the extent plus half
+// their width and the class's clip margin), allowing for the rounding of the clipper.
+void expect_on_grid(const tw::Vec2& p, double halo = 0.0) {
   const tw::GridSpec& g = grid().grid;
-  const double slack = 1e-6 * g.pixel_width;
+  const double slack = 1e-6 * g.pixel_width + halo;
   tw::fuzz::expect_finite(p.x, "vertex x");
   tw::fuzz::expect_finite(p.y, "vertex y");
   if (p.x < g.origin_x - slack || p.x > g.origin_x + g.width * g.pixel_width + slack ||
@@ -46,17 +48,20 @@ void read_lines() {
   spec.source.path = kPath;
   spec.width_attribute = "width";
   spec.default_width = 4.0;
-  for (const tw::LineFeature& line : tw::read_line_features(spec, grid())) {
+  tw::Warnings warnings;  // repairs are expected answers, like errors
+  for (const tw::LineFeature& line : tw::read_line_features(spec, grid(), warnings)) {
     if (line.points.size() < 2) tw::fuzz::broken_promise("a line with fewer than 2 points");
     if (!(std::isfinite(line.width) && line.width > 0.0))
       tw::fuzz::broken_promise("a line without a positive width");
-    for (const tw::Vec2& p : line.points) expect_on_grid(p);
+    for (const tw::Vec2& p : line.points) expect_on_grid(p, 0.5 * line.width + spec.clip_margin);
   }
 }
 
 void read_polygons() {
   const tw::VectorSource source{kPath, "", ""};
-  for (const tw::PolygonFeature& polygon : tw::read_polygon_features(source, grid())) {
+  tw::Warnings warnings;
+  for (const tw::PolygonFeature& polygon :
+       tw::read_polygon_features(source, grid(), "fuzz", warnings)) {
     if (polygon.rings.empty()) tw::fuzz::broken_promise("a polygon without rings");
     for (const auto& ring : polygon.rings) {
       if (ring.size() < 3) tw::fuzz::broken_promise("a ring with fewer than 3 points");

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
 
 #include "core/error.hpp"
 #include "geo/input_guard.hpp"
@@ -84,6 +87,32 @@ void require_unique_keys(const YAML::Node& node, const std::string& file_label) 
   }
 }
 
+// Where each document starts, for at most `limit` documents. Counted through the event
+// parser instead of YAML::LoadAll, which loops forever on some malformed input (yaml-cpp 0.7:
+// empty documents without consuming any text; found by fuzz/pipeline_parser).
+std::vector<YAML::Mark> document_starts(std::string_view text, std::size_t limit) {
+  struct Starts : YAML::EventHandler {
+    std::vector<YAML::Mark> marks;
+    void OnDocumentStart(const YAML::Mark& mark) override { marks.push_back(mark); }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+  } starts;
+  std::istringstream in{std::string(text)};
+  YAML::Parser parser(in);
+  while (starts.marks.size() < limit && parser.HandleNextDocument(starts)) {
+  }
+  return starts.marks;
+}
+
 }  // namespace
 
 YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides)
@@ -92,18 +121,21 @@ YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Ov
       overrides_(std::move(overrides)) {}
 
 YAML::Node YamlSource::load(std::string_view text) const {
-  std::vector<YAML::Node> documents;
+  YAML::Node root;
+  std::vector<YAML::Mark> documents;
   try {
-    documents = YAML::LoadAll(std::string(text));
+    root = YAML::Load(std::string(text));
+    documents = document_starts(text, 2);
   } catch (const YAML::Exception& e) {
     tw::fail("{}:{}:{}: invalid YAML: {}", file_label_, e.mark.line + 1, e.mark.column + 1, e.msg);
   }
   if (documents.size() > 1) {
-    const YAML::Mark mark = documents[1].Mark();
-    tw::fail("{}:{}: a second YAML document: a pipeline file holds one (remove the '---')",
-             file_label_, mark.is_null() ? std::string("end") : std::to_string(mark.line + 1));
+    const YAML::Mark mark = documents[1];
+    tw::fail(
+        "{}:{}: a second YAML document, or text after the first that YAML cannot read: a "
+        "pipeline file holds one document (remove any '---')",
+        file_label_, mark.is_null() ? std::string("end") : std::to_string(mark.line + 1));
   }
-  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   require_unique_keys(root, file_label_);
   if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   for (const Override& o : overrides_) {
