@@ -12,21 +12,8 @@ shift || true
 all_targets=(pipeline_parser set_override placements_loader vector_ingest)
 [ $# -gt 0 ] && targets=("$@") || targets=("${all_targets[@]}")
 
-bash scripts/setup.sh
-# clang and its runtime (libFuzzer, ASan, UBSan): needed only here, so not in setup.sh.
-fuzz_packages=(clang libclang-rt-dev)
-missing=()
-for p in "${fuzz_packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
-  echo "fuzz: installing ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+# clang and its runtime (libFuzzer, ASan, UBSan): needed only here, so not in setup.sh's list.
+bash scripts/setup.sh clang libclang-rt-dev
 
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)

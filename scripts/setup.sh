@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs terraweave's Debian dependencies. Idempotent and quiet: does nothing when all
-# packages are already installed, so a second run costs a second.
+# Installs terraweave's Debian dependencies, and the extra packages named as arguments (e.g.
+# scripts/fuzz.sh's clang). Idempotent and quiet: does nothing when all packages are already
+# installed, so a second run costs a second.
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
+  "$@"
 )
 
 missing=()
