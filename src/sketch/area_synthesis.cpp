@@ -1,0 +1,124 @@
+#include "sketch/area_synthesis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "sketch/detail/area_candidates.hpp"
+#include "sketch/detail/area_filter.hpp"
+#include "sketch/detail/clustering.hpp"
+
+namespace tw {
+
+namespace {
+
+Vec2 rotated(Vec2 v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+// Area centroid of the outer ring (shoelace), holes ignored: where the sketch is laid.
+Vec2 centroid(const Ring& ring) {
+  double area = 0.0;
+  Vec2 sum;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    const double w = cross(a, b);
+    area += w;
+    sum += (a + b) * w;
+  }
+  if (std::abs(area) < 1e-12) {
+    Vec2 mean;
+    for (Vec2 p : ring) mean += p;
+    return mean / double(ring.size());
+  }
+  return sum / (3.0 * area);
+}
+
+}  // namespace
+
+double long_axis_bearing(const Polygon& domain) {
+  if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
+  // Points every 1/64 of the perimeter, so a densely digitized side does not pull the axis.
+  const Ring& ring = domain.front();
+  double perimeter = 0.0;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    perimeter += distance(ring[i], ring[(i + 1) % ring.size()]);
+  std::vector<Vec2> samples;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    const int n = std::max(1, int(std::ceil(64.0 * distance(a, b) / perimeter)));
+    for (int k = 0; k < n; ++k) samples.push_back(lerp(a, b, double(k) / n));
+  }
+  return line_angle(detail::principal_box(samples, 0.0).axis);
+}
+
+AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& domain,
+                            const AreaSynthesisParams& params, const AvoidanceMap* avoidance) {
+  if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
+  if (!(params.scale > 0.0) || !std::isfinite(params.scale)) {
+    fail("area: scale must be > 0 metres per sketch unit, got {}", params.scale);
+  }
+  if (!(params.jitter >= 0.0 && params.jitter <= 1.0)) {
+    fail("area: jitter must be in [0, 1], got {}", params.jitter);
+  }
+  const Vec2 anchor = centroid(domain.front());
+  const auto to_world = [&](Vec2 q) {
+    return anchor + rotated((q - Vec2{0.5, 0.5}) * params.scale, params.bearing);
+  };
+  const auto to_sketch = [&](Vec2 w) {
+    return Vec2{0.5, 0.5} + rotated(w - anchor, -params.bearing) / params.scale;
+  };
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : domain.front()) {
+    const Vec2 q = to_sketch(p);
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  }
+  const auto candidates =
+      detail::area_candidates(hierarchy, lo, hi, params.jitter, params.keep_input, params.seed);
+  return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale, avoidance);
+}
+
+SupportHierarchy hybridize(const SupportHierarchy& structure, const SupportHierarchy& shapes,
+                           const AnalysisParams& params) {
+  std::vector<int> donors;  // bounded shapes of the donor, in fibre order
+  std::vector<Vec2> donor_fibre;
+  for (const Fibre& f : shapes.fibres) {
+    if (f.unbounded) continue;
+    for (int s : f.shapes) donors.push_back(s), donor_fibre.push_back(f.line.direction);
+  }
+  if (donors.empty()) fail("hybridize: {} has no bounded shape to lend", shapes.sketch.source);
+  Sketch sketch;
+  sketch.source = structure.sketch.source + " + " + shapes.sketch.source;
+  for (const Stroke& s : structure.sketch.strokes)
+    if (s.unbounded) sketch.strokes.push_back(s);
+  std::size_t next = 0;
+  for (const Fibre& f : structure.fibres) {
+    if (f.unbounded) continue;
+    for (std::size_t k = 0; k < f.shapes.size(); ++k) {
+      const OrientedBox& slot = structure.shapes[std::size_t(f.shapes[k])].box;
+      const std::size_t d = next++ % donors.size();
+      const SketchShape& donor = shapes.shapes[std::size_t(donors[d])];
+      const double turn = line_angle(f.line.direction) - line_angle(donor_fibre[d]);
+      // Room along the fibre: the slot and half the gap on its tighter side.
+      const std::size_t count = f.shapes.size();
+      const double room =
+          slot.half_length + 0.5 * std::min(f.gaps_along[k], f.gaps_along[(k + count - 1) % count]);
+      const double fit = std::min(1.0, room / std::max(1e-12, donor.box.half_length));
+      for (int s : donor.strokes) {
+        Stroke stroke = shapes.sketch.strokes[std::size_t(s)];
+        for (Vec2& p : stroke.points) {
+          p = slot.center + rotated((p - donor.box.center) * fit, turn);
+          p = {std::clamp(p.x, 0.0, 1.0), std::clamp(p.y, 0.0, 1.0)};
+        }
+        stroke.thickness *= fit;
+        sketch.strokes.push_back(std::move(stroke));
+      }
+    }
+  }
+  return analyze_sketch(sketch, params);
+}
+
+}  // namespace tw

@@ -1,0 +1,71 @@
+#pragma once
+// Synthesis of a structured shape-pattern over a map polygon (Olivier, Memari & Cani,
+// Section 5, adapted to maps: docs/shape-patterns.md). The input space is laid at the polygon's
+// centroid (the sketch is kept as drawn there), rotated to the lead bearing; lead directions are
+// repeated with gaps from their recorded range, fibre medians copied and perturbed within their
+// displacement areas (bent smoothly, never beyond half the gap to a neighbour), bounded shapes
+// repeated along their fibres, unbounded strokes extended (lines, rays; arcs and curves by
+// mirror duplication). Nothing leaves the polygon, touches a forbidden pixel, or overlaps a
+// shape it was disjoint from in the sketch (H3).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raster/avoidance.hpp"
+#include "raster/polygon.hpp"
+#include "sketch/hierarchy.hpp"
+
+namespace tw {
+
+struct AreaSynthesisParams {
+  double scale = 10.0;     // metres per input-space unit (the sketch covers scale x scale m)
+  double bearing = 0.0;    // radians, counter-clockwise from +x: the input space's +x axis
+  std::uint64_t seed = 1;  // same seed, same result
+  double jitter = 0.5;     // fraction of each allowed displacement used, in [0, 1]
+  bool keep_input = true;  // the sketch itself, unperturbed, at the centroid
+};
+
+// One placed shape: where engines put an instance of it.
+struct ShapeInstance {
+  int shape = 0;          // index into SupportHierarchy::shapes
+  int lead = 0;           // the lead direction it was repeated in
+  Vec2 position;          // world metres: centre of its oriented box
+  double rotation = 0.0;  // radians, of its box axis
+  double scale = 1.0;     // metres per input-space unit
+  std::string material;   // of its first stroke
+  bool unbounded = false;
+};
+
+struct PlacedStroke {
+  std::vector<Vec2> points;  // world metres
+  std::string material;
+  double width = 0.0;  // metres
+  int instance = 0;    // index into AreaPattern::instances
+};
+
+struct AreaPattern {
+  std::vector<ShapeInstance> instances;
+  std::vector<PlacedStroke> strokes;
+  // Candidates left out, by reason.
+  int outside = 0, forbidden = 0, overlapping = 0;
+};
+
+// `avoidance` may be null (nothing forbidden). Throws tw::Error for an empty polygon or a
+// scale <= 0.
+AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& domain,
+                            const AreaSynthesisParams& params,
+                            const AvoidanceMap* avoidance = nullptr);
+
+// The bearing of the polygon's long axis (principal axis of its outer ring's vertices,
+// boundary-sampled so that vertex density does not bias it), in [0, pi).
+double long_axis_bearing(const Polygon& domain);
+
+// Hybridization (Section 6): the alignments of `structure` with the shapes of `shapes`. Each
+// bounded shape of a structure fibre is replaced by the donor's bounded shapes in turn, centred
+// where it was, turned from the donor's fibre to the structure's and scaled down where it would
+// not fit between its neighbours; the result (a sketch of these strokes plus the structure's
+// unbounded ones) is analysed again, so it is a hierarchy like any other.
+SupportHierarchy hybridize(const SupportHierarchy& structure, const SupportHierarchy& shapes,
+                           const AnalysisParams& params = {});
+
+}  // namespace tw

@@ -1,0 +1,40 @@
+#pragma once
+// The instantiation half of area synthesis: candidates in input-space coordinates, before the
+// world filter (polygon, avoidance, overlap) of area_filter.hpp.
+#include <cstdint>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "sketch/hierarchy.hpp"
+
+namespace tw::detail {
+
+struct Candidate {
+  int shape = 0;
+  int lead = 0;
+  bool unbounded = false;
+  bool original = false;                   // the sketch's own shape, unperturbed
+  std::vector<std::vector<Vec2>> strokes;  // one per stroke of the shape, same order
+  Vec2 centre;
+  Vec2 axis{1.0, 0.0};
+};
+
+// A portable uniform generator: the same numbers from the same seed on every platform
+// (std:: distributions are implementation-defined).
+class SplitMix {
+ public:
+  explicit SplitMix(std::uint64_t seed) : state_(seed) {}
+  std::uint64_t next();
+  double uniform();                    // [0, 1)
+  double uniform(double a, double b);  // [a, b)
+  double normal();                     // standard normal (Box-Muller)
+ private:
+  std::uint64_t state_;
+};
+
+// Every candidate of the hierarchy over the rectangle [lo, hi] of input space (the output space
+// covering the domain), lead by lead, originals first within each.
+std::vector<Candidate> area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 hi, double jitter,
+                                       bool keep_input, std::uint64_t seed);
+
+}  // namespace tw::detail
