@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "pipeline/area_command.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
@@ -141,6 +142,36 @@ int main(int argc, char** argv) {
           "binary (opaque at alpha >= 0.5, the default) or continuous costs")
       ->check(CLI::IsMember({"binary", "continuous"}));
 
+  tw::AreaCommand area_args;
+  CLI::App* area = app.add_subcommand(
+      "area",
+      "fill polygons with a structured shape-pattern from a vector sketch (vectors, "
+      "engine instances, preview)");
+  area->add_option("sketch", area_args.sketch, "sketch: strokes in [0,1]^2 (GeoJSON, any OGR)")
+      ->required();
+  area->add_option("--polygons", area_args.polygons, "OGR source path[:layer], projected CRS")
+      ->required();
+  area->add_option("--where", area_args.where, "OGR SQL attribute filter on the polygons");
+  area->add_option("--shapes-from", area_args.shapes_from,
+                   "hybrid: a second sketch whose shapes go on the first one's rows");
+  area->add_option("--scale", area_args.scale, "metres per sketch unit")
+      ->check(CLI::PositiveNumber);
+  area->add_option("--bearing", area_args.bearing,
+                   "compass bearing (degrees) of the sketch's x axis; default: each polygon's "
+                   "long axis")
+      ->check(CLI::Range(-360.0, 360.0));
+  area->add_option("--seed", area_args.seed, "same seed, same shapes");
+  area->add_option("--jitter", area_args.jitter, "fraction of the allowed displacement used")
+      ->check(CLI::Range(0.0, 1.0));
+  area->add_option("--avoid", area_args.avoid,
+                   "features no shape may touch: OGR path[:layer] (lines or polygons; repeatable)");
+  area->add_option("--avoid-width", area_args.avoid_width,
+                   "metres, the width of avoided lines without a width or OSM tags")
+      ->check(CLI::PositiveNumber);
+  area->add_option("--out", area_args.out, "folder for shapes.gpkg, instances.csv, preview.png")
+      ->required()
+      ->check(non_empty);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -162,6 +193,14 @@ int main(int argc, char** argv) {
     }
     if (validate->parsed())
       return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (area->parsed()) {
+      const tw::AreaCommandResult r = tw::run_area_command(area_args);
+      std::printf(
+          "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
+          "%d overlapping)\n",
+          r.instances, r.strokes, r.polygons, r.outside, r.forbidden, r.overlapping);
+      return 0;
+    }
     if (synth->parsed()) {
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",

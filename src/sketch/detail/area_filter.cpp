@@ -1,5 +1,9 @@
 #include "sketch/detail/area_filter.hpp"
 
+// GCC 12 sees maybe-uninitialized values inside Boost.Geometry's envelope and rescaling code
+// once inlined here (false positives in the library's headers); ours stays -Wall clean.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/box.hpp>
 #include <boost/geometry/geometries/linestring.hpp>
@@ -7,6 +11,7 @@
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 #include <boost/geometry/index/rtree.hpp>
+#pragma GCC diagnostic pop
 
 #include <algorithm>
 #include <cmath>

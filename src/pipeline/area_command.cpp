@@ -1,0 +1,193 @@
+#include "pipeline/area_command.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "core/atomic_output.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/warnings.hpp"
+#include "geo/features.hpp"
+#include "geo/heightfield.hpp"
+#include "pipeline/detail/area_output.hpp"
+#include "raster/avoidance.hpp"
+#include "sketch/area_synthesis.hpp"
+
+namespace tw {
+
+namespace {
+
+VectorSource vector_source(const std::string& source, const std::string& where) {
+  VectorSource vector;
+  vector.path = source;
+  vector.where = where;
+  if (const auto colon = source.rfind(':'); colon != std::string::npos && colon > 1) {
+    vector.path = source.substr(0, colon);
+    vector.layer = source.substr(colon + 1);
+  }
+  return vector;
+}
+
+// A grid over the layer's extent in its own CRS, for geo's polygon reader (which reprojects to
+// and clips by a grid): the polygons come back as they are, repaired where GEOS must.
+Heightfield frame_of(const VectorSource& source) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> dataset(GDALDataset::Open(
+      source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!dataset) fail("{}: cannot open as vector data", source.path);
+  OGRLayer* layer =
+      source.layer.empty() ? dataset->GetLayer(0) : dataset->GetLayerByName(source.layer.c_str());
+  if (!layer) fail("{}: no layer '{}'", source.path, source.layer);
+  const OGRSpatialReference* srs = layer->GetSpatialRef();
+  if (!srs || !srs->IsProjected()) {
+    fail("{}: the polygons need a projected CRS in metres (reproject with ogr2ogr -t_srs)",
+         source.path);
+  }
+  OGREnvelope extent;
+  if (layer->GetExtent(&extent, TRUE) != OGRERR_NONE) fail("{}: empty layer", source.path);
+  Heightfield frame;
+  char* wkt = nullptr;
+  srs->exportToWkt(&wkt);
+  frame.crs_wkt = wkt;
+  CPLFree(wkt);
+  const double pad = 1.0;
+  frame.grid.pixel_width = frame.grid.pixel_height = 1.0;
+  frame.grid.origin_x = std::floor(extent.MinX) - pad;
+  frame.grid.origin_y = std::ceil(extent.MaxY) + pad;
+  frame.grid.width = int(std::ceil(extent.MaxX) - std::floor(extent.MinX) + 2 * pad);
+  frame.grid.height = int(std::ceil(extent.MaxY) - std::floor(extent.MinY) + 2 * pad);
+  frame.source = source.path;
+  return frame;
+}
+
+bool is_polygon_layer(const VectorSource& source) {
+  std::unique_ptr<GDALDataset> dataset(GDALDataset::Open(
+      source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!dataset) fail("{}: cannot open as vector data", source.path);
+  OGRLayer* layer =
+      source.layer.empty() ? dataset->GetLayer(0) : dataset->GetLayerByName(source.layer.c_str());
+  if (!layer) fail("{}: no layer '{}'", source.path, source.layer);
+  const auto type = wkbFlatten(layer->GetGeomType());
+  return type == wkbPolygon || type == wkbMultiPolygon;
+}
+
+// The avoided features, read once over the polygons' extent.
+AvoidanceInputs avoided_features(const Heightfield& frame, const AreaCommand& c,
+                                 Warnings& warnings) {
+  AvoidanceInputs inputs;
+  for (const std::string& avoid : c.avoid) {
+    const VectorSource source = vector_source(avoid, "");
+    if (is_polygon_layer(source)) {
+      for (PolygonFeature& f : read_polygon_features(source, frame, "area.avoid", warnings)) {
+        inputs.polygons.emplace_back(f.rings.begin(), f.rings.end());
+      }
+      continue;
+    }
+    LineClassSpec spec;
+    spec.name = "avoid";
+    spec.source = source;
+    spec.width_attribute = "width";
+    spec.default_width = c.avoid_width;
+    spec.osm_widths = true;
+    spec.subject = "area.avoid";
+    for (LineFeature& line : read_line_features(spec, frame, warnings)) {
+      inputs.lines.push_back(std::move(line.points));
+      inputs.line_widths.push_back(line.width);
+    }
+  }
+  return inputs;
+}
+
+// The avoidance map on the frame's 1 m lattice, over the polygon's bounding box only: memory
+// follows the polygon, not the file's extent.
+AvoidanceMap avoidance_around(const Polygon& polygon, const Heightfield& frame,
+                              const AvoidanceInputs& inputs) {
+  const GridSpec& grid = frame.grid;
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : polygon.front()) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const Vec2 a = grid.world_to_pixel({lo.x, hi.y}), b = grid.world_to_pixel({hi.x, lo.y});
+  Window window;
+  window.col0 = std::max(0, int(std::floor(a.x)) - 1);
+  window.row0 = std::max(0, int(std::floor(a.y)) - 1);
+  window.width = std::min(grid.width, int(std::ceil(b.x)) + 1) - window.col0;
+  window.height = std::min(grid.height, int(std::ceil(b.y)) + 1) - window.row0;
+  return build_avoidance_map(inputs, grid, window);
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+}  // namespace
+
+AreaCommandResult run_area_command(const AreaCommand& c) {
+  if (c.out.empty()) fail("area: --out is required");
+  const auto started = std::chrono::steady_clock::now();
+  SupportHierarchy hierarchy = analyze_sketch(load_sketch(c.sketch), c.analysis);
+  if (c.shapes_from) {
+    hierarchy =
+        hybridize(hierarchy, analyze_sketch(load_sketch(*c.shapes_from), c.analysis), c.analysis);
+  }
+  AreaCommandResult result;
+  result.analysis_ms = elapsed_ms(started);
+
+  const VectorSource source = vector_source(c.polygons, c.where);
+  const Heightfield frame = frame_of(source);
+  Warnings warnings;
+  const std::vector<PolygonFeature> features =
+      read_polygon_features(source, frame, "area.polygons", warnings);
+  if (features.empty()) fail("{}: no polygon to fill", c.polygons);
+
+  const AvoidanceInputs avoided = avoided_features(frame, c, warnings);
+
+  const auto synthesis_started = std::chrono::steady_clock::now();
+  std::vector<detail::AreaResult> results;
+  std::vector<Polygon> polygons;
+  for (std::size_t k = 0; k < features.size(); ++k) {
+    const PolygonFeature& f = features[k];
+    const Polygon polygon(f.rings.begin(), f.rings.end());
+    AreaSynthesisParams params;
+    params.scale = c.scale;
+    params.jitter = c.jitter;
+    // One seed per polygon part: the same part gets the same shapes whatever else is in the file.
+    params.seed = c.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(f.fid) * 0x100000001B3ull + k;
+    params.bearing =
+        c.bearing ? (90.0 - *c.bearing) * std::numbers::pi / 180.0 : long_axis_bearing(polygon);
+    detail::AreaResult& r = results.emplace_back();
+    r.fid = f.fid;
+    std::optional<AvoidanceMap> avoidance;
+    if (!c.avoid.empty()) avoidance = avoidance_around(polygon, frame, avoided);
+    r.pattern = synthesize_area(hierarchy, polygon, params, avoidance ? &*avoidance : nullptr);
+    result.instances += int(r.pattern.instances.size());
+    result.strokes += int(r.pattern.strokes.size());
+    result.outside += r.pattern.outside;
+    result.forbidden += r.pattern.forbidden;
+    result.overlapping += r.pattern.overlapping;
+    polygons.push_back(polygon);
+  }
+  result.polygons = int(features.size());
+  result.synthesis_ms = elapsed_ms(synthesis_started);
+
+  OutputTransaction transaction;
+  detail::write_area_geopackage(transaction.stage(c.out / "shapes.gpkg"), frame.crs_wkt, results);
+  detail::write_instances_csv(transaction.stage(c.out / "instances.csv"), results);
+  detail::write_area_preview(transaction.stage(c.out / "preview.png"), polygons, avoided, results,
+                             c.preview_resolution);
+  transaction.commit();
+  logger().info(
+      "area: {} instances, {} strokes in {} polygons ({:.1f} ms analysis, {:.1f} ms "
+      "synthesis)",
+      result.instances, result.strokes, result.polygons, result.analysis_ms, result.synthesis_ms);
+  return result;
+}
+
+}  // namespace tw

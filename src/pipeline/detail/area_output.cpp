@@ -1,0 +1,181 @@
+#include "pipeline/detail/area_output.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "raster/rasterize.hpp"
+
+namespace tw::detail {
+
+namespace {
+
+double compass_degrees(double radians) {
+  double d = 90.0 - radians * 180.0 / std::numbers::pi;
+  d = std::fmod(d, 360.0);
+  return d < 0.0 ? d + 360.0 : d;
+}
+
+std::string type_of(const ShapeInstance& i) {
+  return fmt::format("shape_{}", i.shape);
+}
+
+void create_field(OGRLayer& layer, const char* name, OGRFieldType type) {
+  OGRFieldDefn field(name, type);
+  if (layer.CreateField(&field) != OGRERR_NONE) fail("cannot create field {}", name);
+}
+
+}  // namespace
+
+void write_area_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
+                           const std::vector<AreaResult>& results) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (!driver) fail("GDAL has no GPKG driver");
+  std::unique_ptr<GDALDataset> dataset(
+      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!dataset) fail("{}: cannot create GeoPackage", path.string());
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE) fail("area: unreadable CRS");
+  OGRLayer* strokes = dataset->CreateLayer("strokes", &srs, wkbLineString, nullptr);
+  OGRLayer* instances = dataset->CreateLayer("instances", &srs, wkbPoint, nullptr);
+  if (!strokes || !instances) fail("{}: cannot create layers", path.string());
+  for (auto [name, type] : {std::pair{"polygon_fid", OFTInteger64},
+                            {"instance", OFTInteger},
+                            {"shape", OFTInteger},
+                            {"material", OFTString},
+                            {"width_m", OFTReal}}) {
+    create_field(*strokes, name, type);
+  }
+  for (auto [name, type] : {std::pair{"polygon_fid", OFTInteger64},
+                            {"shape", OFTInteger},
+                            {"type", OFTString},
+                            {"material", OFTString},
+                            {"rotation_deg", OFTReal},
+                            {"scale", OFTReal}}) {
+    create_field(*instances, name, type);
+  }
+  dataset->StartTransaction();
+  int base = 0;  // instance numbers run on across polygons
+  for (const AreaResult& r : results) {
+    for (const PlacedStroke& s : r.pattern.strokes) {
+      OGRFeature feature(strokes->GetLayerDefn());
+      feature.SetField("polygon_fid", GIntBig(r.fid));
+      feature.SetField("instance", base + s.instance);
+      feature.SetField("shape", r.pattern.instances[std::size_t(s.instance)].shape);
+      feature.SetField("material", s.material.c_str());
+      feature.SetField("width_m", s.width);
+      OGRLineString line;
+      for (Vec2 p : s.points) line.addPoint(p.x, p.y);
+      feature.SetGeometry(&line);
+      if (strokes->CreateFeature(&feature) != OGRERR_NONE) fail("{}: write failed", path.string());
+    }
+    for (const ShapeInstance& i : r.pattern.instances) {
+      OGRFeature feature(instances->GetLayerDefn());
+      feature.SetField("polygon_fid", GIntBig(r.fid));
+      feature.SetField("shape", i.shape);
+      feature.SetField("type", type_of(i).c_str());
+      feature.SetField("material", i.material.c_str());
+      feature.SetField("rotation_deg", compass_degrees(i.rotation));
+      feature.SetField("scale", i.scale);
+      OGRPoint point(i.position.x, i.position.y);
+      feature.SetGeometry(&point);
+      if (instances->CreateFeature(&feature) != OGRERR_NONE)
+        fail("{}: write failed", path.string());
+    }
+    base += int(r.pattern.instances.size());
+  }
+  if (dataset->CommitTransaction() != OGRERR_NONE) fail("{}: commit failed", path.string());
+  dataset.reset();  // GDALClose flushes; an error here would be a disk error
+}
+
+void write_instances_csv(const std::filesystem::path& path,
+                         const std::vector<AreaResult>& results) {
+  std::ofstream out(path);
+  out << "x,y,z,rotation_deg,scale,type,material\n";
+  for (const AreaResult& r : results) {
+    for (const ShapeInstance& i : r.pattern.instances) {
+      out << fmt::format("{:.3f},{:.3f},0,{:.3f},{:.6g},{},{}\n", i.position.x, i.position.y,
+                         compass_degrees(i.rotation), i.scale, type_of(i), i.material);
+    }
+  }
+  out.close();
+  if (!out) fail("{}: cannot write", path.string());
+}
+
+void write_area_preview(const std::filesystem::path& path, const std::vector<Polygon>& polygons,
+                        const AvoidanceInputs& avoided, const std::vector<AreaResult>& results,
+                        double resolution) {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (const Polygon& polygon : polygons)
+    for (Vec2 p : polygon.front()) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+  const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
+  const double pixel = std::max(resolution, extent / 2048.0);  // at most 2048 px a side
+  GridSpec grid;
+  grid.width = std::max(1, int(std::ceil((hi.x - lo.x) / pixel)));
+  grid.height = std::max(1, int(std::ceil((hi.y - lo.y) / pixel)));
+  grid.origin_x = lo.x, grid.origin_y = hi.y;
+  grid.pixel_width = grid.pixel_height = pixel;
+  const Window whole = Window::whole(grid);
+  std::vector<std::uint8_t> rgb(std::size_t(grid.width) * grid.height * 3, 255);
+  const auto paint = [&](const Raster<std::uint8_t>& mask, std::array<std::uint8_t, 3> colour) {
+    for (std::size_t i = 0; i < mask.pixels.size(); ++i)
+      if (mask.pixels[i])
+        for (int c = 0; c < 3; ++c) rgb[3 * i + std::size_t(c)] = colour[std::size_t(c)];
+  };
+  {  // field tint, then outlines
+    Raster<std::uint8_t> inside;
+    burn_polygons(polygons, grid, whole, inside, 1);
+    paint(inside, {236, 240, 220});
+    std::vector<std::vector<Vec2>> outlines;
+    for (const Polygon& polygon : polygons)
+      for (const Ring& ring : polygon) {
+        outlines.push_back(ring);
+        outlines.back().push_back(ring.front());
+      }
+    Raster<std::uint8_t> edges;
+    burn_buffered_lines(outlines, std::vector<double>(outlines.size(), 1.5 * pixel), grid, whole,
+                        edges, 1);
+    paint(edges, {90, 90, 90});
+    Raster<std::uint8_t> forbidden;
+    burn_polygons(avoided.polygons, grid, whole, forbidden, 1);
+    burn_buffered_lines(avoided.lines, avoided.line_widths, grid, whole, forbidden, 1);
+    paint(forbidden, {244, 196, 190});
+  }
+  static const std::array<std::array<std::uint8_t, 3>, 6> palette{
+      {{46, 110, 46}, {120, 72, 30}, {40, 80, 160}, {170, 40, 40}, {130, 60, 150}, {20, 140, 140}}};
+  std::map<std::string, std::pair<std::vector<std::vector<Vec2>>, std::vector<double>>> by_material;
+  for (const AreaResult& r : results)
+    for (const PlacedStroke& s : r.pattern.strokes) {
+      auto& [lines, widths] = by_material[s.material];
+      lines.push_back(s.points);
+      widths.push_back(std::max(s.width, pixel));
+    }
+  std::size_t colour = 0;
+  for (const auto& [material, lines] : by_material) {
+    Raster<std::uint8_t> mask;
+    burn_buffered_lines(lines.first, lines.second, grid, whole, mask, 1);
+    paint(mask, palette[colour++ % palette.size()]);
+  }
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
+  const OIIO::ImageSpec spec(grid.width, grid.height, 3, OIIO::TypeDesc::UINT8);
+  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+      !out->close()) {
+    fail("{}: cannot write: {}", path.string(), out->geterror());
+  }
+}
+
+}  // namespace tw::detail

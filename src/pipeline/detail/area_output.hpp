@@ -1,0 +1,33 @@
+#pragma once
+// Writers of `terraweave area`'s results: vectors (GeoPackage), engine instances (CSV), preview.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "raster/avoidance.hpp"
+#include "raster/polygon.hpp"
+#include "sketch/area_synthesis.hpp"
+
+namespace tw::detail {
+
+struct AreaResult {
+  std::int64_t fid = 0;  // the polygon's
+  AreaPattern pattern;
+};
+
+// Layers `strokes` (LineString: polygon_fid, instance, shape, material, width_m) and
+// `instances` (Point: polygon_fid, shape, type, material, rotation_deg (compass), scale) in
+// `crs_wkt`.
+void write_area_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
+                           const std::vector<AreaResult>& results);
+
+// x, y, z=0, rotation_deg (compass bearing of the shape's axis), scale, type, material.
+void write_instances_csv(const std::filesystem::path& path, const std::vector<AreaResult>& results);
+
+// The polygons (tinted, outlined), the avoided features (pale red) and the strokes in a colour
+// per material, on white.
+void write_area_preview(const std::filesystem::path& path, const std::vector<Polygon>& polygons,
+                        const AvoidanceInputs& avoided, const std::vector<AreaResult>& results,
+                        double resolution);
+
+}  // namespace tw::detail
