@@ -185,6 +185,14 @@ const cl::Buffer& OpenCLBackend::texel_buffer(const CostTexels& texels) {
     r.texel_width = texels.width;
     r.texel_height = texels.height;
     upload(context_.context(), context_.queue(), r.texels, r.texel_copy);
+    // The opacity bit plane of find_valid_positions, one bit per texel.
+    r.opacity_words = (texels.width + 63) / 64;
+    r.opacity_copy.assign(std::size_t(r.opacity_words) * std::size_t(texels.height), 0);
+    for (int y = 0; y < texels.height; ++y)
+      for (int x = 0; x < texels.width; ++x)
+        if (is_opaque(texels.rgba[std::size_t(y) * texels.width + x]))
+          r.opacity_copy[std::size_t(y) * r.opacity_words + x / 64] |= cl_ulong(1) << (x % 64);
+    upload(context_.context(), context_.queue(), r.opacity, r.opacity_copy);
     check_cl(context_.queue().finish(), "clFinish (exemplar upload)");
   }
   return r.texels.get();
@@ -196,16 +204,22 @@ void OpenCLBackend::find_valid_positions(const CostTexels& texels, const Positio
   const std::size_t count = std::size_t(space.count());
   flags.assign(count, 0);
   if (count == 0) return;
+  if (space.width != texels.width || space.height != texels.height)
+    fail("OpenCL backend: position space {} x {} for an exemplar of {} x {}", space.width,
+         space.height, texels.width, texels.height);
   const cl::Context& context = context_.context();
-  const cl::Buffer& texel = texel_buffer(texels);
+  texel_buffer(texels);
+  ResidentRows& r = *resident_;
   cl::Buffer clear = input_buffer(context, piece.must_be_clear);
   cl::Buffer interior = input_buffer(context, piece.interior);
   cl::Buffer out = output_buffer(context, count);
   cl::Kernel& k = kernel("valid_positions", "find_valid_positions");
-  set_args(k, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column), clear,
-           cl_int(piece.must_be_clear.size()), interior, cl_int(piece.interior.size()),
-           cl_int(piece.min_opaque), cl_uint(kOpaqueAlphaMin), out);
-  launch(k, "find_valid_positions", count, kColumnGroup);
+  set_args(k, r.opacity.get(), cl_int(r.opacity_words), cl_int(space.width), cl_int(space.height),
+           cl_int(space.column), clear, cl_int(piece.must_be_clear.size()), interior,
+           cl_int(piece.interior.size()), cl_int(piece.min_opaque), out);
+  const std::size_t blocks = (std::size_t(space.width) + 63) / 64;
+  launch(k, "find_valid_positions", blocks * std::size_t(space.height + space.column),
+         kColumnGroup);
   read_buffer(context_.queue(), out, flags);
 }
 

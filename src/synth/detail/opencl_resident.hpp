@@ -92,6 +92,9 @@ struct ResidentRows {
   int texel_width = -1, texel_height = -1;
   std::vector<std::uint32_t> texel_copy;  // what `texels` holds
   bool texel_binary_alpha = true;
+  DeviceBuffer opacity;  // alpha >= 128, one bit per texel, opacity_words per row
+  int opacity_words = 0;
+  std::vector<cl_ulong> opacity_copy;
   std::int64_t texel_version = 0;  // counts uploads
   std::size_t local_memory = 0;    // CL_DEVICE_LOCAL_MEM_SIZE
 
