@@ -57,18 +57,19 @@ class Driver {
   std::vector<std::vector<std::int32_t>> valid_positions() {
     std::vector<std::vector<std::int32_t>> valid(input_.pieces.size());
     std::vector<std::uint8_t> flags;
+    std::vector<std::int32_t> shape_valid;  // of the last shape, before keep_positions
     for (std::size_t i = 0; i < input_.pieces.size(); ++i) {
       const PieceFootprint& p = input_.pieces[i];
-      if (i > 0 && same_shape(p, input_.pieces[i - 1])) {
-        valid[i] = valid[i - 1];
-        continue;
+      if (i == 0 || !same_shape(p, input_.pieces[i - 1])) {
+        auto start = Clock::now();
+        backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
+        timings_.find_valid_ms += ms_since(start);
+        start = Clock::now();
+        backend_.compact_valid_positions(flags, shape_valid);
+        timings_.compact_ms += ms_since(start);
       }
-      auto start = Clock::now();
-      backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
-      timings_.find_valid_ms += ms_since(start);
-      start = Clock::now();
-      backend_.compact_valid_positions(flags, valid[i]);
-      timings_.compact_ms += ms_since(start);
+      valid[i] = shape_valid;
+      if (input_.keep_positions) input_.keep_positions(int(i), valid[i]);
     }
     return valid;
   }
