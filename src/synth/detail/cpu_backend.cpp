@@ -263,7 +263,6 @@ class CpuBackend final : public Backend {
                         std::vector<std::int32_t>& argmin) override {
     update_table_row_pruned(previous_cost, right, left, cost, argmin);
   }
-
 };
 
 }  // namespace
