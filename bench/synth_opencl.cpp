@@ -4,11 +4,16 @@
 // paper's GTX 580 figures (30 ms and 650 ms per row) and to the CPU backend, and where the
 // OpenCL time goes (device time per kernel from profiling events). Prints numbers only.
 //
-// usage: bench_synth_opencl [--quick | --cases]   (--quick: fewer rows and sizes; --cases: the
-// two exemplars only, 3 rows each)
+// usage: bench_synth_opencl [--quick | --cases] [--rows R] [--group G] [--per-item K]
+//   --quick: fewer rows and sizes; --cases: the two exemplars only (R rows each, default 3);
+//   --group / --per-item: the row kernel's work-group size and positions per work-item
+//   (OpenCLRowOptions; results are identical for every choice). bench/device/run.sh runs it
+//   on every OpenCL device.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -115,6 +120,16 @@ void print_kernel_times(const detail::OpenCLBackend& backend, int rows) {
 int main(int argc, char** argv) {
   const bool cases_only = argc > 1 && std::strcmp(argv[1], "--cases") == 0;
   const bool quick = cases_only || (argc > 1 && std::strcmp(argv[1], "--quick") == 0);
+  int case_rows = 3;
+  detail::OpenCLRowOptions row_options;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (!std::strcmp(argv[i], "--rows"))
+      case_rows = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--group"))
+      row_options.group_size = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--per-item"))
+      row_options.per_item = std::atoi(argv[++i]);
+  }
   tw::set_log_level(spdlog::level::warn);
   std::string why;
   auto context = OpenCLContext::create_default(&why);
@@ -123,7 +138,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf("OpenCL device: %s\n", context->device_name().c_str());
-  detail::OpenCLBackend opencl(*context);
+  detail::OpenCLBackend opencl(*context, row_options);
+  std::printf("row kernel: %d work-items per group, %d positions per work-item\n",
+              row_options.group_size, row_options.per_item);
   auto cpu = detail::make_cpu_backend();
   {  // first use compiles the kernels (PoCL caches them in ~/.cache/pocl): not timed
     const CostTexels warm = generated_chain(40, 20);
@@ -136,7 +153,7 @@ int main(int argc, char** argv) {
     double paper_ms;
   };
   const Case cases[] = {{"chain_199x82.png", 199, 82, 30.0}, {"braid_325x64.png", 325, 64, 650.0}};
-  const int rows = cases_only ? 3 : quick ? 4 : 10;
+  const int rows = cases_only ? case_rows : quick ? 4 : 10;
   std::printf("\nms per DP row (N = %d pieces, C = H, gentle arc); paper: GTX 580\n", rows + 1);
   for (const Case& c : cases) {
     const CostTexels texels = exemplar_texels(c.file, c.width, c.height);
@@ -148,9 +165,11 @@ int main(int argc, char** argv) {
                 input.space.column, cl.mean_valid, (long long)input.space.count());
     std::printf("    opencl %8.1f ms/row (update %8.1f)  cpu %8.1f ms/row (update %8.1f)\n",
                 cl.ms_per_row, cl.update_ms_per_row, ref.ms_per_row, ref.update_ms_per_row);
-    std::printf("    opencl/paper %.2fx  cpu/paper %.2fx  opencl/cpu %.2fx  same optimum: %s\n",
-                cl.ms_per_row / c.paper_ms, ref.ms_per_row / c.paper_ms,
-                cl.ms_per_row / ref.ms_per_row, cl.cost == ref.cost ? "yes" : "NO");
+    std::printf(
+        "    paper %6.1f ms/row  opencl/paper %.2fx  cpu/paper %.2fx  opencl/cpu %.2fx  same"
+        " optimum: %s\n",
+        c.paper_ms, cl.ms_per_row / c.paper_ms, ref.ms_per_row / c.paper_ms,
+        cl.ms_per_row / ref.ms_per_row, cl.cost == ref.cost ? "yes" : "NO");
     print_kernel_times(opencl, rows);
   }
 

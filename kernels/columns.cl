@@ -64,3 +64,32 @@ kernel void extract_left_columns(global const uint* texels, int width, int heigh
     samples[(long)j * column + k] = texel_at(texels, width, height, ux, uy + k);
   }
 }
+
+// The pruning statistics of each column (synth/detail/edge_bound.hpp, make_edge_stats): its
+// opaque mask (bit k of word k / 64: sample k has alpha >= 128), its R, G, B sums and the same
+// sums per block of 16 samples. Host wrapper: OpenCLBackend::enqueue_stats; CPU twin:
+// make_edge_stats.
+kernel void edge_stats(global const uint* samples, int count, int column, global ulong* masks,
+                       global int4* sums, global float* block_sums) {
+  const int j = (int)get_global_id(0);
+  if (j >= count) return;
+  const int words = (column + 63) / 64, blocks = (column + 15) / 16;
+  global const uint* s = samples + (long)j * column;
+  for (int w = 0; w < words; ++w) {
+    ulong mask = 0;
+    for (int k = 64 * w; k < min(column, 64 * (w + 1)); ++k)
+      mask |= (ulong)(s[k] >> 31) << (k - 64 * w);
+    masks[(long)j * words + w] = mask;
+  }
+  int4 total = (int4)(0);
+  for (int b = 0; b < blocks; ++b) {
+    int4 sum = (int4)(0);
+    for (int k = 16 * b; k < min(column, 16 * (b + 1)); ++k)
+      sum += (int4)((int)(s[k] & 255u), (int)((s[k] >> 8) & 255u), (int)((s[k] >> 16) & 255u), 0);
+    block_sums[((long)j * blocks + b) * 3] = (float)sum.x;
+    block_sums[((long)j * blocks + b) * 3 + 1] = (float)sum.y;
+    block_sums[((long)j * blocks + b) * 3 + 2] = (float)sum.z;
+    total += sum;
+  }
+  sums[j] = total;
+}

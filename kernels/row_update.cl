@@ -1,151 +1,221 @@
-// computeCostTable + updateTableRow (Zhou et al. 2013, Section 2), fused: one work-item per
-// current valid position j loops over the previous valid positions v and keeps the exact
-// lexicographic minimum of (P[v] + D(right_v, left_j), v), so the U x U cost table is never
-// materialized. Host wrapper: OpenCLBackend::update_table_row; CPU twin: the CPU backend's
-// update_table_row.
+// computeCostTable + updateTableRow (Zhou et al. 2013, Section 2), fused and pruned exactly as
+// the CPU backend's row (synth/detail/cpu_backend.cpp, update_table_row_pruned): for every
+// current position j, the lexicographic minimum of (P[v] + D(right_v, left_j), v) over the
+// previous positions v, so the U x U cost table is never materialized. Host wrapper:
+// OpenCLBackend::run_row (synth/detail/opencl_dp_row.cpp).
 //
-// Exact pruning (DESIGN.md "Exact pruning"): the host sorts the previous positions by
-// (P[v], v) ascending and passes per column its opaque mask (one bit per sample, 64 per word)
-// and its sums of R, G, B. With m = popcount(right mask ^ left mask), the exact number of
-// samples whose alphas differ (binary alpha):
-//   D >= gamma * m, and
-//   D >= 16 |difference of colour sums| - C + mismatch_extra * m,
-// because a matched sample costs floor(16 |p - q|) >= 16 |p - q| - 1 and a mismatched one
-// costs gamma >= 16 |p - q| - 1 + mismatch_extra (gamma exceeds any colour term), summed with
-// the triangle inequality. Continuous alpha keeps the colour bound with m = 0.
-// A candidate can only win when D <= limit = best - P[v] (- 1 when v > best v: a tie goes to
-// the lowest v); once P[v] alone exceeds best, no later candidate can win and the walk stops.
-// Since gamma * m > limit prunes every candidate with a mismatched sample as soon as
-// best - min P < gamma, the host groups the previous positions by exact opaque mask; each
-// work-item first walks the group whose mask equals its left column's, and walks all previous
-// positions only when the best found still leaves room for a mismatched sample.
-// Every test is an exact integer comparison (the colour one squared), so the result is the
-// exact lexicographic optimum, the same as the CPU twin's.
+// The host orders the previous positions in "slots" (synth/detail/mask_groups.hpp): grouped
+// by exact opaque mask, groups in increasing lowest P, members in increasing (P, v). Each j
+// tries its neighbour's argmin first, walks the group of its own mask (no mismatched sample),
+// then the other groups only while min P + mismatch * m can still win (m = popcount of the
+// mask difference). Per candidate, cheapest first: P alone (stop the walk), mismatch * m, the
+// whole-edge colour-sum bound (exact integers), the per-16-sample block bound (float, lowered
+// by a margin: it only skips), then D with an early exit every 16 samples (edge_bound.hpp has
+// the proofs). Every bound is a true lower bound and ties keep the lowest v, so the result is
+// the exact optimum whatever is skipped: the same bytes as the CPU and as `prune = 0` (every
+// pair, every sample).
+//
+// A work-group handles a tile of group_size * per_item consecutive current positions; it first
+// copies their left columns into local memory (each is read once per candidate evaluated);
+// work-item t then handles per_item consecutive positions in order, each starting from the
+// previous one's argmin.
 
-// xi(p, q) as in synth/detail/cost.hpp. The colour term floor(16 |p - q|) over RGB comes
-// from the host's table of floor(sqrt(256 d2)) (no floating point anywhere). Binary alpha:
-// gamma when exactly one of p, q is opaque, else the colour term. Continuous alpha (a, b):
-// floor((w_same * colour + w_diff * gamma) / 255^2), which stays below 2^31.
-uint xi(uint p, uint q, global const uint* distance_table, uint gamma, uint opaque_alpha,
-        int binary_alpha) {
+// floor(sqrt(x)) for x = 256 d2 < 2^26 from one float root; x is exact in float and the root
+// is off by less than one, which the two integer comparisons correct.
+int colour_term(int d2) {
+  const int x = 256 * d2;
+  int r = (int)sqrt((float)x);
+  if (r * r > x) --r;
+  if ((r + 1) * (r + 1) <= x) ++r;
+  return r;
+}
+
+// xi(p, q) of synth/detail/cost.hpp. Binary alpha: gamma when exactly one of p, q is opaque
+// (alpha >= 128 is the top bit), else the colour term. Continuous alpha (a, b):
+// floor((w_same * colour + w_diff * gamma) / 255^2).
+int xi(uint p, uint q, int binary_alpha, int gamma) {
   const int dr = (int)(p & 255u) - (int)(q & 255u);
   const int dg = (int)((p >> 8) & 255u) - (int)((q >> 8) & 255u);
   const int db = (int)((p >> 16) & 255u) - (int)((q >> 16) & 255u);
-  const uint colour = distance_table[(uint)(dr * dr + dg * dg + db * db)];
-  const uint a = p >> 24, b = q >> 24;
-  if (binary_alpha) {
-    const uint mismatch = (uint)((a >= opaque_alpha) != (b >= opaque_alpha));
-    return select(colour, gamma, mismatch);
-  }
-  const uint same = a * b + (255u - a) * (255u - b);
-  const uint diff = a * (255u - b) + (255u - a) * b;
-  return (same * colour + diff * gamma) / (255u * 255u);
+  const int colour = colour_term(dr * dr + dg * dg + db * db);
+  if (binary_alpha) return ((p ^ q) >> 31) ? gamma : colour;
+  const long a = p >> 24, b = q >> 24;
+  const long same = a * b + (255 - a) * (255 - b), diff = a * (255 - b) + (255 - a) * b;
+  return (int)((same * colour + diff * gamma) / (255 * 255));
 }
 
-// True when the colour bound 16 |dS| - reach_offset exceeds limit, i.e. 16 |dS| > rhs.
-bool colour_exceeds(int4 right, int4 left, long rhs) {
+struct Edges {
+  global const uint* right_samples;  // by v
+  global const ulong* right_masks;
+  global const int4* right_sums;
+  global const float* right_blocks;
+  global const long* slot_cost;      // P by slot
+  global const int* slot_position;   // slot -> v
+  int column, words, blocks, binary_alpha, gamma, prune;
+  long mismatch, mismatch_extra;
+};
+
+struct Left {
+  local const uint* samples;
+  global const ulong* mask;
+  int4 sums;
+  global const float* blocks;
+};
+
+int mismatched(global const ulong* a, global const ulong* b, int words) {
+  int m = 0;
+  for (int w = 0; w < words; ++w) m += (int)popcount(a[w] ^ b[w]);
+  return m;
+}
+
+// True when the whole-edge bound 16 |dS| - C + mismatch_extra * m proves D > limit.
+bool whole_edge_exceeds(const struct Edges* e, int v, const struct Left* left, int m, long limit) {
+  const long rhs = limit + e->column - e->mismatch_extra * m;
   if (rhs < 0) return true;
-  if (rhs >= (1L << 31)) return false;  // 16 |dS| stays far below 2^31 for any sane C
-  const long dr = right.x - left.x, dg = right.y - left.y, db = right.z - left.z;
+  if (rhs >= (1L << 31)) return false;
+  const int4 r = e->right_sums[v];
+  const long dr = r.x - left->sums.x, dg = r.y - left->sums.y, db = r.z - left->sums.z;
   return 256 * (dr * dr + dg * dg + db * db) > rhs * rhs;
 }
 
-struct Column {
-  global const uint* samples;
-  global const ulong* mask;
-  int4 sums;
-};
+// Sum over blocks of max(0, 16 |dS_b| - n_b), lowered by a margin for float rounding.
+float block_bound(const struct Edges* e, int v, const struct Left* left) {
+  global const float* r = e->right_blocks + (long)v * e->blocks * 3;
+  float bound = 0.0f;
+  for (int b = 0; b < e->blocks; ++b) {
+    const float dr = r[3 * b] - left->blocks[3 * b], dg = r[3 * b + 1] - left->blocks[3 * b + 1];
+    const float db = r[3 * b + 2] - left->blocks[3 * b + 2];
+    const int size = min(e->column, (b + 1) * 16) - b * 16;
+    bound += max(0.0f, 16.0f * sqrt(dr * dr + dg * dg + db * db) - (float)size);
+  }
+  return bound * (1.0f - 1e-4f) - 1.0f;
+}
 
-struct Previous {
-  global const long* cost;  // sorted by (P[v], v)
-  global const int* position;
-  global const uint* samples;
-  global const ulong* masks;
-  global const int4* sums;
-};
+// D(right_v, left) with an early exit: a value > limit as soon as a partial sum passes it.
+long edge_cost(const struct Edges* e, int v, const struct Left* left, long limit) {
+  global const uint* right = e->right_samples + (long)v * e->column;
+  long sum = 0;
+  for (int k0 = 0; k0 < e->column; k0 += 16) {
+    const int k1 = min(e->column, k0 + 16);
+    int block = 0;
+    for (int k = k0; k < k1; ++k) block += xi(right[k], left->samples[k], e->binary_alpha, e->gamma);
+    sum += block;
+    if (sum > limit) return sum;
+  }
+  return sum;
+}
 
-struct Costs {
-  global const uint* distance_table;
-  uint gamma, opaque_alpha;
-  int mismatch_extra, binary_alpha, column, words;
-};
-
-// Considers previous rank r for the left column: updates (best, best_v) when P + D beats it.
-// Returns false once P[r] alone exceeds best (no later rank of the same walk can win).
-bool consider(int r, const struct Previous* prev, const struct Column* left, const struct Costs* c,
-              long* best, int* best_v) {
-  const long p = prev->cost[r];
+// Considers slot s (m mismatched samples): false once P alone exceeds the best, so that no
+// later slot of an increasing-P walk can win.
+bool consider(const struct Edges* e, const struct Left* left, int s, int m, long* best,
+              int* best_v) {
+  const long p = e->slot_cost[s];
   if (p > *best) return false;
-  const int v = prev->position[r];
-  const long limit = *best - p - (v > *best_v ? 1 : 0);
+  const int v = e->slot_position[s];
+  const long limit = *best - p - (v > *best_v ? 1 : 0);  // ties go to the lowest v
   if (limit < 0) return true;
-
-  // No bound until a first candidate is complete (limit is then near LONG_MAX).
   if (*best_v != INT_MAX) {
-    if (c->binary_alpha) {
-      global const ulong* right_mask = prev->masks + (long)r * c->words;
-      int mismatched = 0;
-      for (int w = 0; w < c->words; ++w) mismatched += (int)popcount(right_mask[w] ^ left->mask[w]);
-      if ((long)c->gamma * mismatched > limit) return true;
-      if (colour_exceeds(prev->sums[r], left->sums,
-                         limit + c->column - (long)c->mismatch_extra * mismatched))
-        return true;
-    } else if (colour_exceeds(prev->sums[r], left->sums, limit + c->column)) {
-      return true;
-    }
+    if (e->mismatch * m > limit) return true;
+    if (whole_edge_exceeds(e, v, left, m, limit)) return true;
+    if (limit < (1L << 24) && block_bound(e, v, left) > (float)limit) return true;
   }
-
-  // D in blocks of 8 samples (branch-free inside), leaving as soon as it exceeds the limit.
-  global const uint* right_column = prev->samples + (long)r * c->column;
-  long d = 0;
-  for (int k = 0; k < c->column && d <= limit; k += 8) {
-    const int end = min(k + 8, c->column);
-    for (int i = k; i < end; ++i) {
-      d += xi(right_column[i], left->samples[i], c->distance_table, c->gamma, c->opaque_alpha,
-              c->binary_alpha);
-    }
-  }
-  if (d <= limit) {
-    *best = p + d;  // strictly better, or equal with a lower v
+  const long d = edge_cost(e, v, left, limit);
+  if (d <= limit) {  // strictly better, or equal with a lower v
+    *best = p + d;
     *best_v = v;
   }
   return true;
 }
 
-// group_start[g] .. group_start[g + 1]: the ranks (ascending) of previous positions whose
-// opaque mask is the g-th distinct one; left_group[j]: the group of j's mask, or -1.
-kernel void update_table_row(global const long* sorted_cost, global const int* sorted_position,
-                             global const uint* sorted_right, global const ulong* sorted_masks,
-                             global const int4* sorted_sums, int previous_count,
-                             global const int* group_start, global const int* group_ranks,
-                             global const uint* left, global const ulong* left_masks,
-                             global const int4* left_sums, global const int* left_group,
-                             int current_count, int column, global const uint* distance_table,
-                             uint gamma, uint opaque_alpha, int mismatch_extra, int binary_alpha,
-                             global long* cost, global int* argmin) {
-  const int j = (int)get_global_id(0);
-  if (j >= current_count) return;
-  const struct Costs c = {distance_table, gamma,  opaque_alpha,      mismatch_extra,
-                          binary_alpha,   column, (column + 63) / 64};
-  const struct Previous prev = {sorted_cost, sorted_position, sorted_right, sorted_masks,
-                                sorted_sums};
-  const struct Column left_column = {left + (long)j * column, left_masks + (long)j * c.words,
-                                     left_sums[j]};
+// The exact minimum for left position j, pruned.
+void pruned_minimum(const struct Edges* e, const struct Left* left, int neighbour,
+                    int previous_count, global const int* slot_of, global const int* group_begin,
+                    global const long* group_min, global const ulong* group_masks, int groups,
+                    int own, long* best, int* best_v) {
+  // A good first guess makes the bounds prune from the start: consecutive current positions
+  // are usually exemplar neighbours, and so are their optimal predecessors.
+  if (neighbour >= 0) {
+    for (int v = neighbour; v <= neighbour + 1 && v < previous_count; ++v)
+      consider(e, left, slot_of[v], mismatched(e->right_masks + (long)v * e->words, left->mask,
+                                               e->words),
+               best, best_v);
+  }
+  if (own >= 0) {
+    for (int s = group_begin[own]; s < group_begin[own + 1]; ++s)
+      if (!consider(e, left, s, 0, best, best_v)) break;
+  }
+  if (own >= 0 && *best - e->slot_cost[0] < e->mismatch) return;
+  for (int g = 0; g < groups; ++g) {
+    const long lowest = group_min[g];
+    if (lowest + e->mismatch > *best) break;  // groups ascend in lowest P; m >= 1 below
+    if (g == own) continue;
+    const int m = mismatched(group_masks + (long)g * e->words, left->mask, e->words);
+    const long gap = e->mismatch * m;
+    for (int s = group_begin[g]; s < group_begin[g + 1] && e->slot_cost[s] + gap <= *best; ++s)
+      if (!consider(e, left, s, m, best, best_v)) break;
+  }
+}
 
-  long best = LONG_MAX;
-  int best_v = INT_MAX;
-  const int group = binary_alpha ? left_group[j] : -1;
-  if (group >= 0) {
-    for (int i = group_start[group]; i < group_start[group + 1]; ++i) {
-      if (!consider(group_ranks[i], &prev, &left_column, &c, &best, &best_v)) break;
+// The definition: every previous position, every sample.
+void full_minimum(const struct Edges* e, const struct Left* left, int previous_count,
+                  global const int* slot_of, long* best, int* best_v) {
+  for (int v = 0; v < previous_count; ++v) {
+    const long total = e->slot_cost[slot_of[v]] + edge_cost(e, v, left, LONG_MAX);
+    if (total < *best) {  // v ascends: strict < keeps the lowest v
+      *best = total;
+      *best_v = v;
     }
   }
-  // Candidates with m >= 1 mismatched samples cost at least min P + gamma.
-  if (group < 0 || best - sorted_cost[0] >= (long)gamma) {
-    for (int r = 0; r < previous_count; ++r) {
-      if (!consider(r, &prev, &left_column, &c, &best, &best_v)) break;
-    }
+}
+
+kernel void update_table_row(global const long* slot_cost, global const int* slot_position,
+                             global const int* slot_of, int previous_count,
+                             global const int* group_begin, global const long* group_min,
+                             global const ulong* group_masks, int groups,
+                             global const uint* right_samples, global const ulong* right_masks,
+                             global const int4* right_sums, global const float* right_blocks,
+                             global const uint* left_samples, global const ulong* left_masks,
+                             global const int4* left_sums, global const float* left_blocks,
+                             global const int* left_group, int current_count, int column,
+                             int binary_alpha, int gamma, long mismatch, long mismatch_extra,
+                             int per_item, int prune, local uint* tile, global long* cost,
+                             global int* argmin) {
+  const int local_id = (int)get_local_id(0), group_size = (int)get_local_size(0);
+  const int tile_size = group_size * per_item;
+  const int tile_begin = (int)get_group_id(0) * tile_size;
+  const int tile_count = min(tile_size, current_count - tile_begin);
+  for (int i = local_id; i < tile_count * column; i += group_size)
+    tile[i] = left_samples[(long)tile_begin * column + i];
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+  const int words = (column + 63) / 64, blocks = (column + 15) / 16;
+  const struct Edges e = {right_samples, right_masks, right_sums, right_blocks, slot_cost,
+                          slot_position, column,      words,      blocks,       binary_alpha,
+                          gamma,         prune,       mismatch,   mismatch_extra};
+  int neighbour = -1;
+  for (int k = 0; k < per_item; ++k) {
+    const int in_tile = local_id * per_item + k;
+    if (in_tile >= tile_count) break;
+    const int j = tile_begin + in_tile;
+    const struct Left left = {tile + (long)in_tile * column, left_masks + (long)j * words,
+                              left_sums[j], left_blocks + (long)j * blocks * 3};
+    long best = LONG_MAX;
+    int best_v = INT_MAX;
+    if (prune)
+      pruned_minimum(&e, &left, neighbour, previous_count, slot_of, group_begin, group_min,
+                     group_masks, groups, left_group[j], &best, &best_v);
+    else
+      full_minimum(&e, &left, previous_count, slot_of, &best, &best_v);
+    cost[j] = best;
+    argmin[j] = best_v == INT_MAX ? -1 : best_v;
+    neighbour = argmin[j];
   }
-  cost[j] = best;
-  argmin[j] = best_v == INT_MAX ? -1 : best_v;
+}
+
+// The previous costs in slot order: slot_cost[s] = cost[slot_position[s]] (the cost row stays
+// on the device between rows; only the slot order comes from the host).
+kernel void gather_slot_costs(global const long* cost, global const int* slot_position, int count,
+                              global long* slot_cost) {
+  const int s = (int)get_global_id(0);
+  if (s < count) slot_cost[s] = cost[slot_position[s]];
 }

@@ -1,35 +1,60 @@
-// findValidPositions (Zhou et al. 2013, Section 2): one work-item per position u of the
-// exemplar, u = (ux, uy) with uy in [-C, H). Host wrapper: OpenCLBackend::find_valid_positions;
-// CPU twin: the CPU backend's find_valid_positions.
+// findValidPositions (Zhou et al. 2013, Section 2), 64 positions per work-item as in the CPU
+// backend: work-item (row, block) tests positions ux = 64 block .. 64 block + 63 of one row of
+// u (uy = row - C in [-C, H)). Host wrapper: OpenCLBackend::find_valid_positions; CPU twin:
+// the CPU backend's find_valid_positions.
 //
 // A position is valid when every must-be-clear texel is transparent (the top and bottom edges
-// do not cut the pattern, nothing opaque lands on a forbidden canvas pixel) and at least one
+// do not cut the pattern, nothing opaque lands on a forbidden canvas pixel) and at least
 // min_opaque interior texels are opaque (the piece is not empty; the paper's rule is
-// min_opaque = 1). Texels outside the exemplar read as transparent black.
+// min_opaque = 1). `bits` holds the exemplar's opacity (alpha >= 128), one bit per texel,
+// words_per_row 64-bit words per texel row; texels outside the exemplar read as transparent.
 
-uint texel_at(global const uint* texels, int width, int height, int x, int y) {
-  return (x >= 0 && x < width && y >= 0 && y < height) ? texels[y * width + x] : 0u;
+ulong word_at(global const ulong* bits, int words_per_row, int height, int y, int w) {
+  return (y >= 0 && y < height && w >= 0 && w < words_per_row) ? bits[(long)y * words_per_row + w]
+                                                              : 0ul;
 }
 
-kernel void find_valid_positions(global const uint* texels, int width, int height, int column,
-                                 global const int2* must_be_clear, int clear_count,
-                                 global const int2* interior, int interior_count, int min_opaque,
-                                 uint opaque_alpha, global uchar* flags) {
-  const int index = (int)get_global_id(0);
-  if (index >= width * (height + column)) return;
-  const int ux = index % width;
-  const int uy = index / width - column;
+// The opacity of texels (x .. x + 63, y), bit i for texel x + i.
+ulong window(global const ulong* bits, int words_per_row, int height, int x, int y) {
+  const int w = x >= 0 ? x / 64 : -((-x + 63) / 64);
+  const int shift = x - 64 * w;
+  const ulong low = word_at(bits, words_per_row, height, y, w);
+  if (shift == 0) return low;
+  return (low >> shift) | (word_at(bits, words_per_row, height, y, w + 1) << (64 - shift));
+}
 
-  uchar valid = 1;
-  for (int i = 0; i < clear_count && valid; ++i) {
-    const uint t =
-        texel_at(texels, width, height, ux + must_be_clear[i].x, uy + must_be_clear[i].y);
-    valid = (t >> 24) < opaque_alpha;
+bool opaque_at(global const ulong* bits, int words_per_row, int width, int height, int x, int y) {
+  if (x < 0 || x >= width) return false;
+  return (word_at(bits, words_per_row, height, y, x / 64) >> (x % 64)) & 1ul;
+}
+
+kernel void find_valid_positions(global const ulong* bits, int words_per_row, int width,
+                                 int height, int column, global const int2* must_be_clear,
+                                 int clear_count, global const int2* interior, int interior_count,
+                                 int min_opaque, global uchar* flags) {
+  const int blocks = (width + 63) / 64;
+  const int id = (int)get_global_id(0);
+  if (id >= blocks * (height + column)) return;
+  const int row = id / blocks, x0 = 64 * (id % blocks), uy = row - column;
+  const int in_row = min(64, width - x0);
+  const ulong all = in_row == 64 ? ~0ul : (1ul << in_row) - 1ul;
+  ulong blocked = 0;
+  for (int i = 0; i < clear_count && (blocked & all) != all; ++i)
+    blocked |= window(bits, words_per_row, height, x0 + must_be_clear[i].x, uy + must_be_clear[i].y);
+  const ulong open = all & ~blocked;
+  ulong any = 0;
+  for (int i = 0; i < interior_count && open && (any & open) != open; ++i)
+    any |= window(bits, words_per_row, height, x0 + interior[i].x, uy + interior[i].y);
+  const ulong valid = open & any;
+  for (int lane = 0; lane < in_row; ++lane) {
+    bool flag = (valid >> lane) & 1ul;
+    if (flag && min_opaque > 1) {
+      int count = 0;
+      for (int i = 0; i < interior_count && count < min_opaque; ++i)
+        count += opaque_at(bits, words_per_row, width, height, x0 + lane + interior[i].x,
+                           uy + interior[i].y);
+      flag = count >= min_opaque;
+    }
+    flags[(long)row * width + x0 + lane] = flag;
   }
-  int opaque = 0;
-  for (int i = 0; i < interior_count && valid && opaque < min_opaque; ++i) {
-    const uint t = texel_at(texels, width, height, ux + interior[i].x, uy + interior[i].y);
-    opaque += (t >> 24) >= opaque_alpha;
-  }
-  flags[index] = valid && opaque >= min_opaque;
 }

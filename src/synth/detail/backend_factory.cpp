@@ -23,7 +23,7 @@ std::unique_ptr<Backend> make_backend(BackendKind kind, OpenCLContext* context) 
       return make_opencl_backend(context != nullptr ? *context : OpenCLContext::create());
     case BackendKind::automatic: {
       // OpenCL where it runs on a GPU or accelerator. On a CPU OpenCL device (PoCL) the CPU
-      // backend is faster (measured ~5x per DP row, docs/synthesis.md) and gives the same bytes.
+      // backend is as fast or faster (0.8-1.5x per DP row, docs/synthesis.md), same bytes.
       std::string why;
       std::optional<OpenCLContext> made;
       if (context != nullptr) {

@@ -13,6 +13,7 @@
 
 #include "synth/detail/cost.hpp"
 #include "synth/detail/edge_bound.hpp"
+#include "synth/detail/mask_groups.hpp"
 
 namespace tw::detail {
 namespace {
@@ -303,85 +304,35 @@ namespace {
 // (alpha >= 128), groups in increasing min P, members in increasing (P, v),
 // their samples and statistics contiguous in that "slot" order.
 struct PreviousByMask {
-  std::vector<std::int32_t> position;        // slot -> v
-  std::vector<std::int64_t> cost;            // slot -> P[v]
-  std::vector<std::uint32_t> samples;        // C per slot
-  EdgeStats stats;                           // per slot
-  std::vector<std::int32_t> group_begin;     // group g = slots [group_begin[g], group_begin[g + 1])
-  std::vector<std::int32_t> groups_by_mask;  // group ids in increasing mask (for look-ups)
-  std::vector<std::int64_t> group_min;       // P of the first slot of each group
-  std::vector<std::uint64_t> group_masks;    // the mask of each group, contiguous
-  std::vector<std::int32_t> slot_of;         // v -> slot
+  MaskGroups groups;                    // slot order, groups and their masks
+  std::vector<std::int64_t> cost;       // slot -> P[v]
+  std::vector<std::uint32_t> samples;   // C per slot
+  EdgeStats stats;                      // per slot
+  std::vector<std::int64_t> group_min;  // P of the first slot of each group
+  std::vector<std::int32_t> slot_of;    // v -> slot
 };
-
-bool mask_less(const std::uint64_t* a, const std::uint64_t* b, int words) {
-  return std::lexicographical_compare(a, a + words, b, b + words);
-}
 
 PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
                              const ColumnSet& right) {
   const int previous = int(previous_cost.size());
   const int C = right.column;
-  std::vector<std::int32_t> order(static_cast<std::size_t>(previous));  // rank -> v
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-    return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
-  });
   const EdgeStats by_position = make_edge_stats(right);
-  const int words = by_position.words;
-  auto mask = [&](int rank) {
-    return by_position.masks.data() + std::size_t(order[std::size_t(rank)]) * words;
-  };
-  std::vector<std::int32_t> ranks(order.size());
-  std::iota(ranks.begin(), ranks.end(), 0);
-  std::sort(ranks.begin(), ranks.end(), [&](std::int32_t a, std::int32_t b) {
-    if (mask_less(mask(a), mask(b), words)) return true;
-    if (mask_less(mask(b), mask(a), words)) return false;
-    return a < b;
-  });
-  // Runs of equal masks, each starting at its lowest rank; then groups by that rank.
-  std::vector<std::int32_t> run_begin;
-  for (int i = 0; i < previous; ++i)
-    if (i == 0 || !std::equal(mask(ranks[i]), mask(ranks[i]) + words, mask(ranks[i - 1])))
-      run_begin.push_back(i);
-  const int groups = int(run_begin.size());
-  run_begin.push_back(previous);
-  std::vector<std::int32_t> by_min_rank(static_cast<std::size_t>(groups));
-  std::iota(by_min_rank.begin(), by_min_rank.end(), 0);
-  std::sort(by_min_rank.begin(), by_min_rank.end(),
-            [&](int a, int b) { return ranks[run_begin[a]] < ranks[run_begin[b]]; });
-
   PreviousByMask out;
-  std::vector<std::int32_t> slot_order;  // slot -> v
-  slot_order.reserve(order.size());
-  out.group_begin.reserve(std::size_t(groups) + 1);
-  out.groups_by_mask.assign(std::size_t(groups), 0);
-  for (int g = 0; g < groups; ++g) {
-    const int run = by_min_rank[std::size_t(g)];
-    out.groups_by_mask[std::size_t(run)] = g;  // runs are in mask order
-    out.group_begin.push_back(std::int32_t(slot_order.size()));
-    for (int i = run_begin[run]; i < run_begin[run + 1]; ++i) slot_order.push_back(order[ranks[i]]);
-  }
-  out.group_begin.push_back(previous);
-  out.position = slot_order;
-  out.cost.resize(slot_order.size());
-  out.samples.resize(slot_order.size() * std::size_t(C));
-  out.slot_of.resize(slot_order.size());
+  out.groups =
+      tw::detail::group_by_mask(previous_cost, by_position.masks.data(), by_position.words);
+  out.cost.resize(out.groups.position.size());
+  out.samples.resize(out.groups.position.size() * std::size_t(C));
+  out.slot_of.resize(out.groups.position.size());
   for (int s = 0; s < previous; ++s) {
-    const std::int32_t v = slot_order[std::size_t(s)];
+    const std::int32_t v = out.groups.position[std::size_t(s)];
     out.cost[std::size_t(s)] = previous_cost[std::size_t(v)];
     out.slot_of[std::size_t(v)] = s;
     std::copy_n(right.samples.data() + std::size_t(v) * C, C,
                 out.samples.data() + std::size_t(s) * C);
   }
-  out.stats = permute_edge_stats(by_position, slot_order);
-  for (int g = 0; g < groups; ++g) {
-    const int first = out.group_begin[std::size_t(g)];
-    out.group_min.push_back(out.cost[std::size_t(first)]);
-    out.group_masks.insert(out.group_masks.end(),
-                           out.stats.masks.begin() + std::size_t(first) * words,
-                           out.stats.masks.begin() + std::size_t(first + 1) * words);
-  }
+  out.stats = permute_edge_stats(by_position, out.groups.position);
+  for (int g = 0; g + 1 < int(out.groups.group_begin.size()); ++g)
+    out.group_min.push_back(out.cost[std::size_t(out.groups.group_begin[std::size_t(g)])]);
   return out;
 }
 
@@ -439,20 +390,6 @@ void scan_groups(const GroupScan& scan, const std::uint64_t* key, int own, std::
   scan_groups_generic(scan, key, own, best, out);
 }
 
-// The group whose mask equals left position j's, or -1.
-int group_of_left(const PreviousByMask& prev, const EdgeStats& left, int j) {
-  const int words = left.words;
-  const std::uint64_t* key = left.masks.data() + std::size_t(j) * words;
-  auto group_mask = [&](int g) {
-    return prev.stats.masks.data() + std::size_t(prev.group_begin[std::size_t(g)]) * words;
-  };
-  const auto it =
-      std::lower_bound(prev.groups_by_mask.begin(), prev.groups_by_mask.end(), 0,
-                       [&](std::int32_t g, int) { return mask_less(group_mask(g), key, words); });
-  if (it == prev.groups_by_mask.end() || !std::equal(key, key + words, group_mask(*it))) return -1;
-  return *it;
-}
-
 }  // namespace
 
 void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
@@ -470,8 +407,8 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
 
   const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
-  const GroupScan scan{prev.group_min.data(), prev.group_masks.data(),
-                       int(prev.group_begin.size()) - 1, left_stats.words, mismatch};
+  const GroupScan scan{prev.group_min.data(), prev.groups.group_masks.data(),
+                       int(prev.groups.group_begin.size()) - 1, left_stats.words, mismatch};
   const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
@@ -488,7 +425,7 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
       auto consider = [&](int s, int m) {
         const std::int64_t p = prev.cost[std::size_t(s)];
         if (p > best) return false;
-        const std::int32_t v = prev.position[std::size_t(s)];
+        const std::int32_t v = prev.groups.position[std::size_t(s)];
         const std::int64_t limit = best - p - (v > best_v ? 1 : 0);  // ties go to the lowest v
         if (limit < 0) return true;
         if (best_v != kNoIndex) {
@@ -516,10 +453,11 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
         }
       }
       // The group of j's own mask: no mismatched sample (binary alpha: D is colours only).
-      const int own = group_of_left(prev, left_stats, j);
+      const int own =
+          group_with_mask(prev.groups, left_stats.masks.data() + std::size_t(j) * left_stats.words);
       if (own >= 0)
-        for (int s = prev.group_begin[std::size_t(own)]; s < prev.group_begin[std::size_t(own) + 1];
-             ++s)
+        for (int s = prev.groups.group_begin[std::size_t(own)];
+             s < prev.groups.group_begin[std::size_t(own) + 1]; ++s)
           if (!consider(s, 0)) break;
       // Every other group has m >= 1 mismatched samples, so D >= mismatch * m: visit groups
       // (in increasing min P) only while min P + mismatch * m can still win.
@@ -527,8 +465,8 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
         scan_groups(scan, left_stats.masks.data() + std::size_t(j) * left_stats.words, own, best,
                     candidates);
         for (const auto& [g, m] : candidates) {
-          const int begin = prev.group_begin[std::size_t(g)];
-          const int end = prev.group_begin[std::size_t(g) + 1];
+          const int begin = prev.groups.group_begin[std::size_t(g)];
+          const int end = prev.groups.group_begin[std::size_t(g) + 1];
           const std::int64_t gap = mismatch * m;
           if (prev.cost[std::size_t(begin)] + mismatch > best) break;
           for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)

@@ -57,18 +57,19 @@ class Driver {
   std::vector<std::vector<std::int32_t>> valid_positions() {
     std::vector<std::vector<std::int32_t>> valid(input_.pieces.size());
     std::vector<std::uint8_t> flags;
+    std::vector<std::int32_t> shape_valid;  // of the last shape, before keep_positions
     for (std::size_t i = 0; i < input_.pieces.size(); ++i) {
       const PieceFootprint& p = input_.pieces[i];
-      if (i > 0 && same_shape(p, input_.pieces[i - 1])) {
-        valid[i] = valid[i - 1];
-        continue;
+      if (i == 0 || !same_shape(p, input_.pieces[i - 1])) {
+        auto start = Clock::now();
+        backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
+        timings_.find_valid_ms += ms_since(start);
+        start = Clock::now();
+        backend_.compact_valid_positions(flags, shape_valid);
+        timings_.compact_ms += ms_since(start);
       }
-      auto start = Clock::now();
-      backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
-      timings_.find_valid_ms += ms_since(start);
-      start = Clock::now();
-      backend_.compact_valid_positions(flags, valid[i]);
-      timings_.compact_ms += ms_since(start);
+      valid[i] = shape_valid;
+      if (input_.keep_positions) input_.keep_positions(int(i), valid[i]);
     }
     return valid;
   }
@@ -82,7 +83,6 @@ class Driver {
     Pass pass;
     pass.rows.reserve(std::size_t(row_count));
     std::vector<std::int64_t> cost, next_cost;
-    ColumnSet right, left;
     pass.rows.push_back({first_row, {}, first_row.empty(), -1});
     if (first_row.empty()) {
       require_empty_allowed(0);
@@ -106,14 +106,18 @@ class Driver {
         next_cost.assign(indices.size(), cost[0]);
         row.argmin.assign(indices.size(), -1);
       } else {
-        auto start = Clock::now();
-        backend_.extract_right_columns(*input_.texels, input_.space, previous_piece,
-                                       previous.indices, right);
-        backend_.extract_left_columns(*input_.texels, input_.space, indices, left);
-        timings_.extract_ms += ms_since(start);
-        start = Clock::now();
-        backend_.update_table_row(cost, right, left, next_cost, row.argmin);
-        timings_.update_ms += ms_since(start);
+        // The following row's edges, when it runs an update too: a device backend extracts
+        // them while this row's update runs.
+        const RowEdges edges{&previous_piece, &previous.indices, &indices};
+        RowEdges following;
+        if (r + 1 < row_count && !row_indices(r + 1).empty())
+          following = {&input_.pieces[std::size_t(r)], &indices, &row_indices(r + 1)};
+        RowTimes times;
+        backend_.dp_row(*input_.texels, input_.space, edges,
+                        following.indices ? &following : nullptr, cost, next_cost, row.argmin,
+                        times);
+        timings_.extract_ms += times.extract_ms;
+        timings_.update_ms += times.update_ms;
         ++timings_.rows;
       }
       cost.swap(next_cost);

@@ -21,6 +21,9 @@ struct DpInput {
   std::optional<std::int32_t> first_index;  // fixes piece 0 (must be a valid position)
   std::uint64_t seed = 0;    // != 0 and no first_index: piece 0 drawn among its valid positions
   bool allow_empty = false;  // a row with no valid position becomes an empty piece
+  // Drops valid positions of a piece before the DP (exemplar mixes bind pieces to exemplars,
+  // synth/detail/exemplar_mix.hpp); keeps the order. Empty: every valid position.
+  std::function<void(int piece, std::vector<std::int32_t>& indices)> keep_positions;
   // Message of the tw::Error for a piece without any valid position.
   std::function<std::string(int piece)> no_valid_message;
   std::string label;  // names the feature in progress lines, e.g. "features.roads: FID 3"

@@ -1,12 +1,11 @@
 #include "synth/detail/opencl_backend.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <string>
-#include <unordered_map>
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
+#include "synth/detail/opencl_resident.hpp"
 
 namespace tw::detail {
 
@@ -14,21 +13,6 @@ namespace {
 
 constexpr std::size_t kScanGroup = 256;   // work-group size of the compaction scan
 constexpr std::size_t kColumnGroup = 64;  // one work-item per column
-constexpr std::size_t kRowGroup = 16;     // small groups balance the pruned walks
-constexpr std::uint32_t kMaxColourDistance2 = 3 * 255 * 255;
-// A mismatched sample costs gamma, at least this much more than 16 |p - q| - 1.
-constexpr std::int32_t kMismatchExtra = kGamma - kMaxColourTerm - 1;
-
-// floor(sqrt(n)) in integers only.
-std::uint32_t integer_sqrt(std::uint64_t n) {
-  std::uint64_t low = 0, high = std::min<std::uint64_t>(n, 0xFFFFFFFFu) + 1;
-  while (high - low > 1) {
-    std::uint64_t mid = (low + high) / 2;
-    (mid * mid <= n ? low : high) = mid;
-  }
-  return std::uint32_t(low);
-}
-
 // Buffers may not be empty in OpenCL: an empty vector becomes one zero element.
 template <class T>
 cl::Buffer input_buffer(const cl::Context& context, const std::vector<T>& values) {
@@ -57,72 +41,6 @@ void read_buffer(const cl::CommandQueue& queue, const cl::Buffer& buffer, std::v
   if (out.empty()) return;
   check_cl(queue.enqueueReadBuffer(buffer, CL_TRUE, 0, out.size() * sizeof(T), out.data()),
            "clEnqueueReadBuffer");
-}
-
-template <class... Args>
-void set_args(cl::Kernel& kernel, const Args&... args) {
-  cl_uint index = 0;
-  (check_cl(kernel.setArg(index++, args), "clSetKernelArg"), ...);
-}
-
-// The pruning statistics of each column: its opaque mask (bit k of word k / 64 set when
-// sample k is opaque) and its sums of R, G, B (kernels/row_update.cl).
-struct ColumnStats {
-  std::vector<cl_ulong> masks;  // count * words
-  std::vector<cl_int4> sums;    // count
-};
-
-ColumnStats column_stats(const ColumnSet& set, std::size_t count) {
-  const std::size_t words = (std::size_t(set.column) + 63) / 64;
-  ColumnStats stats{std::vector<cl_ulong>(count * words, 0), std::vector<cl_int4>(count)};
-  for (std::size_t j = 0; j < count; ++j) {
-    cl_int4 sum{{0, 0, 0, 0}};
-    for (std::size_t k = 0; k < std::size_t(set.column); ++k) {
-      const std::uint32_t t = set.samples[j * set.column + k];
-      if (is_opaque(t)) stats.masks[j * words + k / 64] |= cl_ulong(1) << (k % 64);
-      for (int c = 0; c < 3; ++c) sum.s[c] += cl_int(channel_of(t, c));
-    }
-    stats.sums[j] = sum;
-  }
-  return stats;
-}
-
-// Previous positions grouped by exact opaque mask (ranks ascending within a group), and the
-// group of each current column's mask (-1 when no previous position shares it).
-struct MaskGroups {
-  std::vector<cl_int> start{0};  // groups + 1
-  std::vector<cl_int> ranks;
-  std::vector<cl_int> of_left;
-};
-
-MaskGroups group_by_mask(const ColumnStats& previous, std::size_t previous_count,
-                         const ColumnStats& left, std::size_t left_count, std::size_t words) {
-  auto key = [words](const ColumnStats& stats, std::size_t j) {
-    return std::string(reinterpret_cast<const char*>(stats.masks.data() + j * words),
-                       words * sizeof(cl_ulong));
-  };
-  std::unordered_map<std::string, int> group_of;
-  std::vector<std::vector<cl_int>> members;
-  for (std::size_t r = 0; r < previous_count; ++r) {
-    auto [it, added] = group_of.try_emplace(key(previous, r), int(members.size()));
-    if (added) members.emplace_back();
-    members[std::size_t(it->second)].push_back(cl_int(r));
-  }
-  MaskGroups groups;
-  for (const auto& group : members) {
-    groups.ranks.insert(groups.ranks.end(), group.begin(), group.end());
-    groups.start.push_back(cl_int(groups.ranks.size()));
-  }
-  groups.of_left.resize(left_count);
-  for (std::size_t j = 0; j < left_count; ++j) {
-    auto found = group_of.find(key(left, j));
-    groups.of_left[j] = found == group_of.end() ? -1 : found->second;
-  }
-  return groups;
-}
-
-std::size_t round_up(std::size_t value, std::size_t multiple) {
-  return (value + multiple - 1) / multiple * multiple;
 }
 
 }  // namespace
@@ -194,10 +112,28 @@ void check_cl(cl_int status, const char* what) {
   if (status != CL_SUCCESS) fail("OpenCL: {} failed: {} ({})", what, cl_error_name(status), status);
 }
 
-OpenCLBackend::OpenCLBackend(OpenCLContext context) : context_(std::move(context)) {
-  std::vector<std::uint32_t> table(kMaxColourDistance2 + 1);
-  for (std::uint32_t d2 = 0; d2 <= kMaxColourDistance2; ++d2) table[d2] = integer_sqrt(256ull * d2);
-  distance_table_ = input_buffer(context_.context(), table);
+OpenCLBackend::OpenCLBackend(OpenCLContext context, OpenCLRowOptions row)
+    : context_(std::move(context)), row_options_(row), resident_(std::make_unique<ResidentRows>()) {
+  if (row_options_.group_size < 1 || row_options_.per_item < 1)
+    fail("OpenCL backend: row work-group size {} and positions per work-item {} must be >= 1",
+         row_options_.group_size, row_options_.per_item);
+  cl_int status = CL_SUCCESS;
+  resident_->extract_queue =
+      cl::CommandQueue(context_.context(), context_.device(), CL_QUEUE_PROFILING_ENABLE, &status);
+  check_cl(status, "clCreateCommandQueue (extraction)");
+  resident_->local_memory = context_.device().getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
+}
+
+OpenCLBackend::~OpenCLBackend() = default;
+
+const std::map<std::string, KernelTiming>& OpenCLBackend::timings() const {
+  resident_->harvest(true);
+  return resident_->timings;
+}
+
+void OpenCLBackend::reset_timings() {
+  resident_->harvest(true);
+  resident_->timings.clear();
 }
 
 std::string OpenCLBackend::name() const {
@@ -216,29 +152,50 @@ cl::Kernel& OpenCLBackend::kernel(const std::string& family, const std::string& 
   return kernels_.emplace(name, made).first->second;
 }
 
+cl::Event OpenCLBackend::enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel,
+                                 const std::string& name, std::size_t items, std::size_t local_size,
+                                 const std::vector<cl::Event>* wait) {
+  cl::Event done;
+  check_cl(
+      queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items, local_size)),
+                                 cl::NDRange(local_size), wait, &done),
+      ("clEnqueueNDRangeKernel " + name).c_str());
+  resident_->pending.emplace_back(name, done);
+  return done;
+}
+
 void OpenCLBackend::launch(cl::Kernel& kernel, const std::string& name, std::size_t items,
                            std::size_t local_size) {
   if (items == 0) return;
-  cl::Event done;
-  check_cl(context_.queue().enqueueNDRangeKernel(kernel, cl::NullRange,
-                                                 cl::NDRange(round_up(items, local_size)),
-                                                 cl::NDRange(local_size), nullptr, &done),
-           ("clEnqueueNDRangeKernel " + name).c_str());
-  check_cl(done.wait(), ("waiting for kernel " + name).c_str());
-  cl_ulong start = 0, end = 0;
-  done.getProfilingInfo(CL_PROFILING_COMMAND_START, &start);
-  done.getProfilingInfo(CL_PROFILING_COMMAND_END, &end);
-  KernelTiming& timing = timings_[name];
-  timing.milliseconds += double(end - start) * 1e-6;
-  timing.launches += 1;
+  enqueue(context_.queue(), kernel, name, items, local_size);
+  resident_->harvest(true);
 }
 
-cl::Buffer OpenCLBackend::texel_buffer(const CostTexels& texels) {
+const cl::Buffer& OpenCLBackend::texel_buffer(const CostTexels& texels) {
   if (texels.rgba.size() != std::size_t(texels.width) * std::size_t(texels.height)) {
     fail("OpenCL backend: exemplar texels hold {} values, expected {} x {}", texels.rgba.size(),
          texels.width, texels.height);
   }
-  return input_buffer(context_.context(), texels.rgba);
+  ResidentRows& r = *resident_;
+  if (r.texel_width != texels.width || r.texel_height != texels.height ||
+      r.texel_binary_alpha != texels.binary_alpha || r.texel_copy != texels.rgba) {
+    ++r.texel_version;
+    r.texel_binary_alpha = texels.binary_alpha;
+    r.texel_copy = texels.rgba;
+    r.texel_width = texels.width;
+    r.texel_height = texels.height;
+    upload(context_.context(), context_.queue(), r.texels, r.texel_copy);
+    // The opacity bit plane of find_valid_positions, one bit per texel.
+    r.opacity_words = (texels.width + 63) / 64;
+    r.opacity_copy.assign(std::size_t(r.opacity_words) * std::size_t(texels.height), 0);
+    for (int y = 0; y < texels.height; ++y)
+      for (int x = 0; x < texels.width; ++x)
+        if (is_opaque(texels.rgba[std::size_t(y) * texels.width + x]))
+          r.opacity_copy[std::size_t(y) * r.opacity_words + x / 64] |= cl_ulong(1) << (x % 64);
+    upload(context_.context(), context_.queue(), r.opacity, r.opacity_copy);
+    check_cl(context_.queue().finish(), "clFinish (exemplar upload)");
+  }
+  return r.texels.get();
 }
 
 void OpenCLBackend::find_valid_positions(const CostTexels& texels, const PositionSpace& space,
@@ -247,16 +204,22 @@ void OpenCLBackend::find_valid_positions(const CostTexels& texels, const Positio
   const std::size_t count = std::size_t(space.count());
   flags.assign(count, 0);
   if (count == 0) return;
+  if (space.width != texels.width || space.height != texels.height)
+    fail("OpenCL backend: position space {} x {} for an exemplar of {} x {}", space.width,
+         space.height, texels.width, texels.height);
   const cl::Context& context = context_.context();
-  cl::Buffer texel = texel_buffer(texels);
+  texel_buffer(texels);
+  ResidentRows& r = *resident_;
   cl::Buffer clear = input_buffer(context, piece.must_be_clear);
   cl::Buffer interior = input_buffer(context, piece.interior);
   cl::Buffer out = output_buffer(context, count);
   cl::Kernel& k = kernel("valid_positions", "find_valid_positions");
-  set_args(k, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column), clear,
-           cl_int(piece.must_be_clear.size()), interior, cl_int(piece.interior.size()),
-           cl_int(piece.min_opaque), cl_uint(kOpaqueAlphaMin), out);
-  launch(k, "find_valid_positions", count, kColumnGroup);
+  set_args(k, r.opacity.get(), cl_int(r.opacity_words), cl_int(space.width), cl_int(space.height),
+           cl_int(space.column), clear, cl_int(piece.must_be_clear.size()), interior,
+           cl_int(piece.interior.size()), cl_int(piece.min_opaque), out);
+  const std::size_t blocks = (std::size_t(space.width) + 63) / 64;
+  launch(k, "find_valid_positions", blocks * std::size_t(space.height + space.column),
+         kColumnGroup);
   read_buffer(context_.queue(), out, flags);
 }
 
@@ -308,7 +271,7 @@ void OpenCLBackend::extract_right_columns(const CostTexels& texels, const Positi
   out.samples.assign(indices.size() * std::size_t(space.column), 0);
   if (out.samples.empty()) return;
   const cl::Context& context = context_.context();
-  cl::Buffer texel = texel_buffer(texels);
+  const cl::Buffer& texel = texel_buffer(texels);
   cl::Buffer fx = input_buffer(context, piece.right_fx);
   cl::Buffer fy = input_buffer(context, piece.right_fy);
   cl::Buffer index_buffer = input_buffer(context, indices);
@@ -327,7 +290,7 @@ void OpenCLBackend::extract_left_columns(const CostTexels& texels, const Positio
   out.samples.assign(indices.size() * std::size_t(space.column), 0);
   if (out.samples.empty()) return;
   const cl::Context& context = context_.context();
-  cl::Buffer texel = texel_buffer(texels);
+  const cl::Buffer& texel = texel_buffer(texels);
   cl::Buffer index_buffer = input_buffer(context, indices);
   cl::Buffer samples = output_buffer(context, out.samples.size() * sizeof(cl_uint));
   cl::Kernel& k = kernel("columns", "extract_left_columns");
@@ -337,69 +300,8 @@ void OpenCLBackend::extract_left_columns(const CostTexels& texels, const Positio
   read_buffer(context_.queue(), samples, out.samples);
 }
 
-void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_cost,
-                                     const ColumnSet& right, const ColumnSet& left,
-                                     std::vector<std::int64_t>& cost,
-                                     std::vector<std::int32_t>& argmin) {
-  const int column = left.column;
-  const std::size_t previous = previous_cost.size();
-  const std::size_t current = column > 0 ? left.samples.size() / std::size_t(column) : 0;
-  if (right.column != column || right.samples.size() != previous * std::size_t(column)) {
-    fail("OpenCL backend: {} right samples of C = {} for {} previous costs and C = {}",
-         right.samples.size(), right.column, previous, column);
-  }
-  cost.assign(current, INT64_MAX);
-  argmin.assign(current, -1);
-  if (current == 0 || previous == 0) return;
-
-  // Visit candidates by (P[v], v) ascending: the walk can stop at the first P[v] above the
-  // best total, and ties meet the lowest v first.
-  std::vector<std::int32_t> order(previous);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-    return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
-  });
-  std::vector<std::int64_t> sorted_cost(previous);
-  std::vector<std::uint32_t> sorted_right(right.samples.size());
-  for (std::size_t r = 0; r < previous; ++r) {
-    sorted_cost[r] = previous_cost[order[r]];
-    std::copy_n(right.samples.begin() + std::ptrdiff_t(order[r]) * column, column,
-                sorted_right.begin() + std::ptrdiff_t(r) * column);
-  }
-  ColumnSet sorted_set{column, std::move(sorted_right), left.binary_alpha};
-
-  const ColumnStats right_stats = column_stats(sorted_set, previous);
-  const ColumnStats left_stats = column_stats(left, current);
-  const MaskGroups groups =
-      group_by_mask(right_stats, previous, left_stats, current, (std::size_t(column) + 63) / 64);
-
-  const cl::Context& context = context_.context();
-  cl::Buffer cost_buffer = input_buffer(context, sorted_cost);
-  cl::Buffer order_buffer = input_buffer(context, order);
-  cl::Buffer right_buffer = input_buffer(context, sorted_set.samples);
-  cl::Buffer right_masks = input_buffer(context, right_stats.masks);
-  cl::Buffer right_sums = input_buffer(context, right_stats.sums);
-  cl::Buffer group_start = input_buffer(context, groups.start);
-  cl::Buffer group_ranks = input_buffer(context, groups.ranks);
-  cl::Buffer left_group = input_buffer(context, groups.of_left);
-  cl::Buffer left_buffer = input_buffer(context, left.samples);
-  cl::Buffer left_masks = input_buffer(context, left_stats.masks);
-  cl::Buffer left_sums = input_buffer(context, left_stats.sums);
-  cl::Buffer cost_out = output_buffer(context, current * sizeof(cl_long));
-  cl::Buffer argmin_out = output_buffer(context, current * sizeof(cl_int));
-  cl::Kernel& k = kernel("row_update", "update_table_row");
-  set_args(k, cost_buffer, order_buffer, right_buffer, right_masks, right_sums, cl_int(previous),
-           group_start, group_ranks, left_buffer, left_masks, left_sums, left_group,
-           cl_int(current), cl_int(column), distance_table_, cl_uint(kGamma),
-           cl_uint(kOpaqueAlphaMin), cl_int(kMismatchExtra), cl_int(left.binary_alpha ? 1 : 0),
-           cost_out, argmin_out);
-  launch(k, "update_table_row", current, kRowGroup);
-  read_buffer(context_.queue(), cost_out, cost);
-  read_buffer(context_.queue(), argmin_out, argmin);
-}
-
-std::unique_ptr<Backend> make_opencl_backend(OpenCLContext context) {
-  return std::make_unique<OpenCLBackend>(std::move(context));
+std::unique_ptr<Backend> make_opencl_backend(OpenCLContext context, OpenCLRowOptions row) {
+  return std::make_unique<OpenCLBackend>(std::move(context), row);
 }
 
 }  // namespace tw::detail

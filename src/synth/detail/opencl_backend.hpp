@@ -1,9 +1,15 @@
 #pragma once
 // The OpenCL implementation of the DP stages (kernels/*.cl). Each kernel has exactly one host
 // wrapper here and a CPU twin in the CPU backend; tests/synth/test_opencl_*.cpp compare them.
+//
+// Within a synthesis the data stays on the device (synth/detail/opencl_dp_row.cpp): the
+// exemplar is uploaded once, each row's columns are extracted into buffers that are reused
+// from row to row (they only grow), and the cost row of one update is the input of the next;
+// the host sends only the visiting order of the pruned walk (synth/detail/mask_groups.hpp)
+// and reads back the costs (to sort them) and the argmins. The columns of row i + 1 are
+// extracted on a second queue while row i's update runs.
 // Backtracking stays on the host (synth/detail/dp.cpp): it follows one argmin per row, a
-// strictly sequential chain of N dependent reads with nothing to parallelize, and the argmins
-// are already on the host after each row.
+// strictly sequential chain of N dependent reads with nothing to parallelize.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -25,9 +31,20 @@ struct KernelTiming {
   std::int64_t launches = 0;
 };
 
+// How the row kernel splits the work; results are the same bytes for every choice.
+struct OpenCLRowOptions {
+  int group_size = 16;  // work-items per work-group (small groups balance the pruned walks)
+  int per_item = 4;     // consecutive current positions per work-item (neighbour guesses)
+  bool prune = true;    // false: every pair, every sample (the definition, for tests)
+};
+
+struct ResidentRows;  // synth/detail/opencl_resident.hpp
+struct PreparedRow;
+
 class OpenCLBackend final : public Backend {
  public:
-  explicit OpenCLBackend(OpenCLContext context);
+  explicit OpenCLBackend(OpenCLContext context, OpenCLRowOptions row = {});
+  ~OpenCLBackend() override;
 
   std::string name() const override;
   void find_valid_positions(const CostTexels& texels, const PositionSpace& space,
@@ -39,27 +56,48 @@ class OpenCLBackend final : public Backend {
                              ColumnSet& out) override;
   void extract_left_columns(const CostTexels& texels, const PositionSpace& space,
                             const std::vector<std::int32_t>& indices, ColumnSet& out) override;
+  // Uploads the columns (they come from the host), then runs the same row as dp_row.
   void update_table_row(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
                         const ColumnSet& left, std::vector<std::int64_t>& cost,
                         std::vector<std::int32_t>& argmin) override;
+  void dp_row(const CostTexels& texels, const PositionSpace& space, const RowEdges& row,
+              const RowEdges* next, const std::vector<std::int64_t>& previous_cost,
+              std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+              RowTimes& times) override;
 
   // Per kernel name, the device time since construction or the last reset_timings().
-  const std::map<std::string, KernelTiming>& timings() const { return timings_; }
-  void reset_timings() { timings_.clear(); }
+  const std::map<std::string, KernelTiming>& timings() const;
+  void reset_timings();
   const OpenCLContext& context() const { return context_; }
 
  private:
   cl::Kernel& kernel(const std::string& family, const std::string& name);
+  // Enqueues `items` work-items (rounded up to local_size) after `wait`; the device time is
+  // added to timings() once the event completes.
+  cl::Event enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name,
+                    std::size_t items, std::size_t local_size,
+                    const std::vector<cl::Event>* wait = nullptr);
   void launch(cl::Kernel& kernel, const std::string& name, std::size_t items,
               std::size_t local_size);
-  cl::Buffer texel_buffer(const CostTexels& texels);
+  // The exemplar on the device, uploaded only when it differs from the last one.
+  const cl::Buffer& texel_buffer(const CostTexels& texels);
+  // synth/detail/opencl_dp_row.cpp: enqueue the extraction of a row's edges (on the
+  // extraction queue) or the upload of given columns, then their statistics and mask reads.
+  void prepare_row(PreparedRow& prepared, const CostTexels& texels, const PositionSpace& space,
+                   const RowEdges& edges);
+  void upload_row(PreparedRow& prepared, const ColumnSet& right, const ColumnSet& left);
+  void enqueue_stats(const cl::CommandQueue& queue, PreparedRow& prepared,
+                     std::vector<cl::Event> extracted);
+  // The row update on prepared edges: the slot order, the kernel, the costs and argmins.
+  void run_row(PreparedRow& prepared, const std::vector<std::int64_t>& previous_cost,
+               std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin);
 
   OpenCLContext context_;
-  cl::Buffer distance_table_;  // floor(sqrt(256 d2)) for d2 in [0, 3 * 255^2]
+  OpenCLRowOptions row_options_;
+  std::unique_ptr<ResidentRows> resident_;
   std::map<std::string, cl::Kernel> kernels_;
-  std::map<std::string, KernelTiming> timings_;
 };
 
-std::unique_ptr<Backend> make_opencl_backend(OpenCLContext context);
+std::unique_ptr<Backend> make_opencl_backend(OpenCLContext context, OpenCLRowOptions row = {});
 
 }  // namespace tw::detail

@@ -13,6 +13,7 @@
 //   (A >= 128 is opaque) unless CostTexels::binary_alpha is false. Colours are premultiplied
 //   by alpha at load time (synth/exemplar.cpp), so transparent texels are black.
 // - Costs, the bilinear fixed-point read and xi are defined in synth/detail/cost.hpp.
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,6 +64,19 @@ struct ColumnSet {
   bool binary_alpha = true;  // copied from CostTexels by the extract stages: selects xi
 };
 
+// The edges of one DP row: the right edges of `previous_piece` at `previous_indices` (the
+// previous row's positions) and the left edges at `indices` (this row's).
+struct RowEdges {
+  const PieceFootprint* previous_piece = nullptr;
+  const std::vector<std::int32_t>* previous_indices = nullptr;
+  const std::vector<std::int32_t>* indices = nullptr;
+};
+
+// Host time of one dp_row call: waiting for or running the extraction, and the rest.
+struct RowTimes {
+  double extract_ms = 0, update_ms = 0;
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -89,6 +103,33 @@ class Backend {
                                 const ColumnSet& right, const ColumnSet& left,
                                 std::vector<std::int64_t>& cost,
                                 std::vector<std::int32_t>& argmin) = 0;
+  // One DP row: extract_right_columns (row.previous_piece at row.previous_indices),
+  // extract_left_columns (row.indices) and update_table_row. `next` (null when the following
+  // row runs no update) names the edges of the following row, so that a device backend
+  // extracts them while this row's update runs; it never changes results. The default runs
+  // the three stages in order and ignores `next`.
+  virtual void dp_row(const CostTexels& texels, const PositionSpace& space, const RowEdges& row,
+                      const RowEdges* next, const std::vector<std::int64_t>& previous_cost,
+                      std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+                      RowTimes& times);
+
+ protected:
+  ColumnSet row_right_, row_left_;  // the default dp_row's columns, kept between rows
 };
+
+inline void Backend::dp_row(const CostTexels& texels, const PositionSpace& space,
+                            const RowEdges& row, const RowEdges*,
+                            const std::vector<std::int64_t>& previous_cost,
+                            std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+                            RowTimes& times) {
+  using Clock = std::chrono::steady_clock;
+  auto start = Clock::now();
+  extract_right_columns(texels, space, *row.previous_piece, *row.previous_indices, row_right_);
+  extract_left_columns(texels, space, *row.indices, row_left_);
+  auto extracted = Clock::now();
+  update_table_row(previous_cost, row_right_, row_left_, cost, argmin);
+  times.extract_ms = std::chrono::duration<double, std::milli>(extracted - start).count();
+  times.update_ms = std::chrono::duration<double, std::milli>(Clock::now() - extracted).count();
+}
 
 }  // namespace tw::detail

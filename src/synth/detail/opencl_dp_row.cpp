@@ -1,0 +1,244 @@
+// The resident row pipeline of the OpenCL backend (see opencl_backend.hpp): extraction of a
+// row's edges into reused device buffers on the extraction queue, their statistics, and the
+// pruned row update (kernels/row_update.cl) on the main queue.
+#include <chrono>
+
+#include "core/error.hpp"
+#include "synth/detail/cost.hpp"
+#include "synth/detail/edge_bound.hpp"
+#include "synth/detail/mask_groups.hpp"
+#include "synth/detail/opencl_backend.hpp"
+#include "synth/detail/opencl_resident.hpp"
+
+namespace tw::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kColumnGroup = 64;  // one work-item per column
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int mask_words(int column) {
+  return (column + 63) / 64;
+}
+
+}  // namespace
+
+void OpenCLBackend::prepare_row(PreparedRow& prepared, const CostTexels& texels,
+                                const PositionSpace& space, const RowEdges& edges) {
+  const PieceFootprint& piece = *edges.previous_piece;
+  if (piece.right_fx.size() != std::size_t(space.column) ||
+      piece.right_fy.size() != std::size_t(space.column) || piece.column != space.column) {
+    fail("OpenCL backend: piece footprint has {} / {} right samples for C = {} (space C = {})",
+         piece.right_fx.size(), piece.right_fy.size(), piece.column, space.column);
+  }
+  const cl::Buffer& texel = texel_buffer(texels);
+  ResidentRows& r = *resident_;
+  prepared.filled = true;
+  prepared.column = space.column;
+  prepared.binary_alpha = texels.binary_alpha;
+  prepared.texels = r.texel_version;
+  prepared.space = space;
+  prepared.previous_indices = *edges.previous_indices;
+  prepared.indices = *edges.indices;
+  prepared.right_fx = piece.right_fx;
+  prepared.right_fy = piece.right_fy;
+  prepared.ready.clear();
+  const cl::Context& context = context_.context();
+  const cl::CommandQueue& queue = r.extract_queue;
+  const std::size_t C = std::size_t(space.column);
+
+  DeviceColumns& right = prepared.right;
+  right.count = int(prepared.previous_indices.size());
+  const cl::Buffer& fx = upload(context, queue, prepared.fx, prepared.right_fx);
+  const cl::Buffer& fy = upload(context, queue, prepared.fy, prepared.right_fy);
+  const cl::Buffer& right_indices =
+      upload(context, queue, right.indices, prepared.previous_indices);
+  const cl::Buffer& right_samples = right.samples.reserve(context, right.count * C * 4);
+  cl::Kernel& extract_right = kernel("columns", "extract_right_columns");
+  set_args(extract_right, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column),
+           fx, fy, right_indices, cl_int(right.count), right_samples);
+  enqueue(queue, extract_right, "extract_right_columns", right.count, kColumnGroup);
+
+  DeviceColumns& left = prepared.left;
+  left.count = int(prepared.indices.size());
+  const cl::Buffer& left_indices = upload(context, queue, left.indices, prepared.indices);
+  const cl::Buffer& left_samples = left.samples.reserve(context, left.count * C * 4);
+  cl::Kernel& extract_left = kernel("columns", "extract_left_columns");
+  set_args(extract_left, texel, cl_int(space.width), cl_int(space.height), cl_int(space.column),
+           left_indices, cl_int(left.count), left_samples);
+  enqueue(queue, extract_left, "extract_left_columns", left.count, kColumnGroup);
+  enqueue_stats(queue, prepared, {});
+  check_cl(queue.flush(), "clFlush (extraction)");
+}
+
+void OpenCLBackend::upload_row(PreparedRow& prepared, const ColumnSet& right,
+                               const ColumnSet& left) {
+  const cl::Context& context = context_.context();
+  const cl::CommandQueue& queue = context_.queue();
+  prepared.filled = false;  // not the edges of any RowEdges
+  prepared.column = left.column;
+  prepared.binary_alpha = left.binary_alpha;
+  prepared.ready.clear();
+  prepared.right.count = int(right.samples.size() / std::size_t(right.column));
+  prepared.left.count = int(left.samples.size() / std::size_t(left.column));
+  upload(context, queue, prepared.right.samples, right.samples);
+  upload(context, queue, prepared.left.samples, left.samples);
+  enqueue_stats(queue, prepared, {});
+}
+
+void OpenCLBackend::enqueue_stats(const cl::CommandQueue& queue, PreparedRow& prepared,
+                                  std::vector<cl::Event> extracted) {
+  const cl::Context& context = context_.context();
+  const int C = prepared.column, words = mask_words(C),
+            blocks = (C + kBoundBlock - 1) / kBoundBlock;
+  cl::Kernel& stats = kernel("columns", "edge_stats");
+  for (DeviceColumns* side : {&prepared.right, &prepared.left}) {
+    const std::size_t count = std::size_t(side->count);
+    const cl::Buffer& masks = side->masks.reserve(context, count * words * 8);
+    set_args(stats, side->samples.get(), cl_int(count), cl_int(C), masks,
+             side->sums.reserve(context, count * 16),
+             side->blocks.reserve(context, count * blocks * 3 * 4));
+    enqueue(queue, stats, "edge_stats", count, kColumnGroup,
+            extracted.empty() ? nullptr : &extracted);
+    side->host_masks.resize(count * std::size_t(words));
+    cl::Event read;
+    check_cl(queue.enqueueReadBuffer(masks, CL_FALSE, 0, count * words * 8, side->host_masks.data(),
+                                     nullptr, &read),
+             "clEnqueueReadBuffer (masks)");
+    prepared.ready.push_back(read);
+  }
+}
+
+void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_t>& previous_cost,
+                            std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin) {
+  ResidentRows& r = *resident_;
+  check_cl(cl::Event::waitForEvents(prepared.ready), "waiting for the row's columns");
+  const int C = prepared.column, words = mask_words(C);
+  const int previous = prepared.right.count, current = prepared.left.count;
+  if (std::size_t(previous) != previous_cost.size())
+    fail("OpenCL backend: {} previous costs for {} previous positions", previous_cost.size(),
+         previous);
+  cost.assign(std::size_t(current), INT64_MAX);
+  argmin.assign(std::size_t(current), -1);
+  if (current == 0 || previous == 0) return;
+
+  // The visiting order (the CPU backend's, synth/detail/mask_groups.hpp).
+  const MaskGroups groups = group_by_mask(previous_cost, prepared.right.host_masks.data(), words);
+  r.slot_position_host.assign(groups.position.begin(), groups.position.end());
+  r.group_begin_host.assign(groups.group_begin.begin(), groups.group_begin.end());
+  r.group_masks_host.assign(groups.group_masks.begin(), groups.group_masks.end());
+  r.slot_of_host.resize(std::size_t(previous));
+  for (int s = 0; s < previous; ++s) r.slot_of_host[std::size_t(groups.position[s])] = s;
+  r.group_min_host.resize(std::size_t(groups.groups()));
+  for (int g = 0; g < groups.groups(); ++g)
+    r.group_min_host[std::size_t(g)] =
+        previous_cost[std::size_t(groups.position[groups.group_begin[g]])];
+  r.left_group_host.resize(std::size_t(current));
+  for (int j = 0; j < current; ++j)
+    r.left_group_host[std::size_t(j)] =
+        group_with_mask(groups, prepared.left.host_masks.data() + std::size_t(j) * words);
+
+  const cl::Context& context = context_.context();
+  const cl::CommandQueue& queue = context_.queue();
+  // The cost row stays on the device: upload it only when the caller's differs from the
+  // last row's output (another synthesis, or a cost term added on the host).
+  if (!r.cost_resident || r.last_cost != previous_cost)
+    upload(context, queue, r.cost[r.cost_in], previous_cost);
+  const cl::Buffer& slot_position = upload(context, queue, r.slot_position, r.slot_position_host);
+  const cl::Buffer& slot_cost = r.slot_cost.reserve(context, std::size_t(previous) * 8);
+  cl::Kernel& gather = kernel("row_update", "gather_slot_costs");
+  set_args(gather, r.cost[r.cost_in].get(), slot_position, cl_int(previous), slot_cost);
+  enqueue(queue, gather, "gather_slot_costs", std::size_t(previous), kColumnGroup);
+
+  // The tile of left columns of a work-group must fit in local memory.
+  int per_item = row_options_.per_item, group_size = row_options_.group_size;
+  const std::size_t column_bytes = std::size_t(C) * 4;
+  while (per_item > 1 && std::size_t(group_size * per_item) * column_bytes > r.local_memory)
+    --per_item;
+  while (group_size > 1 && std::size_t(group_size) * column_bytes > r.local_memory) --group_size;
+  if (column_bytes > r.local_memory)
+    fail(
+        "OpenCL backend: a column of C = {} samples does not fit in the device's {} bytes of local "
+        "memory",
+        C, r.local_memory);
+  const std::size_t tile = std::size_t(group_size * per_item);
+  const std::size_t work_groups = (std::size_t(current) + tile - 1) / tile;
+
+  const cl::Buffer& cost_out = r.cost[1 - r.cost_in].reserve(context, std::size_t(current) * 8);
+  const cl::Buffer& argmin_out = r.argmin.reserve(context, std::size_t(current) * 4);
+  cl::Kernel& row = kernel("row_update", "update_table_row");
+  set_args(row, slot_cost, slot_position, upload(context, queue, r.slot_of, r.slot_of_host),
+           cl_int(previous), upload(context, queue, r.group_begin, r.group_begin_host),
+           upload(context, queue, r.group_min, r.group_min_host),
+           upload(context, queue, r.group_masks, r.group_masks_host), cl_int(groups.groups()),
+           prepared.right.samples.get(), prepared.right.masks.get(), prepared.right.sums.get(),
+           prepared.right.blocks.get(), prepared.left.samples.get(), prepared.left.masks.get(),
+           prepared.left.sums.get(), prepared.left.blocks.get(),
+           upload(context, queue, r.left_group, r.left_group_host), cl_int(current), cl_int(C),
+           cl_int(prepared.binary_alpha ? 1 : 0), cl_int(kGamma),
+           cl_long(mismatch_cost(prepared.binary_alpha)),
+           cl_long(mismatch_extra(prepared.binary_alpha)), cl_int(per_item),
+           cl_int(row_options_.prune ? 1 : 0), cl::Local(tile * column_bytes), cost_out,
+           argmin_out);
+  enqueue(queue, row, "update_table_row", work_groups * std::size_t(group_size),
+          std::size_t(group_size));
+  check_cl(queue.enqueueReadBuffer(cost_out, CL_FALSE, 0, std::size_t(current) * 8, cost.data()),
+           "clEnqueueReadBuffer (costs)");
+  check_cl(queue.enqueueReadBuffer(argmin_out, CL_TRUE, 0, std::size_t(current) * 4, argmin.data()),
+           "clEnqueueReadBuffer (argmins)");
+  r.last_cost = cost;
+  r.cost_in = 1 - r.cost_in;
+  r.cost_resident = true;
+}
+
+void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_cost,
+                                     const ColumnSet& right, const ColumnSet& left,
+                                     std::vector<std::int64_t>& cost,
+                                     std::vector<std::int32_t>& argmin) {
+  const int column = left.column;
+  const std::size_t previous = previous_cost.size();
+  const std::size_t current = column > 0 ? left.samples.size() / std::size_t(column) : 0;
+  if (right.column != column || right.samples.size() != previous * std::size_t(column)) {
+    fail("OpenCL backend: {} right samples of C = {} for {} previous costs and C = {}",
+         right.samples.size(), right.column, previous, column);
+  }
+  cost.assign(current, INT64_MAX);
+  argmin.assign(current, -1);
+  if (current == 0 || previous == 0) return;
+  ResidentRows& r = *resident_;
+  PreparedRow& prepared = r.prepared[r.current];
+  upload_row(prepared, right, left);
+  run_row(prepared, previous_cost, cost, argmin);
+  r.harvest(false);
+}
+
+void OpenCLBackend::dp_row(const CostTexels& texels, const PositionSpace& space,
+                           const RowEdges& row, const RowEdges* next,
+                           const std::vector<std::int64_t>& previous_cost,
+                           std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+                           RowTimes& times) {
+  const auto start = Clock::now();
+  ResidentRows& r = *resident_;
+  texel_buffer(texels);  // a new exemplar invalidates what was extracted from the last one
+  PreparedRow& current = r.prepared[r.current];
+  if (!current.holds(row, space, r.texel_version)) prepare_row(current, texels, space, row);
+  check_cl(cl::Event::waitForEvents(current.ready), "waiting for the row's columns");
+  times.extract_ms = ms_since(start);
+  const auto update_start = Clock::now();
+  // The next row's columns are extracted on the other queue while this row's update runs
+  // (its buffers were last read by the previous row's update, which has completed).
+  PreparedRow& following = r.prepared[1 - r.current];
+  if (next)
+    prepare_row(following, texels, space, *next);
+  else
+    following.filled = false;
+  run_row(current, previous_cost, cost, argmin);
+  r.current = 1 - r.current;
+  r.harvest(false);
+  times.update_ms = ms_since(update_start);
+}
+
+}  // namespace tw::detail
