@@ -20,6 +20,7 @@
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/detail/synthesis_cache.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/placements_io.hpp"
 #include "terrain/height_ops.hpp"
@@ -189,10 +190,15 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   detail::PatternRun patterns;
   if (!config.synthesis_order.empty()) {
     clock.start("synthesis");
-    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, {options.backend});
+    detail::SynthesisCache cache(options.cache_dir, warnings);
+    detail::PatternOptions pattern_options;
+    pattern_options.backend = options.backend;
+    pattern_options.cache = &cache;
+    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
     for (const detail::FeaturePattern& p : patterns.patterns) {
       FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
       feature.synthesis = p.report;
+      feature.cache = p.cache;
       report.pattern_violations += p.report.violations;
     }
     clock.stop();
@@ -234,12 +240,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.
-  std::map<std::string, int> parts;
   for (const detail::FeaturePattern& p : patterns.patterns) {
-    const FeatureClassConfig& c = config.features[p.class_index];
-    std::string name = fmt::format("{}_{}", c.name, lines[p.class_index][p.feature_index].fid);
-    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
-    const std::string file = "placements/" + name + ".json";
+    const std::string file = "placements/" + p.name + ".json";
     Synthesis saved = p.synthesis;
     saved.backend.clear();
     save_placements(saved, patterns.exemplars[p.exemplar_index].path,
