@@ -1,5 +1,6 @@
 #include "pipeline/detail/tile_cache.hpp"
 
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -86,6 +87,23 @@ ContentHash ribbon_hash(const Ribbon& r) {
       .digest();
 }
 
+// Stages through an OutputFolder and remembers what (the names under `dir`, the staged paths).
+class RecordingStager final : public OutputStager {
+ public:
+  RecordingStager(OutputFolder& output, fs::path dir) : output_(output), dir_(std::move(dir)) {}
+  fs::path stage(const fs::path& final_path) override {
+    fs::path staged = output_.stage(final_path);
+    files.push_back(
+        {final_path.lexically_normal().lexically_relative(dir_.lexically_normal()), staged});
+    return staged;
+  }
+  std::vector<std::pair<fs::path, fs::path>> files;
+
+ private:
+  OutputFolder& output_;
+  fs::path dir_;
+};
+
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("cache: cannot read back {}", path.string());
@@ -98,9 +116,9 @@ ContentHash TileKey::combined() const {
   return Hasher().text("terraweave.tile").hash(heightfield).hash(features).hash(config).digest();
 }
 
-TileCache::TileCache(const WorldPlan& plan, TileOutputValues output, std::optional<fs::path> dir,
+TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::optional<fs::path> dir,
                      Warnings& warnings)
-    : plan_(plan), output_(output), dir_(std::move(dir)), warnings_(warnings) {
+    : plan_(plan), dir_(std::move(dir)), warnings_(warnings) {
   if (dir_) prepare_cache_dir(*dir_);
   Hasher c;
   c.u64(kTileCacheFormat).text(version_line());
@@ -113,7 +131,8 @@ TileCache::TileCache(const WorldPlan& plan, TileOutputValues output, std::option
   for (const std::string& m : plan.splat_materials) c.text(m);
   c.u64(plan.terrain_params.precedence.size());
   for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
-  c.boolean(output.exr).boolean(output.geotiff);
+  c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
+  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level);
   config_ = c.digest();
 
   std::vector<std::vector<const std::vector<float>*>> profiles(plan.terrain_features.size());
@@ -242,7 +261,7 @@ void TileCache::store(const std::string& name, const TileKey& key, const CacheSe
 
 CacheStatus TileCache::render_or_reuse(
     const TileSpec& tile, OutputFolder& output, const fs::path& output_dir,
-    const std::function<std::vector<StagedTileFile>(const LayerSet&)>& write) {
+    const std::function<void(const LayerSet&, OutputStager&)>& write) {
   const std::string name = tile_file_stem("tile", tile);
   const TileKey key = this->key(tile);
   CacheStatus status;
@@ -258,11 +277,12 @@ CacheStatus TileCache::render_or_reuse(
     logger().debug("{}: reused from the cache ({})", name, status.key);
     return status;
   }
-  const std::vector<StagedTileFile> files = write(render_tile(plan_, tile));
+  RecordingStager stager(output, output_dir);
+  write(render_tile(plan_, tile), stager);
   if (dir_) {
     CacheSections sections;
-    for (const StagedTileFile& file : files)
-      sections[kFilePrefix + file.name.generic_string()] = read_bytes(file.staged);
+    for (const auto& [name, staged] : stager.files)
+      sections[kFilePrefix + name.generic_string()] = read_bytes(staged);
     store(name, key, sections);
   }
   return status;

@@ -16,6 +16,7 @@
 #include "core/content_hash.hpp"
 #include "core/output_folder.hpp"
 #include "core/warnings.hpp"
+#include "layers/write.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/plan.hpp"
@@ -27,32 +28,21 @@ struct TileKey {
   ContentHash combined() const;
 };
 
-// What a tile's files depend on besides the plan: the writer's choices.
-struct TileOutputValues {
-  bool exr = true;
-  bool geotiff = true;
-};
-
-// A file written for a tile: its name relative to the output folder, and where it was staged.
-struct StagedTileFile {
-  std::filesystem::path name;
-  std::filesystem::path staged;
-};
-
 class TileCache {
  public:
-  // Hashes every feature, ribbon and pattern of `plan` once (a tile then hashes their hashes).
-  // No `dir`: keys only.
-  TileCache(const WorldPlan& plan, TileOutputValues output,
+  // Hashes every feature, ribbon and pattern of `plan` once (a tile then hashes their hashes);
+  // `output`: the writer's options the tile's files depend on. No `dir`: keys only.
+  TileCache(const WorldPlan& plan, const WriteOptions& output,
             std::optional<std::filesystem::path> dir, Warnings& warnings);
 
   TileKey key(const TileSpec& tile) const;
 
-  // Renders `tile` and stages its files with `write` (which returns what it staged), or, when
-  // the cache holds the files under the tile's key, stages copies of them. Returns the status.
-  CacheStatus render_or_reuse(
-      const TileSpec& tile, OutputFolder& output, const std::filesystem::path& output_dir,
-      const std::function<std::vector<StagedTileFile>(const LayerSet&)>& write);
+  // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
+  // holds the files under the tile's key, stages copies of them (the same names, the same
+  // bytes). Returns the status; stores a rebuilt tile's files.
+  CacheStatus render_or_reuse(const TileSpec& tile, OutputFolder& output,
+                              const std::filesystem::path& output_dir,
+                              const std::function<void(const LayerSet&, OutputStager&)>& write);
 
  private:
   std::optional<CacheSections> find(const std::string& name, const TileKey& key,
@@ -60,7 +50,6 @@ class TileCache {
   void store(const std::string& name, const TileKey& key, const CacheSections& files);
 
   const WorldPlan& plan_;
-  TileOutputValues output_;
   std::optional<std::filesystem::path> dir_;
   Warnings& warnings_;
   ContentHash config_;                                     // what every tile shares
