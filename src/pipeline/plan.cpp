@@ -193,7 +193,8 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
 
   if (options.synthesize && !config.synthesis_order.empty()) {
     clock.start("synthesis");
-    detail::SynthesisCache cache(options.cache_dir, warnings);
+    detail::SynthesisCache cache(options.cache_dir ? options.cache_dir : config.cache_dir,
+                                 warnings);
     detail::PatternOptions pattern_options;
     pattern_options.backend = options.backend;
     pattern_options.cache = &cache;

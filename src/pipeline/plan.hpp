@@ -138,8 +138,8 @@ struct WorldPlan {
 struct PlanOptions {
   std::optional<std::string> backend;  // replaces every class's backend
   bool synthesize = true;              // false: no synthesis (validate)
-  // Reuses and stores syntheses there (`--cache`, docs/cache.md); absent: every feature is
-  // synthesized.
+  // Reuses and stores syntheses there (`--cache`, docs/cache.md); absent: the config's `cache`,
+  // or none.
   std::optional<std::filesystem::path> cache_dir;
 };
 

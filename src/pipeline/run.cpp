@@ -190,7 +190,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   detail::PatternRun patterns;
   if (!config.synthesis_order.empty()) {
     clock.start("synthesis");
-    detail::SynthesisCache cache(options.cache_dir, warnings);
+    detail::SynthesisCache cache(options.cache_dir ? options.cache_dir : config.cache_dir,
+                                 warnings);
     detail::PatternOptions pattern_options;
     pattern_options.backend = options.backend;
     pattern_options.cache = &cache;

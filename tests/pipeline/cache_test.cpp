@@ -140,5 +140,25 @@ TEST_F(CacheRun, CorruptEntriesAreDetectedAndRebuilt) {
   expect_same_outputs("first", "third");
 }
 
+TEST_F(CacheRun, PipelineKeyNamesTheCacheRelativeToTheFile) {
+  const std::string text = std::string(kCachePipeline) + "cache: kept\n";
+  const PipelineConfig config =
+      parse_pipeline(text, "cache.yaml", dir_.path(), {{"output.dir", (dir_ / "first").string()}});
+  ASSERT_TRUE(config.cache_dir);
+  EXPECT_EQ(*config.cache_dir, dir_ / "kept");
+  run_pipeline(config);
+  EXPECT_TRUE(fs::exists(dir_ / "kept/CACHEDIR.TAG"));
+  EXPECT_EQ(rebuilt("first").size(), 5u);
+  PipelineConfig again = config;
+  again.output.dir = dir_ / "second";
+  run_pipeline(again);
+  EXPECT_EQ(rebuilt("second"), std::set<int>{});
+  RunOptions elsewhere;  // --cache replaces the key: an empty cache rebuilds everything
+  elsewhere.cache_dir = dir_ / "other";
+  again.output.dir = dir_ / "third";
+  run_pipeline(again, elsewhere);
+  EXPECT_EQ(rebuilt("third").size(), 5u);
+}
+
 }  // namespace
 }  // namespace tw
