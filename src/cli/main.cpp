@@ -101,6 +101,11 @@ int main(int argc, char** argv) {
   const char* const network_help =
       "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
   run->add_flag("--allow-network", run_options.allow_network, network_help);
+  std::string cache_dir;
+  run->add_option("--cache", cache_dir,
+                  "cache folder: reuse the syntheses and tiles whose inputs are unchanged "
+                  "(docs/cache.md; replaces the pipeline's cache key)")
+      ->check(non_empty);
 
   PipelineArgs validate_args;
   bool validate_strict = false;
@@ -189,6 +194,7 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       if (run->count("--out")) run_options.output_dir = out_dir;
       if (!backend.empty()) run_options.backend = backend;
+      if (run->count("--cache")) run_options.cache_dir = cache_dir;
       return run_command(run_args, run_options);
     }
     if (validate->parsed())

@@ -437,7 +437,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                        {"version", "seed", "heightfield", "generate", "resolution", "output",
                         "backend", "precedence", "features", "existing", "synthesis_resolution",
                         "synthesis_order", "region", "resampling", "strict", "repair",
-                        "avoidance"});
+                        "avoidance", "cache"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -477,6 +477,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     const MapReader avoidance(src, root.get("avoidance"), "avoidance", {"max_distance"});
     c.avoidance.max_distance = avoidance.positive_or("max_distance", c.avoidance.max_distance);
   }
+  if (root.has("cache")) c.cache_dir = root.file("cache");
   c.backend = read_backend(root, "backend", c.backend);
   c.strict = root.bool_or("strict", c.strict);
   if (root.has("repair")) c.repair = read_repair(repair_reader(root), c.repair);

@@ -174,6 +174,9 @@ struct PipelineConfig {
   // Classes with synthesis, in the order they are synthesized: each avoids the patterns of
   // the classes before it. Default: precedence order.
   std::vector<std::string> synthesis_order;
+  // `cache`: the folder where runs keep and reuse syntheses and tiles (docs/cache.md); --cache
+  // replaces it. Absent: no cache.
+  std::optional<std::filesystem::path> cache_dir;
   // Any warning fails the run before anything is written (also `--strict`).
   bool strict = false;
   LineRepair repair;              // `repair`: how messy lines are cleaned (each class may override)

@@ -11,6 +11,7 @@
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/detail/synthesis_cache.hpp"
 #include "raster/footprint.hpp"
 #include "synth/pattern_canvas.hpp"
 
@@ -192,11 +193,17 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
 
   if (options.synthesize && !config.synthesis_order.empty()) {
     clock.start("synthesis");
+    detail::SynthesisCache cache(options.cache_dir ? options.cache_dir : config.cache_dir,
+                                 warnings);
+    detail::PatternOptions pattern_options;
+    pattern_options.backend = options.backend;
+    pattern_options.cache = &cache;
     detail::PatternRun patterns =
-        detail::synthesize_patterns(config, lines, ribbons, existing, {options.backend});
+        detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
     for (const detail::FeaturePattern& p : patterns.patterns) {
       FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
       feature.synthesis = p.report;
+      feature.cache = p.cache;
       report.pattern_violations += p.report.violations;
     }
     plan_patterns(config, std::move(patterns), plan);

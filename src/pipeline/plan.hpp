@@ -138,6 +138,9 @@ struct WorldPlan {
 struct PlanOptions {
   std::optional<std::string> backend;  // replaces every class's backend
   bool synthesize = true;              // false: no synthesis (validate)
+  // Reuses and stores syntheses there (`--cache`, docs/cache.md); absent: the config's `cache`,
+  // or none.
+  std::optional<std::filesystem::path> cache_dir;
 };
 
 // Ingest, conformance, ribbons, junctions, the terrain plan and the syntheses. Throws tw::Error
@@ -147,6 +150,9 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
 // Builds feature_index, ribbon_index and pattern_index from the plan's features, ribbons and
 // patterns (plan_world does; a plan read back from files calls it again).
 void index_plan(WorldPlan& plan);
+
+// Pixels beyond a window that its avoidance layer reads: the distance cap, plus a pixel.
+int avoidance_halo_pixels(const WorldPlan& plan);
 
 // The layers of `tile.halo_window`: "height", "splat", "avoidance" on a grid whose origin is
 // the window's corner; every pixel equals the same pixel of an untiled render. Reads the

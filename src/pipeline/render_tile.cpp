@@ -73,8 +73,7 @@ Layer avoidance_layer(AvoidanceMap map) {
 // distance capped so the halo it reads is bounded.
 AvoidanceMap tile_avoidance(const WorldPlan& plan, const Window& window) {
   const double cap = plan.render.avoidance_max_distance;
-  const double pixel = std::min(plan.grid.pixel_width, plan.grid.pixel_height);
-  const int halo = int(std::min(std::ceil(cap / pixel) + 1.0, 1e9));
+  const int halo = avoidance_halo_pixels(plan);
   std::vector<const Ribbon*> all;
   for (const auto& class_ribbons : plan.ribbons)
     for (const Ribbon& r : class_ribbons) all.push_back(&r);
@@ -90,6 +89,11 @@ AvoidanceMap tile_avoidance(const WorldPlan& plan, const Window& window) {
 }
 
 }  // namespace
+
+int avoidance_halo_pixels(const WorldPlan& plan) {
+  const double pixel = std::min(plan.grid.pixel_width, plan.grid.pixel_height);
+  return int(std::min(std::ceil(plan.render.avoidance_max_distance / pixel) + 1.0, 1e9));
+}
 
 LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
   const Window& window = tile.halo_window;

@@ -91,6 +91,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   PlanOptions plan_options;
   plan_options.backend = options.backend;
   plan_options.synthesize = options.write_outputs;  // validate synthesizes nothing
+  plan_options.cache_dir = options.cache_dir;
   WorldPlan plan = plan_world(config, plan_options, warnings);
   RunReport& report = plan.report;
   if (!options.write_outputs) {

@@ -11,6 +11,7 @@
 
 #include "core/grid.hpp"
 #include "core/warnings.hpp"
+#include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
 
 namespace tw {
@@ -25,6 +26,8 @@ struct RunOptions {
   bool write_outputs = true;   // false: read and check every input, write nothing (validate)
   bool strict = false;         // any warning fails the run (or config.strict)
   bool allow_network = false;  // inputs may be URLs (/vsicurl/...), CRSs may be fetched
+  // `--cache DIR` (docs/cache.md): reuse the syntheses and tiles whose inputs are unchanged.
+  std::optional<std::filesystem::path> cache_dir;
 };
 
 struct StageTiming {
@@ -54,6 +57,7 @@ struct FeatureReport {
   double width_m = 0.0;
   int pieces = 0;  // ribbon pieces of length delta (0 when shorter than one piece)
   std::optional<FeatureSynthesisReport> synthesis;
+  std::optional<CacheStatus> cache;  // with synthesis: reused or rebuilt, and why
   Structure structure = Structure::ground;
   int layer = 0;
   // A bridge's or tunnel's deck height at its start and end (metres; straight between).

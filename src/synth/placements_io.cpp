@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "core/error.hpp"
@@ -33,8 +34,7 @@ Int integer(const json& j, const std::string& path, const std::string& key) {
 
 }  // namespace
 
-void save_placements(const Synthesis& s, const std::string& exemplar_path,
-                     const std::string& path) {
+std::string placements_to_json(const Synthesis& s, const std::string& exemplar_path) {
   json doc;
   doc["format"] = kFormat;
   doc["version"] = kVersion;
@@ -58,18 +58,29 @@ void save_placements(const Synthesis& s, const std::string& exemplar_path,
                     {"stitch", p.stitch}});
   }
   doc["placements"] = std::move(list);
+  return doc.dump(1) + '\n';
+}
+
+void save_placements(const Synthesis& s, const std::string& exemplar_path,
+                     const std::string& path) {
   std::ofstream file(path);
   if (!file) fail("placements {}: cannot open for writing", path);
-  file << doc.dump(1) << '\n';
+  file << placements_to_json(s, exemplar_path);
   if (!file) fail("placements {}: write failed", path);
 }
 
 Synthesis load_placements(const std::string& path, std::string* exemplar_path) {
   std::ifstream file(path);
   if (!file) fail("placements {}: cannot open", path);
+  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  return placements_from_json(text, path, exemplar_path);
+}
+
+Synthesis placements_from_json(std::string_view text, const std::string& path,
+                               std::string* exemplar_path) {
   json doc;
   try {
-    doc = json::parse(file);
+    doc = json::parse(text);
   } catch (const json::exception& e) {
     fail("placements {}: not JSON ({})", path, e.what());
   }

@@ -3,6 +3,7 @@
 // without re-running the DP (the paper: "the output of the synthesizer is a set of texture
 // coordinates").
 #include <string>
+#include <string_view>
 
 #include "synth/synthesize.hpp"
 
@@ -12,5 +13,11 @@ void save_placements(const Synthesis& synthesis, const std::string& exemplar_pat
                      const std::string& path);
 // Throws tw::Error naming the file and the key on malformed input.
 Synthesis load_placements(const std::string& path, std::string* exemplar_path = nullptr);
+
+// The same document as text (the cache keeps it inside its entries); `path` names the source in
+// messages.
+std::string placements_to_json(const Synthesis& synthesis, const std::string& exemplar_path);
+Synthesis placements_from_json(std::string_view text, const std::string& path,
+                               std::string* exemplar_path = nullptr);
 
 }  // namespace tw

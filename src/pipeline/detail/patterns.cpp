@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "pipeline/detail/synthesis_cache.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/foldover.hpp"
 #include "synth/detail/backend_factory.hpp"
@@ -116,6 +117,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   for (const ClassPlan& plan : plans)
     for (const Ribbon& r : ribbons.ribbons[plan.class_index]) total += r.pieces.empty() ? 0 : 1;
   Progress progress("synthesis", total, "feature");
+  Warnings no_warnings;  // a cache without a folder never warns
+  SynthesisCache keys_only(std::nullopt, no_warnings);
+  SynthesisCache& cache = options.cache ? *options.cache : keys_only;
+  std::vector<EarlierSynthesis> earlier_keys;
+  std::map<std::string, int> parts;  // a multi-part FID's pieces are <name>_1, <name>_2, ...
   const double cell = config.synthesis_resolution;
   for (const ClassPlan& plan : plans) {
     const FeatureClassConfig& feature_class = config.features[plan.class_index];
@@ -140,6 +146,25 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       auto started = std::chrono::steady_clock::now();
       pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell, label);
       const GridSpec& canvas = pattern.canvas;
+      pattern.name = fmt::format("{}_{}", feature_class.name, line.fid);
+      if (const int part = parts[pattern.name]++; part > 0)
+        pattern.name += fmt::format("_{}", part);
+      const SynthesisKey key =
+          cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys);
+      pattern.key = key.combined();
+      earlier_keys.push_back({canvas, pattern.key});
+      if (std::optional<CachedSynthesis> cached = cache.find(
+              "features." + feature_class.name, line.fid, pattern.name, key, pattern.cache)) {
+        if (cached->start)
+          pattern.ribbon = make_ribbon(*cached->start, {width, synthesis.delta, 0.0});
+        pattern.synthesis = std::move(cached->synthesis);
+        pattern.exemplar_index = plan.exemplars.at(cached->exemplar_slot);
+        pattern.opaque = std::move(cached->opaque);
+        pattern.report = std::move(cached->report);
+        logger().info("{}: reused from the cache ({})", label, pattern.cache.key);
+        run.patterns.push_back(std::move(pattern));
+        continue;
+      }
       auto forbidden_on = [&](const std::vector<TileIndex>& tiles) {
         SparseRaster<std::uint8_t> forbidden(canvas.width, canvas.height, 0, options.canvas_tile);
         add_tiles(forbidden, tiles);
@@ -153,9 +178,10 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       };
       std::vector<TileIndex> tiles = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
       SparseRaster<std::uint8_t> forbidden = forbidden_on(tiles);
+      std::optional<Curve> start;
       if (curve.closed) {
-        pattern.ribbon = make_ribbon(start_in_the_clear(curve, pattern.ribbon, canvas, forbidden),
-                                     {width, synthesis.delta, 0.0});
+        start = start_in_the_clear(curve, pattern.ribbon, canvas, forbidden);
+        pattern.ribbon = make_ribbon(*start, {width, synthesis.delta, 0.0});
         // The rotated ribbon's pieces differ: it may read a tile more.
         std::vector<TileIndex> more = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
         more.erase(std::remove_if(more.begin(), more.end(),
@@ -240,6 +266,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
           canvas.width, canvas.height, forbidden.tile_count(),
           double(forbidden.allocated_bytes()) / 1e6,
           report.avoidance_seconds + report.synthesis_seconds + report.render_seconds);
+      const std::size_t slot = std::size_t(
+          std::find(plan.exemplars.begin(), plan.exemplars.end(), pattern.exemplar_index) -
+          plan.exemplars.begin());
+      cache.store(pattern.name, key, pattern.synthesis, slot, start ? &*start : nullptr,
+                  pattern.opaque, report);
       run.patterns.push_back(std::move(pattern));
       progress.advance();
     }

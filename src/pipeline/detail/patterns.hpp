@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/content_hash.hpp"
 #include "core/grid.hpp"
+#include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
@@ -29,7 +31,10 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
 Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
 
+class SynthesisCache;
+
 struct FeaturePattern {
+  std::string name;                // placements/<name>.json: <class>_<fid>[_<part>]
   std::size_t class_index = 0;     // in config.features
   std::size_t feature_index = 0;   // in the class's lines / ribbons
   std::size_t exemplar_index = 0;  // in PatternRun::exemplars
@@ -39,6 +44,8 @@ struct FeaturePattern {
   GridSpec canvas;                    // synthesis_canvas (synth/pattern_canvas.hpp)
   SparseRaster<std::uint8_t> opaque;  // over canvas: 1 where the rendered pattern has coverage > 0
   FeatureSynthesisReport report;
+  ContentHash key;  // of everything the synthesis read (synthesis_cache.hpp)
+  CacheStatus cache;
 };
 
 struct PatternRun {
@@ -51,6 +58,9 @@ struct PatternOptions {
   // Cells per side of a canvas tile; 0: one tile for the whole canvas (the dense canvas, for
   // tests: the same results).
   int canvas_tile = SparseRaster<std::uint8_t>::kDefaultTileSize;
+  // Reuses and stores syntheses (`--cache`); null: every feature is synthesized (keys are still
+  // computed for the report).
+  SynthesisCache* cache = nullptr;
 };
 
 // Throws tw::Error naming the class and FID (and the piece) of a feature without room for its

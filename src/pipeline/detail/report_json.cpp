@@ -48,6 +48,11 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                                   {"synthesis", s.synthesis_seconds},
                                   {"render", s.render_seconds}}}};
       }
+      if (f.cache) {
+        feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},
+                            {"why", f.cache->why},
+                            {"key", f.cache->key}};
+      }
       features.push_back(feature);
       total_length += f.length_m;
     }

@@ -1,0 +1,149 @@
+#include "pipeline/detail/cache_entry.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <span>
+
+#include "core/content_hash.hpp"
+#include "core/error.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kMagic[8] = {'T', 'W', 'C', 'A', 'C', 'H', 'E', '1'};
+constexpr std::size_t kHeaderBytes = 8 + 8 + 16;
+
+void put_u64(std::string& out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(char(v >> (8 * i)));
+}
+
+std::uint64_t get_u64(const std::string& in, std::size_t at) {
+  std::uint64_t v = 0;
+  for (int i = 7; i >= 0; --i) v = (v << 8) | std::uint8_t(in[at + std::size_t(i)]);
+  return v;
+}
+
+ContentHash checksum(const std::string& payload) {
+  return hash_bytes(std::as_bytes(std::span(payload.data(), payload.size())));
+}
+
+std::string unique_suffix() {
+  static thread_local std::mt19937_64 random{std::random_device{}()};
+  return std::to_string(::getpid()) + "-" + std::to_string(random());
+}
+
+}  // namespace
+
+void write_cache_entry(const fs::path& path, const CacheSections& sections) {
+  std::string payload;
+  for (const auto& [name, data] : sections) {
+    put_u64(payload, name.size());
+    payload += name;
+    put_u64(payload, data.size());
+    payload += data;
+  }
+  std::string file(kMagic, sizeof kMagic);
+  put_u64(file, payload.size());
+  const ContentHash sum = checksum(payload);
+  put_u64(file, sum.high);
+  put_u64(file, sum.low);
+  file += payload;
+
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) fail("cache: cannot create {}: {}", path.parent_path().string(), ec.message());
+  const fs::path temporary =
+      path.parent_path() / ("." + path.filename().string() + ".tmp" + unique_suffix());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out.write(file.data(), std::streamsize(file.size()));
+    out.close();
+    if (!out) {
+      fs::remove(temporary, ec);
+      fail("cache: cannot write {}", temporary.string());
+    }
+  }
+  fs::rename(temporary, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    fail("cache: cannot rename {} to {}: {}", temporary.string(), path.string(), ec.message());
+  }
+}
+
+CacheRead read_cache_entry(const fs::path& path) {
+  CacheRead read;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return read;
+  read.state = CacheRead::State::corrupt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    read.problem = "unreadable";
+    return read;
+  }
+  const std::string file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (file.size() < kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0) {
+    read.problem = "not a terraweave cache entry";
+    return read;
+  }
+  const std::uint64_t size = get_u64(file, 8);
+  if (size != file.size() - kHeaderBytes) {
+    read.problem = fmt::format("{} payload bytes, the header says {} (truncated?)",
+                               file.size() - kHeaderBytes, size);
+    return read;
+  }
+  const std::string payload = file.substr(kHeaderBytes);
+  if (checksum(payload) != ContentHash{get_u64(file, 16), get_u64(file, 24)}) {
+    read.problem = "checksum mismatch";
+    return read;
+  }
+  std::size_t at = 0;
+  auto field = [&](std::string& out) {
+    if (payload.size() - at < 8) return false;
+    const std::uint64_t n = get_u64(payload, at);
+    at += 8;
+    if (payload.size() - at < n) return false;
+    out = payload.substr(at, std::size_t(n));
+    at += std::size_t(n);
+    return true;
+  };
+  while (at < payload.size()) {
+    std::string name, data;
+    if (!field(name) || !field(data)) {
+      read.problem = "malformed sections";
+      read.sections.clear();
+      return read;
+    }
+    read.sections.emplace(std::move(name), std::move(data));
+  }
+  read.state = CacheRead::State::ok;
+  return read;
+}
+
+void touch_cache_entry(const fs::path& path) {
+  std::error_code ignored;
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ignored);
+}
+
+void prepare_cache_dir(const fs::path& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    fail("--cache {}: cannot create the folder{}", dir.string(), ec ? ": " + ec.message() : "");
+  }
+  const fs::path tag = dir / "CACHEDIR.TAG";
+  if (fs::exists(tag, ec)) return;
+  std::ofstream out(tag);
+  out << "Signature: 8a477f597d28d172789f06886806bc55\n"
+         "# This file is a cache directory tag created by terraweave (docs/cache.md).\n";
+  if (!out) fail("--cache {}: cannot write {}", dir.string(), tag.string());
+}
+
+}  // namespace tw::detail

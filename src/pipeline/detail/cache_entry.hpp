@@ -1,0 +1,41 @@
+#pragma once
+// One entry of the run cache (docs/cache.md): named sections of bytes in one file, written
+// atomically (a temporary in the same folder, then rename) and carrying the XXH3-128 checksum
+// of its own payload, so that a truncated, corrupted or foreign file is detected on reading and
+// never trusted.
+//
+// Layout: "TWCACHE1" (8 bytes), payload size (u64 LE), checksum of the payload (16 bytes:
+// high, low, u64 LE each), payload = sections, each: name size (u64), name, data size (u64),
+// data.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace tw::detail {
+
+using CacheSections = std::map<std::string, std::string>;
+
+struct CacheRead {
+  enum class State { absent, corrupt, ok };
+  State state = State::absent;
+  std::string problem;  // for corrupt: what did not match
+  CacheSections sections;
+};
+
+// Writes `sections` to `path` atomically (creating its folder). Throws tw::Error naming the
+// path when the cache cannot be written.
+void write_cache_entry(const std::filesystem::path& path, const CacheSections& sections);
+
+// Reads and checks an entry; never throws for a bad file (that is State::corrupt).
+CacheRead read_cache_entry(const std::filesystem::path& path);
+
+// Marks an entry as used now (its modification time), so that pruning by age keeps what the
+// latest runs used. Errors are ignored (a read-only cache still serves).
+void touch_cache_entry(const std::filesystem::path& path);
+
+// Creates `dir` with a CACHEDIR.TAG (the Cache Directory Tagging Specification: backup tools
+// skip the folder). Throws tw::Error naming it when it cannot be created.
+void prepare_cache_dir(const std::filesystem::path& dir);
+
+}  // namespace tw::detail

@@ -1,0 +1,305 @@
+#include "pipeline/detail/synthesis_cache.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/version.hpp"
+#include "synth/placements_io.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Bumped whenever an entry's layout or meaning changes: old entries then miss.
+constexpr std::uint64_t kSynthesisCacheFormat = 1;
+
+struct Box {
+  double x0, y0, x1, y1;
+};
+
+Box box_of(const GridSpec& g) {
+  return {g.origin_x, g.origin_y - g.height * g.pixel_height, g.origin_x + g.width * g.pixel_width,
+          g.origin_y};
+}
+
+Box box_of(const std::vector<Vec2>& points, double grow) {
+  Box b{1e300, 1e300, -1e300, -1e300};
+  for (const Vec2 p : points) {
+    b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
+  }
+  return {b.x0 - grow, b.y0 - grow, b.x1 + grow, b.y1 + grow};
+}
+
+bool meets(const Box& a, const Box& b) {
+  return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
+}
+
+void hash_polygons_meeting(Hasher& h, const std::vector<Polygon>& polygons, const Box& canvas) {
+  for (const Polygon& polygon : polygons) {
+    if (polygon.empty() || !meets(box_of(polygon.front(), 0.0), canvas)) continue;
+    h.u64(polygon.size());
+    for (const Ring& ring : polygon) h.points(ring);
+  }
+}
+
+std::string encode_opaque(const SparseRaster<std::uint8_t>& opaque) {
+  std::string out;
+  const auto u64 = [&](std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(char(v >> (8 * i)));
+  };
+  u64(std::uint64_t(opaque.width()));
+  u64(std::uint64_t(opaque.height()));
+  u64(std::uint64_t(opaque.tile_size()));
+  u64(opaque.tile_count());
+  for (const TileIndex t : opaque.tiles()) {
+    u64(std::uint64_t(t.tx));
+    u64(std::uint64_t(t.ty));
+    const Raster<std::uint8_t>& cells = *opaque.tile(t);
+    out.append(reinterpret_cast<const char*>(cells.pixels.data()), cells.pixels.size());
+  }
+  return out;
+}
+
+// Throws tw::Error on bytes that do not describe a raster over `canvas`.
+SparseRaster<std::uint8_t> decode_opaque(const std::string& in, const GridSpec& canvas) {
+  std::size_t at = 0;
+  const auto u64 = [&]() {
+    if (in.size() - at < 8) fail("opaque: truncated");
+    std::uint64_t v = 0;
+    for (int i = 7; i >= 0; --i) v = (v << 8) | std::uint8_t(in[at + std::size_t(i)]);
+    at += 8;
+    return v;
+  };
+  const std::uint64_t width = u64(), height = u64(), tile = u64(), count = u64();
+  if (width != std::uint64_t(canvas.width) || height != std::uint64_t(canvas.height) || tile == 0 ||
+      tile > (1u << 30)) {
+    fail("opaque: {}x{} (tiles {}) does not fit the canvas", width, height, tile);
+  }
+  SparseRaster<std::uint8_t> opaque(int(width), int(height), 0, int(tile));
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::uint64_t tx = u64(), ty = u64();
+    if (tx >= std::uint64_t(opaque.tiles_x()) || ty >= std::uint64_t(opaque.tiles_y()))
+      fail("opaque: tile ({}, {}) outside", tx, ty);
+    Raster<std::uint8_t>& cells = opaque.add_tile({int(tx), int(ty)});
+    if (in.size() - at < cells.pixels.size()) fail("opaque: truncated tile");
+    std::copy_n(in.begin() + std::ptrdiff_t(at), cells.pixels.size(), cells.pixels.begin());
+    at += cells.pixels.size();
+  }
+  if (at != in.size()) fail("opaque: {} trailing bytes", in.size() - at);
+  return opaque;
+}
+
+std::string encode_parts(const SynthesisKey& k) {
+  return json{{"geometry", k.geometry.hex()}, {"config", k.config.hex()},
+              {"exemplar", k.exemplar.hex()}, {"avoidance", k.avoidance.hex()},
+              {"earlier", k.earlier.hex()},   {"key", k.combined().hex()}}
+      .dump();
+}
+
+// The first part that differs, in the order in which they are listed to the user.
+std::string why_changed(const SynthesisKey& now, const json& before) {
+  const std::pair<const char*, const ContentHash*> parts[] = {{"geometry", &now.geometry},
+                                                              {"config", &now.config},
+                                                              {"exemplar", &now.exemplar},
+                                                              {"avoidance", &now.avoidance},
+                                                              {"earlier", &now.earlier}};
+  for (const auto& [name, hash] : parts) {
+    if (before.at(name).get<std::string>() == hash->hex()) continue;
+    return std::string(name) == "earlier" ? "earlier feature changed"
+                                          : std::string(name) + " changed";
+  }
+  return "new";  // the same parts: the entry was pruned
+}
+
+}  // namespace
+
+ContentHash SynthesisKey::combined() const {
+  return Hasher()
+      .text("terraweave.synthesis")
+      .hash(geometry)
+      .hash(config)
+      .hash(exemplar)
+      .hash(avoidance)
+      .hash(earlier)
+      .digest();
+}
+
+SynthesisCache::SynthesisCache(std::optional<fs::path> dir, Warnings& warnings)
+    : dir_(std::move(dir)), warnings_(warnings) {
+  if (dir_) prepare_cache_dir(*dir_);
+}
+
+ContentHash SynthesisCache::exemplar_hash(const fs::path& path) {
+  auto it = exemplars_.find(path);
+  if (it == exemplars_.end()) {
+    // The image and the height channel that load_exemplar_with_height reads beside it.
+    const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
+    it = exemplars_.emplace(path, Hasher().file(path).file(height).digest()).first;
+  }
+  return it->second;
+}
+
+SynthesisKey SynthesisCache::key(const PipelineConfig& config,
+                                 const FeatureClassConfig& feature_class, const LineFeature& line,
+                                 std::uint64_t feature_seed, const GridSpec& canvas,
+                                 const AvoidanceInputs& fixed,
+                                 const std::vector<EarlierSynthesis>& earlier) {
+  SynthesisKey key;
+  key.geometry = Hasher()
+                     .points(line.points)
+                     .boolean(line.closed)
+                     .real(line.width)
+                     .u64(std::uint64_t(line.structure))
+                     .i64(line.layer)
+                     .digest();
+
+  const SynthesisConfig& s = *feature_class.synthesis;
+  Hasher c;
+  c.u64(kSynthesisCacheFormat).text(version_line());
+  c.u64(config.seed).real(config.synthesis_resolution).u64(feature_seed);
+  c.u64(s.exemplars.size());
+  for (const fs::path& path : s.exemplars) c.text(path.string());
+  c.u64(std::uint64_t(s.choice)).real(s.delta).real(s.scale);
+  c.boolean(s.width.has_value()).real(s.width.value_or(0.0));
+  c.boolean(s.stitch).boolean(s.empty_pieces).real(s.min_coverage).boolean(s.continuous_alpha);
+  c.u64(s.seed);
+  key.config = c.digest();
+
+  Hasher e;
+  if (s.choice == ExemplarChoice::by_seed) {
+    e.hash(exemplar_hash(s.exemplars[feature_seed % s.exemplars.size()]));
+  } else {
+    for (const fs::path& path : s.exemplars) e.hash(exemplar_hash(path));
+  }
+  key.exemplar = e.digest();
+
+  // Only what can reach a canvas cell: inputs whose box (lines grown by their width) meets it.
+  const Box box = box_of(canvas);
+  Hasher a;
+  a.text("polygons");
+  hash_polygons_meeting(a, fixed.polygons, box);
+  a.text("lines");
+  for (std::size_t i = 0; i < fixed.lines.size(); ++i) {
+    if (!meets(box_of(fixed.lines[i], fixed.line_widths[i]), box)) continue;
+    a.points(fixed.lines[i]).real(fixed.line_widths[i]);
+  }
+  a.text("junctions");
+  hash_polygons_meeting(a, fixed.junction_discs, box);
+  key.avoidance = a.digest();
+
+  // The same overlap test as synthesize_patterns uses to burn an earlier feature's coverage.
+  Hasher r;
+  for (const EarlierSynthesis& before : earlier) {
+    const Box b = box_of(before.canvas);
+    if (box.x0 < b.x1 && b.x0 < box.x1 && box.y0 < b.y1 && b.y0 < box.y1) r.hash(before.key);
+  }
+  key.earlier = r.digest();
+  return key;
+}
+
+fs::path SynthesisCache::entry_path(const ContentHash& key) const {
+  return *dir_ / "synthesis" / (key.hex() + ".twc");
+}
+
+fs::path SynthesisCache::last_path(const std::string& name) const {
+  return *dir_ / "synthesis" / "last" / (Hasher().text(name).digest().hex() + ".twc");
+}
+
+std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, std::int64_t fid,
+                                                    const std::string& name,
+                                                    const SynthesisKey& key, CacheStatus& status) {
+  const ContentHash combined = key.combined();
+  status = {false, "no cache", combined.hex()};
+  if (!dir_) return std::nullopt;
+  const fs::path path = entry_path(combined);
+  CacheRead read = read_cache_entry(path);
+  if (read.state == CacheRead::State::ok) {
+    try {
+      CachedSynthesis cached;
+      const json meta = json::parse(read.sections.at("meta"));
+      if (meta.at("key").get<std::string>() != combined.hex()) fail("key mismatch");
+      cached.synthesis =
+          placements_from_json(read.sections.at("placements"), path.string(), nullptr);
+      cached.synthesis.backend = meta.at("backend").get<std::string>();
+      cached.exemplar_slot = meta.at("exemplar_slot").get<std::size_t>();
+      if (meta.contains("start")) {
+        Curve start{{}, true};
+        for (const auto& p : meta.at("start")) start.points.push_back({p.at(0), p.at(1)});
+        cached.start = std::move(start);
+      }
+      const GridSpec canvas{meta.at("canvas").at(0), meta.at("canvas").at(1), 0, 0, 1, 1};
+      cached.opaque = decode_opaque(read.sections.at("opaque"), canvas);
+      FeatureSynthesisReport& r = cached.report;
+      r.exemplar = meta.at("exemplar").get<std::string>();
+      r.seed = meta.at("seed").get<std::uint64_t>();
+      r.backend = cached.synthesis.backend;
+      r.mean_valid_positions = meta.at("mean_valid_positions").get<double>();
+      r.omega = cached.synthesis.total_cost;
+      r.mean_seam_cost = cached.synthesis.mean_seam_cost;
+      r.mean_seam_cost_stitched = cached.synthesis.mean_seam_cost_stitched;
+      r.violations = meta.at("violations").get<std::int64_t>();
+      r.empty_pieces = meta.at("empty_pieces").get<int>();
+      r.canvas_width = canvas.width;
+      r.canvas_height = canvas.height;
+      touch_cache_entry(path);
+      status.reused = true;
+      status.why = "unchanged";
+      return cached;
+    } catch (const std::exception& e) {  // a valid checksum over bytes we cannot use
+      read.state = CacheRead::State::corrupt;
+      read.problem = fmt::format("unreadable content ({})", single_line(e.what()));
+    }
+  }
+  if (read.state == CacheRead::State::corrupt) {
+    warnings_.add(
+        "cache_corrupt", subject, fid,
+        fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), read.problem));
+    status.why = "corrupt entry";
+    return std::nullopt;
+  }
+  status.why = "new";
+  const CacheRead last = read_cache_entry(last_path(name));
+  if (last.state == CacheRead::State::ok) {
+    try {
+      status.why = why_changed(key, json::parse(last.sections.at("parts")));
+    } catch (const std::exception&) {
+      // A record we cannot read only loses the reason.
+    }
+  }
+  return std::nullopt;
+}
+
+void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
+                           const Synthesis& synthesis, std::size_t exemplar_slot,
+                           const Curve* start, const SparseRaster<std::uint8_t>& opaque,
+                           const FeatureSynthesisReport& report) {
+  if (!dir_) return;
+  const ContentHash combined = key.combined();
+  json meta = {{"key", combined.hex()},
+               {"feature", name},
+               {"backend", synthesis.backend},
+               {"exemplar_slot", exemplar_slot},
+               {"canvas", {opaque.width(), opaque.height()}},
+               {"exemplar", report.exemplar},
+               {"seed", report.seed},
+               {"mean_valid_positions", report.mean_valid_positions},
+               {"violations", report.violations},
+               {"empty_pieces", report.empty_pieces}};
+  if (start) {
+    json points = json::array();
+    for (const Vec2 p : start->points) points.push_back({p.x, p.y});
+    meta["start"] = std::move(points);
+  }
+  write_cache_entry(entry_path(combined),
+                    {{"meta", meta.dump()},
+                     {"placements", placements_to_json(synthesis, report.exemplar)},
+                     {"opaque", encode_opaque(opaque)}});
+  write_cache_entry(last_path(name), {{"name", name}, {"parts", encode_parts(key)}});
+}
+
+}  // namespace tw::detail

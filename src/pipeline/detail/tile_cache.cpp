@@ -1,0 +1,291 @@
+#include "pipeline/detail/tile_cache.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <span>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "pipeline/version.hpp"
+#include "raster/footprint.hpp"
+#include "raster/window_index.hpp"
+#include "synth/placements_io.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::uint64_t kTileCacheFormat = 1;
+constexpr const char* kFilePrefix = "file:";
+
+void hash_window(Hasher& h, const Window& w) {
+  h.i64(w.col0).i64(w.row0).i64(w.width).i64(w.height);
+}
+
+void hash_optional(Hasher& h, const std::optional<double>& v) {
+  h.boolean(v.has_value()).real(v.value_or(0.0));
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+Box box_of(const GridSpec& grid, const Window& w) {
+  const Vec2 a = grid.pixel_to_world({double(w.col0), double(w.row_end())});
+  const Vec2 b = grid.pixel_to_world({double(w.col_end()), double(w.row0)});
+  return {a.x, a.y, b.x, b.y};
+}
+
+Box box_of(const std::vector<Vec2>& points, double grow) {
+  Box b{1e300, 1e300, -1e300, -1e300};
+  for (const Vec2 p : points)
+    b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
+  return {b.x0 - grow, b.y0 - grow, b.x1 + grow, b.y1 + grow};
+}
+
+void hash_polygons_meeting(Hasher& h, const std::vector<Polygon>& polygons, const Box& box) {
+  for (const Polygon& polygon : polygons) {
+    if (polygon.empty() || !box.meets(box_of(polygon.front(), 0.0))) continue;
+    h.u64(polygon.size());
+    for (const Ring& ring : polygon) h.points(ring);
+  }
+}
+
+ContentHash terrain_hash(const TerrainFeature& f,
+                         const std::vector<const std::vector<float>*>& profiles,
+                         const std::vector<double>& steps) {
+  Hasher h;
+  h.u64(std::uint64_t(f.kind)).points(f.centerline.points).boolean(f.centerline.closed);
+  h.real(f.width).u64(std::uint64_t(f.structure)).i64(f.layer);
+  h.real(f.road.max_grade).real(f.road.shoulder_width).real(f.road.falloff).real(f.road.smoothing);
+  hash_optional(h, f.road.max_cut);
+  hash_optional(h, f.road.max_fill);
+  h.real(f.river.depth).real(f.river.bank_width).real(f.river.falloff).real(f.river.min_slope);
+  hash_optional(h, f.river.max_carve);
+  h.real(f.ridge.height).real(f.ridge.falloff).real(f.ridge.sharpness);
+  // Its planned profiles: graded at junctions, so a partner's change reaches them.
+  h.u64(profiles.size());
+  for (std::size_t i = 0; i < profiles.size(); ++i) {
+    h.bytes(std::as_bytes(std::span(profiles[i]->data(), profiles[i]->size()))).real(steps[i]);
+  }
+  return h.digest();
+}
+
+ContentHash ribbon_hash(const Ribbon& r) {
+  return Hasher()
+      .points(r.centerline.points)
+      .boolean(r.centerline.closed)
+      .real(r.width)
+      .real(r.delta)
+      .boolean(r.closed)
+      .u64(r.pieces.size())
+      .digest();
+}
+
+// Stages through an OutputFolder and remembers what (the names under `dir`, the staged paths).
+class RecordingStager final : public OutputStager {
+ public:
+  RecordingStager(OutputFolder& output, fs::path dir) : output_(output), dir_(std::move(dir)) {}
+  fs::path stage(const fs::path& final_path) override {
+    fs::path staged = output_.stage(final_path);
+    files.push_back(
+        {final_path.lexically_normal().lexically_relative(dir_.lexically_normal()), staged});
+    return staged;
+  }
+  std::vector<std::pair<fs::path, fs::path>> files;
+
+ private:
+  OutputFolder& output_;
+  fs::path dir_;
+};
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cache: cannot read back {}", path.string());
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+ContentHash TileKey::combined() const {
+  return Hasher().text("terraweave.tile").hash(heightfield).hash(features).hash(config).digest();
+}
+
+TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::optional<fs::path> dir,
+                     Warnings& warnings)
+    : plan_(plan), dir_(std::move(dir)), warnings_(warnings) {
+  if (dir_) prepare_cache_dir(*dir_);
+  Hasher c;
+  c.u64(kTileCacheFormat).text(version_line());
+  const GridSpec& g = plan.grid;
+  c.i64(g.width).i64(g.height).real(g.origin_x).real(g.origin_y).real(g.pixel_width);
+  c.real(g.pixel_height).text(plan.crs_wkt);
+  hash_optional(c, plan.nodata);
+  c.real(plan.render.avoidance_max_distance);
+  c.u64(plan.splat_materials.size());
+  for (const std::string& m : plan.splat_materials) c.text(m);
+  c.u64(plan.terrain_params.precedence.size());
+  for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
+  c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
+  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level);
+  config_ = c.digest();
+
+  std::vector<std::vector<const std::vector<float>*>> profiles(plan.terrain_features.size());
+  std::vector<std::vector<double>> steps(plan.terrain_features.size());
+  for (std::size_t i = 0; i < plan.terrain.features.size(); ++i) {
+    profiles[plan.terrain.input_index[i]].push_back(&plan.terrain.profiles[i]);
+    steps[plan.terrain.input_index[i]].push_back(plan.terrain.steps[i]);
+  }
+  for (std::size_t f = 0; f < plan.terrain_features.size(); ++f)
+    terrain_.push_back(terrain_hash(plan.terrain_features[f], profiles[f], steps[f]));
+  for (const auto& class_ribbons : plan.ribbons)
+    for (const Ribbon& r : class_ribbons) ribbons_.push_back(ribbon_hash(r));
+  std::map<std::size_t, ContentHash> exemplars;
+  for (const PlannedPattern& p : plan.patterns) {
+    auto it = exemplars.find(p.exemplar_index);
+    if (it == exemplars.end()) {
+      const fs::path path = plan.exemplars[p.exemplar_index].path;
+      const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
+      it = exemplars.emplace(p.exemplar_index, Hasher().file(path).file(height).digest()).first;
+    }
+    Hasher h;
+    h.hash(it->second).text(placements_to_json(p.synthesis, "")).hash(ribbon_hash(p.ribbon));
+    h.boolean(p.on_ground).boolean(p.stitch).real(p.feather).real(p.height_detail);
+    hash_window(h, p.window);
+    h.u64(p.targets.size());
+    for (const PatternTarget& t : p.targets)
+      h.i64(t.exemplar_channel).boolean(t.to_height).u64(t.material).boolean(t.is_alpha);
+    patterns_.push_back(h.digest());
+  }
+}
+
+TileKey TileCache::key(const TileSpec& tile) const {
+  const Window& window = tile.halo_window;
+  TileKey key;
+  Hasher h;
+  hash_window(h, window);
+  if (const auto& generated = plan_.heights.generated) {
+    h.text("generated").real(generated->pixel_size).u64(generated->seed).real(generated->relief);
+    h.text(generated->crs).real(generated->feature_size);
+  } else if (plan_.heights.heights) {
+    const Raster<float>& heights = *plan_.heights.heights;
+    for (int row = window.row0; row < window.row_end(); ++row) {
+      const float* from = &heights.at(window.col0, row);
+      h.bytes(std::as_bytes(std::span(from, std::size_t(window.width))));
+    }
+  }
+  key.heightfield = h.digest();
+
+  Hasher f;
+  f.text("terrain");
+  for (const std::size_t i : items_meeting(plan_.feature_index, window)) f.hash(terrain_[i]);
+  const Window reach = grow_window(window, avoidance_halo_pixels(plan_), plan_.grid);
+  f.text("ribbons");
+  for (const std::size_t i : items_meeting(plan_.ribbon_index, reach)) f.hash(ribbons_[i]);
+  const Box box = box_of(plan_.grid, reach);
+  f.text("existing");
+  hash_polygons_meeting(f, plan_.existing.polygons, box);
+  for (std::size_t i = 0; i < plan_.existing.lines.size(); ++i) {
+    const double width = plan_.existing.line_widths[i];
+    if (box.meets(box_of(plan_.existing.lines[i], width)))
+      f.points(plan_.existing.lines[i]).real(width);
+  }
+  f.text("junctions");
+  hash_polygons_meeting(f, plan_.junction_discs, box);
+  f.text("patterns");
+  for (const std::size_t i : items_meeting(plan_.pattern_index, window)) f.hash(patterns_[i]);
+  key.features = f.digest();
+
+  Hasher c;
+  c.hash(config_).i64(tile.index).i64(tile.ix).i64(tile.iy);
+  hash_window(c, tile.window);
+  key.config = c.digest();
+  return key;
+}
+
+std::optional<CacheSections> TileCache::find(const std::string& name, const TileKey& key,
+                                             CacheStatus& status) {
+  const ContentHash combined = key.combined();
+  status = {false, "no cache", combined.hex()};
+  if (!dir_) return std::nullopt;
+  const fs::path path = *dir_ / "tiles" / (combined.hex() + ".twc");
+  CacheRead read = read_cache_entry(path);
+  if (read.state == CacheRead::State::ok) {
+    const auto k = read.sections.find("key");
+    if (k != read.sections.end() && k->second == combined.hex()) {
+      touch_cache_entry(path);
+      status.reused = true;
+      status.why = "unchanged";
+      return std::move(read.sections);
+    }
+    read.state = CacheRead::State::corrupt;
+    read.problem = "key mismatch";
+  }
+  if (read.state == CacheRead::State::corrupt) {
+    warnings_.add(
+        "cache_corrupt", "tiles." + name, std::nullopt,
+        fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), read.problem));
+    status.why = "corrupt entry";
+    return std::nullopt;
+  }
+  status.why = "new";
+  const CacheRead last = read_cache_entry(*dir_ / "tiles" / "last" / (name + ".twc"));
+  if (last.state == CacheRead::State::ok && last.sections.count("heightfield") &&
+      last.sections.count("features") && last.sections.count("config")) {
+    if (last.sections.at("heightfield") != key.heightfield.hex()) {
+      status.why = "heightfield changed";
+    } else if (last.sections.at("features") != key.features.hex()) {
+      status.why = "features changed";
+    } else if (last.sections.at("config") != key.config.hex()) {
+      status.why = "config changed";
+    }
+  }
+  return std::nullopt;
+}
+
+void TileCache::store(const std::string& name, const TileKey& key, const CacheSections& files) {
+  const ContentHash combined = key.combined();
+  CacheSections sections = files;
+  sections["key"] = combined.hex();
+  write_cache_entry(*dir_ / "tiles" / (combined.hex() + ".twc"), sections);
+  write_cache_entry(*dir_ / "tiles" / "last" / (name + ".twc"),
+                    {{"heightfield", key.heightfield.hex()},
+                     {"features", key.features.hex()},
+                     {"config", key.config.hex()}});
+}
+
+CacheStatus TileCache::render_or_reuse(
+    const TileSpec& tile, OutputFolder& output, const fs::path& output_dir,
+    const std::function<void(const LayerSet&, OutputStager&)>& write) {
+  const std::string name = tile_file_stem("tile", tile);
+  const TileKey key = this->key(tile);
+  CacheStatus status;
+  if (std::optional<CacheSections> cached = find(name, key, status)) {
+    for (const auto& [section, bytes] : *cached) {
+      if (section.rfind(kFilePrefix, 0) != 0) continue;
+      const fs::path staged = output.stage(output_dir / section.substr(std::strlen(kFilePrefix)));
+      std::ofstream out(staged, std::ios::binary);
+      out.write(bytes.data(), std::streamsize(bytes.size()));
+      out.close();
+      if (!out) fail("cannot write {}", staged.string());
+    }
+    logger().debug("{}: reused from the cache ({})", name, status.key);
+    return status;
+  }
+  RecordingStager stager(output, output_dir);
+  write(render_tile(plan_, tile), stager);
+  if (dir_) {
+    CacheSections sections;
+    for (const auto& [name, staged] : stager.files)
+      sections[kFilePrefix + name.generic_string()] = read_bytes(staged);
+    store(name, key, sections);
+  }
+  return status;
+}
+
+}  // namespace tw::detail

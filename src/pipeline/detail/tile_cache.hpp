@@ -1,0 +1,59 @@
+#pragma once
+// The per-tile render cache (docs/cache.md). A tile's files are keyed by exactly what
+// render_tile reads for its window (with the overlap): the heights of the window (the generated
+// source's parameters, or the window's values as ingested), the features whose footprint meets
+// it — terrain features with their planned profiles (a junction partner's profile included),
+// ribbons and existing features and junction discs within the avoidance halo, and the rendered
+// patterns (placements, ribbon, exemplar bytes, render options) — and the render and output
+// values with the program version. Entries hold the tile's file bytes: <dir>/tiles/<key>.twc.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/content_hash.hpp"
+#include "core/output_folder.hpp"
+#include "core/warnings.hpp"
+#include "layers/write.hpp"
+#include "pipeline/cache_status.hpp"
+#include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/plan.hpp"
+
+namespace tw::detail {
+
+struct TileKey {
+  ContentHash heightfield, features, config;
+  ContentHash combined() const;
+};
+
+class TileCache {
+ public:
+  // Hashes every feature, ribbon and pattern of `plan` once (a tile then hashes their hashes);
+  // `output`: the writer's options the tile's files depend on. No `dir`: keys only.
+  TileCache(const WorldPlan& plan, const WriteOptions& output,
+            std::optional<std::filesystem::path> dir, Warnings& warnings);
+
+  TileKey key(const TileSpec& tile) const;
+
+  // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
+  // holds the files under the tile's key, stages copies of them (the same names, the same
+  // bytes). Returns the status; stores a rebuilt tile's files.
+  CacheStatus render_or_reuse(const TileSpec& tile, OutputFolder& output,
+                              const std::filesystem::path& output_dir,
+                              const std::function<void(const LayerSet&, OutputStager&)>& write);
+
+ private:
+  std::optional<CacheSections> find(const std::string& name, const TileKey& key,
+                                    CacheStatus& status);
+  void store(const std::string& name, const TileKey& key, const CacheSections& files);
+
+  const WorldPlan& plan_;
+  std::optional<std::filesystem::path> dir_;
+  Warnings& warnings_;
+  ContentHash config_;                                     // what every tile shares
+  std::vector<ContentHash> terrain_, ribbons_, patterns_;  // by plan index
+};
+
+}  // namespace tw::detail

@@ -1,0 +1,164 @@
+// Incremental rebuilds with --cache (docs/cache.md, issue #10 item 3), feature syntheses: one
+// changed road rebuilds exactly the syntheses whose inputs changed (worked out from the geometry
+// in cache_world.cpp, independently of the cache), a corrupt entry is detected and rebuilt, and
+// every output equals a clean run's, byte for byte.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "cache_world.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using namespace tw::test;
+
+// --- Runs ---------------------------------------------------------------------------------------
+class CacheRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_roads(dir_ / "roads.gpkg", roads());
+    write_exemplar(dir_.path());
+  }
+
+  RunReport run(const std::string& out, bool with_cache = true) {
+    const PipelineConfig config = parse_pipeline(kCachePipeline, "cache.yaml", dir_.path(),
+                                                 {{"output.dir", (dir_ / out).string()}});
+    RunOptions options;
+    if (with_cache) options.cache_dir = dir_ / "cache";
+    return run_pipeline(config, options);
+  }
+
+  // FID -> cache status of each road, as report.json lists them.
+  std::map<std::int64_t, nlohmann::json> statuses(const std::string& out) const {
+    std::ifstream in(dir_ / out / "report.json");
+    const nlohmann::json report = nlohmann::json::parse(in);
+    std::map<std::int64_t, nlohmann::json> by_fid;
+    for (const auto& f : report["classes"][0]["features"]) by_fid[f["fid"]] = f["cache"];
+    return by_fid;
+  }
+
+  std::set<int> rebuilt(const std::string& out) const {
+    std::set<int> fids;
+    for (const auto& [fid, cache] : statuses(out))
+      if (cache["status"] == "rebuilt") fids.insert(int(fid));
+    return fids;
+  }
+
+  void expect_same_outputs(const std::string& a, const std::string& b) const {
+    const auto x = output_files(dir_ / a), y = output_files(dir_ / b);
+    ASSERT_GT(x.size(), 5u);
+    ASSERT_EQ(x.size(), y.size());
+    for (const auto& [name, bytes] : x) {
+      ASSERT_TRUE(y.count(name)) << name;
+      EXPECT_TRUE(bytes == y.at(name)) << name << " differs between " << a << " and " << b;
+    }
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(CacheRun, ExpectedRebuildsOfTheTestGeometry) {
+  // The change touches R1, its crossing with R2, and brings R1's canvas onto R4's.
+  EXPECT_EQ(expected_rebuilds(roads(), roads_with_r1_moved()), (std::set<int>{1, 2, 4}));
+}
+
+TEST_F(CacheRun, WithoutCacheEveryFeatureIsRebuiltAndKeyed) {
+  run("plain", false);
+  for (const auto& [fid, cache] : statuses("plain")) {
+    EXPECT_EQ(cache["status"], "rebuilt") << fid;
+    EXPECT_EQ(cache["why"], "no cache") << fid;
+    EXPECT_EQ(cache["key"].get<std::string>().size(), 32u) << fid;
+  }
+}
+
+TEST_F(CacheRun, UnchangedRerunReusesEverythingWithTheSameBytes) {
+  run("first");
+  EXPECT_EQ(rebuilt("first"), (std::set<int>{1, 2, 3, 4, 5}));
+  for (const auto& [fid, cache] : statuses("first")) EXPECT_EQ(cache["why"], "new") << fid;
+  run("second");
+  EXPECT_EQ(rebuilt("second"), std::set<int>{});
+  for (const auto& [fid, cache] : statuses("second")) {
+    EXPECT_EQ(cache["why"], "unchanged") << fid;
+    EXPECT_EQ(cache["key"], statuses("first")[fid]["key"]) << fid;
+  }
+  expect_same_outputs("first", "second");
+}
+
+TEST_F(CacheRun, OneChangedRoadRebuildsExactlyWhatItReaches) {
+  run("before");
+  write_roads(dir_ / "roads.gpkg", roads_with_r1_moved());
+  run("after");
+  const std::set<int> expected = expected_rebuilds(roads(), roads_with_r1_moved());
+  EXPECT_EQ(rebuilt("after"), expected);
+  const auto status = statuses("after");
+  EXPECT_EQ(status.at(1)["why"], "geometry changed");
+  EXPECT_EQ(status.at(2)["why"], "avoidance changed");  // the junction disc moved
+  EXPECT_EQ(status.at(4)["why"], "earlier feature changed");
+  EXPECT_EQ(status.at(3)["why"], "unchanged");
+  run("clean", false);
+  expect_same_outputs("after", "clean");
+}
+
+TEST_F(CacheRun, CorruptEntriesAreDetectedAndRebuilt) {
+  run("first");
+  const auto keys = statuses("first");
+  const auto entry = [&](std::int64_t fid) {
+    return dir_ / "cache/synthesis" / (keys.at(fid)["key"].get<std::string>() + ".twc");
+  };
+  ASSERT_TRUE(fs::exists(entry(3)));
+  {  // one byte of R3's entry flipped, in its placements
+    std::string bytes = test::read_file(entry(3));
+    bytes[bytes.size() / 2] ^= 0x20;
+    std::ofstream(entry(3), std::ios::binary | std::ios::trunc) << bytes;
+  }
+  fs::resize_file(entry(5), fs::file_size(entry(5)) - 7);  // R5's truncated
+  const RunReport report = run("second");
+  const auto status = statuses("second");
+  EXPECT_EQ(status.at(3)["status"], "rebuilt");
+  EXPECT_EQ(status.at(3)["why"], "corrupt entry");
+  EXPECT_EQ(status.at(5)["why"], "corrupt entry");
+  EXPECT_EQ(rebuilt("second"), (std::set<int>{3, 5}));
+  int corrupt = 0;
+  for (const Warning& w : report.warnings) {
+    if (w.code != "cache_corrupt") continue;
+    ++corrupt;
+    EXPECT_THAT(w.message, HasSubstr(".twc"));
+  }
+  EXPECT_EQ(corrupt, 2);
+  expect_same_outputs("first", "second");
+  run("third");  // the rebuilt entries are whole again
+  EXPECT_EQ(rebuilt("third"), std::set<int>{});
+  expect_same_outputs("first", "third");
+}
+
+TEST_F(CacheRun, PipelineKeyNamesTheCacheRelativeToTheFile) {
+  const std::string text = std::string(kCachePipeline) + "cache: kept\n";
+  const PipelineConfig config =
+      parse_pipeline(text, "cache.yaml", dir_.path(), {{"output.dir", (dir_ / "first").string()}});
+  ASSERT_TRUE(config.cache_dir);
+  EXPECT_EQ(*config.cache_dir, dir_ / "kept");
+  run_pipeline(config);
+  EXPECT_TRUE(fs::exists(dir_ / "kept/CACHEDIR.TAG"));
+  EXPECT_EQ(rebuilt("first").size(), 5u);
+  PipelineConfig again = config;
+  again.output.dir = dir_ / "second";
+  run_pipeline(again);
+  EXPECT_EQ(rebuilt("second"), std::set<int>{});
+  RunOptions elsewhere;  // --cache replaces the key: an empty cache rebuilds everything
+  elsewhere.cache_dir = dir_ / "other";
+  again.output.dir = dir_ / "third";
+  run_pipeline(again, elsewhere);
+  EXPECT_EQ(rebuilt("third").size(), 5u);
+}
+
+}  // namespace
+}  // namespace tw
