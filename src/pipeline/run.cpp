@@ -18,6 +18,7 @@
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/report_json.hpp"
+#include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/plan.hpp"
 #include "synth/placements_io.hpp"
 
@@ -41,6 +42,12 @@ std::uint64_t layer_bytes_hash(const LayerSet& set) {
   const std::uint64_t hash = XXH64_digest(state);
   XXH64_freeState(state);
   return hash;
+}
+
+// "tiles/splat_x1_y2.tif" -> "splat": the layer a tile file belongs to.
+std::string layer_of_tile_file(const fs::path& name) {
+  const std::string stem = name.stem().string();
+  return stem.substr(0, stem.rfind("_x"));
 }
 
 std::int64_t forbidden_in(const LayerSet& set, const Window& halo, const Window& core) {
@@ -114,20 +121,38 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   std::map<std::string, std::vector<fs::path>> tile_tifs;  // per layer, for the mosaics
   double render_seconds = 0.0, write_seconds = 0.0;
   Progress progress("render", std::int64_t(plan.tiles.size()), "tile");
+  // Tiled: each tile goes through the tile cache, which renders it (or, under --cache, copies
+  // its files when nothing it reads changed) and keeps the numbers the report gives of it.
+  const std::optional<fs::path> cache_dir =
+      options.cache_dir ? options.cache_dir : config.cache_dir;
+  std::optional<detail::TileCache> tile_cache;
+  if (tiled) tile_cache.emplace(plan, write_options, cache_dir, warnings);
+  const auto write_tile = [&](const TileSpec& tile, const LayerSet& layers, OutputStager& stager,
+                              std::map<std::string, std::string>& facts) {
+    for (const Layer& layer : layers.layers) {
+      const fs::path stem = dir / "tiles" / tile_file_stem(layer.name, tile);
+      if (config.output.exr)
+        write_exr(layers, layer, stager.stage(stem.string() + ".exr"),
+                  write_options.exr_compression, write_options.exr_zip_level);
+      if (config.output.geotiff) write_geotiff(layers, layer, stager.stage(stem.string() + ".tif"));
+    }
+    facts["forbidden_pixels"] = std::to_string(forbidden_in(layers, tile.halo_window, tile.window));
+    facts["xxh64"] = std::to_string(layer_bytes_hash(layers));
+  };
   for (const TileSpec& tile : plan.tiles) {
     const auto started = std::chrono::steady_clock::now();
-    LayerSet layers = render_tile(plan, tile);
-    render_seconds += seconds_since(started);
-    const auto writing = std::chrono::steady_clock::now();
-    report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
     TileReport& tile_report = report.tiles.tiles.emplace_back();
     tile_report.index = tile.index;
     tile_report.ix = tile.ix;
     tile_report.iy = tile.iy;
     tile_report.window = tile.window;
     tile_report.halo_window = tile.halo_window;
-    tile_report.xxh64 = layer_bytes_hash(layers);
     if (!tiled) {
+      LayerSet layers = render_tile(plan, tile);
+      render_seconds += seconds_since(started);
+      const auto writing = std::chrono::steady_clock::now();
+      report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
+      tile_report.xxh64 = layer_bytes_hash(layers);
       write_layer_set(layers, dir, transaction, write_options);
       if (config.output.preview) {
         std::vector<std::vector<Vec2>> centerlines;
@@ -135,20 +160,22 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
           centerlines.push_back(feature.centerline.points);
         write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
       }
+      write_seconds += seconds_since(writing);
     } else {
-      for (const Layer& layer : layers.layers) {
-        const fs::path stem = dir / "tiles" / tile_file_stem(layer.name, tile);
-        if (config.output.exr)
-          write_exr(layers, layer, transaction.stage(stem.string() + ".exr"),
-                    write_options.exr_compression, write_options.exr_zip_level);
-        if (config.output.geotiff) {
-          const fs::path tif = transaction.stage(stem.string() + ".tif");
-          write_geotiff(layers, layer, tif);
-          tile_tifs[layer.name].push_back(tif);
-        }
+      const detail::TileCache::Outcome outcome =
+          tile_cache->render_or_reuse(tile, transaction, dir,
+                                      [&](const LayerSet& layers, OutputStager& stager,
+                                          std::map<std::string, std::string>& facts) {
+                                        write_tile(tile, layers, stager, facts);
+                                      });
+      for (const auto& [name, staged] : outcome.staged) {
+        if (staged.extension() == ".tif") tile_tifs[layer_of_tile_file(name)].push_back(staged);
       }
+      report.forbidden_pixels += std::stoll(outcome.facts.at("forbidden_pixels"));
+      tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
+      tile_report.cache = outcome.status;
+      render_seconds += seconds_since(started);
     }
-    write_seconds += seconds_since(writing);
     tile_report.seconds = seconds_since(started);
     progress.advance();
   }

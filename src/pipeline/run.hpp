@@ -86,6 +86,7 @@ struct TileReport {
   Window halo_window;  // what its files hold
   double seconds = 0.0;
   std::uint64_t xxh64 = 0;
+  std::optional<CacheStatus> cache;  // tiled runs: rendered or copied from `--cache`, and why
 };
 
 struct TilesReport {

@@ -73,13 +73,19 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
   json tiles = json::array();
   const auto window_json = [](const Window& w) { return json{w.col0, w.row0, w.width, w.height}; };
   for (const TileReport& t : report.tiles.tiles) {
-    tiles.push_back({{"index", t.index},
-                     {"ix", t.ix},
-                     {"iy", t.iy},
-                     {"window", window_json(t.window)},
-                     {"halo_window", window_json(t.halo_window)},
-                     {"seconds", t.seconds},
-                     {"xxh64", fmt::format("{:016x}", t.xxh64)}});
+    json tile = {{"index", t.index},
+                 {"ix", t.ix},
+                 {"iy", t.iy},
+                 {"window", window_json(t.window)},
+                 {"halo_window", window_json(t.halo_window)},
+                 {"seconds", t.seconds},
+                 {"xxh64", fmt::format("{:016x}", t.xxh64)}};
+    if (t.cache) {
+      tile["cache"] = {{"status", t.cache->reused ? "reused" : "rebuilt"},
+                       {"why", t.cache->why},
+                       {"key", t.cache->key}};
+    }
+    tiles.push_back(std::move(tile));
   }
   const GridSpec& g = report.grid;
   return {

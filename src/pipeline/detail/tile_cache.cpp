@@ -21,6 +21,7 @@ namespace {
 
 constexpr std::uint64_t kTileCacheFormat = 1;
 constexpr const char* kFilePrefix = "file:";
+constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
 void hash_window(Hasher& h, const Window& w) {
   h.i64(w.col0).i64(w.row0).i64(w.width).i64(w.height);
@@ -259,33 +260,40 @@ void TileCache::store(const std::string& name, const TileKey& key, const CacheSe
                      {"config", key.config.hex()}});
 }
 
-CacheStatus TileCache::render_or_reuse(
-    const TileSpec& tile, OutputFolder& output, const fs::path& output_dir,
-    const std::function<void(const LayerSet&, OutputStager&)>& write) {
+TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputFolder& output,
+                                              const fs::path& output_dir, const Writer& write) {
   const std::string name = tile_file_stem("tile", tile);
   const TileKey key = this->key(tile);
-  CacheStatus status;
-  if (std::optional<CacheSections> cached = find(name, key, status)) {
+  Outcome outcome;
+  if (std::optional<CacheSections> cached = find(name, key, outcome.status)) {
     for (const auto& [section, bytes] : *cached) {
+      if (section.rfind(kFactPrefix, 0) == 0) {
+        outcome.facts[section.substr(std::strlen(kFactPrefix))] = bytes;
+        continue;
+      }
       if (section.rfind(kFilePrefix, 0) != 0) continue;
-      const fs::path staged = output.stage(output_dir / section.substr(std::strlen(kFilePrefix)));
+      const fs::path relative = section.substr(std::strlen(kFilePrefix));
+      const fs::path staged = output.stage(output_dir / relative);
       std::ofstream out(staged, std::ios::binary);
       out.write(bytes.data(), std::streamsize(bytes.size()));
       out.close();
       if (!out) fail("cannot write {}", staged.string());
+      outcome.staged.push_back({relative, staged});
     }
-    logger().debug("{}: reused from the cache ({})", name, status.key);
-    return status;
+    logger().debug("{}: reused from the cache ({})", name, outcome.status.key);
+    return outcome;
   }
   RecordingStager stager(output, output_dir);
-  write(render_tile(plan_, tile), stager);
+  write(render_tile(plan_, tile), stager, outcome.facts);
+  outcome.staged = stager.files;
   if (dir_) {
     CacheSections sections;
-    for (const auto& [name, staged] : stager.files)
-      sections[kFilePrefix + name.generic_string()] = read_bytes(staged);
+    for (const auto& [file, staged] : stager.files)
+      sections[kFilePrefix + file.generic_string()] = read_bytes(staged);
+    for (const auto& [fact, value] : outcome.facts) sections[kFactPrefix + fact] = value;
     store(name, key, sections);
   }
-  return status;
+  return outcome;
 }
 
 }  // namespace tw::detail

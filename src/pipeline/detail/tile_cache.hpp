@@ -8,6 +8,7 @@
 // values with the program version. Entries hold the tile's file bytes: <dir>/tiles/<key>.twc.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -37,12 +38,22 @@ class TileCache {
 
   TileKey key(const TileSpec& tile) const;
 
+  // What render_or_reuse did: the status, the files it staged (name under the output folder ->
+  // staged path) and the facts `write` noted about the rendered tile (kept with its files, so a
+  // reused tile reports the same numbers).
+  struct Outcome {
+    CacheStatus status;
+    std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged;
+    std::map<std::string, std::string> facts;
+  };
+  using Writer = std::function<void(const LayerSet&, OutputStager&,
+                                    std::map<std::string, std::string>& facts)>;
+
   // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
   // holds the files under the tile's key, stages copies of them (the same names, the same
-  // bytes). Returns the status; stores a rebuilt tile's files.
-  CacheStatus render_or_reuse(const TileSpec& tile, OutputFolder& output,
-                              const std::filesystem::path& output_dir,
-                              const std::function<void(const LayerSet&, OutputStager&)>& write);
+  // bytes). Stores a rebuilt tile's files and facts.
+  Outcome render_or_reuse(const TileSpec& tile, OutputFolder& output,
+                          const std::filesystem::path& output_dir, const Writer& write);
 
  private:
   std::optional<CacheSections> find(const std::string& name, const TileKey& key,
