@@ -4,14 +4,17 @@
 #include <cpl_error.h>
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/diff.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -27,6 +30,8 @@ void log_gdal_message(CPLErr level, CPLErrorNum number, const char* message) {
 struct PipelineArgs {
   std::string file;
   std::vector<std::string> overrides;
+  std::string variables;              // --vars FILE ("" = none)
+  std::optional<std::uint64_t> seed;  // --seed N: the same as a last --set seed=N
 };
 
 void add_pipeline_args(CLI::App& command, PipelineArgs& args) {
@@ -34,12 +39,18 @@ void add_pipeline_args(CLI::App& command, PipelineArgs& args) {
       ->required();
   command.add_option("--set", args.overrides,
                      "override a value of the pipeline file: key.path=value (repeatable)");
+  command.add_option("--vars", args.variables,
+                     "variables file (YAML name: value) for ${name} in the pipeline's values");
+  command.add_option("--seed", args.seed, "the run's seed (the same as --set seed=N)");
 }
 
 tw::PipelineConfig load(const PipelineArgs& args) {
   std::vector<tw::Override> overrides;
   for (const std::string& o : args.overrides) overrides.push_back(tw::parse_override(o));
-  return tw::load_pipeline(args.file, overrides);
+  if (args.seed) overrides.push_back({"seed", std::to_string(*args.seed)});
+  const tw::Variables variables =
+      args.variables.empty() ? tw::Variables{} : tw::load_variables(args.variables);
+  return tw::load_pipeline(args.file, overrides, variables);
 }
 
 int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
@@ -55,11 +66,9 @@ int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   return 0;
 }
 
-int validate_command(const PipelineArgs& args, bool strict, bool allow_network) {
-  tw::RunOptions options;
+int validate_command(const PipelineArgs& args, const tw::RunOptions& global) {
+  tw::RunOptions options = global;
   options.write_outputs = false;
-  options.strict = strict;
-  options.allow_network = allow_network;
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   std::size_t features = 0;
   for (const auto& c : report.classes) features += c.features.size();
@@ -69,6 +78,14 @@ int validate_command(const PipelineArgs& args, bool strict, bool allow_network) 
   return 0;
 }
 
+// Exit 0 when the runs are the same, 1 when they differ (as diff(1); 2 on trouble).
+int diff_command(const std::string& a, const std::string& b) {
+  const tw::RunDifference difference = tw::diff_runs(a, b);
+  for (const std::string& line : tw::describe(difference))
+    std::printf("%s\n", tw::single_line(line).c_str());
+  return difference.identical() ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -76,17 +93,26 @@ int main(int argc, char** argv) {
   CLI::App app{"terraweave: terrain features for procedural worlds"};
   app.require_subcommand(1);
   app.set_version_flag("--version", tw::version_line());
+  // Global options go before or after the subcommand: a subcommand passes what it does not
+  // know to the app (fallthrough).
+  app.fallthrough();
   bool verbose = false;
   bool quiet = false;
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("-q,--quiet", quiet, "warnings and errors only");
+  tw::RunOptions run_options;
+  app.add_option("--threads", run_options.threads, "worker threads (default: every core)")
+      ->check(CLI::Range(1, tw::kMaxThreads));
+  app.add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
+  const char* const network_help =
+      "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
+  app.add_flag("--allow-network", run_options.allow_network, network_help);
 
   const CLI::Validator non_empty(
       [](const std::string& value) { return value.empty() ? std::string("empty path") : ""; },
       "PATH");
 
   PipelineArgs run_args;
-  tw::RunOptions run_options;
   std::string out_dir;
   std::string backend;
   CLI::App* run = app.add_subcommand("run", "run a pipeline and write its layers");
@@ -94,21 +120,17 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder (replaces output.dir)")->check(non_empty);
   run->add_option("--backend", backend, "synthesis backend")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
-  run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
-      ->check(CLI::Range(1, tw::kMaxThreads));
-  run->add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
-  const char* const network_help =
-      "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
-  run->add_flag("--allow-network", run_options.allow_network, network_help);
 
   PipelineArgs validate_args;
-  bool validate_strict = false;
   CLI::App* validate =
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
-  validate->add_flag("--strict", validate_strict, "fail on any warning");
-  bool validate_allow_network = false;
-  validate->add_flag("--allow-network", validate_allow_network, network_help);
+
+  std::string diff_a, diff_b;
+  CLI::App* diff = app.add_subcommand(
+      "diff", "what changed between two runs, layer by layer (exit 0: same, 1: different)");
+  diff->add_option("RUN_A", diff_a, "output folder of a run")->required();
+  diff->add_option("RUN_B", diff_b, "output folder of another run")->required();
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -131,7 +153,6 @@ int main(int argc, char** argv) {
   synth->add_option("--min-coverage", synth_args.min_coverage,
                     "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
-  synth->add_flag("--allow-network", synth_args.allow_network, network_help);
   synth->add_option("--feather", synth_args.feather,
                     "metres either side of each seam where colours blend (0: exact copies)");
   synth
@@ -160,9 +181,18 @@ int main(int argc, char** argv) {
       if (!backend.empty()) run_options.backend = backend;
       return run_command(run_args, run_options);
     }
-    if (validate->parsed())
-      return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (validate->parsed()) return validate_command(validate_args, run_options);
+    if (diff->parsed()) {
+      try {
+        return diff_command(diff_a, diff_b);
+      } catch (const std::exception& e) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "terraweave: error: %s\n", tw::single_line(e.what()).c_str());
+        return 2;
+      }
+    }
     if (synth->parsed()) {
+      synth_args.allow_network = run_options.allow_network;
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",
                   result.placements.size(), static_cast<long long>(result.total_cost),

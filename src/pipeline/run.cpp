@@ -16,6 +16,7 @@
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
+#include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
@@ -110,6 +111,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   RunReport report;
   report.seed = config.seed;
+  report.started_utc = detail::utc_timestamp();
   Warnings warnings;
   const bool strict = options.strict || config.strict;
   StageClock clock(report.stages);
@@ -122,6 +124,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   clock.start("ingest");
   detail::check_inputs(config);
+  if (options.write_outputs) report.inputs = detail::record_inputs(config);
   Heightfield heightfield = detail::load_heightfield(config, warnings);
   report.grid = heightfield.grid;
   report.crs_wkt = heightfield.crs_wkt;
@@ -206,9 +209,11 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       plan_terrain(heightfield.height, heightfield.grid, features, params, warnings);
   detail::report_earthwork(config, lines, terrain_plan, report, warnings);
   report_decks(terrain_plan, report);
+  report.input_height = detail::height_range(heightfield.height);
   apply_terrain(heightfield.height, heightfield.grid, whole, terrain_plan);
   SplatLayers splat = compute_splat(heightfield.grid, whole, features, params, heightfield.height);
   detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
+  report.output_height = detail::height_range(heightfield.height);
   clock.stop();
 
   finish_warnings(warnings, strict, report);
@@ -250,6 +255,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   report.total_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
+  report.output_files = detail::record_outputs(transaction);
   write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
   transaction.commit();
   report.outputs = transaction.committed();
