@@ -4,9 +4,14 @@
 #include <cpl_error.h>
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
 #include <cstdint>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +23,7 @@
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
+#include "pipeline/view.hpp"
 
 namespace {
 
@@ -86,6 +92,22 @@ int diff_command(const std::string& a, const std::string& b) {
   return difference.identical() ? 0 : 1;
 }
 
+// Writes the page; with --serve, replaces this process by python3's http.server on the page's
+// folder (127.0.0.1 only; Ctrl-C stops it).
+int view_command(const tw::ViewOptions& options, bool serve, int port) {
+  const std::filesystem::path page = tw::write_view(options);
+  std::printf("%s\n", tw::single_line(page.string()).c_str());
+  if (!serve) return 0;
+  const std::string folder = std::filesystem::absolute(page).parent_path().string();
+  const std::string port_text = std::to_string(port);
+  std::printf("serving http://127.0.0.1:%d/%s (Ctrl-C stops)\n", port,
+              page.filename().string().c_str());
+  std::fflush(stdout);
+  execlp("python3", "python3", "-m", "http.server", port_text.c_str(), "--bind", "127.0.0.1",
+         "--directory", folder.c_str(), static_cast<char*>(nullptr));
+  tw::fail("--serve: cannot start python3 -m http.server: {}", std::strerror(errno));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -131,6 +153,18 @@ int main(int argc, char** argv) {
       "diff", "what changed between two runs, layer by layer (exit 0: same, 1: different)");
   diff->add_option("RUN_A", diff_a, "output folder of a run")->required();
   diff->add_option("RUN_B", diff_b, "output folder of another run")->required();
+
+  tw::ViewOptions view_options;
+  std::optional<int> serve_port;
+  CLI::App* view = app.add_subcommand(
+      "view", "write a self-contained 3D page of a run (three.js inlined; no network needed)");
+  view->add_option("RUN_DIR", view_options.run_dir, "output folder of a run")->required();
+  view->add_option("--out", view_options.out, "the page to write (default: RUN_DIR/view.html)");
+  view->add_option("--serve", serve_port,
+                   "then serve its folder on 127.0.0.1:PORT (python3 -m http.server)")
+      ->expected(0, 1)
+      ->default_str("8000")
+      ->check(CLI::Range(1, 65535));
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -191,6 +225,8 @@ int main(int argc, char** argv) {
         return 2;
       }
     }
+    if (view->parsed())
+      return view_command(view_options, view->count("--serve") > 0, serve_port.value_or(8000));
     if (synth->parsed()) {
       synth_args.allow_network = run_options.allow_network;
       const tw::Synthesis result = tw::run_synth_command(synth_args);

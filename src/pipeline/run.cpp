@@ -14,6 +14,7 @@
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/conformance.hpp"
+#include "pipeline/detail/feature_lines.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/manifest.hpp"
@@ -237,6 +238,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     for (const auto& feature : features) centerlines.push_back(feature.centerline.points);
     write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
   }
+  detail::write_feature_lines(config, lines, transaction.stage(dir / "features.geojson"));
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.
   std::map<std::string, int> parts;

@@ -120,7 +120,8 @@ TEST_F(Manifest, ReportNamesFormatConfigHashesAndHeights) {
   }
   EXPECT_THAT(names, Contains("height.tif"));
   EXPECT_THAT(names, Contains("splat.exr"));
-  EXPECT_EQ(names.size(), 6u);  // 3 layers x (EXR, GeoTIFF); report.json is not in its list
+  // 3 layers x (EXR, GeoTIFF) and features.geojson; report.json is not in its own list.
+  EXPECT_EQ(names.size(), 7u);
 
   const std::vector<float> height = read_band(dir / "a/height.tif");
   const auto [lo, hi] = std::minmax_element(height.begin(), height.end());
