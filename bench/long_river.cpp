@@ -119,7 +119,7 @@ Measure run_cli(const std::string& binary, const fs::path& pipeline, const fs::p
   if (!m.ok) return m;
   std::ifstream in(out / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
-  for (const auto& stage : report["stages"])
+  for (const auto& stage : report["timings"]["stages"])
     if (stage["stage"] == "synthesis") m.synthesis_s = stage["seconds"].get<double>();
   const auto& canvas = report["classes"][0]["features"][0]["synthesis"]["canvas"];
   m.canvas_w = canvas[0].get<int>();

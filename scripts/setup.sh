@@ -13,8 +13,13 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
   libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev
+  nodejs chromium
   "$@"
 )
+
+# npm vendors three.js for `terraweave view` at build time. Debian's npm package conflicts with
+# a nodejs that bundles its own npm (NodeSource's), so it is installed only where npm is absent.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -4,8 +4,15 @@
 #include <cpl_error.h>
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+#include <cstdint>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,9 +20,11 @@
 #include "core/log.hpp"
 #include "pipeline/area_command.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/diff.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
+#include "pipeline/view.hpp"
 
 namespace {
 
@@ -28,6 +37,8 @@ void log_gdal_message(CPLErr level, CPLErrorNum number, const char* message) {
 struct PipelineArgs {
   std::string file;
   std::vector<std::string> overrides;
+  std::string variables;              // --vars FILE ("" = none)
+  std::optional<std::uint64_t> seed;  // --seed N: the same as a last --set seed=N
 };
 
 void add_pipeline_args(CLI::App& command, PipelineArgs& args) {
@@ -35,12 +46,18 @@ void add_pipeline_args(CLI::App& command, PipelineArgs& args) {
       ->required();
   command.add_option("--set", args.overrides,
                      "override a value of the pipeline file: key.path=value (repeatable)");
+  command.add_option("--vars", args.variables,
+                     "variables file (YAML name: value) for ${name} in the pipeline's values");
+  command.add_option("--seed", args.seed, "the run's seed (the same as --set seed=N)");
 }
 
 tw::PipelineConfig load(const PipelineArgs& args) {
   std::vector<tw::Override> overrides;
   for (const std::string& o : args.overrides) overrides.push_back(tw::parse_override(o));
-  return tw::load_pipeline(args.file, overrides);
+  if (args.seed) overrides.push_back({"seed", std::to_string(*args.seed)});
+  const tw::Variables variables =
+      args.variables.empty() ? tw::Variables{} : tw::load_variables(args.variables);
+  return tw::load_pipeline(args.file, overrides, variables);
 }
 
 int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
@@ -56,11 +73,9 @@ int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   return 0;
 }
 
-int validate_command(const PipelineArgs& args, bool strict, bool allow_network) {
-  tw::RunOptions options;
+int validate_command(const PipelineArgs& args, const tw::RunOptions& global) {
+  tw::RunOptions options = global;
   options.write_outputs = false;
-  options.strict = strict;
-  options.allow_network = allow_network;
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   std::size_t features = 0;
   for (const auto& c : report.classes) features += c.features.size();
@@ -70,6 +85,30 @@ int validate_command(const PipelineArgs& args, bool strict, bool allow_network) 
   return 0;
 }
 
+// Exit 0 when the runs are the same, 1 when they differ (as diff(1); 2 on trouble).
+int diff_command(const std::string& a, const std::string& b) {
+  const tw::RunDifference difference = tw::diff_runs(a, b);
+  for (const std::string& line : tw::describe(difference))
+    std::printf("%s\n", tw::single_line(line).c_str());
+  return difference.identical() ? 0 : 1;
+}
+
+// Writes the page; with --serve, replaces this process by python3's http.server on the page's
+// folder (127.0.0.1 only; Ctrl-C stops it).
+int view_command(const tw::ViewOptions& options, bool serve, int port) {
+  const std::filesystem::path page = tw::write_view(options);
+  std::printf("%s\n", tw::single_line(page.string()).c_str());
+  if (!serve) return 0;
+  const std::string folder = std::filesystem::absolute(page).parent_path().string();
+  const std::string port_text = std::to_string(port);
+  std::printf("serving http://127.0.0.1:%d/%s (Ctrl-C stops)\n", port,
+              page.filename().string().c_str());
+  std::fflush(stdout);
+  execlp("python3", "python3", "-m", "http.server", port_text.c_str(), "--bind", "127.0.0.1",
+         "--directory", folder.c_str(), static_cast<char*>(nullptr));
+  tw::fail("--serve: cannot start python3 -m http.server: {}", std::strerror(errno));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,17 +116,26 @@ int main(int argc, char** argv) {
   CLI::App app{"terraweave: terrain features for procedural worlds"};
   app.require_subcommand(1);
   app.set_version_flag("--version", tw::version_line());
+  // Global options go before or after the subcommand: a subcommand passes what it does not
+  // know to the app (fallthrough).
+  app.fallthrough();
   bool verbose = false;
   bool quiet = false;
   app.add_flag("-v,--verbose", verbose, "debug logging");
   app.add_flag("-q,--quiet", quiet, "warnings and errors only");
+  tw::RunOptions run_options;
+  app.add_option("--threads", run_options.threads, "worker threads (default: every core)")
+      ->check(CLI::Range(1, tw::kMaxThreads));
+  app.add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
+  const char* const network_help =
+      "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
+  app.add_flag("--allow-network", run_options.allow_network, network_help);
 
   const CLI::Validator non_empty(
       [](const std::string& value) { return value.empty() ? std::string("empty path") : ""; },
       "PATH");
 
   PipelineArgs run_args;
-  tw::RunOptions run_options;
   std::string out_dir;
   std::string backend;
   CLI::App* run = app.add_subcommand("run", "run a pipeline and write its layers");
@@ -95,12 +143,6 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder (replaces output.dir)")->check(non_empty);
   run->add_option("--backend", backend, "synthesis backend")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
-  run->add_option("--threads", run_options.threads, "worker threads (default: every core)")
-      ->check(CLI::Range(1, tw::kMaxThreads));
-  run->add_flag("--strict", run_options.strict, "fail (writing nothing) on any warning");
-  const char* const network_help =
-      "let inputs be URLs (/vsicurl/, https://...) and CRSs be fetched (off: local files only)";
-  run->add_flag("--allow-network", run_options.allow_network, network_help);
   std::string cache_dir;
   run->add_option("--cache", cache_dir,
                   "cache folder: reuse the syntheses and tiles whose inputs are unchanged "
@@ -108,13 +150,27 @@ int main(int argc, char** argv) {
       ->check(non_empty);
 
   PipelineArgs validate_args;
-  bool validate_strict = false;
   CLI::App* validate =
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
-  validate->add_flag("--strict", validate_strict, "fail on any warning");
-  bool validate_allow_network = false;
-  validate->add_flag("--allow-network", validate_allow_network, network_help);
+
+  std::string diff_a, diff_b;
+  CLI::App* diff = app.add_subcommand(
+      "diff", "what changed between two runs, layer by layer (exit 0: same, 1: different)");
+  diff->add_option("RUN_A", diff_a, "output folder of a run")->required();
+  diff->add_option("RUN_B", diff_b, "output folder of another run")->required();
+
+  tw::ViewOptions view_options;
+  std::optional<int> serve_port;
+  CLI::App* view = app.add_subcommand(
+      "view", "write a self-contained 3D page of a run (three.js inlined; no network needed)");
+  view->add_option("RUN_DIR", view_options.run_dir, "output folder of a run")->required();
+  view->add_option("--out", view_options.out, "the page to write (default: RUN_DIR/view.html)");
+  view->add_option("--serve", serve_port,
+                   "then serve its folder on 127.0.0.1:PORT (python3 -m http.server)")
+      ->expected(0, 1)
+      ->default_str("8000")
+      ->check(CLI::Range(1, 65535));
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -137,7 +193,6 @@ int main(int argc, char** argv) {
   synth->add_option("--min-coverage", synth_args.min_coverage,
                     "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
-  synth->add_flag("--allow-network", synth_args.allow_network, network_help);
   synth->add_option("--feather", synth_args.feather,
                     "metres either side of each seam where colours blend (0: exact copies)");
   synth
@@ -197,8 +252,18 @@ int main(int argc, char** argv) {
       if (run->count("--cache")) run_options.cache_dir = cache_dir;
       return run_command(run_args, run_options);
     }
-    if (validate->parsed())
-      return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (validate->parsed()) return validate_command(validate_args, run_options);
+    if (diff->parsed()) {
+      try {
+        return diff_command(diff_a, diff_b);
+      } catch (const std::exception& e) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "terraweave: error: %s\n", tw::single_line(e.what()).c_str());
+        return 2;
+      }
+    }
+    if (view->parsed())
+      return view_command(view_options, view->count("--serve") > 0, serve_port.value_or(8000));
     if (area->parsed()) {
       const tw::AreaCommandResult r = tw::run_area_command(area_args);
       std::printf(
@@ -208,6 +273,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (synth->parsed()) {
+      synth_args.allow_network = run_options.allow_network;
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",
                   result.placements.size(), static_cast<long long>(result.total_cost),

@@ -197,6 +197,12 @@ fs::path OutputFolder::stage(const fs::path& final_path) {
   return staging_ / relative;
 }
 
+std::vector<std::pair<fs::path, fs::path>> OutputFolder::staged_files() const {
+  std::vector<std::pair<fs::path, fs::path>> files;
+  for (const fs::path& relative : staged_) files.emplace_back(relative, staging_ / relative);
+  return files;
+}
+
 void OutputFolder::commit() {
   int step = 0;
   const auto pause = [&step] { test_pause_point(fmt::format("commit:{}", step++)); };

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_output.hpp"
@@ -43,6 +44,8 @@ class OutputFolder final : public OutputStager {
   std::filesystem::path stage(const std::filesystem::path& final_path) override;
   // Makes the staged files the folder's outputs (see above). Fails naming a file never written.
   void commit();
+  // The files staged so far, relative to the folder, and where each was written.
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_files() const;
   const std::vector<std::filesystem::path>& committed() const { return committed_; }
 
  private:

@@ -59,6 +59,17 @@ void Progress::advance(std::int64_t steps) {
   report(done_ += steps);
 }
 
+// " (ETA 1 min 05 s)": the time left at the rate so far ("" before any step or at the end).
+std::string Progress::eta(std::int64_t done) const {
+  if (done <= 0 || done >= total_) return "";
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const auto left = std::int64_t(elapsed * double(total_ - done) / double(done) + 0.5);
+  if (left >= 3600) return fmt::format(" (ETA {} h {:02} min)", left / 3600, left % 3600 / 60);
+  if (left >= 60) return fmt::format(" (ETA {} min {:02} s)", left / 60, left % 60);
+  return fmt::format(" (ETA {} s)", left);
+}
+
 void Progress::report(std::int64_t done) {
   if (!noun_.empty()) return report_item(done);
   const int permille = int(std::min<std::int64_t>(1000, done * 1000 / total_));
@@ -66,8 +77,9 @@ void Progress::report(std::int64_t done) {
   if (style_.terminal) {
     static constexpr int kWidth = 40;
     const int filled = permille * kWidth / 1000;
-    std::fprintf(stderr, "\r%-24s [%.*s%*s] %5.1f%%", label_.c_str(), filled,
-                 "########################################", kWidth - filled, "", permille / 10.0);
+    std::fprintf(stderr, "\r%-24s [%.*s%*s] %5.1f%%%-20s", label_.c_str(), filled,
+                 "########################################", kWidth - filled, "", permille / 10.0,
+                 eta(done).c_str());
     last_decile_ = decile;
     return;
   }
@@ -79,7 +91,7 @@ void Progress::report(std::int64_t done) {
   if (decile < 10 && std::chrono::steady_clock::now() - start_ < style_.quiet) return;
   if (decile == 10 && !logged_) return;
   logged_ = true;
-  logger().info("{}: {}%", label_, decile * 10);
+  logger().info("{}: {}%{}", label_, decile * 10, decile > 0 ? eta(done) : "");
 }
 
 }  // namespace tw

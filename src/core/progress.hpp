@@ -1,7 +1,8 @@
 #pragma once
 // Progress of a long stage: a redrawn bar when stderr is a terminal, otherwise a few plain
 // log lines (every 10 %, and only once the stage has run for a couple of seconds), so CI and
-// nightly logs stay readable: a demo of 19 short features prints none.
+// nightly logs stay readable: a demo of 19 short features prints none. Lines between 0 and
+// 100 % end with the estimated time left, "(ETA 12 s)".
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -36,6 +37,7 @@ class Progress {
 
  private:
   void report(std::int64_t done);
+  std::string eta(std::int64_t done) const;
 
   void report_item(std::int64_t done);
 

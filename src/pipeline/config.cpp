@@ -10,6 +10,7 @@
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
+#include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -553,9 +554,14 @@ Override parse_override(std::string_view assignment) {
 }
 
 PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& file_label,
-                              const fs::path& base_dir, const std::vector<Override>& overrides) {
-  const YamlSource src(file_label, base_dir, overrides);
-  return read_pipeline(src, src.load(yaml_text));
+                              const fs::path& base_dir, const std::vector<Override>& overrides,
+                              const Variables& variables) {
+  const YamlSource src(file_label, base_dir, overrides, variables);
+  const YAML::Node tree = src.load(yaml_text);
+  PipelineConfig config = read_pipeline(src, tree);
+  config.overrides = overrides;
+  config.resolved_json = detail::yaml_to_json(tree).dump();
+  return config;
 }
 
 void check_input_paths(const PipelineConfig& config, bool allow_network) {
@@ -565,7 +571,8 @@ void check_input_paths(const PipelineConfig& config, bool allow_network) {
   }
 }
 
-PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides) {
+PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides,
+                             const Variables& variables) {
   // Only a regular file of bounded size: a folder, a device (/dev/zero) or a FIFO would read
   // nothing useful, or forever.
   std::error_code error;
@@ -590,7 +597,7 @@ PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& 
   }
   if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
   const fs::path folder = fs::absolute(file).parent_path();
-  PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides);
+  PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides, variables);
   config.file = file;
   return config;
 }

@@ -4,6 +4,7 @@
 // values given with --set. Lengths are metres.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -153,6 +154,12 @@ struct InputFile {
   std::string named_at;  // "file:line:col: key.path" or "--set key=value: key.path"
 };
 
+// One `--set key.path=value` (value parsed as a YAML scalar or flow collection).
+struct Override {
+  std::string key_path;
+  std::string value;
+};
+
 struct PipelineConfig {
   std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
   int version = 1;
@@ -181,13 +188,21 @@ struct PipelineConfig {
   bool strict = false;
   LineRepair repair;              // `repair`: how messy lines are cleaned (each class may override)
   std::vector<InputFile> inputs;  // every file named, in the order of the keys read
+  // The manifest's view of the configuration: the --set values applied, in order, and the
+  // whole tree after --vars and --set, as JSON text (report.json `overrides`, `config`).
+  std::vector<Override> overrides;
+  std::string resolved_json;
 };
 
-// One `--set key.path=value` (value parsed as a YAML scalar or flow collection).
-struct Override {
-  std::string key_path;
-  std::string value;
+// A variables file (`--vars FILE`, docs/pipeline.md): a YAML mapping of name: value. Every
+// `${name}` in a value of the pipeline file is replaced by its value, before the overrides.
+struct Variables {
+  std::string file;  // "" = none given
+  std::map<std::string, std::string> values;
 };
+
+// Throws tw::Error naming the file (and line) when it is not a mapping of names to scalars.
+Variables load_variables(const std::filesystem::path& file);
 
 // Splits "key.path=value"; throws tw::Error when there is no '=' or the key is empty.
 Override parse_override(std::string_view assignment);
@@ -200,11 +215,13 @@ inline constexpr std::uintmax_t kMaxPipelineFileBytes = std::uintmax_t(16) << 20
 // for a path that is not a regular file or is over kMaxPipelineFileBytes. Every mapping must
 // hold each key once, and the file one YAML document.
 PipelineConfig load_pipeline(const std::filesystem::path& file,
-                             const std::vector<Override>& overrides = {});
+                             const std::vector<Override>& overrides = {},
+                             const Variables& variables = {});
 // The same from text; relative paths resolve against `base_dir`, messages name `file_label`.
 PipelineConfig parse_pipeline(std::string_view yaml_text, const std::string& file_label,
                               const std::filesystem::path& base_dir,
-                              const std::vector<Override>& overrides = {});
+                              const std::vector<Override>& overrides = {},
+                              const Variables& variables = {});
 
 // Throws tw::Error naming the key (heightfield, features.<class>.source, ...) of the first input
 // path that reaches the network (geo/input_guard.hpp), unless `allow_network`.

@@ -17,6 +17,8 @@
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/feature_lines.hpp"
+#include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/plan.hpp"
@@ -48,6 +50,35 @@ std::uint64_t layer_bytes_hash(const LayerSet& set) {
 std::string layer_of_tile_file(const fs::path& name) {
   const std::string stem = name.stem().string();
   return stem.substr(0, stem.rfind("_x"));
+}
+
+// The lowest and highest height of a band over the tile's core (the band covers `halo`).
+HeightRange core_range(const Raster<float>& band, const Window& halo, const Window& core) {
+  Raster<float> inner(core.width, core.height);
+  for (int row = 0; row < core.height; ++row)
+    for (int col = 0; col < core.width; ++col)
+      inner.at(col, row) = band.at(core.col0 - halo.col0 + col, core.row0 - halo.row0 + row);
+  return detail::height_range(inner);
+}
+
+void widen(HeightRange& range, const HeightRange& part) {
+  if (!part) return;
+  if (!range) {
+    range = part;
+    return;
+  }
+  (*range)[0] = std::min((*range)[0], (*part)[0]);
+  (*range)[1] = std::max((*range)[1], (*part)[1]);
+}
+
+// A range as a cached tile keeps it ("" when absent; floats in their shortest exact form).
+std::string range_fact(const HeightRange& r) {
+  return r ? fmt::format("{} {}", (*r)[0], (*r)[1]) : std::string();
+}
+HeightRange range_of_fact(const std::string& fact) {
+  if (fact.empty()) return std::nullopt;
+  const auto space = fact.find(' ');
+  return std::array<float, 2>{std::stof(fact.substr(0, space)), std::stof(fact.substr(space + 1))};
 }
 
 std::int64_t forbidden_in(const LayerSet& set, const Window& halo, const Window& core) {
@@ -86,6 +117,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   if (options.threads > 0) {
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   }
+  const std::string started_utc = detail::utc_timestamp();
   Warnings warnings;
   const bool strict = options.strict || config.strict;
   set_network_access(options.allow_network);
@@ -101,6 +133,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   plan_options.cache_dir = options.cache_dir;
   WorldPlan plan = plan_world(config, plan_options, warnings);
   RunReport& report = plan.report;
+  report.started_utc = started_utc;
+  if (options.write_outputs) report.inputs = detail::record_inputs(config);
   if (!options.write_outputs) {
     finish_warnings(warnings, strict, report);
     report.total_seconds = seconds_since(run_started);
@@ -138,6 +172,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     }
     facts["forbidden_pixels"] = std::to_string(forbidden_in(layers, tile.halo_window, tile.window));
     facts["xxh64"] = std::to_string(layer_bytes_hash(layers));
+    facts["input_height"] = range_fact(core_range(
+        read_height_window(plan.heights, plan.grid, tile.halo_window), tile.halo_window, tile.window));
+    facts["output_height"] = range_fact(
+        core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
   };
   for (const TileSpec& tile : plan.tiles) {
     const auto started = std::chrono::steady_clock::now();
@@ -153,6 +191,11 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       const auto writing = std::chrono::steady_clock::now();
       report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
       tile_report.xxh64 = layer_bytes_hash(layers);
+      widen(report.input_height,
+            core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
+                       tile.halo_window, tile.window));
+      widen(report.output_height,
+            core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
       write_layer_set(layers, dir, transaction, write_options);
       if (config.output.preview) {
         std::vector<std::vector<Vec2>> centerlines;
@@ -173,6 +216,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       }
       report.forbidden_pixels += std::stoll(outcome.facts.at("forbidden_pixels"));
       tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
+      widen(report.input_height, range_of_fact(outcome.facts.at("input_height")));
+      widen(report.output_height, range_of_fact(outcome.facts.at("output_height")));
       tile_report.cache = outcome.status;
       render_seconds += seconds_since(started);
     }
@@ -190,6 +235,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   logger().info("render: {} tiles, {:.3f} s; layers: {:.3f} s", plan.tiles.size(), render_seconds,
                 write_seconds);
 
+  detail::write_feature_lines(config, plan.lines, transaction.stage(dir / "features.geojson"));
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.
   std::map<std::string, int> parts;
@@ -206,6 +252,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
 
   report.total_seconds = seconds_since(run_started);
+  report.output_files = detail::record_outputs(transaction);
   write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
   transaction.commit();
   report.outputs = transaction.committed();

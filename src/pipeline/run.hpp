@@ -66,6 +66,8 @@ struct FeatureReport {
   // the largest cut (below the terrain) and fill (above it) of its centreline profile.
   double moved_max_m = 0.0, moved_mean_m = 0.0;
   double cut_max_m = 0.0, fill_max_m = 0.0;
+  // The steepest grade of its profile (rise over run, e.g. 0.08 = 8 %; 0 for ridges).
+  double grade_max = 0.0;
 };
 
 struct FeatureClassReport {
@@ -95,6 +97,17 @@ struct TilesReport {
   std::vector<TileReport> tiles;
 };
 
+// One file of the manifest (report.json `inputs` and `outputs`).
+struct FileRecord {
+  std::string role;  // heightfield, vector, exemplar; outputs: their name in the folder
+  std::string path;  // as the pipeline named it (inputs) or relative to the folder (outputs)
+  std::uintmax_t bytes = 0;
+  std::string xxh3_128;  // hex, core/file_hash.hpp
+};
+
+// The lowest and highest height that is not nodata (absent: every cell is nodata).
+using HeightRange = std::optional<std::array<float, 2>>;
+
 struct RunReport {
   GridSpec grid;
   std::string crs_wkt;
@@ -108,6 +121,12 @@ struct RunReport {
   double total_seconds = 0.0;
   std::vector<Warning> warnings;  // in the order they were raised (report.json `warnings`)
   TilesReport tiles;
+
+  // The manifest (docs/cli.md, "report.json"): what was read and written, and the heights.
+  std::vector<FileRecord> inputs;        // every file the run read, hashed
+  std::vector<FileRecord> output_files;  // every file written but report.json, hashed
+  HeightRange input_height, output_height;
+  std::string started_utc;  // ISO 8601, e.g. 2026-12-01T23:58:02Z
 };
 
 // Throws tw::Error naming the file, layer, FID or key of the first bad input; under strict

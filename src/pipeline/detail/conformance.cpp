@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "terrain/conform.hpp"
 
 namespace tw::detail {
@@ -70,6 +73,19 @@ void warn_limit(Warnings& warnings, const std::string& subject, std::int64_t fid
 
 }  // namespace
 
+namespace {
+
+// The largest |rise| / run between neighbouring profile samples (0 without a profile).
+double steepest_grade(const std::vector<float>& profile, double step) {
+  double grade = 0.0;
+  if (step <= 0.0) return grade;
+  for (std::size_t i = 1; i < profile.size(); ++i)
+    grade = std::max(grade, std::abs(double(profile[i]) - profile[i - 1]) / step);
+  return grade;
+}
+
+}  // namespace
+
 void report_earthwork(const PipelineConfig& config,
                       const std::vector<std::vector<LineFeature>>& lines, const TerrainPlan& plan,
                       RunReport& report, Warnings& warnings) {
@@ -83,6 +99,7 @@ void report_earthwork(const PipelineConfig& config,
     FeatureReport& feature = report.classes[c].features[i];
     feature.cut_max_m = e.max_cut;
     feature.fill_max_m = e.max_fill;
+    feature.grade_max = steepest_grade(plan.profiles[k], plan.steps[k]);
     const FeatureClassConfig& feature_class = config.features[c];
     const std::string subject = "features." + feature_class.name;
     const std::int64_t fid = lines[c][i].fid;

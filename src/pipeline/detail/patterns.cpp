@@ -123,6 +123,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   std::vector<EarlierSynthesis> earlier_keys;
   std::map<std::string, int> parts;  // a multi-part FID's pieces are <name>_1, <name>_2, ...
   const double cell = config.synthesis_resolution;
+  // "feature i of N" in the log: the DP's progress lines (with their ETA) follow each.
+  std::size_t feature_count = 0, feature_number = 0;
+  for (const ClassPlan& plan : plans)
+    for (const Ribbon& ribbon : ribbons.ribbons[plan.class_index])
+      feature_count += ribbon.pieces.empty() ? 0 : 1;
   for (const ClassPlan& plan : plans) {
     const FeatureClassConfig& feature_class = config.features[plan.class_index];
     const SynthesisConfig& synthesis = *feature_class.synthesis;
@@ -130,6 +135,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       const LineFeature& line = lines[plan.class_index][f];
       if (ribbons.ribbons[plan.class_index][f].pieces.empty()) continue;
       const std::string label = pattern_label(feature_class, line.fid);
+      logger().info("synthesis: feature {} of {}: {}", ++feature_number, feature_count, label);
       FeaturePattern pattern;
       const Curve curve{line.points, line.closed};
       const double width = synthesis.width.value_or(line.width);

@@ -7,11 +7,65 @@
 
 namespace tw::detail {
 
-nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config) {
-  using nlohmann::json;
+namespace {
+
+using nlohmann::json;
+
+json files_json(const std::vector<FileRecord>& files) {
+  json list = json::array();
+  for (const FileRecord& f : files) {
+    json entry = {{"path", f.path}, {"bytes", f.bytes}, {"xxh3_128", f.xxh3_128}};
+    if (f.role != f.path) entry["role"] = f.role;
+    if (f.xxh3_128.empty()) entry["xxh3_128"] = nullptr;  // a URL, not read here
+    list.push_back(std::move(entry));
+  }
+  return list;
+}
+
+json range_json(const HeightRange& range) {
+  if (!range) return nullptr;
+  return {(*range)[0], (*range)[1]};
+}
+
+json overrides_json(const PipelineConfig& config) {
+  json list = json::array();
+  for (const Override& o : config.overrides) list.push_back(o.key_path + "=" + o.value);
+  return list;
+}
+
+// Everything that changes from one run of the same inputs to the next, in one place, so that
+// two reports minus `timings` compare equal (terraweave diff does that).
+json timings_json(const RunReport& report) {
   json stages = json::array();
   for (const StageTiming& s : report.stages)
     stages.push_back({{"stage", s.stage}, {"seconds", s.seconds}});
+  json classes = json::array();
+  json synthesis = json::array();
+  for (const FeatureClassReport& c : report.classes) {
+    classes.push_back({{"name", c.name}, {"ingest_seconds", c.ingest_seconds}});
+    for (const FeatureReport& f : c.features) {
+      if (!f.synthesis) continue;
+      synthesis.push_back({{"class", c.name},
+                           {"fid", f.fid},
+                           {"avoidance", f.synthesis->avoidance_seconds},
+                           {"synthesis", f.synthesis->synthesis_seconds},
+                           {"render", f.synthesis->render_seconds}});
+    }
+  }
+  json tiles = json::array();
+  for (const TileReport& t : report.tiles.tiles) tiles.push_back({{"index", t.index}, {"seconds", t.seconds}});
+  return {{"started_utc", report.started_utc},
+          {"total_seconds", report.total_seconds},
+          {"stages", stages},
+          {"classes", classes},
+          {"synthesis", synthesis},
+          {"tiles", tiles}};
+}
+
+}  // namespace
+
+nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config) {
+  using nlohmann::json;
   json classes = json::array();
   for (const FeatureClassReport& c : report.classes) {
     json features = json::array();
@@ -24,7 +78,8 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                       {"moved_max_m", f.moved_max_m},
                       {"moved_mean_m", f.moved_mean_m},
                       {"cut_max_m", f.cut_max_m},
-                      {"fill_max_m", f.fill_max_m}};
+                      {"fill_max_m", f.fill_max_m},
+                      {"grade_max", f.grade_max}};
       if (f.structure != Structure::ground) {
         feature["structure"] = std::string(to_string(f.structure));
         feature["layer"] = f.layer;
@@ -42,11 +97,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                                 {"empty_pieces", s.empty_pieces},
                                 {"violations", s.violations},
                                 {"canvas", {s.canvas_width, s.canvas_height}},
-                                {"placements", s.placements},
-                                {"seconds",
-                                 {{"avoidance", s.avoidance_seconds},
-                                  {"synthesis", s.synthesis_seconds},
-                                  {"render", s.render_seconds}}}};
+                                {"placements", s.placements}};
       }
       if (f.cache) {
         feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},
@@ -61,7 +112,6 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                        {"source", c.source},
                        {"delta_m", c.delta_m},
                        {"length_m", total_length},
-                       {"ingest_seconds", c.ingest_seconds},
                        {"features", features}});
   }
   json warnings = json::array();
@@ -78,7 +128,6 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                  {"iy", t.iy},
                  {"window", window_json(t.window)},
                  {"halo_window", window_json(t.halo_window)},
-                 {"seconds", t.seconds},
                  {"xxh64", fmt::format("{:016x}", t.xxh64)}};
     if (t.cache) {
       tile["cache"] = {{"status", t.cache->reused ? "reused" : "rebuilt"},
@@ -89,14 +138,21 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
   }
   const GridSpec& g = report.grid;
   return {
+      {"format", kReportFormat},
+      {"version", {{"schema", kReportSchemaVersion}, {"terraweave", kTerraweaveVersion}}},
+      {"versions", library_versions()},
       {"tiles",
        {{"size", report.tiles.size},
         {"overlap", report.tiles.overlap},
         {"count", report.tiles.tiles.size()},
         {"tiles", tiles}}},
-      {"terraweave", kTerraweaveVersion},
-      {"versions", version_line()},
       {"pipeline", config.file.string()},
+      {"config", json::parse(config.resolved_json.empty() ? "{}" : config.resolved_json)},
+      {"overrides", overrides_json(config)},
+      {"inputs", files_json(report.inputs)},
+      {"outputs", files_json(report.output_files)},
+      {"height_range",
+       {{"input", range_json(report.input_height)}, {"output", range_json(report.output_height)}}},
       {"seed", report.seed},
       {"backend", config.backend},
       {"heightfield", report.heightfield},
@@ -106,8 +162,6 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
         {"origin", {g.origin_x, g.origin_y}},
         {"pixel_size", {g.pixel_width, g.pixel_height}},
         {"crs_wkt", report.crs_wkt}}},
-      {"stages", stages},
-      {"total_seconds", report.total_seconds},
       {"forbidden_pixels", report.forbidden_pixels},
       {"synthesis_resolution", config.synthesis_resolution},
       {"synthesis_order", config.synthesis_order},
@@ -115,6 +169,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"classes", classes},
       {"warning_count", report.warnings.size()},
       {"warnings", warnings},
+      {"timings", timings_json(report)},
   };
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "geo/input_guard.hpp"
+#include "pipeline/detail/variables.hpp"
 
 namespace tw::detail {
 
@@ -115,10 +116,12 @@ std::vector<YAML::Mark> document_starts(std::string_view text, std::size_t limit
 
 }  // namespace
 
-YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides)
+YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides,
+                       Variables variables)
     : file_label_(std::move(file_label)),
       base_dir_(std::move(base_dir)),
-      overrides_(std::move(overrides)) {}
+      overrides_(std::move(overrides)),
+      variables_(std::move(variables)) {}
 
 YAML::Node YamlSource::load(std::string_view text) const {
   YAML::Node root;
@@ -138,6 +141,7 @@ YAML::Node YamlSource::load(std::string_view text) const {
   }
   require_unique_keys(root, file_label_);
   if (!root.IsDefined() || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  substitute_variables(root, variables_, file_label_);
   for (const Override& o : overrides_) {
     YAML::Node value;
     try {

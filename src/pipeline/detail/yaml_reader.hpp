@@ -17,9 +17,10 @@ namespace tw::detail {
 class YamlSource {
  public:
   YamlSource(std::string file_label, std::filesystem::path base_dir,
-             std::vector<Override> overrides);
+             std::vector<Override> overrides, Variables variables = {});
 
-  // Loads `text` and applies the overrides to the tree (creating maps on the way).
+  // Loads `text`, substitutes the variables, then applies the overrides to the tree (creating
+  // maps on the way).
   YAML::Node load(std::string_view text) const;
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key_path,
@@ -40,6 +41,7 @@ class YamlSource {
   std::string file_label_;
   std::filesystem::path base_dir_;
   std::vector<Override> overrides_;
+  Variables variables_;
 };
 
 // Typed scalars. Each fails with the node's location when the value has the wrong type.

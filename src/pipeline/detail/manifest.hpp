@@ -1,0 +1,23 @@
+#pragma once
+// The run manifest's facts (report.json, docs/cli.md): hashes and sizes of what a run read
+// and wrote, the range of heights, the time it started.
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/output_folder.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run.hpp"
+
+namespace tw::detail {
+
+// Every input file of the pipeline once (a GeoPackage named by two classes is one entry), and
+// an exemplar's NAME_height.tif twin where it exists. A URL (--allow-network) is listed
+// without size or hash.
+std::vector<FileRecord> record_inputs(const PipelineConfig& config);
+// Every file staged so far (report.json is staged last, after this).
+std::vector<FileRecord> record_outputs(const OutputFolder& output);
+HeightRange height_range(const Raster<float>& height);
+std::string utc_timestamp();  // now, ISO 8601 in UTC to the second
+
+}  // namespace tw::detail

@@ -1,0 +1,128 @@
+#include "pipeline/diff.hpp"
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "pipeline/detail/report_json.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json read_manifest(const fs::path& run) {
+  const fs::path path = run / "report.json";
+  std::ifstream in(path);
+  if (!in) fail("{}: no report.json: not the output folder of a terraweave run", run.string());
+  json report;
+  try {
+    report = json::parse(in);
+  } catch (const json::exception& e) {
+    fail("{}: not JSON: {}", path.string(), e.what());
+  }
+  if (!report.is_object() || report.value("format", "") != detail::kReportFormat ||
+      !report.contains("version") || report["version"].value("schema", 0) < 2) {
+    fail("{}: not a terraweave report of schema 2 or later (run it again with this version)",
+         path.string());
+  }
+  return report;
+}
+
+// name -> hash, from report.json `outputs`.
+std::map<std::string, std::string> output_hashes(const json& report) {
+  std::map<std::string, std::string> hashes;
+  for (const json& f : report.at("outputs"))
+    hashes[f.at("path").get<std::string>()] = f.value("xxh3_128", "");
+  return hashes;
+}
+
+bool is_raster(const std::string& name) {
+  const std::string ext = fs::path(name).extension().string();
+  return ext == ".tif" || ext == ".exr";
+}
+
+std::string value_text(const json& value) {
+  const std::string text = value.dump();
+  return text.size() <= 80 ? text : text.substr(0, 77) + "...";
+}
+
+}  // namespace
+
+RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b) {
+  json a = read_manifest(run_a);
+  json b = read_manifest(run_b);
+  RunDifference result;
+  const auto hashes_a = output_hashes(a);
+  const auto hashes_b = output_hashes(b);
+  for (const auto& [name, hash] : hashes_a) {
+    const auto other = hashes_b.find(name);
+    if (other == hashes_b.end()) {
+      result.files.push_back(name + ": only in A");
+    } else if (other->second != hash || hash.empty()) {
+      if (!is_raster(name)) {
+        result.files.push_back(name + ": contents differ");
+        continue;
+      }
+      RasterDifference raster = compare_rasters(run_a / name, run_b / name);
+      if (!raster.identical()) {
+        result.layers.push_back({name, std::move(raster)});
+      } else if (other->second != hash) {  // same pixels, other bytes (metadata)
+        result.files.push_back(name + ": same pixels, other bytes (metadata)");
+      }
+    }
+  }
+  for (const auto& [name, hash] : hashes_b)
+    if (!hashes_a.count(name)) result.files.push_back(name + ": only in B");
+  for (json* report : {&a, &b}) {
+    report->erase("timings");
+    report->erase("outputs");
+  }
+  for (const json& op : json::diff(a, b)) {
+    const std::string path = op.at("path").get<std::string>();
+    const std::string kind = op.at("op").get<std::string>();
+    const json::json_pointer pointer(path);
+    if (kind == "replace") {
+      result.manifest.push_back(path + ": " + value_text(a.at(pointer)) + " -> " +
+                                value_text(op.at("value")));
+    } else if (kind == "add") {
+      result.manifest.push_back(path + ": -> " + value_text(op.at("value")));
+    } else if (kind == "remove") {
+      result.manifest.push_back(path + ": " + value_text(a.at(pointer)) + " ->");
+    }
+  }
+  return result;
+}
+
+std::vector<std::string> describe(const RunDifference& d) {
+  if (d.identical()) return {"identical"};
+  std::vector<std::string> lines;
+  for (const LayerFileDifference& layer : d.layers) {
+    const RasterDifference& r = layer.raster;
+    if (!r.size_mismatch.empty()) lines.push_back(layer.file + ": size " + r.size_mismatch);
+    for (const std::string& band : r.only_in_a)
+      lines.push_back(layer.file + " " + band + ": only in A");
+    for (const std::string& band : r.only_in_b)
+      lines.push_back(layer.file + " " + band + ": only in B");
+    for (const BandDifference& band : r.bands) {
+      if (band.differing == 0) continue;
+      std::string line =
+          fmt::format("{} {}: {} pixels differ", layer.file, band.band, band.differing);
+      if (band.col >= 0) {
+        line += fmt::format(", largest {:.9g} at col {} row {} ({:.9g} -> {:.9g})", band.max_abs,
+                            band.col, band.row, band.a, band.b);
+      }
+      if (band.nodata_mismatch > 0)
+        line += fmt::format(", {} nodata in one run only", band.nodata_mismatch);
+      lines.push_back(line);
+    }
+  }
+  for (const std::string& f : d.files) lines.push_back(f);
+  for (const std::string& m : d.manifest) lines.push_back("report.json " + m);
+  return lines;
+}
+
+}  // namespace tw

@@ -1,0 +1,171 @@
+#include "pipeline/view.hpp"
+
+#include <gdal_priv.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/atomic_output.hpp"
+#include "core/error.hpp"
+#include "layers/write.hpp"
+#include "pipeline/detail/view_page.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("{}: cannot be read (is this the output folder of a run?)", path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string base64(const std::string& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t n = std::uint32_t((unsigned char)bytes[i]) << 16;
+    if (i + 1 < bytes.size()) n |= std::uint32_t((unsigned char)bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) n |= (unsigned char)bytes[i + 2];
+    out += kAlphabet[n >> 18 & 63];
+    out += kAlphabet[n >> 12 & 63];
+    out += i + 1 < bytes.size() ? kAlphabet[n >> 6 & 63] : '=';
+    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
+  }
+  return out;
+}
+
+// Every band of a GeoTIFF read at w x h (GDAL resamples on reading: memory follows the page,
+// not the world); nodata as NaN. Band descriptions in `names`.
+std::vector<std::vector<float>> read_bands(const fs::path& path, int w, int h,
+                                           std::vector<std::string>* names = nullptr) {
+  GDALAllRegister();
+  const std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  if (!ds) fail("{}: cannot be opened (is this the output folder of a run?)", path.string());
+  std::vector<std::vector<float>> bands;
+  for (int b = 1; b <= ds->GetRasterCount(); ++b) {
+    GDALRasterBand* band = ds->GetRasterBand(b);
+    std::vector<float>& v = bands.emplace_back(std::size_t(w) * h);
+    if (band->RasterIO(GF_Read, 0, 0, ds->GetRasterXSize(), ds->GetRasterYSize(), v.data(), w, h,
+                       GDT_Float32, 0, 0) != CE_None)
+      fail("{}: cannot read band {}", path.string(), b);
+    int has_nodata = 0;
+    const double nodata = band->GetNoDataValue(&has_nodata);
+    if (has_nodata)
+      for (float& x : v)
+        if (x == float(nodata)) x = NAN;
+    if (names) names->push_back(band->GetDescription());
+  }
+  return bands;
+}
+
+std::pair<int, int> fit(int width, int height, int longest) {
+  const double f = std::max(1.0, double(std::max(width, height)) / std::max(2, longest));
+  return {std::max(2, int(std::lround(width / f))), std::max(2, int(std::lround(height / f)))};
+}
+
+// The splat colours, rows south first: each material in its preview colour by its weight, the
+// base in an elevation tint (green low, brown high).
+std::string splat_rgb(const fs::path& run, int w, int h) {
+  std::vector<std::string> names;
+  const auto splat = read_bands(run / "splat.tif", w, h, &names);
+  const auto height = read_bands(run / "height.tif", w, h).at(0);
+  float lo = INFINITY, hi = -INFINITY;
+  for (const float v : height)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::vector<Rgb8> colours;
+  for (const std::string& name : names) colours.push_back(preview_material_colour(name));
+  std::string rgb(std::size_t(w) * h * 3, '\0');
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const std::size_t k = std::size_t(r) * w + c;
+      const double t = hi > lo && std::isfinite(height[k]) ? (height[k] - lo) / (hi - lo) : 0.0;
+      double colour[3] = {0, 0, 0}, covered = 0;
+      for (std::size_t m = 0; m < names.size(); ++m) {
+        if (names[m] == "splat.base" || std::isnan(splat[m][k])) continue;
+        const double share = std::clamp(double(splat[m][k]), 0.0, 1.0 - covered);
+        covered += share;
+        for (int i = 0; i < 3; ++i) colour[i] += colours[m][i] * share;
+      }
+      const double base[3] = {90 + 80 * t, 130 - 30 * t, 60 + 20 * t};
+      const std::size_t out = (std::size_t(h - 1 - r) * w + c) * 3;
+      for (int i = 0; i < 3; ++i)
+        rgb[out + i] = char(std::clamp(colour[i] + base[i] * (1.0 - covered), 0.0, 255.0));
+    }
+  return rgb;
+}
+
+std::string forbidden_mask(const fs::path& run, int w, int h) {
+  const auto forbidden = read_bands(run / "avoidance.tif", w, h).at(0);
+  std::string mask(std::size_t(w) * h, '\0');
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      mask[std::size_t(h - 1 - r) * w + c] = forbidden[std::size_t(r) * w + c] > 0.5f ? 1 : 0;
+  return mask;
+}
+
+json view_data(const fs::path& run, const ViewOptions& options) {
+  const json report = json::parse(read_text(run / "report.json"));
+  const json& grid = report.at("grid");
+  const int width = grid.at("width"), height = grid.at("height");
+  json data;
+  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
+  data["grid"] = grid;
+  data["grid"].erase("crs_wkt");
+  const auto [mw, mh] = fit(width, height, options.mesh_size);
+  json heights = json::array();
+  const std::vector<float> mesh = read_bands(run / "height.tif", mw, mh).at(0);
+  for (const float v : mesh)
+    heights.push_back(std::isfinite(v) ? json(std::round(v * 100.0) / 100.0) : json(nullptr));
+  data["mesh"] = {{"width", mw}, {"height", mh}, {"heights", heights}};
+  data["exaggeration"] = 1.0;
+  const auto [tw, th] = fit(width, height, options.texture_size);
+  data["texture"] = {{"width", tw}, {"height", th}, {"rgb", base64(splat_rgb(run, tw, th))}};
+  data["avoidance"] = {{"mask", base64(forbidden_mask(run, tw, th))}};
+  json features = json::array();
+  if (fs::exists(run / "features.geojson")) {
+    const json lines = json::parse(read_text(run / "features.geojson"));
+    for (const json& f : lines.at("features"))
+      features.push_back(
+          {{"kind", f["properties"]["kind"]}, {"points", f["geometry"]["coordinates"]}});
+  }
+  data["features"] = features;
+  return data;
+}
+
+}  // namespace
+
+fs::path write_view(const ViewOptions& options) {
+  const fs::path three = TERRAWEAVE_THREE_JS;
+  std::error_code ec;
+  if (!fs::is_regular_file(three, ec))
+    fail("view: three.js is missing ({}): build terraweave with npm installed", three.string());
+  // "</" never appears in the JSON as written (a string holding it is escaped), so the script
+  // element cannot end early.
+  std::string data = view_data(options.run_dir, options).dump();
+  for (std::size_t at = 0; (at = data.find("</", at)) != std::string::npos; at += 3)
+    data.replace(at, 2, "<\\/");
+  std::string page = detail::kViewPage;
+  page.replace(page.find("@THREE@"), 7, base64(read_text(three)));
+  page.replace(page.find("@DATA@"), 6, data);
+  const fs::path out = options.out.empty() ? options.run_dir / "view.html" : options.out;
+  OutputTransaction transaction;
+  std::ofstream stream(transaction.stage(out), std::ios::binary);
+  stream << page;
+  stream.close();
+  if (!stream) fail("cannot write {}", out.string());
+  transaction.commit();
+  return out;
+}
+
+}  // namespace tw

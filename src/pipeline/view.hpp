@@ -1,0 +1,21 @@
+#pragma once
+// `terraweave view RUN_DIR` (docs/cli.md): one self-contained HTML page that shows a run in 3D
+// (three.js, inlined at build time): a downsampled height mesh, the splat colours as its
+// texture, the avoidance map and the feature lines, each with a toggle. No network needed.
+#include <filesystem>
+
+namespace tw {
+
+struct ViewOptions {
+  std::filesystem::path run_dir;
+  std::filesystem::path out;  // "" = <run_dir>/view.html
+  int mesh_size = 256;        // most vertices along the longer side
+  int texture_size = 1024;    // most texels along the longer side
+};
+
+// Reads height.tif, splat.tif, avoidance.tif, features.geojson and report.json (only what the
+// page shows, downsampled by GDAL on reading) and writes the page atomically; returns its path.
+// Throws tw::Error naming a missing file.
+std::filesystem::path write_view(const ViewOptions& options);
+
+}  // namespace tw
