@@ -10,6 +10,8 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
+#include "geo/height_sampler.hpp"
+#include "geo/heightfield_source.hpp"
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
@@ -122,7 +124,14 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   clock.start("ingest");
   detail::check_inputs(config);
-  Heightfield heightfield = detail::load_heightfield(config, warnings);
+  const std::unique_ptr<HeightfieldSource> source =
+      detail::open_heightfield_source(config, warnings);
+  // Pixels of the whole grid only where a stage needs them (a region's crop, the render);
+  // ingest, conformance and a validation's terrain plan read the windows they touch.
+  const bool whole_grid = options.write_outputs || config.region;
+  Heightfield heightfield = whole_grid ? read_whole_heightfield(*source) : source->without_pixels();
+  const std::unique_ptr<HeightfieldSource> in_memory =
+      whole_grid ? in_memory_heightfield(heightfield) : nullptr;
   report.grid = heightfield.grid;
   report.crs_wkt = heightfield.crs_wkt;
   report.heightfield = heightfield.source;
@@ -138,7 +147,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
-  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
+  const auto moves = detail::conform_lines(config, in_memory ? *in_memory : *source, lines, warnings);
   detail::ExistingFeatures existing =
       detail::load_existing(config.existing, heightfield, config.repair, warnings);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
@@ -170,9 +179,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   if (!options.write_outputs) {
     // Validate plans the terrain too (applying nothing) for its warnings: a feature over
     // nodata, a bound on the earthwork.
-    const TerrainPlan plan =
-        plan_terrain(heightfield.height, heightfield.grid, detail::terrain_features(config, lines),
-                     detail::terrain_params(config), warnings);
+    const auto region_heights = config.region ? in_memory_heightfield(heightfield) : nullptr;
+    HeightSampler heights(region_heights ? *region_heights : *source);
+    const TerrainPlan plan = plan_terrain(heights, detail::terrain_features(config, lines),
+                                          detail::terrain_params(config), warnings);
     detail::report_earthwork(config, lines, plan, report, warnings);
     finish_warnings(warnings, strict, report);
     report.total_seconds =

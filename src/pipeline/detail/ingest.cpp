@@ -27,13 +27,14 @@ double clip_margin(const FeatureClassConfig& config, double cell) {
 
 }  // namespace
 
-Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
+std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
+                                                           Warnings& warnings) {
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
-    return read_heightfield(config.heightfield->string(), options, warnings);
+    return open_heightfield(config.heightfield->string(), options, warnings);
   }
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
@@ -45,7 +46,11 @@ Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
   params.crs = g.crs;
   params.origin_x = g.origin_x;
   params.origin_y = g.origin_y;
-  return generate_heightfield(params);
+  return open_generated_heightfield(params);
+}
+
+Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
+  return read_whole_heightfield(*open_heightfield_source(config, warnings));
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
