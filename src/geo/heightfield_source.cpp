@@ -73,11 +73,26 @@ std::unique_ptr<HeightfieldSource> in_memory_heightfield(const Raster<float>& he
   return std::make_unique<InMemorySource>(height, grid, "", std::nullopt, "heights in memory");
 }
 
+namespace {
+[[noreturn]] void fail_all_nodata(const HeightfieldSource& source) {
+  fail("{}: every cell is nodata; there is no terrain to work on", source.name());
+}
+bool any_height(const Raster<float>& r) {
+  return std::any_of(r.pixels.begin(), r.pixels.end(), [](float h) { return !std::isnan(h); });
+}
+}  // namespace
+
+void require_some_height(const HeightfieldSource& source) {
+  const GridSpec& g = source.grid();
+  constexpr int kStripRows = 16;
+  for (int row = 0; row < g.height; row += kStripRows)
+    if (any_height(source.read({0, row, g.width, std::min(kStripRows, g.height - row)}))) return;
+  fail_all_nodata(source);
+}
+
 Heightfield read_whole_heightfield(const HeightfieldSource& source) {
   Heightfield field = read_heightfield_window(source, Window::whole(source.grid()));
-  if (std::all_of(field.height.pixels.begin(), field.height.pixels.end(),
-                  [](float h) { return std::isnan(h); }))
-    fail("{}: every cell is nodata; there is no terrain to work on", source.name());
+  if (!any_height(field.height)) fail_all_nodata(source);
   return field;
 }
 

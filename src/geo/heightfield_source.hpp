@@ -64,6 +64,10 @@ std::unique_ptr<HeightfieldSource> in_memory_heightfield(const Heightfield& heig
 std::unique_ptr<HeightfieldSource> in_memory_heightfield(const Raster<float>& height,
                                                          const GridSpec& grid);
 
+// Throws tw::Error naming the source when every cell is nodata; reads strips of a few rows
+// until it meets a height (for a usual DEM, the first strip).
+void require_some_height(const HeightfieldSource& source);
+
 // The whole grid; throws tw::Error naming the source when every cell is nodata.
 Heightfield read_whole_heightfield(const HeightfieldSource& source);
 

@@ -36,6 +36,10 @@ std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig&
     if (!config.region) options.resolution = config.resolution;
     return open_heightfield(config.heightfield->string(), options, warnings);
   }
+  return open_generated_heightfield(generated_terrain(config));
+}
+
+GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
   params.width = g.width;
@@ -46,7 +50,7 @@ std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig&
   params.crs = g.crs;
   params.origin_x = g.origin_x;
   params.origin_y = g.origin_y;
-  return open_generated_heightfield(params);
+  return params;
 }
 
 Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {

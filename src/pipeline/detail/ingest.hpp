@@ -20,6 +20,8 @@ std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig&
 
 // The whole heightfield of open_heightfield_source (an error when every cell is nodata).
 Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
+// The generator's parameters of a pipeline without a heightfield file.
+GeneratedTerrain generated_terrain(const PipelineConfig& config);
 
 // The lines of one class. A class none of whose features lies on the heightfield (an empty
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning
