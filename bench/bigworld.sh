@@ -5,6 +5,8 @@
 #   plan     terraweave validate world.yaml   (ingest, ribbons, terrain plan; writes nothing)
 #   tiled    terraweave run world.yaml        (output.tiles: TILE, overlap OVERLAP)
 #   untiled  terraweave run world_untiled.yaml (one window; at UNTILED_SIZES only)
+# (tiled needs run_pipeline's tile loop, plan_world + render_tile: docs/tiles.md; a run that
+# ignores output.tiles renders one window, and its peak RSS then grows with the world.)
 # Prints numbers and ratios, never fails on time. Usage:
 #   bench/bigworld.sh [SIZES...]   (default 8192 16384 32768; env TILE, OVERLAP, UNTILED_SIZES,
 #                                   TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-bigworld)
