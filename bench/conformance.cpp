@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/warnings.hpp"
+#include "geo/heightfield_source.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
@@ -44,7 +45,8 @@ Lowering measure(PipelineConfig config, std::optional<double> max_carve, double 
   std::vector<std::vector<LineFeature>> lines;
   for (const auto& c : config.features)
     lines.push_back(detail::load_feature_class(c, heightfield, warnings));
-  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
+  const auto moves =
+      detail::conform_lines(config, *in_memory_heightfield(heightfield), lines, warnings);
   const auto features = detail::terrain_features(config, lines);
   const TerrainPlan plan =
       plan_terrain(heightfield.height, heightfield.grid, features, detail::terrain_params(config));

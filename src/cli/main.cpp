@@ -19,6 +19,8 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/area_command.hpp"
+
+#include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/diff.hpp"
 #include "pipeline/run.hpp"
@@ -232,6 +234,17 @@ int main(int argc, char** argv) {
       ->required()
       ->check(non_empty);
 
+  // Hidden (no group): the generated world of bench/bigworld.sh.
+  tw::BigWorldOptions world;
+  CLI::App* make_world =
+      app.add_subcommand("make-world", "write a generated world for benchmarks")->group("");
+  make_world->add_option("--size", world.size, "cells per side")->required();
+  make_world->add_option("--pixel", world.pixel_size, "metres per cell");
+  make_world->add_option("--seed", world.seed, "terrain and network seed");
+  make_world->add_option("--tile", world.tile_size, "output.tiles.size of world.yaml");
+  make_world->add_option("--overlap", world.tile_overlap, "output.tiles.overlap of world.yaml");
+  make_world->add_option("--out", world.dir, "folder to write")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -270,6 +283,13 @@ int main(int argc, char** argv) {
           "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
           "%d overlapping)\n",
           r.instances, r.strokes, r.polygons, r.outside, r.forbidden, r.overlapping);
+
+    if (validate->parsed())
+      return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (make_world->parsed()) {
+      const tw::BigWorldSummary s = tw::write_big_world(world);
+      std::printf("%d roads %.1f km, %d rivers %.1f km, %.1f km^2\n", s.roads, s.road_km, s.rivers,
+                  s.river_km, s.area_km2);
       return 0;
     }
     if (synth->parsed()) {

@@ -10,11 +10,14 @@
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/gradient_noise.hpp"
 #include "geo/heightfield.hpp"
+#include "geo/heightfield_source.hpp"
 
 namespace tw {
 
-Heightfield generate_heightfield(const GeneratedTerrain& params) {
-  const std::string name = fmt::format("generated:seed={}", params.seed);
+namespace {
+
+// The parameters checked (tw::Error naming the first bad one) and the CRS as WKT.
+std::string checked_crs_wkt(const GeneratedTerrain& params, const std::string& name) {
   if (params.width <= 0 || params.height <= 0) {
     fail("{}: size must be positive, got {} x {}", name, params.width, params.height);
   }
@@ -49,31 +52,70 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
   if (!srs.IsProjected() || std::abs(srs.GetLinearUnits() - 1.0) > 1e-12) {
     fail("{}: CRS '{}' is not a projected CRS in metres", name, params.crs);
   }
+  return detail::to_wkt(srs);
+}
 
-  Heightfield result;
-  result.source = name;
-  result.crs_wkt = detail::to_wkt(srs);
-  result.grid = {params.width,    params.height,     params.origin_x,
-                 params.origin_y, params.pixel_size, params.pixel_size};
-  result.height = Raster<float>(params.width, params.height);
+// Cells (col0 .. col0 + width, row0 .. row0 + height) of the generated world.
+Raster<float> generate_cells(const GeneratedTerrain& params, int col0, int row0, int width,
+                             int height) {
+  Raster<float> out(width, height);
   // Noise is indexed by world pixel (origin / pixel size + pixel), and the largest hills span
   // feature_size metres (a power-of-two number of pixels, so each octave's lattice nests in the
   // previous one's): a tile generated on its own equals the same window of a larger world.
   const std::int64_t largest_cell = std::max<std::int64_t>(
       2, std::int64_t(std::bit_floor(std::uint64_t(params.feature_size / params.pixel_size))));
-  const std::int64_t world_col0 = std::llround(params.origin_x / params.pixel_size);
-  const std::int64_t world_row0 = std::llround(-params.origin_y / params.pixel_size);
+  const std::int64_t world_col0 = std::llround(params.origin_x / params.pixel_size) + col0;
+  const std::int64_t world_row0 = std::llround(-params.origin_y / params.pixel_size) + row0;
   const double metres_per_unit = params.relief / (2.0 * double(detail::kNoiseOne));
   // Rows are independent: any split over threads gives the same bytes.
-  tbb::parallel_for(0, params.height, [&](int row) {
-    std::vector<std::int64_t> noise(std::size_t(params.width));
+  tbb::parallel_for(0, height, [&](int row) {
+    std::vector<std::int64_t> noise(static_cast<std::size_t>(width));
     detail::fractal_noise_row(world_row0 + row, world_col0, noise, largest_cell, params.seed);
-    for (int col = 0; col < params.width; ++col) {
+    for (int col = 0; col < width; ++col) {
       // noise + one lies in [0, 2 one]: heights lie in [0, relief].
-      result.height.at(col, row) = float(double(noise[col] + detail::kNoiseOne) * metres_per_unit);
+      out.at(col, row) = float(double(noise[col] + detail::kNoiseOne) * metres_per_unit);
     }
   });
+  return out;
+}
+
+std::string generated_name(const GeneratedTerrain& params) {
+  return fmt::format("generated:seed={}", params.seed);
+}
+
+class GeneratedSource final : public HeightfieldSource {
+ public:
+  explicit GeneratedSource(const GeneratedTerrain& params)
+      : HeightfieldSource({params.width, params.height, params.origin_x, params.origin_y,
+                           params.pixel_size, params.pixel_size},
+                          checked_crs_wkt(params, generated_name(params)), std::nullopt,
+                          generated_name(params)),
+        params_(params) {}
+
+ protected:
+  Raster<float> read_window(const Window& w) const override {
+    return generate_cells(params_, w.col0, w.row0, w.width, w.height);
+  }
+
+ private:
+  GeneratedTerrain params_;
+};
+
+}  // namespace
+
+Heightfield generate_heightfield(const GeneratedTerrain& params) {
+  const std::string name = generated_name(params);
+  Heightfield result;
+  result.source = name;
+  result.crs_wkt = checked_crs_wkt(params, name);
+  result.grid = {params.width,    params.height,     params.origin_x,
+                 params.origin_y, params.pixel_size, params.pixel_size};
+  result.height = generate_cells(params, 0, 0, params.width, params.height);
   return result;
+}
+
+std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params) {
+  return std::make_unique<GeneratedSource>(params);
 }
 
 }  // namespace tw

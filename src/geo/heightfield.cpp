@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "core/error.hpp"
@@ -13,6 +14,7 @@
 #include "core/log.hpp"
 #include "geo/detail/gdal_support.hpp"
 #include "geo/detail/warp.hpp"
+#include "geo/heightfield_source.hpp"
 #include "geo/input_guard.hpp"
 #include "geo/metric_frame.hpp"
 #include "geo/resample.hpp"
@@ -92,26 +94,28 @@ double metres_per_height_unit(GDALRasterBand& band, const std::string& path, War
   return 1.0;
 }
 
-// Band 1 as float heights in metres; the nodata value, NaN and infinities all become NaN.
-Raster<float> read_heights(GDALRasterBand& band, double metres_per_unit, const std::string& path) {
+// `window` of band 1 as float heights in metres; the nodata value, NaN and infinities all
+// become NaN.
+Raster<float> read_heights(GDALRasterBand& band, double metres_per_unit, const std::string& path,
+                           const Window& window) {
   int has_nodata = 0;
   const double nodata = band.GetNoDataValue(&has_nodata);
-  Raster<float> heights(band.GetXSize(), band.GetYSize());
-  std::vector<double> row(heights.width);
+  Raster<float> heights(window.width, window.height);
+  std::vector<double> row(std::size_t(heights.width));
   for (int y = 0; y < heights.height; ++y) {
-    if (band.RasterIO(GF_Read, 0, y, heights.width, 1, row.data(), heights.width, 1, GDT_Float64, 0,
-                      0) != CE_None) {
-      fail("{}: cannot read row {}: {}", path, y, detail::last_gdal_error());
+    if (band.RasterIO(GF_Read, window.col0, window.row0 + y, heights.width, 1, row.data(),
+                      heights.width, 1, GDT_Float64, 0, 0) != CE_None) {
+      fail("{}: cannot read row {}: {}", path, window.row0 + y, detail::last_gdal_error());
     }
     for (int x = 0; x < heights.width; ++x) {
-      const double value = row[x];
+      const double value = row[std::size_t(x)];
       const bool missing = !std::isfinite(value) || (has_nodata && value == nodata);
       const double metres = value * metres_per_unit;
       if (!missing && !(std::abs(metres) <= kMaxAbsHeight)) {
         fail(
             "{}: cell ({}, {}) holds a height of {:.6g} m, beyond +-{:g} m (an undeclared "
             "nodata value? declare it, e.g. gdal_edit.py -a_nodata)",
-            path, x, y, metres, kMaxAbsHeight);
+            path, window.col0 + x, window.row0 + y, metres, kMaxAbsHeight);
       }
       heights.at(x, y) = missing ? std::numeric_limits<float>::quiet_NaN() : float(metres);
     }
@@ -136,11 +140,49 @@ GridSpec resampled_grid(const GridSpec& native, double resolution, const std::st
   return {int(columns), int(rows), native.origin_x, native.origin_y, resolution, resolution};
 }
 
-void require_some_height(const Heightfield& field, const std::string& path) {
-  for (float h : field.height.pixels)
-    if (!std::isnan(h)) return;
-  fail("{}: every cell is nodata; there is no terrain to work on", path);
-}
+// What an opened GDAL heightfield reads from: band 1 of the file (or of its warp into a local
+// metric frame), resampled onto `grid` when it differs from `native`.
+struct OpenedRaster {
+  GdalDatasetPtr file;
+  detail::WarpedGrid warp;  // empty unless warped
+  GridSpec native;          // the grid of the band read
+  GridSpec grid;            // the heightfield's grid
+  std::string crs_wkt;
+  std::optional<double> nodata_value;
+  double metres_per_unit = 1.0;
+  bool resampled = false;
+  Resampling resampling = Resampling::bilinear;
+  std::string path;
+};
+
+class GdalSource final : public HeightfieldSource {
+ public:
+  explicit GdalSource(OpenedRaster raster)
+      : HeightfieldSource(raster.grid, raster.crs_wkt, raster.nodata_value, raster.path),
+        raster_(std::move(raster)) {}
+
+ protected:
+  Raster<float> read_window(const Window& window) const override {
+    const Window cells =
+        raster_.resampled ? resample_source_window(raster_.native, raster_.grid, window) : window;
+    Raster<float> native;
+    {
+      // A GDAL dataset serves one thread at a time; resampling (parallel) runs unlocked.
+      std::lock_guard lock(mutex_);
+      detail::QuietGdalErrors quiet;
+      GDALDataset& dataset = raster_.warp.warped ? *raster_.warp.warped : *raster_.file;
+      native =
+          read_heights(*dataset.GetRasterBand(1), raster_.metres_per_unit, raster_.path, cells);
+    }
+    if (!raster_.resampled) return native;
+    return resample_heights_window(native, cells, raster_.native, raster_.grid, window,
+                                   raster_.resampling);
+  }
+
+ private:
+  OpenedRaster raster_;
+  mutable std::mutex mutex_;
+};
 
 }  // namespace
 
@@ -151,13 +193,23 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
 
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options,
                              Warnings& warnings) {
+  return read_whole_heightfield(*open_heightfield(path, options, warnings));
+}
+
+std::unique_ptr<HeightfieldSource> open_heightfield(const std::string& path,
+                                                    const HeightfieldOptions& options,
+                                                    Warnings& warnings) {
   detail::ensure_gdal_registered();
   detail::QuietGdalErrors quiet;
   if (options.resolution && !(std::isfinite(*options.resolution) && *options.resolution > 0.0)) {
     fail("{}: resolution must be a positive number of metres, got {}", path, *options.resolution);
   }
   check_input_path(path, "heightfield", network_access_allowed());  // also for library callers
-  GdalDatasetPtr source(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  OpenedRaster raster;
+  raster.path = path;
+  raster.resampling = options.resampling;
+  raster.file.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  GDALDataset* source = raster.file.get();
   if (!source) fail("{}: cannot open as a raster: {}", path, detail::open_failure(path));
   if (source->GetRasterCount() < 1) fail("{}: has no raster band", path);
   const OGRSpatialReference* srs = source->GetSpatialRef();
@@ -166,43 +218,35 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   }
   double gt[6];
   if (source->GetGeoTransform(gt) != CE_None) fail("{}: has no geotransform", path);
-
-  Heightfield result;
-  result.source = path;
   int has_nodata = 0;
   const double nodata = source->GetRasterBand(1)->GetNoDataValue(&has_nodata);
-  if (has_nodata) result.nodata_value = nodata;
-  const double height_unit = metres_per_height_unit(*source->GetRasterBand(1), path, warnings);
+  if (has_nodata) raster.nodata_value = nodata;
+  raster.metres_per_unit = metres_per_height_unit(*source->GetRasterBand(1), path, warnings);
 
   if (is_metric_north_up(*srs, gt)) {
     // Same CRS: the cells as they are, or resampled on the same north-west corner (our
     // resampler: GDAL's cubic warp turns blocky within two cells of a DEM's edges).
-    result.crs_wkt = detail::to_wkt(*srs);
-    const GridSpec native{
+    raster.crs_wkt = detail::to_wkt(*srs);
+    raster.native = {
         source->GetRasterXSize(), source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
-    result.grid = native;
-    require_grid_size(native.width, native.height, path);
-    if (options.resolution) result.grid = resampled_grid(native, *options.resolution, path);
-    result.height = read_heights(*source->GetRasterBand(1), height_unit, path);
+    require_grid_size(raster.native.width, raster.native.height, path);
+    raster.grid = raster.native;
     if (options.resolution) {
-      result.height = resample_heights(result.height, native, result.grid, options.resampling);
+      raster.grid = resampled_grid(raster.native, *options.resolution, path);
+      raster.resampled = true;
     }
-    require_some_height(result, path);
-    return result;
+    return std::make_unique<GdalSource>(std::move(raster));
   }
   // Geographic, non-metre or rotated: warped into a local metric frame by GDAL.
   const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
-  result.crs_wkt = target.crs_wkt;
-  const GdalDatasetPtr warped = detail::warp_to_metric_grid(
+  raster.crs_wkt = target.crs_wkt;
+  raster.warp = detail::warp_to_metric_grid(
       *source, target, path, options.resampling == Resampling::cubic ? "cubic" : "bilinear");
-  GDALDataset* grid_source = warped.get();
-  if (grid_source->GetGeoTransform(gt) != CE_None)
-    fail("{}: warped grid has no geotransform", path);
-  result.grid = {
-      grid_source->GetRasterXSize(), grid_source->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
-  result.height = read_heights(*grid_source->GetRasterBand(1), height_unit, path);
-  require_some_height(result, path);
-  return result;
+  GDALDataset& warped = *raster.warp.warped;
+  if (warped.GetGeoTransform(gt) != CE_None) fail("{}: warped grid has no geotransform", path);
+  raster.native = {warped.GetRasterXSize(), warped.GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
+  raster.grid = raster.native;
+  return std::make_unique<GdalSource>(std::move(raster));
 }
 
 }  // namespace tw

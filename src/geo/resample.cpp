@@ -3,96 +3,87 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
+
+#include "core/error.hpp"
+#include "geo/detail/cell_sampling.hpp"
 
 namespace tw {
 namespace {
 
-// Catmull-Rom weights of the four cells at offsets -1, 0, 1, 2 for a fraction t in [0, 1).
-std::array<double, 4> catmull_rom(double t) {
-  const double t2 = t * t, t3 = t2 * t;
-  return {0.5 * (-t3 + 2 * t2 - t), 0.5 * (3 * t3 - 5 * t2 + 2), 0.5 * (-3 * t3 + 4 * t2 + t),
-          0.5 * (t3 - t2)};
+// Cells of a raster covering `window` of a grid, addressed in the grid's indices; NaN off the
+// grid (cells of the grid outside the window are never asked for: the window covers them).
+struct WindowCells {
+  const Raster<float>& pixels;
+  Window window;
+  int grid_width, grid_height;
+  float operator()(int col, int row) const {
+    if (col < 0 || row < 0 || col >= grid_width || row >= grid_height)
+      return std::numeric_limits<float>::quiet_NaN();
+    return pixels.at(col - window.col0, row - window.row0);
+  }
+};
+
+WindowCells whole_cells(const Raster<float>& height) {
+  return {height, {0, 0, height.width, height.height}, height.width, height.height};
+}
+
+// The raster's own size, whatever the grid says (the sampling rules of a raster).
+GridSpec sized_like(const GridSpec& grid, const Raster<float>& height) {
+  GridSpec g = grid;
+  g.width = height.width;
+  g.height = height.height;
+  return g;
 }
 
 }  // namespace
 
 double sample_height_bilinear(const Raster<float>& height, const GridSpec& grid, Vec2 world) {
-  const Vec2 p = grid.world_to_pixel(world) - Vec2{0.5, 0.5};  // in pixel-centre units
-  const double fx = std::floor(p.x), fy = std::floor(p.y);
-  const int c = int(fx), r = int(fy);
-  const double tx = p.x - fx, ty = p.y - fy;
-  double sum = 0.0, weight = 0.0;
-  for (int dy = 0; dy <= 1; ++dy)
-    for (int dx = 0; dx <= 1; ++dx) {
-      const int col = c + dx, row = r + dy;
-      if (!height.inside(col, row)) continue;
-      const float h = height.at(col, row);
-      if (std::isnan(h)) continue;
-      const double w = (dx ? tx : 1.0 - tx) * (dy ? ty : 1.0 - ty);
-      sum += w * h;
-      weight += w;
-    }
-  return weight > 1e-9 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+  return detail::bilinear_at(whole_cells(height), sized_like(grid, height), world);
 }
 
 double sample_height_cubic(const Raster<float>& height, const GridSpec& grid, Vec2 world) {
-  const Vec2 p = grid.world_to_pixel(world) - Vec2{0.5, 0.5};
-  if (p.x < 0.0 || p.y < 0.0 || p.x > height.width - 1 || p.y > height.height - 1)
-    return sample_height_bilinear(height, grid, world);
-  const double fx = std::floor(p.x), fy = std::floor(p.y);
-  const auto wx = catmull_rom(p.x - fx), wy = catmull_rom(p.y - fy);
-  double sum = 0.0;
-  for (int j = 0; j < 4; ++j) {
-    const int row = std::clamp(int(fy) - 1 + j, 0, height.height - 1);
-    double along = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      const float h = height.at(std::clamp(int(fx) - 1 + i, 0, height.width - 1), row);
-      if (std::isnan(h)) return sample_height_bilinear(height, grid, world);
-      along += wx[std::size_t(i)] * h;
-    }
-    sum += wy[std::size_t(j)] * along;
-  }
-  return sum;
+  return detail::cubic_at(whole_cells(height), sized_like(grid, height), world);
 }
 
 Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from,
                                const GridSpec& to, Resampling resampling) {
+  return resample_heights_window(height, Window::whole(sized_like(from, height)),
+                                 sized_like(from, height), to, Window::whole(to), resampling);
+}
+
+Window resample_source_window(const GridSpec& from, const GridSpec& to, const Window& window) {
+  // Every sample point lies within the target cells; bilinear reads one cell either side of
+  // it, cubic two, the centre check the cell under it: a margin of 3 covers all (and rounding).
+  const Vec2 a = from.world_to_pixel(to.pixel_to_world({double(window.col0), double(window.row0)}));
+  const Vec2 b =
+      from.world_to_pixel(to.pixel_to_world({double(window.col_end()), double(window.row_end())}));
+  const auto clamp_to = [](double v, int n) { return int(std::clamp(v, 0.0, double(n))); };
+  const int c0 = clamp_to(std::floor(std::min(a.x, b.x)) - 3, from.width);
+  const int c1 = clamp_to(std::ceil(std::max(a.x, b.x)) + 3, from.width);
+  const int r0 = clamp_to(std::floor(std::min(a.y, b.y)) - 3, from.height);
+  const int r1 = clamp_to(std::ceil(std::max(a.y, b.y)) + 3, from.height);
+  return {c0, r0, c1 - c0, r1 - r0};
+}
+
+Raster<float> resample_heights_window(const Raster<float>& source, const Window& source_window,
+                                      const GridSpec& from, const GridSpec& to,
+                                      const Window& window, Resampling resampling) {
+  if (source.width != source_window.width || source.height != source_window.height)
+    fail("resample: source raster is {} x {}, its window {} x {}", source.width, source.height,
+         source_window.width, source_window.height);
   // A target cell larger than the source cells averages the interpolant over k x k points (the
   // source cell centres when the lattices align), so downsampling does not alias.
-  // Clamped in double: the ratio of an absurd resolution overflows int.
-  const auto samples = [](double ratio) {
-    return int(std::clamp(std::ceil(ratio - 1e-9), 1.0, double(kMaxSamplesPerSide)));
-  };
-  const int kx = samples(to.pixel_width / from.pixel_width);
-  const int ky = samples(to.pixel_height / from.pixel_height);
-  auto sample = [&](Vec2 world) {
-    return resampling == Resampling::cubic ? sample_height_cubic(height, from, world)
-                                           : sample_height_bilinear(height, from, world);
-  };
-  Raster<float> out(to.width, to.height);
-  tbb::parallel_for(0, to.height, [&](int row) {
-    for (int col = 0; col < to.width; ++col) {
-      // As GDAL's warper: nodata under the centre stays nodata, so holes neither fill nor shrink.
-      const Vec2 p = from.world_to_pixel(to.pixel_centre_world(col, row));
-      const int c = int(std::floor(p.x)), r = int(std::floor(p.y));
-      if (height.inside(c, r) && std::isnan(height.at(c, r))) {
-        out.at(col, row) = std::numeric_limits<float>::quiet_NaN();
-        continue;
-      }
-      double sum = 0.0;
-      int valid = 0;
-      for (int j = 0; j < ky; ++j)
-        for (int i = 0; i < kx; ++i) {
-          const double h = sample(to.pixel_to_world({col + (i + 0.5) / kx, row + (j + 0.5) / ky}));
-          if (std::isnan(h)) continue;
-          sum += h;
-          ++valid;
-        }
-      out.at(col, row) = valid ? float(sum / valid) : std::numeric_limits<float>::quiet_NaN();
-    }
+  const int kx = detail::samples_per_side(to.pixel_width / from.pixel_width);
+  const int ky = detail::samples_per_side(to.pixel_height / from.pixel_height);
+  const WindowCells cells{source, source_window, from.width, from.height};
+  Raster<float> out(window.width, window.height);
+  // Rows are independent and indexed in the whole grid: any window and split give the same bits.
+  tbb::parallel_for(0, window.height, [&](int r) {
+    for (int c = 0; c < window.width; ++c)
+      out.at(c, r) = detail::resampled_cell(cells, from, to, window.col0 + c, window.row0 + r, kx,
+                                            ky, resampling);
   });
   return out;
 }

@@ -26,4 +26,12 @@ inline constexpr int kMaxSamplesPerSide = 32;
 Raster<float> resample_heights(const Raster<float>& height, const GridSpec& from,
                                const GridSpec& to, Resampling resampling);
 
+// The same for `window` of `to` alone, bit for bit the matching window of resample_heights:
+// `source` holds `source_window` of `from`, at least resample_source_window(from, to, window).
+Raster<float> resample_heights_window(const Raster<float>& source, const Window& source_window,
+                                      const GridSpec& from, const GridSpec& to,
+                                      const Window& window, Resampling resampling);
+// The cells of `from` that resampling `window` of `to` reads (clipped to `from`).
+Window resample_source_window(const GridSpec& from, const GridSpec& to, const Window& window);
+
 }  // namespace tw

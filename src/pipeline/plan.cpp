@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "geo/height_sampler.hpp"
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
@@ -131,7 +132,13 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
 
   clock.start("ingest");
   detail::check_inputs(config);
-  Heightfield heightfield = detail::load_heightfield(config, warnings);
+  const std::shared_ptr<const HeightfieldSource> source =
+      detail::open_heightfield_source(config, warnings);
+  require_some_height(*source);
+  // The whole grid's pixels only for a region (cropped and resampled below); otherwise ingest,
+  // conformance, the terrain plan and every tile read the windows they touch.
+  Heightfield heightfield =
+      config.region ? read_whole_heightfield(*source) : source->without_pixels();
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
@@ -145,7 +152,8 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
     plan.class_names.push_back(feature_class.name);
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
-  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
+  const auto moves = detail::conform_lines(
+      config, config.region ? *in_memory_heightfield(heightfield) : *source, lines, warnings);
   detail::ExistingFeatures existing =
       detail::load_existing(config.existing, heightfield, config.repair, warnings);
   if (config.region) {  // features were read on the whole heightfield, the rest is the region
@@ -185,8 +193,11 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   clock.start("terrain");
   plan.terrain_features = detail::terrain_features(config, lines);
   plan.terrain_params = detail::terrain_params(config);
-  plan.terrain = plan_terrain(heightfield.height, heightfield.grid, plan.terrain_features,
-                              plan.terrain_params, warnings);
+  {
+    const auto region = config.region ? in_memory_heightfield(heightfield) : nullptr;
+    HeightSampler heights(region ? *region : *source);
+    plan.terrain = plan_terrain(heights, plan.terrain_features, plan.terrain_params, warnings);
+  }
   detail::report_earthwork(config, lines, plan.terrain, report, warnings);
   report_decks(plan.terrain, report);
   clock.stop();
@@ -220,8 +231,9 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   plan.lines = std::move(lines);
 
   plan.heights.source = heightfield.source;
-  if (!config.heightfield && !config.region) {
-    plan.heights.generated = detail::generated_terrain(config);
+  if (!config.region) {
+    plan.heights.reader = source;
+    if (!config.heightfield) plan.heights.generated = detail::generated_terrain(config);
   } else {
     plan.heights.heights = std::make_shared<const Raster<float>>(std::move(heightfield.height));
   }

@@ -14,6 +14,7 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "geo/heightfield_source.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
@@ -52,6 +53,9 @@ struct HeightSource {
   std::optional<GeneratedTerrain> generated;
   // Otherwise the heights over the plan's grid as ingested, shared by every tile.
   std::shared_ptr<const Raster<float>> heights;
+  // The heightfield opened once and read window by window (geo/heightfield_source.hpp; a file
+  // or the generated world, without a region): read_height_window reads through it.
+  std::shared_ptr<const HeightfieldSource> reader;
 };
 
 // The heights of `window` of `grid` (the plan's grid). NaN marks nodata.

@@ -41,15 +41,8 @@ Raster<float> read_height_window(const HeightSource& source, const GridSpec& gri
   if (intersect(window, Window::whole(grid)) != window || window.width == 0)
     fail("{}: window ({}, {}, {} x {}) is not inside the {} x {} grid", source.source, window.col0,
          window.row0, window.width, window.height, grid.width, grid.height);
-  if (source.generated) {
-    GeneratedTerrain part = *source.generated;
-    part.width = window.width;
-    part.height = window.height;
-    const Vec2 corner = grid.pixel_to_world({double(window.col0), double(window.row0)});
-    part.origin_x = corner.x;
-    part.origin_y = corner.y;
-    return generate_heightfield(part).height;
-  }
+  if (source.reader) return source.reader->read(window);
+  if (source.generated) return open_generated_heightfield(*source.generated)->read(window);
   if (!source.heights) fail("{}: the plan holds no heights", source.source);
   const Raster<float>& whole = *source.heights;
   Raster<float> out(window.width, window.height);

@@ -29,8 +29,9 @@ struct CorridorCell {
 };
 
 // The cells whose centres lie within `corridor` of the line, sorted by id.
-std::vector<CorridorCell> corridor_cells(const Raster<float>& height, const GridSpec& grid,
-                                         const Curve& line, double corridor) {
+std::vector<CorridorCell> corridor_cells(HeightSampler& heights, const Curve& line,
+                                         double corridor) {
+  const GridSpec& grid = heights.grid();
   double x0 = line.points[0].x, x1 = x0, y0 = line.points[0].y, y1 = y0;
   for (const Vec2 p : line.points) {
     x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
@@ -53,8 +54,8 @@ std::vector<CorridorCell> corridor_cells(const Raster<float>& height, const Grid
       for (int r = 0; r < tile.height; ++r)
         for (int c = 0; c < tile.width; ++c) {
           const auto& n = s[std::size_t(r) * tile.width + c];
-          const float h = height.at(tile.col0 + c, tile.row0 + r);
           if (!std::isfinite(n.distance)) continue;
+          const float h = heights.cell(tile.col0 + c, tile.row0 + r);
           cells.push_back(
               {std::int64_t(tile.row0 + r) * grid.width + tile.col0 + c, h, n.distance, n.along});
         }
@@ -219,6 +220,14 @@ void reattach_ends(const std::vector<Curve>& drawn, std::vector<Curve>& conforme
 
 ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,
                            const ConformOptions& options) {
+  const auto source = in_memory_heightfield(height, grid);
+  HeightSampler heights(*source);
+  return conform_line(heights, line, options);
+}
+
+ConformResult conform_line(HeightSampler& heights, const Curve& line,
+                           const ConformOptions& options) {
+  const GridSpec& grid = heights.grid();
   ConformResult result;
   result.line = line;
   if (!(options.corridor > 0.0)) {
@@ -230,7 +239,7 @@ ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, co
     result.kept_because = "a closed line keeps its course";
     return result;
   }
-  const auto cells = corridor_cells(height, grid, given, options.corridor);
+  const auto cells = corridor_cells(heights, given, options.corridor);
   if (cells.empty()) {
     result.kept_because = "no DEM cell in its corridor (off the grid, or too many cells)";
     return result;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "geo/height_sampler.hpp"
 #include "ribbon/curve.hpp"
 
 namespace tw {
@@ -31,6 +32,9 @@ struct ConformResult {
 // may be crossed at the cost of their length only: nothing is carved there (a river along a
 // border, the DEM's nodata edge, keeps to it). Closed lines and corridors wholly over nodata
 // are kept as given. Deterministic (ties broken by the lowest cell index).
+ConformResult conform_line(HeightSampler& heights, const Curve& line,
+                           const ConformOptions& options);
+// The same over `height`, which covers the whole grid.
 ConformResult conform_line(const Raster<float>& height, const GridSpec& grid, const Curve& line,
                            const ConformOptions& options);
 

@@ -328,6 +328,14 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
   if (height.width != grid.width || height.height != grid.height)
     fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
          height.height, grid.width, grid.height);
+  const auto source = in_memory_heightfield(height, grid);
+  HeightSampler heights(*source);
+  return plan_terrain(heights, features, params, warnings);
+}
+
+TerrainPlan plan_terrain(HeightSampler& heights, const std::vector<TerrainFeature>& features,
+                         const TerrainParams& params, Warnings& warnings) {
+  const GridSpec& grid = heights.grid();
   TerrainPlan plan;
   plan.params = params;
   const auto ranks = detail::precedence_ranks(params);
@@ -359,7 +367,7 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
       profiles[i] = {0.0};
       continue;
     }
-    auto terrain = detail::terrain_along(height, grid, f.centerline, step);
+    auto terrain = detail::terrain_along(heights, f.centerline, step);
     if (terrain.empty()) {
       // Off this grid altogether (a close-up region, a tile) is expected; over nodata is not.
       if (reaches_grid(f, grid, step)) {

@@ -4,6 +4,7 @@
 
 #include "core/grid.hpp"
 #include "core/warnings.hpp"
+#include "geo/height_sampler.hpp"
 #include "geo/heightfield.hpp"
 #include "terrain/features.hpp"
 
@@ -49,9 +50,13 @@ struct TerrainPlan {
   TerrainParams params;
 };
 
-// Samples and grades the profiles (junctions included, see docs/terrain.md). `height`
-// covers the whole grid; NaN cells are never read as heights. A feature on the grid but only
-// over nodata is left out with an `over_nodata` warning (its subject, FID).
+// Samples and grades the profiles (junctions included, see docs/terrain.md), reading heights
+// through `heights` (the cells along the features, never the whole grid); NaN cells are never
+// read as heights. A feature on the grid but only over nodata is left out with an
+// `over_nodata` warning (its subject, FID).
+TerrainPlan plan_terrain(HeightSampler& heights, const std::vector<TerrainFeature>& features,
+                         const TerrainParams& params, Warnings& warnings);
+// The same over `height`, which covers the whole grid (the same plan, bit for bit).
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params,
                          Warnings& warnings);

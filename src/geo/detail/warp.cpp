@@ -102,7 +102,7 @@ GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const
   const Extent extent = covering_extent(source, target, label);
   // clang-format off
   const std::vector<std::string> args = {
-      "-of", "MEM", "-t_srs", target.crs_wkt,
+      "-of", "VRT", "-t_srs", target.crs_wkt,
       "-te", number(extent.west), number(extent.south), number(extent.east), number(extent.north),
       "-tr", number(target.pixel_width), number(target.pixel_height),
       "-r", resampling, "-ot", "Float32", "-dstnodata", "nan"};
@@ -122,11 +122,13 @@ GdalDatasetPtr run_gdalwarp(GDALDataset& source, const WarpTarget& target, const
 
 }  // namespace
 
-GdalDatasetPtr warp_to_metric_grid(GDALDataset& full_source, const WarpTarget& target,
-                                   const std::string& label, const char* resampling) {
-  GdalDatasetPtr band_one;
-  if (full_source.GetRasterCount() > 1) band_one = first_band_only(full_source, label);
-  return run_gdalwarp(band_one ? *band_one : full_source, target, resampling, label);
+WarpedGrid warp_to_metric_grid(GDALDataset& full_source, const WarpTarget& target,
+                               const std::string& label, const char* resampling) {
+  WarpedGrid result;
+  if (full_source.GetRasterCount() > 1) result.band_one = first_band_only(full_source, label);
+  result.warped =
+      run_gdalwarp(result.band_one ? *result.band_one : full_source, target, resampling, label);
+  return result;
 }
 
 }  // namespace tw::detail

@@ -12,13 +12,19 @@ struct WarpTarget {
   double pixel_height = 0.0;  // metres
 };
 
-// Band 1 of `source` warped (gdalwarp's `resampling`: "bilinear" or "cubic") into an
-// in-memory Float32 dataset with NaN as nodata.
+// Band 1 of `source` warped (gdalwarp's `resampling`: "bilinear" or "cubic") into a virtual
+// Float32 dataset with NaN as nodata (a warped VRT: each block is warped when read, on its own,
+// so a window reads the same bits as the whole and holds only the blocks it meets).
 // GDAL's warper never mixes a nodata cell into a height (it weighs valid neighbours only) and
 // leaves an output cell nodata when the source cell under its centre is nodata, so holes
 // neither fill nor shrink (tests/geo/heightfield_test.cpp checks both). `label` names the
 // source in errors.
-GdalDatasetPtr warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
-                                   const std::string& label, const char* resampling);
+// `source` must outlive the result.
+struct WarpedGrid {
+  GdalDatasetPtr band_one;  // band 1 alone of a multi-band source, which `warped` reads
+  GdalDatasetPtr warped;    // declared last: closed first
+};
+WarpedGrid warp_to_metric_grid(GDALDataset& source, const WarpTarget& target,
+                               const std::string& label, const char* resampling);
 
 }  // namespace tw::detail

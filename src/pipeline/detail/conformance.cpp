@@ -10,12 +10,13 @@
 namespace tw::detail {
 
 std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
-                                                 const Heightfield& heightfield,
+                                                 const HeightfieldSource& heightfield,
                                                  std::vector<std::vector<LineFeature>>& lines,
                                                  Warnings& warnings) {
   std::vector<std::vector<LineMove>> moves(lines.size());
   const double half_cell =
-      0.5 * std::min(heightfield.grid.pixel_width, heightfield.grid.pixel_height);
+      0.5 * std::min(heightfield.grid().pixel_width, heightfield.grid().pixel_height);
+  HeightSampler heights(heightfield);
   for (std::size_t c = 0; c < lines.size(); ++c) {
     const FeatureClassConfig& feature_class = config.features[c];
     moves[c].resize(lines[c].size());
@@ -33,7 +34,7 @@ std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
     conformed = drawn;
     std::vector<ConformResult> results;
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
-      results.push_back(conform_line(heightfield.height, heightfield.grid, drawn[i], options));
+      results.push_back(conform_line(heights, drawn[i], options));
       if (results.back().conformed) conformed[i] = results.back().line;
     }
     reattach_ends(drawn, conformed, tolerance);

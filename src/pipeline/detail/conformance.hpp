@@ -6,7 +6,7 @@
 
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
-#include "geo/heightfield.hpp"
+#include "geo/heightfield_source.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
 #include "terrain/height_ops.hpp"
@@ -21,9 +21,9 @@ struct LineMove {
 
 // Moves the lines of every class with a conform.corridor onto the valley floor (rivers) or
 // the crest (ridges) of `heightfield`; a moved line is a `conformed` warning, one that could
-// not be moved a `not_conformed` warning.
+// not be moved a `not_conformed` warning. Reads the cells of the corridors only.
 std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
-                                                 const Heightfield& heightfield,
+                                                 const HeightfieldSource& heightfield,
                                                  std::vector<std::vector<LineFeature>>& lines,
                                                  Warnings& warnings);
 

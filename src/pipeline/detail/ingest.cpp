@@ -27,15 +27,16 @@ double clip_margin(const FeatureClassConfig& config, double cell) {
 
 }  // namespace
 
-Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
+std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
+                                                           Warnings& warnings) {
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
-    return read_heightfield(config.heightfield->string(), options, warnings);
+    return open_heightfield(config.heightfield->string(), options, warnings);
   }
-  return generate_heightfield(generated_terrain(config));
+  return open_generated_heightfield(generated_terrain(config));
 }
 
 GeneratedTerrain generated_terrain(const PipelineConfig& config) {
@@ -50,6 +51,10 @@ GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   params.origin_x = g.origin_x;
   params.origin_y = g.origin_y;
   return params;
+}
+
+Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
+  return read_whole_heightfield(*open_heightfield_source(config, warnings));
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,

@@ -7,13 +7,18 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "geo/heightfield_source.hpp"
 #include "pipeline/config.hpp"
 #include "raster/polygon.hpp"
 
 namespace tw::detail {
 
-// Reads config.heightfield (at config.resolution) or generates one from config.generate and
-// config.seed.
+// Opens config.heightfield (at config.resolution) or the world generated from config.generate
+// and config.seed, reading no pixel: windows are read as the stages need them.
+std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
+                                                           Warnings& warnings);
+
+// The whole heightfield of open_heightfield_source (an error when every cell is nodata).
 Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
 // The generator's parameters of a pipeline without a heightfield file.
 GeneratedTerrain generated_terrain(const PipelineConfig& config);

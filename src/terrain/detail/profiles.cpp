@@ -4,19 +4,15 @@
 #include <cmath>
 #include <limits>
 
-#include "geo/resample.hpp"
-
 namespace tw::detail {
 
-std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,
-                                  const Curve& curve, double step) {
+std::vector<double> terrain_along(HeightSampler& heights, const Curve& curve, double step) {
   const auto cumulative = cumulative_lengths(curve);
   const double total = cumulative.back();
   const std::size_t count = std::size_t(std::llround(total / step)) + 1;
   std::vector<double> v(count);
   for (std::size_t i = 0; i < count; ++i)
-    v[i] = sample_height_bilinear(height, grid,
-                                  point_at(curve, cumulative, std::min(total, i * step)));
+    v[i] = heights.bilinear(point_at(curve, cumulative, std::min(total, i * step)));
   // Bridge nodata: linear between valid neighbours, constant beyond the first / last valid.
   std::size_t previous = count;
   for (std::size_t i = 0; i < count; ++i) {

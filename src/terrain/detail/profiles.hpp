@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "geo/height_sampler.hpp"
 #include "ribbon/curve.hpp"
 
 namespace tw::detail {
@@ -11,8 +12,7 @@ namespace tw::detail {
 // Heights every `step` metres along the curve (step divides L: count = L/step + 1);
 // nodata gaps are bridged linearly between valid samples, ends extended. Returns an empty
 // vector when the whole curve lies over nodata.
-std::vector<double> terrain_along(const Raster<float>& height, const GridSpec& grid,
-                                  const Curve& curve, double step);
+std::vector<double> terrain_along(HeightSampler& heights, const Curve& curve, double step);
 
 // Centred moving average over `window` metres (truncated at the ends).
 std::vector<double> moving_average(const std::vector<double>& v, double step, double window);

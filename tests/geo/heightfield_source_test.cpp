@@ -1,0 +1,171 @@
+#include "geo/heightfield_source.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "core/error.hpp"
+#include "geo/height_sampler.hpp"
+#include "geo/resample.hpp"
+#include "geo_test_data.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+using test::DemSpec;
+using test::TempDir;
+
+// Bit equality (NaN == NaN) of `window` of `whole` and `part`.
+::testing::AssertionResult same_bits(const Raster<float>& whole, const Window& window,
+                                     const Raster<float>& part) {
+  if (part.width != window.width || part.height != window.height)
+    return ::testing::AssertionFailure() << "size " << part.width << " x " << part.height;
+  for (int r = 0; r < window.height; ++r)
+    for (int c = 0; c < window.width; ++c) {
+      const float a = whole.at(window.col0 + c, window.row0 + r), b = part.at(c, r);
+      if (std::memcmp(&a, &b, sizeof a) != 0)
+        return ::testing::AssertionFailure()
+               << "cell (" << window.col0 + c << ", " << window.row0 + r << "): whole " << a
+               << ", window " << b;
+    }
+  return ::testing::AssertionSuccess();
+}
+
+// Windows at the corners, the edges, across the middle, single cells and the whole.
+std::vector<Window> windows_of(const GridSpec& g) {
+  return {{0, 0, g.width, g.height},
+          {0, 0, 1, 1},
+          {g.width - 1, g.height - 1, 1, 1},
+          {g.width / 3, g.height / 4, g.width / 2, g.height / 2},
+          {0, g.height / 2, g.width, 3},
+          {g.width - 7, 0, 7, g.height},
+          {g.width / 2, g.height / 2, g.width - g.width / 2, g.height - g.height / 2}};
+}
+
+void expect_windows_match_whole(const HeightfieldSource& source, const Heightfield& whole) {
+  ASSERT_EQ(source.grid(), whole.grid);
+  for (const Window& w : windows_of(source.grid())) {
+    SCOPED_TRACE(::testing::Message()
+                 << "window " << w.col0 << "," << w.row0 << " " << w.width << "x" << w.height);
+    EXPECT_TRUE(same_bits(whole.height, w, source.read(w)));
+  }
+}
+
+std::string sample(const char* name) {
+  return (test::source_dir() / "samples" / name).string();
+}
+
+TEST(HeightfieldSource, NativeWindowsAreTheWholeRead) {
+  Warnings warnings;
+  const auto source = open_heightfield(sample("dem.tif"), {}, warnings);
+  EXPECT_EQ(source->cells_read(), 0);  // opening reads no pixel
+  expect_windows_match_whole(*source, read_heightfield(sample("dem.tif")));
+  const Window w{10, 20, 30, 5};
+  const std::int64_t before = source->cells_read();
+  source->read(w);
+  EXPECT_EQ(source->cells_read() - before, 150);  // the window, nothing more
+}
+
+TEST(HeightfieldSource, ResampledWindowsAreTheWholeRead) {
+  for (const Resampling resampling : {Resampling::bilinear, Resampling::cubic}) {
+    for (const double resolution : {3.7, 10.0, 41.0}) {
+      SCOPED_TRACE(::testing::Message() << "resolution " << resolution << " cubic "
+                                        << (resampling == Resampling::cubic));
+      HeightfieldOptions options{resolution, resampling};
+      Warnings warnings;
+      const auto source = open_heightfield(sample("dem.tif"), options, warnings);
+      expect_windows_match_whole(*source, read_heightfield(sample("dem.tif"), options));
+    }
+  }
+}
+
+TEST(HeightfieldSource, WarpedWindowsAreTheWholeRead) {
+  for (const Resampling resampling : {Resampling::bilinear, Resampling::cubic}) {
+    Warnings warnings;
+    HeightfieldOptions options;
+    options.resampling = resampling;
+    const auto source = open_heightfield(sample("dem_wgs84.tif"), options, warnings);
+    expect_windows_match_whole(*source, read_heightfield(sample("dem_wgs84.tif"), options));
+  }
+}
+
+// Larger than one block of GDAL's warped VRT (512 x 128) and with a nodata hole, so windows
+// cross blocks and holes.
+TEST(HeightfieldSource, WarpedWindowsCrossBlocks) {
+  TempDir dir;
+  DemSpec spec;
+  spec.width = 700;
+  spec.height = 300;
+  spec.crs = "EPSG:4326";
+  spec.geotransform = {5.9, 0.0005, 0.0, 49.9, 0.0, -0.0005};
+  spec.nodata = -9999.0;
+  spec.value = [](int c, int r) {
+    if (std::hypot(c - 350, r - 150) < 20) return -9999.0;
+    return 200.0 + 50.0 * std::sin(c * 0.05) * std::cos(r * 0.07);
+  };
+  const std::string path = (dir.path() / "geo.tif").string();
+  test::write_geotiff(path, spec);
+  Warnings warnings;
+  const auto source = open_heightfield(path, {}, warnings);
+  ASSERT_GT(source->grid().height, 256);
+  expect_windows_match_whole(*source, read_heightfield(path));
+}
+
+TEST(HeightfieldSource, GeneratedWindowsAreTheGeneratedWorld) {
+  GeneratedTerrain params;
+  params.width = 300;
+  params.height = 200;
+  params.pixel_size = 7.5;
+  params.seed = 42;
+  const auto source = open_generated_heightfield(params);
+  expect_windows_match_whole(*source, generate_heightfield(params));
+  // A window's own grid sits on the window.
+  const Heightfield window = read_heightfield_window(*source, {10, 20, 5, 5});
+  EXPECT_DOUBLE_EQ(window.grid.origin_x, params.origin_x + 10 * 7.5);
+  EXPECT_DOUBLE_EQ(window.grid.origin_y, params.origin_y - 20 * 7.5);
+}
+
+TEST(HeightfieldSource, WindowOutsideTheGridIsAnError) {
+  GeneratedTerrain params;
+  params.width = params.height = 64;
+  const auto source = open_generated_heightfield(params);
+  EXPECT_THROW(source->read({60, 0, 5, 1}), Error);
+  EXPECT_THROW(source->read({-1, 0, 5, 1}), Error);
+}
+
+// The sampler equals sample_height_bilinear over the whole raster, bit for bit, at points
+// on and off the grid and around nodata, whatever the block size and however small the cache.
+TEST(HeightSampler, BilinearIsTheWholeRastersBilinear) {
+  GeneratedTerrain params;
+  params.width = 203;
+  params.height = 157;
+  params.seed = 3;
+  Heightfield field = generate_heightfield(params);
+  for (int r = 40; r < 60; ++r)
+    for (int c = 70; c < 95; ++c) field.height.at(c, r) = std::nanf("");
+  const auto source = in_memory_heightfield(field);
+  std::mt19937 random(7);
+  const GridSpec& g = field.grid;
+  std::uniform_real_distribution<double> x(g.origin_x - 20, g.origin_x + g.width * 10.0 + 20);
+  std::uniform_real_distribution<double> y(g.origin_y - g.height * 10.0 - 20, g.origin_y + 20);
+  for (const HeightSamplerOptions options :
+       {HeightSamplerOptions{}, HeightSamplerOptions{16, 16 * 16 * 4},
+        HeightSamplerOptions{7, 1}}) {
+    HeightSampler sampler(*source, options);
+    for (int i = 0; i < 4000; ++i) {
+      const Vec2 p{x(random), y(random)};
+      const double expected = sample_height_bilinear(field.height, g, p);
+      const double got = sampler.bilinear(p);
+      ASSERT_EQ(std::memcmp(&expected, &got, sizeof got), 0)
+          << "at " << p.x << ", " << p.y << ": " << expected << " vs " << got;
+    }
+    EXPECT_LE(sampler.peak_bytes(),
+              std::max<std::int64_t>(options.max_bytes, options.block * options.block * 4));
+  }
+}
+
+}  // namespace
+}  // namespace tw
