@@ -38,6 +38,17 @@ inline constexpr double kCoverageFloorOfNatural = 0.1;
 
 ExemplarStats exemplar_stats(const Exemplar& exemplar);
 
+// The synthesis defaults the exemplar implies at `scale` texels per metre (used where the user
+// gives no width or delta), in metres: the band's rows plus a margin of an eighth of them and a
+// row on either side (a piece's top and bottom edges must cross transparent texels, and on a
+// curve they slant across rows), and the suggested δ.
+inline double suggested_width(const ExemplarStats& s, double scale) {
+  return (s.band_rows() + 2 * (s.band_rows() / 8 + 1)) / scale;
+}
+inline double suggested_delta(const ExemplarStats& s, double scale) {
+  return s.suggested_delta / scale;
+}
+
 // Opaque fraction of a window of `rows` rows centred on the band, over all columns (the natural
 // coverage of a ribbon C = rows texels wide).
 double window_coverage(const Exemplar& exemplar, const ExemplarStats& stats, int rows);
