@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/exemplar_command.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -119,8 +120,10 @@ int main(int argc, char** argv) {
                    "line, arc, s-curve, circle, heart, hairpin, or an OGR source path[:layer]")
       ->required();
   synth->add_option("--length", synth_args.length, "size of a built-in shape, metres");
-  synth->add_option("--width", synth_args.width, "ribbon width b, metres")->required();
-  synth->add_option("--delta", synth_args.delta, "piece length, metres")->required();
+  synth->add_option("--width", synth_args.width,
+                    "ribbon width b, metres (default: the exemplar's band, exemplar inspect)");
+  synth->add_option("--delta", synth_args.delta,
+                    "piece length, metres (default: the exemplar's suggested delta)");
   synth->add_option("--scale", synth_args.scale, "exemplar texels per metre")->required();
   synth->add_option("--backend", synth_args.backend, "cpu, opencl or auto")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
@@ -129,7 +132,19 @@ int main(int argc, char** argv) {
   synth->add_option("--placements", synth_args.placements,
                     "also write the placements (JSON, docs/synthesis.md) to this file");
   synth->add_option("--min-coverage", synth_args.min_coverage,
-                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
+                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule; "
+                    "default: a tenth of the exemplar's natural coverage)");
+  synth
+      ->add_option_function<std::string>(
+          "--objective",
+          [&synth_args](const std::string& o) {
+            synth_args.objective = o == "paper" ? tw::Objective::paper : tw::Objective::pattern;
+          },
+          "pattern (default: seams + a coverage term, a centred copy) or paper (seams alone)")
+      ->check(CLI::IsMember({"pattern", "paper"}));
+  synth->add_option("--coverage-weight", synth_args.coverage_weight,
+                    "pattern objective: weight of lost coverage against gamma (default 2)")
+      ->check(CLI::Range(0.0, 1000.0));
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
   synth->add_flag("--allow-network", synth_args.allow_network, network_help);
   synth->add_option("--feather", synth_args.feather,
@@ -140,6 +155,17 @@ int main(int argc, char** argv) {
           [&synth_args](const std::string& a) { synth_args.continuous_alpha = a == "continuous"; },
           "binary (opaque at alpha >= 0.5, the default) or continuous costs")
       ->check(CLI::IsMember({"binary", "continuous"}));
+
+  tw::ExemplarInspectCommand inspect_args;
+  CLI::App* exemplar = app.add_subcommand("exemplar", "what an exemplar implies for synthesis");
+  exemplar->require_subcommand(1);
+  CLI::App* inspect = exemplar->add_subcommand(
+      "inspect", "opaque rows, period, suggested delta, coverage, cyclic; optional preview PNG");
+  inspect->add_option("image", inspect_args.exemplar, "exemplar image with alpha")->required();
+  inspect->add_option("--preview", inspect_args.preview,
+                      "PNG with the band (blue), centre (green), period ticks (red), coverage");
+  inspect->add_flag("--json", inspect_args.json, "one JSON object instead of text");
+  inspect->add_flag("--allow-network", inspect_args.allow_network, network_help);
 
   try {
     app.parse(argc, argv);
@@ -162,6 +188,10 @@ int main(int argc, char** argv) {
     }
     if (validate->parsed())
       return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (inspect->parsed()) {
+      std::fputs(tw::run_exemplar_inspect(inspect_args).c_str(), stdout);
+      return 0;
+    }
     if (synth->parsed()) {
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",
