@@ -23,6 +23,7 @@
 #include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/diff.hpp"
+#include "pipeline/exemplar_command.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -183,8 +184,10 @@ int main(int argc, char** argv) {
                    "line, arc, s-curve, circle, heart, hairpin, or an OGR source path[:layer]")
       ->required();
   synth->add_option("--length", synth_args.length, "size of a built-in shape, metres");
-  synth->add_option("--width", synth_args.width, "ribbon width b, metres")->required();
-  synth->add_option("--delta", synth_args.delta, "piece length, metres")->required();
+  synth->add_option("--width", synth_args.width,
+                    "ribbon width b, metres (default: the exemplar's band, exemplar inspect)");
+  synth->add_option("--delta", synth_args.delta,
+                    "piece length, metres (default: the exemplar's suggested delta)");
   synth->add_option("--scale", synth_args.scale, "exemplar texels per metre")->required();
   synth->add_option("--backend", synth_args.backend, "cpu, opencl or auto")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
@@ -193,7 +196,19 @@ int main(int argc, char** argv) {
   synth->add_option("--placements", synth_args.placements,
                     "also write the placements (JSON, docs/synthesis.md) to this file");
   synth->add_option("--min-coverage", synth_args.min_coverage,
-                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule)");
+                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule; "
+                    "default: a tenth of the exemplar's natural coverage)");
+  synth
+      ->add_option_function<std::string>(
+          "--objective",
+          [&synth_args](const std::string& o) {
+            synth_args.objective = o == "paper" ? tw::Objective::paper : tw::Objective::pattern;
+          },
+          "pattern (default: seams + a coverage term, a centred copy) or paper (seams alone)")
+      ->check(CLI::IsMember({"pattern", "paper"}));
+  synth->add_option("--coverage-weight", synth_args.coverage_weight,
+                    "pattern objective: weight of lost coverage against gamma (default 2)")
+      ->check(CLI::Range(0.0, 1000.0));
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
   synth->add_option("--feather", synth_args.feather,
                     "metres either side of each seam where colours blend (0: exact copies)");
@@ -245,6 +260,17 @@ int main(int argc, char** argv) {
   make_world->add_option("--overlap", world.tile_overlap, "output.tiles.overlap of world.yaml");
   make_world->add_option("--out", world.dir, "folder to write")->required();
 
+  tw::ExemplarInspectCommand inspect_args;
+  CLI::App* exemplar = app.add_subcommand("exemplar", "what an exemplar implies for synthesis");
+  exemplar->require_subcommand(1);
+  CLI::App* inspect = exemplar->add_subcommand(
+      "inspect", "opaque rows, period, suggested delta, coverage, cyclic; optional preview PNG");
+  inspect->add_option("image", inspect_args.exemplar, "exemplar image with alpha")->required();
+  inspect->add_option("--preview", inspect_args.preview,
+                      "PNG with the band (blue), centre (green), period ticks (red), coverage");
+  inspect->add_flag("--json", inspect_args.json, "one JSON object instead of text");
+  inspect->add_flag("--allow-network", inspect_args.allow_network, network_help);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -283,13 +309,16 @@ int main(int argc, char** argv) {
           "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
           "%d overlapping)\n",
           r.instances, r.strokes, r.polygons, r.outside, r.forbidden, r.overlapping);
-
-    if (validate->parsed())
-      return validate_command(validate_args, validate_strict, validate_allow_network);
+      return 0;
+    }
     if (make_world->parsed()) {
       const tw::BigWorldSummary s = tw::write_big_world(world);
       std::printf("%d roads %.1f km, %d rivers %.1f km, %.1f km^2\n", s.roads, s.road_km, s.rivers,
                   s.river_km, s.area_km2);
+      return 0;
+    }
+    if (inspect->parsed()) {
+      std::fputs(tw::run_exemplar_inspect(inspect_args).c_str(), stdout);
       return 0;
     }
     if (synth->parsed()) {

@@ -200,13 +200,17 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
   if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
   s.height_detail = m.non_negative_or("height_detail", s.height_detail);
-  s.min_coverage = m.non_negative_or("min_coverage", s.min_coverage);
+  if (m.has("min_coverage")) s.min_coverage = m.non_negative_or("min_coverage", 0.0);
   s.feather = m.non_negative_or("feather", s.feather);
-  if (s.min_coverage >= 1.0) {
+  if (s.min_coverage && *s.min_coverage >= 1.0) {
     m.source().fail(
         m.get("min_coverage"), m.path("min_coverage"),
-        fmt::format("must be below 1 (a fraction of each piece), got {}", s.min_coverage));
+        fmt::format("must be below 1 (a fraction of each piece), got {}", *s.min_coverage));
   }
+  s.objective = read_one_of(m, "objective", "objective", {"pattern", "paper"}) == 1
+                    ? Objective::paper
+                    : Objective::pattern;
+  s.coverage_weight = m.non_negative_or("coverage_weight", s.coverage_weight);
   s.continuous_alpha = read_one_of(m, "alpha", "alpha", {"binary", "continuous"}) == 1;
   s.choice = read_one_of(m, "choose", "choice", {"seed", "best"}) == 1 ? ExemplarChoice::best
                                                                        : ExemplarChoice::by_seed;
@@ -307,7 +311,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     f.synthesis =
         read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
                                  {"exemplar", "choose", "width", "delta", "scale", "stitch",
-                                  "empty_pieces", "min_coverage", "alpha", "feather", "seed",
+                                  "empty_pieces", "min_coverage", "objective", "coverage_weight", "alpha", "feather", "seed",
                                   "backend", "height_detail", "channels"}),
                        seed, inputs);
   }

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "synth/synthesize.hpp"
 #include "terrain/features.hpp"
 
 namespace tw {
@@ -53,8 +55,11 @@ struct SynthesisConfig {
   // A piece with no valid position (a junction disc, an earlier pattern) stays empty; false:
   // such a piece is an error naming the feature and the piece.
   bool empty_pieces = true;
-  // The fraction of each piece that must be opaque at a valid position (SynthParams).
-  double min_coverage = 0.0;
+  // The fraction of each piece that must be opaque at a valid position (SynthParams); absent:
+  // from the exemplar (a tenth of its natural coverage).
+  std::optional<double> min_coverage;
+  Objective objective = Objective::pattern;  // `objective: pattern | paper`
+  double coverage_weight = 2.0;              // the pattern objective's weight against gamma
   // Costs with alpha as a fraction (the paper's option for soft-edged exemplars) instead of
   // opaque / transparent at alpha 0.5.
   bool continuous_alpha = false;

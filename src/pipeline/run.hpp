@@ -44,6 +44,14 @@ struct FeatureSynthesisReport {
   std::int64_t omega = 0;             // optimal cost, cost units
   double mean_seam_cost = 0.0;        // Omega / N in colour units, before stitching
   double mean_seam_cost_stitched = 0.0;
+  // Quality (issue #11): the objective and coverage floor used, the chosen windows' coverage
+  // against windows centred on the exemplar's band, and parametric texture mapping's mean seam
+  // cost on the same ribbon (colour units, like mean_seam_cost).
+  std::string objective;
+  double min_coverage = 0.0;
+  bool min_coverage_from_exemplar = false;
+  double coverage_ratio = 0.0, mean_coverage = 0.0, natural_coverage = 0.0;
+  double parametric_seam_cost = 0.0;
   std::int64_t violations = 0;  // opaque canvas pixels on forbidden ones (must be 0)
   int empty_pieces = 0;         // pieces left empty (no valid position: junctions, avoidance)
   int canvas_width = 0, canvas_height = 0;  // the synthesis window, cells

@@ -12,6 +12,7 @@
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "synth/exemplar.hpp"
+#include "synth/exemplar_stats.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"
 #include "synth/shapes.hpp"
@@ -79,8 +80,8 @@ void write_png(const std::filesystem::path& path, int width, int height,
 }  // namespace
 
 Synthesis run_synth_command(const SynthCommand& c) {
-  if (!(c.width > 0)) fail("synth: --width must be > 0 metres, got {}", c.width);
-  if (!(c.delta > 0)) fail("synth: --delta must be > 0 metres, got {}", c.delta);
+  if (!(c.width >= 0)) fail("synth: --width must be > 0 metres, got {}", c.width);
+  if (!(c.delta >= 0)) fail("synth: --delta must be > 0 metres, got {}", c.delta);
   if (!(c.scale > 0)) fail("synth: --scale must be > 0 texels per metre, got {}", c.scale);
   if (!(c.length > 0)) fail("synth: --length must be > 0 metres, got {}", c.length);
   if (!(c.feather >= 0)) fail("synth: --feather must be >= 0 metres, got {}", c.feather);
@@ -90,14 +91,22 @@ Synthesis run_synth_command(const SynthCommand& c) {
   ExemplarOptions options;
   options.continuous_alpha = c.continuous_alpha;
   const Exemplar exemplar = load_exemplar(c.exemplar.string(), options);
+  const ExemplarStats stats = exemplar_stats(exemplar);
+  const double width = c.width > 0 ? c.width : suggested_width(stats, c.scale);
+  const double delta = c.delta > 0 ? c.delta : suggested_delta(stats, c.scale);
+  if (c.width <= 0 || c.delta <= 0)
+    logger().info("synth: from the exemplar: width {:.3g} m ({} rows), delta {:.3g} m", width,
+                  stats.band_rows(), delta);
   const Curve curve = is_shape(c.curve) ? make_shape(c.curve, c.length) : read_first_line(c.curve);
-  const Ribbon ribbon = make_ribbon(curve, {c.width, c.delta, 0.0});
-  const GridSpec canvas = canvas_around(curve, c.width, c.scale);
+  const Ribbon ribbon = make_ribbon(curve, {width, delta, 0.0});
+  const GridSpec canvas = canvas_around(curve, width, c.scale);
   SynthParams params;
   params.scale = c.scale;
   params.seed = c.seed;
   params.stitch = c.stitch;
   params.min_coverage = c.min_coverage;
+  params.objective = c.objective;
+  params.coverage_weight = c.coverage_weight;
   params.backend = detail::parse_backend_kind(c.backend);
   params.feature_label = c.curve;
   const Synthesis synthesis = synthesize(exemplar, ribbon, canvas, nullptr, params);

@@ -15,13 +15,15 @@ struct SynthCommand {
   // "path" or "path:layer" in a projected CRS (metres); its first feature is used.
   std::string curve;
   double length = 200.0;  // metres, the size of a built-in shape
-  double width = 0.0;     // b, metres
-  double delta = 0.0;     // piece length, metres
+  double width = 0.0;     // b, metres; 0: the exemplar's band (exemplar_stats)
+  double delta = 0.0;     // piece length, metres; 0: the exemplar's suggested δ
   double scale = 0.0;     // exemplar texels per metre; the canvas has one pixel per texel
   std::string backend = "auto";
   std::uint64_t seed = 0;
   bool stitch = true;
-  double min_coverage = 0.0;         // SynthParams::min_coverage
+  double min_coverage = -1.0;        // SynthParams::min_coverage (< 0: from the exemplar)
+  Objective objective = Objective::pattern;
+  double coverage_weight = 2.0;      // SynthParams::coverage_weight
   bool continuous_alpha = false;     // ExemplarOptions::continuous_alpha
   double feather = 0.0;              // render_pattern's seam feathering, metres
   std::filesystem::path output;      // .png

@@ -21,6 +21,11 @@ enum class ClosedMode {
   exact,        // one DP per start position, pruned by the single DP's terminal costs
 };
 
+enum class Objective {
+  paper,    // Omega alone (Zhou et al. 2013): the optimum may copy fringes or stray texels
+  pattern,  // Omega + a unary coverage term: the optimum is a centred copy (docs/synthesis.md)
+};
+
 struct SynthParams {
   double scale = 0.0;      // s: exemplar texels per metre (the paper's s is our s * b)
   std::uint64_t seed = 0;  // 0: global optimum; else piece 0 is drawn among its valid positions
@@ -31,7 +36,13 @@ struct SynthParams {
   // The fraction of a piece's interior texels that must be opaque at a valid position, in
   // [0, 1). 0 is the paper's "not empty" (one texel); more keeps the optimum from choosing
   // nearly empty pieces whose transparent edges seam for free.
-  double min_coverage = 0.0;
+  // Negative: from the exemplar, kCoverageFloorOfNatural x the natural coverage of a window
+  // of C rows centred on its band (synth/exemplar_stats.hpp).
+  double min_coverage = -1.0;
+  Objective objective = Objective::pattern;
+  // Pattern objective: losing the fraction f of a centred window's opaque texels costs as much
+  // as coverage_weight * f * C mismatched seam samples (coverage_weight * f * C * gamma).
+  double coverage_weight = 2.0;
   std::optional<std::pair<int, int>> first_position;  // fixes piece 0 at (ux, uy)
   int stitch_penalty = 32;                            // the paper's P, in 0..255 colour units
   std::string feature_label;  // names the feature in messages, e.g. "feature 42"
@@ -59,6 +70,8 @@ struct SynthTimings {
 struct Synthesis {
   std::vector<Placement> placements;  // one per ribbon piece
   std::int64_t total_cost = 0;        // Omega in cost units (xi = 16 x colour distance)
+  // What the DP minimized: Omega + the pattern objective's unary costs (+ empty penalties).
+  std::int64_t objective_cost = 0;
   // Omega per seam in colour units (xi / 16), before and after stitching.
   double mean_seam_cost = 0.0;
   double mean_seam_cost_stitched = 0.0;
@@ -68,6 +81,13 @@ struct Synthesis {
   bool closed = false;
   std::string backend;
   SynthTimings timings;
+  // The objective and coverage floor used (min_coverage_from_exemplar: the floor was derived).
+  std::string objective;
+  double min_coverage = 0.0;
+  bool min_coverage_from_exemplar = false;
+  // Mean opaque fraction of the chosen windows (non-empty pieces) and of windows centred on the
+  // exemplar's band, of the same pieces; coverage_ratio = mean_coverage / natural_coverage.
+  double mean_coverage = 0.0, natural_coverage = 0.0, coverage_ratio = 0.0;
 };
 
 // `forbidden` (may be null): the avoidance map over `canvas`, non-zero = forbidden; it must hold

@@ -1,6 +1,7 @@
 // The terraweave command line on bad inputs (issue #2 item 11): exit code 1 and one line
 // "terraweave: error: ..." naming the file, key or FID, and nothing written. Usage errors exit 2.
 #include <gmock/gmock.h>
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -390,6 +391,37 @@ TEST_F(Cli, SynthDrawsOneRibbonOrNamesTheBadInput) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.output, HasSubstr("map.gpkg: no layer 'nolayer'"));
   EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST_F(Cli, ExemplarInspectAndSynthDefaultsFromTheExemplar) {
+  const std::string ridge = (source_dir() / "samples/exemplars/ridge_band_200x64.png").string();
+  CommandResult r = terraweave("-q exemplar inspect " + ridge + " --json --preview p.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["width"], 200);
+  EXPECT_EQ(j["height"], 64);
+  // The band holds the ridge, not the two stray texels above it.
+  const int top = j["band_rows"][0], bottom = j["band_rows"][1];
+  EXPECT_GT(top, 5);
+  EXPECT_LT(bottom, 60);
+  EXPECT_GT(j["natural_coverage"].get<double>(), 0.5);
+  EXPECT_GT(j["suggested_delta"].get<int>(), 3);
+  EXPECT_EQ(j["column_coverage"]["values"].size(), 200u);
+  // The preview: the exemplar plus a 24-row coverage strip.
+  const auto preview = OIIO::ImageInput::open((dir / "p.png").string());
+  ASSERT_TRUE(preview);
+  EXPECT_EQ(preview->spec().width, 200);
+  EXPECT_EQ(preview->spec().height, 64 + 24);
+  r = terraweave("-q exemplar inspect " + ridge);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("opaque rows   " + std::to_string(top) + ".." +
+                                  std::to_string(bottom)));
+  EXPECT_EQ(terraweave("-q exemplar inspect missing.png").exit_code, 1);
+  // synth without --width and --delta: both from the exemplar.
+  r = terraweave("-q synth --exemplar " + ridge +
+                 " --curve s-curve --length 200 --scale 1 --backend cpu -o s.png");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("pieces, Omega "));
 }
 
 TEST_F(Cli, UsageErrorsExitWithTwo) {

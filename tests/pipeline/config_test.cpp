@@ -283,8 +283,9 @@ features:
   EXPECT_DOUBLE_EQ(*s.width, 12.0);
   EXPECT_FALSE(s.empty_pieces);
   EXPECT_DOUBLE_EQ(s.height_detail, 0.5);
-  EXPECT_DOUBLE_EQ(s.min_coverage, 0.25);
-  EXPECT_DOUBLE_EQ(c.features[1].synthesis->min_coverage, 0.0);
+  EXPECT_DOUBLE_EQ(s.min_coverage.value_or(-1.0), 0.25);
+  EXPECT_FALSE(c.features[1].synthesis->min_coverage);  // from the exemplar
+  EXPECT_EQ(c.features[1].synthesis->objective, Objective::pattern);
   EXPECT_TRUE(s.continuous_alpha);
   EXPECT_DOUBLE_EQ(s.feather, 3.0);
   EXPECT_DOUBLE_EQ(c.features[1].synthesis->feather, 0.0);

@@ -42,19 +42,30 @@ Problem make_problem(const Curve& curve, double width, double delta, double scal
   return p;
 }
 
-// Minimum of Omega over all sequences (cycles when closed).
+// Minimum of the DP's objective (Omega + unary coverage costs) over all sequences (cycles when
+// closed).
 std::int64_t brute_force(const Problem& p) {
   const int N = int(p.valid.size());
-  std::vector<std::int32_t> seq(static_cast<std::size_t>(N));
+  // The unary costs of every valid position, each from objective_cost of a one-piece sequence.
+  std::vector<std::vector<std::int64_t>> unary(static_cast<std::size_t>(N));
+  for (int i = 0; i < N; ++i)
+    for (std::int32_t v : p.valid[std::size_t(i)])
+      unary[std::size_t(i)].push_back(detail::objective_cost(*p.input.texels, p.input.space,
+                                                             {p.input.pieces[std::size_t(i)]}, {v},
+                                                             false, p.input.coverage));
+  std::vector<std::int32_t> seq(static_cast<std::size_t>(N)), pick(seq.size());
   std::int64_t best = std::numeric_limits<std::int64_t>::max();
   std::function<void(int)> go = [&](int i) {
     if (i == N) {
-      best = std::min(best, detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces,
-                                                  seq, p.input.closed));
+      std::int64_t cost = detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces, seq,
+                                                p.input.closed);
+      for (int k = 0; k < N; ++k) cost += unary[std::size_t(k)][std::size_t(pick[std::size_t(k)])];
+      best = std::min(best, cost);
       return;
     }
-    for (std::int32_t v : p.valid[std::size_t(i)]) {
-      seq[std::size_t(i)] = v;
+    for (std::size_t k = 0; k < p.valid[std::size_t(i)].size(); ++k) {
+      seq[std::size_t(i)] = p.valid[std::size_t(i)][k];
+      pick[std::size_t(i)] = std::int32_t(k);
       go(i + 1);
     }
   };
@@ -112,6 +123,39 @@ TEST(DpBruteForce, ClosedCurvesExactModeIsOptimalAndApproximationNoBetter) {
     std::printf("closed seed %u: exact %lld, approximate %lld (%d exact starts)\n", seed,
                 (long long)e.total_cost, (long long)a.total_cost, e.exact_starts_run);
   }
+}
+
+// The pattern objective's unary term (band rows 2..3: centre row 3) keeps the DP exact, open
+// and closed, and it changes the optimum on some of these problems.
+TEST(DpBruteForce, PatternObjectiveReachesTheGlobalOptimum) {
+  const Curve straight{{{0, 0}, {6, 0}}, false};
+  Curve circle;
+  for (int i = 0; i < 64; ++i)
+    circle.points.push_back({2.0 * std::cos(-i * 0.0982), 2.0 * std::sin(-i * 0.0982)});
+  circle.closed = true;
+  int changed = 0, checked = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    for (const std::int32_t weight : {500, 2000, 40000}) {
+      const bool closed = seed % 2 == 0;
+      Problem p = closed ? make_problem(circle, 2.0, 3.2, 2.0, seed, 0)
+                         : make_problem(straight, 5.0, 1.6, 1.0, seed);
+      if (p.input.pieces.size() > 4) p.input.pieces.resize(4), p.valid.resize(4);
+      auto backend = detail::make_cpu_backend();
+      const detail::DpResult paper = detail::run_dp(*backend, p.input);
+      p.input.coverage = {weight, 3 * 256};
+      p.input.exact_cycle = closed;
+      const detail::DpResult r = detail::run_dp(*backend, p.input);
+      EXPECT_EQ(r.total_cost, brute_force(p)) << "seed " << seed << " weight " << weight;
+      EXPECT_EQ(detail::objective_cost(*p.input.texels, p.input.space, p.input.pieces, r.positions,
+                                       closed, p.input.coverage),
+                r.total_cost);
+      EXPECT_GE(r.total_cost, paper.total_cost);
+      changed += r.positions != paper.positions;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 18);
+  EXPECT_GT(changed, 0);
 }
 
 TEST(DpBruteForce, ValidPositionsOfAStraightPieceOverABand) {

@@ -172,6 +172,7 @@ TEST(Synthesize, MinCoverageKeepsTheOptimumOffNearlyEmptyPieces) {
     SynthParams params;
     params.scale = 1.0;
     params.min_coverage = min_coverage;
+    params.objective = Objective::paper;
     *out = run(band, ribbon, canvas, nullptr, params);
     const RenderedPattern r = render_pattern(band, ribbon, *out, canvas, Window::whole(canvas));
     double sum = 0.0;

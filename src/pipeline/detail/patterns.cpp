@@ -12,6 +12,7 @@
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/foldover.hpp"
+#include "synth/baseline.hpp"
 #include "synth/detail/backend_factory.hpp"
 #include "synth/pattern_canvas.hpp"
 #include "synth/render.hpp"
@@ -210,7 +211,9 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       params.stitch = synthesis.stitch;
       params.backend = plan.backend;
       params.allow_empty_pieces = synthesis.empty_pieces;
-      params.min_coverage = synthesis.min_coverage;
+      params.min_coverage = synthesis.min_coverage.value_or(-1.0);  // < 0: from the exemplar
+      params.objective = synthesis.objective;
+      params.coverage_weight = synthesis.coverage_weight;
       params.feature_label = label;
       std::vector<std::size_t> candidates = plan.exemplars;
       if (synthesis.choice == ExemplarChoice::by_seed) {
@@ -261,6 +264,14 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       report.omega = result.total_cost;
       report.mean_seam_cost = result.mean_seam_cost;
       report.mean_seam_cost_stitched = result.mean_seam_cost_stitched;
+      report.objective = result.objective;
+      report.min_coverage = result.min_coverage;
+      report.min_coverage_from_exemplar = result.min_coverage_from_exemplar;
+      report.coverage_ratio = result.coverage_ratio;
+      report.mean_coverage = result.mean_coverage;
+      report.natural_coverage = result.natural_coverage;
+      report.parametric_seam_cost =
+          parametric_baseline(exemplar, ribbon, synthesis.scale).mean_seam_cost;
       report.empty_pieces = int(empty);
       report.canvas_width = canvas.width;
       report.canvas_height = canvas.height;

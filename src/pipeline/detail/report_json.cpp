@@ -94,6 +94,15 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                                 {"omega", s.omega},
                                 {"mean_seam_cost", s.mean_seam_cost},
                                 {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
+                                {"objective", s.objective},
+                                {"min_coverage", s.min_coverage},
+                                {"min_coverage_from", s.min_coverage_from_exemplar
+                                                          ? "exemplar"
+                                                          : "pipeline"},
+                                {"coverage_ratio", s.coverage_ratio},
+                                {"mean_coverage", s.mean_coverage},
+                                {"natural_coverage", s.natural_coverage},
+                                {"parametric_seam_cost", s.parametric_seam_cost},
                                 {"empty_pieces", s.empty_pieces},
                                 {"violations", s.violations},
                                 {"canvas", {s.canvas_width, s.canvas_height}},

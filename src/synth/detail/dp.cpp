@@ -70,7 +70,18 @@ class Driver {
       }
       valid[i] = shape_valid;
       if (input_.keep_positions) input_.keep_positions(int(i), valid[i]);
+      if (with_unary()) {
+        // A piece of the same shape at the same positions pays the same coverage costs.
+        if (i > 0 && same_shape(p, input_.pieces[i - 1]) && valid[i] == valid[i - 1]) {
+          unary_.push_back(unary_.back());
+        } else {
+          unary_.emplace_back();
+          coverage_costs(*input_.texels, input_.space, p, input_.coverage, valid[i], unary_.back());
+        }
+      }
     }
+    valid_sizes_.clear();
+    for (const auto& v : valid) valid_sizes_.push_back(v.size());
     return valid;
   }
 
@@ -89,6 +100,7 @@ class Driver {
       cost.assign(1, empty_piece_penalty(input_.space.column));
     } else {
       cost.assign(first_row.size(), 0);
+      add_unary(0, first_row, cost);
     }
     for (int r = 1; r < row_count; ++r) {
       const PieceFootprint& previous_piece = input_.pieces[std::size_t(r - 1)];
@@ -105,6 +117,7 @@ class Driver {
       } else if (previous.empty) {
         next_cost.assign(indices.size(), cost[0]);
         row.argmin.assign(indices.size(), -1);
+        if (r < N) add_unary(r, indices, next_cost);
       } else {
         // The following row's edges, when it runs an update too: a device backend extracts
         // them while this row's update runs.
@@ -118,6 +131,7 @@ class Driver {
                         times);
         timings_.extract_ms += times.extract_ms;
         timings_.update_ms += times.update_ms;
+        if (r < N) add_unary(r, indices, next_cost);  // the terminal row is piece 0, paid in row 0
         ++timings_.rows;
       }
       cost.swap(next_cost);
@@ -129,6 +143,23 @@ class Driver {
   }
 
  private:
+  bool with_unary() const { return input_.coverage.weight_milli > 0; }
+
+  // cost[j] += the unary cost of piece `piece` at indices[j]: cached for the piece's valid
+  // positions, computed for a fixed or drawn first position.
+  void add_unary(int piece, const std::vector<std::int32_t>& indices,
+                 std::vector<std::int64_t>& cost) const {
+    if (!with_unary()) return;
+    const std::vector<std::int64_t>* unary = &unary_[std::size_t(piece)];
+    std::vector<std::int64_t> own;
+    if (indices.size() != valid_sizes_[std::size_t(piece)]) {
+      coverage_costs(*input_.texels, input_.space, input_.pieces[std::size_t(piece)],
+                     input_.coverage, indices, own);
+      unary = &own;
+    }
+    for (std::size_t j = 0; j < cost.size(); ++j) cost[j] += (*unary)[j];
+  }
+
   static bool same_shape(const PieceFootprint& a, const PieceFootprint& b) {
     auto same = [](const std::vector<TexelOffset>& x, const std::vector<TexelOffset>& y) {
       return x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](auto p, auto q) {
@@ -148,6 +179,8 @@ class Driver {
   Backend& backend_;
   const DpInput& input_;
   DpTimings& timings_;
+  std::vector<std::vector<std::int64_t>> unary_;  // per piece, over its valid positions
+  std::vector<std::size_t> valid_sizes_;
 };
 
 // Positions per row, backtracked from entry `entry` of the last row.
@@ -192,6 +225,19 @@ std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
     sum += seam_cost(texels, space, pieces[i], positions[i], positions[i + 1]);
   if (closed && !positions.empty())
     sum += seam_cost(texels, space, pieces.back(), positions.back(), positions.front());
+  return sum;
+}
+
+std::int64_t objective_cost(const CostTexels& texels, const PositionSpace& space,
+                            const std::vector<PieceFootprint>& pieces,
+                            const std::vector<std::int32_t>& positions, bool closed,
+                            const CoverageTerm& coverage) {
+  std::int64_t sum = sequence_cost(texels, space, pieces, positions, closed);
+  std::vector<std::int64_t> unary;
+  for (std::size_t i = 0; i < positions.size() && coverage.weight_milli > 0; ++i) {
+    coverage_costs(texels, space, pieces[i], coverage, {positions[i]}, unary);
+    sum += unary[0];
+  }
   return sum;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "synth/detail/coverage_term.hpp"
 #include "synth/detail/stages.hpp"
 
 namespace tw::detail {
@@ -27,6 +28,8 @@ struct DpInput {
   // Message of the tw::Error for a piece without any valid position.
   std::function<std::string(int piece)> no_valid_message;
   std::string label;  // names the feature in progress lines, e.g. "features.roads: FID 3"
+  // The pattern objective's unary term (weight 0: the paper's objective, Omega alone).
+  CoverageTerm coverage;
 };
 
 struct DpTimings {
@@ -36,7 +39,7 @@ struct DpTimings {
 
 struct DpResult {
   std::vector<std::int32_t> positions;  // per piece: position index, -1 for an empty piece
-  std::int64_t total_cost = 0;          // Omega (+ empty penalties)
+  std::int64_t total_cost = 0;          // Omega + unary costs (+ empty penalties)
   std::vector<int> valid_counts;        // per piece
   // Closed curves: the single-DP approximation's cycle cost (-1 if it found no cycle) and the
   // number of start positions the exact mode ran a DP for.
@@ -55,6 +58,11 @@ DpResult run_dp(Backend& backend, const DpInput& input);
 std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
                            const std::vector<PieceFootprint>& pieces,
                            const std::vector<std::int32_t>& positions, bool closed);
+// The DP's objective of a sequence: sequence_cost plus every piece's unary coverage cost.
+std::int64_t objective_cost(const CostTexels& texels, const PositionSpace& space,
+                            const std::vector<PieceFootprint>& pieces,
+                            const std::vector<std::int32_t>& positions, bool closed,
+                            const CoverageTerm& coverage);
 // D between piece i at position a (its right edge) and the next piece at position b.
 std::int64_t seam_cost(const CostTexels& texels, const PositionSpace& space,
                        const PieceFootprint& piece, std::int32_t a, std::int32_t b);

@@ -6,10 +6,12 @@
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
+#include "synth/detail/coverage_term.hpp"
 #include "synth/detail/dp.hpp"
 #include "synth/detail/foldover.hpp"
 #include "synth/detail/footprint.hpp"
 #include "synth/detail/stitch.hpp"
+#include "synth/exemplar_stats.hpp"
 #include "synth/synthesize.hpp"
 
 namespace tw::detail {
@@ -67,6 +69,42 @@ bool stitch_respects_avoidance(const CostTexels& texels, const Placement& placem
   return true;
 }
 
+// The unary costs of the chosen positions (0 under the paper's objective).
+std::int64_t unary_sum(const CostTexels& texels, const PositionSpace& space, const DpInput& input,
+                       const std::vector<std::int32_t>& positions) {
+  std::int64_t sum = 0;
+  std::vector<std::int64_t> cost;
+  for (std::size_t i = 0; i < positions.size() && input.coverage.weight_milli > 0; ++i) {
+    if (positions[i] < 0) continue;
+    coverage_costs(texels, space, input.pieces[i], input.coverage, {positions[i]}, cost);
+    sum += cost[0];
+  }
+  return sum;
+}
+
+// Mean window coverage of the chosen positions against windows centred on the band.
+void measure_coverage(const CostTexels& texels, const PositionSpace& space, const DpInput& input,
+                      const std::vector<std::int32_t>& positions, const ExemplarStats& stats,
+                      Synthesis& out) {
+  CoverageTerm centred;
+  centred.band_centre_fixed = std::int32_t(std::lround(stats.band_centre * 256.0));
+  double chosen = 0.0, natural = 0.0;
+  int counted = 0;
+  std::vector<std::int32_t> count;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const PieceFootprint& piece = input.pieces[i];
+    if (positions[i] < 0 || piece.interior.empty()) continue;
+    count_opaque_interior(texels, space, piece, {positions[i]}, count);
+    chosen += double(count[0]) / double(piece.interior.size());
+    natural += natural_coverage(texels, space, piece, centred);
+    ++counted;
+  }
+  if (counted == 0) return;
+  out.mean_coverage = chosen / counted;
+  out.natural_coverage = natural / counted;
+  out.coverage_ratio = natural > 0.0 ? chosen / natural : 0.0;
+}
+
 }  // namespace
 
 Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
@@ -76,15 +114,23 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   if (!(params.scale > 0.0) || !std::isfinite(params.scale))
     fail("synthesis scale s must be > 0 exemplar texels per metre (got {})", params.scale);
   if (ribbon.pieces.empty()) fail("ribbon of {} has no pieces", params.feature_label);
-  if (!(params.min_coverage >= 0.0 && params.min_coverage < 1.0))
+  if (!(params.min_coverage < 1.0))
     fail("synthesis min_coverage must be in [0, 1) (got {})", params.min_coverage);
+  if (!(params.coverage_weight >= 0.0 && params.coverage_weight <= 1000.0))
+    fail("synthesis coverage_weight must be in [0, 1000] (got {})", params.coverage_weight);
   const std::string feature = params.feature_label.empty() ? "the curve" : params.feature_label;
   const int N = int(ribbon.pieces.size());
   const int C = column_count(ribbon.width, params.scale);
   const CostTexels& texels = exemplar.cost;
   const PositionSpace space{exemplar.width, exemplar.height, C};
 
+  const ExemplarStats stats = exemplar_stats(exemplar);
   Synthesis out;
+  out.objective = params.objective == Objective::paper ? "paper" : "pattern";
+  out.min_coverage_from_exemplar = params.min_coverage < 0.0;
+  out.min_coverage = out.min_coverage_from_exemplar
+                         ? kCoverageFloorOfNatural * window_coverage(exemplar, stats, C)
+                         : params.min_coverage;
   out.backend = backend.name();
   out.column = C;
   out.closed = ribbon.closed;
@@ -95,8 +141,12 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   input.pieces.resize(std::size_t(N));
   tbb::parallel_for(0, N, [&](int i) {
     input.pieces[std::size_t(i)] = make_piece_footprint(ribbon.pieces[std::size_t(i)], params.scale,
-                                                        C, canvas, &avoidance, params.min_coverage);
+                                                        C, canvas, &avoidance, out.min_coverage);
   });
+  if (params.objective == Objective::pattern) {
+    input.coverage.weight_milli = std::int32_t(std::lround(params.coverage_weight * 1000.0));
+    input.coverage.band_centre_fixed = std::int32_t(std::lround(stats.band_centre * 256.0));
+  }
   out.timings.footprints_ms = ms_since(start);
   input.closed = ribbon.closed;
   input.exact_cycle = params.closed_mode == ClosedMode::exact;
@@ -116,7 +166,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     std::vector<std::uint8_t> flags;
     backend.find_valid_positions(
         texels, space,
-        make_piece_footprint(piece, params.scale, C, canvas, nullptr, params.min_coverage), flags);
+        make_piece_footprint(piece, params.scale, C, canvas, nullptr, out.min_coverage), flags);
     std::int64_t without = 0;
     for (auto f : flags) without += f;
     const std::string reason =
@@ -127,8 +177,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
                     : fmt::format(
                           "no position where the top and bottom edges clear the "
                           "pattern{}: ribbon width {} m x s = {} texels, exemplar {}x{}",
-                          params.min_coverage > 0.0
-                              ? fmt::format(" with min_coverage {}", params.min_coverage)
+                          out.min_coverage > 0.0
+                              ? fmt::format(" with min_coverage {:.3f}", out.min_coverage)
                               : std::string(),
                           ribbon.width, C, exemplar.width, exemplar.height);
     return fmt::format("piece {} of {} at ({:.2f}, {:.2f}): no valid position in exemplar {} ({})",
@@ -136,6 +186,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   };
 
   const DpResult dp = run_dp(backend, input);
+  out.objective_cost = dp.total_cost;
   out.total_cost = dp.total_cost;
   out.approximate_cycle_cost = dp.approximate_cycle_cost;
   out.valid_counts = dp.valid_counts;
@@ -159,6 +210,9 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     p.scale = params.scale;
     out.placements.push_back(std::move(p));
   }
+
+  measure_coverage(texels, space, input, dp.positions, stats, out);
+  out.total_cost -= unary_sum(texels, space, input, dp.positions);
 
   // Seams, their costs before and after stitching.
   const auto stitch_start = Clock::now();
