@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/export_command.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -141,6 +142,32 @@ int main(int argc, char** argv) {
           "binary (opaque at alpha >= 0.5, the default) or continuous costs")
       ->check(CLI::IsMember({"binary", "continuous"}));
 
+  tw::ExportCommand export_args;
+  std::string export_engine;
+  CLI::App* export_run = app.add_subcommand(
+      "export", "turn a finished run into an engine's heightmap, weightmaps and splines");
+  export_run->add_option("RUN_DIR", export_args.run_dir, "output folder of a run")->required();
+  export_run->add_option("--to", export_engine, "unreal, unity or godot")
+      ->required()
+      ->check(CLI::IsMember({"unreal", "unity", "godot"}));
+  export_run->add_option("--out", export_args.out_dir, "folder to write")
+      ->required()
+      ->check(non_empty);
+  export_run->add_option(
+      "--size", export_args.options.size,
+      "heightmap samples per side (default: the smallest size holding the world)");
+  export_run->add_option("--nodata-height", export_args.options.nodata_height,
+                         "metres written on nodata (default: the nearest valid heights)");
+  export_run
+      ->add_option_function<std::string>(
+          "--godot-height",
+          [&export_args](const std::string& f) {
+            export_args.options.godot_height =
+                f == "r16" ? tw::GodotHeightFormat::r16 : tw::GodotHeightFormat::exr;
+          },
+          "exr (32-bit float metres, the default) or r16")
+      ->check(CLI::IsMember({"exr", "r16"}));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -162,6 +189,14 @@ int main(int argc, char** argv) {
     }
     if (validate->parsed())
       return validate_command(validate_args, validate_strict, validate_allow_network);
+    if (export_run->parsed()) {
+      export_args.options.engine = tw::parse_engine(export_engine);
+      const tw::EngineExportResult result = tw::run_export_command(export_args);
+      for (const std::string& line : result.settings) std::printf("%s\n", line.c_str());
+      std::printf("%zu files in %s\n", result.files.size(),
+                  tw::single_line(export_args.out_dir.string()).c_str());
+      return 0;
+    }
     if (synth->parsed()) {
       const tw::Synthesis result = tw::run_synth_command(synth_args);
       std::printf("%zu pieces, Omega %lld, %.2f per seam (%.2f stitched), backend %s\n",

@@ -11,6 +11,7 @@
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
 #include "geo/input_guard.hpp"
+#include "layers/export.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/conformance.hpp"
@@ -20,6 +21,7 @@
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/version.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/placements_io.hpp"
 #include "terrain/height_ops.hpp"
@@ -88,6 +90,24 @@ void report_decks(const TerrainPlan& plan, RunReport& report) {
     in_order[plan.input_index[i]]->deck_m = {double(plan.profiles[i].front()),
                                              double(plan.profiles[i].back())};
   }
+}
+
+// The run's lines as they were built on (clipped, repaired, conformed), for features.geojson
+// and the engines' splines; a closed ring repeats its first point.
+std::vector<ExportCurve> export_curves(const PipelineConfig& config,
+                                       const std::vector<std::vector<LineFeature>>& lines) {
+  std::vector<ExportCurve> curves;
+  for (std::size_t c = 0; c < lines.size(); ++c)
+    for (const LineFeature& line : lines[c]) {
+      ExportCurve& curve = curves.emplace_back();
+      curve.feature_class = config.features[c].name;
+      curve.kind = std::string(to_string(config.features[c].kind));
+      curve.fid = line.fid;
+      curve.width = line.width;
+      curve.points = line.points;
+      if (line.closed && !line.points.empty()) curve.points.push_back(line.points.front());
+    }
+  return curves;
 }
 
 void write_report(const fs::path& path, const nlohmann::json& json) {
@@ -226,11 +246,25 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   write_options.exr = config.output.exr;
   write_options.geotiff = config.output.geotiff;
   write_options.preview = false;  // drawn below, with the centerlines on top
+  write_options.exr_half = config.output.exr_half;
+  write_options.geotiff_options = config.output.tiff;
+  write_options.geotiff_options.metadata = {
+      {"TERRAWEAVE_VERSION", kTerraweaveVersion},
+      {"TERRAWEAVE_PIPELINE", config.file.empty() ? "-" : config.file.filename().string()},
+      {"TERRAWEAVE_SEED", std::to_string(config.seed)},
+      {"TERRAWEAVE_HEIGHTFIELD", fs::path(heightfield.source).filename().string()}};
   write_layer_set(layers, dir, transaction, write_options);
   if (config.output.preview) {
     std::vector<std::vector<Vec2>> centerlines;
     for (const auto& feature : features) centerlines.push_back(feature.centerline.points);
     write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
+  }
+  const std::vector<ExportCurve> curves = export_curves(config, lines);
+  write_curves_geojson(curves, layers.crs_wkt, transaction.stage(dir / "features.geojson"));
+  for (const EngineExportOptions& engine : config.exports) {
+    const EngineExportResult exported = export_for_engine(
+        layers, curves, engine, dir / "export" / to_string(engine.engine), transaction);
+    for (const std::string& line : exported.settings) logger().info("{}", line);
   }
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.

@@ -232,9 +232,9 @@ TEST_F(OutputFolderGuarantee, OutputsTheNewRunDoesNotWriteDisappear) {
   EXPECT_FALSE(b.contains("preview.png"));
   EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "out/preview.png")));  // not even a link
   EXPECT_EQ(names_in(dir / "out"),
-            (std::vector<std::string>{".terraweave", "avoidance.exr", "avoidance.tif", "height.exr",
-                                      "height.tif", "notes.txt", "report.json", "splat.exr",
-                                      "splat.tif"}));
+            (std::vector<std::string>{".terraweave", "avoidance.exr", "avoidance.tif",
+                                      "features.geojson", "height.exr", "height.tif", "notes.txt",
+                                      "report.json", "splat.exr", "splat.tif"}));
   EXPECT_EQ(fs::read_symlink(dir / "out/.terraweave/current"), "gen-2");
 }
 

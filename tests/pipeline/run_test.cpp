@@ -87,10 +87,10 @@ Heightfield* DemoRun::original_ = nullptr;
 
 TEST_F(DemoRun, WritesEveryLayerAndAReport) {
   for (const char* name : {"height.exr", "height.tif", "splat.exr", "splat.tif", "avoidance.exr",
-                           "avoidance.tif", "preview.png", "report.json"}) {
+                           "avoidance.tif", "preview.png", "features.geojson", "report.json"}) {
     EXPECT_TRUE(fs::exists(out(name))) << name;
   }
-  EXPECT_EQ(report_->outputs.size(), 8u);
+  EXPECT_EQ(report_->outputs.size(), 9u);
   std::vector<std::string> stages;
   for (const auto& s : report_->stages) stages.push_back(s.stage);
   EXPECT_EQ(stages,

@@ -31,11 +31,14 @@ Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
+    options.crs = config.output.crs;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
     return read_heightfield(config.heightfield->string(), options, warnings);
   }
   const GenerateConfig& g = config.generate;
+  if (!config.output.crs.empty() && config.output.crs != g.crs)
+    fail("output.crs: a generated world is in generate.crs ({}); set that instead", g.crs);
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;
