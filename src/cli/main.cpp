@@ -24,6 +24,7 @@
 #include "pipeline/config.hpp"
 #include "pipeline/diff.hpp"
 #include "pipeline/exemplar_command.hpp"
+#include "pipeline/export_command.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -270,6 +271,31 @@ int main(int argc, char** argv) {
                       "PNG with the band (blue), centre (green), period ticks (red), coverage");
   inspect->add_flag("--json", inspect_args.json, "one JSON object instead of text");
   inspect->add_flag("--allow-network", inspect_args.allow_network, network_help);
+  tw::ExportCommand export_args;
+  std::string export_engine;
+  CLI::App* export_run = app.add_subcommand(
+      "export", "turn a finished run into an engine's heightmap, weightmaps and splines");
+  export_run->add_option("RUN_DIR", export_args.run_dir, "output folder of a run")->required();
+  export_run->add_option("--to", export_engine, "unreal, unity or godot")
+      ->required()
+      ->check(CLI::IsMember({"unreal", "unity", "godot"}));
+  export_run->add_option("--out", export_args.out_dir, "folder to write")
+      ->required()
+      ->check(non_empty);
+  export_run->add_option(
+      "--size", export_args.options.size,
+      "heightmap samples per side (default: the smallest size holding the world)");
+  export_run->add_option("--nodata-height", export_args.options.nodata_height,
+                         "metres written on nodata (default: the nearest valid heights)");
+  export_run
+      ->add_option_function<std::string>(
+          "--godot-height",
+          [&export_args](const std::string& f) {
+            export_args.options.godot_height =
+                f == "r16" ? tw::GodotHeightFormat::r16 : tw::GodotHeightFormat::exr;
+          },
+          "exr (32-bit float metres, the default) or r16")
+      ->check(CLI::IsMember({"exr", "r16"}));
 
   try {
     app.parse(argc, argv);
@@ -319,6 +345,14 @@ int main(int argc, char** argv) {
     }
     if (inspect->parsed()) {
       std::fputs(tw::run_exemplar_inspect(inspect_args).c_str(), stdout);
+      return 0;
+    }
+    if (export_run->parsed()) {
+      export_args.options.engine = tw::parse_engine(export_engine);
+      const tw::EngineExportResult result = tw::run_export_command(export_args);
+      for (const std::string& line : result.settings) std::printf("%s\n", line.c_str());
+      std::printf("%zu files in %s\n", result.files.size(),
+                  tw::single_line(export_args.out_dir.string()).c_str());
       return 0;
     }
     if (synth->parsed()) {

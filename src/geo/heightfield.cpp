@@ -2,6 +2,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -34,7 +35,30 @@ Vec2 apply_geotransform(const double gt[6], Vec2 pixel) {
   return {gt[0] + pixel.x * gt[1] + pixel.y * gt[2], gt[3] + pixel.x * gt[4] + pixel.y * gt[5]};
 }
 
-// The local transverse Mercator centred on the DEM, with the pixel size (metres, measured as
+// Whether a metric north-up DEM stays in its CRS under options.crs.
+bool keeps_its_crs(const OGRSpatialReference& srs, GDALDataset& source, const double gt[6],
+                   const std::string& crs) {
+  if (crs.empty()) return true;
+  if (crs == "local") return false;
+  std::string wanted = crs;
+  if (crs == "utm") {
+    OGRSpatialReference wgs84;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    OGRSpatialReference from(srs);
+    from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> t(
+        OGRCreateCoordinateTransformation(&from, &wgs84));
+    Vec2 c = apply_geotransform(gt, {source.GetRasterXSize() / 2.0, source.GetRasterYSize() / 2.0});
+    if (!t || !t->Transform(1, &c.x, &c.y)) return true;  // the warp would fail the same way
+    wanted = utm_zone_epsg(c.x, c.y);
+  }
+  OGRSpatialReference target;
+  return import_crs(target, wanted) && srs.IsSame(&target);
+}
+
+// The target CRS (options.crs; the UTM zone or local transverse Mercator of the DEM's centre),
+// with the pixel size (metres, measured as
 // geodesics on WGS84 between neighbouring pixel centres at the DEM's centre) unless the caller
 // asked for a resolution.
 detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialReference& srs,
@@ -59,7 +83,18 @@ detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialRefe
     }
   }
   detail::WarpTarget target;
-  target.crs_wkt = local_transverse_mercator_wkt(lon_lat[0].x, lon_lat[0].y);
+  const std::string crs = options.crs.empty()    ? "local"
+                          : options.crs == "utm" ? utm_zone_epsg(lon_lat[0].x, lon_lat[0].y)
+                                                 : options.crs;
+  if (crs == "local") {
+    target.crs_wkt = local_transverse_mercator_wkt(lon_lat[0].x, lon_lat[0].y);
+  } else {
+    OGRSpatialReference out;
+    if (!import_crs(out, crs)) fail("{}: PROJ does not know the output CRS '{}'", path, crs);
+    if (!out.IsProjected() || std::abs(out.GetLinearUnits() - 1.0) > 1e-12)
+      fail("{}: the output CRS '{}' is not projected in metres", path, crs);
+    target.crs_wkt = detail::to_wkt(out);
+  }
   if (options.resolution) {
     target.pixel_width = target.pixel_height = *options.resolution;
   } else {
@@ -67,10 +102,9 @@ detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialRefe
     geodesic.Inverse(lon_lat[0].y, lon_lat[0].x, lon_lat[1].y, lon_lat[1].x, target.pixel_width);
     geodesic.Inverse(lon_lat[0].y, lon_lat[0].x, lon_lat[2].y, lon_lat[2].x, target.pixel_height);
   }
-  logger().info(
-      "{}: warping into a local transverse Mercator at lon {:.6f} lat {:.6f}, {:.3f} x "
-      "{:.3f} m pixels",
-      path, lon_lat[0].x, lon_lat[0].y, target.pixel_width, target.pixel_height);
+  logger().info("{}: warping into {} (centre lon {:.6f} lat {:.6f}), {:.3f} x {:.3f} m pixels",
+                path, crs == "local" ? "a local transverse Mercator" : crs, lon_lat[0].x,
+                lon_lat[0].y, target.pixel_width, target.pixel_height);
   return target;
 }
 
@@ -191,6 +225,11 @@ Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& 
   return read_heightfield(path, options, warnings);
 }
 
+std::string utm_zone_epsg(double lon_degrees, double lat_degrees) {
+  const int zone = std::clamp(int(std::floor((lon_degrees + 180.0) / 6.0)) + 1, 1, 60);
+  return fmt::format("EPSG:{}", (lat_degrees >= 0.0 ? 32600 : 32700) + zone);
+}
+
 Heightfield read_heightfield(const std::string& path, const HeightfieldOptions& options,
                              Warnings& warnings) {
   return read_whole_heightfield(*open_heightfield(path, options, warnings));
@@ -223,7 +262,7 @@ std::unique_ptr<HeightfieldSource> open_heightfield(const std::string& path,
   if (has_nodata) raster.nodata_value = nodata;
   raster.metres_per_unit = metres_per_height_unit(*source->GetRasterBand(1), path, warnings);
 
-  if (is_metric_north_up(*srs, gt)) {
+  if (is_metric_north_up(*srs, gt) && keeps_its_crs(*srs, *source, gt, options.crs)) {
     // Same CRS: the cells as they are, or resampled on the same north-west corner (our
     // resampler: GDAL's cubic warp turns blocky within two cells of a DEM's edges).
     raster.crs_wkt = detail::to_wkt(*srs);
@@ -237,7 +276,7 @@ std::unique_ptr<HeightfieldSource> open_heightfield(const std::string& path,
     }
     return std::make_unique<GdalSource>(std::move(raster));
   }
-  // Geographic, non-metre or rotated: warped into a local metric frame by GDAL.
+  // Geographic, non-metre, rotated or another output CRS: warped by GDAL.
   const detail::WarpTarget target = local_metric_target(*source, *srs, gt, options, path);
   raster.crs_wkt = target.crs_wkt;
   raster.warp = detail::warp_to_metric_grid(

@@ -36,16 +36,26 @@ struct HeightfieldOptions {
   // when the source is geographic).
   std::optional<double> resolution;
   Resampling resampling = Resampling::bilinear;
+  // The CRS of the grid: "" = a metric north-up DEM keeps its own, any other DEM goes to a
+  // local transverse Mercator centred on it (as "local" does for every DEM); "utm" = the UTM
+  // zone of the DEM's centre (utm_zone_epsg); else any projected CRS in metres PROJ reads
+  // (EPSG:2169, WKT, a PROJ string), which every DEM not already in it is warped to.
+  std::string crs;
 };
+
+// "EPSG:326zz" (north) or "EPSG:327zz" (south): the UTM zone holding (lon, lat) on WGS84
+// (the regular 6-degree zones; Norway's and Svalbard's exceptions are not applied).
+std::string utm_zone_epsg(double lon_degrees, double lat_degrees);
 
 // Reads band 1 of a GDAL raster. A metric north-up DEM keeps its grid and CRS (resampled by
 // geo/resample.hpp when options.resolution is set: options.resampling, averaged when coarser,
 // nodata-aware); a geographic,
-// non-metre or rotated one is warped (options.resampling, nodata kept) into
-// local_transverse_mercator_wkt() centred on the DEM (geo/metric_frame.hpp), with the source's
-// pixel size at its centre measured as geodesics, covering its whole footprint. Heights in feet
-// (GDAL unit type "ft", "US survey foot") become metres. Throws tw::Error naming the path when the
-// file cannot be read, has no CRS, holds nothing but nodata or a height beyond kMaxAbsHeight,
+// non-metre or rotated one (or any DEM when options.crs names another CRS) is warped
+// (options.resampling, nodata kept) into options.crs (default: the UTM zone of its centre;
+// "local": local_transverse_mercator_wkt() centred on the DEM, geo/metric_frame.hpp), with the
+// source's pixel size at its centre measured as geodesics, covering its whole footprint. Heights in
+// feet (GDAL unit type "ft", "US survey foot") become metres. Throws tw::Error naming the path when
+// the file cannot be read, has no CRS, holds nothing but nodata or a height beyond kMaxAbsHeight,
 // or when the resolution gives a grid under one cell or over kMaxGridCells
 // (core/grid_limits.hpp). An unknown height unit is taken as metres with an `unknown_unit`
 // warning (subject `heightfield`).

@@ -12,12 +12,13 @@ std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
   for (const auto& layer : set.layers) {
     if (options.exr) {
       const auto final_path = dir / (layer.name + ".exr");
-      write_exr(set, layer, tx.stage(final_path), options.exr_compression, options.exr_zip_level);
+      write_exr(set, layer, tx.stage(final_path), options.exr_compression, options.exr_zip_level,
+                options.exr_half);
       written.push_back(final_path);
     }
     if (options.geotiff) {
       const auto final_path = dir / (layer.name + ".tif");
-      write_geotiff(set, layer, tx.stage(final_path));
+      write_geotiff(set, layer, tx.stage(final_path), options.geotiff_options);
       written.push_back(final_path);
     }
     logger().debug("layer '{}' written ({} channels)", layer.name, layer.channels.size());

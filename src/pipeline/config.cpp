@@ -6,6 +6,8 @@
 #include <fstream>
 #include <optional>
 
+#include <ogr_spatialref.h>
+
 #include "core/error.hpp"
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
@@ -437,12 +439,84 @@ TilesConfig read_tiles(const MapReader& m) {
   return t;
 }
 
+// output.exr_half, .compress, .predictor, .cog, .overviews, .crs.
+void read_output_encoding(const MapReader& out, OutputConfig& output) {
+  output.exr_half = out.bool_or("exr_half", output.exr_half);
+  output.tiff.compression = TiffCompression(
+      read_one_of(out, "compress", "compression", {"zstd", "deflate", "lzw", "none"}));
+  output.tiff.predictor =
+      TiffPredictor(read_one_of(out, "predictor", "predictor", {"none", "horizontal", "float"}));
+  output.tiff.cog = out.bool_or("cog", output.tiff.cog);
+  output.tiff.overviews = out.bool_or("overviews", output.tiff.overviews);
+  if (out.has("crs")) {
+    output.crs = out.string("crs");
+    OGRSpatialReference srs;
+    if (output.crs != "utm" && !import_crs(srs, output.crs))
+      out.source().fail(out.get("crs"), out.path("crs"),
+                        fmt::format("PROJ does not know the CRS '{}'", output.crs));
+  }
+}
+
+// export: [unreal, unity] or {unreal: {size: 1009, nodata_height: 0}, godot: {height: r16}}.
+std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML::Node& node) {
+  const std::vector<std::string> engines = {"unreal", "unity", "godot"};
+  std::vector<EngineExportOptions> out;
+  const auto add = [&](const std::string& name, const YAML::Node& at, const std::string& path) {
+    const auto it = std::find(engines.begin(), engines.end(), name);
+    if (it == engines.end()) {
+      const std::string hint = detail::closest_match(name, engines);
+      src.fail(at, path,
+               fmt::format("unknown engine '{}', expected unreal, unity or godot{}", name,
+                           hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+    }
+    for (const auto& e : out)
+      if (to_string(e.engine) == name) src.fail(at, path, fmt::format("'{}' given twice", name));
+    EngineExportOptions& e = out.emplace_back();
+    e.engine = Engine(it - engines.begin());
+    return &e;
+  };
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      add(detail::read_string(src, node[i], "export"), node[i], "export." + std::to_string(i));
+  } else if (node.IsMap()) {
+    for (const auto& entry : node) {
+      const std::string name = detail::read_string(src, entry.first, "export");
+      const std::string path = "export." + name;
+      EngineExportOptions* e = add(name, entry.first, path);
+      if (entry.second.IsNull()) continue;
+      const MapReader m(src, entry.second, path, {"size", "nodata_height", "height"});
+      if (m.has("size")) {
+        e->size = m.int_or("size", 0);
+        const auto& sizes = engine_heightmap_sizes(e->engine);
+        if (!std::binary_search(sizes.begin(), sizes.end(), e->size))
+          src.fail(m.get("size"), m.path("size"),
+                   fmt::format("{} takes sizes {} ... {} ({}), not {}", name, sizes.front(),
+                               sizes.back(),
+                               e->engine == Engine::unreal ? "Epic's landscape sizes" : "2^n + 1",
+                               e->size));
+      }
+      if (m.has("nodata_height"))
+        e->nodata_height =
+            detail::read_double(src, m.get("nodata_height"), m.path("nodata_height"));
+      if (m.has("height")) {
+        if (e->engine != Engine::godot)
+          src.fail(m.get("height"), m.path("height"), "only godot takes a height format");
+        e->godot_height =
+            GodotHeightFormat(read_one_of(m, "height", "height format", {"exr", "r16"}));
+      }
+    }
+  } else {
+    src.fail(node, "export", "expected a list of engines or a mapping of engines to options");
+  }
+  return out;
+}
+
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   const MapReader root(src, tree, "",
                        {"version", "seed", "heightfield", "generate", "resolution", "output",
                         "backend", "precedence", "features", "existing", "synthesis_resolution",
                         "synthesis_order", "region", "resampling", "strict", "repair",
-                        "avoidance", "cache"});
+                        "avoidance", "cache", "export"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -465,13 +539,15 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                      : Resampling::bilinear;
   if (root.has("output")) {
     const MapReader out(src, root.get("output"), "output",
-                        {"dir", "exr", "geotiff", "preview", "tiles"});
+                        {"dir", "exr", "geotiff", "preview", "tiles", "exr_half", "compress",
+                         "predictor", "cog", "overviews", "crs"});
     if (out.has("dir")) c.output.dir = out.file("dir");
     c.output.exr = out.bool_or("exr", c.output.exr);
     c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
     c.output.preview = out.bool_or("preview", c.output.preview);
     if (out.has("tiles")) c.output.tiles = read_tiles(MapReader(src, out.get("tiles"),
                                                                 "output.tiles", {"size", "overlap"}));
+    read_output_encoding(out, c.output);
   } else {
     c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
   }
@@ -486,6 +562,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   c.backend = read_backend(root, "backend", c.backend);
   c.strict = root.bool_or("strict", c.strict);
   if (root.has("repair")) c.repair = read_repair(repair_reader(root), c.repair);
+  if (root.has("export")) c.exports = read_exports(src, root.get("export"));
   const YAML::Node features = root.get("features");
   if (!features.IsMap())
     src.fail(features, "features", "expected a mapping of class names to classes");

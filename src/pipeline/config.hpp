@@ -13,6 +13,8 @@
 
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "layers/export.hpp"
+#include "layers/write.hpp"
 #include "synth/synthesize.hpp"
 #include "terrain/features.hpp"
 
@@ -130,6 +132,13 @@ struct OutputConfig {
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
+  bool exr_half = false;  // `exr_half`: 16-bit half float EXR channels
+  // `compress`, `predictor`, `cog`, `overviews` (docs/pipeline.md); metadata is the run's.
+  GeoTiffOptions tiff;
+  // `crs`: the CRS of every output ("" = a projected heightfield's own, a geographic one's UTM
+  // zone); anything PROJ reads (EPSG:2169, a WKT, a PROJ string) or "utm" (the zone of the
+  // heightfield's centre).
+  std::string crs;
   TilesConfig tiles;
 };
 
@@ -191,7 +200,9 @@ struct PipelineConfig {
   std::optional<std::filesystem::path> cache_dir;
   // Any warning fails the run before anything is written (also `--strict`).
   bool strict = false;
-  LineRepair repair;              // `repair`: how messy lines are cleaned (each class may override)
+  LineRepair repair;  // `repair`: how messy lines are cleaned (each class may override)
+  // `export`: engine exports written under <output.dir>/export/<engine>/ (docs/exports.md).
+  std::vector<EngineExportOptions> exports;
   std::vector<InputFile> inputs;  // every file named, in the order of the keys read
   // The manifest's view of the configuration: the --set values applied, in order, and the
   // whole tree after --vars and --set, as JSON text (report.json `overrides`, `config`).

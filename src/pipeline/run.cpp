@@ -14,14 +14,15 @@
 #include "core/output_folder.hpp"
 #include "core/progress.hpp"
 #include "geo/input_guard.hpp"
+#include "layers/export.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/feature_lines.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/plan.hpp"
+#include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
 
 namespace tw {
@@ -99,6 +100,24 @@ void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   }
 }
 
+// The run's lines as they were built on (clipped, repaired, conformed), for features.geojson
+// and the engines' splines; a closed ring repeats its first point.
+std::vector<ExportCurve> export_curves(const PipelineConfig& config,
+                                       const std::vector<std::vector<LineFeature>>& lines) {
+  std::vector<ExportCurve> curves;
+  for (std::size_t c = 0; c < lines.size(); ++c)
+    for (const LineFeature& line : lines[c]) {
+      ExportCurve& curve = curves.emplace_back();
+      curve.feature_class = config.features[c].name;
+      curve.kind = std::string(to_string(config.features[c].kind));
+      curve.fid = line.fid;
+      curve.width = line.width;
+      curve.points = line.points;
+      if (line.closed && !line.points.empty()) curve.points.push_back(line.points.front());
+    }
+  return curves;
+}
+
 void write_report(const fs::path& path, const nlohmann::json& json) {
   std::ofstream out(path);
   out << json.dump(2) << '\n';
@@ -141,6 +160,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     return std::move(report);
   }
   finish_warnings(warnings, strict, report);
+  if (plan.tile_size > 0 && !config.exports.empty()) {
+    fail("export: engine exports read whole layers and do not work with output.tiles yet; run "
+         "`terraweave export` on an untiled run (docs/exports.md)");
+  }
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
   OutputFolder& transaction = *output;
@@ -148,6 +171,14 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   write_options.exr = config.output.exr;
   write_options.geotiff = config.output.geotiff;
   write_options.preview = false;  // drawn below, with the centerlines on top
+  write_options.exr_half = config.output.exr_half;
+  write_options.geotiff_options = config.output.tiff;
+  write_options.geotiff_options.metadata = {
+      {"TERRAWEAVE_VERSION", kTerraweaveVersion},
+      {"TERRAWEAVE_PIPELINE", config.file.empty() ? "-" : config.file.filename().string()},
+      {"TERRAWEAVE_SEED", std::to_string(config.seed)},
+      {"TERRAWEAVE_HEIGHTFIELD", fs::path(plan.heights.source).filename().string()}};
+  const std::vector<ExportCurve> curves = export_curves(config, plan.lines);
   const bool tiled = plan.tile_size > 0;
   report.tiles.size = plan.tile_size;
   report.tiles.overlap = plan.tile_overlap;
@@ -203,6 +234,11 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
           centerlines.push_back(feature.centerline.points);
         write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
       }
+      for (const EngineExportOptions& engine : config.exports) {
+        const EngineExportResult exported = export_for_engine(
+            layers, curves, engine, dir / "export" / to_string(engine.engine), transaction);
+        for (const std::string& line : exported.settings) logger().info("{}", line);
+      }
       write_seconds += seconds_since(writing);
     } else {
       const detail::TileCache::Outcome outcome =
@@ -235,7 +271,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   logger().info("render: {} tiles, {:.3f} s; layers: {:.3f} s", plan.tiles.size(), render_seconds,
                 write_seconds);
 
-  detail::write_feature_lines(config, plan.lines, transaction.stage(dir / "features.geojson"));
+  write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.
   std::map<std::string, int> parts;

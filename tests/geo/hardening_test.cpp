@@ -33,18 +33,18 @@ TEST(GeoHardening, AResolutionCoarserThanTheExtentIsRefused) {
   TempDir dir;
   const std::string path = (dir / "dem.tif").string();
   test::write_geotiff(path, DemSpec{});  // 10 x 10 cells of 10 m
-  EXPECT_EQ(error_of([&] { read_heightfield(path, {.resolution = 1e12}); }),
+  EXPECT_EQ(error_of([&] { read_heightfield(path, {.resolution = 1e12, .crs = {}}); }),
             path +
                 ": resolution 1000000000000 m is coarser than the heightfield's extent (100 x "
                 "100 m); the grid would be under one cell");
   // The whole extent as one cell is still a grid.
-  EXPECT_EQ(read_heightfield(path, {.resolution = 100.0}).grid.width, 1);
+  EXPECT_EQ(read_heightfield(path, {.resolution = 100.0, .crs = {}}).grid.width, 1);
   DemSpec geographic;
   geographic.crs = "EPSG:4326";
   geographic.geotransform = {3.0, 0.0001, 0.0, 45.0, 0.0, -0.0001};
   const std::string lon_lat = (dir / "lon_lat.tif").string();
   test::write_geotiff(lon_lat, geographic);
-  EXPECT_THAT(error_of([&] { read_heightfield(lon_lat, {.resolution = 1e9}); }),
+  EXPECT_THAT(error_of([&] { read_heightfield(lon_lat, {.resolution = 1e9, .crs = {}}); }),
               HasSubstr("lon_lat.tif: 1e+09 x 1e+09 m pixels are coarser than its extent"));
 }
 
@@ -55,7 +55,7 @@ TEST(GeoHardening, AResolutionGivingAnOversizedGridIsRefusedBeforeAllocating) {
   spec.width = spec.height = 1;
   spec.geotransform = {500000.0, 10000.0, 0.0, 5000000.0, 0.0, -10000.0};
   test::write_geotiff(path, spec);
-  EXPECT_EQ(error_of([&] { read_heightfield(path, {.resolution = 0.1}); }),
+  EXPECT_EQ(error_of([&] { read_heightfield(path, {.resolution = 0.1, .crs = {}}); }),
             path +
                 ": resolution 0.1 m gives a 100000 x 100000 grid (37.3 GiB per float band); at "
                 "most 1073741824 cells are allowed");

@@ -110,7 +110,9 @@ TEST(ReadHeightfield, GeographicDemIsWarpedToMetresAtTheSourceResolution) {
   };
   test::write_geotiff(path, spec);
 
-  const Heightfield field = read_heightfield(path);
+  HeightfieldOptions local;
+  local.crs = "local";
+  const Heightfield field = read_heightfield(path, local);
   const double centre_lat = 45.31;
   EXPECT_NEAR(field.grid.pixel_width, 0.001 * metres_per_degree_longitude(centre_lat), 0.01);
   EXPECT_NEAR(field.grid.pixel_height, 0.001 * metres_per_degree_latitude(centre_lat), 0.01);
@@ -154,6 +156,61 @@ TEST(ReadHeightfield, GeographicDemIsWarpedToMetresAtTheSourceResolution) {
   }
   EXPECT_GT(checked, 5000);
   EXPECT_GT(nodata_inside_block, 100);
+}
+
+// output.crs: "utm" puts a geographic DEM in the UTM zone of its centre, named by its EPSG
+// code, or any projected CRS asked for; a projected DEM keeps its grid unless another CRS is asked.
+TEST(ReadHeightfield, OutputCrsIsTheUtmZoneByDefaultOrTheOneAskedFor) {
+  TempDir dir;
+  const std::string path = (dir / "luxembourg.tif").string();
+  DemSpec spec;
+  spec.width = 60;
+  spec.height = 40;
+  spec.geotransform = {6.0, 0.001, 0.0, 49.65, 0.0, -0.001};
+  spec.crs = "EPSG:4326";
+  spec.value = [](int col, int row) { return 300.0 + col - row; };
+  test::write_geotiff(path, spec);
+  const auto epsg = [](const Heightfield& f) {
+    OGRSpatialReference srs;
+    srs.importFromWkt(f.crs_wkt.c_str());
+    const char* code = srs.GetAuthorityCode(nullptr);
+    return std::string(code ? code : "");
+  };
+  HeightfieldOptions zone;
+  zone.crs = "utm";
+  const Heightfield utm = read_heightfield(path, zone);
+  EXPECT_EQ(epsg(utm), "32632");  // 6.03 E: zone 32 north
+  EXPECT_NEAR(utm.grid.pixel_height, 0.001 * metres_per_degree_latitude(49.63), 0.01);
+  // The west edge (6.0 E) is the footprint's westmost easting, at its south-west corner.
+  EXPECT_NEAR(utm.grid.origin_x, 283280.0, 100.0);  // gdaltransform: 283280 at 49.61 N
+  HeightfieldOptions luref;
+  luref.crs = "EPSG:2169";
+  const Heightfield lux = read_heightfield(path, luref);
+  EXPECT_EQ(epsg(lux), "2169");
+  EXPECT_NEAR(lux.grid.origin_x, 67849.0, 100.0);  // gdaltransform: 67849 at 49.61 N
+  HeightfieldOptions geographic;
+  geographic.crs = "EPSG:4326";
+  EXPECT_THROW(read_heightfield(path, geographic), Error);
+  EXPECT_EQ(utm_zone_epsg(-3.7, 40.4), "EPSG:32630");
+  EXPECT_EQ(utm_zone_epsg(151.2, -33.9), "EPSG:32756");
+
+  // A projected DEM keeps its grid by default, and is warped when another CRS is asked for.
+  const std::string projected = (dir / "utm.tif").string();
+  DemSpec metric;
+  metric.width = 30;
+  metric.height = 20;
+  metric.geotransform = {300000.0, 10.0, 0.0, 5500000.0, 0.0, -10.0};
+  metric.crs = "EPSG:32632";
+  metric.value = [](int col, int row) { return 200.0 + col + row; };
+  test::write_geotiff(projected, metric);
+  const Heightfield kept = read_heightfield(projected);
+  EXPECT_EQ(kept.grid, (GridSpec{30, 20, 300000.0, 5500000.0, 10.0, 10.0}));
+  HeightfieldOptions same;
+  same.crs = "utm";  // its own zone: nothing to warp
+  EXPECT_EQ(read_heightfield(projected, same).grid, kept.grid);
+  HeightfieldOptions other;
+  other.crs = "EPSG:3035";
+  EXPECT_EQ(epsg(read_heightfield(projected, other)), "3035");
 }
 
 TEST(ReadHeightfield, WarpedGridCoversTheWholeSourceFootprint) {
@@ -204,7 +261,7 @@ TEST(ReadHeightfield, ResolutionOptionOnAGeographicDemSetsThePixelSize) {
   spec.geotransform = {-3.0, 0.002, 0.0, 40.0, 0.0, -0.002};
   spec.crs = "EPSG:4326";
   test::write_geotiff(path, spec);
-  const Heightfield field = read_heightfield(path, {.resolution = 25.0});
+  const Heightfield field = read_heightfield(path, {.resolution = 25.0, .crs = {}});
   EXPECT_EQ(field.grid.pixel_width, 25.0);
   EXPECT_EQ(field.grid.pixel_height, 25.0);
   // 50 pixels of 0.002 degrees east-west at ~39.95 N.
@@ -295,7 +352,7 @@ TEST(ReadHeightfield, ResolutionOptionResamplesAMetricDemWithoutMixingNodata) {
   };
   test::write_geotiff(path, spec);
 
-  const Heightfield field = read_heightfield(path, {.resolution = 20.0});
+  const Heightfield field = read_heightfield(path, {.resolution = 20.0, .crs = {}});
   EXPECT_EQ(field.grid, (GridSpec{20, 20, 500000.0, 5000000.0, 20.0, 20.0}));
   OGRSpatialReference srs;
   ASSERT_EQ(srs.importFromWkt(field.crs_wkt.c_str()), OGRERR_NONE);
@@ -335,7 +392,8 @@ TEST(ReadHeightfield, CubicResamplingFollowsCurvedTerrainAndKeepsNodataOut) {
   test::write_geotiff(path, spec);
   double worst[2] = {0.0, 0.0};
   for (const Resampling r : {Resampling::bilinear, Resampling::cubic}) {
-    const Heightfield field = read_heightfield(path, {.resolution = 2.5, .resampling = r});
+    const Heightfield field =
+        read_heightfield(path, {.resolution = 2.5, .resampling = r, .crs = {}});
     ASSERT_EQ(field.grid.width, 160);
     int holes = 0;
     for (int row = 0; row < 160; ++row) {
@@ -392,7 +450,8 @@ TEST(ReadHeightfield, CoarserResolutionAveragesInsteadOfAliasing) {
   for (const Resampling r : {Resampling::bilinear, Resampling::cubic}) {
     // 30 m cells: their centres fall on source cell centres, where a point read gives 90 or 110;
     // the mean of 3 x 3 cells is within 20 / 9 of 100.
-    const Heightfield field = read_heightfield(path, {.resolution = 30.0, .resampling = r});
+    const Heightfield field =
+        read_heightfield(path, {.resolution = 30.0, .resampling = r, .crs = {}});
     ASSERT_EQ(field.grid, (GridSpec{14, 14, 500000.0, 5000000.0, 30.0, 30.0}));
     for (int row = 0; row < 13; ++row)  // the 14th row and column reach past the DEM
       for (int col = 0; col < 13; ++col)
@@ -481,7 +540,7 @@ TEST(ReadHeightfield, NonPositiveResolutionIsAnError) {
   TempDir dir;
   const std::string path = (dir / "dem.tif").string();
   test::write_geotiff(path, DemSpec{});
-  EXPECT_THAT(error_of([&] { read_heightfield(path, {.resolution = 0.0}); }),
+  EXPECT_THAT(error_of([&] { read_heightfield(path, {.resolution = 0.0, .crs = {}}); }),
               AllOf(HasSubstr("dem.tif"), HasSubstr("resolution")));
 }
 

@@ -66,7 +66,7 @@ TEST(Samples, LuxembourgLinesKeepTheirGeodesicLengthInTheDemsMetricFrame) {
 TEST(Samples, OlindaDemResampledToSixMetres) {
   const std::string samples = (test::source_dir() / "samples").string();
   const Heightfield native = read_heightfield(samples + "/dem.tif");
-  const Heightfield fine = read_heightfield(samples + "/dem.tif", {.resolution = 6.0});
+  const Heightfield fine = read_heightfield(samples + "/dem.tif", {.resolution = 6.0, .crs = {}});
   EXPECT_EQ(fine.grid.pixel_width, 6.0);
   // Same extent, 15 times the pixels per axis.
   EXPECT_NEAR(fine.grid.width * 6.0, native.grid.width * native.grid.pixel_width, 6.0);

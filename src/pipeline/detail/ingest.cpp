@@ -32,6 +32,7 @@ std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig&
   if (config.heightfield) {
     HeightfieldOptions options;
     options.resampling = config.resampling;
+    options.crs = config.output.crs;
     // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
     if (!config.region) options.resolution = config.resolution;
     return open_heightfield(config.heightfield->string(), options, warnings);
@@ -41,6 +42,8 @@ std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig&
 
 GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   const GenerateConfig& g = config.generate;
+  if (!config.output.crs.empty() && config.output.crs != g.crs)
+    fail("output.crs: a generated world is in generate.crs ({}); set that instead", g.crs);
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;

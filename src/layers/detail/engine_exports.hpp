@@ -1,0 +1,33 @@
+#pragma once
+// One function per engine (layers/export_<engine>.cpp) over what they share.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/atomic_output.hpp"
+#include "layers/export.hpp"
+
+namespace tw::detail {
+
+struct ExportSource {
+  const LayerSet& set;
+  Raster<float> heights;  // the height layer, nodata filled
+  const Layer* splat;     // nullptr when the run has none
+  const std::vector<ExportCurve>& curves;
+};
+
+// The splat layer's material names ("splat.road" -> "road").
+std::vector<std::string> material_names(const Layer& splat);
+// Each splat band resampled onto `to`.
+std::vector<Raster<float>> resampled_weights(const ExportSource& source, const GridSpec& to);
+// Writes `json` (pretty) to dir/name, staged.
+void write_json(const std::filesystem::path& path, const std::string& text, OutputStager& stager);
+
+EngineExportResult export_unreal(const ExportSource& source, const EngineExportOptions& options,
+                                 const std::filesystem::path& dir, OutputStager& stager);
+EngineExportResult export_unity(const ExportSource& source, const EngineExportOptions& options,
+                                const std::filesystem::path& dir, OutputStager& stager);
+EngineExportResult export_godot(const ExportSource& source, const EngineExportOptions& options,
+                                const std::filesystem::path& dir, OutputStager& stager);
+
+}  // namespace tw::detail

@@ -1,0 +1,99 @@
+// Engine exports: sizes, names, the shared preparation, and the dispatch to each engine.
+#include "layers/export.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "layers/detail/engine_exports.hpp"
+#include "layers/detail/engine_raster.hpp"
+
+namespace tw {
+
+Engine parse_engine(std::string_view name) {
+  if (name == "unreal") return Engine::unreal;
+  if (name == "unity") return Engine::unity;
+  if (name == "godot") return Engine::godot;
+  fail("unknown engine '{}', expected unreal, unity or godot", name);
+}
+
+std::string to_string(Engine engine) {
+  switch (engine) {
+    case Engine::unreal:
+      return "unreal";
+    case Engine::unity:
+      return "unity";
+    case Engine::godot:
+      return "godot";
+  }
+  return "unreal";
+}
+
+const std::vector<int>& engine_heightmap_sizes(Engine engine) {
+  // Epic's "recommended landscape sizes" (Landscape Technical Guide): whole components.
+  static const std::vector<int> unreal = {127, 253, 505, 1009, 2017, 4033, 8129};
+  static const std::vector<int> power_of_two_plus_one = {33, 65, 129, 257, 513, 1025, 2049, 4097};
+  return engine == Engine::unreal ? unreal : power_of_two_plus_one;
+}
+
+int engine_heightmap_size(Engine engine, int cells) {
+  const std::vector<int>& sizes = engine_heightmap_sizes(engine);
+  const auto it = std::lower_bound(sizes.begin(), sizes.end(), cells);
+  return it == sizes.end() ? sizes.back() : *it;
+}
+
+EngineExportResult export_for_engine(const LayerSet& set, const std::vector<ExportCurve>& curves,
+                                     const EngineExportOptions& options,
+                                     const std::filesystem::path& dir, OutputStager& stager) {
+  validate_layer_set(set);
+  const Layer* height = find_layer(set, "height");
+  if (height == nullptr) fail("export {}: the run has no height layer", to_string(options.engine));
+  const std::vector<int>& sizes = engine_heightmap_sizes(options.engine);
+  if (options.size != 0 && !std::binary_search(sizes.begin(), sizes.end(), options.size))
+    fail("export {}: size {} is not one the engine takes ({} ... {})", to_string(options.engine),
+         options.size, sizes.front(), sizes.back());
+  detail::ExportSource source{set,
+                              detail::fill_nodata(height->bands.front(), options.nodata_height),
+                              find_layer(set, "splat"), curves};
+  switch (options.engine) {
+    case Engine::unreal:
+      return detail::export_unreal(source, options, dir, stager);
+    case Engine::unity:
+      return detail::export_unity(source, options, dir, stager);
+    case Engine::godot:
+      return detail::export_godot(source, options, dir, stager);
+  }
+  return {};
+}
+
+namespace detail {
+
+std::vector<std::string> material_names(const Layer& splat) {
+  std::vector<std::string> names;
+  for (const std::string& c : splat.channels)
+    names.push_back(c.starts_with("splat.") ? c.substr(6) : c);
+  return names;
+}
+
+std::vector<Raster<float>> resampled_weights(const ExportSource& source, const GridSpec& to) {
+  std::vector<Raster<float>> out;
+  if (source.splat == nullptr) return out;
+  for (const Raster<float>& band : source.splat->bands) {
+    Raster<float> clean = band;  // NaN (nodata in the GeoTIFF) weighs nothing
+    for (float& w : clean.pixels)
+      if (std::isnan(w)) w = 0.0f;
+    out.push_back(resample_band(clean, source.set.grid, to));
+  }
+  return out;
+}
+
+void write_json(const std::filesystem::path& path, const std::string& text, OutputStager& stager) {
+  std::ofstream out(stager.stage(path), std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) fail("cannot write {}", path.string());
+}
+
+}  // namespace detail
+
+}  // namespace tw

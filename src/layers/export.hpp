@@ -1,0 +1,75 @@
+#pragma once
+// Engine exports (docs/exports.md): a run's height and splat layers and its road and river
+// centerlines as files that Unreal, Unity and Godot import as they are. Heights are filled
+// where nodata (engines have none), resampled onto the engine's heightmap size (the vertices
+// span the outer cell centres), and quantized from min -> 0 to max -> 65535; splat weights
+// become 8-bit maps summing to 255.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/atomic_output.hpp"
+#include "core/vec2.hpp"
+#include "layers/layer_set.hpp"
+
+namespace tw {
+
+enum class Engine { unreal, unity, godot };
+enum class GodotHeightFormat { exr, r16 };
+
+struct EngineExportOptions {
+  Engine engine = Engine::unreal;
+  // Heightmap samples per side, one of the engine's sizes (engine_heightmap_sizes); 0 = the
+  // smallest one holding the world's cells (per axis for Unreal, the longer side for Unity and
+  // Godot, whose heightmaps are square).
+  int size = 0;
+  // Height written on nodata cells; absent = from the nearest valid cells (GDALFillNodata,
+  // inverse-distance weighted over the nearest valid cell in each direction, no smoothing).
+  std::optional<double> nodata_height;
+  GodotHeightFormat godot_height = GodotHeightFormat::exr;
+};
+
+// A road, river or ridge centerline (world coordinates of the run's grid), for the splines.
+struct ExportCurve {
+  std::string feature_class;
+  std::string kind;  // road, river, ridge
+  std::int64_t fid = 0;
+  double width = 0.0;  // metres
+  std::vector<Vec2> points;
+};
+
+struct EngineExportResult {
+  std::vector<std::filesystem::path> files;  // final paths, in writing order
+  std::vector<std::string> settings;         // "what to type in", one line each (printed)
+};
+
+Engine parse_engine(std::string_view name);  // unreal | unity | godot, else tw::Error
+std::string to_string(Engine engine);
+
+// The heightmap sizes the engine takes: Epic's recommended landscape sizes (127 ... 8129) for
+// Unreal; 2^n + 1 (33 ... 4097) for Unity and Godot (HTerrain, Terrain3D).
+const std::vector<int>& engine_heightmap_sizes(Engine engine);
+// The smallest size >= cells (the largest when none is).
+int engine_heightmap_size(Engine engine, int cells);
+
+// Writes the export of `set` (layers "height", required, and "splat") and `curves` into `dir`,
+// every file staged in `stager`. Throws tw::Error naming the problem (no height layer, a size
+// the engine does not take, nothing but nodata).
+EngineExportResult export_for_engine(const LayerSet& set, const std::vector<ExportCurve>& curves,
+                                     const EngineExportOptions& options,
+                                     const std::filesystem::path& dir, OutputStager& stager);
+
+// The run's centerlines as GeoJSON (features.geojson: LineStrings with class, kind, fid,
+// width), in the CRS of `crs_wkt`, and read back.
+void write_curves_geojson(const std::vector<ExportCurve>& curves, const std::string& crs_wkt,
+                          const std::filesystem::path& path);
+std::vector<ExportCurve> read_curves_geojson(const std::filesystem::path& path);
+
+// A GeoTIFF written by write_geotiff read back as a layer (channels = band descriptions;
+// the nodata value, if any, becomes NaN), with its grid and CRS into `set` when it has none.
+Layer read_geotiff_layer(const std::filesystem::path& path, const std::string& name, LayerSet& set);
+
+}  // namespace tw

@@ -1,0 +1,93 @@
+// Godot (HTerrain, Terrain3D): the height at 2^n + 1 square as a 32-bit float EXR (channel R,
+// metres, what Image::load_exr reads) or R16 (16-bit little-endian, row 0 north, min -> 0,
+// max -> 65535), HTerrain-style splat maps (RGBA 8-bit, materials four by four, weights
+// summing to 255 per pixel) at the heightmap's resolution, and godot.json with the map scale.
+#include <fmt/format.h>
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "layers/detail/engine_exports.hpp"
+#include "layers/detail/engine_raster.hpp"
+#include "layers/detail/splines.hpp"
+
+namespace tw::detail {
+
+namespace {
+
+void write_float_exr(const std::filesystem::path& path, const Raster<float>& heights) {
+  auto out = OIIO::ImageOutput::create("exr");
+  if (!out) fail("cannot write {}: OpenImageIO has no EXR writer", path.string());
+  OIIO::ImageSpec spec(heights.width, heights.height, 1, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R"};
+  spec.attribute("compression", "zip");
+  if (!out->open(path.string(), spec) ||
+      !out->write_image(OIIO::TypeDesc::FLOAT, heights.pixels.data()) || !out->close())
+    fail("cannot write {}: {}", path.string(), out->geterror());
+}
+
+}  // namespace
+
+EngineExportResult export_godot(const ExportSource& source, const EngineExportOptions& options,
+                                const std::filesystem::path& dir, OutputStager& stager) {
+  const GridSpec& grid = source.set.grid;
+  const int n = options.size
+                    ? options.size
+                    : engine_heightmap_size(Engine::godot, std::max(grid.width, grid.height));
+  const GridSpec vertices = vertex_grid(grid, n, n);
+  const Raster<float> heights = resample_band(source.heights, grid, vertices);
+  const Heightmap16 map = quantize_heights(heights);
+  EngineExportResult result;
+  const bool exr = options.godot_height == GodotHeightFormat::exr;
+  const std::string height_file = exr ? "height.exr" : "height.r16";
+  result.files.push_back(dir / height_file);
+  if (exr)
+    write_float_exr(stager.stage(result.files.back()), heights);
+  else
+    write_raw16(stager.stage(result.files.back()), map, false);
+
+  nlohmann::json layers = nlohmann::json::array();
+  if (source.splat != nullptr) {
+    const auto weights = quantize_weights(resampled_weights(source, vertices));
+    const auto names = material_names(*source.splat);
+    const std::vector<std::uint8_t> zero(std::size_t(n) * n, 0);
+    for (std::size_t first = 0; first < weights.size(); first += 4) {
+      const std::string file = fmt::format("splat_{}.png", first / 4);
+      std::vector<const std::uint8_t*> rgba;
+      for (std::size_t m = first; m < first + 4; ++m) {
+        rgba.push_back(m < weights.size() ? weights[m].data() : zero.data());
+        if (m < weights.size())
+          layers.push_back({{"material", names[m]},
+                            {"splat", file},
+                            {"channel", std::string(1, "RGBA"[m % 4])}});
+      }
+      result.files.push_back(dir / file);
+      write_png(stager.stage(result.files.back()), n, n, rgba);
+    }
+  }
+  const double x0 = vertices.origin_x + vertices.pixel_width / 2.0;
+  const double y0 = vertices.origin_y - vertices.pixel_height / 2.0;
+  const nlohmann::json sidecar = {
+      {"engine", "godot"},        {"height", height_file},
+      {"resolution", n},          {"map_scale", {vertices.pixel_width, 1.0, vertices.pixel_height}},
+      {"height_min_m", map.min},  {"height_max_m", map.max},
+      {"world_origin", {x0, y0}}, {"crs_wkt", source.set.crs_wkt},
+      {"splat", layers}};
+  result.files.push_back(dir / "godot.json");
+  write_json(result.files.back(), sidecar.dump(2) + "\n", stager);
+  const EngineFrame frame{"godot", "x east, y up, z south; metres from the terrain corner", 1.0,
+                          [x0, y0](double x, double y, double h) {
+                            return std::array<double, 3>{x - x0, h, y0 - y};
+                          }};
+  for (const auto& p : write_splines(source.curves, source.heights, grid, frame, dir, stager))
+    result.files.push_back(p);
+  result.settings = {
+      fmt::format("godot: import {} ({} x {}{})", (dir / height_file).string(), n, n,
+                  exr ? ", metres" : fmt::format(", min {:.3f} max {:.3f}", map.min, map.max)),
+      fmt::format("godot: HTerrain map_scale ({:.4f}, 1, {:.4f})", vertices.pixel_width,
+                  vertices.pixel_height)};
+  return result;
+}
+
+}  // namespace tw::detail
