@@ -416,11 +416,28 @@ RegionConfig read_region(const YamlSource& src, const YAML::Node& node) {
   return {v[0], v[1], v[2], v[3]};
 }
 
+// output.tiles: { size: N, overlap: K }, 1 <= N <= kMaxTileSize, 0 <= K <= kMaxTileOverlap.
+TilesConfig read_tiles(const MapReader& m) {
+  TilesConfig t;
+  t.size = read_int(m.source(), m.get("size"), m.path("size"));
+  if (t.size < 1 || t.size > kMaxTileSize) {
+    m.source().fail(m.get("size"), m.path("size"),
+                    fmt::format("must be in [1, {}] pixels, got {}", kMaxTileSize, t.size));
+  }
+  t.overlap = m.int_or("overlap", 0);
+  if (t.overlap < 0 || t.overlap > kMaxTileOverlap) {
+    m.source().fail(m.get("overlap"), m.path("overlap"),
+                    fmt::format("must be in [0, {}] pixels, got {}", kMaxTileOverlap, t.overlap));
+  }
+  return t;
+}
+
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   const MapReader root(src, tree, "",
                        {"version", "seed", "heightfield", "generate", "resolution", "output",
                         "backend", "precedence", "features", "existing", "synthesis_resolution",
-                        "synthesis_order", "region", "resampling", "strict", "repair"});
+                        "synthesis_order", "region", "resampling", "strict", "repair",
+                        "avoidance"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -442,16 +459,23 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                      ? Resampling::cubic
                      : Resampling::bilinear;
   if (root.has("output")) {
-    const MapReader out(src, root.get("output"), "output", {"dir", "exr", "geotiff", "preview"});
+    const MapReader out(src, root.get("output"), "output",
+                        {"dir", "exr", "geotiff", "preview", "tiles"});
     if (out.has("dir")) c.output.dir = out.file("dir");
     c.output.exr = out.bool_or("exr", c.output.exr);
     c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
     c.output.preview = out.bool_or("preview", c.output.preview);
+    if (out.has("tiles")) c.output.tiles = read_tiles(MapReader(src, out.get("tiles"),
+                                                                "output.tiles", {"size", "overlap"}));
   } else {
     c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
   }
   if (!c.output.exr && !c.output.geotiff) {
     src.fail(root.get("output"), "output", "at least one of exr and geotiff must be true");
+  }
+  if (root.has("avoidance")) {
+    const MapReader avoidance(src, root.get("avoidance"), "avoidance", {"max_distance"});
+    c.avoidance.max_distance = avoidance.positive_or("max_distance", c.avoidance.max_distance);
   }
   c.backend = read_backend(root, "backend", c.backend);
   c.strict = root.bool_or("strict", c.strict);

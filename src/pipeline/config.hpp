@@ -108,11 +108,29 @@ struct ExistingConfig {
   double width = 0.0;              // metres, required (> 0) when the layer holds lines
 };
 
+// `output.tiles` (docs/tiles.md): the output grid rendered and written in square tiles of
+// `size` pixels, each file holding `overlap` more pixels on every side (clamped to the grid).
+struct TilesConfig {
+  int size = 0;  // 0: untiled (one file per layer)
+  int overlap = 0;
+};
+
+// The largest tile side and overlap, pixels (a tile's layers stay well under a few GiB).
+inline constexpr int kMaxTileSize = 16384;
+inline constexpr int kMaxTileOverlap = 4096;
+
 struct OutputConfig {
   std::filesystem::path dir = "out";
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
+  TilesConfig tiles;
+};
+
+// `avoidance` (docs/tiles.md): the avoidance layer's distance band is capped at max_distance
+// metres, so a tile needs only that much halo to be exact.
+struct AvoidanceConfig {
+  double max_distance = 500.0;
 };
 
 // A region of interest: the output grid covers only this rectangle, in metres of the
@@ -149,6 +167,7 @@ struct PipelineConfig {
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
   std::vector<ExistingConfig> existing;
+  AvoidanceConfig avoidance;
   // Synthesis canvas cell size in metres, independent of `resolution` (placements never
   // depend on the output grid).
   double synthesis_resolution = 1.0;

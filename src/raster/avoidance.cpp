@@ -1,8 +1,12 @@
 #include "raster/avoidance.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.hpp"
 #include "raster/distance.hpp"
 #include "raster/foldover.hpp"
+#include "raster/footprint.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {
@@ -11,6 +15,32 @@ namespace {
 void add_mask(Raster<std::uint8_t>& forbidden, const Raster<std::uint8_t>& more) {
   for (std::size_t i = 0; i < forbidden.pixels.size(); ++i)
     forbidden.pixels[i] = std::uint8_t(forbidden.pixels[i] | (more.pixels[i] ? 1 : 0));
+}
+
+// `more` covers `part`, a sub-window of `window`, the window of `forbidden`.
+void add_mask_on(Raster<std::uint8_t>& forbidden, const Window& window,
+                 const Raster<std::uint8_t>& more, const Window& part) {
+  for (int row = 0; row < part.height; ++row)
+    for (int col = 0; col < part.width; ++col)
+      if (more.at(col, row))
+        forbidden.at(part.col0 - window.col0 + col, part.row0 - window.row0 + row) = 1;
+}
+
+// A ribbon's footprint and fold-overs, rasterized on the part of `window` its pieces can touch
+// (not the whole window: hundreds of ribbons on a large window otherwise cost hundreds of
+// whole-window passes). Window results equal crops of larger ones (raster/rasterize.hpp,
+// raster/foldover.hpp), so the mask is the same.
+void burn_ribbon(const Ribbon& ribbon, bool footprint, bool foldovers, const GridSpec& grid,
+                 const Window& window, Raster<std::uint8_t>& forbidden) {
+  const Window part = intersect(ribbon_window(ribbon, grid), window);
+  if (part.width == 0) return;
+  if (footprint) {
+    Raster<std::uint8_t> cells;
+    burn_polygons(piece_polygons(ribbon), grid, part, cells, 1);
+    add_mask_on(forbidden, window, cells, part);
+  }
+  // Bow-tie lobes can fall outside the even-odd fill of their own quad.
+  if (foldovers) add_mask_on(forbidden, window, foldover_mask(ribbon, grid, part), part);
 }
 
 // The forbidden mask of build_avoidance_map (no distance yet).
@@ -28,21 +58,44 @@ AvoidanceMap build_mask(const AvoidanceInputs& inputs, const GridSpec& grid, con
   for (std::size_t r = 0; r < inputs.ribbons.size(); ++r) {
     const Ribbon* ribbon = inputs.ribbons[r];
     if (ribbon == nullptr) fail("avoidance map: ribbon {} is null", r);
-    burn_polygons(piece_polygons(*ribbon), grid, window, map.forbidden, 1);
-    // Bow-tie lobes can fall outside the even-odd fill of their own quad.
-    if (inputs.include_foldovers) add_mask(map.forbidden, foldover_mask(*ribbon, grid, window));
+    burn_ribbon(*ribbon, true, inputs.include_foldovers, grid, window, map.forbidden);
   }
   if (inputs.current != nullptr && inputs.include_foldovers)
-    add_mask(map.forbidden, foldover_mask(*inputs.current, grid, window));
+    burn_ribbon(*inputs.current, false, true, grid, window, map.forbidden);
   return map;
 }
 
 }  // namespace
 
 AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
-                                 const Window& window) {
-  AvoidanceMap map = build_mask(inputs, grid, window);
-  map.distance = distance_to_mask(map.forbidden, grid.pixel_width, grid.pixel_height);
+                                 const Window& window, double max_distance) {
+  if (!(max_distance > 0.0))
+    fail("avoidance map: max_distance must be > 0 metres, got {}", max_distance);
+  if (std::isinf(max_distance)) {
+    AvoidanceMap map = build_mask(inputs, grid, window);
+    map.distance = distance_to_mask(map.forbidden, grid.pixel_width, grid.pixel_height);
+    return map;
+  }
+  // Every forbidden pixel within max_distance of the window lies in the halo, so the capped
+  // distance is exact: the same bits as on any larger window.
+  const double pixel = std::min(grid.pixel_width, grid.pixel_height);
+  const int halo = int(std::min(std::ceil(max_distance / pixel) + 1.0, 1e9));
+  const Window grown = grow_window(window, halo, grid);
+  const AvoidanceMap wide = build_mask(inputs, grid, grown);
+  const Raster<float> distance =
+      distance_to_mask(wide.forbidden, grid.pixel_width, grid.pixel_height);
+  AvoidanceMap map;
+  map.grid = grid;
+  map.window = window;
+  map.forbidden = Raster<std::uint8_t>(window.width, window.height);
+  map.distance = Raster<float>(window.width, window.height);
+  const float cap = float(max_distance);
+  for (int row = 0; row < window.height; ++row)
+    for (int col = 0; col < window.width; ++col) {
+      const int c = window.col0 - grown.col0 + col, r = window.row0 - grown.row0 + row;
+      map.forbidden.at(col, row) = wide.forbidden.at(c, r);
+      map.distance.at(col, row) = std::min(distance.at(c, r), cap);
+    }
   return map;
 }
 

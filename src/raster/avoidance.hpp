@@ -2,6 +2,7 @@
 // The avoidance map (Zhou et al. 2013, Section 3.1): canvas pixels where no opaque exemplar pixel
 // may land, plus the distance to them.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -29,9 +30,13 @@ struct AvoidanceInputs {
 };
 
 // Union of everything in `inputs` on the window (pixel-centre rule), and its exact Euclidean
-// distance field. Throws tw::Error (naming the line) on mismatched widths.
+// distance field capped at `max_distance` metres. A finite cap makes the window's result equal
+// the crop of any larger window's (it reads a halo of the cap around the window); infinity
+// gives the distance within the window only. Throws tw::Error (naming the line) on mismatched
+// widths, and on max_distance <= 0.
 AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& grid,
-                                 const Window& window);
+                                 const Window& window,
+                                 double max_distance = std::numeric_limits<double>::infinity());
 
 // The same union (no distance field) on the allocated tiles of `forbidden`, a sparse canvas over
 // `grid`: equal to build_avoidance_map's mask there.

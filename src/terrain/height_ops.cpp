@@ -425,13 +425,17 @@ struct KindAccumulator {
 
 void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const TerrainPlan& plan) {
-  if (height.width != grid.width || height.height != grid.height)
-    fail("shape_terrain: height raster is {} x {}, the grid is {} x {}", height.width,
-         height.height, grid.width, grid.height);
   if (window.col0 < 0 || window.row0 < 0 || window.col_end() > grid.width ||
       window.row_end() > grid.height)
     fail("shape_terrain: window ({}, {}, {} x {}) is outside the {} x {} grid", window.col0,
          window.row0, window.width, window.height, grid.width, grid.height);
+  const bool whole_grid = height.width == grid.width && height.height == grid.height;
+  if (!whole_grid && (height.width != window.width || height.height != window.height))
+    fail("shape_terrain: height raster is {} x {}, neither the grid ({} x {}) nor the window",
+         height.width, height.height, grid.width, grid.height);
+  // Where pixel (0, 0) of `height` lies on the grid.
+  const int height_col0 = whole_grid ? 0 : window.col0;
+  const int height_row0 = whole_grid ? 0 : window.row0;
   const double pixel = std::min(grid.pixel_width, grid.pixel_height);
   std::vector<const Curve*> curves;
   std::vector<double> reach;
@@ -476,7 +480,7 @@ void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& wi
       });
       for (int r = 0; r < tile.height; ++r)
         for (int c = 0; c < tile.width; ++c) {
-          float& cell = height.at(tile.col0 + c, tile.row0 + r);
+          float& cell = height.at(tile.col0 - height_col0 + c, tile.row0 - height_row0 + r);
           if (std::isnan(cell)) continue;  // nodata is never read nor written
           double h = cell;
           const std::size_t k = std::size_t(r) * tile.width + c;

@@ -59,7 +59,8 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params);
 
-// Applies a plan to the pixels of `window` of `height` (which covers the whole grid).
+// Applies a plan to the pixels of `window` of `height`, which covers the whole grid or exactly
+// the window (a tile: the same bits as the window of a whole-grid call).
 // NaN cells are never read or written. Parallel over tiles, bit-identical for any thread count.
 void apply_terrain(Raster<float>& height, const GridSpec& grid, const Window& window,
                    const TerrainPlan& plan);

@@ -41,9 +41,13 @@ namespace {
 SplatLayers splat_over(const GridSpec& grid, const Window& window,
                        const std::vector<TerrainFeature>& features, const TerrainParams& params,
                        const Raster<float>* height) {
-  if (height && (height->width != grid.width || height->height != grid.height))
-    fail("compute_splat: height raster is {} x {}, the grid is {} x {}", height->width,
-         height->height, grid.width, grid.height);
+  const bool whole_grid = height && height->width == grid.width && height->height == grid.height;
+  if (height && !whole_grid && (height->width != window.width || height->height != window.height))
+    fail("compute_splat: height raster is {} x {}, neither the grid ({} x {}) nor the window",
+         height->width, height->height, grid.width, grid.height);
+  // Where pixel (0, 0) of `height` lies on the grid.
+  const int height_col0 = whole_grid ? 0 : window.col0;
+  const int height_row0 = whole_grid ? 0 : window.row0;
   const auto ranks = detail::precedence_ranks(params);
   std::vector<const Curve*> curves;
   std::vector<double> reach;
@@ -95,7 +99,7 @@ SplatLayers splat_over(const GridSpec& grid, const Window& window,
           const std::size_t k = std::size_t(r) * tile.width + c;
           std::array<double, material_count> w{};
           w[base] = 1.0;
-          if (height && std::isnan(height->at(tile.col0 + c, tile.row0 + r))) {
+          if (height && std::isnan(height->at(tile.col0 - height_col0 + c, tile.row0 - height_row0 + r))) {
             out.weights[base].at(tile.col0 - window.col0 + c, tile.row0 - window.row0 + r) = 1.0f;
             continue;  // nothing is painted on nodata
           }

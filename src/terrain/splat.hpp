@@ -24,8 +24,8 @@ struct SplatLayers {
 SplatLayers compute_splat(const GridSpec& grid, const Window& window,
                           const std::vector<TerrainFeature>& features, const TerrainParams& params);
 
-// The same, with no material painted on nodata: where `height` (the whole grid) is NaN the
-// pixel is all base.
+// The same, with no material painted on nodata: where `height` (the whole grid, or exactly the
+// window) is NaN the pixel is all base.
 SplatLayers compute_splat(const GridSpec& grid, const Window& window,
                           const std::vector<TerrainFeature>& features, const TerrainParams& params,
                           const Raster<float>& height);

@@ -35,6 +35,10 @@ Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
     if (!config.region) options.resolution = config.resolution;
     return read_heightfield(config.heightfield->string(), options, warnings);
   }
+  return generate_heightfield(generated_terrain(config));
+}
+
+GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   const GenerateConfig& g = config.generate;
   GeneratedTerrain params;
   params.width = g.width;
@@ -45,7 +49,7 @@ Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
   params.crs = g.crs;
   params.origin_x = g.origin_x;
   params.origin_y = g.origin_y;
-  return generate_heightfield(params);
+  return params;
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,

@@ -15,6 +15,8 @@ namespace tw::detail {
 // Reads config.heightfield (at config.resolution) or generates one from config.generate and
 // config.seed.
 Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
+// The generator's parameters of a pipeline without a heightfield file.
+GeneratedTerrain generated_terrain(const PipelineConfig& config);
 
 // The lines of one class. A class none of whose features lies on the heightfield (an empty
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning

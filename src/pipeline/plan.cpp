@@ -1,0 +1,230 @@
+#include "pipeline/plan.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "pipeline/detail/conformance.hpp"
+#include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/input_check.hpp"
+#include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/region.hpp"
+#include "pipeline/detail/stages.hpp"
+#include "raster/footprint.hpp"
+#include "synth/pattern_canvas.hpp"
+
+namespace tw {
+
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTiming>& timings) : timings_(timings) {}
+
+  void start(std::string stage) {
+    stage_ = std::move(stage);
+    logger().info("{}...", stage_);
+    started_ = std::chrono::steady_clock::now();
+  }
+  void stop() {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    timings_.push_back({stage_, seconds});
+    logger().info("{}: {:.3f} s", stage_, seconds);
+  }
+
+ private:
+  std::vector<StageTiming>& timings_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point started_;
+};
+
+// The deck heights of bridges and tunnels; plan features come from terrain_features, which
+// lists the classes' features in report order.
+void report_decks(const TerrainPlan& plan, RunReport& report) {
+  std::vector<FeatureReport*> in_order;
+  for (FeatureClassReport& c : report.classes)
+    for (FeatureReport& f : c.features) in_order.push_back(&f);
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    const TerrainFeature& f = plan.features[i];
+    if (f.structure == Structure::ground || f.width <= 0.0) continue;
+    in_order[plan.input_index[i]]->deck_m = {double(plan.profiles[i].front()),
+                                             double(plan.profiles[i].back())};
+  }
+}
+
+std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemplar& exemplar) {
+  if (!c.synthesis->channels.empty()) return c.synthesis->channels;
+  std::vector<ChannelMapping> mappings = {{"A", "splat." + c.name + "_pattern"}};
+  if (exemplar.channel_index("height") >= 0) mappings.push_back({"height", "height"});
+  return mappings;
+}
+
+// The patterns as the renderer needs them, and their splat materials in order of first use
+// (the order an untiled render adds them in). Throws tw::Error naming the class and the channel
+// when an exemplar lacks a mapped channel.
+void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPlan& plan) {
+  plan.splat_materials = splat_materials();
+  for (detail::FeaturePattern& p : run.patterns) {
+    const FeatureClassConfig& c = config.features[p.class_index];
+    const Exemplar& exemplar = run.exemplars[p.exemplar_index];
+    PlannedPattern& planned = plan.patterns.emplace_back();
+    planned.class_index = p.class_index;
+    planned.feature_index = p.feature_index;
+    planned.exemplar_index = p.exemplar_index;
+    planned.on_ground = p.on_ground;
+    // The render reaches kCanvasHalo cells beyond the pieces (synth/pattern_canvas.hpp).
+    const Window on_grid = p.on_ground ? ribbon_window(p.ribbon, plan.grid) : Window{};
+    planned.window = on_grid.width > 0 ? grow_window(on_grid, kCanvasHalo, plan.grid) : Window{};
+    planned.ribbon = std::move(p.ribbon);
+    planned.synthesis = std::move(p.synthesis);
+    planned.stitch = c.synthesis->stitch;
+    planned.feather = c.synthesis->feather;
+    planned.height_detail = float(c.synthesis->height_detail);
+    if (planned.window.width == 0) continue;  // off the grid: no band is added
+    for (const ChannelMapping& m : mappings_of(c, exemplar)) {
+      PatternTarget& target = planned.targets.emplace_back();
+      target.exemplar_channel = exemplar.channel_index(m.channel);
+      if (target.exemplar_channel < 0) {
+        fail("features.{}.synthesis.channels.{}: exemplar {} has no channel '{}' (it has {})",
+             c.name, m.channel, exemplar.path, m.channel, fmt::join(exemplar.channel_names, ", "));
+      }
+      target.to_height = m.target == "height";
+      target.is_alpha = m.channel == "A";
+      if (target.to_height) continue;
+      const std::string material = m.target.substr(6);  // after "splat."
+      auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
+      if (it == plan.splat_materials.end()) {
+        plan.splat_materials.push_back(material);
+        it = plan.splat_materials.end() - 1;
+      }
+      target.material = std::size_t(it - plan.splat_materials.begin());
+    }
+  }
+  plan.exemplars = std::move(run.exemplars);
+}
+
+}  // namespace
+
+void index_plan(WorldPlan& plan) {
+  std::vector<Window> features;
+  for (const TerrainFeature& f : plan.terrain_features) {
+    features.push_back(points_window(f.centerline.points, feature_reach(f), plan.grid));
+  }
+  plan.feature_index = index_windows(plan.grid, std::move(features));
+  std::vector<Window> ribbons;
+  for (const auto& class_ribbons : plan.ribbons)
+    for (const Ribbon& r : class_ribbons) ribbons.push_back(ribbon_window(r, plan.grid));
+  plan.ribbon_index = index_windows(plan.grid, std::move(ribbons));
+  std::vector<Window> patterns;
+  for (const PlannedPattern& p : plan.patterns) patterns.push_back(p.window);
+  plan.pattern_index = index_windows(plan.grid, std::move(patterns));
+}
+
+WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings) {
+  WorldPlan plan;
+  RunReport& report = plan.report;
+  report.seed = config.seed;
+  StageClock clock(report.stages);
+
+  clock.start("ingest");
+  detail::check_inputs(config);
+  Heightfield heightfield = detail::load_heightfield(config, warnings);
+  std::vector<std::vector<LineFeature>> lines;
+  for (const FeatureClassConfig& feature_class : config.features) {
+    const auto started = std::chrono::steady_clock::now();
+    lines.push_back(detail::load_feature_class(feature_class, heightfield, warnings));
+    FeatureClassReport& class_report = report.classes.emplace_back();
+    class_report.name = feature_class.name;
+    class_report.kind = feature_class.kind;
+    class_report.source = feature_class.source.string() + ":" + feature_class.layer;
+    class_report.ingest_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    plan.class_names.push_back(feature_class.name);
+  }
+  // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
+  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
+  detail::ExistingFeatures existing =
+      detail::load_existing(config.existing, heightfield, config.repair, warnings);
+  if (config.region) {  // features were read on the whole heightfield, the rest is the region
+    heightfield = detail::crop_to_region(heightfield, *config.region,
+                                         config.resolution.value_or(heightfield.grid.pixel_width),
+                                         config.resampling);
+  }
+  plan.grid = heightfield.grid;
+  plan.crs_wkt = heightfield.crs_wkt;
+  plan.nodata = heightfield.nodata_value;
+  report.grid = heightfield.grid;
+  report.crs_wkt = heightfield.crs_wkt;
+  report.heightfield = heightfield.source;
+  clock.stop();
+
+  clock.start("ribbons");
+  detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(config, lines, heightfield.grid, warnings);
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    report.classes[c].delta_m = ribbons.delta[c];
+    for (std::size_t i = 0; i < lines[c].size(); ++i) {
+      FeatureReport& feature = report.classes[c].features.emplace_back();
+      feature.fid = lines[c][i].fid;
+      feature.length_m = ribbons.lengths[c][i];
+      feature.width_m = lines[c][i].width;
+      feature.pieces = int(ribbons.ribbons[c][i].pieces.size());
+      feature.moved_max_m = moves[c][i].max_m;
+      feature.moved_mean_m = moves[c][i].mean_m;
+      feature.structure = lines[c][i].structure;
+      feature.layer = lines[c][i].layer;
+    }
+  }
+  clock.stop();
+
+  // Profiles are sampled once from the unedited terrain (a bound on the earthwork, a feature
+  // over nodata are warnings).
+  clock.start("terrain");
+  plan.terrain_features = detail::terrain_features(config, lines);
+  plan.terrain_params = detail::terrain_params(config);
+  plan.terrain = plan_terrain(heightfield.height, heightfield.grid, plan.terrain_features,
+                              plan.terrain_params, warnings);
+  detail::report_earthwork(config, lines, plan.terrain, report, warnings);
+  report_decks(plan.terrain, report);
+  clock.stop();
+
+  if (options.synthesize && !config.synthesis_order.empty()) {
+    clock.start("synthesis");
+    detail::PatternRun patterns =
+        detail::synthesize_patterns(config, lines, ribbons, existing, {options.backend});
+    for (const detail::FeaturePattern& p : patterns.patterns) {
+      FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
+      feature.synthesis = p.report;
+      report.pattern_violations += p.report.violations;
+    }
+    plan_patterns(config, std::move(patterns), plan);
+    clock.stop();
+  } else {
+    plan.splat_materials = splat_materials();
+  }
+
+  plan.existing.polygons = std::move(existing.polygons);
+  plan.existing.lines = std::move(existing.lines);
+  plan.existing.line_widths = std::move(existing.line_widths);
+  plan.junction_discs = std::move(ribbons.junction_discs);
+  plan.ribbons = std::move(ribbons.ribbons);
+  plan.lines = std::move(lines);
+
+  plan.heights.source = heightfield.source;
+  if (!config.heightfield && !config.region) {
+    plan.heights.generated = detail::generated_terrain(config);
+  } else {
+    plan.heights.heights = std::make_shared<const Raster<float>>(std::move(heightfield.height));
+  }
+
+  index_plan(plan);
+  plan.render.avoidance_max_distance = config.avoidance.max_distance;
+  plan.tile_size = config.output.tiles.size;
+  plan.tile_overlap = config.output.tiles.overlap;
+  plan.tiles = tile_grid(plan.grid, plan.tile_size, plan.tile_overlap);
+  return plan;
+}
+
+}  // namespace tw

@@ -1,0 +1,156 @@
+#pragma once
+// Plan once, render tiles (DESIGN.md, docs/tiles.md). plan_world decides everything that
+// belongs to a feature, once for the whole world: features, ribbons, junctions, terrain profiles
+// and synthesized placements. render_tile decides everything that belongs to a pixel, for one
+// window: heights, splat, avoidance and pattern layers, the same bytes at any tiling.
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/warnings.hpp"
+#include "geo/features.hpp"
+#include "geo/heightfield.hpp"
+#include "layers/layer_set.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/run.hpp"
+#include "raster/avoidance.hpp"
+#include "raster/window_index.hpp"
+#include "ribbon/ribbon.hpp"
+#include "synth/exemplar.hpp"
+#include "synth/synthesize.hpp"
+#include "terrain/height_ops.hpp"
+
+namespace tw {
+
+// One tile of the output grid. `window` is the tile's core; `halo_window` the core plus the
+// tiling's overlap on every side, clamped to the grid: what the tile's files hold.
+struct TileSpec {
+  int index = 0;  // row-major: iy * columns + ix
+  int ix = 0;     // column of tiles, west to east (the _x<i> of the file names)
+  int iy = 0;     // row of tiles, north to south (the _y<j>)
+  Window window;
+  Window halo_window;
+};
+
+// Tiles of `size` pixels square (the last column and row smaller when size does not divide the
+// grid) with `overlap` pixels on every side. size 0: one tile covering the grid (untiled).
+// Throws tw::Error on size < 0, overlap < 0, or overlap without tiles.
+std::vector<TileSpec> tile_grid(const GridSpec& grid, int size, int overlap);
+
+// The stem of a tile's files: <layer>_x<ix>_y<iy> (Unreal World Partition / Unity naming).
+std::string tile_file_stem(const std::string& layer, const TileSpec& tile);
+
+// Where render_tile reads the heights of its window, before any edit.
+struct HeightSource {
+  std::string source;  // path or generated:seed=N (messages, reports)
+  // A generated world read at its own cells (no region): every window is generated on its own
+  // (a window of a generated world equals the same window of the whole one).
+  std::optional<GeneratedTerrain> generated;
+  // Otherwise the heights over the plan's grid as ingested, shared by every tile.
+  std::shared_ptr<const Raster<float>> heights;
+};
+
+// The heights of `window` of `grid` (the plan's grid). NaN marks nodata.
+Raster<float> read_height_window(const HeightSource& source, const GridSpec& grid,
+                                 const Window& window);
+
+// Where one exemplar channel of a pattern goes on the output grid.
+struct PatternTarget {
+  int exemplar_channel = 0;
+  bool to_height = false;    // else a splat material
+  std::size_t material = 0;  // index into WorldPlan::splat_materials (splat targets)
+  bool is_alpha = false;     // the A channel: the share is the coverage itself
+};
+
+// One feature's synthesized pattern as the renderer needs it.
+struct PlannedPattern {
+  std::size_t class_index = 0;     // in config.features / WorldPlan::class_names
+  std::size_t feature_index = 0;   // in the class's lines
+  std::size_t exemplar_index = 0;  // in WorldPlan::exemplars
+  bool on_ground = true;           // false: a bridge's or tunnel's, written to placements only
+  Ribbon ribbon;                   // the synthesis ribbon
+  Synthesis synthesis;
+  Window window;  // the output pixels its render can touch (empty: off the grid)
+  // Render options of its class.
+  bool stitch = true;
+  double feather = 0.0;
+  float height_detail = 1.0f;
+  std::vector<PatternTarget> targets;
+};
+
+// The options of render_tile, one per stage (not the pipeline config).
+struct RenderOptions {
+  // Metres: the avoidance distance layer is min(distance, max_distance), which bounds the halo
+  // a tile reads (avoidance.max_distance, docs/tiles.md).
+  double avoidance_max_distance = 500.0;
+};
+
+struct WorldPlan {
+  // The output grid (the region's, when there is one).
+  GridSpec grid;
+  std::string crs_wkt;
+  std::optional<double> nodata;
+  HeightSource heights;
+
+  // Per class (config order) and feature (reading order): clipped, repaired, conformed lines,
+  // and their ribbons (no pieces when shorter than one piece).
+  std::vector<std::string> class_names;
+  std::vector<std::vector<LineFeature>> lines;
+  std::vector<std::vector<Ribbon>> ribbons;
+  std::vector<Polygon> junction_discs;  // on the output grid's tolerance
+
+  // Existing features (polygons, buffered lines) burnt into the avoidance layer.
+  AvoidanceInputs existing;
+
+  // The terrain: features as the terrain module sees them (class order), their parameters and
+  // the global plan of profiles (sampled once, so a tile never sees its neighbours' edits).
+  std::vector<TerrainFeature> terrain_features;
+  TerrainParams terrain_params;
+  TerrainPlan terrain;
+
+  // Synthesized patterns, in synthesis order, and the exemplars they use.
+  std::deque<Exemplar> exemplars;
+  std::vector<PlannedPattern> patterns;
+  // splat_materials() followed by the patterns' materials in order of first use: every tile
+  // has these channels.
+  std::vector<std::string> splat_materials;
+
+  // Which terrain features (terrain_features order), ribbons (class-major over `ribbons`) and
+  // patterns can touch a window: their footprint plus reach, binned.
+  WindowIndex feature_index;
+  WindowIndex ribbon_index;
+  WindowIndex pattern_index;
+
+  RenderOptions render;
+  int tile_size = 0;  // output.tiles.size (0: untiled)
+  int tile_overlap = 0;
+  std::vector<TileSpec> tiles;
+
+  // What the plan found: grid, classes and features (with their syntheses and earthwork),
+  // stage timings; run_pipeline completes it.
+  RunReport report;
+};
+
+struct PlanOptions {
+  std::optional<std::string> backend;  // replaces every class's backend
+  bool synthesize = true;              // false: no synthesis (validate)
+};
+
+// Ingest, conformance, ribbons, junctions, the terrain plan and the syntheses. Throws tw::Error
+// naming the file, key, FID or piece of the first bad input; warnings go to `warnings`.
+WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings);
+
+// Builds feature_index, ribbon_index and pattern_index from the plan's features, ribbons and
+// patterns (plan_world does; a plan read back from files calls it again).
+void index_plan(WorldPlan& plan);
+
+// The layers of `tile.halo_window`: "height", "splat", "avoidance" on a grid whose origin is
+// the window's corner; every pixel equals the same pixel of an untiled render. Reads the
+// heights of the window only, and only the features whose footprint (+ reach) meets it.
+LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile);
+
+}  // namespace tw

@@ -1,0 +1,128 @@
+// render_tile (pipeline/plan.hpp): every layer of one window, as per-pixel functions of the
+// plan, so any tiling gives the same bits as an untiled render.
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "pipeline/plan.hpp"
+#include "raster/footprint.hpp"
+#include "synth/pattern_canvas.hpp"
+#include "synth/render.hpp"
+#include "terrain/pattern_layers.hpp"
+#include "terrain/splat.hpp"
+
+namespace tw {
+
+namespace {
+
+// The part of the global terrain plan whose features can touch the window (in plan order, so
+// per-pixel sums run in the same order as on the whole grid).
+TerrainPlan terrain_part(const TerrainPlan& plan, const std::vector<std::size_t>& inputs_met) {
+  TerrainPlan part;
+  part.params = plan.params;
+  for (std::size_t i = 0; i < plan.features.size(); ++i) {
+    if (!std::binary_search(inputs_met.begin(), inputs_met.end(), plan.input_index[i])) continue;
+    part.features.push_back(plan.features[i]);
+    part.profiles.push_back(plan.profiles[i]);
+    part.steps.push_back(plan.steps[i]);
+    part.input_index.push_back(plan.input_index[i]);
+    part.earthwork.push_back(plan.earthwork[i]);
+  }
+  return part;
+}
+
+// Each pattern is rendered on the blocks of the lattice its ribbon meets (kBlock pixels on the
+// world grid, as an untiled render), cut to the window.
+void add_patterns(const WorldPlan& plan, const Window& window, Raster<float>& height,
+                  SplatLayers& splat) {
+  constexpr int kBlock = 256;
+  const SparseRaster<std::uint8_t> layout(plan.grid.width, plan.grid.height, 0, kBlock);
+  for (const std::size_t p : items_meeting(plan.pattern_index, window)) {
+    const PlannedPattern& pattern = plan.patterns[p];
+    if (!pattern.on_ground || pattern.targets.empty()) continue;
+    const Exemplar& exemplar = plan.exemplars[pattern.exemplar_index];
+    for (const TileIndex t : ribbon_tiles(pattern.ribbon, plan.grid, kBlock, kCanvasHalo)) {
+      const Window part = intersect(layout.tile_window(t), window);
+      if (part.width == 0) continue;
+      const RenderedPattern rendered =
+          render_pattern(exemplar, pattern.ribbon, pattern.synthesis, plan.grid, part,
+                         pattern.stitch, pattern.feather);
+      std::vector<PatternLayerTarget> targets;
+      for (const PatternTarget& target : pattern.targets) {
+        targets.push_back({&rendered.channels[std::size_t(target.exemplar_channel)],
+                           target.to_height, target.material, target.is_alpha});
+      }
+      add_pattern_to_layers(window, height, splat, part, rendered.coverage, targets,
+                            pattern.height_detail);
+    }
+  }
+}
+
+Layer avoidance_layer(AvoidanceMap map) {
+  Raster<float> forbidden(map.forbidden.width, map.forbidden.height);
+  std::transform(map.forbidden.pixels.begin(), map.forbidden.pixels.end(), forbidden.pixels.begin(),
+                 [](std::uint8_t v) { return v ? 1.0f : 0.0f; });
+  Layer layer;
+  layer.name = "avoidance";
+  layer.channels = {"forbidden", "distance"};
+  layer.bands.push_back(std::move(forbidden));
+  layer.bands.push_back(std::move(map.distance));
+  return layer;
+}
+
+// Existing features, every ribbon's footprint and fold-overs, and the junction discs, with the
+// distance capped so the halo it reads is bounded.
+AvoidanceMap tile_avoidance(const WorldPlan& plan, const Window& window) {
+  const double cap = plan.render.avoidance_max_distance;
+  const double pixel = std::min(plan.grid.pixel_width, plan.grid.pixel_height);
+  const int halo = int(std::min(std::ceil(cap / pixel) + 1.0, 1e9));
+  std::vector<const Ribbon*> all;
+  for (const auto& class_ribbons : plan.ribbons)
+    for (const Ribbon& r : class_ribbons) all.push_back(&r);
+  AvoidanceInputs inputs;
+  inputs.polygons = plan.existing.polygons;
+  inputs.lines = plan.existing.lines;
+  inputs.line_widths = plan.existing.line_widths;
+  inputs.junction_discs = plan.junction_discs;
+  inputs.include_foldovers = true;
+  for (const std::size_t r : items_meeting(plan.ribbon_index, grow_window(window, halo, plan.grid)))
+    inputs.ribbons.push_back(all[r]);
+  return build_avoidance_map(inputs, plan.grid, window, cap);
+}
+
+}  // namespace
+
+LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
+  const Window& window = tile.halo_window;
+  if (window.width <= 0 || window.height <= 0 ||
+      intersect(window, Window::whole(plan.grid)) != window)
+    fail("render_tile: tile {} window ({}, {}, {} x {}) is not inside the {} x {} grid", tile.index,
+         window.col0, window.row0, window.width, window.height, plan.grid.width, plan.grid.height);
+  Raster<float> height = read_height_window(plan.heights, plan.grid, window);
+
+  const std::vector<std::size_t> met = items_meeting(plan.feature_index, window);
+  apply_terrain(height, plan.grid, window, terrain_part(plan.terrain, met));
+  std::vector<TerrainFeature> features;
+  for (const std::size_t f : met) features.push_back(plan.terrain_features[f]);
+  SplatLayers splat = compute_splat(plan.grid, window, features, plan.terrain_params, height);
+  for (std::size_t m = splat.materials.size(); m < plan.splat_materials.size(); ++m) {
+    splat.materials.push_back(plan.splat_materials[m]);
+    splat.weights.emplace_back(window.width, window.height, 0.0f);
+  }
+  add_patterns(plan, window, height, splat);
+
+  LayerSet layers;
+  layers.grid = plan.grid;
+  layers.grid.width = window.width;
+  layers.grid.height = window.height;
+  const Vec2 corner = plan.grid.pixel_to_world({double(window.col0), double(window.row0)});
+  layers.grid.origin_x = corner.x;
+  layers.grid.origin_y = corner.y;
+  layers.crs_wkt = plan.crs_wkt;
+  layers.nodata = plan.nodata;
+  layers.layers.push_back(height_layer(std::move(height)));
+  layers.layers.push_back(splat_layer(std::move(splat)));
+  layers.layers.push_back(avoidance_layer(tile_avoidance(plan, window)));
+  return layers;
+}
+
+}  // namespace tw

@@ -1,0 +1,24 @@
+#pragma once
+// The pixels a ribbon's pieces can touch on a grid: where rasterizing a ribbon needs to look.
+#include <vector>
+
+#include "core/grid.hpp"
+#include "ribbon/ribbon.hpp"
+
+namespace tw {
+
+// The window of `grid` holding every piece corner, plus a pixel; empty when the ribbon has no
+// pieces or lies outside the grid. Corners far off the grid clamp (no int overflow).
+Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid);
+
+// The window of `grid` holding every point of `points` grown by `reach` metres, plus two
+// pixels; empty when it lies outside the grid. Far-off points clamp (no int overflow).
+Window points_window(const std::vector<Vec2>& points, double reach, const GridSpec& grid);
+
+// The intersection of two windows (empty, {0, 0, 0, 0}, when they do not meet).
+Window intersect(const Window& a, const Window& b);
+
+// `window` grown by `pixels` on every side, clamped to the grid.
+Window grow_window(const Window& window, int pixels, const GridSpec& grid);
+
+}  // namespace tw
