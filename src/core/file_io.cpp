@@ -24,8 +24,8 @@ fs::path temporary_beside(const fs::path& path) {
   char host[256] = "host";
   ::gethostname(host, sizeof host - 1);
   host[sizeof host - 1] = '\0';
-  return path.parent_path() / fmt::format(".{}.tmp-{}-{}{}", path.stem().string(), host,
-                                          ::getpid(), path.extension().string());
+  return path.parent_path() / fmt::format(".{}.tmp-{}-{}{}", path.stem().string(), host, ::getpid(),
+                                          path.extension().string());
 }
 
 void write_file_atomic(const fs::path& path, std::string_view bytes) {

@@ -12,6 +12,7 @@
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
 #include "geo/input_guard.hpp"
+#include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/plan.hpp"
@@ -111,6 +112,18 @@ class ScopedCurrentPath {
   fs::path previous_;
 };
 
+// Forbidden pixels of the tile's core (the report's count is the sum over the tiles).
+std::int64_t forbidden_in_core(const LayerSet& layers, const TileSpec& tile) {
+  const Layer* avoidance = find_layer(layers, "avoidance");
+  if (!avoidance) return 0;
+  const Raster<float>& band = avoidance->bands.front();  // "forbidden"
+  std::int64_t count = 0;
+  for (int row = tile.window.row0; row < tile.window.row_end(); ++row)
+    for (int col = tile.window.col0; col < tile.window.col_end(); ++col)
+      count += band.at(col - tile.halo_window.col0, row - tile.halo_window.row0) != 0.0f;
+  return count;
+}
+
 }  // namespace
 
 PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options) {
@@ -176,6 +189,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
          int(plan.tiles.size()) - 1);
   const TileSpec& spec = plan.tiles[std::size_t(tile)];
   LayerSet layers = render_tile(plan, spec);
+  const std::int64_t forbidden = forbidden_in_core(layers, spec);
   WriteOptions write;
   write.exr = job.value("exr", true);
   write.geotiff = job.value("geotiff", true);
@@ -195,9 +209,13 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
                      {"xxh3_128", content_hash(bytes)}});
   }
   result.seconds = seconds_since(started);
-  const json record = {{"format", kTileResultFormat}, {"version", kPlanVersion},
-                       {"plan", hash},                {"tile", tile},
-                       {"files", files},              {"seconds", result.seconds}};
+  const json record = {{"format", kTileResultFormat},
+                       {"version", kPlanVersion},
+                       {"plan", hash},
+                       {"tile", tile},
+                       {"files", files},
+                       {"forbidden_pixels", forbidden},
+                       {"seconds", result.seconds}};
   // Last: a result names only complete files.
   write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
                     record.dump(1) + "\n");
@@ -219,7 +237,8 @@ RunReport finish_job(const fs::path& plan_dir) {
     if (content_hash(read_file_bytes(pipeline)) != job.value("pipeline_xxh3_128", ""))
       fail("{}: changed since it was planned (plan again)", pipeline.string());
     std::vector<Override> overrides;
-    for (const json& o : job.at("overrides")) overrides.push_back(parse_override(o.get<std::string>()));
+    for (const json& o : job.at("overrides"))
+      overrides.push_back(parse_override(o.get<std::string>()));
     const ScopedCurrentPath cwd(job.at("cwd").get<std::string>());
     config = load_pipeline(pipeline, overrides);
   }
@@ -228,7 +247,8 @@ RunReport finish_job(const fs::path& plan_dir) {
   std::vector<detail::RenderedTile> tiles;
   const fs::path dir = tiles_dir(plan_dir, hash);
   for (const TileSpec& spec : plan.tiles) {
-    const fs::path result_path = results_dir(plan_dir, hash) / fmt::format("tile-{}.json", spec.index);
+    const fs::path result_path =
+        results_dir(plan_dir, hash) / fmt::format("tile-{}.json", spec.index);
     std::error_code ec;
     if (!fs::is_regular_file(result_path, ec))
       fail("tile {} (x{} y{}) was not rendered: no {} (terraweave render-tile {} --tile {})",
@@ -240,6 +260,7 @@ RunReport finish_job(const fs::path& plan_dir) {
     detail::RenderedTile& rendered = tiles.emplace_back();
     rendered.tile = spec;
     rendered.seconds = result.value("seconds", 0.0);
+    rendered.forbidden_pixels = result.value("forbidden_pixels", std::int64_t(0));
     for (const json& file : result.at("files")) {
       const fs::path relative = file.at("file").get<std::string>();
       const std::string bytes = read_file_bytes(dir / relative);

@@ -28,10 +28,10 @@
 namespace tw {
 
 struct PlanJobOptions {
-  std::filesystem::path output_dir;                // the shared output folder
-  std::optional<std::string> backend;              // replaces backend (cpu | opencl | auto)
-  std::vector<std::string> overrides;              // the --set assignments, as given
-  bool strict = false;                             // any warning fails the plan
+  std::filesystem::path output_dir;    // the shared output folder
+  std::optional<std::string> backend;  // replaces backend (cpu | opencl | auto)
+  std::vector<std::string> overrides;  // the --set assignments, as given
+  bool strict = false;                 // any warning fails the plan
   bool allow_network = false;
 };
 

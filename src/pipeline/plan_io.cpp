@@ -42,8 +42,8 @@ class ObjectStore {
   // Deletes the objects of earlier plans.
   void delete_unused() const {
     std::error_code ec;
-    for (auto it = fs::directory_iterator(dir_ / "objects", ec); !ec && it != fs::directory_iterator();
-         it.increment(ec)) {
+    for (auto it = fs::directory_iterator(dir_ / "objects", ec);
+         !ec && it != fs::directory_iterator(); it.increment(ec)) {
       if (!written_.contains(it->path().filename().string())) {
         std::error_code ignored;
         fs::remove(it->path(), ignored);
@@ -163,10 +163,10 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   }
   std::error_code ec;
   fs::remove(scratch, ec);
-  json heights = {{"source", plan.heights.source},
-                  {"generated", encode(plan.heights.generated)},
-                  {"raster", plan.heights.heights ? store.put_cbor(encode(plan.heights.heights))
-                                                  : json()}};
+  json heights = {
+      {"source", plan.heights.source},
+      {"generated", encode(plan.heights.generated)},
+      {"raster", plan.heights.heights ? store.put_cbor(encode(plan.heights.heights)) : json()}};
 
   json doc = {{"format", kPlanFormat},
               {"version", kPlanVersion},

@@ -34,6 +34,7 @@ std::vector<Layer> read_tile_layers(const RenderedTile& tile, bool exr) {
       layer.bands = std::move(contents.bands);
       continue;
     }
+    GDALAllRegister();
     GDALDatasetUniquePtr ds(GDALDataset::Open(f.staged.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     if (!ds) fail("cannot read {}", f.staged.string());
     for (int b = 1; b <= ds->GetRasterCount(); ++b) {
@@ -80,6 +81,7 @@ LayerSet assemble_world(const WorldPlan& plan, const std::vector<RenderedTile>& 
 // <out>/<layer>.vrt over the tiles' GeoTIFFs (paths relative to the VRT).
 void write_mosaics(const std::vector<RenderedTile>& tiles, const fs::path& out,
                    OutputFolder& transaction) {
+  GDALAllRegister();
   std::map<std::string, std::vector<std::string>> sources;  // layer -> staged tile GeoTIFFs
   for (const RenderedTile& tile : tiles)
     for (const TileFile& f : tile.files)
@@ -114,11 +116,14 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
                             const std::vector<RenderedTile>& tiles, const fs::path& out,
                             OutputFolder& transaction) {
   RunReport report = plan.report;
+  report.forbidden_pixels = 0;
+  for (const RenderedTile& t : tiles) report.forbidden_pixels += t.forbidden_pixels;
   if (config.output.geotiff) write_mosaics(tiles, out, transaction);
   if (config.output.preview) {
     const LayerSet world = assemble_world(plan, tiles, config.output.exr);
     std::vector<std::vector<Vec2>> centerlines;
-    for (const TerrainFeature& f : plan.terrain_features) centerlines.push_back(f.centerline.points);
+    for (const TerrainFeature& f : plan.terrain_features)
+      centerlines.push_back(f.centerline.points);
     write_preview_png(world, transaction.stage(out / "preview.png"), centerlines);
   }
   // placements/<class>_<fid>.json (a multi-part FID adds _<part>), as terraweave run names them.
@@ -146,7 +151,8 @@ void write_job_report(const RunReport& report, const PipelineConfig& config,
   for (const RenderedTile& t : tiles) {
     json files = json::array();
     for (const TileFile& f : t.files)
-      files.push_back({{"file", f.file.generic_string()}, {"bytes", f.bytes}, {"xxh3_128", f.xxh3_128}});
+      files.push_back(
+          {{"file", f.file.generic_string()}, {"bytes", f.bytes}, {"xxh3_128", f.xxh3_128}});
     const Window& w = t.tile.window;
     const Window& h = t.tile.halo_window;
     list.push_back({{"index", t.tile.index},
@@ -157,9 +163,8 @@ void write_job_report(const RunReport& report, const PipelineConfig& config,
                     {"files", files},
                     {"seconds", t.seconds}});
   }
-  doc["tiles"] = {{"size", config.output.tiles.size},
-                  {"overlap", config.output.tiles.overlap},
-                  {"list", list}};
+  doc["tiles"] = {
+      {"size", config.output.tiles.size}, {"overlap", config.output.tiles.overlap}, {"list", list}};
   const fs::path path = transaction.stage(out / "report.json");
   std::ofstream file(path);
   file << doc.dump(2) << '\n';

@@ -24,6 +24,7 @@ struct RenderedTile {
   TileSpec tile;
   std::vector<TileFile> files;
   double seconds = 0.0;
+  std::int64_t forbidden_pixels = 0;  // in its core window
 };
 
 // Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.

@@ -8,13 +8,17 @@
 namespace tw::detail {
 
 // One definition for both directions: Io is JsonWriter or JsonReader.
-#define TW_FIELDS(Type, ...)                                 \
-  template <class Io>                                       \
-  static void fields_of(Io& io, Type& v) {                  \
-    __VA_ARGS__                                             \
-  }                                                         \
-  void fields(JsonWriter& io, Type& v) { fields_of(io, v); } \
-  void fields(JsonReader& io, Type& v) { fields_of(io, v); }
+#define TW_FIELDS(Type, ...)               \
+  template <class Io>                      \
+  static void fields_of(Io& io, Type& v) { \
+    __VA_ARGS__                            \
+  }                                        \
+  void fields(JsonWriter& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(JsonReader& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }
 #define F(name) io(#name, v.name);
 
 TW_FIELDS(GridSpec, F(width) F(height) F(origin_x) F(origin_y) F(pixel_width) F(pixel_height))
@@ -25,8 +29,8 @@ TW_FIELDS(LineFeature, F(fid) F(points) F(closed) F(width) F(source) F(structure
 TW_FIELDS(Curve, F(points) F(closed))
 TW_FIELDS(Piece, F(top_left) F(bottom_left) F(bottom_right) F(top_right) F(x0) F(x1))
 TW_FIELDS(Ribbon, F(centerline) F(width) F(delta) F(closed) F(pieces))
-TW_FIELDS(RoadProfile, F(max_grade) F(shoulder_width) F(falloff) F(smoothing) F(max_cut)
-                           F(max_fill))
+TW_FIELDS(RoadProfile,
+          F(max_grade) F(shoulder_width) F(falloff) F(smoothing) F(max_cut) F(max_fill))
 TW_FIELDS(RiverProfile, F(depth) F(bank_width) F(falloff) F(min_slope) F(max_carve))
 TW_FIELDS(RidgeProfile, F(height) F(falloff) F(sharpness))
 TW_FIELDS(TerrainFeature, F(kind) F(fid) F(subject) F(centerline) F(width) F(structure) F(layer)
@@ -69,7 +73,9 @@ void fields(JsonWriter& io, AvoidanceInputs& v) {
   if (!v.ribbons.empty() || v.current) fail("plan: existing features refer to ribbons");
   existing_fields(io, v);
 }
-void fields(JsonReader& io, AvoidanceInputs& v) { existing_fields(io, v); }
+void fields(JsonReader& io, AvoidanceInputs& v) {
+  existing_fields(io, v);
+}
 
 #undef F
 #undef TW_FIELDS

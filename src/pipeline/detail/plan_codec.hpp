@@ -36,7 +36,8 @@ concept PackedVector = requires(const T& v) {
   typename T::value_type;
   v.size();
   v.data();
-} && Packed<typename T::value_type>;
+}
+&&Packed<typename T::value_type>;
 
 // What the field lists are written against: `io(key, value)` writes or reads one field.
 class JsonWriter {
@@ -64,12 +65,14 @@ template <class T>
 void decode(const json& j, T& v, const std::string& path);
 
 // The field lists (plan_codec.cpp and, for templates, here). Each type used in a plan has one.
-#define TW_PLAN_FIELDS(Type)             \
+#define TW_PLAN_FIELDS(Type)            \
   void fields(JsonWriter& io, Type& v); \
   void fields(JsonReader& io, Type& v)
 
 template <class T>
-concept HasFields = requires(JsonWriter& w, T& v) { fields(w, v); };
+concept HasFields = requires(JsonWriter& w, T& v) {
+  fields(w, v);
+};
 
 template <class T>
 json encode(const T& v) {
@@ -79,15 +82,24 @@ json encode(const T& v) {
     return static_cast<std::int64_t>(v);
   } else if constexpr (std::is_arithmetic_v<T>) {
     return v;
-  } else if constexpr (requires { typename T::value_type; v.has_value(); }) {  // optional
+  } else if constexpr (requires {
+                         typename T::value_type;
+                         v.has_value();
+                       }) {  // optional
     return v ? encode(*v) : json();
-  } else if constexpr (requires { v.get(); typename T::element_type; }) {  // shared_ptr
+  } else if constexpr (requires {
+                         v.get();
+                         typename T::element_type;
+                       }) {  // shared_ptr
     return v ? encode(*v) : json();
   } else if constexpr (PackedVector<T>) {
     std::vector<std::uint8_t> bytes(v.size() * sizeof(typename T::value_type));
     if (!bytes.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
     return json::binary(std::move(bytes));
-  } else if constexpr (requires { typename T::value_type; v.begin(); }) {  // vector, deque
+  } else if constexpr (requires {
+                         typename T::value_type;
+                         v.begin();
+                       }) {  // vector, deque
     json array = json::array();
     for (const auto& item : v) array.push_back(encode(item));
     return array;
@@ -119,7 +131,10 @@ void decode(const json& j, T& v, const std::string& path) {
   } else if constexpr (std::is_floating_point_v<T>) {
     if (!j.is_number()) wrong("a number");
     v = j.get<T>();
-  } else if constexpr (requires { typename T::value_type; v.has_value(); }) {
+  } else if constexpr (requires {
+                         typename T::value_type;
+                         v.has_value();
+                       }) {
     if (j.is_null()) {
       v.reset();
     } else {
@@ -127,7 +142,10 @@ void decode(const json& j, T& v, const std::string& path) {
       decode(j, inner, path);
       v = std::move(inner);
     }
-  } else if constexpr (requires { v.get(); typename T::element_type; }) {
+  } else if constexpr (requires {
+                         v.get();
+                         typename T::element_type;
+                       }) {
     if (j.is_null()) {
       v.reset();
     } else {
@@ -139,14 +157,18 @@ void decode(const json& j, T& v, const std::string& path) {
     using Item = typename T::value_type;
     if (!j.is_binary()) wrong("a byte string");
     const auto& bytes = j.get_binary();
-    if (bytes.size() % sizeof(Item) != 0) fail("{}: {} bytes is not a whole number of items", path, bytes.size());
+    if (bytes.size() % sizeof(Item) != 0)
+      fail("{}: {} bytes is not a whole number of items", path, bytes.size());
     if constexpr (requires { v.resize(0); }) {
       v.resize(bytes.size() / sizeof(Item));
     } else if (bytes.size() != v.size() * sizeof(Item)) {  // std::array
       fail("{}: {} bytes, expected {}", path, bytes.size(), v.size() * sizeof(Item));
     }
     if (!bytes.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
-  } else if constexpr (requires { typename T::value_type; v.begin(); }) {
+  } else if constexpr (requires {
+                         typename T::value_type;
+                         v.begin();
+                       }) {
     if (!j.is_array()) wrong("an array");
     v.clear();
     for (std::size_t i = 0; i < j.size(); ++i) {
