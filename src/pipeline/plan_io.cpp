@@ -2,6 +2,7 @@
 
 #include <set>
 #include <system_error>
+#include <utility>
 
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
@@ -101,6 +102,48 @@ void pattern_fields(Io& io, PlannedPattern& p) {
   io("targets", p.targets);
 }
 
+// The report's timings move out of its object into plan.json, outside the plan's hash: two plans
+// of the same inputs are the same plan, with the same object names.
+json take_timings(RunReport& report) {
+  json classes = json::array();
+  for (FeatureClassReport& c : report.classes) {
+    json features = json::array();
+    for (FeatureReport& f : c.features) {
+      json entry;
+      if (f.synthesis) {
+        entry = {f.synthesis->avoidance_seconds, f.synthesis->synthesis_seconds,
+                 f.synthesis->render_seconds};
+        f.synthesis->avoidance_seconds = f.synthesis->synthesis_seconds =
+            f.synthesis->render_seconds = 0.0;
+      }
+      features.push_back(std::move(entry));
+    }
+    classes.push_back({{"ingest", std::exchange(c.ingest_seconds, 0.0)}, {"features", features}});
+  }
+  json timings = {{"stages", encode(report.stages)},
+                  {"total", std::exchange(report.total_seconds, 0.0)},
+                  {"classes", classes}};
+  report.stages.clear();
+  return timings;
+}
+
+void restore_timings(const json& timings, RunReport& report, const std::string& where) {
+  decode(timings.at("stages"), report.stages, where + ": timings.stages");
+  report.total_seconds = timings.at("total").get<double>();
+  const json& classes = timings.at("classes");
+  for (std::size_t c = 0; c < report.classes.size() && c < classes.size(); ++c) {
+    report.classes[c].ingest_seconds = classes[c].at("ingest").get<double>();
+    const json& features = classes[c].at("features");
+    for (std::size_t f = 0; f < report.classes[c].features.size() && f < features.size(); ++f) {
+      auto& synthesis = report.classes[c].features[f].synthesis;
+      if (!synthesis || !features[f].is_array() || features[f].size() != 3) continue;
+      synthesis->avoidance_seconds = features[f][0].get<double>();
+      synthesis->synthesis_seconds = features[f][1].get<double>();
+      synthesis->render_seconds = features[f][2].get<double>();
+    }
+  }
+}
+
 json tasks_json(const WorldPlan& plan, const std::string& hash) {
   json tiles = json::array();
   for (const TileSpec& tile : plan.tiles) tiles.push_back(encode(tile));
@@ -140,7 +183,9 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   files["index"] = store.put_cbor(json{{"features", encode(plan.feature_index)},
                                        {"ribbons", encode(plan.ribbon_index)},
                                        {"patterns", encode(plan.pattern_index)}});
-  files["report"] = store.put_cbor(encode(plan.report));
+  RunReport report = plan.report;
+  const json timings = take_timings(report);
+  files["report"] = store.put_cbor(encode(report));
   json exemplars = json::array();
   for (const Exemplar& e : plan.exemplars) {
     json entry = store.put_cbor(encode(e));
@@ -182,6 +227,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   // The plan's hash covers every value above; objects enter through their hashes.
   const std::string hash = content_hash(doc.dump() + tasks_json(plan, "").dump());
   doc["plan"] = hash;
+  doc["timings"] = timings;
   write_file_atomic(dir / "tasks.json", tasks_json(plan, hash).dump(1) + "\n");
   write_file_atomic(dir / "plan.json", doc.dump(1) + "\n");
   store.delete_unused();
@@ -234,6 +280,7 @@ WorldPlan load_plan(const fs::path& dir) {
     index_reader("ribbons", plan.ribbon_index);
     index_reader("patterns", plan.pattern_index);
     get_cbor(dir, files, "report", plan.report);
+    if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
     for (std::size_t i = 0; i < doc.at("exemplars").size(); ++i) {
       const json wrapper = {{"exemplar", doc["exemplars"][i]}};
       get_cbor(dir, wrapper, "exemplar", plan.exemplars.emplace_back());

@@ -107,3 +107,17 @@ def mosaic_equals_untiled(tiled, untiled):
                   f"{name} band {band}: mosaic differs from the untiled layer")
         count += 1
     check(count >= 3, f"only {count} layers compared")
+
+
+def equals_local_run(local, tiled):
+    """`tiled` (a distributed run) holds what `local` (terraweave run) holds: every file byte
+    for byte when the local run wrote tiles too; from an untiled run, the same pixels in the
+    mosaics and the same report values (the tile list aside)."""
+    if os.path.isdir(os.path.join(local, "tiles")):
+        same_outputs(local, tiled)
+        return
+    mosaic_equals_untiled(tiled, local)
+    a = without_timings(json.load(open(os.path.join(local, "report.json"))))
+    b = without_timings(json.load(open(os.path.join(tiled, "report.json"))))
+    b.pop("tiles")
+    check(a == b, "report.json differs in " + str([k for k in set(a) | set(b) if a.get(k) != b.get(k)]))
