@@ -16,9 +16,17 @@ struct ProgressStyle {
   static ProgressStyle for_stderr();  // a bar when stderr is a terminal, else lines
 };
 
+// "ETA 42 s", "ETA 3 min 05 s", "ETA 2 h 07 min": the time left when `done` of `total` items
+// took `elapsed_seconds` at a steady rate ("ETA ?" before the first item).
+std::string eta_text(std::int64_t done, std::int64_t total, double elapsed_seconds);
+
 class Progress {
  public:
   Progress(std::string label, std::int64_t total,
+           ProgressStyle style = ProgressStyle::for_stderr());
+  // Countable items (`noun`: "tile", "feature"): once the quiet period has passed, every item
+  // logs "<label>: <noun> <i> of <N>, ETA ..." (items are coarse: tiles, features).
+  Progress(std::string label, std::int64_t total, std::string noun,
            ProgressStyle style = ProgressStyle::for_stderr());
   ~Progress();
   Progress(const Progress&) = delete;
@@ -29,7 +37,10 @@ class Progress {
  private:
   void report(std::int64_t done);
 
+  void report_item(std::int64_t done);
+
   std::string label_;
+  std::string noun_;  // "" = percent steps
   std::int64_t total_;
   std::atomic<std::int64_t> done_{0};
   std::atomic<int> last_decile_{-1};

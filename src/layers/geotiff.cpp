@@ -48,7 +48,8 @@ void write_geotiff(const LayerSet& set, const Layer& layer, const std::filesyste
       fail("layer set: cannot parse the CRS WKT for {}", path.string());
     ds->SetSpatialRef(&srs);
   }
-  const bool is_height = layer.name == "height";
+  // By its channel, not its name: a tile's height layer is named height_x<i>_y<j>.
+  const bool is_height = layer.channels == std::vector<std::string>{"height"};
   // The height layer's NaN cells become the source's nodata value when it has one.
   const bool replace_nan = is_height && set.nodata && !std::isnan(*set.nodata);
   constexpr int kRowsPerChunk = 256;

@@ -1,6 +1,8 @@
 #include "pipeline/run.hpp"
 
 #include <tbb/global_control.h>
+#define XXH_INLINE_ALL
+#include <xxhash.h>
 
 #include <algorithm>
 #include <chrono>
@@ -10,20 +12,14 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
+#include "core/progress.hpp"
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
+#include "layers/vrt.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/conformance.hpp"
-#include "pipeline/detail/ingest.hpp"
-#include "pipeline/detail/input_check.hpp"
-#include "pipeline/detail/patterns.hpp"
-#include "pipeline/detail/region.hpp"
 #include "pipeline/detail/report_json.hpp"
-#include "pipeline/detail/stages.hpp"
-#include "raster/avoidance.hpp"
+#include "pipeline/plan.hpp"
 #include "synth/placements_io.hpp"
-#include "terrain/height_ops.hpp"
-#include "terrain/splat.hpp"
 
 namespace tw {
 
@@ -31,40 +27,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-class StageClock {
- public:
-  explicit StageClock(std::vector<StageTiming>& timings) : timings_(timings) {}
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  void start(std::string stage) {
-    stage_ = std::move(stage);
-    logger().info("{}...", stage_);
-    started_ = std::chrono::steady_clock::now();
-  }
-  double stop() {
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    timings_.push_back({stage_, seconds});
-    logger().info("{}: {:.3f} s", stage_, seconds);
-    return seconds;
-  }
+// xxHash64 of every band's pixels, layer after layer (report.json `tiles`).
+std::uint64_t layer_bytes_hash(const LayerSet& set) {
+  XXH64_state_t* state = XXH64_createState();
+  XXH64_reset(state, 0);
+  for (const Layer& layer : set.layers)
+    for (const Raster<float>& band : layer.bands)
+      XXH64_update(state, band.pixels.data(), band.pixels.size() * sizeof(float));
+  const std::uint64_t hash = XXH64_digest(state);
+  XXH64_freeState(state);
+  return hash;
+}
 
- private:
-  std::vector<StageTiming>& timings_;
-  std::string stage_;
-  std::chrono::steady_clock::time_point started_;
-};
-
-// The avoidance map as a layer: 1 on forbidden pixels, and metres to the nearest of them.
-Layer avoidance_layer(AvoidanceMap map) {
-  Raster<float> forbidden(map.forbidden.width, map.forbidden.height);
-  std::transform(map.forbidden.pixels.begin(), map.forbidden.pixels.end(), forbidden.pixels.begin(),
-                 [](std::uint8_t v) { return v ? 1.0f : 0.0f; });
-  Layer layer;
-  layer.name = "avoidance";
-  layer.channels = {"forbidden", "distance"};
-  layer.bands.push_back(std::move(forbidden));
-  layer.bands.push_back(std::move(map.distance));
-  return layer;
+std::int64_t forbidden_in(const LayerSet& set, const Window& halo, const Window& core) {
+  const Layer* avoidance = find_layer(set, "avoidance");
+  std::int64_t count = 0;
+  for (int row = core.row0; row < core.row_end(); ++row)
+    for (int col = core.col0; col < core.col_end(); ++col)
+      count += avoidance->bands[0].at(col - halo.col0, row - halo.row0) > 0.0f;
+  return count;
 }
 
 // Under strict, any warning is an error: raised before anything is staged for writing.
@@ -73,20 +58,6 @@ void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   if (strict && !report.warnings.empty()) {
     fail("strict: {} warning{} (first: {}); nothing written", report.warnings.size(),
          report.warnings.size() == 1 ? "" : "s", to_string(report.warnings.front()));
-  }
-}
-
-// The deck heights of bridges and tunnels; plan features come from terrain_features, which
-// lists the classes' features in report order.
-void report_decks(const TerrainPlan& plan, RunReport& report) {
-  std::vector<FeatureReport*> in_order;
-  for (FeatureClassReport& c : report.classes)
-    for (FeatureReport& f : c.features) in_order.push_back(&f);
-  for (std::size_t i = 0; i < plan.features.size(); ++i) {
-    const TerrainFeature& f = plan.features[i];
-    if (f.structure == Structure::ground || f.width <= 0.0) continue;
-    in_order[plan.input_index[i]]->deck_m = {double(plan.profiles[i].front()),
-                                             double(plan.profiles[i].back())};
   }
 }
 
@@ -108,11 +79,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   if (options.threads > 0) {
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   }
-  RunReport report;
-  report.seed = config.seed;
   Warnings warnings;
   const bool strict = options.strict || config.strict;
-  StageClock clock(report.stages);
   set_network_access(options.allow_network);
   check_input_paths(config, options.allow_network);
   // Locked first where terraweave wrote before, so that a second run into it fails at once.
@@ -120,142 +88,102 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   std::unique_ptr<OutputFolder> output =
       options.write_outputs ? OutputFolder::lock_if_used(dir) : nullptr;
 
-  clock.start("ingest");
-  detail::check_inputs(config);
-  Heightfield heightfield = detail::load_heightfield(config, warnings);
-  report.grid = heightfield.grid;
-  report.crs_wkt = heightfield.crs_wkt;
-  report.heightfield = heightfield.source;
-  std::vector<std::vector<LineFeature>> lines;
-  for (const FeatureClassConfig& feature_class : config.features) {
-    const auto started = std::chrono::steady_clock::now();
-    lines.push_back(detail::load_feature_class(feature_class, heightfield, warnings));
-    FeatureClassReport& class_report = report.classes.emplace_back();
-    class_report.name = feature_class.name;
-    class_report.kind = feature_class.kind;
-    class_report.source = feature_class.source.string() + ":" + feature_class.layer;
-    class_report.ingest_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  }
-  // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
-  const auto moves = detail::conform_lines(config, heightfield, lines, warnings);
-  detail::ExistingFeatures existing =
-      detail::load_existing(config.existing, heightfield, config.repair, warnings);
-  if (config.region) {  // features were read on the whole heightfield, the rest is the region
-    heightfield = detail::crop_to_region(heightfield, *config.region,
-                                         config.resolution.value_or(heightfield.grid.pixel_width),
-                                         config.resampling);
-    report.grid = heightfield.grid;
-  }
-  clock.stop();
-
-  clock.start("ribbons");
-  const detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(config, lines, heightfield.grid, warnings);
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    report.classes[c].delta_m = ribbons.delta[c];
-    for (std::size_t i = 0; i < lines[c].size(); ++i) {
-      FeatureReport& feature = report.classes[c].features.emplace_back();
-      feature.fid = lines[c][i].fid;
-      feature.length_m = ribbons.lengths[c][i];
-      feature.width_m = lines[c][i].width;
-      feature.pieces = int(ribbons.ribbons[c][i].pieces.size());
-      feature.moved_max_m = moves[c][i].max_m;
-      feature.moved_mean_m = moves[c][i].mean_m;
-      feature.structure = lines[c][i].structure;
-      feature.layer = lines[c][i].layer;
-    }
-  }
-  clock.stop();
+  PlanOptions plan_options;
+  plan_options.backend = options.backend;
+  plan_options.synthesize = options.write_outputs;  // validate synthesizes nothing
+  WorldPlan plan = plan_world(config, plan_options, warnings);
+  RunReport& report = plan.report;
   if (!options.write_outputs) {
-    // Validate plans the terrain too (applying nothing) for its warnings: a feature over
-    // nodata, a bound on the earthwork.
-    const TerrainPlan plan =
-        plan_terrain(heightfield.height, heightfield.grid, detail::terrain_features(config, lines),
-                     detail::terrain_params(config), warnings);
-    detail::report_earthwork(config, lines, plan, report, warnings);
     finish_warnings(warnings, strict, report);
-    report.total_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
-    return report;
+    report.total_seconds = seconds_since(run_started);
+    return std::move(report);
   }
-
-  clock.start("avoidance");
-  AvoidanceMap avoidance = detail::build_run_avoidance(existing, ribbons, heightfield.grid);
-  report.forbidden_pixels =
-      std::count(avoidance.forbidden.pixels.begin(), avoidance.forbidden.pixels.end(), 1);
-  clock.stop();
-
-  detail::PatternRun patterns;
-  if (!config.synthesis_order.empty()) {
-    clock.start("synthesis");
-    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, {options.backend});
-    for (const detail::FeaturePattern& p : patterns.patterns) {
-      FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
-      feature.synthesis = p.report;
-      report.pattern_violations += p.report.violations;
-    }
-    clock.stop();
-  }
-
-  clock.start("terrain");
-  const std::vector<TerrainFeature> features = detail::terrain_features(config, lines);
-  const TerrainParams params = detail::terrain_params(config);
-  const Window whole = Window::whole(heightfield.grid);
-  const TerrainPlan terrain_plan =
-      plan_terrain(heightfield.height, heightfield.grid, features, params, warnings);
-  detail::report_earthwork(config, lines, terrain_plan, report, warnings);
-  report_decks(terrain_plan, report);
-  apply_terrain(heightfield.height, heightfield.grid, whole, terrain_plan);
-  SplatLayers splat = compute_splat(heightfield.grid, whole, features, params, heightfield.height);
-  detail::apply_patterns(patterns, config, heightfield.grid, heightfield.height, splat);
-  clock.stop();
-
   finish_warnings(warnings, strict, report);
-  clock.start("layers");
+
   if (!output) output = std::make_unique<OutputFolder>(dir);
   OutputFolder& transaction = *output;
-  LayerSet layers;
-  layers.grid = heightfield.grid;
-  layers.crs_wkt = heightfield.crs_wkt;
-  layers.nodata = heightfield.nodata_value;
-  layers.layers.push_back(height_layer(std::move(heightfield.height)));
-  layers.layers.push_back(splat_layer(std::move(splat)));
-  layers.layers.push_back(avoidance_layer(std::move(avoidance)));
   WriteOptions write_options;
   write_options.exr = config.output.exr;
   write_options.geotiff = config.output.geotiff;
   write_options.preview = false;  // drawn below, with the centerlines on top
-  write_layer_set(layers, dir, transaction, write_options);
-  if (config.output.preview) {
-    std::vector<std::vector<Vec2>> centerlines;
-    for (const auto& feature : features) centerlines.push_back(feature.centerline.points);
-    write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
+  const bool tiled = plan.tile_size > 0;
+  report.tiles.size = plan.tile_size;
+  report.tiles.overlap = plan.tile_overlap;
+  // Tile by tile: each is rendered, written and dropped, so memory follows the tile.
+  std::map<std::string, std::vector<fs::path>> tile_tifs;  // per layer, for the mosaics
+  double render_seconds = 0.0, write_seconds = 0.0;
+  Progress progress("render", std::int64_t(plan.tiles.size()), "tile");
+  for (const TileSpec& tile : plan.tiles) {
+    const auto started = std::chrono::steady_clock::now();
+    LayerSet layers = render_tile(plan, tile);
+    render_seconds += seconds_since(started);
+    const auto writing = std::chrono::steady_clock::now();
+    report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
+    TileReport& tile_report = report.tiles.tiles.emplace_back();
+    tile_report.index = tile.index;
+    tile_report.ix = tile.ix;
+    tile_report.iy = tile.iy;
+    tile_report.window = tile.window;
+    tile_report.halo_window = tile.halo_window;
+    tile_report.xxh64 = layer_bytes_hash(layers);
+    if (!tiled) {
+      write_layer_set(layers, dir, transaction, write_options);
+      if (config.output.preview) {
+        std::vector<std::vector<Vec2>> centerlines;
+        for (const auto& feature : plan.terrain_features)
+          centerlines.push_back(feature.centerline.points);
+        write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
+      }
+    } else {
+      for (const Layer& layer : layers.layers) {
+        const fs::path stem = dir / "tiles" / tile_file_stem(layer.name, tile);
+        if (config.output.exr)
+          write_exr(layers, layer, transaction.stage(stem.string() + ".exr"),
+                    write_options.exr_compression, write_options.exr_zip_level);
+        if (config.output.geotiff) {
+          const fs::path tif = transaction.stage(stem.string() + ".tif");
+          write_geotiff(layers, layer, tif);
+          tile_tifs[layer.name].push_back(tif);
+        }
+      }
+    }
+    write_seconds += seconds_since(writing);
+    tile_report.seconds = seconds_since(started);
+    progress.advance();
   }
+  if (tiled) {
+    const auto writing = std::chrono::steady_clock::now();
+    for (const auto& [layer, tifs] : tile_tifs)
+      write_vrt_mosaic(transaction.stage(dir / (layer + ".vrt")), tifs);
+    write_seconds += seconds_since(writing);
+  }
+  report.stages.push_back({"render", render_seconds});
+  report.stages.push_back({"layers", write_seconds});
+  logger().info("render: {} tiles, {:.3f} s; layers: {:.3f} s", plan.tiles.size(), render_seconds,
+                write_seconds);
+
   // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
   // field is left out so that every backend writes the same bytes.
   std::map<std::string, int> parts;
-  for (const detail::FeaturePattern& p : patterns.patterns) {
-    const FeatureClassConfig& c = config.features[p.class_index];
-    std::string name = fmt::format("{}_{}", c.name, lines[p.class_index][p.feature_index].fid);
+  for (const PlannedPattern& p : plan.patterns) {
+    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
+                                   plan.lines[p.class_index][p.feature_index].fid);
     if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
     const std::string file = "placements/" + name + ".json";
     Synthesis saved = p.synthesis;
     saved.backend.clear();
-    save_placements(saved, patterns.exemplars[p.exemplar_index].path,
+    save_placements(saved, plan.exemplars[p.exemplar_index].path,
                     transaction.stage(dir / file).string());
     report.classes[p.class_index].features[p.feature_index].synthesis->placements = file;
   }
-  clock.stop();
 
-  report.total_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - run_started).count();
+  report.total_seconds = seconds_since(run_started);
   write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
   transaction.commit();
   report.outputs = transaction.committed();
   logger().info("wrote {} files to {} in {:.2f} s", report.outputs.size(), dir.string(),
                 report.total_seconds);
-  return report;
+  return std::move(report);
 }
 
 }  // namespace tw

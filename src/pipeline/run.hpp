@@ -73,6 +73,23 @@ struct FeatureClassReport {
   double ingest_seconds = 0.0;
 };
 
+// One tile of the output (docs/tiles.md): its place, how long its render and write took, and
+// an xxHash64 of its layers' bytes (every band's float pixels over its halo window, in layer
+// and channel order) that equal renders share.
+struct TileReport {
+  int index = 0, ix = 0, iy = 0;
+  Window window;       // core
+  Window halo_window;  // what its files hold
+  double seconds = 0.0;
+  std::uint64_t xxh64 = 0;
+};
+
+struct TilesReport {
+  int size = 0;  // 0: untiled, one tile
+  int overlap = 0;
+  std::vector<TileReport> tiles;
+};
+
 struct RunReport {
   GridSpec grid;
   std::string crs_wkt;
@@ -85,6 +102,7 @@ struct RunReport {
   std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)
   double total_seconds = 0.0;
   std::vector<Warning> warnings;  // in the order they were raised (report.json `warnings`)
+  TilesReport tiles;
 };
 
 // Throws tw::Error naming the file, layer, FID or key of the first bad input; under strict

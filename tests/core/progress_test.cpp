@@ -1,5 +1,5 @@
-// Progress in logs: a line every 10 % (from 0 %) once a stage has run for its quiet period, nothing for
-// short stages, and a 100 % line only after earlier ones.
+// Progress in logs: a line every 10 % (from 0 %) once a stage has run for its quiet period, nothing
+// for short stages, and a 100 % line only after earlier ones.
 #include "core/progress.hpp"
 
 #include <gtest/gtest.h>
@@ -47,6 +47,24 @@ TEST(Progress, ShortStagesLogNothingNotEvenTheirEnd) {
     for (int i = 0; i < 50; ++i) progress.advance();
   });
   EXPECT_TRUE(lines.empty()) << lines.front();
+}
+
+TEST(Progress, ItemsLogEachItemWithItsCountAndAnEta) {
+  const auto lines = logged_lines([] {
+    Progress progress("render", 3, "tile", {false, std::chrono::milliseconds(0)});
+    for (int i = 0; i < 3; ++i) progress.advance();
+  });
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(without_newline(lines[0]).substr(0, 24), "render: tile 1 of 3, ETA");
+  EXPECT_EQ(without_newline(lines[2]), "render: tile 3 of 3, ETA 0 s");
+}
+
+TEST(Progress, EtaScalesTheElapsedTimeByTheItemsLeft) {
+  EXPECT_EQ(eta_text(0, 10, 5.0), "ETA ?");
+  EXPECT_EQ(eta_text(1, 4, 10.0), "ETA 30 s");
+  EXPECT_EQ(eta_text(2, 10, 46.0), "ETA 3 min 04 s");
+  EXPECT_EQ(eta_text(1, 100, 80.0), "ETA 2 h 12 min");
+  EXPECT_EQ(eta_text(10, 10, 99.0), "ETA 0 s");
 }
 
 }  // namespace

@@ -21,6 +21,8 @@
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "raster/distance.hpp"
+#include "raster/foldover.hpp"
 #include "raster/rasterize.hpp"
 #include "test_support.hpp"
 
@@ -94,7 +96,7 @@ TEST_F(DemoRun, WritesEveryLayerAndAReport) {
   std::vector<std::string> stages;
   for (const auto& s : report_->stages) stages.push_back(s.stage);
   EXPECT_EQ(stages,
-            (std::vector<std::string>{"ingest", "ribbons", "avoidance", "terrain", "layers"}));
+            (std::vector<std::string>{"ingest", "ribbons", "terrain", "render", "layers"}));
 
   std::ifstream in(out("report.json"));
   const nlohmann::json json = nlohmann::json::parse(in);
@@ -221,7 +223,9 @@ TEST_F(DemoRun, NothingChangesBeyondTheFeaturesReach) {
   EXPECT_EQ(changed, 0u) << "of " << far << " pixels beyond reach";
 }
 
-TEST_F(DemoRun, WindowedAvoidanceEqualsTheWholeGridMap) {
+// The run's avoidance layer against a naive whole-grid build: every ribbon's footprint and
+// fold-overs burnt on the whole grid, and the distance field capped at avoidance.max_distance.
+TEST_F(DemoRun, AvoidanceLayerEqualsTheWholeGridMapCapped) {
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
   Warnings warnings;
@@ -229,18 +233,30 @@ TEST_F(DemoRun, WindowedAvoidanceEqualsTheWholeGridMap) {
       detail::make_feature_ribbons(*config_, lines, original_->grid, warnings);
   const detail::ExistingFeatures existing =
       detail::load_existing(config_->existing, *original_, config_->repair, warnings);
-  AvoidanceInputs inputs;
-  inputs.polygons = existing.polygons;
-  inputs.junction_discs = ribbons.junction_discs;
-  for (const auto& class_ribbons : ribbons.ribbons) {
-    for (const Ribbon& r : class_ribbons) inputs.ribbons.push_back(&r);
-  }
-  const AvoidanceMap expected =
-      build_avoidance_map(inputs, original_->grid, Window::whole(original_->grid));
-  const AvoidanceMap actual = detail::build_run_avoidance(existing, ribbons, original_->grid);
-  EXPECT_EQ(actual.forbidden.pixels, expected.forbidden.pixels);
-  EXPECT_EQ(actual.distance.pixels, expected.distance.pixels);
-  EXPECT_EQ(std::count(actual.forbidden.pixels.begin(), actual.forbidden.pixels.end(), 1),
+  const GridSpec& grid = original_->grid;
+  const Window whole = Window::whole(grid);
+  Raster<std::uint8_t> forbidden(grid.width, grid.height, 0);
+  burn_polygons(existing.polygons, grid, whole, forbidden, 1);
+  burn_polygons(ribbons.junction_discs, grid, whole, forbidden, 1);
+  burn_buffered_lines(existing.lines, existing.line_widths, grid, whole, forbidden, 1);
+  for (const auto& class_ribbons : ribbons.ribbons)
+    for (const Ribbon& r : class_ribbons) {
+      burn_polygons(piece_polygons(r), grid, whole, forbidden, 1);
+      const Raster<std::uint8_t> folds = foldover_mask(r, grid, whole);
+      for (std::size_t i = 0; i < folds.pixels.size(); ++i) forbidden.pixels[i] |= folds.pixels[i];
+    }
+  Raster<float> distance = distance_to_mask(forbidden, grid.pixel_width, grid.pixel_height);
+  const float cap = float(config_->avoidance.max_distance);
+  for (float& d : distance.pixels) d = std::min(d, cap);
+
+  const ExrContents exr = read_exr(out("avoidance.exr"));
+  ASSERT_EQ(exr.channels, (std::vector<std::string>{"distance", "forbidden"}));
+  std::vector<std::uint8_t> written;
+  for (const float v : exr.bands[1].pixels) written.push_back(v > 0.0f ? 1 : 0);
+  EXPECT_EQ(written, forbidden.pixels);
+  EXPECT_EQ(exr.bands[0].pixels, distance.pixels);
+  EXPECT_GT(std::count(distance.pixels.begin(), distance.pixels.end(), cap), 0);  // it capped
+  EXPECT_EQ(std::count(forbidden.pixels.begin(), forbidden.pixels.end(), 1),
             report_->forbidden_pixels);
 }
 

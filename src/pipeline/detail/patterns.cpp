@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/progress.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/foldover.hpp"
 #include "synth/detail/backend_factory.hpp"
@@ -111,6 +112,10 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   fixed.include_foldovers = false;
 
   Backends backends;
+  std::int64_t total = 0;
+  for (const ClassPlan& plan : plans)
+    for (const Ribbon& r : ribbons.ribbons[plan.class_index]) total += r.pieces.empty() ? 0 : 1;
+  Progress progress("synthesis", total, "feature");
   const double cell = config.synthesis_resolution;
   for (const ClassPlan& plan : plans) {
     const FeatureClassConfig& feature_class = config.features[plan.class_index];
@@ -236,87 +241,10 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
           double(forbidden.allocated_bytes()) / 1e6,
           report.avoidance_seconds + report.synthesis_seconds + report.render_seconds);
       run.patterns.push_back(std::move(pattern));
+      progress.advance();
     }
   }
   return run;
-}
-
-namespace {
-
-std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemplar& exemplar) {
-  if (!c.synthesis->channels.empty()) return c.synthesis->channels;
-  std::vector<ChannelMapping> mappings = {{"A", "splat." + c.name + "_pattern"}};
-  if (exemplar.channel_index("height") >= 0) mappings.push_back({"height", "height"});
-  return mappings;
-}
-
-}  // namespace
-
-void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
-                    Raster<float>& height, SplatLayers& splat) {
-  // Tile by tile over the cells near the ribbon: a pixel's render never depends on the window,
-  // so memory follows the ribbon on the output grid too, with the same bits.
-  constexpr int kTile = 256;
-  for (const FeaturePattern& pattern : run.patterns) {
-    if (!pattern.on_ground) continue;  // a bridge's or tunnel's pattern is in its placements only
-    const FeatureClassConfig& c = config.features[pattern.class_index];
-    const Ribbon& ribbon = pattern.ribbon;
-    const Exemplar& exemplar = run.exemplars[pattern.exemplar_index];
-    if (ribbon_window(ribbon, grid).width == 0) continue;  // off the grid: no band is added
-    const std::vector<ChannelMapping> mappings = mappings_of(c, exemplar);
-    std::vector<int> channels;
-    for (const ChannelMapping& m : mappings) {
-      const int channel = exemplar.channel_index(m.channel);
-      if (channel < 0) {
-        fail("features.{}.synthesis.channels.{}: exemplar {} has no channel '{}' (it has {})",
-             c.name, m.channel, exemplar.path, m.channel, fmt::join(exemplar.channel_names, ", "));
-      }
-      channels.push_back(channel);
-    }
-    const SparseRaster<std::uint8_t> layout(grid.width, grid.height, 0, kTile);
-    for (const TileIndex t : ribbon_tiles(ribbon, grid, kTile, kCanvasHalo)) {
-      const Window window = layout.tile_window(t);
-      const RenderedPattern rendered =
-          render_pattern(exemplar, ribbon, pattern.synthesis, grid, window, c.synthesis->stitch,
-                         c.synthesis->feather);
-      for (std::size_t k = 0; k < mappings.size(); ++k) {
-        const ChannelMapping& m = mappings[k];
-        const Raster<float>& values = rendered.channels[std::size_t(channels[k])];
-        if (m.target == "height") {
-          const float factor = float(c.synthesis->height_detail);
-          for (int row = 0; row < window.height; ++row) {
-            for (int col = 0; col < window.width; ++col) {
-              const float coverage = rendered.coverage.at(col, row);
-              float& h = height.at(window.col0 + col, window.row0 + row);
-              if (coverage > 0.0f && !std::isnan(h)) h += factor * values.at(col, row) * coverage;
-            }
-          }
-          continue;
-        }
-        const std::string material = m.target.substr(6);  // after "splat."
-        auto it = std::find(splat.materials.begin(), splat.materials.end(), material);
-        if (it == splat.materials.end()) {
-          splat.materials.push_back(material);
-          splat.weights.emplace_back(grid.width, grid.height, 0.0f);
-          it = splat.materials.end() - 1;
-        }
-        const std::size_t target = std::size_t(it - splat.materials.begin());
-        const bool is_alpha = m.channel == "A";
-        for (int row = 0; row < window.height; ++row) {
-          for (int col = 0; col < window.width; ++col) {
-            const float coverage = rendered.coverage.at(col, row);
-            if (!(coverage > 0.0f)) continue;
-            const float share =
-                std::clamp(is_alpha ? coverage : coverage * values.at(col, row), 0.0f, 1.0f);
-            const int x = window.col0 + col, y = window.row0 + row;
-            if (std::isnan(height.at(x, y))) continue;  // nothing is painted on nodata
-            for (auto& band : splat.weights) band.at(x, y) *= 1.0f - share;
-            splat.weights[target].at(x, y) += share;
-          }
-        }
-      }
-    }
-  }
 }
 
 }  // namespace tw::detail

@@ -60,11 +60,4 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
                                const FeatureRibbons& ribbons, const ExistingFeatures& existing,
                                const PatternOptions& options = {});
 
-// Renders the patterns into `grid` (whole) and applies their channel mappings: height detail on
-// top of `height` (never on NaN nodata cells) and splat materials that take their share from
-// the others proportionally (weights keep summing to 1). Patterns along bridges and tunnels are
-// left out: they lie on the deck, not on the ground (docs/osm.md).
-void apply_patterns(const PatternRun& run, const PipelineConfig& config, const GridSpec& grid,
-                    Raster<float>& height, SplatLayers& splat);
-
 }  // namespace tw::detail

@@ -1,5 +1,6 @@
 #include "pipeline/detail/report_json.hpp"
 
+#include <fmt/format.h>
 #include <gdal.h>
 
 #include "pipeline/version.hpp"
@@ -64,8 +65,24 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
     if (w.fid) entry["fid"] = *w.fid;
     warnings.push_back(std::move(entry));
   }
+  json tiles = json::array();
+  const auto window_json = [](const Window& w) { return json{w.col0, w.row0, w.width, w.height}; };
+  for (const TileReport& t : report.tiles.tiles) {
+    tiles.push_back({{"index", t.index},
+                     {"ix", t.ix},
+                     {"iy", t.iy},
+                     {"window", window_json(t.window)},
+                     {"halo_window", window_json(t.halo_window)},
+                     {"seconds", t.seconds},
+                     {"xxh64", fmt::format("{:016x}", t.xxh64)}});
+  }
   const GridSpec& g = report.grid;
   return {
+      {"tiles",
+       {{"size", report.tiles.size},
+        {"overlap", report.tiles.overlap},
+        {"count", report.tiles.tiles.size()},
+        {"tiles", tiles}}},
       {"terraweave", kTerraweaveVersion},
       {"versions", version_line()},
       {"pipeline", config.file.string()},

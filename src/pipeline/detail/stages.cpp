@@ -4,10 +4,7 @@
 #include <cmath>
 
 #include "core/log.hpp"
-#include "raster/distance.hpp"
-#include "raster/foldover.hpp"
 #include "raster/junction_discs.hpp"
-#include "raster/rasterize.hpp"
 #include "ribbon/junctions.hpp"
 
 namespace tw::detail {
@@ -70,71 +67,6 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   out.synthesis_junction_discs = junction_discs(synthesis_junctions, synthesis_radii);
   logger().info("ribbons: {} features, {} junctions", curves.size(), junctions.size());
   return out;
-}
-
-Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
-  double min_col = grid.width, min_row = grid.height, max_col = 0.0, max_row = 0.0;
-  for (const Piece& piece : ribbon.pieces) {
-    for (const Vec2 corner :
-         {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = grid.world_to_pixel(corner);
-      min_col = std::min(min_col, p.x);
-      max_col = std::max(max_col, p.x);
-      min_row = std::min(min_row, p.y);
-      max_row = std::max(max_row, p.y);
-    }
-  }
-  // Clamped in double before the conversion: a corner far outside the grid (a huge width)
-  // must not overflow int.
-  const auto clamped = [](double pixel, int limit) {
-    return int(std::clamp(pixel, 0.0, double(limit)));
-  };
-  const int col0 = clamped(std::floor(min_col) - 1, grid.width);
-  const int row0 = clamped(std::floor(min_row) - 1, grid.height);
-  const int col1 = clamped(std::ceil(max_col) + 1, grid.width);
-  const int row1 = clamped(std::ceil(max_row) + 1, grid.height);
-  if (col1 <= col0 || row1 <= row0) return {};
-  return {col0, row0, col1 - col0, row1 - row0};
-}
-
-namespace {
-
-void add_window(Raster<std::uint8_t>& whole, const Window& window,
-                const Raster<std::uint8_t>& part) {
-  for (int row = 0; row < window.height; ++row) {
-    for (int col = 0; col < window.width; ++col) {
-      if (part.at(col, row)) whole.at(window.col0 + col, window.row0 + row) = 1;
-    }
-  }
-}
-
-}  // namespace
-
-// The union of build_avoidance_map, but each ribbon's footprint and fold-overs are rasterized
-// on the ribbon's own window, not the whole grid: hundreds of ribbons on a 8k^2 grid otherwise
-// cost hundreds of whole-grid passes. Window results equal crops of whole-grid ones
-// (raster/rasterize.hpp, raster/foldover.hpp), so the map is the same.
-AvoidanceMap build_run_avoidance(const ExistingFeatures& existing, const FeatureRibbons& ribbons,
-                                 const GridSpec& grid) {
-  AvoidanceMap map;
-  map.grid = grid;
-  map.window = Window::whole(grid);
-  map.forbidden = Raster<std::uint8_t>(grid.width, grid.height, 0);
-  burn_polygons(existing.polygons, grid, map.window, map.forbidden, 1);
-  burn_polygons(ribbons.junction_discs, grid, map.window, map.forbidden, 1);
-  burn_buffered_lines(existing.lines, existing.line_widths, grid, map.window, map.forbidden, 1);
-  for (const auto& class_ribbons : ribbons.ribbons) {
-    for (const Ribbon& ribbon : class_ribbons) {
-      const Window window = ribbon_window(ribbon, grid);
-      if (ribbon.pieces.empty() || window.width == 0) continue;
-      Raster<std::uint8_t> part;
-      burn_polygons(piece_polygons(ribbon), grid, window, part, 1);
-      add_window(map.forbidden, window, part);
-      add_window(map.forbidden, window, foldover_mask(ribbon, grid, window));
-    }
-  }
-  map.distance = distance_to_mask(map.forbidden, grid.pixel_width, grid.pixel_height);
-  return map;
 }
 
 std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,

@@ -1,6 +1,6 @@
 #pragma once
 // The middle stages of a run, between ingest and the layers: ribbons and junctions, the
-// avoidance map, and the features as the terrain module sees them.
+// features as the terrain module sees them.
 #include <vector>
 
 #include "core/grid.hpp"
@@ -8,7 +8,6 @@
 #include "geo/features.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
-#include "raster/avoidance.hpp"
 #include "ribbon/ribbon.hpp"
 #include "terrain/height_ops.hpp"
 
@@ -31,13 +30,6 @@ struct FeatureRibbons {
 FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const std::vector<std::vector<LineFeature>>& lines,
                                     const GridSpec& grid, Warnings& warnings);
-
-// The pixels of `grid` that the ribbon's pieces can touch, plus a pixel; empty when outside.
-Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid);
-
-// Existing features, every ribbon's footprint and fold-overs, and the junction discs.
-AvoidanceMap build_run_avoidance(const ExistingFeatures& existing, const FeatureRibbons& ribbons,
-                                 const GridSpec& grid);
 
 std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
                                              const std::vector<std::vector<LineFeature>>& lines);

@@ -1,0 +1,58 @@
+// Pixel windows of ribbons and points, and the window index over them.
+#include "raster/footprint.hpp"
+#include "raster/window_index.hpp"
+
+#include <gtest/gtest.h>
+
+namespace tw {
+namespace {
+
+// A piece reaching 5e11 m either side (a width of 1e12) overflowed int in ribbon_window,
+// which then gave an empty window and the run "succeeded" with nothing forbidden.
+TEST(RibbonWindow, APieceFarBeyondTheGridClampsToTheWholeGrid) {
+  const GridSpec grid{100, 80, 500000.0, 5000000.0, 10.0, 10.0};
+  Ribbon ribbon;
+  ribbon.pieces.push_back(
+      Piece{{500500.0, 5e11}, {500500.0, -5e11}, {500504.0, -5e11}, {500504.0, 5e11}, 0.0, 4.0});
+  EXPECT_EQ(ribbon_window(ribbon, grid), (Window{49, 0, 3, 80}));
+  ribbon.pieces[0] = Piece{{-5e11, -5e11}, {-5e11, 5e11}, {5e11, 5e11}, {5e11, -5e11}, 0.0, 4.0};
+  EXPECT_EQ(ribbon_window(ribbon, grid), Window::whole(grid));
+}
+
+TEST(Windows, IntersectAndGrowClampToTheGrid) {
+  const GridSpec grid{100, 80, 0.0, 0.0, 1.0, 1.0};
+  EXPECT_EQ(intersect({10, 10, 20, 20}, {25, 0, 50, 15}), (Window{25, 10, 5, 5}));
+  EXPECT_EQ(intersect({10, 10, 20, 20}, {30, 0, 50, 15}), Window{});
+  EXPECT_EQ(grow_window({0, 70, 10, 10}, 3, grid), (Window{0, 67, 13, 13}));
+  EXPECT_EQ(grow_window({50, 40, 1, 1}, 1 << 30, grid), Window::whole(grid));
+}
+
+TEST(Windows, PointsWindowReachesTheReachPlusTwoPixels) {
+  const GridSpec grid{100, 80, 1000.0, 2000.0, 2.0, 2.0};
+  // x 1040..1060 -> cols 20..30, y 1960..1950 -> rows 20..25; reach 4 m = 2 px, + 2 px.
+  EXPECT_EQ(points_window({{1040.0, 1960.0}, {1060.0, 1950.0}}, 4.0, grid),
+            (Window{16, 16, 18, 13}));
+  EXPECT_EQ(points_window({{0.0, 0.0}}, 1.0, grid), Window{});  // off the grid
+}
+
+// Every item the index returns meets the window, and none that meets it is missed.
+TEST(WindowIndex, FindsExactlyTheItemsMeetingAWindow) {
+  const GridSpec grid{1000, 700, 0.0, 0.0, 1.0, 1.0};
+  std::vector<Window> items;
+  for (int i = 0; i < 300; ++i)
+    items.push_back(
+        {(i * 37) % 990 - 20, (i * 53) % 690 - 10, 1 + (i * 7) % 300, 1 + (i * 11) % 90});
+  items.push_back({});  // empty: meets nothing
+  const WindowIndex index = index_windows(grid, items, 64);
+  for (const Window query : {Window{0, 0, 1000, 700}, Window{100, 100, 64, 64},
+                             Window{999, 699, 1, 1}, Window{500, 0, 3, 700}}) {
+    std::vector<std::size_t> expected;
+    for (std::size_t i = 0; i < items.size(); ++i)
+      if (intersect(intersect(items[i], Window::whole(grid)), query).width > 0)
+        expected.push_back(i);
+    EXPECT_EQ(items_meeting(index, query), expected);
+  }
+}
+
+}  // namespace
+}  // namespace tw
