@@ -15,6 +15,7 @@
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/job_outputs.hpp"
+#include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 
@@ -112,18 +113,6 @@ class ScopedCurrentPath {
   fs::path previous_;
 };
 
-// Forbidden pixels of the tile's core (the report's count is the sum over the tiles).
-std::int64_t forbidden_in_core(const LayerSet& layers, const TileSpec& tile) {
-  const Layer* avoidance = find_layer(layers, "avoidance");
-  if (!avoidance) return 0;
-  const Raster<float>& band = avoidance->bands.front();  // "forbidden"
-  std::int64_t count = 0;
-  for (int row = tile.window.row0; row < tile.window.row_end(); ++row)
-    for (int col = tile.window.col0; col < tile.window.col_end(); ++col)
-      count += band.at(col - tile.halo_window.col0, row - tile.halo_window.row0) != 0.0f;
-  return count;
-}
-
 }  // namespace
 
 PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options) {
@@ -136,6 +125,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   Warnings warnings;
   PlanOptions plan_options;
   plan_options.backend = options.backend;
+  if (config.output.tiles.size <= 0)
+    fail(
+        "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "
+        "output.tiles.size=512)");
   WorldPlan plan = plan_world(config, plan_options, warnings);
   plan.report.warnings = warnings.list();
   if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
@@ -189,7 +182,8 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
          int(plan.tiles.size()) - 1);
   const TileSpec& spec = plan.tiles[std::size_t(tile)];
   LayerSet layers = render_tile(plan, spec);
-  const std::int64_t forbidden = forbidden_in_core(layers, spec);
+  const std::int64_t forbidden = detail::forbidden_in(layers, spec.halo_window, spec.window);
+  const std::uint64_t pixels_hash = detail::layer_bytes_hash(layers);
   WriteOptions write;
   write.exr = job.value("exr", true);
   write.geotiff = job.value("geotiff", true);
@@ -215,6 +209,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
                        {"tile", tile},
                        {"files", files},
                        {"forbidden_pixels", forbidden},
+                       {"xxh64", pixels_hash},
                        {"seconds", result.seconds}};
   // Last: a result names only complete files.
   write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
@@ -261,6 +256,7 @@ RunReport finish_job(const fs::path& plan_dir) {
     rendered.tile = spec;
     rendered.seconds = result.value("seconds", 0.0);
     rendered.forbidden_pixels = result.value("forbidden_pixels", std::int64_t(0));
+    rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
     for (const json& file : result.at("files")) {
       const fs::path relative = file.at("file").get<std::string>();
       const std::string bytes = read_file_bytes(dir / relative);
@@ -275,12 +271,11 @@ RunReport finish_job(const fs::path& plan_dir) {
     }
   }
   RunReport report = detail::write_job_outputs(plan, config, tiles, out, transaction);
-  report.stages.insert(report.stages.begin(), {"plan", job.value("plan_seconds", 0.0)});
-  double render_seconds = 0.0;
+  double render_seconds = 0.0;  // the tiles' own, summed (on any number of workers)
   for (const detail::RenderedTile& t : tiles) render_seconds += t.seconds;
-  report.stages.insert(report.stages.begin() + 1, {"render-tiles", render_seconds});
+  report.stages.push_back({"render", render_seconds});
   report.stages.push_back({"finish", seconds_since(started)});
-  detail::write_job_report(report, config, tiles, out, transaction);
+  detail::write_job_report(report, config, out, transaction);
   transaction.commit();
   report.outputs = transaction.committed();
   std::error_code ec;  // the tiles are the output folder's now (links or copies)

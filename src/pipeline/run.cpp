@@ -2,7 +2,6 @@
 
 #include <tbb/global_control.h>
 #define XXH_INLINE_ALL
-#include <xxhash.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +17,7 @@
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/report_json.hpp"
+#include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
 #include "synth/placements_io.hpp"
 
@@ -29,27 +29,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// xxHash64 of every band's pixels, layer after layer (report.json `tiles`).
-std::uint64_t layer_bytes_hash(const LayerSet& set) {
-  XXH64_state_t* state = XXH64_createState();
-  XXH64_reset(state, 0);
-  for (const Layer& layer : set.layers)
-    for (const Raster<float>& band : layer.bands)
-      XXH64_update(state, band.pixels.data(), band.pixels.size() * sizeof(float));
-  const std::uint64_t hash = XXH64_digest(state);
-  XXH64_freeState(state);
-  return hash;
-}
-
-std::int64_t forbidden_in(const LayerSet& set, const Window& halo, const Window& core) {
-  const Layer* avoidance = find_layer(set, "avoidance");
-  std::int64_t count = 0;
-  for (int row = core.row0; row < core.row_end(); ++row)
-    for (int col = core.col0; col < core.col_end(); ++col)
-      count += avoidance->bands[0].at(col - halo.col0, row - halo.row0) > 0.0f;
-  return count;
 }
 
 // Under strict, any warning is an error: raised before anything is staged for writing.
@@ -118,14 +97,14 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     LayerSet layers = render_tile(plan, tile);
     render_seconds += seconds_since(started);
     const auto writing = std::chrono::steady_clock::now();
-    report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
+    report.forbidden_pixels += detail::forbidden_in(layers, tile.halo_window, tile.window);
     TileReport& tile_report = report.tiles.tiles.emplace_back();
     tile_report.index = tile.index;
     tile_report.ix = tile.ix;
     tile_report.iy = tile.iy;
     tile_report.window = tile.window;
     tile_report.halo_window = tile.halo_window;
-    tile_report.xxh64 = layer_bytes_hash(layers);
+    tile_report.xxh64 = detail::layer_bytes_hash(layers);
     if (!tiled) {
       write_layer_set(layers, dir, transaction, write_options);
       if (config.output.preview) {

@@ -192,8 +192,8 @@ TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
                            "placements/roads_2.json"})
     EXPECT_TRUE(fs::exists(dir_ / "out" / name)) << name;
   const nlohmann::json manifest = nlohmann::json::parse(read_file_bytes(dir_ / "out/report.json"));
-  ASSERT_EQ(manifest["tiles"]["list"].size(), 9u);
-  EXPECT_EQ(manifest["tiles"]["list"][4]["files"].size(), 6u);  // 3 layers x EXR + GeoTIFF
+  ASSERT_EQ(manifest["tiles"]["tiles"].size(), 9u);
+  EXPECT_EQ(manifest["tiles"]["tiles"][4]["index"], 4);
   EXPECT_EQ(report.pattern_violations, 0);
   EXPECT_FALSE(fs::exists(tiles));  // the tiles are the output folder's now
 }

@@ -18,10 +18,7 @@ PIPELINE = os.path.join(SOURCE_DIR, "pipelines", "generated.yaml")
 # 256 x 256 cells of 16 m (the lines of generated.yaml cross it), 3 x 3 tiles of 96 pixels
 # with 8 of overlap: the roads and the river cross several tile borders.
 OVERRIDES = ["generate.width=256", "generate.height=256", "generate.pixel_size=16",
-             "output.tiles.size=96", "output.tiles.overlap=8",
-             # Until run.cpp renders through the plan too: a cap beyond the world keeps the
-             # untiled avoidance distance.
-             "avoidance.max_distance=100000"]
+             "output.tiles.size=96", "output.tiles.overlap=8"]
 TIMING_KEYS = {"stages", "total_seconds", "seconds", "ingest_seconds", "avoidance_seconds",
                "synthesis_seconds", "render_seconds"}
 

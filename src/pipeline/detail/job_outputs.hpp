@@ -25,6 +25,7 @@ struct RenderedTile {
   std::vector<TileFile> files;
   double seconds = 0.0;
   std::int64_t forbidden_pixels = 0;  // in its core window
+  std::uint64_t xxh64 = 0;            // of its pixels (detail/tile_stats.hpp)
 };
 
 // Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.
@@ -34,16 +35,14 @@ std::vector<std::filesystem::path> write_tile_files(LayerSet& layers, const Tile
                                                     OutputStager& stager,
                                                     const WriteOptions& options);
 
-// The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs, placements/ and preview.png.
-// Returns the plan's report completed with what the tiles found.
+// The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs and placements/, as terraweave run
+// writes them for a tiled world. Returns the plan's report completed with what the tiles found.
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
                             const std::vector<RenderedTile>& tiles,
                             const std::filesystem::path& out, OutputFolder& transaction);
 
-// <out>/report.json: the run's manifest, with `tiles` (the grid, and per tile its files,
-// sizes, hashes and time).
+// <out>/report.json, as terraweave run writes it.
 void write_job_report(const RunReport& report, const PipelineConfig& config,
-                      const std::vector<RenderedTile>& tiles, const std::filesystem::path& out,
-                      OutputFolder& transaction);
+                      const std::filesystem::path& out, OutputFolder& transaction);
 
 }  // namespace tw::detail
