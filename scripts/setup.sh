@@ -14,6 +14,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
   libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev
   nodejs chromium
+  python3-distributed
   "$@"
 )
 

@@ -25,6 +25,7 @@
 #include "pipeline/diff.hpp"
 #include "pipeline/exemplar_command.hpp"
 #include "pipeline/export_command.hpp"
+#include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/version.hpp"
@@ -113,6 +114,31 @@ int view_command(const tw::ViewOptions& options, bool serve, int port) {
   tw::fail("--serve: cannot start python3 -m http.server: {}", std::strerror(errno));
 }
 
+int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
+  options.overrides = args.overrides;
+  const tw::PipelineConfig config = load(args);
+  if (options.output_dir.empty()) options.output_dir = config.output.dir;
+  const tw::PlannedJob job = tw::plan_job(config, options);
+  std::printf("plan %s: %zu tiles, %zu warnings, in %s\n", job.plan.c_str(), job.tiles,
+              job.warnings, tw::single_line(job.plan_dir.string()).c_str());
+  return 0;
+}
+
+int render_tile_command(const std::string& plan, int tile) {
+  const tw::TileJobResult result = tw::render_job_tile(tw::find_plan_dir(plan), tile);
+  std::printf("tile %d: %zu files in %.3f s\n", result.tile, result.files.size(), result.seconds);
+  return 0;
+}
+
+int finish_command(const std::string& plan) {
+  const tw::RunReport report = tw::finish_job(tw::find_plan_dir(plan));
+  std::printf("%zu files in %s\n", report.outputs.size(),
+              report.outputs.empty()
+                  ? "-"
+                  : tw::single_line(report.outputs.front().parent_path().string()).c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -175,6 +201,35 @@ int main(int argc, char** argv) {
       ->expected(0, 1)
       ->default_str("8000")
       ->check(CLI::Range(1, 65535));
+
+  // A run in three steps for many processes or machines (docs/distributed.md).
+  PipelineArgs plan_args;
+  tw::PlanJobOptions plan_options;
+  std::string plan_out;
+  std::string plan_backend;
+  CLI::App* plan = app.add_subcommand(
+      "plan", "plan a pipeline's world and write its tasks (one per tile) for render-tile");
+  add_pipeline_args(*plan, plan_args);
+  plan->add_option("--out", plan_out, "output folder (replaces output.dir), shared by the workers")
+      ->check(non_empty);
+  plan->add_option("--backend", plan_backend, "synthesis backend")
+      ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
+
+  std::string render_plan;
+  int render_tile_index = 0;
+  CLI::App* render_tile =
+      app.add_subcommand("render-tile", "render one tile of a plan into its output folder");
+  render_tile->add_option("PLAN", render_plan, "plan folder, or the output folder holding one")
+      ->required();
+  render_tile->add_option("--tile", render_tile_index, "tile index (tasks.json)")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
+
+  std::string finish_plan;
+  CLI::App* finish = app.add_subcommand(
+      "finish", "gather a plan's rendered tiles, write mosaics and report.json, and commit");
+  finish->add_option("PLAN", finish_plan, "plan folder, or the output folder holding one")
+      ->required();
 
   tw::SynthCommand synth_args;
   CLI::App* synth = app.add_subcommand(
@@ -355,6 +410,15 @@ int main(int argc, char** argv) {
                   tw::single_line(export_args.out_dir.string()).c_str());
       return 0;
     }
+    if (plan->parsed()) {
+      if (!plan_out.empty()) plan_options.output_dir = plan_out;
+      if (!plan_backend.empty()) plan_options.backend = plan_backend;
+      plan_options.strict = run_options.strict;  // the global flags
+      plan_options.allow_network = run_options.allow_network;
+      return plan_command(plan_args, plan_options);
+    }
+    if (render_tile->parsed()) return render_tile_command(render_plan, render_tile_index);
+    if (finish->parsed()) return finish_command(finish_plan);
     if (synth->parsed()) {
       synth_args.allow_network = run_options.allow_network;
       const tw::Synthesis result = tw::run_synth_command(synth_args);

@@ -122,6 +122,10 @@ ContentHash hash_bytes(std::span<const std::byte> data) {
   return {h.high64, h.low64};
 }
 
+std::string content_hash(std::string_view bytes) {
+  return hash_bytes(std::as_bytes(std::span(bytes.data(), bytes.size()))).hex();
+}
+
 ContentHash hash_file(const std::filesystem::path& path) {
   return Hasher().file(path).digest();
 }

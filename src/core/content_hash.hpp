@@ -60,5 +60,7 @@ class Hasher {
 // The hash of a run of bytes alone (the checksum of a cache entry's payload).
 ContentHash hash_bytes(std::span<const std::byte> data);
 ContentHash hash_file(const std::filesystem::path& path);
+// hash_bytes(bytes).hex(): the 32 digits `xxhsum -H2` prints (plan files are named by it).
+std::string content_hash(std::string_view bytes);
 
 }  // namespace tw

@@ -2,7 +2,6 @@
 
 #include <tbb/global_control.h>
 #define XXH_INLINE_ALL
-#include <xxhash.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +20,7 @@
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
@@ -33,18 +33,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// xxHash64 of every band's pixels, layer after layer (report.json `tiles`).
-std::uint64_t layer_bytes_hash(const LayerSet& set) {
-  XXH64_state_t* state = XXH64_createState();
-  XXH64_reset(state, 0);
-  for (const Layer& layer : set.layers)
-    for (const Raster<float>& band : layer.bands)
-      XXH64_update(state, band.pixels.data(), band.pixels.size() * sizeof(float));
-  const std::uint64_t hash = XXH64_digest(state);
-  XXH64_freeState(state);
-  return hash;
 }
 
 // "tiles/splat_x1_y2.tif" -> "splat": the layer a tile file belongs to.
@@ -82,14 +70,6 @@ HeightRange range_of_fact(const std::string& fact) {
   return std::array<float, 2>{std::stof(fact.substr(0, space)), std::stof(fact.substr(space + 1))};
 }
 
-std::int64_t forbidden_in(const LayerSet& set, const Window& halo, const Window& core) {
-  const Layer* avoidance = find_layer(set, "avoidance");
-  std::int64_t count = 0;
-  for (int row = core.row0; row < core.row_end(); ++row)
-    for (int col = core.col0; col < core.col_end(); ++col)
-      count += avoidance->bands[0].at(col - halo.col0, row - halo.row0) > 0.0f;
-  return count;
-}
 
 // Under strict, any warning is an error: raised before anything is staged for writing.
 void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
@@ -201,8 +181,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                   write_options.exr_compression, write_options.exr_zip_level);
       if (config.output.geotiff) write_geotiff(layers, layer, stager.stage(stem.string() + ".tif"));
     }
-    facts["forbidden_pixels"] = std::to_string(forbidden_in(layers, tile.halo_window, tile.window));
-    facts["xxh64"] = std::to_string(layer_bytes_hash(layers));
+    facts["forbidden_pixels"] = std::to_string(detail::forbidden_in(layers, tile.halo_window, tile.window));
+    facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
     facts["input_height"] = range_fact(core_range(
         read_height_window(plan.heights, plan.grid, tile.halo_window), tile.halo_window, tile.window));
     facts["output_height"] = range_fact(
@@ -220,8 +200,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       LayerSet layers = render_tile(plan, tile);
       render_seconds += seconds_since(started);
       const auto writing = std::chrono::steady_clock::now();
-      report.forbidden_pixels += forbidden_in(layers, tile.halo_window, tile.window);
-      tile_report.xxh64 = layer_bytes_hash(layers);
+      report.forbidden_pixels += detail::forbidden_in(layers, tile.halo_window, tile.window);
+      tile_report.xxh64 = detail::layer_bytes_hash(layers);
       widen(report.input_height,
             core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
                        tile.halo_window, tile.window));

@@ -1,0 +1,73 @@
+#include "pipeline/detail/job_outputs.hpp"
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "layers/vrt.hpp"
+#include "pipeline/detail/report_json.hpp"
+#include "synth/placements_io.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::vector<fs::path> write_tile_files(LayerSet& layers, const TileSpec& tile, const fs::path& dir,
+                                       OutputStager& stager, const WriteOptions& options) {
+  // The files terraweave run writes for a tile (pipeline/run.cpp), named by the tile.
+  for (Layer& layer : layers.layers) layer.name = tile_file_stem(layer.name, tile);
+  WriteOptions tile_options = options;
+  tile_options.preview = false;
+  return write_layer_set(layers, dir / "tiles", stager, tile_options);
+}
+
+RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
+                            const std::vector<RenderedTile>& tiles, const fs::path& out,
+                            OutputFolder& transaction) {
+  RunReport report = plan.report;
+  report.forbidden_pixels = 0;
+  report.tiles.size = plan.tile_size;
+  report.tiles.overlap = plan.tile_overlap;
+  std::map<std::string, std::vector<fs::path>> tifs;  // per layer, staged, for the mosaics
+  for (const RenderedTile& t : tiles) {
+    report.forbidden_pixels += t.forbidden_pixels;
+    report.tiles.tiles.push_back({t.tile.index, t.tile.ix, t.tile.iy, t.tile.window,
+                                  t.tile.halo_window, t.seconds, t.xxh64});
+    for (const TileFile& f : t.files) {
+      if (f.file.extension() != ".tif") continue;
+      const std::string stem = f.file.stem().string();
+      tifs[stem.substr(0, stem.rfind("_x"))].push_back(f.staged);
+    }
+  }
+  // As terraweave run writes a tiled world: the mosaics, no preview.
+  for (const auto& [layer, sources] : tifs)
+    write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
+  // placements/<class>_<fid>.json (a multi-part FID adds _<part>), as terraweave run names them.
+  std::map<std::string, int> parts;
+  for (const PlannedPattern& p : plan.patterns) {
+    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
+                                   plan.lines[p.class_index][p.feature_index].fid);
+    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
+    const std::string file = "placements/" + name + ".json";
+    Synthesis saved = p.synthesis;
+    saved.backend.clear();
+    save_placements(saved, plan.exemplars[p.exemplar_index].path,
+                    transaction.stage(out / file).string());
+    auto& synthesis = report.classes[p.class_index].features[p.feature_index].synthesis;
+    if (synthesis) synthesis->placements = file;
+  }
+  return report;
+}
+
+void write_job_report(const RunReport& report, const PipelineConfig& config, const fs::path& out,
+                      OutputFolder& transaction) {
+  const fs::path path = transaction.stage(out / "report.json");
+  std::ofstream file(path);
+  file << report_to_json(report, config).dump(2) << '\n';
+  file.close();
+  if (!file) fail("cannot write {}", path.string());
+}
+
+}  // namespace tw::detail

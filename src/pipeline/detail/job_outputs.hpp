@@ -1,0 +1,48 @@
+#pragma once
+// What `terraweave finish` writes besides the tiles (pipeline/job.hpp): the mosaics, the
+// placements, the preview and report.json, staged in the output folder's transaction.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/output_folder.hpp"
+#include "layers/write.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/plan.hpp"
+
+namespace tw::detail {
+
+struct TileFile {
+  std::filesystem::path file;  // relative to the output folder, e.g. tiles/height_x0_y1.exr
+  std::uintmax_t bytes = 0;
+  std::string xxh3_128;
+  std::filesystem::path staged;  // where it is in the output folder's staging folder
+};
+
+struct RenderedTile {
+  TileSpec tile;
+  std::vector<TileFile> files;
+  double seconds = 0.0;
+  std::int64_t forbidden_pixels = 0;  // in its core window
+  std::uint64_t xxh64 = 0;            // of its pixels (detail/tile_stats.hpp)
+};
+
+// Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.
+// Returns the final paths.
+std::vector<std::filesystem::path> write_tile_files(LayerSet& layers, const TileSpec& tile,
+                                                    const std::filesystem::path& dir,
+                                                    OutputStager& stager,
+                                                    const WriteOptions& options);
+
+// The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs and placements/, as terraweave run
+// writes them for a tiled world. Returns the plan's report completed with what the tiles found.
+RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
+                            const std::vector<RenderedTile>& tiles,
+                            const std::filesystem::path& out, OutputFolder& transaction);
+
+// <out>/report.json, as terraweave run writes it.
+void write_job_report(const RunReport& report, const PipelineConfig& config,
+                      const std::filesystem::path& out, OutputFolder& transaction);
+
+}  // namespace tw::detail

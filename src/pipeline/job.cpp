@@ -1,0 +1,288 @@
+#include "pipeline/job.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "core/content_hash.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/log.hpp"
+#include "core/output_folder.hpp"
+#include "geo/input_guard.hpp"
+#include "layers/layer_set.hpp"
+#include "layers/write.hpp"
+#include "pipeline/detail/job_outputs.hpp"
+#include "pipeline/detail/tile_stats.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kJobFormat = "terraweave.job";
+constexpr const char* kTileResultFormat = "terraweave.tile";
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+json read_json_file(const fs::path& path, const char* format) {
+  json j;
+  try {
+    j = json::parse(read_file_bytes(path));
+  } catch (const json::exception& e) {
+    fail("{}: not JSON ({})", path.string(), e.what());
+  }
+  if (!j.is_object() || j.value("format", "") != format)
+    fail("{}: not a {} file", path.string(), format);
+  return j;
+}
+
+// Stages a tile's files beside their final names (temporaries named by host and pid, so two
+// workers rendering the same tile never share one) and renames them into place.
+class TileStager final : public OutputStager {
+ public:
+  fs::path stage(const fs::path& final_path) override {
+    std::error_code ec;
+    fs::create_directories(final_path.parent_path(), ec);
+    if (ec) fail("cannot create {}: {}", final_path.parent_path().string(), ec.message());
+    staged_.push_back({temporary_beside(final_path), final_path});
+    return staged_.back().first;
+  }
+  void commit() {
+    for (const auto& [temporary, final_path] : staged_) {
+      std::error_code ec;
+      fs::rename(temporary, final_path, ec);
+      if (ec) fail("cannot write {}: {}", final_path.string(), ec.message());
+    }
+    staged_.clear();
+  }
+  ~TileStager() override {
+    for (const auto& entry : staged_) {
+      std::error_code ignored;
+      fs::remove(entry.first, ignored);
+    }
+  }
+
+ private:
+  std::vector<std::pair<fs::path, fs::path>> staged_;
+};
+
+fs::path tiles_dir(const fs::path& plan_dir, const std::string& plan) {
+  return plan_dir / ("tiles-" + plan);
+}
+fs::path results_dir(const fs::path& plan_dir, const std::string& plan) {
+  return plan_dir / ("results-" + plan);
+}
+
+// Deletes what earlier plans' tasks left (their workers may still write there: harmless).
+void delete_other_plans(const fs::path& plan_dir, const std::string& plan) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(plan_dir, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if ((name.starts_with("tiles-") || name.starts_with("results-")) && !name.ends_with(plan)) {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  }
+}
+
+// The current folder for the lifetime of the object (finish reloads the pipeline where its
+// --set paths were given).
+class ScopedCurrentPath {
+ public:
+  explicit ScopedCurrentPath(const fs::path& dir) : previous_(fs::current_path()) {
+    std::error_code ec;
+    fs::current_path(dir, ec);
+    if (ec) fail("cannot enter {} (where the plan was made): {}", dir.string(), ec.message());
+  }
+  ~ScopedCurrentPath() {
+    std::error_code ignored;
+    fs::current_path(previous_, ignored);
+  }
+
+ private:
+  fs::path previous_;
+};
+
+}  // namespace
+
+PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  set_network_access(options.allow_network);
+  check_input_paths(config, options.allow_network);
+  const fs::path out = fs::absolute(options.output_dir).lexically_normal();
+  // The folder's lock while the plan is written: not while a run or a finish writes there.
+  const OutputFolder lock(out);
+  Warnings warnings;
+  PlanOptions plan_options;
+  plan_options.backend = options.backend;
+  if (config.output.tiles.size <= 0)
+    fail(
+        "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "
+        "output.tiles.size=512)");
+  WorldPlan plan = plan_world(config, plan_options, warnings);
+  plan.report.warnings = warnings.list();
+  if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
+    fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
+         plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
+  }
+  const fs::path plan_dir = out / ".terraweave" / "plan";
+  // job.json goes first: a plan.json beside an older job.json would be a mixed plan.
+  std::error_code ec;
+  fs::remove(plan_dir / "plan.json", ec);
+  const std::string hash = save_plan(plan, plan_dir);
+  const json job = {
+      {"format", kJobFormat},
+      {"version", kPlanVersion},
+      {"plan", hash},
+      {"pipeline", fs::absolute(config.file).string()},
+      {"pipeline_xxh3_128", content_hash(read_file_bytes(config.file))},
+      {"overrides", options.overrides},
+      {"cwd", fs::current_path().string()},
+      {"output_dir", out.string()},
+      {"exr", config.output.exr},
+      {"geotiff", config.output.geotiff},
+      {"plan_seconds", seconds_since(started)},
+  };
+  write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
+  delete_other_plans(plan_dir, hash);
+  logger().info("plan {}: {} tiles in {}", hash, plan.tiles.size(), plan_dir.string());
+  return {plan_dir, hash, plan.tiles.size(), plan.report.warnings.size()};
+}
+
+fs::path find_plan_dir(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_regular_file(path / "plan.json", ec)) return path;
+  if (fs::is_regular_file(path / ".terraweave" / "plan" / "plan.json", ec))
+    return path / ".terraweave" / "plan";
+  fail("{}: no plan here (neither plan.json nor .terraweave/plan/plan.json; run terraweave plan)",
+       path.string());
+}
+
+TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
+  test_pause_point("render-tile");
+  const auto started = std::chrono::steady_clock::now();
+  const json job = read_json_file(plan_dir / "job.json", kJobFormat);
+  const WorldPlan plan = load_plan(plan_dir);
+  const std::string hash = plan_hash(plan_dir);
+  if (job.value("plan", "") != hash)
+    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
+         job.value("plan", ""), hash);
+  if (tile < 0 || std::size_t(tile) >= plan.tiles.size())
+    fail("--tile {}: the plan has {} tiles (0 to {})", tile, plan.tiles.size(),
+         int(plan.tiles.size()) - 1);
+  const TileSpec& spec = plan.tiles[std::size_t(tile)];
+  LayerSet layers = render_tile(plan, spec);
+  const std::int64_t forbidden = detail::forbidden_in(layers, spec.halo_window, spec.window);
+  const std::uint64_t pixels_hash = detail::layer_bytes_hash(layers);
+  WriteOptions write;
+  write.exr = job.value("exr", true);
+  write.geotiff = job.value("geotiff", true);
+  const fs::path dir = tiles_dir(plan_dir, hash);
+  TileStager stager;
+  const std::vector<fs::path> written = detail::write_tile_files(layers, spec, dir, stager, write);
+  stager.commit();
+
+  TileJobResult result;
+  result.tile = tile;
+  json files = json::array();
+  for (const fs::path& path : written) {
+    const std::string bytes = read_file_bytes(path);
+    result.files.push_back(path.lexically_relative(dir));
+    files.push_back({{"file", result.files.back().generic_string()},
+                     {"bytes", bytes.size()},
+                     {"xxh3_128", content_hash(bytes)}});
+  }
+  result.seconds = seconds_since(started);
+  const json record = {{"format", kTileResultFormat},
+                       {"version", kPlanVersion},
+                       {"plan", hash},
+                       {"tile", tile},
+                       {"files", files},
+                       {"forbidden_pixels", forbidden},
+                       {"xxh64", pixels_hash},
+                       {"seconds", result.seconds}};
+  // Last: a result names only complete files.
+  write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
+                    record.dump(1) + "\n");
+  return result;
+}
+
+RunReport finish_job(const fs::path& plan_dir) {
+  const auto started = std::chrono::steady_clock::now();
+  const json job = read_json_file(plan_dir / "job.json", kJobFormat);
+  const fs::path out = job.at("output_dir").get<std::string>();
+  OutputFolder transaction(out);  // the lock, then every check, then the commit
+  const std::string hash = plan_hash(plan_dir);
+  if (job.value("plan", "") != hash)
+    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
+         job.value("plan", ""), hash);
+  PipelineConfig config;
+  {
+    const fs::path pipeline = job.at("pipeline").get<std::string>();
+    if (content_hash(read_file_bytes(pipeline)) != job.value("pipeline_xxh3_128", ""))
+      fail("{}: changed since it was planned (plan again)", pipeline.string());
+    std::vector<Override> overrides;
+    for (const json& o : job.at("overrides"))
+      overrides.push_back(parse_override(o.get<std::string>()));
+    const ScopedCurrentPath cwd(job.at("cwd").get<std::string>());
+    config = load_pipeline(pipeline, overrides);
+  }
+  WorldPlan plan = load_plan(plan_dir);
+
+  std::vector<detail::RenderedTile> tiles;
+  const fs::path dir = tiles_dir(plan_dir, hash);
+  for (const TileSpec& spec : plan.tiles) {
+    const fs::path result_path =
+        results_dir(plan_dir, hash) / fmt::format("tile-{}.json", spec.index);
+    std::error_code ec;
+    if (!fs::is_regular_file(result_path, ec))
+      fail("tile {} (x{} y{}) was not rendered: no {} (terraweave render-tile {} --tile {})",
+           spec.index, spec.ix, spec.iy, result_path.string(), plan_dir.string(), spec.index);
+    const json result = read_json_file(result_path, kTileResultFormat);
+    if (result.value("plan", "") != hash || result.value("tile", -1) != spec.index)
+      fail("{}: belongs to plan {} tile {}, not plan {} tile {}", result_path.string(),
+           result.value("plan", ""), result.value("tile", -1), hash, spec.index);
+    detail::RenderedTile& rendered = tiles.emplace_back();
+    rendered.tile = spec;
+    rendered.seconds = result.value("seconds", 0.0);
+    rendered.forbidden_pixels = result.value("forbidden_pixels", std::int64_t(0));
+    rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
+    for (const json& file : result.at("files")) {
+      const fs::path relative = file.at("file").get<std::string>();
+      const std::string bytes = read_file_bytes(dir / relative);
+      const std::string digest = content_hash(bytes);
+      if (digest != file.value("xxh3_128", ""))
+        fail("tile {}: {} does not match its recorded hash (render the tile again)", spec.index,
+             (dir / relative).string());
+      const fs::path staged = transaction.stage(out / relative);
+      fs::create_hard_link(dir / relative, staged, ec);
+      if (ec) write_file_atomic(staged, bytes);  // another file system, or no links
+      rendered.files.push_back({relative, bytes.size(), digest, staged});
+    }
+  }
+  RunReport report = detail::write_job_outputs(plan, config, tiles, out, transaction);
+  double render_seconds = 0.0;  // the tiles' own, summed (on any number of workers)
+  for (const detail::RenderedTile& t : tiles) render_seconds += t.seconds;
+  report.stages.push_back({"render", render_seconds});
+  report.stages.push_back({"finish", seconds_since(started)});
+  detail::write_job_report(report, config, out, transaction);
+  transaction.commit();
+  report.outputs = transaction.committed();
+  std::error_code ec;  // the tiles are the output folder's now (links or copies)
+  fs::remove_all(tiles_dir(plan_dir, hash), ec);
+  fs::remove_all(results_dir(plan_dir, hash), ec);
+  logger().info("finished plan {}: {} files in {}", hash, report.outputs.size(), out.string());
+  return report;
+}
+
+}  // namespace tw

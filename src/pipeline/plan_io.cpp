@@ -1,0 +1,311 @@
+#include "pipeline/plan_io.hpp"
+
+#include <set>
+#include <system_error>
+#include <utility>
+
+#include "core/content_hash.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "pipeline/detail/plan_fields.hpp"
+#include "synth/placements_io.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using detail::decode;
+using detail::encode;
+using nlohmann::json;
+
+namespace {
+
+// Objects are written once under their hash; `written` collects their names for the clean-up.
+class ObjectStore {
+ public:
+  explicit ObjectStore(fs::path dir) : dir_(std::move(dir)) {}
+
+  json put(const std::string& bytes, const std::string& extension) {
+    const std::string hash = content_hash(bytes);
+    const std::string name = "objects/" + hash + extension;
+    std::error_code ec;
+    // Same name, same bytes: an object an earlier plan wrote is kept (if it is intact).
+    if (fs::file_size(dir_ / name, ec) != bytes.size() || ec ||
+        content_hash(read_file_bytes(dir_ / name)) != hash) {
+      write_file_atomic(dir_ / name, bytes);
+    }
+    written_.insert(hash + extension);
+    return {{"file", name}, {"xxh3_128", hash}, {"bytes", bytes.size()}};
+  }
+  json put_cbor(const json& value) {
+    const std::vector<std::uint8_t> cbor = json::to_cbor(value);
+    return put(std::string(cbor.begin(), cbor.end()), ".cbor");
+  }
+  // Deletes the objects of earlier plans.
+  void delete_unused() const {
+    std::error_code ec;
+    for (auto it = fs::directory_iterator(dir_ / "objects", ec);
+         !ec && it != fs::directory_iterator(); it.increment(ec)) {
+      if (!written_.contains(it->path().filename().string())) {
+        std::error_code ignored;
+        fs::remove(it->path(), ignored);
+      }
+    }
+  }
+
+ private:
+  fs::path dir_;
+  std::set<std::string> written_;
+};
+
+// Reads an object named in plan.json, refusing one whose bytes do not match their hash.
+std::string get_object(const fs::path& dir, const json& entry, const std::string& key) {
+  const std::string where = fmt::format("plan {}: {}", dir.string(), key);
+  if (!entry.is_object() || !entry.contains("file") || !entry.contains("xxh3_128"))
+    fail("{}: expected {{file, xxh3_128}}", where);
+  const std::string file = entry["file"].get<std::string>();
+  if (file.find("..") != std::string::npos || !file.starts_with("objects/"))
+    fail("{}: file {} is not under objects/", where, file);
+  std::string bytes = read_file_bytes(dir / file);
+  if (content_hash(bytes) != entry["xxh3_128"].get<std::string>())
+    fail("{}: {} does not match its content hash (corrupt, or changed after planning)", where,
+         (dir / file).string());
+  return bytes;
+}
+
+json get_cbor_json(const fs::path& dir, const json& files, const std::string& key) {
+  if (!files.contains(key)) fail("plan {}: files.{}: missing", dir.string(), key);
+  const std::string bytes = get_object(dir, files[key], "files." + key);
+  try {
+    return json::from_cbor(bytes);
+  } catch (const json::exception& e) {
+    fail("plan {}: files.{}: not CBOR ({})", dir.string(), key, e.what());
+  }
+}
+
+template <class T>
+void get_cbor(const fs::path& dir, const json& files, const std::string& key, T& value) {
+  decode(get_cbor_json(dir, files, key), value, fmt::format("plan {}: {}", dir.string(), key));
+}
+
+// A pattern without its synthesis, which goes to its own placements file.
+template <class Io>
+void pattern_fields(Io& io, PlannedPattern& p) {
+  io("class_index", p.class_index);
+  io("feature_index", p.feature_index);
+  io("exemplar_index", p.exemplar_index);
+  io("on_ground", p.on_ground);
+  io("ribbon", p.ribbon);
+  io("window", p.window);
+  io("stitch", p.stitch);
+  io("feather", p.feather);
+  io("height_detail", p.height_detail);
+  io("targets", p.targets);
+}
+
+// The report's timings move out of its object into plan.json, outside the plan's hash: two plans
+// of the same inputs are the same plan, with the same object names.
+json take_timings(RunReport& report) {
+  json classes = json::array();
+  for (FeatureClassReport& c : report.classes) {
+    json features = json::array();
+    for (FeatureReport& f : c.features) {
+      json entry;
+      if (f.synthesis) {
+        entry = {f.synthesis->avoidance_seconds, f.synthesis->synthesis_seconds,
+                 f.synthesis->render_seconds};
+        f.synthesis->avoidance_seconds = f.synthesis->synthesis_seconds =
+            f.synthesis->render_seconds = 0.0;
+      }
+      features.push_back(std::move(entry));
+    }
+    classes.push_back({{"ingest", std::exchange(c.ingest_seconds, 0.0)}, {"features", features}});
+  }
+  json timings = {{"stages", encode(report.stages)},
+                  {"total", std::exchange(report.total_seconds, 0.0)},
+                  {"classes", classes}};
+  report.stages.clear();
+  return timings;
+}
+
+void restore_timings(const json& timings, RunReport& report, const std::string& where) {
+  decode(timings.at("stages"), report.stages, where + ": timings.stages");
+  report.total_seconds = timings.at("total").get<double>();
+  const json& classes = timings.at("classes");
+  for (std::size_t c = 0; c < report.classes.size() && c < classes.size(); ++c) {
+    report.classes[c].ingest_seconds = classes[c].at("ingest").get<double>();
+    const json& features = classes[c].at("features");
+    for (std::size_t f = 0; f < report.classes[c].features.size() && f < features.size(); ++f) {
+      auto& synthesis = report.classes[c].features[f].synthesis;
+      if (!synthesis || !features[f].is_array() || features[f].size() != 3) continue;
+      synthesis->avoidance_seconds = features[f][0].get<double>();
+      synthesis->synthesis_seconds = features[f][1].get<double>();
+      synthesis->render_seconds = features[f][2].get<double>();
+    }
+  }
+}
+
+json tasks_json(const WorldPlan& plan, const std::string& hash) {
+  json tiles = json::array();
+  for (const TileSpec& tile : plan.tiles) tiles.push_back(encode(tile));
+  return {{"format", kTasksFormat}, {"version", kPlanVersion}, {"plan", hash}, {"tiles", tiles}};
+}
+
+json read_json(const fs::path& path, const char* format) {
+  json j;
+  try {
+    j = json::parse(read_file_bytes(path));
+  } catch (const json::exception& e) {
+    fail("{}: not JSON ({})", path.string(), e.what());
+  }
+  if (!j.is_object() || j.value("format", "") != format)
+    fail("{}: not a {} file", path.string(), format);
+  if (j.value("version", 0) != kPlanVersion)
+    fail("{}: version {} (this terraweave reads version {})", path.string(), j.value("version", 0),
+         kPlanVersion);
+  return j;
+}
+
+}  // namespace
+
+std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
+  ObjectStore store(dir);
+  json files;
+  // Numbers that may be NaN or infinite stay out of the text of plan.json.
+  files["settings"] =
+      store.put_cbor(json{{"nodata", encode(plan.nodata)}, {"render", encode(plan.render)}});
+  files["lines"] = store.put_cbor(encode(plan.lines));
+  files["ribbons"] = store.put_cbor(encode(plan.ribbons));
+  files["junction_discs"] = store.put_cbor(encode(plan.junction_discs));
+  files["existing"] = store.put_cbor(encode(plan.existing));
+  files["terrain_features"] = store.put_cbor(encode(plan.terrain_features));
+  files["terrain_params"] = store.put_cbor(encode(plan.terrain_params));
+  files["terrain"] = store.put_cbor(encode(plan.terrain));
+  files["index"] = store.put_cbor(json{{"features", encode(plan.feature_index)},
+                                       {"ribbons", encode(plan.ribbon_index)},
+                                       {"patterns", encode(plan.pattern_index)}});
+  RunReport report = plan.report;
+  const json timings = take_timings(report);
+  files["report"] = store.put_cbor(encode(report));
+  json exemplars = json::array();
+  for (const Exemplar& e : plan.exemplars) {
+    json entry = store.put_cbor(encode(e));
+    entry["path"] = e.path;
+    std::error_code ec;  // the source's hash, when it is a file (a generated exemplar is not)
+    entry["source_xxh3_128"] =
+        fs::is_regular_file(e.path, ec) ? json(content_hash(read_file_bytes(e.path))) : json();
+    exemplars.push_back(std::move(entry));
+  }
+  json patterns = json::array();
+  const fs::path scratch = dir / "objects" / temporary_beside("placements.json").filename();
+  for (const PlannedPattern& p : plan.patterns) {
+    detail::JsonWriter writer;
+    pattern_fields(writer, const_cast<PlannedPattern&>(p));
+    fs::create_directories(scratch.parent_path());
+    save_placements(p.synthesis, plan.exemplars.at(p.exemplar_index).path, scratch.string());
+    json entry = store.put_cbor(writer.value);
+    entry["placements"] = store.put(read_file_bytes(scratch), ".json");
+    patterns.push_back(std::move(entry));
+  }
+  std::error_code ec;
+  fs::remove(scratch, ec);
+  json heights = {
+      {"source", plan.heights.source},
+      {"generated", encode(plan.heights.generated)},
+      {"raster", plan.heights.heights ? store.put_cbor(encode(plan.heights.heights)) : json()}};
+
+  json doc = {{"format", kPlanFormat},
+              {"version", kPlanVersion},
+              {"grid", encode(plan.grid)},
+              {"crs_wkt", plan.crs_wkt},
+              {"heights", heights},
+              {"class_names", plan.class_names},
+              {"splat_materials", plan.splat_materials},
+              {"tiles", {{"size", plan.tile_size}, {"overlap", plan.tile_overlap}}},
+              {"files", files},
+              {"exemplars", exemplars},
+              {"patterns", patterns}};
+  // The plan's hash covers every value above; objects enter through their hashes.
+  const std::string hash = content_hash(doc.dump() + tasks_json(plan, "").dump());
+  doc["plan"] = hash;
+  doc["timings"] = timings;
+  write_file_atomic(dir / "tasks.json", tasks_json(plan, hash).dump(1) + "\n");
+  write_file_atomic(dir / "plan.json", doc.dump(1) + "\n");
+  store.delete_unused();
+  return hash;
+}
+
+std::string plan_hash(const fs::path& dir) {
+  return read_json(dir / "plan.json", kPlanFormat).value("plan", "");
+}
+
+WorldPlan load_plan(const fs::path& dir) {
+  const json doc = read_json(dir / "plan.json", kPlanFormat);
+  const json tasks = read_json(dir / "tasks.json", kTasksFormat);
+  const std::string where = "plan " + (dir / "plan.json").string();
+  if (tasks.value("plan", "") != doc.value("plan", ""))
+    fail("{}: tasks.json belongs to plan {}, plan.json is {}", where, tasks.value("plan", ""),
+         doc.value("plan", ""));
+  WorldPlan plan;
+  try {
+    detail::JsonReader reader(doc, where);
+    reader("grid", plan.grid);
+    reader("crs_wkt", plan.crs_wkt);
+    reader("class_names", plan.class_names);
+    reader("splat_materials", plan.splat_materials);
+    decode(doc.at("tiles").at("size"), plan.tile_size, where + ": tiles.size");
+    decode(doc.at("tiles").at("overlap"), plan.tile_overlap, where + ": tiles.overlap");
+    decode(tasks.at("tiles"), plan.tiles, "tasks.json: tiles");
+    const json& heights = doc.at("heights");
+    decode(heights.at("source"), plan.heights.source, where + ": heights.source");
+    decode(heights.at("generated"), plan.heights.generated, where + ": heights.generated");
+    if (!heights.at("raster").is_null()) {
+      const json wrapper = {{"raster", heights["raster"]}};
+      get_cbor(dir, wrapper, "raster", plan.heights.heights);
+    }
+    const json& files = doc.at("files");
+    const json settings = get_cbor_json(dir, files, "settings");
+    detail::JsonReader settings_reader(settings, where + ": settings");
+    settings_reader("nodata", plan.nodata);
+    settings_reader("render", plan.render);
+    get_cbor(dir, files, "lines", plan.lines);
+    get_cbor(dir, files, "ribbons", plan.ribbons);
+    get_cbor(dir, files, "junction_discs", plan.junction_discs);
+    get_cbor(dir, files, "existing", plan.existing);
+    get_cbor(dir, files, "terrain_features", plan.terrain_features);
+    get_cbor(dir, files, "terrain_params", plan.terrain_params);
+    get_cbor(dir, files, "terrain", plan.terrain);
+    const json index = get_cbor_json(dir, files, "index");
+    detail::JsonReader index_reader(index, where + ": index");
+    index_reader("features", plan.feature_index);
+    index_reader("ribbons", plan.ribbon_index);
+    index_reader("patterns", plan.pattern_index);
+    get_cbor(dir, files, "report", plan.report);
+    if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
+    for (std::size_t i = 0; i < doc.at("exemplars").size(); ++i) {
+      const json wrapper = {{"exemplar", doc["exemplars"][i]}};
+      get_cbor(dir, wrapper, "exemplar", plan.exemplars.emplace_back());
+    }
+    const fs::path scratch = fs::temp_directory_path() / temporary_beside("placements.json");
+    for (std::size_t i = 0; i < doc.at("patterns").size(); ++i) {
+      const json& entry = doc["patterns"][i];
+      const std::string key = fmt::format("patterns[{}]", i);
+      PlannedPattern& p = plan.patterns.emplace_back();
+      const json fields_json = json::from_cbor(get_object(dir, entry, key));
+      detail::JsonReader pattern_reader(fields_json, where + ": " + key);
+      pattern_fields(pattern_reader, p);
+      // Through the one placements reader (its checks, its messages), from verified bytes.
+      write_file_atomic(scratch, get_object(dir, entry.at("placements"), key + ".placements"));
+      p.synthesis = load_placements(scratch.string());
+      std::error_code ec;
+      fs::remove(scratch, ec);
+      if (p.exemplar_index >= plan.exemplars.size())
+        fail("{}: {}.exemplar_index {} of {} exemplars", where, key, p.exemplar_index,
+             plan.exemplars.size());
+    }
+  } catch (const json::exception& e) {
+    fail("{}: {}", where, e.what());
+  }
+  return plan;
+}
+
+}  // namespace tw

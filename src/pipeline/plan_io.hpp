@@ -1,0 +1,36 @@
+#pragma once
+// A WorldPlan as a folder of files (docs/distributed.md, "The plan folder"), so that tiles
+// render in other processes and on other machines:
+//   <dir>/plan.json            grid, CRS, tiling, render options, class names, materials, and
+//                              the list of object files with their content hashes
+//   <dir>/tasks.json           one task per tile: index, _x/_y, window and halo window
+//   <dir>/objects/<hash>.cbor  lines, ribbons, junctions, existing features, terrain plan,
+//                              exemplars (texels), heights (a DEM's), the plan's report
+//   <dir>/objects/<hash>.json  one pattern's placements (synth/placements_io)
+// <hash> is the XXH3-128 of the file's bytes: a file is never trusted if it does not match, and
+// an unchanged object keeps its name from one plan to the next. The plan's own hash (`plan`
+// in plan.json and tasks.json) covers everything, so a tile result names the plan it belongs to.
+#include <filesystem>
+#include <string>
+
+#include "pipeline/plan.hpp"
+
+namespace tw {
+
+inline constexpr const char* kPlanFormat = "terraweave.plan";
+inline constexpr const char* kTasksFormat = "terraweave.tasks";
+inline constexpr int kPlanVersion = 1;
+
+// Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
+// use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's
+// hash. Throws tw::Error naming the file that cannot be written.
+std::string save_plan(const WorldPlan& plan, const std::filesystem::path& dir);
+
+// Reads a plan written by save_plan. Throws tw::Error naming the file and the key when a file
+// is missing, malformed, of another format version, or does not match its content hash.
+WorldPlan load_plan(const std::filesystem::path& dir);
+
+// The plan's hash as plan.json records it (without reading the objects).
+std::string plan_hash(const std::filesystem::path& dir);
+
+}  // namespace tw

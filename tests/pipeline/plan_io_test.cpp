@@ -1,0 +1,202 @@
+// The plan as a folder (pipeline/plan_io.hpp) and the run in three steps (pipeline/job.hpp) on
+// a small world with everything a plan holds: a DEM, three roads (one a ring) with synthesized
+// cobble patterns (colour, alpha and height channels), junctions, 3 x 3 tiles.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "pipeline/job.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+constexpr const char* kPipeline = R"(
+version: 1
+seed: 11
+heightfield: dem.tif
+resolution: 10
+output: { dir: out, tiles: { size: 24, overlap: 4 } }
+features:
+  roads:
+    source: map.gpkg
+    layer: roads
+    kind: road
+    width_attribute: width
+    width: 6
+    synthesis:
+      exemplar: cobble.png
+      width: 8
+      scale: 5
+      delta: 8
+      channels: { alpha: splat.cobble, height: height }
+)";
+
+class PlanFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_dem(dir_ / "dem.tif");  // 64 x 64 cells of 10 m
+    std::ostringstream ring;
+    ring.precision(10);
+    ring << "LINESTRING (";
+    for (int i = 0; i <= 48; ++i) {
+      const double a = 2.0 * M_PI * (i % 48) / 48.0;
+      ring << (i ? ", " : "") << 500320 + 150 * std::cos(a) << ' ' << 5000320 + 150 * std::sin(a);
+    }
+    ring << ")";
+    test::write_layer(dir_ / "map.gpkg", "roads",
+                      {{"LINESTRING (500050 5000300, 500590 5000330)", 6.0},
+                       {"LINESTRING (500310 5000050, 500330 5000590)", 6.0},
+                       {ring.str(), 6.0}});
+    const fs::path exemplars = test::source_dir() / "samples/exemplars";
+    test::crop_raster(exemplars / "cobble_edging_200x56.png", dir_ / "cobble.png", "PNG", 60, 56);
+    test::crop_raster(exemplars / "cobble_edging_200x56_height.tif", dir_ / "cobble_height.tif",
+                      "GTiff", 60, 56);
+    fs::path file = dir_ / "small.yaml";
+    write_file_atomic(file, kPipeline);
+    config_ = load_pipeline(file, {{"output.dir", (dir_ / "out").string()}});
+  }
+
+  WorldPlan plan() const {
+    Warnings warnings;
+    return plan_world(config_, {}, warnings);
+  }
+
+  static void expect_same_bits(const LayerSet& a, const LayerSet& b, int tile) {
+    EXPECT_EQ(a.grid, b.grid) << "tile " << tile;
+    ASSERT_EQ(a.layers.size(), b.layers.size()) << "tile " << tile;
+    for (std::size_t l = 0; l < a.layers.size(); ++l) {
+      EXPECT_EQ(a.layers[l].channels, b.layers[l].channels);
+      ASSERT_EQ(a.layers[l].bands.size(), b.layers[l].bands.size());
+      for (std::size_t c = 0; c < a.layers[l].bands.size(); ++c) {
+        const auto& pa = a.layers[l].bands[c].pixels;
+        const auto& pb = b.layers[l].bands[c].pixels;
+        ASSERT_EQ(pa.size(), pb.size());
+        EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0)
+            << "tile " << tile << " " << a.layers[l].name << "." << a.layers[l].channels[c];
+      }
+    }
+  }
+
+  test::TempDir dir_;
+  PipelineConfig config_;
+};
+
+TEST_F(PlanFolder, ALoadedPlanRendersEveryTileBitForBit) {
+  const WorldPlan original = plan();
+  ASSERT_EQ(original.tiles.size(), 9u);
+  ASSERT_EQ(original.patterns.size(), 3u);  // what the round trip must carry
+  ASSERT_TRUE(original.heights.heights);
+  const std::string hash = save_plan(original, dir_ / "plan");
+  EXPECT_EQ(plan_hash(dir_ / "plan"), hash);
+  const WorldPlan loaded = load_plan(dir_ / "plan");
+  ASSERT_EQ(loaded.patterns.size(), 3u);
+  EXPECT_EQ(loaded.patterns[1].synthesis.total_cost, original.patterns[1].synthesis.total_cost);
+  EXPECT_EQ(loaded.exemplars.at(0).channel_names, original.exemplars.at(0).channel_names);
+  double pattern_pixels = 0.0;
+  for (const TileSpec& tile : original.tiles) {
+    const LayerSet a = render_tile(original, tile);
+    const LayerSet b = render_tile(loaded, tile);
+    expect_same_bits(a, b, tile.index);
+    for (const Layer& layer : a.layers)
+      for (std::size_t c = 0; c < layer.channels.size(); ++c)
+        if (layer.channels[c] == "splat.cobble")
+          for (float v : layer.bands[c].pixels) pattern_pixels += v;
+  }
+  EXPECT_GT(pattern_pixels, 50.0);  // the patterns are there, not only equal
+}
+
+TEST_F(PlanFolder, SavingALoadedPlanWritesTheSameFiles) {
+  const std::string first = save_plan(plan(), dir_ / "a");
+  const std::string second = save_plan(load_plan(dir_ / "a"), dir_ / "b");
+  EXPECT_EQ(first, second);
+  // The same inputs planned again: the same plan (timings are kept outside its hash).
+  EXPECT_EQ(save_plan(plan(), dir_ / "c"), first);
+  // A new plan into the same folder keeps unchanged objects and deletes the others.
+  WorldPlan other = plan();
+  other.render.avoidance_max_distance = 123.0;
+  EXPECT_NE(save_plan(other, dir_ / "a"), first);
+  std::size_t objects = 0, kept = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "a/objects")) {
+    ++objects;
+    kept += fs::exists(dir_ / "b/objects" / entry.path().filename());
+  }
+  EXPECT_EQ(kept + 1, objects);  // only the settings object changed
+}
+
+TEST_F(PlanFolder, AnObjectThatDoesNotMatchItsHashIsRefusedByName) {
+  save_plan(plan(), dir_ / "plan");
+  const nlohmann::json doc = nlohmann::json::parse(read_file_bytes(dir_ / "plan/plan.json"));
+  const fs::path object = dir_ / "plan" / doc["files"]["ribbons"]["file"].get<std::string>();
+  std::string bytes = read_file_bytes(object);
+  bytes[bytes.size() / 2] ^= 1;
+  write_file_atomic(object, bytes);
+  try {
+    load_plan(dir_ / "plan");
+    FAIL() << "a corrupt object was read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("files.ribbons"));
+    EXPECT_THAT(e.what(), HasSubstr(object.filename().string()));
+    EXPECT_THAT(e.what(), HasSubstr("does not match its content hash"));
+  }
+}
+
+TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "out";
+  const PlannedJob job = plan_job(config_, options);
+  ASSERT_EQ(job.tiles, 9u);
+  EXPECT_EQ(find_plan_dir(dir_ / "out"), job.plan_dir);
+  const WorldPlan loaded = load_plan(job.plan_dir);
+  for (int i = 0; i < 9; ++i) {
+    if (i != 4) {
+      EXPECT_EQ(render_job_tile(job.plan_dir, i).tile, i);
+    }
+  }
+  try {
+    finish_job(job.plan_dir);
+    FAIL() << "finished without tile 4";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("tile 4 (x1 y1) was not rendered"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out/report.json"));  // nothing committed
+  const TileJobResult four = render_job_tile(job.plan_dir, 4);
+  const fs::path tiles = job.plan_dir / ("tiles-" + job.plan) / "tiles";
+  const std::string exr = read_file_bytes(tiles / "height_x1_y1.exr");
+  EXPECT_EQ(render_job_tile(job.plan_dir, 4).files, four.files);  // a rerun: the same bytes
+  EXPECT_EQ(read_file_bytes(tiles / "height_x1_y1.exr"), exr);
+  write_file_atomic(tiles / "splat_x2_y0.tif", "changed");
+  try {
+    finish_job(job.plan_dir);
+    FAIL() << "finished with a changed tile file";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("tile 2: "));
+    EXPECT_THAT(e.what(), HasSubstr("splat_x2_y0.tif does not match its recorded hash"));
+  }
+  render_job_tile(job.plan_dir, 2);
+  const RunReport report = finish_job(job.plan_dir);
+  EXPECT_EQ(read_file_bytes(dir_ / "out/tiles/height_x1_y1.exr"), exr);
+  for (const char* name : {"height.vrt", "splat.vrt", "avoidance.vrt", "preview.png", "report.json",
+                           "placements/roads_2.json"})
+    EXPECT_TRUE(fs::exists(dir_ / "out" / name)) << name;
+  const nlohmann::json manifest = nlohmann::json::parse(read_file_bytes(dir_ / "out/report.json"));
+  ASSERT_EQ(manifest["tiles"]["tiles"].size(), 9u);
+  EXPECT_EQ(manifest["tiles"]["tiles"][4]["index"], 4);
+  EXPECT_EQ(report.pattern_violations, 0);
+  EXPECT_FALSE(fs::exists(tiles));  // the tiles are the output folder's now
+}
+
+}  // namespace
+}  // namespace tw
