@@ -262,8 +262,9 @@ int main(int argc, char** argv) {
           },
           "pattern (default: seams + a coverage term, a centred copy) or paper (seams alone)")
       ->check(CLI::IsMember({"pattern", "paper"}));
-  synth->add_option("--coverage-weight", synth_args.coverage_weight,
-                    "pattern objective: weight of lost coverage against gamma (default 2)")
+  synth
+      ->add_option("--coverage-weight", synth_args.coverage_weight,
+                   "pattern objective: weight of lost coverage against gamma (default 2)")
       ->check(CLI::Range(0.0, 1000.0));
   synth->add_flag("!--no-stitch", synth_args.stitch, "skip the edge alignment of Section 3.2");
   synth->add_option("--feather", synth_args.feather,

@@ -70,7 +70,6 @@ HeightRange range_of_fact(const std::string& fact) {
   return std::array<float, 2>{std::stof(fact.substr(0, space)), std::stof(fact.substr(space + 1))};
 }
 
-
 // Under strict, any warning is an error: raised before anything is staged for writing.
 void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   report.warnings = warnings.list();
@@ -141,8 +140,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   finish_warnings(warnings, strict, report);
   if (plan.tile_size > 0 && !config.exports.empty()) {
-    fail("export: engine exports read whole layers and do not work with output.tiles yet; run "
-         "`terraweave export` on an untiled run (docs/exports.md)");
+    fail(
+        "export: engine exports read whole layers and do not work with output.tiles yet; run "
+        "`terraweave export` on an untiled run (docs/exports.md)");
   }
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
@@ -181,10 +181,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                   write_options.exr_compression, write_options.exr_zip_level);
       if (config.output.geotiff) write_geotiff(layers, layer, stager.stage(stem.string() + ".tif"));
     }
-    facts["forbidden_pixels"] = std::to_string(detail::forbidden_in(layers, tile.halo_window, tile.window));
+    facts["forbidden_pixels"] =
+        std::to_string(detail::forbidden_in(layers, tile.halo_window, tile.window));
     facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
-    facts["input_height"] = range_fact(core_range(
-        read_height_window(plan.heights, plan.grid, tile.halo_window), tile.halo_window, tile.window));
+    facts["input_height"] =
+        range_fact(core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
+                              tile.halo_window, tile.window));
     facts["output_height"] = range_fact(
         core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
   };
