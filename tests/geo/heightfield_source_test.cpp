@@ -74,7 +74,9 @@ TEST(HeightfieldSource, ResampledWindowsAreTheWholeRead) {
     for (const double resolution : {3.7, 10.0, 41.0}) {
       SCOPED_TRACE(::testing::Message() << "resolution " << resolution << " cubic "
                                         << (resampling == Resampling::cubic));
-      HeightfieldOptions options{resolution, resampling};
+      HeightfieldOptions options;
+      options.resolution = resolution;
+      options.resampling = resampling;
       Warnings warnings;
       const auto source = open_heightfield(sample("dem.tif"), options, warnings);
       expect_windows_match_whole(*source, read_heightfield(sample("dem.tif"), options));

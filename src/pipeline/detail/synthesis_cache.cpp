@@ -166,7 +166,9 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   for (const fs::path& path : s.exemplars) c.text(path.string());
   c.u64(std::uint64_t(s.choice)).real(s.delta).real(s.scale);
   c.boolean(s.width.has_value()).real(s.width.value_or(0.0));
-  c.boolean(s.stitch).boolean(s.empty_pieces).real(s.min_coverage).boolean(s.continuous_alpha);
+  c.boolean(s.stitch).boolean(s.empty_pieces).boolean(s.continuous_alpha);
+  c.boolean(s.min_coverage.has_value()).real(s.min_coverage.value_or(0.0));
+  c.u64(std::uint64_t(s.objective)).real(s.coverage_weight);
   c.u64(s.seed);
   key.config = c.digest();
 
