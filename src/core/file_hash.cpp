@@ -10,7 +10,7 @@
 
 namespace tw {
 
-FileDigest hash_file(const std::filesystem::path& path) {
+FileDigest file_digest(const std::filesystem::path& path) {
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
                                                              &std::fclose);
   if (!file) fail("{}: cannot be read for its hash", path.string());

@@ -13,6 +13,6 @@ struct FileDigest {
 };
 
 // Throws tw::Error naming the file when it cannot be read.
-FileDigest hash_file(const std::filesystem::path& path);
+FileDigest file_digest(const std::filesystem::path& path);
 
 }  // namespace tw

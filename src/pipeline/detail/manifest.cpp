@@ -31,7 +31,7 @@ FileRecord record(std::string role, const fs::path& path, std::string label) {
   FileRecord r{std::move(role), std::move(label), 0, ""};
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return r;  // a URL: nothing to hash here
-  const FileDigest digest = hash_file(path);
+  const FileDigest digest = file_digest(path);
   r.bytes = digest.bytes;
   r.xxh3_128 = digest.xxh3_128;
   return r;
