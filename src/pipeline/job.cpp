@@ -15,6 +15,8 @@
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/job_outputs.hpp"
+#include "pipeline/detail/layer_options.hpp"
+#include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -168,6 +170,18 @@ fs::path find_plan_dir(const fs::path& path) {
        path.string());
 }
 
+// The pipeline as it was planned (its file unchanged, the same overrides, from the same folder).
+PipelineConfig job_config(const json& job) {
+  const fs::path pipeline = job.at("pipeline").get<std::string>();
+  if (content_hash(read_file_bytes(pipeline)) != job.value("pipeline_xxh3_128", ""))
+    fail("{}: changed since it was planned (plan again)", pipeline.string());
+  std::vector<Override> overrides;
+  for (const json& o : job.at("overrides"))
+    overrides.push_back(parse_override(o.get<std::string>()));
+  const ScopedCurrentPath cwd(job.at("cwd").get<std::string>());
+  return load_pipeline(pipeline, overrides);
+}
+
 TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   test_pause_point("render-tile");
   const auto started = std::chrono::steady_clock::now();
@@ -184,9 +198,12 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   LayerSet layers = render_tile(plan, spec);
   const std::int64_t forbidden = detail::forbidden_in(layers, spec.halo_window, spec.window);
   const std::uint64_t pixels_hash = detail::layer_bytes_hash(layers);
-  WriteOptions write;
-  write.exr = job.value("exr", true);
-  write.geotiff = job.value("geotiff", true);
+  const WriteOptions write = detail::layer_write_options(job_config(job), plan.heights.source);
+  const std::string input_height = detail::range_fact(
+      detail::core_range(read_height_window(plan.heights, plan.grid, spec.halo_window),
+                         spec.halo_window, spec.window));
+  const std::string output_height = detail::range_fact(
+      detail::core_range(find_layer(layers, "height")->bands[0], spec.halo_window, spec.window));
   const fs::path dir = tiles_dir(plan_dir, hash);
   TileStager stager;
   const std::vector<fs::path> written = detail::write_tile_files(layers, spec, dir, stager, write);
@@ -210,6 +227,8 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
                        {"files", files},
                        {"forbidden_pixels", forbidden},
                        {"xxh64", pixels_hash},
+                       {"input_height", input_height},
+                       {"output_height", output_height},
                        {"seconds", result.seconds}};
   // Last: a result names only complete files.
   write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
@@ -226,17 +245,7 @@ RunReport finish_job(const fs::path& plan_dir) {
   if (job.value("plan", "") != hash)
     fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
          job.value("plan", ""), hash);
-  PipelineConfig config;
-  {
-    const fs::path pipeline = job.at("pipeline").get<std::string>();
-    if (content_hash(read_file_bytes(pipeline)) != job.value("pipeline_xxh3_128", ""))
-      fail("{}: changed since it was planned (plan again)", pipeline.string());
-    std::vector<Override> overrides;
-    for (const json& o : job.at("overrides"))
-      overrides.push_back(parse_override(o.get<std::string>()));
-    const ScopedCurrentPath cwd(job.at("cwd").get<std::string>());
-    config = load_pipeline(pipeline, overrides);
-  }
+  const PipelineConfig config = job_config(job);
   WorldPlan plan = load_plan(plan_dir);
 
   std::vector<detail::RenderedTile> tiles;
@@ -257,6 +266,8 @@ RunReport finish_job(const fs::path& plan_dir) {
     rendered.seconds = result.value("seconds", 0.0);
     rendered.forbidden_pixels = result.value("forbidden_pixels", std::int64_t(0));
     rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
+    rendered.input_height = result.value("input_height", std::string());
+    rendered.output_height = result.value("output_height", std::string());
     for (const json& file : result.at("files")) {
       const fs::path relative = file.at("file").get<std::string>();
       const std::string bytes = read_file_bytes(dir / relative);
@@ -271,10 +282,20 @@ RunReport finish_job(const fs::path& plan_dir) {
     }
   }
   RunReport report = detail::write_job_outputs(plan, config, tiles, out, transaction);
+  // As run_pipeline: the manifest's inputs, height ranges and features.geojson.
+  report.inputs = detail::record_inputs(config);
+  report.started_utc = detail::utc_timestamp();
+  for (const detail::RenderedTile& t : tiles) {
+    detail::widen(report.input_height, detail::range_of_fact(t.input_height));
+    detail::widen(report.output_height, detail::range_of_fact(t.output_height));
+  }
+  write_curves_geojson(detail::export_curves(config, plan.lines), plan.crs_wkt,
+                       transaction.stage(out / "features.geojson"));
   double render_seconds = 0.0;  // the tiles' own, summed (on any number of workers)
   for (const detail::RenderedTile& t : tiles) render_seconds += t.seconds;
   report.stages.push_back({"render", render_seconds});
   report.stages.push_back({"finish", seconds_since(started)});
+  report.output_files = detail::record_outputs(transaction);
   detail::write_job_report(report, config, out, transaction);
   transaction.commit();
   report.outputs = transaction.committed();

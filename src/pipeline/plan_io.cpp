@@ -208,10 +208,16 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   }
   std::error_code ec;
   fs::remove(scratch, ec);
-  json heights = {
-      {"source", plan.heights.source},
-      {"generated", encode(plan.heights.generated)},
-      {"raster", plan.heights.heights ? store.put_cbor(encode(plan.heights.heights)) : json()}};
+  // A DEM read through a windowed source travels as its heights on the plan's grid (a worker
+  // may not see the file); a generated world travels as its parameters.
+  std::shared_ptr<const Raster<float>> raster = plan.heights.heights;
+  if (!raster && !plan.heights.generated) {
+    raster = std::make_shared<const Raster<float>>(
+        read_height_window(plan.heights, plan.grid, Window::whole(plan.grid)));
+  }
+  json heights = {{"source", plan.heights.source},
+                  {"generated", encode(plan.heights.generated)},
+                  {"raster", raster ? store.put_cbor(encode(raster)) : json()}};
 
   json doc = {{"format", kPlanFormat},
               {"version", kPlanVersion},

@@ -17,6 +17,8 @@
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/job_outputs.hpp"
+#include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
@@ -41,35 +43,6 @@ std::string layer_of_tile_file(const fs::path& name) {
   return stem.substr(0, stem.rfind("_x"));
 }
 
-// The lowest and highest height of a band over the tile's core (the band covers `halo`).
-HeightRange core_range(const Raster<float>& band, const Window& halo, const Window& core) {
-  Raster<float> inner(core.width, core.height);
-  for (int row = 0; row < core.height; ++row)
-    for (int col = 0; col < core.width; ++col)
-      inner.at(col, row) = band.at(core.col0 - halo.col0 + col, core.row0 - halo.row0 + row);
-  return detail::height_range(inner);
-}
-
-void widen(HeightRange& range, const HeightRange& part) {
-  if (!part) return;
-  if (!range) {
-    range = part;
-    return;
-  }
-  (*range)[0] = std::min((*range)[0], (*part)[0]);
-  (*range)[1] = std::max((*range)[1], (*part)[1]);
-}
-
-// A range as a cached tile keeps it ("" when absent; floats in their shortest exact form).
-std::string range_fact(const HeightRange& r) {
-  return r ? fmt::format("{} {}", (*r)[0], (*r)[1]) : std::string();
-}
-HeightRange range_of_fact(const std::string& fact) {
-  if (fact.empty()) return std::nullopt;
-  const auto space = fact.find(' ');
-  return std::array<float, 2>{std::stof(fact.substr(0, space)), std::stof(fact.substr(space + 1))};
-}
-
 // Under strict, any warning is an error: raised before anything is staged for writing.
 void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   report.warnings = warnings.list();
@@ -77,24 +50,6 @@ void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
     fail("strict: {} warning{} (first: {}); nothing written", report.warnings.size(),
          report.warnings.size() == 1 ? "" : "s", to_string(report.warnings.front()));
   }
-}
-
-// The run's lines as they were built on (clipped, repaired, conformed), for features.geojson
-// and the engines' splines; a closed ring repeats its first point.
-std::vector<ExportCurve> export_curves(const PipelineConfig& config,
-                                       const std::vector<std::vector<LineFeature>>& lines) {
-  std::vector<ExportCurve> curves;
-  for (std::size_t c = 0; c < lines.size(); ++c)
-    for (const LineFeature& line : lines[c]) {
-      ExportCurve& curve = curves.emplace_back();
-      curve.feature_class = config.features[c].name;
-      curve.kind = std::string(to_string(config.features[c].kind));
-      curve.fid = line.fid;
-      curve.width = line.width;
-      curve.points = line.points;
-      if (line.closed && !line.points.empty()) curve.points.push_back(line.points.front());
-    }
-  return curves;
 }
 
 void write_report(const fs::path& path, const nlohmann::json& json) {
@@ -147,18 +102,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
   OutputFolder& transaction = *output;
-  WriteOptions write_options;
-  write_options.exr = config.output.exr;
-  write_options.geotiff = config.output.geotiff;
-  write_options.preview = false;  // drawn below, with the centerlines on top
-  write_options.exr_half = config.output.exr_half;
-  write_options.geotiff_options = config.output.tiff;
-  write_options.geotiff_options.metadata = {
-      {"TERRAWEAVE_VERSION", kTerraweaveVersion},
-      {"TERRAWEAVE_PIPELINE", config.file.empty() ? "-" : config.file.filename().string()},
-      {"TERRAWEAVE_SEED", std::to_string(config.seed)},
-      {"TERRAWEAVE_HEIGHTFIELD", fs::path(plan.heights.source).filename().string()}};
-  const std::vector<ExportCurve> curves = export_curves(config, plan.lines);
+  const WriteOptions write_options = detail::layer_write_options(config, plan.heights.source);
+  const std::vector<ExportCurve> curves = detail::export_curves(config, plan.lines);
   const bool tiled = plan.tile_size > 0;
   report.tiles.size = plan.tile_size;
   report.tiles.overlap = plan.tile_overlap;
@@ -172,23 +117,18 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       options.cache_dir ? options.cache_dir : config.cache_dir;
   std::optional<detail::TileCache> tile_cache;
   if (tiled) tile_cache.emplace(plan, write_options, cache_dir, warnings);
-  const auto write_tile = [&](const TileSpec& tile, const LayerSet& layers, OutputStager& stager,
+  // The same writer as terraweave render-tile (detail/job_outputs.hpp): the same bytes.
+  const auto write_tile = [&](const TileSpec& tile, LayerSet& layers, OutputStager& stager,
                               std::map<std::string, std::string>& facts) {
-    for (const Layer& layer : layers.layers) {
-      const fs::path stem = dir / "tiles" / tile_file_stem(layer.name, tile);
-      if (config.output.exr)
-        write_exr(layers, layer, stager.stage(stem.string() + ".exr"),
-                  write_options.exr_compression, write_options.exr_zip_level);
-      if (config.output.geotiff) write_geotiff(layers, layer, stager.stage(stem.string() + ".tif"));
-    }
     facts["forbidden_pixels"] =
         std::to_string(detail::forbidden_in(layers, tile.halo_window, tile.window));
     facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
-    facts["input_height"] =
-        range_fact(core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
-                              tile.halo_window, tile.window));
-    facts["output_height"] = range_fact(
-        core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
+    facts["input_height"] = detail::range_fact(
+        detail::core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
+                           tile.halo_window, tile.window));
+    facts["output_height"] = detail::range_fact(
+        detail::core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
+    detail::write_tile_files(layers, tile, dir, stager, write_options);
   };
   for (const TileSpec& tile : plan.tiles) {
     const auto started = std::chrono::steady_clock::now();
@@ -204,11 +144,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       const auto writing = std::chrono::steady_clock::now();
       report.forbidden_pixels += detail::forbidden_in(layers, tile.halo_window, tile.window);
       tile_report.xxh64 = detail::layer_bytes_hash(layers);
-      widen(report.input_height,
-            core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
-                       tile.halo_window, tile.window));
-      widen(report.output_height,
-            core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
+      detail::widen(
+          report.input_height,
+          detail::core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
+                             tile.halo_window, tile.window));
+      detail::widen(report.output_height, detail::core_range(find_layer(layers, "height")->bands[0],
+                                                             tile.halo_window, tile.window));
       write_layer_set(layers, dir, transaction, write_options);
       if (config.output.preview) {
         std::vector<std::vector<Vec2>> centerlines;
@@ -223,20 +164,19 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       }
       write_seconds += seconds_since(writing);
     } else {
-      const detail::TileCache::Outcome outcome =
-          tile_cache->render_or_reuse(tile, transaction, dir,
-                                      [&](const LayerSet& layers, OutputStager& stager,
-                                          std::map<std::string, std::string>& facts) {
-                                        write_tile(tile, layers, stager, facts);
-                                      });
+      const detail::TileCache::Outcome outcome = tile_cache->render_or_reuse(
+          tile, transaction, dir,
+          [&](LayerSet& layers, OutputStager& stager, std::map<std::string, std::string>& facts) {
+            write_tile(tile, layers, stager, facts);
+          });
       for (const auto& [name, staged] : outcome.staged) {
         if (staged.extension() == ".tif") tile_tifs[layer_of_tile_file(name)].push_back(staged);
       }
       report.forbidden_pixels += std::stoll(outcome.facts.at("forbidden_pixels"));
       tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
-      widen(report.input_height, range_of_fact(outcome.facts.at("input_height")));
-      widen(report.output_height, range_of_fact(outcome.facts.at("output_height")));
-      tile_report.cache = outcome.status;
+      detail::widen(report.input_height, detail::range_of_fact(outcome.facts.at("input_height")));
+      detail::widen(report.output_height, detail::range_of_fact(outcome.facts.at("output_height")));
+      if (cache_dir) tile_report.cache = outcome.status;
       render_seconds += seconds_since(started);
     }
     tile_report.seconds = seconds_since(started);

@@ -167,7 +167,7 @@ TEST_F(Manifest, DiffOfAnotherSeedSeesAnotherGeneratedWorld) {
   EXPECT_EQ(report("b")["overrides"], json::array({"seed=4"}));
   const CommandResult r = terraweave("diff a b");
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("height.exr height: " +
+  EXPECT_THAT(r.output, HasSubstr("height.tif height: " +
                                   expected_band_line(read_band(dir / "a/height.tif"),
                                                      read_band(dir / "b/height.tif"), 64)));
   EXPECT_THAT(r.output, HasSubstr("report.json /seed: 3 -> 4"));

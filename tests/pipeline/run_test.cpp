@@ -250,11 +250,11 @@ TEST_F(DemoRun, AvoidanceLayerEqualsTheWholeGridMapCapped) {
   for (float& d : distance.pixels) d = std::min(d, cap);
 
   const ExrContents exr = read_exr(out("avoidance.exr"));
-  ASSERT_EQ(exr.channels, (std::vector<std::string>{"distance", "forbidden"}));
+  ASSERT_EQ(exr.channels, (std::vector<std::string>{"forbidden", "distance"}));
   std::vector<std::uint8_t> written;
-  for (const float v : exr.bands[1].pixels) written.push_back(v > 0.0f ? 1 : 0);
+  for (const float v : exr.bands[0].pixels) written.push_back(v > 0.0f ? 1 : 0);
   EXPECT_EQ(written, forbidden.pixels);
-  EXPECT_EQ(exr.bands[0].pixels, distance.pixels);
+  EXPECT_EQ(exr.bands[1].pixels, distance.pixels);
   EXPECT_GT(std::count(distance.pixels.begin(), distance.pixels.end(), cap), 0);  // it capped
   EXPECT_EQ(std::count(forbidden.pixels.begin(), forbidden.pixels.end(), 1),
             report_->forbidden_pixels);

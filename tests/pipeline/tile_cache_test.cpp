@@ -91,13 +91,12 @@ class TileCacheRun : public ::testing::Test {
     for (const TileSpec& tile : plan.tiles) {
       result.tiles[{tile.ix, tile.iy}] =
           tile_cache
-              .render_or_reuse(tile, folder, out,
-                               [&](const LayerSet& layers, OutputStager& stager,
-                                   std::map<std::string, std::string>&) {
-                                 write_layer_set(layers,
-                                                 out / "tiles" / tile_file_stem("tile", tile),
-                                                 stager, write_options);
-                               })
+              .render_or_reuse(
+                  tile, folder, out,
+                  [&](LayerSet& layers, OutputStager& stager, std::map<std::string, std::string>&) {
+                    write_layer_set(layers, out / "tiles" / tile_file_stem("tile", tile), stager,
+                                    write_options);
+                  })
               .status;
     }
     folder.commit();

@@ -19,7 +19,7 @@ PIPELINE = os.path.join(SOURCE_DIR, "pipelines", "generated.yaml")
 # with 8 of overlap: the roads and the river cross several tile borders.
 OVERRIDES = ["generate.width=256", "generate.height=256", "generate.pixel_size=16",
              "output.tiles.size=96", "output.tiles.overlap=8"]
-TIMING_KEYS = {"stages", "total_seconds", "seconds", "ingest_seconds", "avoidance_seconds",
+TIMING_KEYS = {"timings", "stages", "total_seconds", "seconds", "ingest_seconds", "avoidance_seconds",
                "synthesis_seconds", "render_seconds"}
 
 
@@ -50,6 +50,21 @@ def without_timings(value):
     return value
 
 
+def differences(a, b, path=""):
+    """JSON pointers where two values differ, with both values."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        out = []
+        for k in sorted(set(a) | set(b)):
+            out += differences(a.get(k), b.get(k), f"{path}/{k}")
+        return out
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        out = []
+        for i, (x, y) in enumerate(zip(a, b)):
+            out += differences(x, y, f"{path}/{i}")
+        return out
+    return [] if a == b else [(path, a, b)]
+
+
 def outputs(folder):
     """The user-facing files of an output folder (through its links), relative names."""
     names = []
@@ -76,8 +91,7 @@ def same_outputs(expected, actual):
             ra = without_timings(json.load(open(a)))
             rb = without_timings(json.load(open(b)))
             ra.pop("pipeline", None), rb.pop("pipeline", None)
-            check(ra == rb, "report.json differs beyond timings in " +
-                  str([k for k in set(ra) | set(rb) if ra.get(k) != rb.get(k)]))
+            check(ra == rb, "report.json differs beyond timings at " + str(differences(ra, rb)[:5]))
         else:
             check(read_bytes(a) == read_bytes(b), f"{name} differs between {expected} and {actual}")
     return names

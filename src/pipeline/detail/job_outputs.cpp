@@ -23,7 +23,7 @@ std::vector<fs::path> write_tile_files(LayerSet& layers, const TileSpec& tile, c
   return write_layer_set(layers, dir / "tiles", stager, tile_options);
 }
 
-RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
+RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
                             const std::vector<RenderedTile>& tiles, const fs::path& out,
                             OutputFolder& transaction) {
   RunReport report = plan.report;
@@ -34,7 +34,7 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
   for (const RenderedTile& t : tiles) {
     report.forbidden_pixels += t.forbidden_pixels;
     report.tiles.tiles.push_back({t.tile.index, t.tile.ix, t.tile.iy, t.tile.window,
-                                  t.tile.halo_window, t.seconds, t.xxh64});
+                                  t.tile.halo_window, t.seconds, t.xxh64, std::nullopt});
     for (const TileFile& f : t.files) {
       if (f.file.extension() != ".tif") continue;
       const std::string stem = f.file.stem().string();

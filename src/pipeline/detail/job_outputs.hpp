@@ -24,8 +24,9 @@ struct RenderedTile {
   TileSpec tile;
   std::vector<TileFile> files;
   double seconds = 0.0;
-  std::int64_t forbidden_pixels = 0;  // in its core window
-  std::uint64_t xxh64 = 0;            // of its pixels (detail/tile_stats.hpp)
+  std::int64_t forbidden_pixels = 0;        // in its core window
+  std::uint64_t xxh64 = 0;                  // of its pixels (detail/tile_stats.hpp)
+  std::string input_height, output_height;  // over its core (detail::range_fact)
 };
 
 // Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.

@@ -284,7 +284,8 @@ TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputFolder
     return outcome;
   }
   RecordingStager stager(output, output_dir);
-  write(render_tile(plan_, tile), stager, outcome.facts);
+  LayerSet layers = render_tile(plan_, tile);
+  write(layers, stager, outcome.facts);
   outcome.staged = stager.files;
   if (dir_) {
     CacheSections sections;

@@ -46,8 +46,8 @@ class TileCache {
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged;
     std::map<std::string, std::string> facts;
   };
-  using Writer = std::function<void(const LayerSet&, OutputStager&,
-                                    std::map<std::string, std::string>& facts)>;
+  using Writer =
+      std::function<void(LayerSet&, OutputStager&, std::map<std::string, std::string>& facts)>;
 
   // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
   // holds the files under the tile's key, stages copies of them (the same names, the same
