@@ -33,16 +33,28 @@ VectorSource vector_source(const std::string& source, const std::string& where) 
   return vector;
 }
 
+// The source's layer (its first when none is named), with the dataset that owns it.
+struct OpenLayer {
+  std::unique_ptr<GDALDataset> dataset;
+  OGRLayer* layer = nullptr;
+};
+OpenLayer open_layer(const VectorSource& source) {
+  GDALAllRegister();
+  OpenLayer out;
+  out.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
+                                      nullptr, nullptr, nullptr));
+  if (!out.dataset) fail("{}: cannot open as vector data", source.path);
+  out.layer = source.layer.empty() ? out.dataset->GetLayer(0)
+                                   : out.dataset->GetLayerByName(source.layer.c_str());
+  if (!out.layer) fail("{}: no layer '{}'", source.path, source.layer);
+  return out;
+}
+
 // A grid over the layer's extent in its own CRS, for geo's polygon reader (which reprojects to
 // and clips by a grid): the polygons come back as they are, repaired where GEOS must.
 Heightfield frame_of(const VectorSource& source) {
-  GDALAllRegister();
-  std::unique_ptr<GDALDataset> dataset(GDALDataset::Open(
-      source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-  if (!dataset) fail("{}: cannot open as vector data", source.path);
-  OGRLayer* layer =
-      source.layer.empty() ? dataset->GetLayer(0) : dataset->GetLayerByName(source.layer.c_str());
-  if (!layer) fail("{}: no layer '{}'", source.path, source.layer);
+  const OpenLayer opened = open_layer(source);
+  OGRLayer* layer = opened.layer;
   const OGRSpatialReference* srs = layer->GetSpatialRef();
   if (!srs || !srs->IsProjected()) {
     fail("{}: the polygons need a projected CRS in metres (reproject with ogr2ogr -t_srs)",
@@ -66,12 +78,8 @@ Heightfield frame_of(const VectorSource& source) {
 }
 
 bool is_polygon_layer(const VectorSource& source) {
-  std::unique_ptr<GDALDataset> dataset(GDALDataset::Open(
-      source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-  if (!dataset) fail("{}: cannot open as vector data", source.path);
-  OGRLayer* layer =
-      source.layer.empty() ? dataset->GetLayer(0) : dataset->GetLayerByName(source.layer.c_str());
-  if (!layer) fail("{}: no layer '{}'", source.path, source.layer);
+  const OpenLayer opened = open_layer(source);
+  OGRLayer* layer = opened.layer;
   const auto type = wkbFlatten(layer->GetGeomType());
   return type == wkbPolygon || type == wkbMultiPolygon;
 }

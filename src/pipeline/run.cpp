@@ -194,20 +194,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                 write_seconds);
 
   write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
-  // Placements: placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend
-  // field is left out so that every backend writes the same bytes.
-  std::map<std::string, int> parts;
-  for (const PlannedPattern& p : plan.patterns) {
-    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
-                                   plan.lines[p.class_index][p.feature_index].fid);
-    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
-    const std::string file = "placements/" + name + ".json";
-    Synthesis saved = p.synthesis;
-    saved.backend.clear();
-    save_placements(saved, plan.exemplars[p.exemplar_index].path,
-                    transaction.stage(dir / file).string());
-    report.classes[p.class_index].features[p.feature_index].synthesis->placements = file;
-  }
+  detail::write_placements(plan, dir, transaction, report);
 
   report.total_seconds = seconds_since(run_started);
   report.output_files = detail::record_outputs(transaction);

@@ -23,6 +23,25 @@ std::vector<fs::path> write_tile_files(LayerSet& layers, const TileSpec& tile, c
   return write_layer_set(layers, dir / "tiles", stager, tile_options);
 }
 
+void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction,
+                      RunReport& report) {
+  // placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend field is left
+  // out so that every backend writes the same bytes.
+  std::map<std::string, int> parts;
+  for (const PlannedPattern& p : plan.patterns) {
+    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
+                                   plan.lines[p.class_index][p.feature_index].fid);
+    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
+    const std::string file = "placements/" + name + ".json";
+    Synthesis saved = p.synthesis;
+    saved.backend.clear();
+    save_placements(saved, plan.exemplars[p.exemplar_index].path,
+                    transaction.stage(out / file).string());
+    auto& synthesis = report.classes[p.class_index].features[p.feature_index].synthesis;
+    if (synthesis) synthesis->placements = file;
+  }
+}
+
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
                             const std::vector<RenderedTile>& tiles, const fs::path& out,
                             OutputFolder& transaction) {
@@ -44,20 +63,7 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
   // As terraweave run writes a tiled world: the mosaics, no preview.
   for (const auto& [layer, sources] : tifs)
     write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
-  // placements/<class>_<fid>.json (a multi-part FID adds _<part>), as terraweave run names them.
-  std::map<std::string, int> parts;
-  for (const PlannedPattern& p : plan.patterns) {
-    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
-                                   plan.lines[p.class_index][p.feature_index].fid);
-    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
-    const std::string file = "placements/" + name + ".json";
-    Synthesis saved = p.synthesis;
-    saved.backend.clear();
-    save_placements(saved, plan.exemplars[p.exemplar_index].path,
-                    transaction.stage(out / file).string());
-    auto& synthesis = report.classes[p.class_index].features[p.feature_index].synthesis;
-    if (synthesis) synthesis->placements = file;
-  }
+  write_placements(plan, out, transaction, report);
   return report;
 }
 

@@ -42,6 +42,11 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
                             const std::vector<RenderedTile>& tiles,
                             const std::filesystem::path& out, OutputFolder& transaction);
 
+// placements/<class>_<fid>.json for every synthesized feature (a multi-part FID adds _<part>),
+// named in the report.
+void write_placements(const WorldPlan& plan, const std::filesystem::path& out,
+                      OutputFolder& transaction, RunReport& report);
+
 // <out>/report.json, as terraweave run writes it.
 void write_job_report(const RunReport& report, const PipelineConfig& config,
                       const std::filesystem::path& out, OutputFolder& transaction);
