@@ -35,18 +35,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-json read_json_file(const fs::path& path, const char* format) {
-  json j;
-  try {
-    j = json::parse(read_file_bytes(path));
-  } catch (const json::exception& e) {
-    fail("{}: not JSON ({})", path.string(), e.what());
-  }
-  if (!j.is_object() || j.value("format", "") != format)
-    fail("{}: not a {} file", path.string(), format);
-  return j;
-}
-
 // Stages a tile's files beside their final names (temporaries named by host and pid, so two
 // workers rendering the same tile never share one) and renames them into place.
 class TileStager final : public OutputStager {
@@ -185,7 +173,7 @@ PipelineConfig job_config(const json& job) {
 TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   test_pause_point("render-tile");
   const auto started = std::chrono::steady_clock::now();
-  const json job = read_json_file(plan_dir / "job.json", kJobFormat);
+  const json job = read_plan_file(plan_dir / "job.json", kJobFormat);
   const WorldPlan plan = load_plan(plan_dir);
   const std::string hash = plan_hash(plan_dir);
   if (job.value("plan", "") != hash)
@@ -238,7 +226,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
 
 RunReport finish_job(const fs::path& plan_dir) {
   const auto started = std::chrono::steady_clock::now();
-  const json job = read_json_file(plan_dir / "job.json", kJobFormat);
+  const json job = read_plan_file(plan_dir / "job.json", kJobFormat);
   const fs::path out = job.at("output_dir").get<std::string>();
   OutputFolder transaction(out);  // the lock, then every check, then the commit
   const std::string hash = plan_hash(plan_dir);
@@ -257,7 +245,7 @@ RunReport finish_job(const fs::path& plan_dir) {
     if (!fs::is_regular_file(result_path, ec))
       fail("tile {} (x{} y{}) was not rendered: no {} (terraweave render-tile {} --tile {})",
            spec.index, spec.ix, spec.iy, result_path.string(), plan_dir.string(), spec.index);
-    const json result = read_json_file(result_path, kTileResultFormat);
+    const json result = read_plan_file(result_path, kTileResultFormat);
     if (result.value("plan", "") != hash || result.value("tile", -1) != spec.index)
       fail("{}: belongs to plan {} tile {}, not plan {} tile {}", result_path.string(),
            result.value("plan", ""), result.value("tile", -1), hash, spec.index);

@@ -150,7 +150,10 @@ json tasks_json(const WorldPlan& plan, const std::string& hash) {
   return {{"format", kTasksFormat}, {"version", kPlanVersion}, {"plan", hash}, {"tiles", tiles}};
 }
 
-json read_json(const fs::path& path, const char* format) {
+}  // namespace
+
+nlohmann::json read_plan_file(const fs::path& path, const char* format) {
+  using nlohmann::json;
   json j;
   try {
     j = json::parse(read_file_bytes(path));
@@ -164,8 +167,6 @@ json read_json(const fs::path& path, const char* format) {
          kPlanVersion);
   return j;
 }
-
-}  // namespace
 
 std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   ObjectStore store(dir);
@@ -241,12 +242,12 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
 }
 
 std::string plan_hash(const fs::path& dir) {
-  return read_json(dir / "plan.json", kPlanFormat).value("plan", "");
+  return read_plan_file(dir / "plan.json", kPlanFormat).value("plan", "");
 }
 
 WorldPlan load_plan(const fs::path& dir) {
-  const json doc = read_json(dir / "plan.json", kPlanFormat);
-  const json tasks = read_json(dir / "tasks.json", kTasksFormat);
+  const json doc = read_plan_file(dir / "plan.json", kPlanFormat);
+  const json tasks = read_plan_file(dir / "tasks.json", kTasksFormat);
   const std::string where = "plan " + (dir / "plan.json").string();
   if (tasks.value("plan", "") != doc.value("plan", ""))
     fail("{}: tasks.json belongs to plan {}, plan.json is {}", where, tasks.value("plan", ""),

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "pipeline/plan.hpp"
 
 namespace tw {
@@ -32,5 +34,9 @@ WorldPlan load_plan(const std::filesystem::path& dir);
 
 // The plan's hash as plan.json records it (without reading the objects).
 std::string plan_hash(const std::filesystem::path& dir);
+
+// A JSON file of the plan folder (plan.json, tasks.json, job.json, tile results): throws
+// tw::Error naming the file unless it parses, has this `format` and this version.
+nlohmann::json read_plan_file(const std::filesystem::path& path, const char* format);
 
 }  // namespace tw
