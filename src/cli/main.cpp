@@ -28,6 +28,7 @@
 #include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synth_command.hpp"
+#include "pipeline/synthesis_job.hpp"
 #include "pipeline/version.hpp"
 #include "pipeline/view.hpp"
 
@@ -119,6 +120,23 @@ int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
   const tw::PipelineConfig config = load(args);
   if (options.output_dir.empty()) options.output_dir = config.output.dir;
   const tw::PlannedJob job = tw::plan_job(config, options);
+  std::printf("plan %s: %zu tiles, %zu syntheses to run, %zu warnings, in %s\n", job.plan.c_str(),
+              job.tiles, job.syntheses, job.warnings,
+              tw::single_line(job.plan_dir.string()).c_str());
+  return 0;
+}
+
+int synth_feature_command(const std::string& plan, int feature) {
+  const tw::SynthesisJobResult result =
+      tw::synthesize_job_feature(tw::find_plan_dir(plan), feature);
+  std::printf("feature %d (%s): %s in %.3f s\n", result.feature,
+              tw::single_line(result.name).c_str(),
+              result.synthesized ? "synthesized" : "reused from the cache", result.seconds);
+  return 0;
+}
+
+int complete_plan_command(const std::string& plan) {
+  const tw::PlannedJob job = tw::complete_job_plan(tw::find_plan_dir(plan));
   std::printf("plan %s: %zu tiles, %zu warnings, in %s\n", job.plan.c_str(), job.tiles,
               job.warnings, tw::single_line(job.plan_dir.string()).c_str());
   return 0;
@@ -214,6 +232,33 @@ int main(int argc, char** argv) {
       ->check(non_empty);
   plan->add_option("--backend", plan_backend, "synthesis backend")
       ->check(CLI::IsMember({"cpu", "opencl", "auto"}));
+  std::string plan_cache;
+  plan->add_option("--cache", plan_cache,
+                   "cache folder for every task of the plan: reuse the syntheses and tiles whose "
+                   "inputs are unchanged (docs/cache.md; replaces the pipeline's cache key)")
+      ->check(non_empty);
+  std::string plan_synthesis = "inline";
+  plan->add_option("--synthesis", plan_synthesis,
+                   "inline: synthesize here; tasks: leave each feature's synthesis to "
+                   "synth-feature, then complete-plan (docs/distributed.md)")
+      ->check(CLI::IsMember({"inline", "tasks"}));
+
+  std::string synth_feature_plan;
+  int synth_feature_index = 0;
+  CLI::App* synth_feature = app.add_subcommand(
+      "synth-feature", "synthesize one feature of a plan made with --synthesis tasks");
+  synth_feature
+      ->add_option("PLAN", synth_feature_plan, "plan folder, or the output folder holding one")
+      ->required();
+  synth_feature->add_option("--feature", synth_feature_index, "feature index (syntheses.json)")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
+
+  std::string complete_plan;
+  CLI::App* complete = app.add_subcommand(
+      "complete-plan", "put a plan's synthesized features into it, for render-tile");
+  complete->add_option("PLAN", complete_plan, "plan folder, or the output folder holding one")
+      ->required();
 
   std::string render_plan;
   int render_tile_index = 0;
@@ -414,10 +459,15 @@ int main(int argc, char** argv) {
     if (plan->parsed()) {
       if (!plan_out.empty()) plan_options.output_dir = plan_out;
       if (!plan_backend.empty()) plan_options.backend = plan_backend;
+      if (!plan_cache.empty()) plan_options.cache_dir = plan_cache;
+      plan_options.synthesis_tasks = plan_synthesis == "tasks";
       plan_options.strict = run_options.strict;  // the global flags
       plan_options.allow_network = run_options.allow_network;
       return plan_command(plan_args, plan_options);
     }
+    if (synth_feature->parsed())
+      return synth_feature_command(synth_feature_plan, synth_feature_index);
+    if (complete->parsed()) return complete_plan_command(complete_plan);
     if (render_tile->parsed()) return render_tile_command(render_plan, render_tile_index);
     if (finish->parsed()) return finish_command(finish_plan);
     if (synth->parsed()) {

@@ -14,9 +14,11 @@
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
+#include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -28,7 +30,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr const char* kJobFormat = "terraweave.job";
+using detail::kJobFormat;
 constexpr const char* kTileResultFormat = "terraweave.tile";
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -72,19 +74,6 @@ fs::path results_dir(const fs::path& plan_dir, const std::string& plan) {
   return plan_dir / ("results-" + plan);
 }
 
-// Deletes what earlier plans' tasks left (their workers may still write there: harmless).
-void delete_other_plans(const fs::path& plan_dir, const std::string& plan) {
-  std::error_code ec;
-  for (auto it = fs::directory_iterator(plan_dir, ec); !ec && it != fs::directory_iterator();
-       it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if ((name.starts_with("tiles-") || name.starts_with("results-")) && !name.ends_with(plan)) {
-      std::error_code ignored;
-      fs::remove_all(it->path(), ignored);
-    }
-  }
-}
-
 // The current folder for the lifetime of the object (finish reloads the pipeline where its
 // --set paths were given).
 class ScopedCurrentPath {
@@ -105,60 +94,29 @@ class ScopedCurrentPath {
 
 }  // namespace
 
-PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
-  set_network_access(options.allow_network);
-  check_input_paths(config, options.allow_network);
-  const fs::path out = fs::absolute(options.output_dir).lexically_normal();
-  // The folder's lock while the plan is written: not while a run or a finish writes there.
-  const OutputFolder lock(out);
-  Warnings warnings;
-  PlanOptions plan_options;
-  plan_options.backend = options.backend;
-  if (config.output.tiles.size <= 0)
-    fail(
-        "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "
-        "output.tiles.size=512)");
-  WorldPlan plan = plan_world(config, plan_options, warnings);
-  plan.report.warnings = warnings.list();
-  if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
-    fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
-         plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
+namespace detail {
+
+void delete_other_plans(const fs::path& plan_dir, const std::string& plan) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(plan_dir, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if ((name.starts_with("tiles-") || name.starts_with("results-")) && !name.ends_with(plan)) {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
   }
-  const fs::path plan_dir = out / ".terraweave" / "plan";
-  // job.json goes first: a plan.json beside an older job.json would be a mixed plan.
-  std::error_code ec;
-  fs::remove(plan_dir / "plan.json", ec);
-  const std::string hash = save_plan(plan, plan_dir);
-  const json job = {
-      {"format", kJobFormat},
-      {"version", kPlanVersion},
-      {"plan", hash},
-      {"pipeline", fs::absolute(config.file).string()},
-      {"pipeline_xxh3_128", content_hash(read_file_bytes(config.file))},
-      {"overrides", options.overrides},
-      {"cwd", fs::current_path().string()},
-      {"output_dir", out.string()},
-      {"exr", config.output.exr},
-      {"geotiff", config.output.geotiff},
-      {"plan_seconds", seconds_since(started)},
-  };
-  write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
-  delete_other_plans(plan_dir, hash);
-  logger().info("plan {}: {} tiles in {}", hash, plan.tiles.size(), plan_dir.string());
-  return {plan_dir, hash, plan.tiles.size(), plan.report.warnings.size()};
 }
 
-fs::path find_plan_dir(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_regular_file(path / "plan.json", ec)) return path;
-  if (fs::is_regular_file(path / ".terraweave" / "plan" / "plan.json", ec))
-    return path / ".terraweave" / "plan";
-  fail("{}: no plan here (neither plan.json nor .terraweave/plan/plan.json; run terraweave plan)",
-       path.string());
+json read_job(const fs::path& plan_dir) {
+  json job = read_plan_file(plan_dir / "job.json", kJobFormat);
+  const std::string hash = plan_hash(plan_dir);
+  if (job.value("plan", "") != hash)
+    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
+         job.value("plan", ""), hash);
+  return job;
 }
 
-// The pipeline as it was planned (its file unchanged, the same overrides, from the same folder).
 PipelineConfig job_config(const json& job) {
   const fs::path pipeline = job.at("pipeline").get<std::string>();
   if (content_hash(read_file_bytes(pipeline)) != job.value("pipeline_xxh3_128", ""))
@@ -170,54 +128,136 @@ PipelineConfig job_config(const json& job) {
   return load_pipeline(pipeline, overrides);
 }
 
+std::optional<fs::path> job_cache(const json& job) {
+  if (!job.contains("cache") || job["cache"].is_null()) return std::nullopt;
+  return fs::path(job["cache"].get<std::string>());
+}
+
+}  // namespace detail
+
+PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  set_network_access(options.allow_network);
+  check_input_paths(config, options.allow_network);
+  const fs::path out = fs::absolute(options.output_dir).lexically_normal();
+  // The folder's lock while the plan is written: not while a run or a finish writes there.
+  const OutputFolder lock(out);
+  Warnings warnings;
+  PlanOptions plan_options;
+  plan_options.backend = options.backend;
+  // --cache, else the pipeline's cache key; absolute, as every worker reads it.
+  std::optional<fs::path> cache = options.cache_dir ? options.cache_dir : config.cache_dir;
+  if (cache) cache = fs::absolute(*cache).lexically_normal();
+  plan_options.cache_dir = cache;
+  plan_options.synthesize = !options.synthesis_tasks;
+  if (config.output.tiles.size <= 0)
+    fail(
+        "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "
+        "output.tiles.size=512)");
+  WorldPlan plan = plan_world(config, plan_options, warnings);
+  const fs::path plan_dir = out / ".terraweave" / "plan";
+  std::optional<json> syntheses;
+  if (options.synthesis_tasks)
+    syntheses =
+        detail::plan_synthesis_tasks(config, plan, options.backend, cache, plan_dir, warnings);
+  plan.report.warnings = warnings.list();
+  if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
+    fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
+         plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
+  }
+  // job.json goes first: a plan.json beside an older job.json would be a mixed plan.
+  std::error_code ec;
+  fs::remove(plan_dir / "plan.json", ec);
+  const std::string hash = save_plan(plan, plan_dir);
+  const std::size_t pending = detail::write_synthesis_tasks(plan_dir, syntheses, hash);
+  const json job = {
+      {"format", kJobFormat},
+      {"version", kPlanVersion},
+      {"plan", hash},
+      {"pipeline", fs::absolute(config.file).string()},
+      {"pipeline_xxh3_128", content_hash(read_file_bytes(config.file))},
+      {"overrides", options.overrides},
+      {"cwd", fs::current_path().string()},
+      {"output_dir", out.string()},
+      {"exr", config.output.exr},
+      {"geotiff", config.output.geotiff},
+      {"cache", cache ? json(cache->string()) : json()},
+      {"backend", options.backend ? json(*options.backend) : json()},
+      {"plan_seconds", seconds_since(started)},
+  };
+  write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
+  detail::delete_other_plans(plan_dir, hash);
+  logger().info("plan {}: {} tiles, {} syntheses to run in {}", hash, plan.tiles.size(), pending,
+                plan_dir.string());
+  return {plan_dir, hash, plan.tiles.size(), plan.report.warnings.size(), pending};
+}
+
+fs::path find_plan_dir(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_regular_file(path / "plan.json", ec)) return path;
+  if (fs::is_regular_file(path / ".terraweave" / "plan" / "plan.json", ec))
+    return path / ".terraweave" / "plan";
+  fail("{}: no plan here (neither plan.json nor .terraweave/plan/plan.json; run terraweave plan)",
+       path.string());
+}
+
 TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   test_pause_point("render-tile");
   const auto started = std::chrono::steady_clock::now();
-  const json job = read_plan_file(plan_dir / "job.json", kJobFormat);
-  const WorldPlan plan = load_plan(plan_dir);
+  const json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
-  if (job.value("plan", "") != hash)
-    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
-         job.value("plan", ""), hash);
+  detail::require_complete_plan(plan_dir, hash);
+  const WorldPlan plan = load_plan(plan_dir);
   if (tile < 0 || std::size_t(tile) >= plan.tiles.size())
     fail("--tile {}: the plan has {} tiles (0 to {})", tile, plan.tiles.size(),
          int(plan.tiles.size()) - 1);
   const TileSpec& spec = plan.tiles[std::size_t(tile)];
-  LayerSet layers = render_tile(plan, spec);
-  const std::int64_t forbidden = detail::forbidden_in(layers, spec.halo_window, spec.window);
-  const std::uint64_t pixels_hash = detail::layer_bytes_hash(layers);
-  const WriteOptions write = detail::layer_write_options(job_config(job), plan.heights.source);
-  const std::string input_height = detail::range_fact(
-      detail::core_range(read_height_window(plan.heights, plan.grid, spec.halo_window),
-                         spec.halo_window, spec.window));
-  const std::string output_height = detail::range_fact(
-      detail::core_range(find_layer(layers, "height")->bands[0], spec.halo_window, spec.window));
+  const WriteOptions write =
+      detail::layer_write_options(detail::job_config(job), plan.heights.source);
   const fs::path dir = tiles_dir(plan_dir, hash);
+  // Through the tile cache, as terraweave run renders a tile (keys only without a cache).
+  Warnings warnings;  // a corrupt entry is rebuilt (run does not report it either)
+  detail::TileCache cache(plan, write, detail::job_cache(job), warnings);
   TileStager stager;
-  const std::vector<fs::path> written = detail::write_tile_files(layers, spec, dir, stager, write);
+  const detail::TileCache::Outcome outcome = cache.render_or_reuse(
+      spec, stager, dir,
+      [&](LayerSet& layers, OutputStager& to, std::map<std::string, std::string>& facts) {
+        facts["forbidden_pixels"] =
+            std::to_string(detail::forbidden_in(layers, spec.halo_window, spec.window));
+        facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
+        facts["input_height"] = detail::range_fact(
+            detail::core_range(read_height_window(plan.heights, plan.grid, spec.halo_window),
+                               spec.halo_window, spec.window));
+        facts["output_height"] = detail::range_fact(detail::core_range(
+            find_layer(layers, "height")->bands[0], spec.halo_window, spec.window));
+        detail::write_tile_files(layers, spec, dir, to, write);
+      });
   stager.commit();
 
   TileJobResult result;
   result.tile = tile;
   json files = json::array();
-  for (const fs::path& path : written) {
-    const std::string bytes = read_file_bytes(path);
-    result.files.push_back(path.lexically_relative(dir));
-    files.push_back({{"file", result.files.back().generic_string()},
+  for (const auto& [relative, staged] : outcome.staged) {
+    const std::string bytes = read_file_bytes(dir / relative);
+    result.files.push_back(relative);
+    files.push_back({{"file", relative.generic_string()},
                      {"bytes", bytes.size()},
                      {"xxh3_128", content_hash(bytes)}});
   }
   result.seconds = seconds_since(started);
-  const json record = {{"format", kTileResultFormat},
-                       {"version", kPlanVersion},
-                       {"plan", hash},
-                       {"tile", tile},
-                       {"files", files},
-                       {"forbidden_pixels", forbidden},
-                       {"xxh64", pixels_hash},
-                       {"input_height", input_height},
-                       {"output_height", output_height},
-                       {"seconds", result.seconds}};
+  const CacheStatus& status = outcome.status;
+  const json record = {
+      {"format", kTileResultFormat},
+      {"version", kPlanVersion},
+      {"plan", hash},
+      {"tile", tile},
+      {"files", files},
+      {"forbidden_pixels", std::stoll(outcome.facts.at("forbidden_pixels"))},
+      {"xxh64", std::stoull(outcome.facts.at("xxh64"))},
+      {"input_height", outcome.facts.at("input_height")},
+      {"output_height", outcome.facts.at("output_height")},
+      {"cache", {{"reused", status.reused}, {"why", status.why}, {"key", status.key}}},
+      {"seconds", result.seconds}};
   // Last: a result names only complete files.
   write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
                     record.dump(1) + "\n");
@@ -226,14 +266,14 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
 
 RunReport finish_job(const fs::path& plan_dir) {
   const auto started = std::chrono::steady_clock::now();
-  const json job = read_plan_file(plan_dir / "job.json", kJobFormat);
-  const fs::path out = job.at("output_dir").get<std::string>();
+  const fs::path out =
+      read_plan_file(plan_dir / "job.json", kJobFormat).at("output_dir").get<std::string>();
   OutputFolder transaction(out);  // the lock, then every check, then the commit
+  const json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
-  if (job.value("plan", "") != hash)
-    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
-         job.value("plan", ""), hash);
-  const PipelineConfig config = job_config(job);
+  detail::require_complete_plan(plan_dir, hash);
+  const bool cached = detail::job_cache(job).has_value();
+  const PipelineConfig config = detail::job_config(job);
   WorldPlan plan = load_plan(plan_dir);
 
   std::vector<detail::RenderedTile> tiles;
@@ -256,6 +296,11 @@ RunReport finish_job(const fs::path& plan_dir) {
     rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
     rendered.input_height = result.value("input_height", std::string());
     rendered.output_height = result.value("output_height", std::string());
+    if (cached && result.contains("cache")) {  // as run reports it: only with a cache
+      const json& c = result["cache"];
+      rendered.cache = CacheStatus{c.at("reused").get<bool>(), c.at("why").get<std::string>(),
+                                   c.at("key").get<std::string>()};
+    }
     for (const json& file : result.at("files")) {
       const fs::path relative = file.at("file").get<std::string>();
       const std::string bytes = read_file_bytes(dir / relative);

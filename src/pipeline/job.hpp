@@ -33,6 +33,11 @@ struct PlanJobOptions {
   std::vector<std::string> overrides;  // the --set assignments, as given
   bool strict = false;                 // any warning fails the plan
   bool allow_network = false;
+  // --cache: syntheses and tiles reused from there and stored there (docs/cache.md); absent:
+  // the pipeline's cache key, or none. Every task of the plan uses it (job.json).
+  std::optional<std::filesystem::path> cache_dir;
+  // --synthesis tasks: the plan leaves every synthesis to a task (pipeline/synthesis_job.hpp).
+  bool synthesis_tasks = false;
 };
 
 struct PlannedJob {
@@ -40,6 +45,8 @@ struct PlannedJob {
   std::string plan;  // its hash
   std::size_t tiles = 0;
   std::size_t warnings = 0;
+  // Syntheses left to synth-feature and complete-plan (0: the plan is complete).
+  std::size_t syntheses = 0;
 };
 
 // Plans the world and writes <out>/.terraweave/plan (replacing an earlier plan there).

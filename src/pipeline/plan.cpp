@@ -10,6 +10,7 @@
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
@@ -108,6 +109,31 @@ void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPl
 }
 
 }  // namespace
+
+namespace detail {
+
+FeatureRibbons synthesis_ribbons(const WorldPlan& plan) {
+  FeatureRibbons ribbons;
+  ribbons.ribbons = plan.ribbons;
+  ribbons.synthesis_junction_discs = plan.synthesis_junction_discs;
+  return ribbons;
+}
+
+ExistingFeatures existing_features(const WorldPlan& plan) {
+  return {plan.existing.polygons, plan.existing.lines, plan.existing.line_widths};
+}
+
+void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan) {
+  for (const FeaturePattern& p : patterns.patterns) {
+    FeatureReport& feature = plan.report.classes[p.class_index].features[p.feature_index];
+    feature.synthesis = p.report;
+    feature.cache = p.cache;
+    plan.report.pattern_violations += p.report.violations;
+  }
+  plan_patterns(config, std::move(patterns), plan);
+}
+
+}  // namespace detail
 
 void index_plan(WorldPlan& plan) {
   std::vector<Window> features;
@@ -209,15 +235,9 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
     detail::PatternOptions pattern_options;
     pattern_options.backend = options.backend;
     pattern_options.cache = &cache;
-    detail::PatternRun patterns =
-        detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
-    for (const detail::FeaturePattern& p : patterns.patterns) {
-      FeatureReport& feature = report.classes[p.class_index].features[p.feature_index];
-      feature.synthesis = p.report;
-      feature.cache = p.cache;
-      report.pattern_violations += p.report.violations;
-    }
-    plan_patterns(config, std::move(patterns), plan);
+    detail::add_patterns(
+        config, detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options),
+        plan);
     clock.stop();
   } else {
     plan.splat_materials = splat_materials();
@@ -227,6 +247,7 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   plan.existing.lines = std::move(existing.lines);
   plan.existing.line_widths = std::move(existing.line_widths);
   plan.junction_discs = std::move(ribbons.junction_discs);
+  plan.synthesis_junction_discs = std::move(ribbons.synthesis_junction_discs);
   plan.ribbons = std::move(ribbons.ribbons);
   plan.lines = std::move(lines);
 

@@ -106,6 +106,9 @@ struct WorldPlan {
   std::vector<std::vector<LineFeature>> lines;
   std::vector<std::vector<Ribbon>> ribbons;
   std::vector<Polygon> junction_discs;  // on the output grid's tolerance
+  // The same on the synthesis canvas's tolerance: what syntheses avoid (a plan's syntheses may
+  // run later, as tasks: pipeline/synthesis_job.hpp).
+  std::vector<Polygon> synthesis_junction_discs;
 
   // Existing features (polygons, buffered lines) burnt into the avoidance layer.
   AvoidanceInputs existing;

@@ -1,4 +1,5 @@
-// The plan as a folder (pipeline/plan_io.hpp) and the run in three steps (pipeline/job.hpp) on
+// The plan as a folder (pipeline/plan_io.hpp), the run in three steps (pipeline/job.hpp) and the
+// syntheses as tasks (pipeline/synthesis_job.hpp) on
 // a small world with everything a plan holds: a DEM, three roads (one a ring) with synthesized
 // cobble patterns (colour, alpha and height channels), junctions, 3 x 3 tiles.
 #include <gmock/gmock.h>
@@ -14,6 +15,7 @@
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
+#include "pipeline/synthesis_job.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -188,14 +190,62 @@ TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
   render_job_tile(job.plan_dir, 2);
   const RunReport report = finish_job(job.plan_dir);
   EXPECT_EQ(read_file_bytes(dir_ / "out/tiles/height_x1_y1.exr"), exr);
-  for (const char* name : {"height.vrt", "splat.vrt", "avoidance.vrt", "report.json",
-                           "placements/roads_2.json"})
+  for (const char* name :
+       {"height.vrt", "splat.vrt", "avoidance.vrt", "report.json", "placements/roads_2.json"})
     EXPECT_TRUE(fs::exists(dir_ / "out" / name)) << name;
   const nlohmann::json manifest = nlohmann::json::parse(read_file_bytes(dir_ / "out/report.json"));
   ASSERT_EQ(manifest["tiles"]["tiles"].size(), 9u);
   EXPECT_EQ(manifest["tiles"]["tiles"][4]["index"], 4);
   EXPECT_EQ(report.pattern_violations, 0);
   EXPECT_FALSE(fs::exists(tiles));  // the tiles are the output folder's now
+}
+
+TEST_F(PlanFolder, SynthesesAsTasksInTheirDependencyOrderGiveTheSamePlan) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "inline";
+  const std::string inline_plan = plan_job(config_, options).plan;
+  options.output_dir = dir_ / "out";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config_, options);
+  ASSERT_EQ(job.syntheses, 3u);
+  const auto syntheses = nlohmann::json::parse(read_file_bytes(job.plan_dir / "syntheses.json"));
+  const auto& features = syntheses["features"];
+  ASSERT_EQ(features.size(), 3u);
+  // The two lines cross, the ring crosses both: each waits for every feature before it.
+  EXPECT_EQ(features[0]["after"], nlohmann::json::array());
+  EXPECT_EQ(features[1]["after"], nlohmann::json({0}));
+  EXPECT_EQ(features[2]["after"], nlohmann::json({0, 1}));
+  EXPECT_EQ(features[2]["wave"], 2);
+  EXPECT_EQ(features[2]["cache"]["why"], "no cache");
+  const auto expect_error = [](const auto& step, const std::string& message) {
+    try {
+      step();
+      ADD_FAILURE() << "no error; expected: " << message;
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  expect_error([&] { render_job_tile(job.plan_dir, 0); }, "syntheses are not in the plan yet");
+  expect_error([&] { synthesize_job_feature(job.plan_dir, 2); }, "FID 1: its synthesis");
+  expect_error([&] { complete_job_plan(job.plan_dir); }, "not done yet");
+  expect_error([&] { synthesize_job_feature(job.plan_dir, 3); }, "the plan has 3 syntheses");
+  EXPECT_TRUE(synthesize_job_feature(job.plan_dir, 0).synthesized);
+  EXPECT_EQ(synthesize_job_feature(job.plan_dir, 1).name, "roads_2");
+  const fs::path entry = fs::path(syntheses["store"].get<std::string>()) / "synthesis" /
+                         (features[1]["key"].get<std::string>() + ".twc");
+  const std::string first = read_file_bytes(entry);
+  synthesize_job_feature(job.plan_dir, 1);  // a rerun (a lost worker): the same bytes
+  EXPECT_EQ(read_file_bytes(entry), first);
+  synthesize_job_feature(job.plan_dir, 2);
+  // The plan the tasks complete is the plan made in one process: the same hash, so the same
+  // tiles (every tile of it is tested bit for bit above).
+  const PlannedJob complete = complete_job_plan(job.plan_dir);
+  EXPECT_EQ(complete.plan, inline_plan);
+  EXPECT_EQ(plan_hash(job.plan_dir), inline_plan);
+  EXPECT_EQ(complete_job_plan(job.plan_dir).plan, inline_plan);  // complete already: no change
+  expect_error([&] { synthesize_job_feature(job.plan_dir, 0); }, "complete already");
+  EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
+  EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
 }
 
 }  // namespace

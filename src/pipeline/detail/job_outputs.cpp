@@ -53,7 +53,7 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
   for (const RenderedTile& t : tiles) {
     report.forbidden_pixels += t.forbidden_pixels;
     report.tiles.tiles.push_back({t.tile.index, t.tile.ix, t.tile.iy, t.tile.window,
-                                  t.tile.halo_window, t.seconds, t.xxh64, std::nullopt});
+                                  t.tile.halo_window, t.seconds, t.xxh64, t.cache});
     for (const TileFile& f : t.files) {
       if (f.file.extension() != ".tif") continue;
       const std::string stem = f.file.stem().string();

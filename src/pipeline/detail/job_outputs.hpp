@@ -3,11 +3,13 @@
 // placements, the preview and report.json, staged in the output folder's transaction.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/output_folder.hpp"
 #include "layers/write.hpp"
+#include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/plan.hpp"
 
@@ -27,6 +29,7 @@ struct RenderedTile {
   std::int64_t forbidden_pixels = 0;        // in its core window
   std::uint64_t xxh64 = 0;                  // of its pixels (detail/tile_stats.hpp)
   std::string input_height, output_height;  // over its core (detail::range_fact)
+  std::optional<CacheStatus> cache;         // with a cache: rendered or reused, and why
 };
 
 // Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.

@@ -159,9 +159,32 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       const SynthesisKey key =
           cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys);
       pattern.key = key.combined();
+      for (std::size_t e = 0; e < earlier_keys.size(); ++e)
+        if (overlaps(earlier_keys[e].canvas, canvas)) pattern.after.push_back(e);
       earlier_keys.push_back({canvas, pattern.key});
-      if (std::optional<CachedSynthesis> cached = cache.find(
-              "features." + feature_class.name, line.fid, pattern.name, key, pattern.cache)) {
+      const std::size_t index = earlier_keys.size() - 1;
+      using Scope = PatternOptions::Scope;
+      const bool one = options.scope == Scope::one;
+      if (one && index > options.feature) return run;
+      if (one && index < options.feature &&
+          std::find(options.after.begin(), options.after.end(), index) == options.after.end())
+        continue;  // not on its canvas: skipped
+      std::optional<CachedSynthesis> cached;
+      if (!one || index != options.feature)
+        cached = cache.find("features." + feature_class.name, line.fid, pattern.name, key,
+                            pattern.cache);
+      if (!cached && options.scope != Scope::all && options.scope != Scope::keys &&
+          (!one || index != options.feature)) {
+        fail(
+            "{}: its synthesis (feature {} of the plan, key {}) is not done yet (terraweave "
+            "synth-feature PLAN --feature {})",
+            label, index, pattern.cache.key, index);
+      }
+      if (options.scope == Scope::keys) {
+        run.patterns.push_back(std::move(pattern));
+        continue;
+      }
+      if (cached) {
         if (cached->start)
           pattern.ribbon = make_ribbon(*cached->start, {width, synthesis.delta, 0.0});
         pattern.synthesis = std::move(cached->synthesis);

@@ -46,6 +46,9 @@ struct FeaturePattern {
   FeatureSynthesisReport report;
   ContentHash key;  // of everything the synthesis read (synthesis_cache.hpp)
   CacheStatus cache;
+  // The features before it (synthesis order, counting features with pieces) whose canvases
+  // overlap its own: it avoids their coverage, so it depends on them.
+  std::vector<std::size_t> after;
 };
 
 struct PatternRun {
@@ -61,6 +64,17 @@ struct PatternOptions {
   // Reuses and stores syntheses (`--cache`); null: every feature is synthesized (keys are still
   // computed for the report).
   SynthesisCache* cache = nullptr;
+  // Which features are synthesized (distributed synthesis, pipeline/synthesis_job.hpp), by
+  // their index in synthesis order among the features with pieces:
+  //   all     every feature (the cache's entries reused): a run;
+  //   keys    none: names, canvases, keys, `after` and cache statuses only (the task list);
+  //   one     the feature `feature`, always synthesized and stored in the cache, which must hold
+  //           the features in `after` it depends on (the others are skipped; so are later ones);
+  //   cached  every feature from the cache, which must hold them all (a plan's completion).
+  enum class Scope { all, keys, one, cached };
+  Scope scope = Scope::all;
+  std::size_t feature = 0;
+  std::vector<std::size_t> after;  // scope one: the features that `feature` depends on
 };
 
 // Throws tw::Error naming the class and FID (and the piece) of a feature without room for its

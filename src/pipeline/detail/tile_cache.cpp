@@ -91,7 +91,7 @@ ContentHash ribbon_hash(const Ribbon& r) {
 // Stages through an OutputFolder and remembers what (the names under `dir`, the staged paths).
 class RecordingStager final : public OutputStager {
  public:
-  RecordingStager(OutputFolder& output, fs::path dir) : output_(output), dir_(std::move(dir)) {}
+  RecordingStager(OutputStager& output, fs::path dir) : output_(output), dir_(std::move(dir)) {}
   fs::path stage(const fs::path& final_path) override {
     fs::path staged = output_.stage(final_path);
     files.push_back(
@@ -101,7 +101,7 @@ class RecordingStager final : public OutputStager {
   std::vector<std::pair<fs::path, fs::path>> files;
 
  private:
-  OutputFolder& output_;
+  OutputStager& output_;
   fs::path dir_;
 };
 
@@ -260,7 +260,7 @@ void TileCache::store(const std::string& name, const TileKey& key, const CacheSe
                      {"config", key.config.hex()}});
 }
 
-TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputFolder& output,
+TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager& output,
                                               const fs::path& output_dir, const Writer& write) {
   const std::string name = tile_file_stem("tile", tile);
   const TileKey key = this->key(tile);

@@ -52,7 +52,7 @@ class TileCache {
   // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
   // holds the files under the tile's key, stages copies of them (the same names, the same
   // bytes). Stores a rebuilt tile's files and facts.
-  Outcome render_or_reuse(const TileSpec& tile, OutputFolder& output,
+  Outcome render_or_reuse(const TileSpec& tile, OutputStager& output,
                           const std::filesystem::path& output_dir, const Writer& write);
 
  private:

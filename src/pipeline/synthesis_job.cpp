@@ -1,0 +1,225 @@
+#include "pipeline/synthesis_job.hpp"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/log.hpp"
+#include "core/output_folder.hpp"
+#include "pipeline/detail/job_files.hpp"
+#include "pipeline/detail/plan_fields.hpp"
+#include "pipeline/detail/plan_synthesis.hpp"
+#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/plan_io.hpp"
+
+namespace tw {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Scope = detail::PatternOptions::Scope;
+
+namespace {
+
+fs::path syntheses_path(const fs::path& plan_dir) {
+  return plan_dir / "syntheses.json";
+}
+fs::path results_dir(const fs::path& plan_dir) {
+  return plan_dir / "synthesis-results";
+}
+
+std::optional<std::string> job_backend(const json& job) {
+  if (!job.contains("backend") || job["backend"].is_null()) return std::nullopt;
+  return job["backend"].get<std::string>();
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+detail::PatternRun synthesize(const PipelineConfig& config, const WorldPlan& plan,
+                              const detail::PatternOptions& options) {
+  return detail::synthesize_patterns(config, plan.lines, detail::synthesis_ribbons(plan),
+                                     detail::existing_features(plan), options);
+}
+
+}  // namespace
+
+namespace detail {
+
+json plan_synthesis_tasks(const PipelineConfig& config, const WorldPlan& plan,
+                          const std::optional<std::string>& backend,
+                          const std::optional<fs::path>& cache, const fs::path& plan_dir,
+                          Warnings& warnings) {
+  SynthesisCache statuses(cache, warnings);
+  PatternOptions options;
+  options.backend = backend;
+  options.cache = &statuses;
+  options.scope = Scope::keys;
+  const PatternRun run = synthesize(config, plan, options);
+  json features = json::array();
+  std::vector<int> waves;
+  for (std::size_t i = 0; i < run.patterns.size(); ++i) {
+    const FeaturePattern& p = run.patterns[i];
+    const bool task = !p.cache.reused;
+    int wave = -1;  // tasks only: one more than the deepest task it waits for
+    if (task) {
+      wave = 0;
+      for (const std::size_t a : p.after) wave = std::max(wave, waves[a] + 1);
+    }
+    waves.push_back(wave);
+    features.push_back({{"index", i},
+                        {"name", p.name},
+                        {"class", config.features[p.class_index].name},
+                        {"fid", plan.lines[p.class_index][p.feature_index].fid},
+                        {"key", p.key.hex()},
+                        {"cache", {{"reused", p.cache.reused}, {"why", p.cache.why}}},
+                        {"after", p.after},
+                        {"task", task},
+                        {"wave", task ? json(wave) : json()}});
+  }
+  return {{"format", kSynthesesFormat},
+          {"version", kPlanVersion},
+          {"store", (cache ? *cache : plan_dir / "syntheses").string()},
+          {"features", features}};
+}
+
+std::size_t write_synthesis_tasks(const fs::path& plan_dir, const std::optional<json>& syntheses,
+                                  const std::string& plan) {
+  std::error_code ec;
+  fs::remove_all(results_dir(plan_dir), ec);
+  fs::remove_all(plan_dir / "syntheses", ec);  // an earlier plan's store (without a cache)
+  if (!syntheses || syntheses->at("features").empty()) {
+    fs::remove(syntheses_path(plan_dir), ec);
+    return 0;
+  }
+  json list = *syntheses;
+  list["plan"] = plan;
+  write_file_atomic(syntheses_path(plan_dir), list.dump(1) + "\n");
+  return list["features"].size();
+}
+
+void require_complete_plan(const fs::path& plan_dir, const std::string& plan) {
+  std::error_code ec;
+  if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return;
+  const json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  if (list.value("plan", "") == plan)
+    fail(
+        "plan {}: its syntheses are not in the plan yet (terraweave synth-feature {} --feature I "
+        "for every task of syntheses.json, then terraweave complete-plan {})",
+        plan, plan_dir.string(), plan_dir.string());
+}
+
+}  // namespace detail
+
+SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature) {
+  test_pause_point("synth-feature");
+  const auto started = std::chrono::steady_clock::now();
+  const json job = detail::read_job(plan_dir);
+  const std::string hash = plan_hash(plan_dir);
+  const json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  if (list.value("plan", "") != hash)
+    fail("{}: belongs to plan {}, plan.json is {} (complete already, or planned again)",
+         syntheses_path(plan_dir).string(), list.value("plan", ""), hash);
+  const json& features = list.at("features");
+  if (feature < 0 || std::size_t(feature) >= features.size())
+    fail("--feature {}: the plan has {} syntheses (0 to {})", feature, features.size(),
+         int(features.size()) - 1);
+  const json& entry = features[std::size_t(feature)];
+  SynthesisJobResult result;
+  result.feature = feature;
+  result.name = entry.at("name").get<std::string>();
+  if (!entry.at("task").get<bool>()) return result;  // reused from the cache by the plan
+
+  const PipelineConfig config = detail::job_config(job);
+  const WorldPlan plan = load_plan(plan_dir);
+  Warnings warnings;  // a store entry of a dependency that is corrupt: an error below
+  detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);
+  detail::PatternOptions options;
+  options.backend = job_backend(job);
+  options.cache = &store;
+  options.scope = Scope::one;
+  options.feature = std::size_t(feature);
+  options.after = entry.at("after").get<std::vector<std::size_t>>();
+  detail::PatternRun run = synthesize(config, plan, options);
+  if (run.patterns.empty() || run.patterns.back().key.hex() != entry.at("key").get<std::string>())
+    fail("{}: feature {} ({}) has another key here than in the plan (another program version?)",
+         syntheses_path(plan_dir).string(), feature, result.name);
+  const std::vector<std::uint8_t> report =
+      json::to_cbor(detail::encode(run.patterns.back().report));
+  // Last: a report names a stored synthesis.
+  write_file_atomic(results_dir(plan_dir) / (entry.at("key").get<std::string>() + ".cbor"),
+                    std::string(report.begin(), report.end()));
+  result.synthesized = true;
+  result.seconds = seconds_since(started);
+  return result;
+}
+
+PlannedJob complete_job_plan(const fs::path& plan_dir) {
+  const fs::path out =
+      read_plan_file(plan_dir / "job.json", detail::kJobFormat).at("output_dir").get<std::string>();
+  const OutputFolder lock(out);  // as plan: not while a run or a finish writes there
+  json job = detail::read_job(plan_dir);
+  const std::string hash = plan_hash(plan_dir);
+  const std::size_t tiles =
+      read_plan_file(plan_dir / "tasks.json", kTasksFormat).at("tiles").size();
+  std::error_code ec;
+  if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return {plan_dir, hash, tiles, 0, 0};
+  json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  if (list.value("plan", "") != hash) {
+    if (list.value("completed", "") == hash) return {plan_dir, hash, tiles, 0, 0};
+    fail("{}: belongs to plan {}, plan.json is {} (plan again)", syntheses_path(plan_dir).string(),
+         list.value("plan", ""), hash);
+  }
+  const PipelineConfig config = detail::job_config(job);
+  WorldPlan plan = load_plan(plan_dir);
+  Warnings warnings;
+  detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);
+  detail::PatternOptions options;
+  options.backend = job_backend(job);
+  options.cache = &store;
+  options.scope = Scope::cached;
+  detail::PatternRun run = synthesize(config, plan, options);
+  const json& features = list.at("features");
+  if (run.patterns.size() != features.size())
+    fail("{}: {} syntheses, the plan has {}", syntheses_path(plan_dir).string(), features.size(),
+         run.patterns.size());
+  double seconds = 0.0;  // the tasks' own, summed (on any number of workers)
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    detail::FeaturePattern& p = run.patterns[i];
+    const json& entry = features[i];
+    const std::string key = entry.at("key").get<std::string>();
+    if (p.key.hex() != key)
+      fail("{}: feature {} ({}) has another key here than in the plan",
+           syntheses_path(plan_dir).string(), i, p.name);
+    // As the plan found the cache; a task's synthesis reports what it did.
+    p.cache = {entry.at("cache").at("reused").get<bool>(),
+               entry.at("cache").at("why").get<std::string>(), key};
+    if (!entry.at("task").get<bool>()) continue;
+    const fs::path report = results_dir(plan_dir) / (key + ".cbor");
+    if (!fs::is_regular_file(report, ec))
+      fail("{}: not synthesized: no {} (terraweave synth-feature {} --feature {})", p.name,
+           report.string(), plan_dir.string(), i);
+    const std::string bytes = read_file_bytes(report);
+    try {
+      detail::decode(json::from_cbor(bytes), p.report, report.string());
+    } catch (const json::exception& e) {
+      fail("{}: not a synthesis report ({})", report.string(), e.what());
+    }
+    seconds += p.report.avoidance_seconds + p.report.synthesis_seconds + p.report.render_seconds;
+  }
+  detail::add_patterns(config, std::move(run), plan);
+  plan.report.stages.push_back({"synthesis", seconds});
+  index_plan(plan);
+  const std::string complete = save_plan(plan, plan_dir);
+  job["plan"] = complete;
+  write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
+  list["completed"] = complete;
+  write_file_atomic(syntheses_path(plan_dir), list.dump(1) + "\n");
+  detail::delete_other_plans(plan_dir, complete);
+  logger().info("plan {}: {} syntheses in, now plan {}", hash, features.size(), complete);
+  return {plan_dir, complete, tiles, plan.report.warnings.size(), 0};
+}
+
+}  // namespace tw
