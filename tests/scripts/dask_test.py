@@ -2,15 +2,19 @@
 
     dask_test.py TERRAWEAVE
 
-1. The driver's output equals a local `terraweave run` of the same pipeline: the mosaics hold
-   the untiled layers' pixels and report.json the same values (timings and the tile list
-   aside); when the local run writes tiles itself, every file byte for byte.
-2. A worker killed while it renders a tile (its process group: the worker and its
-   render-tile): the tile reruns on the other worker and every output is byte-identical to 1.
+On distributed_support's roads world (five syntheses, nine tiles):
+1. Syntheses and tiles as tasks, one worker killed while it synthesizes a feature (its process
+   group: the worker and its synth-feature): the DAG reruns that task on the other worker, and
+   every output is byte-identical to a local `terraweave run` (report.json: the same values but
+   timings and cache statuses, which differ between no cache and a new one).
+2. One road changed, rerun with --cache on a copy of the local run's cache: the driver rebuilds
+   the same syntheses ({1, 2, 4}) and the same tiles as the local cached rerun, and every output,
+   report.json's statuses included, equals the local run's.
 The scheduler and workers are started and stopped here; nothing is left running.
 """
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -73,9 +77,9 @@ class Services:
         self.processes = []
 
 
-def driver(terraweave, address, out, **popen):
-    command = [PYTHON, DRIVER, s.PIPELINE, "--scheduler", address, "--out", out,
-               "--terraweave", terraweave, "--min-workers", "2"] + s.set_args()
+def driver(terraweave, address, pipeline, out, extra=(), **popen):
+    command = [PYTHON, DRIVER, pipeline, "--scheduler", address, "--out", out,
+               "--terraweave", terraweave, "--min-workers", "2"] + list(extra)
     return subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             **popen)
 
@@ -90,36 +94,51 @@ def main():
     terraweave = os.path.abspath(sys.argv[1])
     with tempfile.TemporaryDirectory(prefix="tw-dask-") as tmp:
         started = time.monotonic()
+        pipeline = s.write_roads_world(os.path.join(tmp, "world"))
+        local_cache = os.path.join(tmp, "cache")
         local = os.path.join(tmp, "local")
-        s.run([terraweave, "-q", "run", s.PIPELINE, "--out", local] + s.set_args())
+        s.run([terraweave, "-q", "run", pipeline, "--out", local, "--cache", local_cache])
         services = Services(tmp)
         try:
             address = services.scheduler()
-            services.worker("a")
+            # Worker a pauses in the first synthesis it gets; b runs the rest, then a's task.
+            paused = services.worker("a", {"TERRAWEAVE_TEST_PAUSE_AT": "synth-feature"})
             services.worker("b")
             first = os.path.join(tmp, "dask1")
-            output = finished(driver(terraweave, address, first), "first run")
-            s.check("9 tiles on 2 workers" in output, f"unexpected summary:\n{output}")
-            s.equals_local_run(local, first)
-            print(f"dask: 9 tiles on 2 workers equal the local run ({time.monotonic() - started:.1f} s)")
-
-            # Worker a pauses in the first tile it gets; b renders the rest, then a's tile.
-            services.stop()
-            address = services.scheduler()
-            paused = services.worker("a", {"TERRAWEAVE_TEST_PAUSE_AT": "render-tile"})
-            services.worker("b")
-            second = os.path.join(tmp, "dask2")
-            run = driver(terraweave, address, second)
+            run = driver(terraweave, address, pipeline, first)
             deadline = time.monotonic() + 60
-            while "paused at render-tile" not in open(paused.log_path).read():
+            while "paused at synth-feature" not in open(paused.log_path).read():
                 s.check(time.monotonic() < deadline and run.poll() is None,
-                        "worker a never paused in a tile:\n" + open(paused.log_path).read() +
+                        "worker a never paused in a synthesis:\n" + open(paused.log_path).read() +
                         (run.communicate()[0] if run.poll() is not None else ""))
                 time.sleep(0.1)
             services.kill(paused)
-            finished(run, "run with a killed worker")
-            s.same_outputs(first, second)
-            print(f"dask: a worker killed in a tile, outputs identical "
+            services.worker("c")
+            output = finished(run, "run with a killed worker")
+            s.check("5 tasks of 5 features" in output and "9 tiles on 2 workers" in output,
+                    f"unexpected summary:\n{output}")
+            s.same_outputs(local, first, ignore={"cache"})
+            print(f"dask: 5 syntheses and 9 tiles as tasks, a worker killed in a synthesis, "
+                  f"outputs equal the local run ({time.monotonic() - started:.1f} s)")
+
+            # One road changed: the local cached rerun and the driver's, from the same cache.
+            dask_cache = os.path.join(tmp, "dask-cache")
+            shutil.copytree(local_cache, dask_cache, symlinks=True)
+            s.write_roads_world(os.path.join(tmp, "world"), s.ROADS_R1_MOVED)
+            rerun = os.path.join(tmp, "local-rerun")
+            s.run([terraweave, "-q", "run", pipeline, "--out", rerun, "--cache", local_cache])
+            second = os.path.join(tmp, "dask2")
+            output = finished(driver(terraweave, address, pipeline, second,
+                                     ["--cache", dask_cache]), "rerun with a cache")
+            s.check("3 tasks of 5 features" in output, f"unexpected summary:\n{output}")
+            s.same_outputs(rerun, second)
+            features, tiles = s.cache_statuses(second)
+            rebuilt = {fid for fid, (status, _) in features.items() if status == "rebuilt"}
+            s.check(rebuilt == s.REBUILT_WHEN_R1_MOVED, f"rebuilt syntheses {features}")
+            rebuilt_tiles = [i for i, (status, _) in tiles.items() if status == "rebuilt"]
+            s.check(0 < len(rebuilt_tiles) < len(tiles) == 9, f"tiles {tiles}")
+            print(f"dask: one road changed, --cache: syntheses {sorted(rebuilt)} and tiles "
+                  f"{sorted(rebuilt_tiles)} rebuilt as in the local run, outputs equal "
                   f"({time.monotonic() - started:.1f} s)")
         finally:
             services.stop()

@@ -19,6 +19,75 @@ PIPELINE = os.path.join(SOURCE_DIR, "pipelines", "generated.yaml")
 # with 8 of overlap: the roads and the river cross several tile borders.
 OVERRIDES = ["generate.width=256", "generate.height=256", "generate.pixel_size=16",
              "output.tiles.size=96", "output.tiles.overlap=8"]
+# A world with syntheses (tests/pipeline/cache_world.cpp's): a generated 640 m terrain with five
+# cobbled roads (R1 and R2 cross, R4 runs beside R1's east end, R3 and R5 far from the rest), in
+# 3 x 3 tiles of 64 pixels with 4 of overlap. Synthesis order is FID order.
+ROADS_PIPELINE = """version: 1
+seed: 5
+generate: { width: 160, height: 160, pixel_size: 4, relief: 40, origin: [500000, 5000640] }
+synthesis_resolution: 1
+output: { tiles: { size: 64, overlap: 4 } }
+avoidance: { max_distance: 24 }      # a halo of 7 pixels: a changed road reaches a few tiles
+features:
+  roads:
+    source: roads.gpkg
+    layer: roads
+    kind: road
+    width: 6
+    profile: { shoulder_width: 2, falloff: 10 }
+    synthesis: { exemplar: cobble.png, width: 8, scale: 5, delta: 8 }
+"""
+ROADS = [[(50, 300), (590, 300)], [(320, 50), (320, 590)], [(50, 450), (250, 450)],
+         [(450, 318), (590, 318)], [(50, 100), (250, 100)]]
+# R1 with its east end moved 10 m north: R1, R2 (their crossing moved) and R4 (now beside R1's
+# new canvas) are resynthesized; R3 and R5 are reused (cache_test.cpp works this set out).
+ROADS_R1_MOVED = [[(50, 300), (590, 310)]] + ROADS[1:]
+REBUILT_WHEN_R1_MOVED = {1, 2, 4}
+
+
+def write_roads_world(folder, roads=ROADS):
+    """pipeline.yaml, roads.gpkg (FID 1..5) and the cropped cobble exemplar in `folder`;
+    returns the pipeline's path."""
+    from osgeo import ogr, osr
+    ogr.UseExceptions()
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "roads.gpkg")
+    if os.path.exists(path):
+        os.remove(path)
+    source = ogr.GetDriverByName("GPKG").CreateDataSource(path)
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(32631)
+    layer = source.CreateLayer("roads", srs, ogr.wkbLineString)
+    layer.CreateField(ogr.FieldDefn("width", ogr.OFTReal))
+    for line in roads:
+        feature = ogr.Feature(layer.GetLayerDefn())
+        feature.SetField("width", 6.0)
+        wkt = ", ".join(f"{500000 + x} {5000000 + y}" for x, y in line)
+        feature.SetGeometry(ogr.CreateGeometryFromWkt(f"LINESTRING ({wkt})"))
+        layer.CreateFeature(feature)
+    source = None
+    exemplars = os.path.join(SOURCE_DIR, "samples", "exemplars")
+    for name, target, driver in (("cobble_edging_200x56.png", "cobble.png", "PNG"),
+                                 ("cobble_edging_200x56_height.tif", "cobble_height.tif", "GTiff")):
+        if not os.path.exists(os.path.join(folder, target)):
+            gdal.Translate(os.path.join(folder, target), os.path.join(exemplars, name),
+                           srcWin=[0, 0, 60, 56], format=driver)
+    pipeline = os.path.join(folder, "pipeline.yaml")
+    with open(pipeline, "w") as f:
+        f.write(ROADS_PIPELINE)
+    return pipeline
+
+
+def cache_statuses(folder):
+    """report.json's cache statuses: {feature FID: (status, why)} and {tile index: (...)}."""
+    report = json.load(open(os.path.join(folder, "report.json")))
+    features = {f["fid"]: (f["cache"]["status"], f["cache"]["why"])
+                for c in report["classes"] for f in c["features"] if "cache" in f}
+    tiles = {t["index"]: (t["cache"]["status"], t["cache"]["why"])
+             for t in report["tiles"]["tiles"] if "cache" in t}
+    return features, tiles
+
+
 TIMING_KEYS = {"timings", "stages", "total_seconds", "seconds", "ingest_seconds", "avoidance_seconds",
                "synthesis_seconds", "render_seconds"}
 
@@ -42,11 +111,13 @@ def run(command, **kwargs):
     return completed.stdout
 
 
-def without_timings(value):
+def without_timings(value, ignore=frozenset()):
+    """`value` without its timings (and the keys in `ignore`), at any depth."""
     if isinstance(value, dict):
-        return {k: without_timings(v) for k, v in value.items() if k not in TIMING_KEYS}
+        return {k: without_timings(v, ignore) for k, v in value.items()
+                if k not in TIMING_KEYS and k not in ignore}
     if isinstance(value, list):
-        return [without_timings(v) for v in value]
+        return [without_timings(v, ignore) for v in value]
     return value
 
 
@@ -79,17 +150,17 @@ def read_bytes(path):
         return f.read()
 
 
-def same_outputs(expected, actual):
+def same_outputs(expected, actual, ignore=frozenset()):
     """Every file of `expected` exists in `actual` with the same bytes (report.json: the same
-    values but timings); and nothing more."""
+    values but timings and the keys in `ignore`); and nothing more."""
     names = outputs(expected)
     check(names == outputs(actual), f"different files:\n{names}\n{outputs(actual)}")
     check(any(n.startswith("tiles" + os.sep) for n in names), f"no tiles in {expected}")
     for name in names:
         a, b = os.path.join(expected, name), os.path.join(actual, name)
         if name == "report.json":
-            ra = without_timings(json.load(open(a)))
-            rb = without_timings(json.load(open(b)))
+            ra = without_timings(json.load(open(a)), ignore)
+            rb = without_timings(json.load(open(b)), ignore)
             ra.pop("pipeline", None), rb.pop("pipeline", None)
             check(ra == rb, "report.json differs beyond timings at " + str(differences(ra, rb)[:5]))
         else:
