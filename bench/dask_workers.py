@@ -55,7 +55,10 @@ def main():
                     [PYTHON, os.path.join(ROOT, "scripts", "terraweave-dask"), pipeline,
                      "--scheduler", address, "--out", os.path.join(tmp, f"out{workers}"),
                      "--terraweave", terraweave, "--min-workers", str(workers)] + sets,
-                    capture_output=True, text=True, check=True).stdout
+                    capture_output=True, text=True, check=False)
+                if out.returncode != 0:
+                    sys.exit(f"terraweave-dask failed ({out.returncode}):\n{out.stdout}{out.stderr}")
+                out = out.stdout
                 times[workers] = time.monotonic() - started
                 print(f"{workers} worker{'s' if workers > 1 else ' '}: {times[workers]:7.2f} s wall")
                 print("  " + out.strip().replace("\n", "\n  "))

@@ -165,16 +165,16 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       const std::size_t index = earlier_keys.size() - 1;
       using Scope = PatternOptions::Scope;
       const bool one = options.scope == Scope::one;
+      const bool the_one = one && index == options.feature;  // synthesized, never looked up
       if (one && index > options.feature) return run;
-      if (one && index < options.feature &&
+      if (one && !the_one &&
           std::find(options.after.begin(), options.after.end(), index) == options.after.end())
         continue;  // not on its canvas: skipped
       std::optional<CachedSynthesis> cached;
-      if (!one || index != options.feature)
+      if (!the_one)
         cached = cache.find("features." + feature_class.name, line.fid, pattern.name, key,
                             pattern.cache);
-      if (!cached && options.scope != Scope::all && options.scope != Scope::keys &&
-          (!one || index != options.feature)) {
+      if (!cached && (options.scope == Scope::cached || (one && !the_one))) {
         fail(
             "{}: its synthesis (feature {} of the plan, key {}) is not done yet (terraweave "
             "synth-feature PLAN --feature {})",
