@@ -258,8 +258,9 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   detail::AreaRun areas;
   if (options.synthesize && !config.areas.empty()) {
     clock.start("areas");
-    const auto region = config.region ? in_memory_heightfield(heightfield) : nullptr;
-    HeightSampler heights(region ? *region : *source);
+    // The whole heightfield, also with a region: a close-up's polygons get the leads of the
+    // full run, and polygons beyond the region keep theirs.
+    HeightSampler heights(*source);
     areas = detail::synthesize_areas(config, area_polygons, lines, ribbons, existing,
                                      patterns ? &*patterns : nullptr, heights, warnings);
     clock.stop();

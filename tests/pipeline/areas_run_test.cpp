@@ -79,6 +79,7 @@ class AreaRun : public ::testing::Test {
 
   // Two polygons with a `crop` column (test_world's writer has only `width`): GDAL directly.
   void write_fields() const {
+    GDALAllRegister();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
     std::unique_ptr<GDALDataset> ds(
         GDALDataset::Open((dir_ / "map.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
@@ -218,7 +219,9 @@ TEST_F(AreaRun, ARenderFromTheSavedPlanIsTheSameBytes) {
 TEST(AreaContours, RowsRunAlongTheContours) {
   test::TempDir dir;
   {
+    GDALAllRegister();
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
     std::unique_ptr<GDALDataset> ds(
         driver->Create((dir / "plane.tif").c_str(), 50, 50, 1, GDT_Float32, nullptr));
     const double transform[6] = {500000.0, 10.0, 0.0, 5000500.0, 0.0, -10.0};
