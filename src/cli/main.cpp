@@ -347,6 +347,9 @@ int main(int argc, char** argv) {
   area->add_option("--avoid-width", area_args.avoid_width,
                    "metres, the width of avoided lines without a width or OSM tags")
       ->check(CLI::PositiveNumber);
+  area->add_option("--analysis-png", area_args.analysis_png,
+                   "also draw the sketch's analysis levels (strokes, shapes, fibres, medians, "
+                   "lead directions) into this PNG");
   area->add_option("--out", area_args.out, "folder for shapes.gpkg, instances.csv, preview.png")
       ->required()
       ->check(non_empty);

@@ -14,6 +14,7 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "pipeline/detail/analysis_png.hpp"
 #include "pipeline/detail/area_output.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
@@ -171,6 +172,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
     params.bearing =
         c.bearing ? (90.0 - *c.bearing) * std::numbers::pi / 180.0 : long_axis_bearing(polygon);
     detail::AreaResult& r = results.emplace_back();
+    r.area_class = c.sketch.stem().string();
     r.fid = f.fid;
     std::optional<AvoidanceMap> avoidance;
     if (!c.avoid.empty()) avoidance = avoidance_around(polygon, frame, avoided);
@@ -190,6 +192,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
   detail::write_instances_csv(transaction.stage(c.out / "instances.csv"), results);
   detail::write_area_preview(transaction.stage(c.out / "preview.png"), polygons, avoided, results,
                              c.preview_resolution);
+  if (c.analysis_png) detail::write_analysis_png(transaction.stage(*c.analysis_png), hierarchy);
   transaction.commit();
   logger().info(
       "area: {} instances, {} strokes in {} polygons ({:.1f} ms analysis, {:.1f} ms "

@@ -30,6 +30,8 @@ struct AreaCommand {
   std::vector<std::string> avoid;
   double avoid_width = 10.0;
   AnalysisParams analysis;
+  // A picture of the sketch's analysis levels (strokes -> shapes -> fibres -> medians -> leads).
+  std::optional<std::filesystem::path> analysis_png;
 };
 
 struct AreaCommandResult {

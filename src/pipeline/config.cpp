@@ -12,6 +12,7 @@
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
+#include "pipeline/detail/area_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
@@ -575,13 +576,19 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                "a class name must start with a letter or '_' and hold only letters, digits, '_' "
                "and '-'");
     }
+    if (detail::is_area_class(entry.second)) {
+      c.areas.push_back(detail::read_area_class(detail::area_class_reader(src, entry.second, path),
+                                                name, c.seed, c.inputs));
+      continue;
+    }
     c.features.push_back(
         read_feature_class(MapReader(src, entry.second, path,
                                      {"source", "layer", "where", "tags", "kind", "width_attribute",
                                       "width", "profile", "conform", "synthesis", "repair"}),
                            name, c.seed, c.repair, c.inputs));
   }
-  if (c.features.empty()) src.fail(root.get("features"), "features", "no feature classes");
+  if (c.features.empty() && c.areas.empty())
+    src.fail(root.get("features"), "features", "no feature classes");
   apply_precedence(root, c.features);
   if (root.has("synthesis_resolution")) {
     c.synthesis_resolution = root.positive("synthesis_resolution");

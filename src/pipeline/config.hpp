@@ -15,6 +15,7 @@
 #include "geo/heightfield.hpp"
 #include "layers/export.hpp"
 #include "layers/write.hpp"
+#include "pipeline/area_config.hpp"
 #include "synth/synthesize.hpp"
 #include "terrain/features.hpp"
 
@@ -187,6 +188,9 @@ struct PipelineConfig {
   OutputConfig output;
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
+  // `kind: area` classes (pipeline/area_config.hpp), in file order: synthesized after the
+  // line classes' patterns, each avoiding the areas before it.
+  std::vector<AreaClassConfig> areas;
   std::vector<ExistingConfig> existing;
   AvoidanceConfig avoidance;
   // Synthesis canvas cell size in metres, independent of `resolution` (placements never

@@ -150,6 +150,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (cache) cache = fs::absolute(*cache).lexically_normal();
   plan_options.cache_dir = cache;
   plan_options.synthesize = !options.synthesis_tasks;
+  // Areas avoid the curve patterns, which the tasks synthesize after this plan: not yet apart.
+  if (options.synthesis_tasks && !config.areas.empty())
+    fail("areas.{}: `kind: area` classes are synthesized in the plan; use --synthesis inline",
+         config.areas.front().name);
   if (config.output.tiles.size <= 0)
     fail(
         "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
+#include "pipeline/detail/areas.hpp"
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
@@ -108,6 +109,35 @@ void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPl
   plan.exemplars = std::move(run.exemplars);
 }
 
+// The areas as the renderer needs them: their splat materials after the patterns' (in order of
+// first use) and the output pixels their strokes can touch.
+void plan_areas(const PipelineConfig& config, detail::AreaRun run, WorldPlan& plan) {
+  for (const AreaClassConfig& a : config.areas) plan.area_names.push_back(a.name);
+  for (std::size_t i = 0; i < run.areas.size(); ++i) {
+    PlannedArea& area = run.areas[i];
+    std::vector<Vec2> points;
+    double reach = 0.0;
+    for (const PlacedStroke& s : area.pattern.strokes) {
+      points.insert(points.end(), s.points.begin(), s.points.end());
+      reach = std::max(reach, 0.5 * s.width);
+    }
+    area.window = points.empty() ? Window{} : points_window(points, reach, plan.grid);
+    if (area.window.width > 0) {  // off the grid: no band is added
+      for (std::size_t t = 0; t < area.targets.size(); ++t) {
+        const std::string& material = run.splats[i][t];
+        auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
+        if (it == plan.splat_materials.end()) {
+          plan.splat_materials.push_back(material);
+          it = plan.splat_materials.end() - 1;
+        }
+        area.targets[t].material = std::size_t(it - plan.splat_materials.begin());
+      }
+    }
+    plan.areas.push_back(std::move(area));
+  }
+  plan.report.areas = std::move(run.reports);
+}
+
 }  // namespace
 
 namespace detail {
@@ -148,6 +178,9 @@ void index_plan(WorldPlan& plan) {
   std::vector<Window> patterns;
   for (const PlannedPattern& p : plan.patterns) patterns.push_back(p.window);
   plan.pattern_index = index_windows(plan.grid, std::move(patterns));
+  std::vector<Window> areas;
+  for (const PlannedArea& a : plan.areas) areas.push_back(a.window);
+  plan.area_index = index_windows(plan.grid, std::move(areas));
 }
 
 WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings) {
@@ -177,6 +210,8 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     plan.class_names.push_back(feature_class.name);
   }
+  const std::vector<std::vector<PolygonFeature>> area_polygons =
+      detail::load_area_polygons(config, heightfield, warnings);
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(
       config, config.region ? *in_memory_heightfield(heightfield) : *source, lines, warnings);
@@ -228,6 +263,7 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   report_decks(plan.terrain, report);
   clock.stop();
 
+  std::optional<detail::PatternRun> patterns;
   if (options.synthesize && !config.synthesis_order.empty()) {
     clock.start("synthesis");
     detail::SynthesisCache cache(options.cache_dir ? options.cache_dir : config.cache_dir,
@@ -235,13 +271,26 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
     detail::PatternOptions pattern_options;
     pattern_options.backend = options.backend;
     pattern_options.cache = &cache;
-    detail::add_patterns(
-        config, detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options),
-        plan);
+    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
     clock.stop();
+  }
+  // Areas after the curve patterns, which they avoid.
+  detail::AreaRun areas;
+  if (options.synthesize && !config.areas.empty()) {
+    clock.start("areas");
+    // The whole heightfield, also with a region: a close-up's polygons get the leads of the
+    // full run, and polygons beyond the region keep theirs.
+    HeightSampler heights(*source);
+    areas = detail::synthesize_areas(config, area_polygons, lines, ribbons, existing,
+                                     patterns ? &*patterns : nullptr, heights, warnings);
+    clock.stop();
+  }
+  if (patterns) {
+    detail::add_patterns(config, std::move(*patterns), plan);
   } else {
     plan.splat_materials = splat_materials();
   }
+  plan_areas(config, std::move(areas), plan);
 
   plan.existing.polygons = std::move(existing.polygons);
   plan.existing.lines = std::move(existing.lines);

@@ -21,6 +21,7 @@
 #include "raster/avoidance.hpp"
 #include "raster/window_index.hpp"
 #include "ribbon/ribbon.hpp"
+#include "sketch/area_synthesis.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/synthesize.hpp"
 #include "terrain/height_ops.hpp"
@@ -86,6 +87,22 @@ struct PlannedPattern {
   std::vector<PatternTarget> targets;
 };
 
+// One sketch material of an area and where it goes: a splat material and height detail.
+struct AreaTarget {
+  std::string stroke_material;
+  std::size_t material = 0;  // index into WorldPlan::splat_materials
+  float height = 0.0f;       // metres times the strokes' coverage
+};
+
+// One polygon's shape-pattern as the renderer and the area outputs need it.
+struct PlannedArea {
+  std::size_t area_class = 0;  // in config.areas / WorldPlan::area_names
+  std::int64_t fid = 0;
+  AreaPattern pattern;              // instances and strokes in world metres
+  std::vector<AreaTarget> targets;  // every stroke material of the pattern, in config order
+  Window window;                    // the output pixels its strokes can touch
+};
+
 // The options of render_tile, one per stage (not the pipeline config).
 struct RenderOptions {
   // Metres: the avoidance distance layer is min(distance, max_distance), which bounds the halo
@@ -126,11 +143,16 @@ struct WorldPlan {
   // has these channels.
   std::vector<std::string> splat_materials;
 
+  // Shape-patterns of the `kind: area` classes, after the curve patterns (they avoid them).
+  std::vector<std::string> area_names;
+  std::vector<PlannedArea> areas;
+
   // Which terrain features (terrain_features order), ribbons (class-major over `ribbons`) and
   // patterns can touch a window: their footprint plus reach, binned.
   WindowIndex feature_index;
   WindowIndex ribbon_index;
   WindowIndex pattern_index;
+  WindowIndex area_index;
 
   RenderOptions render;
   int tile_size = 0;  // output.tiles.size (0: untiled)
@@ -154,8 +176,8 @@ struct PlanOptions {
 // naming the file, key, FID or piece of the first bad input; warnings go to `warnings`.
 WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings);
 
-// Builds feature_index, ribbon_index and pattern_index from the plan's features, ribbons and
-// patterns (plan_world does; a plan read back from files calls it again).
+// Builds feature_index, ribbon_index, pattern_index and area_index from the plan's features,
+// ribbons, patterns and areas (plan_world does; a plan read back from files calls it again).
 void index_plan(WorldPlan& plan);
 
 // Pixels beyond a window that its avoidance layer reads: the distance cap, plus a pixel.

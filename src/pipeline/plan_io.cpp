@@ -184,7 +184,9 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   files["terrain"] = store.put_cbor(encode(plan.terrain));
   files["index"] = store.put_cbor(json{{"features", encode(plan.feature_index)},
                                        {"ribbons", encode(plan.ribbon_index)},
-                                       {"patterns", encode(plan.pattern_index)}});
+                                       {"patterns", encode(plan.pattern_index)},
+                                       {"areas", encode(plan.area_index)}});
+  files["areas"] = store.put_cbor(encode(plan.areas));
   RunReport report = plan.report;
   const json timings = take_timings(report);
   files["report"] = store.put_cbor(encode(report));
@@ -227,6 +229,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
               {"crs_wkt", plan.crs_wkt},
               {"heights", heights},
               {"class_names", plan.class_names},
+              {"area_names", plan.area_names},
               {"splat_materials", plan.splat_materials},
               {"tiles", {{"size", plan.tile_size}, {"overlap", plan.tile_overlap}}},
               {"files", files},
@@ -259,6 +262,7 @@ WorldPlan load_plan(const fs::path& dir) {
     reader("grid", plan.grid);
     reader("crs_wkt", plan.crs_wkt);
     reader("class_names", plan.class_names);
+    reader("area_names", plan.area_names);
     reader("splat_materials", plan.splat_materials);
     decode(doc.at("tiles").at("size"), plan.tile_size, where + ": tiles.size");
     decode(doc.at("tiles").at("overlap"), plan.tile_overlap, where + ": tiles.overlap");
@@ -288,6 +292,8 @@ WorldPlan load_plan(const fs::path& dir) {
     index_reader("features", plan.feature_index);
     index_reader("ribbons", plan.ribbon_index);
     index_reader("patterns", plan.pattern_index);
+    index_reader("areas", plan.area_index);
+    get_cbor(dir, files, "areas", plan.areas);
     get_cbor(dir, files, "report", plan.report);
     if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
     for (std::size_t i = 0; i < doc.at("exemplars").size(); ++i) {

@@ -5,7 +5,8 @@
 //                              the list of object files with their content hashes
 //   <dir>/tasks.json           one task per tile: index, _x/_y, window and halo window
 //   <dir>/objects/<hash>.cbor  lines, ribbons, junctions, existing features, terrain plan,
-//                              exemplars (texels), heights (a DEM's), the plan's report
+//                              areas' shapes, exemplars (texels), heights (a DEM's), the
+//                              plan's report
 //   <dir>/objects/<hash>.json  one pattern's placements (synth/placements_io)
 // <hash> is the XXH3-128 of the file's bytes: a file is never trusted if it does not match, and
 // an unchanged object keeps its name from one plan to the next. The plan's own hash (`plan`

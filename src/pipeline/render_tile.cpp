@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "pipeline/plan.hpp"
 #include "raster/footprint.hpp"
+#include "raster/stroke_coverage.hpp"
 #include "synth/pattern_canvas.hpp"
 #include "synth/render.hpp"
 #include "terrain/pattern_layers.hpp"
@@ -53,6 +54,32 @@ void add_patterns(const WorldPlan& plan, const Window& window, Raster<float>& he
       }
       add_pattern_to_layers(window, height, splat, part, rendered.coverage, targets,
                             pattern.height_detail);
+    }
+  }
+}
+
+// Each area's strokes, material by material, as anti-aliased coverage (a per-pixel function of
+// the world grid) taking its share from the other materials, plus their height detail.
+void add_areas(const WorldPlan& plan, const Window& window, Raster<float>& height,
+               SplatLayers& splat) {
+  for (const std::size_t i : items_meeting(plan.area_index, window)) {
+    const PlannedArea& area = plan.areas[i];
+    const Window part = intersect(area.window, window);
+    if (part.width == 0) continue;
+    const Raster<float> ones(part.width, part.height, 1.0f);
+    for (const AreaTarget& target : area.targets) {
+      std::vector<const std::vector<Vec2>*> lines;
+      std::vector<double> widths;
+      for (const PlacedStroke& s : area.pattern.strokes) {
+        if (s.material != target.stroke_material) continue;
+        lines.push_back(&s.points);
+        widths.push_back(s.width);
+      }
+      if (lines.empty()) continue;
+      const Raster<float> coverage = stroke_coverage(lines, widths, plan.grid, part);
+      std::vector<PatternLayerTarget> targets = {{&ones, false, target.material, true}};
+      if (target.height != 0.0f) targets.push_back({&ones, true, 0, false});
+      add_pattern_to_layers(window, height, splat, part, coverage, targets, target.height);
     }
   }
 }
@@ -113,6 +140,7 @@ LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
     splat.weights.emplace_back(window.width, window.height, 0.0f);
   }
   add_patterns(plan, window, height, splat);
+  add_areas(plan, window, height, splat);
 
   LayerSet layers;
   layers.grid = plan.grid;

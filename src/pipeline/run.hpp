@@ -87,6 +87,27 @@ struct FeatureClassReport {
   double ingest_seconds = 0.0;
 };
 
+// One polygon of a `kind: area` class (docs/shape-patterns.md): what was placed, the candidates
+// left out by reason, and the pixels its strokes cover that the avoidance map forbids (0: the
+// synthesis kept off them, checked independently on the canvas).
+struct AreaFeatureReport {
+  std::int64_t fid = 0;
+  double area_m2 = 0.0;
+  double lead_bearing_deg = 0.0;  // compass bearing of the sketch's +x axis
+  std::uint64_t seed = 0;
+  int shapes = 0, strokes = 0;
+  int outside = 0, forbidden = 0, overlapping = 0;
+  std::int64_t forbidden_touched = 0;
+};
+
+struct AreaClassReport {
+  std::string name;
+  std::string source;  // path:layer
+  std::string sketch;
+  std::string lead;                         // bearing, long_axis, nearest_road or contours
+  std::vector<AreaFeatureReport> features;  // in reading order (a multi-part FID repeats)
+};
+
 // One tile of the output (docs/tiles.md): its place, how long its render and write took, and
 // an xxHash64 of its layers' bytes (every band's float pixels over its halo window, in layer
 // and channel order) that equal renders share.
@@ -123,6 +144,7 @@ struct RunReport {
   std::uint64_t seed = 0;
   std::vector<StageTiming> stages;
   std::vector<FeatureClassReport> classes;
+  std::vector<AreaClassReport> areas;          // `kind: area` classes, in config order
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
   std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)

@@ -157,7 +157,8 @@ void expect_tiles_equal_untiled(const fs::path& untiled, const fs::path& tiled,
 }
 
 // A generated world of 200 x 150 cells of 4 m (no size divides it) with roads and a river that
-// cross many tiles, a ring road, a lake to avoid, and cobble patterns (height and splat).
+// cross many tiles, a ring road, a lake to avoid, cobble patterns (height and splat), and a
+// vineyard (kind: area) that the roads and the river cross.
 constexpr const char* kWorld = R"(
 version: 1
 seed: 5
@@ -185,6 +186,15 @@ features:
       scale: 5
       delta: 8
       channels: { alpha: splat.cobble, height: height }
+  vines:
+    kind: area
+    source: map.gpkg
+    layer: fields
+    sketch: vineyard.geojson
+    scale: 100
+    lead: nearest_road
+    materials: { vine: vine_row, post: vine_post }
+    height: { vine: 0.3 }
 )";
 
 class TiledWorld : public ::testing::Test {
@@ -198,6 +208,11 @@ class TiledWorld : public ::testing::Test {
     test::write_layer(dir_ / "map.gpkg", "rivers",
                       {{"LINESTRING (500000 4999800, 500250 4999820, 500500 4999520, "
                         "500800 4999500)"}});
+    test::write_layer(dir_ / "map.gpkg", "fields",
+                      {{"POLYGON ((500180 4999560, 500400 4999560, 500400 4999700, "
+                        "500180 4999700, 500180 4999560))"}});
+    fs::copy_file(test::source_dir() / "samples/sketches/vineyard.geojson",
+                  dir_ / "vineyard.geojson");
     test::write_layer(dir_ / "map.gpkg", "lakes",
                       {{"POLYGON ((500380 4999900, 500460 4999900, 500460 4999960, "
                         "500380 4999960, 500380 4999900))"}});
@@ -249,6 +264,16 @@ TEST_F(TiledWorld, TheMosaicAndEveryTileEqualTheUntiledRunBitForBit) {
   }
   EXPECT_EQ(untiled.forbidden_pixels, tiled.forbidden_pixels);
   EXPECT_GT(untiled.forbidden_pixels, 0);
+
+  // The vineyard's rows are in the splat layer (and the same shapes in both runs' vectors).
+  const auto rows = std::find(splat.channels.begin(), splat.channels.end(), "splat.vine_row");
+  ASSERT_NE(rows, splat.channels.end());
+  const auto& row_band = splat.bands[std::size_t(rows - splat.channels.begin())].pixels;
+  EXPECT_GT(std::count_if(row_band.begin(), row_band.end(), [](float v) { return v > 0.1f; }), 100);
+  ASSERT_EQ(untiled.areas.size(), 1u);
+  EXPECT_GT(untiled.areas[0].features.at(0).shapes, 20);
+  for (const char* file : {"areas.gpkg", "instances.csv", "instances.json"})
+    EXPECT_EQ(file_bytes(dir_ / "untiled" / file), file_bytes(dir_ / "tiled" / file)) << file;
 
   // report.json: the grid of tiles with a hash of each tile's bytes; distinct tiles differ.
   std::ifstream in(dir_ / "tiled/report.json");

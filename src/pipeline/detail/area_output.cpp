@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 #include "core/error.hpp"
@@ -38,6 +39,9 @@ void create_field(OGRLayer& layer, const char* name, OGRFieldType type) {
 void write_area_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                            const std::vector<AreaResult>& results) {
   GDALAllRegister();
+  // gpkg_contents.last_change holds the time of writing; a fixed one gives the same bytes for
+  // the same shapes (manifest hashes, nightly diffs).
+  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!driver) fail("GDAL has no GPKG driver");
   std::unique_ptr<GDALDataset> dataset(
@@ -49,14 +53,16 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
   OGRLayer* strokes = dataset->CreateLayer("strokes", &srs, wkbLineString, nullptr);
   OGRLayer* instances = dataset->CreateLayer("instances", &srs, wkbPoint, nullptr);
   if (!strokes || !instances) fail("{}: cannot create layers", path.string());
-  for (auto [name, type] : {std::pair{"polygon_fid", OFTInteger64},
+  for (auto [name, type] : {std::pair{"class", OFTString},
+                            {"polygon_fid", OFTInteger64},
                             {"instance", OFTInteger},
                             {"shape", OFTInteger},
                             {"material", OFTString},
                             {"width_m", OFTReal}}) {
     create_field(*strokes, name, type);
   }
-  for (auto [name, type] : {std::pair{"polygon_fid", OFTInteger64},
+  for (auto [name, type] : {std::pair{"class", OFTString},
+                            {"polygon_fid", OFTInteger64},
                             {"shape", OFTInteger},
                             {"type", OFTString},
                             {"material", OFTString},
@@ -69,6 +75,7 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
   for (const AreaResult& r : results) {
     for (const PlacedStroke& s : r.pattern.strokes) {
       OGRFeature feature(strokes->GetLayerDefn());
+      feature.SetField("class", r.area_class.c_str());
       feature.SetField("polygon_fid", GIntBig(r.fid));
       feature.SetField("instance", base + s.instance);
       feature.SetField("shape", r.pattern.instances[std::size_t(s.instance)].shape);
@@ -81,6 +88,7 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
     }
     for (const ShapeInstance& i : r.pattern.instances) {
       OGRFeature feature(instances->GetLayerDefn());
+      feature.SetField("class", r.area_class.c_str());
       feature.SetField("polygon_fid", GIntBig(r.fid));
       feature.SetField("shape", i.shape);
       feature.SetField("type", type_of(i).c_str());
@@ -101,13 +109,38 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
 void write_instances_csv(const std::filesystem::path& path,
                          const std::vector<AreaResult>& results) {
   std::ofstream out(path);
-  out << "x,y,z,rotation_deg,scale,type,material\n";
+  out << "x,y,z,rotation_deg,scale,type,material,class\n";
   for (const AreaResult& r : results) {
     for (const ShapeInstance& i : r.pattern.instances) {
-      out << fmt::format("{:.3f},{:.3f},0,{:.3f},{:.6g},{},{}\n", i.position.x, i.position.y,
-                         compass_degrees(i.rotation), i.scale, type_of(i), i.material);
+      out << fmt::format("{:.3f},{:.3f},0,{:.3f},{:.6g},{},{},{}\n", i.position.x, i.position.y,
+                         compass_degrees(i.rotation), i.scale, type_of(i), i.material,
+                         r.area_class);
     }
   }
+  out.close();
+  if (!out) fail("{}: cannot write", path.string());
+}
+
+void write_instances_json(const std::filesystem::path& path,
+                          const std::vector<AreaResult>& results) {
+  // Rounded as in the CSV, so the two files say the same and diff cleanly between runs.
+  const auto rounded = [](double v, int decimals) {
+    return std::stod(fmt::format("{:.{}f}", v, decimals));
+  };
+  nlohmann::json instances = nlohmann::json::array();
+  for (const AreaResult& r : results)
+    for (const ShapeInstance& i : r.pattern.instances) {
+      instances.push_back({{"x", rounded(i.position.x, 3)},
+                           {"y", rounded(i.position.y, 3)},
+                           {"z", 0},
+                           {"rotation_deg", rounded(compass_degrees(i.rotation), 3)},
+                           {"scale", i.scale},
+                           {"type", type_of(i)},
+                           {"material", i.material},
+                           {"class", r.area_class}});
+    }
+  std::ofstream out(path);
+  out << instances.dump(1) << '\n';
   out.close();
   if (!out) fail("{}: cannot write", path.string());
 }

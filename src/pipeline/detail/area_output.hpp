@@ -11,18 +11,23 @@
 namespace tw::detail {
 
 struct AreaResult {
-  std::int64_t fid = 0;  // the polygon's
+  std::string area_class;  // the class (a run's `kind: area` class, or the sketch's name)
+  std::int64_t fid = 0;    // the polygon's
   AreaPattern pattern;
 };
 
-// Layers `strokes` (LineString: polygon_fid, instance, shape, material, width_m) and
-// `instances` (Point: polygon_fid, shape, type, material, rotation_deg (compass), scale) in
-// `crs_wkt`.
+// Layers `strokes` (LineString: class, polygon_fid, instance, shape, material, width_m) and
+// `instances` (Point: class, polygon_fid, shape, type, material, rotation_deg (compass), scale)
+// in `crs_wkt`.
 void write_area_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                            const std::vector<AreaResult>& results);
 
-// x, y, z=0, rotation_deg (compass bearing of the shape's axis), scale, type, material.
+// x, y, z=0, rotation_deg (compass bearing of the shape's axis), scale, type, material, class.
 void write_instances_csv(const std::filesystem::path& path, const std::vector<AreaResult>& results);
+
+// The same instances as a JSON array of objects with those keys (numbers as in the CSV).
+void write_instances_json(const std::filesystem::path& path,
+                          const std::vector<AreaResult>& results);
 
 // The polygons (tinted, outlined), the avoided features (pale red) and the strokes in a colour
 // per material, on white.

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "layers/vrt.hpp"
+#include "pipeline/detail/area_output.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "synth/placements_io.hpp"
 
@@ -42,6 +43,16 @@ void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& 
   }
 }
 
+void write_area_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction) {
+  if (plan.area_names.empty()) return;
+  std::vector<AreaResult> results;
+  for (const PlannedArea& a : plan.areas)
+    results.push_back({plan.area_names.at(a.area_class), a.fid, a.pattern});
+  write_area_geopackage(transaction.stage(out / "areas.gpkg"), plan.crs_wkt, results);
+  write_instances_csv(transaction.stage(out / "instances.csv"), results);
+  write_instances_json(transaction.stage(out / "instances.json"), results);
+}
+
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
                             const std::vector<RenderedTile>& tiles, const fs::path& out,
                             OutputFolder& transaction) {
@@ -64,6 +75,7 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
   for (const auto& [layer, sources] : tifs)
     write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
   write_placements(plan, out, transaction, report);
+  write_area_outputs(plan, out, transaction);
   return report;
 }
 

@@ -50,6 +50,11 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
 void write_placements(const WorldPlan& plan, const std::filesystem::path& out,
                       OutputFolder& transaction, RunReport& report);
 
+// areas.gpkg (layers strokes and instances), instances.csv and instances.json of the plan's
+// `kind: area` classes (docs/shape-patterns.md); nothing when it has none.
+void write_area_outputs(const WorldPlan& plan, const std::filesystem::path& out,
+                        OutputFolder& transaction);
+
 // <out>/report.json, as terraweave run writes it.
 void write_job_report(const RunReport& report, const PipelineConfig& config,
                       const std::filesystem::path& out, OutputFolder& transaction);

@@ -60,7 +60,15 @@ TW_FIELDS(FeatureReport, F(fid) F(length_m) F(width_m) F(pieces) F(synthesis) F(
                              F(deck_m) F(moved_max_m) F(moved_mean_m) F(cut_max_m) F(fill_max_m)
                                  F(grade_max) F(cache))
 TW_FIELDS(FeatureClassReport, F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds))
-TW_FIELDS(RunReport, F(grid) F(crs_wkt) F(heightfield) F(seed) F(stages) F(classes)
+TW_FIELDS(ShapeInstance, F(shape) F(lead) F(position) F(rotation) F(scale) F(material) F(unbounded))
+TW_FIELDS(PlacedStroke, F(points) F(material) F(width) F(instance))
+TW_FIELDS(AreaPattern, F(instances) F(strokes) F(outside) F(forbidden) F(overlapping))
+TW_FIELDS(AreaTarget, F(stroke_material) F(material) F(height))
+TW_FIELDS(PlannedArea, F(area_class) F(fid) F(pattern) F(targets) F(window))
+TW_FIELDS(AreaFeatureReport, F(fid) F(area_m2) F(lead_bearing_deg) F(seed) F(shapes) F(strokes)
+                                 F(outside) F(forbidden) F(overlapping) F(forbidden_touched))
+TW_FIELDS(AreaClassReport, F(name) F(source) F(sketch) F(lead) F(features))
+TW_FIELDS(RunReport, F(grid) F(crs_wkt) F(heightfield) F(seed) F(stages) F(classes) F(areas)
                          F(forbidden_pixels) F(pattern_violations) F(total_seconds) F(warnings))
 
 // Avoidance inputs that a plan holds own their geometry: ribbons of synthesized features are

@@ -32,5 +32,12 @@ TW_PLAN_FIELDS(FeatureSynthesisReport);
 TW_PLAN_FIELDS(FeatureReport);
 TW_PLAN_FIELDS(FeatureClassReport);
 TW_PLAN_FIELDS(RunReport);
+TW_PLAN_FIELDS(ShapeInstance);
+TW_PLAN_FIELDS(PlacedStroke);
+TW_PLAN_FIELDS(AreaPattern);
+TW_PLAN_FIELDS(AreaTarget);
+TW_PLAN_FIELDS(PlannedArea);
+TW_PLAN_FIELDS(AreaFeatureReport);
+TW_PLAN_FIELDS(AreaClassReport);
 
 }  // namespace tw::detail

@@ -62,6 +62,39 @@ json timings_json(const RunReport& report) {
           {"tiles", tiles}};
 }
 
+// `kind: area` classes: per polygon, what was placed and what was left out, and why.
+nlohmann::json areas_json(const RunReport& report) {
+  using nlohmann::json;
+  json areas = json::array();
+  for (const AreaClassReport& a : report.areas) {
+    json features = json::array();
+    int shapes = 0;
+    std::int64_t touched = 0;
+    for (const AreaFeatureReport& f : a.features) {
+      features.push_back(
+          {{"fid", f.fid},
+           {"area_m2", f.area_m2},
+           {"lead_bearing_deg", f.lead_bearing_deg},
+           {"seed", f.seed},
+           {"shapes", f.shapes},
+           {"strokes", f.strokes},
+           {"left_out",
+            {{"outside", f.outside}, {"forbidden", f.forbidden}, {"overlapping", f.overlapping}}},
+           {"forbidden_touched", f.forbidden_touched}});
+      shapes += f.shapes;
+      touched += f.forbidden_touched;
+    }
+    areas.push_back({{"name", a.name},
+                     {"source", a.source},
+                     {"sketch", a.sketch},
+                     {"lead", a.lead},
+                     {"shapes", shapes},
+                     {"forbidden_touched", touched},
+                     {"features", features}});
+  }
+  return areas;
+}
+
 }  // namespace
 
 nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config) {
@@ -176,6 +209,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"synthesis_order", config.synthesis_order},
       {"pattern_violations", report.pattern_violations},
       {"classes", classes},
+      {"areas", areas_json(report)},
       {"warning_count", report.warnings.size()},
       {"warnings", warnings},
       {"timings", timings_json(report)},

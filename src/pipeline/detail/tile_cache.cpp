@@ -163,6 +163,16 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
       h.i64(t.exemplar_channel).boolean(t.to_height).u64(t.material).boolean(t.is_alpha);
     patterns_.push_back(h.digest());
   }
+  for (const PlannedArea& a : plan.areas) {  // what render_tile reads of an area
+    Hasher h;
+    hash_window(h, a.window);
+    h.u64(a.targets.size());
+    for (const AreaTarget& t : a.targets) h.text(t.stroke_material).u64(t.material).real(t.height);
+    h.u64(a.pattern.strokes.size());
+    for (const PlacedStroke& s : a.pattern.strokes)
+      h.points(s.points).text(s.material).real(s.width);
+    areas_.push_back(h.digest());
+  }
 }
 
 TileKey TileCache::key(const TileSpec& tile) const {
@@ -200,6 +210,8 @@ TileKey TileCache::key(const TileSpec& tile) const {
   hash_polygons_meeting(f, plan_.junction_discs, box);
   f.text("patterns");
   for (const std::size_t i : items_meeting(plan_.pattern_index, window)) f.hash(patterns_[i]);
+  f.text("areas");
+  for (const std::size_t i : items_meeting(plan_.area_index, window)) f.hash(areas_[i]);
   key.features = f.digest();
 
   Hasher c;

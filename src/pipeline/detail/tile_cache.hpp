@@ -64,7 +64,7 @@ class TileCache {
   std::optional<std::filesystem::path> dir_;
   Warnings& warnings_;
   ContentHash config_;                                     // what every tile shares
-  std::vector<ContentHash> terrain_, ribbons_, patterns_;  // by plan index
+  std::vector<ContentHash> terrain_, ribbons_, patterns_, areas_;  // by plan index
 };
 
 }  // namespace tw::detail

@@ -1,0 +1,117 @@
+#include "pipeline/detail/area_config.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path input(const MapReader& m, const std::string& key, InputFile::Kind kind,
+               std::vector<InputFile>& inputs) {
+  const fs::path path = m.file(key);
+  inputs.push_back({path, kind, m.source().named_at(m.get(key), m.path(key))});
+  return path;
+}
+
+// lead: long_axis | nearest_road | contours | { bearing: DEG }
+void read_lead(const MapReader& m, AreaClassConfig& a) {
+  if (!m.has("lead")) return;
+  const YAML::Node node = m.get("lead");
+  const std::string key = m.path("lead");
+  if (node.IsMap()) {
+    const MapReader lead(m.source(), node, key, {"bearing"});
+    a.lead = AreaLead::bearing;
+    a.bearing_deg = read_double(m.source(), lead.get("bearing"), lead.path("bearing"));
+    if (!std::isfinite(a.bearing_deg))
+      m.source().fail(lead.get("bearing"), lead.path("bearing"), "must be a finite angle");
+    return;
+  }
+  const std::string value = read_string(m.source(), node, key);
+  const std::vector<std::string> names = {"long_axis", "nearest_road", "contours"};
+  const auto it = std::find(names.begin(), names.end(), value);
+  if (it == names.end()) {
+    const std::string hint = closest_match(value, names);
+    m.source().fail(
+        node, key,
+        fmt::format("unknown lead '{}', expected long_axis, nearest_road, contours or "
+                    "{{ bearing: DEG }}{}",
+                    value, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+  }
+  a.lead = std::array{AreaLead::long_axis, AreaLead::nearest_road,
+                      AreaLead::contours}[std::size_t(it - names.begin())];
+}
+
+// The entry of `stroke` in a.materials, added when missing.
+AreaMaterial& material_of(AreaClassConfig& a, const std::string& stroke) {
+  const auto it = std::find_if(a.materials.begin(), a.materials.end(),
+                               [&](const AreaMaterial& m) { return m.stroke == stroke; });
+  return it != a.materials.end() ? *it : a.materials.emplace_back(AreaMaterial{stroke, "", 0.0});
+}
+
+// materials: { stroke: splat_material }, height: { stroke: metres }.
+void read_materials(const MapReader& m, AreaClassConfig& a) {
+  for (const char* key : {"materials", "height"}) {
+    if (!m.has(key)) continue;
+    const YAML::Node node = m.get(key);
+    if (!node.IsMap() || node.size() == 0)
+      m.source().fail(node, m.path(key), "expected a mapping of sketch stroke materials");
+    for (const auto& entry : node) {
+      const std::string stroke = read_string(m.source(), entry.first, m.path(key));
+      const std::string entry_key = m.path(key) + "." + stroke;
+      AreaMaterial& material = material_of(a, stroke);
+      if (key[0] == 'm') {
+        material.splat = read_string(m.source(), entry.second, entry_key);
+        if (material.splat.empty()) m.source().fail(entry.second, entry_key, "empty material");
+      } else {
+        material.height = read_double(m.source(), entry.second, entry_key);
+        if (!(std::abs(material.height) <= 100.0))
+          m.source().fail(entry.second, entry_key,
+                          fmt::format("must be within +-100 m, got {}", material.height));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+MapReader area_class_reader(const YamlSource& src, const YAML::Node& node,
+                            const std::string& path) {
+  return MapReader(src, node, path,
+                   {"kind", "source", "layer", "where", "sketch", "shapes_from", "scale", "lead",
+                    "jitter", "materials", "height", "seed"});
+}
+
+bool is_area_class(const YAML::Node& node) {
+  return node.IsMap() && node["kind"] && node["kind"].IsScalar() && node["kind"].Scalar() == "area";
+}
+
+AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
+                                std::uint64_t default_seed, std::vector<InputFile>& inputs) {
+  AreaClassConfig a;
+  a.name = name;
+  a.source = input(m, "source", InputFile::Kind::vector, inputs);
+  a.layer = m.string_or("layer", "");
+  a.where = m.string_or("where", "");
+  a.sketch = input(m, "sketch", InputFile::Kind::vector, inputs);
+  if (m.has("shapes_from"))
+    a.shapes_from = input(m, "shapes_from", InputFile::Kind::vector, inputs);
+  a.scale = m.positive_or("scale", a.scale);
+  read_lead(m, a);
+  a.jitter = m.non_negative_or("jitter", a.jitter);
+  if (a.jitter > 1.0)
+    m.source().fail(
+        m.get("jitter"), m.path("jitter"),
+        fmt::format("must be in [0, 1] (a fraction of each allowed displacement), got {}",
+                    a.jitter));
+  a.seed = m.has("seed") ? read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
+  read_materials(m, a);
+  return a;
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,40 @@
+#pragma once
+// The area stage of a run (docs/shape-patterns.md): every polygon of a `kind: area` class gets
+// the shape-pattern of its sketch (sketch/area_synthesis.hpp), laid along its lead direction, on
+// an avoidance map of the synthesis lattice over the polygon's box: existing features, every
+// line feature's footprint, junction discs, the curve patterns' opaque coverage and the strokes
+// of the areas before it.
+#include <vector>
+
+#include "core/warnings.hpp"
+#include "geo/features.hpp"
+#include "geo/height_sampler.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/stages.hpp"
+#include "pipeline/plan.hpp"
+
+namespace tw::detail {
+
+// The polygons of each area class (config.areas order), read on the heightfield's grid (clipped
+// to it, repaired with warnings naming the FID). Errors name features.<class>.
+std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
+                                                            const Heightfield& heightfield,
+                                                            Warnings& warnings);
+
+struct AreaRun {
+  std::vector<PlannedArea> areas;                // targets' `material` still unresolved (0)
+  std::vector<std::vector<std::string>> splats;  // per area, per target: its splat material
+  std::vector<AreaClassReport> reports;
+};
+
+// `patterns` may be null (no curve synthesis); `heights` is read for lead: contours only.
+// Throws tw::Error naming the class and FID when a stroke touches a forbidden pixel (a bug).
+AreaRun synthesize_areas(const PipelineConfig& config,
+                         const std::vector<std::vector<PolygonFeature>>& polygons,
+                         const std::vector<std::vector<LineFeature>>& lines,
+                         const FeatureRibbons& ribbons, const ExistingFeatures& existing,
+                         const PatternRun* patterns, HeightSampler& heights, Warnings& warnings);
+
+}  // namespace tw::detail

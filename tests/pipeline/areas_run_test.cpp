@@ -1,0 +1,300 @@
+// `kind: area` classes inside a run (docs/shape-patterns.md): shapes kept off the run's roads,
+// lead directions from the nearest road and from the terrain's contours, height detail and
+// splat materials, the vector and instance outputs with their manifest hashes, determinism, and
+// the plan folder's round trip.
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "layers/layer_set.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// 100 x 100 cells of 4 m: x 500000..500400, y 4999600..5000000. A straight road at compass
+// bearing 30 degrees crosses the vineyard; the orchard lies beside it without touching it.
+constexpr const char* kWorld = R"(
+version: 1
+seed: 3
+generate: { width: 100, height: 100, pixel_size: 4, relief: 30 }
+output: { dir: out, preview: false }
+synthesis_resolution: 1
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 8 }
+  vines:
+    kind: area
+    source: map.gpkg
+    layer: fields
+    where: "crop = 'vine'"
+    sketch: vineyard.geojson
+    scale: 100
+    lead: nearest_road
+    materials: { vine: vine_row, post: vine_post }
+    height: { vine: 0.3 }
+  orchard:
+    kind: area
+    source: map.gpkg
+    layer: fields
+    where: "crop = 'fruit'"
+    sketch: orchard.geojson
+    scale: 60
+    lead: { bearing: 90 }
+)";
+
+// The road from (500050, 4999650) at bearing 30: direction (sin 30, cos 30).
+const Vec2 kRoadStart{500050.0, 4999650.0};
+const Vec2 kRoadDirection{0.5, std::sqrt(3.0) / 2.0};
+constexpr double kRoadWidth = 8.0;
+
+double distance_to_road(Vec2 p) {
+  const Vec2 d = p - kRoadStart;
+  return std::abs(d.x * kRoadDirection.y - d.y * kRoadDirection.x);
+}
+
+class AreaRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const Vec2 end = kRoadStart + kRoadDirection * 400.0;
+    test::write_layer(
+        dir_ / "map.gpkg", "roads",
+        {{fmt::format("LINESTRING ({} {}, {} {})", kRoadStart.x, kRoadStart.y, end.x, end.y)}});
+    write_fields();
+    for (const char* sketch : {"vineyard.geojson", "orchard.geojson"})
+      fs::copy_file(test::source_dir() / "samples/sketches" / sketch, dir_ / sketch);
+  }
+
+  // Two polygons with a `crop` column (test_world's writer has only `width`): GDAL directly.
+  void write_fields() const {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+    std::unique_ptr<GDALDataset> ds(
+        GDALDataset::Open((dir_ / "map.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_UPDATE));
+    ASSERT_TRUE(driver && ds);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    OGRLayer* layer = ds->CreateLayer("fields", &srs, wkbPolygon, nullptr);
+    OGRFieldDefn crop("crop", OFTString);
+    ASSERT_EQ(layer->CreateField(&crop), OGRERR_NONE);
+    for (auto [value, wkt] : {std::pair{"vine",
+                                        "POLYGON ((500060 4999700, 500260 4999700, 500260 4999880, "
+                                        "500060 4999880, 500060 4999700))"},
+                              {"fruit",
+                               "POLYGON ((500250 4999620, 500390 4999620, 500390 4999720, "
+                               "500250 4999720, 500250 4999620))"}}) {
+      OGRFeature feature(layer->GetLayerDefn());
+      feature.SetField("crop", value);
+      OGRGeometry* geometry = nullptr;
+      ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt, &srs, &geometry), OGRERR_NONE);
+      feature.SetGeometryDirectly(geometry);
+      ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+  }
+
+  PipelineConfig config(const std::string& out, std::vector<Override> overrides = {}) const {
+    overrides.push_back({"output.dir", (dir_ / out).string()});
+    return parse_pipeline(kWorld, "world.yaml", dir_.path(), overrides);
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  ASSERT_EQ(plan.areas.size(), 2u);
+  const AreaFeatureReport& vines = plan.report.areas.at(0).features.at(0);
+  EXPECT_NEAR(vines.lead_bearing_deg, 30.0, 1e-6);  // along the road
+  EXPECT_GT(vines.shapes, 20);
+  EXPECT_GT(vines.forbidden, 0);  // the road crosses the field: candidates on it left out
+  EXPECT_EQ(vines.forbidden_touched, 0);
+  // Every stroke stays clear of the road's footprint (up to a canvas cell's diagonal, the
+  // avoidance lattice's resolution).
+  int left = 0, right = 0;
+  for (const PlacedStroke& s : plan.areas[0].pattern.strokes)
+    for (const Vec2 p : s.points) {
+      EXPECT_GT(distance_to_road(p), 0.5 * (kRoadWidth + s.width) - std::sqrt(2.0));
+      const Vec2 d = p - kRoadStart;
+      (d.x * kRoadDirection.y - d.y * kRoadDirection.x > 0 ? right : left)++;
+    }
+  EXPECT_GT(left, 0);
+  EXPECT_GT(right, 0);
+  const AreaFeatureReport& orchard = plan.report.areas.at(1).features.at(0);
+  EXPECT_NEAR(orchard.lead_bearing_deg, 90.0, 1e-9);
+  EXPECT_GT(orchard.shapes, 10);
+  EXPECT_EQ(orchard.forbidden_touched, 0);
+  EXPECT_EQ(plan.area_names, (std::vector<std::string>{"vines", "orchard"}));
+  for (const char* m : {"vine_row", "vine_post", "orchard_trunk", "orchard_crown"})
+    EXPECT_NE(std::find(plan.splat_materials.begin(), plan.splat_materials.end(), m),
+              plan.splat_materials.end())
+        << m;
+}
+
+TEST_F(AreaRun, RowsRaiseTheTerrainByTheirHeightDetailAndPaintTheirSplat) {
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  WorldPlan bare = plan;
+  bare.areas.clear();
+  index_plan(bare);
+  const LayerSet with = render_tile(plan, plan.tiles.at(0));
+  const LayerSet without = render_tile(bare, bare.tiles.at(0));
+  const auto& h1 = find_layer(with, "height")->bands[0].pixels;
+  const auto& h0 = find_layer(without, "height")->bands[0].pixels;
+  double max_rise = 0.0;
+  for (std::size_t i = 0; i < h1.size(); ++i) {
+    EXPECT_GE(h1[i], h0[i] - 1e-4f);
+    max_rise = std::max(max_rise, double(h1[i] - h0[i]));
+  }
+  EXPECT_LE(max_rise, 0.3 + 1e-4);
+  EXPECT_GT(max_rise, 0.05);  // 1.2 m rows on 4 m pixels: about 0.3 of a pixel
+  const Layer& splat = *find_layer(with, "splat");
+  const auto row = std::find(splat.channels.begin(), splat.channels.end(), "splat.vine_row");
+  ASSERT_NE(row, splat.channels.end());
+  const auto& band = splat.bands[std::size_t(row - splat.channels.begin())].pixels;
+  EXPECT_GT(*std::max_element(band.begin(), band.end()), 0.2f);
+  for (std::size_t i = 0; i < band.size(); i += 7) {
+    float sum = 0.0f;
+    for (const Raster<float>& b : splat.bands) sum += b.pixels[i];
+    EXPECT_NEAR(sum, 1.0f, 1e-4f);
+  }
+}
+
+TEST_F(AreaRun, OutputsAreTheSameBytesAtAnyThreadCountAndInTheManifest) {
+  RunOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const RunReport a = run_pipeline(config("a"), one);
+  run_pipeline(config("b"), two);
+  for (const char* file : {"areas.gpkg", "instances.csv", "instances.json", "splat.exr"})
+    EXPECT_EQ(test::read_file(dir_ / "a" / file), test::read_file(dir_ / "b" / file)) << file;
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(dir_ / "a/report.json"));
+  std::vector<std::string> named;
+  for (const auto& f : report["outputs"]) named.push_back(f["path"]);
+  for (const char* file : {"areas.gpkg", "instances.csv", "instances.json"})
+    EXPECT_NE(std::find(named.begin(), named.end(), file), named.end()) << file;
+  const auto& vines = report["areas"][0];
+  EXPECT_EQ(vines["name"], "vines");
+  EXPECT_EQ(vines["lead"], "nearest_road");
+  EXPECT_EQ(vines["forbidden_touched"], 0);
+  EXPECT_GT(vines["features"][0]["left_out"]["forbidden"].get<int>(), 0);
+  // One instance per shape placed, in the CSV and the JSON.
+  const int shapes = vines["shapes"].get<int>() + report["areas"][1]["shapes"].get<int>();
+  const std::string csv = test::read_file(dir_ / "a/instances.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), shapes + 1);
+  const nlohmann::json instances =
+      nlohmann::json::parse(test::read_file(dir_ / "a/instances.json"));
+  ASSERT_EQ(int(instances.size()), shapes);
+  EXPECT_EQ(instances[0]["class"], "vines");
+  EXPECT_EQ(a.areas.at(1).features.at(0).shapes, report["areas"][1]["shapes"].get<int>());
+}
+
+TEST_F(AreaRun, ARenderFromTheSavedPlanIsTheSameBytes) {
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  save_plan(plan, dir_ / "plan");
+  const WorldPlan loaded = load_plan(dir_ / "plan");
+  ASSERT_EQ(loaded.areas.size(), plan.areas.size());
+  const LayerSet a = render_tile(plan, plan.tiles.at(0));
+  const LayerSet b = render_tile(loaded, loaded.tiles.at(0));
+  ASSERT_EQ(a.layers.size(), b.layers.size());
+  for (std::size_t l = 0; l < a.layers.size(); ++l)
+    for (std::size_t c = 0; c < a.layers[l].bands.size(); ++c)
+      EXPECT_EQ(a.layers[l].bands[c].pixels, b.layers[l].bands[c].pixels) << a.layers[l].name;
+}
+
+// A plane rising eastward: contours run north-south.
+TEST(AreaContours, RowsRunAlongTheContours) {
+  test::TempDir dir;
+  {
+    GDALAllRegister();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+    ASSERT_NE(driver, nullptr);
+    std::unique_ptr<GDALDataset> ds(
+        driver->Create((dir / "plane.tif").c_str(), 50, 50, 1, GDT_Float32, nullptr));
+    const double transform[6] = {500000.0, 10.0, 0.0, 5000500.0, 0.0, -10.0};
+    ds->SetGeoTransform(const_cast<double*>(transform));
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    ds->SetSpatialRef(&srs);
+    std::vector<float> heights(50 * 50);
+    for (int row = 0; row < 50; ++row)
+      for (int col = 0; col < 50; ++col) heights[std::size_t(row * 50 + col)] = 100.0f + 2.0f * col;
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 50, 50, heights.data(), 50, 50,
+                                             GDT_Float32, 0, 0),
+              CE_None);
+  }
+  test::write_layer(dir / "map.gpkg", "fields",
+                    {{"POLYGON ((500100 5000100, 500400 5000100, 500400 5000200, 500100 5000200, "
+                      "500100 5000100))"}});
+  test::write_layer(dir / "map.gpkg", "roads", {{"LINESTRING (500010 5000010, 500490 5000020)"}});
+  fs::copy_file(test::source_dir() / "samples/sketches/furrows.geojson", dir / "furrows.geojson");
+  const PipelineConfig config = parse_pipeline(R"(
+version: 1
+heightfield: plane.tif
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }
+  furrows: { kind: area, source: map.gpkg, layer: fields, sketch: furrows.geojson, lead: contours }
+)",
+                                               "c.yaml", dir.path());
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config, {}, warnings);
+  const double bearing = plan.report.areas.at(0).features.at(0).lead_bearing_deg;
+  // The long axis (east-west, 90 degrees) and the road would say otherwise.
+  EXPECT_LT(std::min(std::abs(bearing), std::abs(bearing - 180.0)), 0.5) << bearing;
+  ASSERT_FALSE(plan.areas.at(0).pattern.strokes.empty());
+  for (const PlacedStroke& s : plan.areas[0].pattern.strokes) {
+    const Vec2 d = s.points.back() - s.points.front();
+    EXPECT_LT(std::abs(d.x), 0.1 * std::abs(d.y) + 1e-6);  // furrows run north-south
+  }
+}
+
+TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
+  const auto message = [](const std::string& area) {
+    try {
+      parse_pipeline(
+          "version: 1\nfeatures:\n  vines: { kind: area, source: f.gpkg, sketch: "
+          "s.geojson, " +
+              area + " }\n",
+          "t.yaml", ".");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message("lead: nearest_raod"),
+              HasSubstr("features.vines.lead: unknown lead 'nearest_raod', expected long_axis, "
+                        "nearest_road, contours or { bearing: DEG } (did you mean "
+                        "'nearest_road'?)"));
+  EXPECT_THAT(message("jitter: 2"), HasSubstr("features.vines.jitter: must be in [0, 1]"));
+  EXPECT_THAT(message("lead: { bearing: x }"), HasSubstr("features.vines.lead.bearing"));
+  EXPECT_THAT(message("height: { vine: 500 }"), HasSubstr("features.vines.height.vine"));
+  EXPECT_THAT(message("width: 3"), HasSubstr("features.vines.width: unknown key"));
+  const PipelineConfig c = parse_pipeline(
+      "version: 1\nfeatures:\n  vines: { kind: area, source: f.gpkg, sketch: s.geojson, "
+      "materials: { vine: row }, height: { vine: 0.3, post: -0.1 } }\n",
+      "t.yaml", ".");
+  ASSERT_EQ(c.areas.size(), 1u);
+  EXPECT_TRUE(c.features.empty());
+  ASSERT_EQ(c.areas[0].materials.size(), 2u);
+  EXPECT_EQ(c.areas[0].materials[0].splat, "row");
+  EXPECT_DOUBLE_EQ(c.areas[0].materials[0].height, 0.3);
+  EXPECT_EQ(c.areas[0].materials[1].stroke, "post");
+  EXPECT_DOUBLE_EQ(c.areas[0].materials[1].height, -0.1);
+  EXPECT_EQ(c.areas[0].lead, AreaLead::long_axis);
+}
+
+}  // namespace
+}  // namespace tw
