@@ -18,6 +18,8 @@
 
 namespace tw {
 
+namespace fs = std::filesystem;
+
 namespace {
 
 class StageClock {
@@ -233,7 +235,13 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   plan.heights.source = heightfield.source;
   if (!config.region) {
     plan.heights.reader = source;
-    if (!config.heightfield) plan.heights.generated = detail::generated_terrain(config);
+    if (!config.heightfield) {
+      plan.heights.generated = detail::generated_terrain(config);
+    } else {
+      plan.heights.file =
+          HeightfieldFile{fs::absolute(*config.heightfield).lexically_normal().string(), "", 0,
+                          detail::heightfield_options(config)};
+    }
   } else {
     plan.heights.heights = std::make_shared<const Raster<float>>(std::move(heightfield.height));
   }

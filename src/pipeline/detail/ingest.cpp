@@ -27,15 +27,19 @@ double clip_margin(const FeatureClassConfig& config, double cell) {
 
 }  // namespace
 
+HeightfieldOptions heightfield_options(const PipelineConfig& config) {
+  HeightfieldOptions options;
+  options.resampling = config.resampling;
+  options.crs = config.output.crs;
+  // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
+  if (!config.region) options.resolution = config.resolution;
+  return options;
+}
+
 std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
                                                            Warnings& warnings) {
   if (config.heightfield) {
-    HeightfieldOptions options;
-    options.resampling = config.resampling;
-    options.crs = config.output.crs;
-    // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
-    if (!config.region) options.resolution = config.resolution;
-    return open_heightfield(config.heightfield->string(), options, warnings);
+    return open_heightfield(config.heightfield->string(), heightfield_options(config), warnings);
   }
   return open_generated_heightfield(generated_terrain(config));
 }
