@@ -41,6 +41,12 @@ struct TileSpec {
 // grid) with `overlap` pixels on every side. size 0: one tile covering the grid (untiled).
 // Throws tw::Error on size < 0, overlap < 0, or overlap without tiles.
 std::vector<TileSpec> tile_grid(const GridSpec& grid, int size, int overlap);
+// The same over `area` of the grid (a region): tiles from its corner, halos clamped to it.
+std::vector<TileSpec> tile_grid(const GridSpec& grid, const Window& area, int size, int overlap);
+
+// The grid of a window of `grid`: the same pixels, its origin on the window's north-west corner
+// (a tile's layers, a region's report).
+GridSpec window_grid(const GridSpec& grid, const Window& window);
 
 // The stem of a tile's files: <layer>_x<ix>_y<iy> (Unreal World Partition / Unity naming).
 std::string tile_file_stem(const std::string& layer, const TileSpec& tile);
@@ -105,8 +111,11 @@ struct RenderOptions {
 };
 
 struct WorldPlan {
-  // The output grid (the region's, when there is one).
+  // The world's grid: every feature, window and index is on it.
   GridSpec grid;
+  // The pixels the run writes: the region's (config `region`), else the whole grid. The tiles
+  // cut it; its pixels equal the same pixels of a run without the region.
+  Window output_window;
   std::string crs_wkt;
   std::optional<double> nodata;
   HeightSource heights;

@@ -225,7 +225,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   fs::remove(scratch, ec);
   // A DEM file travels as its path, options and the hash of its bytes (render-tile reads its
   // windows from it; the hash keeps the plan content-addressed); a generated world as its
-  // parameters; heights already resampled (a region) as a raster on the plan's grid.
+  // parameters; heights held in memory (a plan made by hand) as a raster on the plan's grid.
   std::optional<HeightfieldFile> file = plan.heights.file;
   if (file) {
     const FileDigest digest = file_digest(file->path);
@@ -243,6 +243,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   json doc = {{"format", kPlanFormat},
               {"version", kPlanVersion},
               {"grid", encode(plan.grid)},
+              {"output_window", encode(plan.output_window)},
               {"crs_wkt", plan.crs_wkt},
               {"heights", heights},
               {"class_names", plan.class_names},
@@ -276,6 +277,7 @@ WorldPlan load_plan(const fs::path& dir) {
   try {
     detail::JsonReader reader(doc, where);
     reader("grid", plan.grid);
+    reader("output_window", plan.output_window);
     reader("crs_wkt", plan.crs_wkt);
     reader("class_names", plan.class_names);
     reader("splat_materials", plan.splat_materials);

@@ -31,8 +31,7 @@ HeightfieldOptions heightfield_options(const PipelineConfig& config) {
   HeightfieldOptions options;
   options.resampling = config.resampling;
   options.crs = config.output.crs;
-  // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
-  if (!config.region) options.resolution = config.resolution;
+  options.resolution = config.resolution;  // a region is a window of this grid
   return options;
 }
 
@@ -51,7 +50,7 @@ GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;
-  params.pixel_size = config.region ? g.pixel_size : config.resolution.value_or(g.pixel_size);
+  params.pixel_size = config.resolution.value_or(g.pixel_size);
   params.seed = config.seed;
   params.relief = g.relief;
   params.crs = g.crs;

@@ -6,6 +6,7 @@
 // features synthesized before it; then the patterns are rendered into the output grid.
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,6 +47,8 @@ struct FeaturePattern {
   FeatureSynthesisReport report;
   ContentHash key;  // of everything the synthesis read (synthesis_cache.hpp)
   CacheStatus cache;
+  // false: left out by PatternOptions::wanted (ribbon, canvas and indices only).
+  bool synthesized = true;
 };
 
 struct PatternRun {
@@ -61,6 +64,10 @@ struct PatternOptions {
   // Reuses and stores syntheses (`--cache`); null: every feature is synthesized (keys are still
   // computed for the report).
   SynthesisCache* cache = nullptr;
+  // Synthesizes only the features whose canvas it accepts, and the earlier ones whose canvases
+  // overlap theirs (transitively: what their avoidance reads), so each has the placements of a
+  // run of every feature (a `region`). Null: every feature.
+  std::function<bool(const GridSpec& canvas)> wanted;
 };
 
 // Throws tw::Error naming the class and FID (and the piece) of a feature without room for its
