@@ -47,7 +47,7 @@ keep_report() {  # size mode out: report.json, output bytes and per-tile seconds
 import json, sys
 bytes_ = int(sys.argv[2])
 try:
-    tiles = json.load(open(sys.argv[1])).get("tiles", {}).get("tiles", [])
+    tiles = json.load(open(sys.argv[1])).get("timings", {}).get("tiles", [])
 except (OSError, ValueError):
     tiles = []
 secs = sorted(t.get("seconds", 0) for t in tiles)
