@@ -9,7 +9,9 @@
 # ignores output.tiles renders one window, and its peak RSS then grows with the world.)
 # Prints numbers and ratios, never fails on time. Usage:
 #   bench/bigworld.sh [SIZES...]   (default 8192 16384 32768; env TILE, OVERLAP, UNTILED_SIZES,
-#                                   TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-bigworld)
+#                                   TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-bigworld,
+#                                   SKIP_PLAN=1 to skip the separate plan measurement)
+# Layers are deleted after each run; WORK/SIZE/MODE-report.json and the output bytes are kept.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bin=${TERRAWEAVE:-build/src/terraweave}
@@ -36,19 +38,42 @@ measure() {  # size mode km -- command...
   echo "bigworld: $size^2 $mode: ${wall:-?} s, $(( ${rss_kb:-0} / 1024 )) MiB peak RSS, $status" >&2
 }
 
+keep_report() {  # size mode out: report.json, output bytes and per-tile seconds
+  local size=$1 mode=$2 out=$3
+  cp -L "$out/report.json" "$work/$size/$mode-report.json" 2>/dev/null
+  local bytes
+  bytes=$(du -sbL "$out" | awk '{print $1}')
+  python3 - "$work/$size/$mode-report.json" "$bytes" <<'PY' >&2
+import json, sys
+bytes_ = int(sys.argv[2])
+try:
+    tiles = json.load(open(sys.argv[1])).get("timings", {}).get("tiles", [])
+except (OSError, ValueError):
+    tiles = []
+secs = sorted(t.get("seconds", 0) for t in tiles)
+line = f"bigworld: output {bytes_ / 1e9:.2f} GB"
+if secs:
+    line += (f", {len(secs)} tiles: {sum(secs) / len(secs):.2f} s mean, "
+             f"{secs[len(secs) // 2]:.2f} s median, {secs[0]:.2f}-{secs[-1]:.2f} s")
+print(line)
+PY
+}
+
 for size in "${sizes[@]}"; do
   mkdir -p "$work/$size"
   summary=$("$bin" -q make-world --size "$size" --tile "$tile" --overlap "$overlap" \
     --out "$work/$size") || exit 1
   km=$(echo "$summary" | awk '{print $3 + $7}')
   echo "bigworld: $size^2: $summary" >&2
-  measure "$size" plan "$km" -- "$bin" -q validate "$work/$size/world.yaml"
+  [ -n "${SKIP_PLAN:-}" ] || measure "$size" plan "$km" -- "$bin" -q validate "$work/$size/world.yaml"
   measure "$size" tiled "$km" -- "$bin" -q run "$work/$size/world.yaml" --out "$work/$size/out"
+  keep_report "$size" tiled "$work/$size/out"
   rm -rf "$work/$size/out"
   for u in $untiled_sizes; do
     if [ "$u" = "$size" ]; then
       measure "$size" untiled "$km" -- "$bin" -q run "$work/$size/world_untiled.yaml" \
         --out "$work/$size/out_untiled"
+      keep_report "$size" untiled "$work/$size/out_untiled"
       rm -rf "$work/$size/out_untiled"
     fi
   done

@@ -154,6 +154,8 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (options.synthesis_tasks && !config.areas.empty())
     fail("areas.{}: `kind: area` classes are synthesized in the plan; use --synthesis inline",
          config.areas.front().name);
+  if (options.synthesis_tasks && config.region)
+    fail("region: a close-up synthesizes only what reaches it, in the plan; use --synthesis inline");
   if (config.output.tiles.size <= 0)
     fail(
         "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "

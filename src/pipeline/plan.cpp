@@ -20,6 +20,8 @@
 
 namespace tw {
 
+namespace fs = std::filesystem;
+
 namespace {
 
 class StageClock {
@@ -70,9 +72,24 @@ std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemp
 // when an exemplar lacks a mapped channel.
 void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPlan& plan) {
   plan.splat_materials = splat_materials();
+  const auto material_index = [&](const std::string& target) {
+    const std::string material = target.substr(6);  // after "splat."
+    auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
+    if (it == plan.splat_materials.end()) {
+      plan.splat_materials.push_back(material);
+      it = plan.splat_materials.end() - 1;
+    }
+    return std::size_t(it - plan.splat_materials.begin());
+  };
   for (detail::FeaturePattern& p : run.patterns) {
     const FeatureClassConfig& c = config.features[p.class_index];
     const Exemplar& exemplar = run.exemplars[p.exemplar_index];
+    if (!p.synthesized) {  // outside the region: its bands still come in the same order
+      if (p.on_ground && ribbon_window(p.ribbon, plan.grid).width > 0)
+        for (const ChannelMapping& m : mappings_of(c, exemplar))
+          if (m.target != "height") material_index(m.target);
+      continue;
+    }
     PlannedPattern& planned = plan.patterns.emplace_back();
     planned.class_index = p.class_index;
     planned.feature_index = p.feature_index;
@@ -97,13 +114,7 @@ void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPl
       target.to_height = m.target == "height";
       target.is_alpha = m.channel == "A";
       if (target.to_height) continue;
-      const std::string material = m.target.substr(6);  // after "splat."
-      auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
-      if (it == plan.splat_materials.end()) {
-        plan.splat_materials.push_back(material);
-        it = plan.splat_materials.end() - 1;
-      }
-      target.material = std::size_t(it - plan.splat_materials.begin());
+      target.material = material_index(m.target);
     }
   }
   plan.exemplars = std::move(run.exemplars);
@@ -155,6 +166,7 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
 
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan) {
   for (const FeaturePattern& p : patterns.patterns) {
+    if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
     FeatureReport& feature = plan.report.classes[p.class_index].features[p.feature_index];
     feature.synthesis = p.report;
     feature.cache = p.cache;
@@ -194,10 +206,9 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   const std::shared_ptr<const HeightfieldSource> source =
       detail::open_heightfield_source(config, warnings);
   require_some_height(*source);
-  // The whole grid's pixels only for a region (cropped and resampled below); otherwise ingest,
-  // conformance, the terrain plan and every tile read the windows they touch.
-  Heightfield heightfield =
-      config.region ? read_whole_heightfield(*source) : source->without_pixels();
+  // No pixel is read here: ingest, conformance, the terrain plan and every tile read the
+  // windows they touch. A region is a window of the world's grid (detail/region.hpp).
+  const Heightfield heightfield = source->without_pixels();
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
@@ -213,19 +224,16 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   const std::vector<std::vector<PolygonFeature>> area_polygons =
       detail::load_area_polygons(config, heightfield, warnings);
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
-  const auto moves = detail::conform_lines(
-      config, config.region ? *in_memory_heightfield(heightfield) : *source, lines, warnings);
+  const auto moves = detail::conform_lines(config, *source, lines, warnings);
   detail::ExistingFeatures existing =
       detail::load_existing(config.existing, heightfield, config.repair, warnings);
-  if (config.region) {  // features were read on the whole heightfield, the rest is the region
-    heightfield = detail::crop_to_region(heightfield, *config.region,
-                                         config.resolution.value_or(heightfield.grid.pixel_width),
-                                         config.resampling);
-  }
   plan.grid = heightfield.grid;
+  plan.output_window = config.region
+                           ? detail::region_window(plan.grid, *config.region, heightfield.source)
+                           : Window::whole(plan.grid);
   plan.crs_wkt = heightfield.crs_wkt;
   plan.nodata = heightfield.nodata_value;
-  report.grid = heightfield.grid;
+  report.grid = window_grid(plan.grid, plan.output_window);
   report.crs_wkt = heightfield.crs_wkt;
   report.heightfield = heightfield.source;
   clock.stop();
@@ -255,8 +263,7 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   plan.terrain_features = detail::terrain_features(config, lines);
   plan.terrain_params = detail::terrain_params(config);
   {
-    const auto region = config.region ? in_memory_heightfield(heightfield) : nullptr;
-    HeightSampler heights(region ? *region : *source);
+    HeightSampler heights(*source);
     plan.terrain = plan_terrain(heights, plan.terrain_features, plan.terrain_params, warnings);
   }
   detail::report_earthwork(config, lines, plan.terrain, report, warnings);
@@ -271,6 +278,16 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
     detail::PatternOptions pattern_options;
     pattern_options.backend = options.backend;
     pattern_options.cache = &cache;
+    if (config.region) {  // the patterns whose render reaches the region, and what they avoid
+      const GridSpec output = window_grid(plan.grid, plan.output_window);
+      const double reach = (kCanvasHalo + 2) * std::max(output.pixel_width, output.pixel_height);
+      pattern_options.wanted = [output, reach](const GridSpec& canvas) {
+        return canvas.origin_x - reach < output.origin_x + output.width * output.pixel_width &&
+               output.origin_x < canvas.origin_x + canvas.width * canvas.pixel_width + reach &&
+               canvas.origin_y - canvas.height * canvas.pixel_height - reach < output.origin_y &&
+               output.origin_y - output.height * output.pixel_height < canvas.origin_y + reach;
+      };
+    }
     patterns = detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
     clock.stop();
   }
@@ -301,18 +318,20 @@ WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, W
   plan.lines = std::move(lines);
 
   plan.heights.source = heightfield.source;
-  if (!config.region) {
-    plan.heights.reader = source;
-    if (!config.heightfield) plan.heights.generated = detail::generated_terrain(config);
+  plan.heights.reader = source;
+  if (!config.heightfield) {
+    plan.heights.generated = detail::generated_terrain(config);
   } else {
-    plan.heights.heights = std::make_shared<const Raster<float>>(std::move(heightfield.height));
+    plan.heights.file =
+        HeightfieldFile{fs::absolute(*config.heightfield).lexically_normal().string(), "", 0,
+                        detail::heightfield_options(config)};
   }
 
   index_plan(plan);
   plan.render.avoidance_max_distance = config.avoidance.max_distance;
   plan.tile_size = config.output.tiles.size;
   plan.tile_overlap = config.output.tiles.overlap;
-  plan.tiles = tile_grid(plan.grid, plan.tile_size, plan.tile_overlap);
+  plan.tiles = tile_grid(plan.grid, plan.output_window, plan.tile_size, plan.tile_overlap);
   return plan;
 }
 

@@ -42,20 +42,37 @@ struct TileSpec {
 // grid) with `overlap` pixels on every side. size 0: one tile covering the grid (untiled).
 // Throws tw::Error on size < 0, overlap < 0, or overlap without tiles.
 std::vector<TileSpec> tile_grid(const GridSpec& grid, int size, int overlap);
+// The same over `area` of the grid (a region): tiles from its corner, halos clamped to it.
+std::vector<TileSpec> tile_grid(const GridSpec& grid, const Window& area, int size, int overlap);
+
+// The grid of a window of `grid`: the same pixels, its origin on the window's north-west corner
+// (a tile's layers, a region's report).
+GridSpec window_grid(const GridSpec& grid, const Window& window);
 
 // The stem of a tile's files: <layer>_x<ix>_y<iy> (Unreal World Partition / Unity naming).
 std::string tile_file_stem(const std::string& layer, const TileSpec& tile);
 
+// A DEM file as a plan names it: what open_heightfield needs to give the plan's grid again, and
+// the hash of the file's bytes, so a plan folder is content-addressed without holding them.
+struct HeightfieldFile {
+  std::string path;            // absolute, as planned: workers must see the same path
+  std::string xxh3_128;        // of the file's bytes (filled in by save_plan)
+  std::uintmax_t bytes = 0;    // the file's size (idem)
+  HeightfieldOptions options;  // resolution, resampling, crs: the plan's grid from the file
+};
+
 // Where render_tile reads the heights of its window, before any edit.
 struct HeightSource {
   std::string source;  // path or generated:seed=N (messages, reports)
-  // A generated world read at its own cells (no region): every window is generated on its own
-  // (a window of a generated world equals the same window of the whole one).
+  // A generated world: every window is generated on its own (a window of a generated world
+  // equals the same window of the whole one).
   std::optional<GeneratedTerrain> generated;
+  // A DEM file: every window is read from it (load_plan reopens it, checking its hash).
+  std::optional<HeightfieldFile> file;
   // Otherwise the heights over the plan's grid as ingested, shared by every tile.
   std::shared_ptr<const Raster<float>> heights;
   // The heightfield opened once and read window by window (geo/heightfield_source.hpp; a file
-  // or the generated world, without a region): read_height_window reads through it.
+  // or the generated world): read_height_window reads through it.
   std::shared_ptr<const HeightfieldSource> reader;
 };
 
@@ -111,8 +128,11 @@ struct RenderOptions {
 };
 
 struct WorldPlan {
-  // The output grid (the region's, when there is one).
+  // The world's grid: every feature, window and index is on it.
   GridSpec grid;
+  // The pixels the run writes: the region's (config `region`), else the whole grid. The tiles
+  // cut it; its pixels equal the same pixels of a run without the region.
+  Window output_window;
   std::string crs_wkt;
   std::optional<double> nodata;
   HeightSource heights;

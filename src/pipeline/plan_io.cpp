@@ -6,7 +6,9 @@
 
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
+#include "core/file_hash.hpp"
 #include "core/file_io.hpp"
+#include "geo/heightfield_source.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "synth/placements_io.hpp"
 
@@ -144,6 +146,18 @@ void restore_timings(const json& timings, RunReport& report, const std::string& 
   }
 }
 
+// The DEM a plan names, refused when its bytes are not the ones planned (hashing streams the
+// file in 1 MiB chunks: no memory, about a second per GB). Its warnings were the plan's.
+std::shared_ptr<const HeightfieldSource> open_planned_heightfield(const HeightfieldFile& file,
+                                                                  const std::string& where) {
+  const FileDigest digest = file_digest(file.path);
+  if (digest.xxh3_128 != file.xxh3_128 || digest.bytes != file.bytes)
+    fail("{}: heights.file {} changed after planning (xxh3_128 {}, planned {}); plan again", where,
+         file.path, digest.xxh3_128, file.xxh3_128);
+  Warnings planned;
+  return open_heightfield(file.path, file.options, planned);
+}
+
 json tasks_json(const WorldPlan& plan, const std::string& hash) {
   json tiles = json::array();
   for (const TileSpec& tile : plan.tiles) tiles.push_back(encode(tile));
@@ -212,20 +226,27 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   }
   std::error_code ec;
   fs::remove(scratch, ec);
-  // A DEM read through a windowed source travels as its heights on the plan's grid (a worker
-  // may not see the file); a generated world travels as its parameters.
-  std::shared_ptr<const Raster<float>> raster = plan.heights.heights;
-  if (!raster && !plan.heights.generated) {
-    raster = std::make_shared<const Raster<float>>(
-        read_height_window(plan.heights, plan.grid, Window::whole(plan.grid)));
+  // A DEM file travels as its path, options and the hash of its bytes (render-tile reads its
+  // windows from it; the hash keeps the plan content-addressed); a generated world as its
+  // parameters; heights held in memory (a plan made by hand) as a raster on the plan's grid.
+  std::optional<HeightfieldFile> file = plan.heights.file;
+  if (file) {
+    const FileDigest digest = file_digest(file->path);
+    file->xxh3_128 = digest.xxh3_128;
+    file->bytes = digest.bytes;
   }
+  const std::shared_ptr<const Raster<float>>& raster = plan.heights.heights;
+  if (!raster && !plan.heights.generated && !file)
+    fail("plan: the heights of {} have no source a plan can name", plan.heights.source);
   json heights = {{"source", plan.heights.source},
                   {"generated", encode(plan.heights.generated)},
+                  {"file", encode(file)},
                   {"raster", raster ? store.put_cbor(encode(raster)) : json()}};
 
   json doc = {{"format", kPlanFormat},
               {"version", kPlanVersion},
               {"grid", encode(plan.grid)},
+              {"output_window", encode(plan.output_window)},
               {"crs_wkt", plan.crs_wkt},
               {"heights", heights},
               {"class_names", plan.class_names},
@@ -260,6 +281,7 @@ WorldPlan load_plan(const fs::path& dir) {
   try {
     detail::JsonReader reader(doc, where);
     reader("grid", plan.grid);
+    reader("output_window", plan.output_window);
     reader("crs_wkt", plan.crs_wkt);
     reader("class_names", plan.class_names);
     reader("area_names", plan.area_names);
@@ -270,10 +292,15 @@ WorldPlan load_plan(const fs::path& dir) {
     const json& heights = doc.at("heights");
     decode(heights.at("source"), plan.heights.source, where + ": heights.source");
     decode(heights.at("generated"), plan.heights.generated, where + ": heights.generated");
+    decode(heights.at("file"), plan.heights.file, where + ": heights.file");
     if (!heights.at("raster").is_null()) {
       const json wrapper = {{"raster", heights["raster"]}};
       get_cbor(dir, wrapper, "raster", plan.heights.heights);
     }
+    if (plan.heights.file)
+      plan.heights.reader = open_planned_heightfield(*plan.heights.file, where);
+    if (plan.heights.generated)
+      plan.heights.reader = open_generated_heightfield(*plan.heights.generated);
     const json& files = doc.at("files");
     const json settings = get_cbor_json(dir, files, "settings");
     detail::JsonReader settings_reader(settings, where + ": settings");

@@ -1,12 +1,14 @@
 #pragma once
 // A WorldPlan as a folder of files (docs/distributed.md, "The plan folder"), so that tiles
 // render in other processes and on other machines:
-//   <dir>/plan.json            grid, CRS, tiling, render options, class names, materials, and
-//                              the list of object files with their content hashes
+//   <dir>/plan.json            grid, output window (a region's), CRS, tiling, render options,
+//                              class names, materials, the heights' source (a DEM file by path,
+//                              options and XXH3-128 of its bytes; a generated world by its
+//                              parameters), and the list of object files with their content hashes
 //   <dir>/tasks.json           one task per tile: index, _x/_y, window and halo window
 //   <dir>/objects/<hash>.cbor  lines, ribbons, junctions, existing features, terrain plan,
-//                              areas' shapes, exemplars (texels), heights (a DEM's), the
-//                              plan's report
+//                              areas' shapes, exemplars (texels), heights (only when held in
+//                              memory), the plan's report
 //   <dir>/objects/<hash>.json  one pattern's placements (synth/placements_io)
 // <hash> is the XXH3-128 of the file's bytes: a file is never trusted if it does not match, and
 // an unchanged object keeps its name from one plan to the next. The plan's own hash (`plan`
@@ -22,7 +24,7 @@ namespace tw {
 
 inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
-inline constexpr int kPlanVersion = 1;
+inline constexpr int kPlanVersion = 2;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

@@ -143,12 +143,7 @@ LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
   add_areas(plan, window, height, splat);
 
   LayerSet layers;
-  layers.grid = plan.grid;
-  layers.grid.width = window.width;
-  layers.grid.height = window.height;
-  const Vec2 corner = plan.grid.pixel_to_world({double(window.col0), double(window.row0)});
-  layers.grid.origin_x = corner.x;
-  layers.grid.origin_y = corner.y;
+  layers.grid = window_grid(plan.grid, window);
   layers.crs_wkt = plan.crs_wkt;
   layers.nodata = plan.nodata;
   layers.layers.push_back(height_layer(std::move(height)));

@@ -8,16 +8,19 @@
 namespace tw {
 
 std::vector<TileSpec> tile_grid(const GridSpec& grid, int size, int overlap) {
+  return tile_grid(grid, Window::whole(grid), size, overlap);
+}
+
+std::vector<TileSpec> tile_grid(const GridSpec& grid, const Window& area, int size, int overlap) {
   if (size < 0) fail("output.tiles.size: must be >= 0 pixels, got {}", size);
   if (overlap < 0) fail("output.tiles.overlap: must be >= 0 pixels, got {}", overlap);
   if (size == 0 && overlap > 0) fail("output.tiles.overlap: {} pixels without tiles", overlap);
   if (grid.width <= 0 || grid.height <= 0) fail("tile_grid: the grid is empty");
-  if (size == 0) {
-    const Window whole = Window::whole(grid);
-    return {TileSpec{0, 0, 0, whole, whole}};
-  }
-  const int columns = (grid.width + size - 1) / size;
-  const int rows = (grid.height + size - 1) / size;
+  if (area.width <= 0 || area.height <= 0 || intersect(area, Window::whole(grid)) != area)
+    fail("tile_grid: the area is not a window of the grid");
+  if (size == 0) return {TileSpec{0, 0, 0, area, area}};
+  const int columns = (area.width + size - 1) / size;
+  const int rows = (area.height + size - 1) / size;
   std::vector<TileSpec> tiles;
   tiles.reserve(std::size_t(columns) * rows);
   for (int iy = 0; iy < rows; ++iy)
@@ -26,10 +29,15 @@ std::vector<TileSpec> tile_grid(const GridSpec& grid, int size, int overlap) {
       t.index = iy * columns + ix;
       t.ix = ix;
       t.iy = iy;
-      t.window = intersect({ix * size, iy * size, size, size}, Window::whole(grid));
-      t.halo_window = grow_window(t.window, overlap, grid);
+      t.window = intersect({area.col0 + ix * size, area.row0 + iy * size, size, size}, area);
+      t.halo_window = intersect(grow_window(t.window, overlap, grid), area);
     }
   return tiles;
+}
+
+GridSpec window_grid(const GridSpec& grid, const Window& window) {
+  const Vec2 corner = grid.pixel_to_world({double(window.col0), double(window.row0)});
+  return {window.width, window.height, corner.x, corner.y, grid.pixel_width, grid.pixel_height};
 }
 
 std::string tile_file_stem(const std::string& layer, const TileSpec& tile) {

@@ -178,71 +178,29 @@ TEST(PipelineConfig, RegionIsARectangleWithLocatedErrors) {
   EXPECT_DOUBLE_EQ(o.region->max_x, 10.0);
 }
 
-// What a region does to the output grid: cells on the resolution's lattice, heights read
-// bilinearly from the heightfield, an error naming the region when it misses the heightfield.
-TEST(PipelineConfig, RegionCropsAndResamplesTheHeightfield) {
-  Heightfield source;
-  source.grid = GridSpec{10, 10, 1000.0, 2100.0, 10.0, 10.0};  // x 1000..1100, y 2000..2100
-  source.height = Raster<float>(10, 10);
-  for (int r = 0; r < 10; ++r)
-    for (int c = 0; c < 10; ++c) source.height.at(c, r) = float(3 * c - 2 * r);  // a plane
-  const Heightfield crop = detail::crop_to_region(source, {1021.3, 2040.0, 1059.9, 2070.2}, 2.0);
-  EXPECT_DOUBLE_EQ(crop.grid.origin_x, 1020.0);
-  EXPECT_DOUBLE_EQ(crop.grid.origin_y, 2072.0);
-  EXPECT_EQ(crop.grid.width, 20);   // 1020..1060
-  EXPECT_EQ(crop.grid.height, 16);  // 2040..2072
-  // A plane in pixel-centre units: bilinear reads it exactly inside the source's centres.
-  for (int r = 0; r < crop.grid.height; ++r)
-    for (int c = 0; c < crop.grid.width; ++c) {
-      const Vec2 p = source.grid.world_to_pixel(crop.grid.pixel_to_world({c + 0.5, r + 0.5}));
-      EXPECT_NEAR(crop.height.at(c, r), 3.0 * (p.x - 0.5) - 2.0 * (p.y - 0.5), 1e-4);
-    }
-  // Cubic: exact on a quadratic inside (bilinear sags between centres), and the same plane.
-  Heightfield bowl = source;
-  auto bowl_at = [](double c, double r) { return 0.5 * c * c + 0.25 * r * r - c * r; };
-  for (int r = 0; r < 10; ++r)
-    for (int c = 0; c < 10; ++c) bowl.height.at(c, r) = float(bowl_at(c, r));
-  const RegionConfig middle{1030.0, 2030.0, 1070.0, 2070.0};
-  const Heightfield cubic = detail::crop_to_region(bowl, middle, 2.0, Resampling::cubic);
-  const Heightfield linear = detail::crop_to_region(bowl, middle, 2.0, Resampling::bilinear);
-  double worst_cubic = 0.0, worst_linear = 0.0;
-  for (int r = 0; r < cubic.grid.height; ++r)
-    for (int c = 0; c < cubic.grid.width; ++c) {
-      const Vec2 p = source.grid.world_to_pixel(cubic.grid.pixel_to_world({c + 0.5, r + 0.5}));
-      const double expected = bowl_at(p.x - 0.5, p.y - 0.5);
-      worst_cubic = std::max(worst_cubic, std::abs(cubic.height.at(c, r) - expected));
-      worst_linear = std::max(worst_linear, std::abs(linear.height.at(c, r) - expected));
-    }
-  EXPECT_LT(worst_cubic, 1e-4);
-  EXPECT_GT(worst_linear, 0.05);
-  const Heightfield plane = detail::crop_to_region(source, middle, 2.0, Resampling::cubic);
-  for (int r = 0; r < plane.grid.height; ++r)
-    for (int c = 0; c < plane.grid.width; ++c) {
-      const Vec2 p = source.grid.world_to_pixel(plane.grid.pixel_to_world({c + 0.5, r + 0.5}));
-      EXPECT_NEAR(plane.height.at(c, r), 3.0 * (p.x - 0.5) - 2.0 * (p.y - 0.5), 1e-4);
-    }
-  // Next to nodata the cubic falls back to the bilinear read of the valid cells.
-  Heightfield holed = source;
-  holed.height.at(5, 5) = std::numeric_limits<float>::quiet_NaN();
-  const Heightfield around = detail::crop_to_region(holed, middle, 2.0, Resampling::cubic);
-  for (float h : around.height.pixels) {
-    if (!std::isnan(h)) {
-      EXPECT_TRUE(h > -30.0f && h < 40.0f) << h;
-    }
+// What a region does to the output grid: the world grid's cells that meet it (a window, so
+// the region's pixels are the world's), an error naming the region when it misses the grid.
+TEST(PipelineConfig, RegionIsTheWindowOfTheWorldGridItMeets) {
+  const GridSpec grid{10, 10, 1000.0, 2100.0, 10.0, 10.0};  // x 1000..1100, y 2000..2100
+  EXPECT_EQ(detail::region_window(grid, {1021.3, 2040.0, 1059.9, 2070.2}, "dem.tif"),
+            (Window{2, 2, 4, 4}));  // columns 1020..1060, rows 2080..2040 (the edge at 2040)
+  EXPECT_EQ(detail::region_window(grid, {1020.0, 2030.0, 1030.0, 2040.0}, "dem.tif"),
+            (Window{2, 6, 1, 1}));  // edges on cell edges: one cell
+  EXPECT_EQ(detail::region_window(grid, {900.0, 1900.0, 1010.0, 2010.0}, "dem.tif"),
+            (Window{0, 9, 1, 1}));  // clipped to the grid
+  EXPECT_EQ(detail::region_window(grid, {0.0, 0.0, 5000.0, 5000.0}, "dem.tif"),
+            Window::whole(grid));
+  try {
+    detail::region_window(grid, {0.0, 0.0, 10.0, 10.0}, "dem.tif");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(),
+                HasSubstr("region [0, 0, 10, 10]: does not overlap the heightfield dem.tif"));
   }
   EXPECT_THAT(error_of(std::string(kMinimal) + "resampling: lanczos\n"),
               HasSubstr("resampling: unknown resampling 'lanczos', expected bilinear or cubic"));
   EXPECT_EQ(parse(std::string(kMinimal) + "resampling: cubic\n").resampling, Resampling::cubic);
   EXPECT_EQ(parse(kMinimal).resampling, Resampling::bilinear);
-
-  // Clipped to the heightfield, and an error when nothing is left.
-  EXPECT_EQ(detail::crop_to_region(source, {900.0, 1900.0, 1010.0, 2010.0}, 5.0).grid.width, 2);
-  try {
-    detail::crop_to_region(source, {0.0, 0.0, 10.0, 10.0}, 1.0);
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("region [0, 0, 10, 10]: does not overlap the heightfield"));
-  }
 }
 
 TEST(PipelineConfig, MissingRequiredKeysAreNamed) {

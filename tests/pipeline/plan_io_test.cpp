@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "pipeline/job.hpp"
@@ -152,6 +153,41 @@ TEST_F(PlanFolder, AnObjectThatDoesNotMatchItsHashIsRefusedByName) {
     EXPECT_THAT(e.what(), HasSubstr("files.ribbons"));
     EXPECT_THAT(e.what(), HasSubstr(object.filename().string()));
     EXPECT_THAT(e.what(), HasSubstr("does not match its content hash"));
+  }
+}
+
+// The plan names the DEM (path, options, hash of its bytes) instead of holding its heights: a
+// loaded plan reads each tile's window from the file, and refuses a file changed since.
+TEST_F(PlanFolder, ThePlanNamesTheDemAndATileReadsOnlyItsWindow) {
+  const WorldPlan original = plan();
+  ASSERT_TRUE(original.heights.file);
+  save_plan(original, dir_ / "plan");
+  const nlohmann::json doc = nlohmann::json::parse(read_file_bytes(dir_ / "plan/plan.json"));
+  const nlohmann::json& heights = doc["heights"];
+  EXPECT_TRUE(heights["raster"].is_null());
+  EXPECT_EQ(heights["file"]["path"], fs::absolute(dir_ / "dem.tif").lexically_normal().string());
+  EXPECT_EQ(heights["file"]["xxh3_128"], content_hash(read_file_bytes(dir_ / "dem.tif")));
+  EXPECT_EQ(heights["file"]["options"]["resolution"], 10.0);
+
+  const WorldPlan loaded = load_plan(dir_ / "plan");
+  ASSERT_TRUE(loaded.heights.reader);
+  const TileSpec& tile = loaded.tiles.at(4);
+  const LayerSet a = render_tile(original, tile);
+  const LayerSet b = render_tile(loaded, tile);
+  expect_same_bits(a, b, tile.index);
+  EXPECT_GT(loaded.heights.reader->cells_read(), 0);
+  EXPECT_LE(loaded.heights.reader->cells_read(),
+            std::int64_t(tile.halo_window.width) * tile.halo_window.height);
+
+  test::DemSpec changed;
+  changed.nodata = -9999.0;  // other bytes at the same path
+  test::write_dem(dir_ / "dem.tif", changed);
+  try {
+    load_plan(dir_ / "plan");
+    FAIL() << "a changed DEM was read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("heights.file"));
+    EXPECT_THAT(e.what(), HasSubstr("dem.tif changed after planning"));
   }
 }
 

@@ -324,6 +324,49 @@ TEST_F(TiledWorld, RenderTileReturnsItsHaloWindowOnly) {
     }
 }
 
+// A region is a window of the world: its layers (untiled, and tiled through the mosaic) are the
+// same bytes as that window of the whole run, and only the patterns reaching it are synthesized
+// (the north-east corner meets road 1 alone, the first in synthesis order).
+TEST_F(TiledWorld, ARegionIsTheSameBytesAsItsWindowOfTheWholeRun) {
+  const RunReport whole = run_pipeline(config("whole"));
+  const std::string region = "[500702, 4999901, 500800, 5000000]";
+  const RunReport part = run_pipeline(config("region", {{"region", region}}));
+  const RunReport tiled = run_pipeline(
+      config("tiled", {{"region", region}, {"output.tiles", "{ size: 9, overlap: 2 }"}}));
+  const Window w{175, 0, 25, 25};  // columns 500700..500800, rows 5000000..4999900
+  EXPECT_EQ(part.grid, (GridSpec{25, 25, 500700.0, 5000000.0, 4.0, 4.0}));
+  ASSERT_EQ(tiled.tiles.tiles.size(), 9u);
+  EXPECT_EQ(tiled.tiles.tiles[4].window, (Window{184, 9, 9, 9}));
+  for (const std::string layer : {"height", "splat", "avoidance"}) {
+    SCOPED_TRACE(layer);
+    int width = 0, height = 0;
+    const std::vector<float> all = gdal_pixels(dir_ / "whole" / (layer + ".tif"), &width, &height);
+    const std::size_t bands = all.size() / (std::size_t(width) * height);
+    std::vector<float> crop;
+    for (std::size_t b = 0; b < bands; ++b)
+      for (int row = w.row0; row < w.row_end(); ++row) {
+        const float* from = all.data() + (b * height + row) * std::size_t(width) + w.col0;
+        crop.insert(crop.end(), from, from + w.width);
+      }
+    EXPECT_TRUE(same_bits(gdal_pixels(dir_ / "region" / (layer + ".tif")), crop));
+    EXPECT_TRUE(same_bits(gdal_pixels(dir_ / "tiled" / (layer + ".vrt")), crop)) << "mosaic";
+    EXPECT_EQ(read_exr(dir_ / "region" / (layer + ".exr")).channels,
+              read_exr(dir_ / "whole" / (layer + ".exr")).channels);
+  }
+  const auto& roads = part.classes[1].features;
+  ASSERT_EQ(roads.size(), 3u);
+  ASSERT_TRUE(roads[0].synthesis);
+  EXPECT_FALSE(roads[1].synthesis);  // far from the region, and synthesized after road 1
+  EXPECT_FALSE(roads[2].synthesis);
+  EXPECT_EQ(file_bytes(dir_ / "region" / roads[0].synthesis->placements),
+            file_bytes(dir_ / "whole" / whole.classes[1].features[0].synthesis->placements));
+  const ExrContents splat = read_exr(dir_ / "region/splat.exr");
+  const auto cobble = std::find(splat.channels.begin(), splat.channels.end(), "splat.cobble");
+  ASSERT_NE(cobble, splat.channels.end());
+  const auto& band = splat.bands[std::size_t(cobble - splat.channels.begin())].pixels;
+  EXPECT_GT(std::count_if(band.begin(), band.end(), [](float v) { return v > 0.5f; }), 5);
+}
+
 // The demo (a DEM file, ridges, rivers, roads and existing features), tiled 64 with overlap 3
 // on a grid of 180 x 180: the same bytes as untiled.
 TEST(TiledDemo, TheMosaicEqualsTheUntiledRun) {

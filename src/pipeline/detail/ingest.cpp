@@ -27,15 +27,18 @@ double clip_margin(const FeatureClassConfig& config, double cell) {
 
 }  // namespace
 
+HeightfieldOptions heightfield_options(const PipelineConfig& config) {
+  HeightfieldOptions options;
+  options.resampling = config.resampling;
+  options.crs = config.output.crs;
+  options.resolution = config.resolution;  // a region is a window of this grid
+  return options;
+}
+
 std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
                                                            Warnings& warnings) {
   if (config.heightfield) {
-    HeightfieldOptions options;
-    options.resampling = config.resampling;
-    options.crs = config.output.crs;
-    // With a region the heightfield keeps its own cells; crop_to_region resamples the region.
-    if (!config.region) options.resolution = config.resolution;
-    return open_heightfield(config.heightfield->string(), options, warnings);
+    return open_heightfield(config.heightfield->string(), heightfield_options(config), warnings);
   }
   return open_generated_heightfield(generated_terrain(config));
 }
@@ -47,7 +50,7 @@ GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;
-  params.pixel_size = config.region ? g.pixel_size : config.resolution.value_or(g.pixel_size);
+  params.pixel_size = config.resolution.value_or(g.pixel_size);
   params.seed = config.seed;
   params.relief = g.relief;
   params.crs = g.crs;

@@ -18,6 +18,9 @@ namespace tw::detail {
 std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
                                                            Warnings& warnings);
 
+// How open_heightfield_source opens config.heightfield (the plan keeps them: HeightfieldFile).
+HeightfieldOptions heightfield_options(const PipelineConfig& config);
+
 // The whole heightfield of open_heightfield_source (an error when every cell is nodata).
 Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
 // The generator's parameters of a pipeline without a heightfield file.

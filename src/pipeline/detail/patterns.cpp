@@ -65,6 +65,20 @@ std::string pattern_label(const FeatureClassConfig& c, std::int64_t fid) {
   return fmt::format("features.{}: FID {}", c.name, fid);
 }
 
+// Which canvases (synthesis order) to synthesize: the wanted ones and, from the last back,
+// every earlier one overlapping a canvas already kept (its opaque coverage is avoided there).
+std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
+                                  const std::function<bool(const GridSpec&)>& wanted) {
+  std::vector<bool> needed(canvases.size(), true);
+  if (!wanted) return needed;
+  for (std::size_t i = 0; i < canvases.size(); ++i) needed[i] = wanted(canvases[i]);
+  for (std::size_t i = canvases.size(); i-- > 0;) {
+    if (!needed[i]) continue;
+    for (std::size_t j = 0; j < i; ++j) needed[j] = needed[j] || overlaps(canvases[j], canvases[i]);
+  }
+  return needed;
+}
+
 }  // namespace
 
 std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid) {
@@ -114,10 +128,6 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   fixed.include_foldovers = false;
 
   Backends backends;
-  std::int64_t total = 0;
-  for (const ClassPlan& plan : plans)
-    for (const Ribbon& r : ribbons.ribbons[plan.class_index]) total += r.pieces.empty() ? 0 : 1;
-  Progress progress("synthesis", total, "feature");
   Warnings no_warnings;  // a cache without a folder never warns
   SynthesisCache keys_only(std::nullopt, no_warnings);
   SynthesisCache& cache = options.cache ? *options.cache : keys_only;
@@ -129,19 +139,42 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   for (const ClassPlan& plan : plans)
     for (const Ribbon& ribbon : ribbons.ribbons[plan.class_index])
       feature_count += ribbon.pieces.empty() ? 0 : 1;
+  // The synthesis ribbon of a feature (synthesis.width, or the feature's own).
+  const auto synthesis_ribbon = [&](const ClassPlan& plan, std::size_t f) {
+    const SynthesisConfig& synthesis = *config.features[plan.class_index].synthesis;
+    const LineFeature& line = lines[plan.class_index][f];
+    return synthesis.width ? make_ribbon(Curve{line.points, line.closed},
+                                         {*synthesis.width, synthesis.delta, 0.0})
+                           : ribbons.ribbons[plan.class_index][f];
+  };
+  std::vector<bool> needed;
+  if (options.wanted) {
+    std::vector<GridSpec> canvases;
+    for (const ClassPlan& plan : plans)
+      for (std::size_t f = 0; f < lines[plan.class_index].size(); ++f)
+        if (!ribbons.ribbons[plan.class_index][f].pieces.empty())
+          canvases.push_back(synthesis_canvas(
+              synthesis_ribbon(plan, f), cell, cell,
+              pattern_label(config.features[plan.class_index], lines[plan.class_index][f].fid)));
+    needed = needed_canvases(canvases, options.wanted);
+    feature_count = std::size_t(std::count(needed.begin(), needed.end(), true));
+  }
+  Progress progress("synthesis", std::int64_t(feature_count), "feature");
+  std::size_t feature_position = 0;  // among the features with pieces, synthesis order
   for (const ClassPlan& plan : plans) {
     const FeatureClassConfig& feature_class = config.features[plan.class_index];
     const SynthesisConfig& synthesis = *feature_class.synthesis;
     for (std::size_t f = 0; f < lines[plan.class_index].size(); ++f) {
       const LineFeature& line = lines[plan.class_index][f];
       if (ribbons.ribbons[plan.class_index][f].pieces.empty()) continue;
+      const bool wanted = needed.empty() || needed[feature_position++];
       const std::string label = pattern_label(feature_class, line.fid);
-      logger().info("synthesis: feature {} of {}: {}", ++feature_number, feature_count, label);
+      if (wanted)
+        logger().info("synthesis: feature {} of {}: {}", ++feature_number, feature_count, label);
       FeaturePattern pattern;
       const Curve curve{line.points, line.closed};
       const double width = synthesis.width.value_or(line.width);
-      pattern.ribbon = synthesis.width ? make_ribbon(curve, {width, synthesis.delta, 0.0})
-                                       : ribbons.ribbons[plan.class_index][f];
+      pattern.ribbon = synthesis_ribbon(plan, f);
       pattern.class_index = plan.class_index;
       pattern.feature_index = f;
       pattern.on_ground = line.structure == Structure::ground;
@@ -156,6 +189,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       pattern.name = fmt::format("{}_{}", feature_class.name, line.fid);
       if (const int part = parts[pattern.name]++; part > 0)
         pattern.name += fmt::format("_{}", part);
+      if (!wanted) {  // overlaps no canvas synthesized here: nothing below reads it
+        pattern.synthesized = false;
+        run.patterns.push_back(std::move(pattern));
+        continue;
+      }
       const SynthesisKey key =
           cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys);
       pattern.key = key.combined();
@@ -200,7 +238,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         add_tiles(forbidden, tiles);
         burn_avoidance(fixed, canvas, forbidden);
         for (const FeaturePattern& earlier : run.patterns) {
-          if (overlaps(earlier.canvas, canvas)) {
+          if (earlier.synthesized && overlaps(earlier.canvas, canvas)) {
             add_on_lattice(earlier.opaque, earlier.canvas, forbidden, canvas);
           }
         }

@@ -6,6 +6,7 @@
 // features synthesized before it; then the patterns are rendered into the output grid.
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,8 @@ struct FeaturePattern {
   // The features before it (synthesis order, counting features with pieces) whose canvases
   // overlap its own: it avoids their coverage, so it depends on them.
   std::vector<std::size_t> after;
+  // false: left out by PatternOptions::wanted (ribbon, canvas and indices only).
+  bool synthesized = true;
 };
 
 struct PatternRun {
@@ -75,6 +78,10 @@ struct PatternOptions {
   Scope scope = Scope::all;
   std::size_t feature = 0;
   std::vector<std::size_t> after;  // scope one: the features that `feature` depends on
+  // Synthesizes only the features whose canvas it accepts, and the earlier ones whose canvases
+  // overlap theirs (transitively: what their avoidance reads), so each has the placements of a
+  // run of every feature (a `region`). Null: every feature.
+  std::function<bool(const GridSpec& canvas)> wanted;
 };
 
 // Throws tw::Error naming the class and FID (and the piece) of a feature without room for its

@@ -41,6 +41,8 @@ TW_FIELDS(FeatureEarthwork, F(max_cut) F(max_fill) F(cut_limited) F(fill_limited
 TW_FIELDS(TerrainPlan, F(features) F(profiles) F(steps) F(input_index) F(earthwork) F(params))
 TW_FIELDS(GeneratedTerrain, F(width) F(height) F(pixel_size) F(seed) F(relief) F(crs) F(origin_x)
                                 F(origin_y) F(feature_size))
+TW_FIELDS(HeightfieldOptions, F(resolution) F(resampling) F(crs))
+TW_FIELDS(HeightfieldFile, F(path) F(xxh3_128) F(bytes) F(options))
 TW_FIELDS(CostTexels, F(width) F(height) F(rgba) F(binary_alpha))
 TW_FIELDS(Exemplar, F(width) F(height) F(channel_names) F(texels) F(cost) F(path))
 TW_FIELDS(PatternTarget, F(exemplar_channel) F(to_height) F(material) F(is_alpha))

@@ -20,6 +20,8 @@ TW_PLAN_FIELDS(ProfileLimit);
 TW_PLAN_FIELDS(FeatureEarthwork);
 TW_PLAN_FIELDS(TerrainPlan);
 TW_PLAN_FIELDS(GeneratedTerrain);
+TW_PLAN_FIELDS(HeightfieldOptions);
+TW_PLAN_FIELDS(HeightfieldFile);
 TW_PLAN_FIELDS(CostTexels);
 TW_PLAN_FIELDS(Exemplar);
 TW_PLAN_FIELDS(PatternTarget);

@@ -4,35 +4,26 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "geo/resample.hpp"
 
 namespace tw::detail {
 
-Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region, double resolution,
-                           Resampling resampling) {
-  const GridSpec& from = source.grid;
-  const double west = from.origin_x, north = from.origin_y;
-  const double east = west + from.width * from.pixel_width;
-  const double south = north - from.height * from.pixel_height;
-  const double min_x = std::max(region.min_x, west), max_x = std::min(region.max_x, east);
-  const double min_y = std::max(region.min_y, south), max_y = std::min(region.max_y, north);
-  if (min_x >= max_x || min_y >= max_y) {
+Window region_window(const GridSpec& grid, const RegionConfig& region, const std::string& source) {
+  const double west = grid.origin_x, north = grid.origin_y;
+  const double east = west + grid.width * grid.pixel_width;
+  const double south = north - grid.height * grid.pixel_height;
+  if (region.min_x >= east || region.max_x <= west || region.min_y >= north ||
+      region.max_y <= south) {
     fail("region [{}, {}, {}, {}]: does not overlap the heightfield {} ([{}, {}, {}, {}])",
-         region.min_x, region.min_y, region.max_x, region.max_y, source.source, west, south, east,
-         north);
+         region.min_x, region.min_y, region.max_x, region.max_y, source, west, south, east, north);
   }
-  Heightfield out;
-  out.crs_wkt = source.crs_wkt;
-  out.nodata_value = source.nodata_value;
-  out.source = source.source;
-  GridSpec& g = out.grid;
-  g.pixel_width = g.pixel_height = resolution;
-  g.origin_x = std::floor(min_x / resolution) * resolution;
-  g.origin_y = std::ceil(max_y / resolution) * resolution;
-  g.width = std::max(1, int(std::ceil((max_x - g.origin_x) / resolution - 1e-9)));
-  g.height = std::max(1, int(std::ceil((g.origin_y - min_y) / resolution - 1e-9)));
-  out.height = resample_heights(source.height, from, g, resampling);
-  return out;
+  // Cells that meet the open box: a region edge on a cell edge leaves that cell out.
+  const auto first = [](double at) { return int(std::floor(at + 1e-9)); };
+  const auto end = [](double at) { return int(std::ceil(at - 1e-9)); };
+  const int col0 = std::max(0, first((region.min_x - west) / grid.pixel_width));
+  const int col1 = std::min(grid.width, end((region.max_x - west) / grid.pixel_width));
+  const int row0 = std::max(0, first((north - region.max_y) / grid.pixel_height));
+  const int row1 = std::min(grid.height, end((north - region.min_y) / grid.pixel_height));
+  return {col0, row0, std::max(1, col1 - col0), std::max(1, row1 - row0)};
 }
 
 }  // namespace tw::detail

@@ -1,16 +1,16 @@
 #pragma once
-// The output grid of a run with a `region` (config.hpp): the heightfield cropped to the region
-// and resampled to the run's resolution.
-#include "geo/heightfield.hpp"
+// A run's `region` (config.hpp) as a window of the world's grid: the run plans the world's
+// features, synthesizes those that reach the region, and renders the region's pixels only, so
+// its layers are the same bytes as the same window of a run without the region.
+#include <string>
+
+#include "core/grid.hpp"
 #include "pipeline/config.hpp"
 
 namespace tw::detail {
 
-// The region's cells at `resolution` metres, their edges on multiples of it in world
-// coordinates (so every close-up of a run lies on one lattice), heights read from the valid
-// cells of `source` with geo/resample.hpp (NaN over nodata cells). Throws tw::Error naming
-// `region` when it does not overlap the heightfield.
-Heightfield crop_to_region(const Heightfield& source, const RegionConfig& region, double resolution,
-                           Resampling resampling = Resampling::bilinear);
+// The pixels of `grid` whose cells meet the region (min_x, min_y, max_x, max_y in the grid's
+// CRS). Throws tw::Error naming `region` and `source` when it does not overlap the grid.
+Window region_window(const GridSpec& grid, const RegionConfig& region, const std::string& source);
 
 }  // namespace tw::detail

@@ -183,12 +183,9 @@ TileKey TileCache::key(const TileSpec& tile) const {
   if (const auto& generated = plan_.heights.generated) {
     h.text("generated").real(generated->pixel_size).u64(generated->seed).real(generated->relief);
     h.text(generated->crs).real(generated->feature_size);
-  } else if (plan_.heights.heights) {
-    const Raster<float>& heights = *plan_.heights.heights;
-    for (int row = window.row0; row < window.row_end(); ++row) {
-      const float* from = &heights.at(window.col0, row);
-      h.bytes(std::as_bytes(std::span(from, std::size_t(window.width))));
-    }
+  } else {  // a DEM: the window's heights as read (a DEM file changed elsewhere keeps the tile)
+    const Raster<float> heights = read_height_window(plan_.heights, plan_.grid, window);
+    h.bytes(std::as_bytes(std::span(heights.pixels)));
   }
   key.heightfield = h.digest();
 

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# The nightly rerun (issue #10, "Benchmarks to report"; docs/cache.md): a generated world
+# (terraweave make-world: SIZE^2 cells of PIXEL m, roads and rivers at about 1 km per km^2),
+# tiled TILE, with every STRIDE-th road synthesized (lane markings), run clean with --cache,
+# then one road moved MOVE m north (ogrinfo SQL on the GeoPackage) and rerun with the same cache.
+# Prints clean and rerun wall time, their ratio, tiles rebuilt / total and features resynthesized
+# / total (from report.json's cache statuses), and whether the rerun's outputs equal a clean run
+# of the moved world (bytes of every tile file). Never fails on time. Usage:
+#   bench/nightly.sh   (env SIZE=4096 PIXEL=4 TILE=512 STRIDE=8 ROAD=FID MOVE=12 CHECK=1,
+#                       TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-nightly)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+bin=$(realpath "${TERRAWEAVE:-build/src/terraweave}")
+work=${WORK:-/tmp/terraweave-nightly}
+size=${SIZE:-4096}
+pixel=${PIXEL:-4}
+tile=${TILE:-512}
+stride=${STRIDE:-8}
+move=${MOVE:-12}
+[ -x "$bin" ] || { echo "nightly: build $bin first" >&2; exit 1; }
+rm -rf "$work" && mkdir -p "$work" || exit 1
+cd "$work" || exit 1
+
+summary=$("$bin" -q make-world --size "$size" --pixel "$pixel" --tile "$tile" --overlap 16 \
+  --out .) || exit 1
+echo "nightly: $size^2 cells of $pixel m: $summary" >&2
+# The same roads, every STRIDE-th one (by FID) in a class of its own with synthesis.
+python3 - "$stride" "$root/samples/exemplars/road_lanes_240x64.png" <<'PY' || exit 1
+import re, sys
+stride, exemplar = sys.argv[1], sys.argv[2]
+text = open("world.yaml").read()
+text = text.replace("precedence: [rivers, roads]", "precedence: [rivers, lanes, roads]")
+roads = text[text.index("  roads:"):]
+lanes = roads.replace("  roads:", "  lanes:", 1) + (
+    f'    where: "fid % {stride} = 0"\n'
+    f"    synthesis: {{ exemplar: {exemplar}, width: 10, scale: 4, delta: 14,\n"
+    "                 channels: { alpha: splat.road_marking, height: height } }\n")
+text = text.replace(roads, roads + f'    where: "fid % {stride} <> 0"\n' + lanes)
+open("world.yaml", "w").write(text)
+PY
+road=${ROAD:-$stride}  # a synthesized road by default
+cp world.gpkg world_clean.gpkg
+
+timed() {  # name -- command: wall seconds into $name.s
+  local name=$1
+  shift 2
+  local start end
+  start=$(date +%s.%N)
+  "$@" >"$name.log" 2>&1 || { echo "nightly: $name failed (see $work/$name.log)" >&2; exit 1; }
+  end=$(date +%s.%N)
+  awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f\n", b - a }' >"$name.s"
+}
+
+timed clean -- "$bin" -q run world.yaml --cache cache --out out_clean
+ogrinfo -q world.gpkg -sql \
+  "UPDATE roads SET geom = ST_Translate(geom, 0, $move, 0) WHERE fid = $road" >/dev/null || exit 1
+timed rerun -- "$bin" -q run world.yaml --cache cache --out out_rerun
+if [ "${CHECK:-1}" = 1 ]; then
+  timed moved_clean -- "$bin" -q run world.yaml --out out_moved
+fi
+
+python3 - "$road" "$move" <<'PY'
+import filecmp, json, os, sys
+road, move = sys.argv[1], sys.argv[2]
+clean = float(open("clean.s").read())
+rerun = float(open("rerun.s").read())
+report = json.load(open("out_rerun/report.json"))
+tiles = report["tiles"]["tiles"]
+rebuilt_tiles = [t for t in tiles if t.get("cache", {}).get("status") == "rebuilt"]
+features = [f for c in report["classes"] for f in c["features"] if "cache" in f and f["cache"]]
+rebuilt = [f for f in features if f["cache"]["status"] == "rebuilt"]
+whys = {}
+for f in rebuilt:
+    whys[f["cache"]["why"]] = whys.get(f["cache"]["why"], 0) + 1
+print(f"road {road} moved {move} m north")
+print(f"clean run (cache cold): {clean:.1f} s")
+print(f"rerun (cache warm):     {rerun:.1f} s   ratio {rerun / clean:.3f}")
+print(f"tiles rebuilt:          {len(rebuilt_tiles)} / {len(tiles)}")
+print(f"features resynthesized: {len(rebuilt)} / {len(features)} {whys}")
+if os.path.exists("moved_clean.s"):
+    same = True
+    for dirpath, _, names in os.walk("out_moved/tiles"):
+        for name in names:
+            a = os.path.join(dirpath, name)
+            b = os.path.join("out_rerun/tiles", name)
+            same &= os.path.exists(b) and filecmp.cmp(a, b, shallow=False)
+    print(f"rerun tiles == clean run of the moved world: {'yes' if same else 'NO'} "
+          f"(that clean run: {float(open('moved_clean.s').read()):.1f} s)")
+PY
