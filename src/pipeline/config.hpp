@@ -16,7 +16,7 @@
 #include "layers/export.hpp"
 #include "layers/write.hpp"
 #include "pipeline/area_config.hpp"
-#include "synth/synthesize.hpp"
+#include "synth/feature_synthesis.hpp"
 #include "terrain/features.hpp"
 
 namespace tw {
@@ -38,11 +38,6 @@ struct GenerateConfig {
 struct ChannelMapping {
   std::string channel;  // exemplar channel name: A (alias alpha), R, G, B, height, ...
   std::string target;   // "height" or "splat.<material>"
-};
-
-enum class ExemplarChoice {
-  by_seed,  // each feature uses exemplars[feature seed % count]
-  best,     // each feature runs every exemplar and keeps the lowest Omega / N
 };
 
 struct SynthesisConfig {

@@ -13,6 +13,7 @@
 #include "core/warnings.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
+#include "synth/feature_synthesis.hpp"
 
 namespace tw {
 
@@ -33,30 +34,6 @@ struct RunOptions {
 struct StageTiming {
   std::string stage;  // ingest, ribbons, avoidance, synthesis, terrain, layers
   double seconds = 0.0;
-};
-
-// One feature's pattern synthesis (issue #4, docs/patterns.md).
-struct FeatureSynthesisReport {
-  std::string exemplar;               // the exemplar used
-  std::uint64_t seed = 0;             // the feature's seed: hash(run seed, class seed, FID)
-  std::string backend;                // cpu or opencl (what ran)
-  double mean_valid_positions = 0.0;  // per piece
-  std::int64_t omega = 0;             // optimal cost, cost units
-  double mean_seam_cost = 0.0;        // Omega / N in colour units, before stitching
-  double mean_seam_cost_stitched = 0.0;
-  // Quality (issue #11): the objective and coverage floor used, the chosen windows' coverage
-  // against windows centred on the exemplar's band, and parametric texture mapping's mean seam
-  // cost on the same ribbon (colour units, like mean_seam_cost).
-  std::string objective;
-  double min_coverage = 0.0;
-  bool min_coverage_from_exemplar = false;
-  double coverage_ratio = 0.0, mean_coverage = 0.0, natural_coverage = 0.0;
-  double parametric_seam_cost = 0.0;
-  std::int64_t violations = 0;  // opaque canvas pixels on forbidden ones (must be 0)
-  int empty_pieces = 0;         // pieces left empty (no valid position: junctions, avoidance)
-  int canvas_width = 0, canvas_height = 0;  // the synthesis window, cells
-  double avoidance_seconds = 0.0, synthesis_seconds = 0.0, render_seconds = 0.0;
-  std::string placements;  // file name under the output folder
 };
 
 struct FeatureReport {

@@ -107,7 +107,7 @@ Synthesis run_synth_command(const SynthCommand& c) {
   params.min_coverage = c.min_coverage;
   params.objective = c.objective;
   params.coverage_weight = c.coverage_weight;
-  params.backend = detail::parse_backend_kind(c.backend);
+  params.backend = parse_backend_kind(c.backend);
   params.feature_label = c.curve;
   const Synthesis synthesis = synthesize(exemplar, ribbon, canvas, nullptr, params);
 

@@ -5,23 +5,54 @@
 
 namespace tw {
 
-Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
-  double min_col = grid.width, min_row = grid.height, max_col = 0.0, max_row = 0.0;
+namespace {
+
+void include(PieceBox& box, Vec2 p) {
+  // std::min(a, NaN) is a: a non-finite corner coordinate never widens the box.
+  box.lo = {std::min(box.lo.x, p.x), std::min(box.lo.y, p.y)};
+  box.hi = {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y)};
+}
+
+}  // namespace
+
+PieceBox piece_box(const Piece& piece) {
+  PieceBox box;
+  for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right})
+    include(box, c);
+  return box;
+}
+
+PieceBox ribbon_box(const Ribbon& ribbon) {
+  PieceBox box;
   for (const Piece& piece : ribbon.pieces) {
-    for (const Vec2 corner :
-         {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = grid.world_to_pixel(corner);
-      min_col = std::min(min_col, p.x);
-      max_col = std::max(max_col, p.x);
-      min_row = std::min(min_row, p.y);
-      max_row = std::max(max_row, p.y);
-    }
+    const PieceBox b = piece_box(piece);
+    include(box, b.lo);
+    include(box, b.hi);
   }
+  return box;
+}
+
+PieceBox piece_pixel_box(const Piece& piece, const GridSpec& grid) {
+  PieceBox box;
+  for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right})
+    include(box, grid.world_to_pixel(c));
+  return box;
+}
+
+Window ribbon_window(const Ribbon& ribbon, const GridSpec& grid) {
+  PieceBox box;
+  for (const Piece& piece : ribbon.pieces) {
+    const PieceBox b = piece_pixel_box(piece, grid);
+    include(box, b.lo);
+    include(box, b.hi);
+  }
+  const double min_col = box.lo.x, min_row = box.lo.y, max_col = box.hi.x, max_row = box.hi.y;
   // Clamped in double before the conversion: a corner far outside the grid (a huge width)
   // must not overflow int.
   const auto clamped = [](double pixel, int limit) {
     return int(std::clamp(pixel, 0.0, double(limit)));
   };
+  if (!(min_col <= max_col && min_row <= max_row)) return {};  // no (finite) corner
   const int col0 = clamped(std::floor(min_col) - 1, grid.width);
   const int row0 = clamped(std::floor(min_row) - 1, grid.height);
   const int col1 = clamped(std::ceil(max_col) + 1, grid.width);

@@ -1,11 +1,24 @@
 #pragma once
 // The pixels a ribbon's pieces can touch on a grid: where rasterizing a ribbon needs to look.
+#include <cmath>
 #include <vector>
 
 #include "core/grid.hpp"
 #include "ribbon/ribbon.hpp"
 
 namespace tw {
+
+// The box of a ribbon piece's four corners (or of all pieces of a ribbon): lo = (+inf, +inf)
+// and hi = (-inf, -inf) when there is none; non-finite coordinates are skipped axis by axis.
+struct PieceBox {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+};
+
+// In world metres.
+PieceBox piece_box(const Piece& piece);
+PieceBox ribbon_box(const Ribbon& ribbon);
+// In `grid`'s continuous pixel coordinates (x = column, y = row; rows grow southwards).
+PieceBox piece_pixel_box(const Piece& piece, const GridSpec& grid);
 
 // The window of `grid` holding every piece corner, plus a pixel; empty when the ribbon has no
 // pieces or lies outside the grid. Corners far off the grid clamp (no int overflow).

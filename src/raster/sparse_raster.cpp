@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "raster/footprint.hpp"
+
 namespace tw {
 
 std::vector<TileIndex> ribbon_tiles(const Ribbon& ribbon, const GridSpec& grid, int tile_size,
@@ -12,12 +14,8 @@ std::vector<TileIndex> ribbon_tiles(const Ribbon& ribbon, const GridSpec& grid, 
   const int tiles_y = (grid.height + tile_size - 1) / tile_size;
   std::vector<std::uint8_t> met(std::size_t(tiles_x) * tiles_y, 0);
   for (const Piece& piece : ribbon.pieces) {
-    double min_x = INFINITY, min_y = INFINITY, max_x = -INFINITY, max_y = -INFINITY;
-    for (const Vec2 w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = grid.world_to_pixel(w);
-      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
-      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
-    }
+    const PieceBox box = piece_pixel_box(piece, grid);
+    const double min_x = box.lo.x, min_y = box.lo.y, max_x = box.hi.x, max_y = box.hi.y;
     if (!(std::isfinite(min_x) && std::isfinite(max_x) && std::isfinite(min_y) &&
           std::isfinite(max_y)))
       continue;

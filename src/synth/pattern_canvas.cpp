@@ -4,19 +4,14 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "raster/footprint.hpp"
 #include "synth/render.hpp"
 
 namespace tw {
 
 GridSpec synthesis_canvas(const Ribbon& ribbon, double resolution, double halo_m,
                           const std::string& label) {
-  Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-  for (const Piece& piece : ribbon.pieces) {
-    for (const Vec2 c : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
-      hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
-    }
-  }
+  const auto [lo, hi] = ribbon_box(ribbon);
   const double x0 = std::floor((lo.x - halo_m) / resolution) * resolution;
   const double y1 = std::ceil((hi.y + halo_m) / resolution) * resolution;
   GridSpec grid;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/footprint.hpp"
 #include "synth/detail/footprint.hpp"
 #include "synth/detail/stitch.hpp"
 
@@ -70,12 +71,8 @@ RenderedPattern render_pattern(const Exemplar& exemplar, const Ribbon& ribbon,
   std::vector<std::int32_t> owner(std::size_t(window.width) * window.height * n * n, -1);
   for (std::size_t i = 0; i < ribbon.pieces.size() && i < synthesis.placements.size(); ++i) {
     const Piece& piece = ribbon.pieces[i];
-    double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
-    for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = canvas.world_to_pixel(w);
-      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
-      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
-    }
+    const PieceBox box = piece_pixel_box(piece, canvas);
+    const double min_x = box.lo.x, min_y = box.lo.y, max_x = box.hi.x, max_y = box.hi.y;
     const int c0 = std::max(window.col0, int(std::floor(min_x)) - 1);
     const int c1 = std::min(window.col_end() - 1, int(std::floor(max_x)) + 1);
     const int r0 = std::max(window.row0, int(std::floor(min_y)) - 1);

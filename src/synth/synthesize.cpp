@@ -1,5 +1,7 @@
 #include "synth/synthesize.hpp"
 
+#include "synth/detail/backend_factory.hpp"
+
 namespace tw {
 
 Synthesis synthesize(const Exemplar& exemplar, const Ribbon& ribbon, const GridSpec& canvas,

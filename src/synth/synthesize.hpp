@@ -11,10 +11,15 @@
 #include "core/grid.hpp"
 #include "raster/sparse_raster.hpp"
 #include "ribbon/ribbon.hpp"
-#include "synth/detail/backend_factory.hpp"
+#include "synth/backend_kind.hpp"
 #include "synth/exemplar.hpp"
 
 namespace tw {
+
+class OpenCLContext;  // synth/opencl_context.hpp
+namespace detail {
+class Backend;  // synth/detail/stages.hpp
+}
 
 enum class ClosedMode {
   approximate,  // the paper's single DP, backtracked from every terminal position
@@ -30,7 +35,7 @@ struct SynthParams {
   double scale = 0.0;      // s: exemplar texels per metre (the paper's s is our s * b)
   std::uint64_t seed = 0;  // 0: global optimum; else piece 0 is drawn among its valid positions
   bool stitch = true;      // Section 3.2 edge alignment
-  detail::BackendKind backend = detail::BackendKind::cpu;
+  BackendKind backend = BackendKind::cpu;
   ClosedMode closed_mode = ClosedMode::approximate;
   bool allow_empty_pieces = false;  // a piece without valid position stays empty (penalized)
   // The fraction of a piece's interior texels that must be opaque at a valid position, in

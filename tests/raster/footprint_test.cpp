@@ -19,6 +19,26 @@ TEST(RibbonWindow, APieceFarBeyondTheGridClampsToTheWholeGrid) {
   EXPECT_EQ(ribbon_window(ribbon, grid), Window::whole(grid));
 }
 
+// A ribbon wholly beside the grid met it in a one-pixel strip along the near edge (the box
+// started from the grid's extent, not from the pieces), so it touched the edge tiles.
+TEST(RibbonWindow, ARibbonBesideTheGridHasAnEmptyWindow) {
+  const GridSpec grid{100, 80, 0.0, 800.0, 10.0, 10.0};
+  Ribbon ribbon;
+  ribbon.pieces.push_back(Piece{{2000, 500}, {2000, 400}, {2040, 400}, {2040, 500}, 0.0, 40.0});
+  EXPECT_EQ(ribbon_window(ribbon, grid), Window{});
+  ribbon.pieces[0] = Piece{{-400, 500}, {-400, 400}, {-360, 400}, {-360, 500}, 0.0, 40.0};
+  EXPECT_EQ(ribbon_window(ribbon, grid), Window{});
+  // Its box in world metres and in pixels (rows grow southwards).
+  const PieceBox world = piece_box(ribbon.pieces[0]);
+  EXPECT_EQ(world.lo, (Vec2{-400, 400}));
+  EXPECT_EQ(world.hi, (Vec2{-360, 500}));
+  const PieceBox pixels = piece_pixel_box(ribbon.pieces[0], grid);
+  EXPECT_EQ(pixels.lo, (Vec2{-40, 30}));
+  EXPECT_EQ(pixels.hi, (Vec2{-36, 40}));
+  ribbon.pieces[0].top_right = {-350, 520};
+  EXPECT_EQ(ribbon_box(ribbon).hi, (Vec2{-350, 520}));
+}
+
 TEST(Windows, IntersectAndGrowClampToTheGrid) {
   const GridSpec grid{100, 80, 0.0, 0.0, 1.0, 1.0};
   EXPECT_EQ(intersect({10, 10, 20, 20}, {25, 0, 50, 15}), (Window{25, 10, 5, 5}));

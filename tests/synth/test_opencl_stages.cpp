@@ -377,24 +377,24 @@ TEST(OpenCLContext, BuildFailureCarriesTheBuildLog) {
 }
 
 TEST(BackendFactory, ParsesKindsAndMakesBackends) {
-  EXPECT_EQ(detail::parse_backend_kind("cpu"), detail::BackendKind::cpu);
-  EXPECT_EQ(detail::parse_backend_kind("opencl"), detail::BackendKind::opencl);
-  EXPECT_EQ(detail::parse_backend_kind("auto"), detail::BackendKind::automatic);
+  EXPECT_EQ(parse_backend_kind("cpu"), BackendKind::cpu);
+  EXPECT_EQ(parse_backend_kind("opencl"), BackendKind::opencl);
+  EXPECT_EQ(parse_backend_kind("auto"), BackendKind::automatic);
   try {
-    detail::parse_backend_kind("cuda");
+    parse_backend_kind("cuda");
     FAIL() << "expected tw::Error";
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("cuda"), std::string::npos);
   }
   TW_REQUIRE_OPENCL(context);
-  EXPECT_NE(detail::make_backend(detail::BackendKind::opencl, context)->name().find("opencl"),
+  EXPECT_NE(detail::make_backend(BackendKind::opencl, context)->name().find("opencl"),
             std::string::npos);
   // auto takes OpenCL on GPUs and accelerators, the (faster) CPU backend on CPU devices.
   const bool cpu_device = (context->device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
   const std::string automatic =
-      detail::make_backend(detail::BackendKind::automatic, context)->name();
+      detail::make_backend(BackendKind::automatic, context)->name();
   EXPECT_EQ(automatic.find("opencl") == std::string::npos, cpu_device) << automatic;
-  EXPECT_EQ(detail::make_backend(detail::BackendKind::cpu, nullptr)->name(),
+  EXPECT_EQ(detail::make_backend(BackendKind::cpu, nullptr)->name(),
             detail::make_cpu_backend()->name());
 }
 

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "raster/foldover.hpp"
 #include "synth/baseline.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/foldover.hpp"
@@ -68,7 +69,9 @@ TEST_P(Shapes, NoOpaqueTexelOnForbiddenOrFoldedPixels) {
   const SparseRaster<std::uint8_t> avoid = detail::combined_avoidance(ribbon, canvas, &sparse_disc);
   EXPECT_EQ(count_avoidance_violations(out, avoid), 0);
   std::int64_t covered = 0, forbidden = 0, folded = 0;
-  const SparseRaster<std::uint8_t> folds = detail::foldover_mask(ribbon, canvas);
+  SparseRaster<std::uint8_t> folds(canvas.width, canvas.height, 0);
+  add_tiles(folds, canvas_tiles(ribbon, canvas, folds.tile_size()));
+  add_foldovers(ribbon, canvas, folds);
   for (int row = 0; row < canvas.height; ++row)
     for (int col = 0; col < canvas.width; ++col) {
       const float coverage = out.coverage.at(col, row);

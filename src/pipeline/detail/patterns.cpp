@@ -1,21 +1,15 @@
 #include "pipeline/detail/patterns.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <map>
-#include <memory>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "raster/avoidance.hpp"
-#include "raster/foldover.hpp"
-#include "synth/baseline.hpp"
-#include "synth/detail/backend_factory.hpp"
+#include "synth/feature_synthesis.hpp"
 #include "synth/pattern_canvas.hpp"
-#include "synth/render.hpp"
 
 namespace tw::detail {
 
@@ -30,36 +24,27 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-bool overlaps(const GridSpec& a, const GridSpec& b) {
-  const double ax1 = a.origin_x + a.width * a.pixel_width;
-  const double bx1 = b.origin_x + b.width * b.pixel_width;
-  const double ay0 = a.origin_y - a.height * a.pixel_height;
-  const double by0 = b.origin_y - b.height * b.pixel_height;
-  return a.origin_x < bx1 && b.origin_x < ax1 && ay0 < b.origin_y && by0 < a.origin_y;
-}
-
-// One backend per kind, made on first use (an OpenCL context is costly to create).
-class Backends {
- public:
-  Backend& get(BackendKind kind) {
-    auto& slot = backends_[kind];
-    if (!slot) slot = make_backend(kind, nullptr);
-    return *slot;
-  }
-
- private:
-  std::map<BackendKind, std::unique_ptr<Backend>> backends_;
-};
-
 struct ClassPlan {
   std::size_t class_index = 0;
   std::vector<std::size_t> exemplars;  // indices into PatternRun::exemplars
   BackendKind backend = BackendKind::automatic;
 };
+
+// The DP's parameters from a class's synthesis values.
+SynthParams synth_params(const SynthesisConfig& synthesis, BackendKind backend, std::uint64_t seed,
+                         const std::string& label) {
+  SynthParams params;
+  params.scale = synthesis.scale;
+  params.seed = seed;
+  params.stitch = synthesis.stitch;
+  params.backend = backend;
+  params.allow_empty_pieces = synthesis.empty_pieces;
+  params.min_coverage = synthesis.min_coverage.value_or(-1.0);  // < 0: from the exemplar
+  params.objective = synthesis.objective;
+  params.coverage_weight = synthesis.coverage_weight;
+  params.feature_label = label;
+  return params;
+}
 
 std::string pattern_label(const FeatureClassConfig& c, std::int64_t fid) {
   return fmt::format("features.{}: FID {}", c.name, fid);
@@ -127,7 +112,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   fixed.junction_discs = ribbons.synthesis_junction_discs;
   fixed.include_foldovers = false;
 
-  Backends backends;
+  SynthesisBackends backends;
   Warnings no_warnings;  // a cache without a folder never warns
   SynthesisCache keys_only(std::nullopt, no_warnings);
   SynthesisCache& cache = options.cache ? *options.cache : keys_only;
@@ -181,9 +166,6 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       FeatureSynthesisReport& report = pattern.report;
       report.seed = feature_seed(config.seed, synthesis.seed, line.fid);
 
-      // Avoidance on the feature's canvas (a halo of a cell beyond the pieces), on the tiles
-      // the synthesis reads.
-      auto started = std::chrono::steady_clock::now();
       pattern.canvas = synthesis_canvas(pattern.ribbon, cell, cell, label);
       const GridSpec& canvas = pattern.canvas;
       pattern.name = fmt::format("{}_{}", feature_class.name, line.fid);
@@ -233,122 +215,25 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         run.patterns.push_back(std::move(pattern));
         continue;
       }
-      auto forbidden_on = [&](const std::vector<TileIndex>& tiles) {
-        SparseRaster<std::uint8_t> forbidden(canvas.width, canvas.height, 0, options.canvas_tile);
-        add_tiles(forbidden, tiles);
-        burn_avoidance(fixed, canvas, forbidden);
-        for (const FeaturePattern& earlier : run.patterns) {
-          if (earlier.synthesized && overlaps(earlier.canvas, canvas)) {
-            add_on_lattice(earlier.opaque, earlier.canvas, forbidden, canvas);
-          }
-        }
-        return forbidden;
-      };
-      std::vector<TileIndex> tiles = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
-      SparseRaster<std::uint8_t> forbidden = forbidden_on(tiles);
-      std::optional<Curve> start;
-      if (curve.closed) {
-        start = start_in_the_clear(curve, pattern.ribbon, canvas, forbidden);
-        pattern.ribbon = make_ribbon(*start, {width, synthesis.delta, 0.0});
-        // The rotated ribbon's pieces differ: it may read a tile more.
-        std::vector<TileIndex> more = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
-        more.erase(std::remove_if(more.begin(), more.end(),
-                                  [&](TileIndex t) { return forbidden.has_tile(t); }),
-                   more.end());
-        if (!more.empty()) {
-          tiles.insert(tiles.end(), more.begin(), more.end());
-          forbidden = forbidden_on(tiles);
-        }
-      }
-      const Ribbon& ribbon = pattern.ribbon;
-      add_foldovers(ribbon, canvas, forbidden);
-      report.avoidance_seconds = seconds_since(started);
-
-      // Synthesis: by seed one exemplar, or every exemplar and the lowest Omega / N.
-      started = std::chrono::steady_clock::now();
-      SynthParams params;
-      params.scale = synthesis.scale;
-      params.seed = report.seed;
-      params.stitch = synthesis.stitch;
-      params.backend = plan.backend;
-      params.allow_empty_pieces = synthesis.empty_pieces;
-      params.min_coverage = synthesis.min_coverage.value_or(-1.0);  // < 0: from the exemplar
-      params.objective = synthesis.objective;
-      params.coverage_weight = synthesis.coverage_weight;
-      params.feature_label = label;
-      std::vector<std::size_t> candidates = plan.exemplars;
-      if (synthesis.choice == ExemplarChoice::by_seed) {
-        candidates = {plan.exemplars[report.seed % plan.exemplars.size()]};
-      }
-      bool have = false;
-      for (const std::size_t e : candidates) {
-        Synthesis result = synthesize_on(backends.get(plan.backend), run.exemplars[e], ribbon,
-                                         canvas, &forbidden, params);
-        if (!have || result.mean_seam_cost < pattern.synthesis.mean_seam_cost) {
-          pattern.synthesis = std::move(result);
-          pattern.exemplar_index = e;
-          have = true;
-        }
-      }
-      const Exemplar& exemplar = run.exemplars[pattern.exemplar_index];
-      const Synthesis& result = pattern.synthesis;
-      const auto empty = std::count_if(result.placements.begin(), result.placements.end(),
-                                       [](const Placement& p) { return p.empty; });
-      if (std::size_t(empty) == result.placements.size()) {
-        const Piece& first = ribbon.pieces.front();
-        fail(
-            "{}: no room for the pattern: none of the {} pieces has a valid position in {} "
-            "(piece 0 at ({:.2f}, {:.2f}); the avoidance map blocks them all)",
-            label, ribbon.pieces.size(), exemplar.path, first.top_left.x, first.top_left.y);
-      }
-      report.synthesis_seconds = seconds_since(started);
-
-      // The check: opaque pattern pixels on forbidden canvas pixels, by the synthesizer's own
-      // criterion; then the opaque coverage that later features avoid.
-      started = std::chrono::steady_clock::now();
-      PatternCheck check =
-          check_pattern(exemplar, ribbon, result, canvas, forbidden, synthesis.stitch);
-      pattern.opaque = std::move(check.opaque);
-      report.violations = check.violations;
-      if (report.violations != 0) {
-        fail("{}: the pattern puts {} opaque pixels on forbidden ones (a synthesis bug)", label,
-             report.violations);
-      }
-      report.render_seconds = seconds_since(started);
-
-      double valid = 0.0;
-      for (const int v : result.valid_counts) valid += v;
-      report.mean_valid_positions =
-          result.valid_counts.empty() ? 0.0 : valid / double(result.valid_counts.size());
-      report.exemplar = exemplar.path;
-      report.backend = result.backend;
-      report.omega = result.total_cost;
-      report.mean_seam_cost = result.mean_seam_cost;
-      report.mean_seam_cost_stitched = result.mean_seam_cost_stitched;
-      report.objective = result.objective;
-      report.min_coverage = result.min_coverage;
-      report.min_coverage_from_exemplar = result.min_coverage_from_exemplar;
-      report.coverage_ratio = result.coverage_ratio;
-      report.mean_coverage = result.mean_coverage;
-      report.natural_coverage = result.natural_coverage;
-      report.parametric_seam_cost =
-          parametric_baseline(exemplar, ribbon, synthesis.scale).mean_seam_cost;
-      report.empty_pieces = int(empty);
-      report.canvas_width = canvas.width;
-      report.canvas_height = canvas.height;
-      logger().info(
-          "{}: {} pieces, {:.0f} valid positions per piece, Omega {}, {:.2f} per seam ({:.2f} "
-          "stitched), {} empty, {} violations, canvas {}x{} ({} tiles, {:.1f} MB), {:.2f} s",
-          label, ribbon.pieces.size(), report.mean_valid_positions, report.omega,
-          report.mean_seam_cost, report.mean_seam_cost_stitched, empty, report.violations,
-          canvas.width, canvas.height, forbidden.tile_count(),
-          double(forbidden.allocated_bytes()) / 1e6,
-          report.avoidance_seconds + report.synthesis_seconds + report.render_seconds);
-      const std::size_t slot = std::size_t(
-          std::find(plan.exemplars.begin(), plan.exemplars.end(), pattern.exemplar_index) -
-          plan.exemplars.begin());
-      cache.store(pattern.name, key, pattern.synthesis, slot, start ? &*start : nullptr,
-                  pattern.opaque, report);
+      FeatureSynthesisOptions feature_options;
+      feature_options.params = synth_params(synthesis, plan.backend, report.seed, label);
+      feature_options.choice = synthesis.choice;
+      feature_options.ribbon = {width, synthesis.delta, 0.0};
+      feature_options.canvas_tile = options.canvas_tile;
+      std::vector<const Exemplar*> exemplars;
+      for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
+      std::vector<EarlierPattern> earlier;
+      for (const FeaturePattern& p : run.patterns)
+        if (p.synthesized) earlier.push_back({&p.canvas, &p.opaque});
+      FeatureSynthesisResult result = synthesize_feature(backends, exemplars, curve, pattern.ribbon,
+                                                         canvas, fixed, earlier, feature_options);
+      pattern.ribbon = std::move(result.ribbon);
+      pattern.synthesis = std::move(result.synthesis);
+      pattern.exemplar_index = plan.exemplars[result.exemplar_slot];
+      pattern.opaque = std::move(result.opaque);
+      pattern.report = std::move(result.report);
+      cache.store(pattern.name, key, pattern.synthesis, result.exemplar_slot,
+                  result.start ? &*result.start : nullptr, pattern.opaque, pattern.report);
       run.patterns.push_back(std::move(pattern));
       progress.advance();
     }

@@ -6,6 +6,7 @@
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/version.hpp"
+#include "synth/feature_synthesis.hpp"
 #include "synth/placements_io.hpp"
 
 namespace tw::detail {
@@ -194,11 +195,10 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   hash_polygons_meeting(a, fixed.junction_discs, box);
   key.avoidance = a.digest();
 
-  // The same overlap test as synthesize_patterns uses to burn an earlier feature's coverage.
+  // The same overlap test as synthesize_feature uses to burn an earlier feature's coverage.
   Hasher r;
   for (const EarlierSynthesis& before : earlier) {
-    const Box b = box_of(before.canvas);
-    if (box.x0 < b.x1 && b.x0 < box.x1 && box.y0 < b.y1 && b.y0 < box.y1) r.hash(before.key);
+    if (canvases_overlap(before.canvas, canvas)) r.hash(before.key);
   }
   key.earlier = r.digest();
   return key;

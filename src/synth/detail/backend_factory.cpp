@@ -6,7 +6,7 @@
 #include "synth/detail/opencl_backend.hpp"
 #include "synth/opencl_context.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 BackendKind parse_backend_kind(std::string_view name) {
   if (name == "cpu") return BackendKind::cpu;
@@ -14,6 +14,10 @@ BackendKind parse_backend_kind(std::string_view name) {
   if (name == "auto") return BackendKind::automatic;
   fail("unknown synthesis backend '{}' (expected cpu, opencl or auto)", name);
 }
+
+}  // namespace tw
+
+namespace tw::detail {
 
 std::unique_ptr<Backend> make_backend(BackendKind kind, OpenCLContext* context) {
   switch (kind) {

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string_view>
 
+#include "synth/backend_kind.hpp"
 #include "synth/detail/stages.hpp"
 
 namespace tw {
@@ -11,11 +12,6 @@ class OpenCLContext;  // synth/opencl_context.hpp: an explicit object, never a g
 }
 
 namespace tw::detail {
-
-enum class BackendKind { cpu, opencl, automatic };
-
-// "cpu", "opencl" or "auto"; anything else throws tw::Error naming the value.
-BackendKind parse_backend_kind(std::string_view name);
 
 // cpu: the reference. opencl: the OpenCL backend on `context` (throws tw::Error when no
 // platform is usable). automatic: OpenCL when a platform is usable, else CPU with one log line.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 #include <utility>
+#include "raster/footprint.hpp"
 
 namespace tw::detail {
 namespace {
@@ -139,12 +140,8 @@ PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column
     // The reverse direction: every subsample the renderer takes on a forbidden pixel inside
     // this piece reads only transparent texels (bilinear: the 2 x 2 around it).
     const int n = supersampling(scale, canvas);
-    double pmin_x = 1e300, pmin_y = 1e300, pmax_x = -1e300, pmax_y = -1e300;
-    for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const Vec2 p = canvas.world_to_pixel(w);
-      pmin_x = std::min(pmin_x, p.x), pmax_x = std::max(pmax_x, p.x);
-      pmin_y = std::min(pmin_y, p.y), pmax_y = std::max(pmax_y, p.y);
-    }
+    const PieceBox box = piece_pixel_box(piece, canvas);
+    const double pmin_x = box.lo.x, pmin_y = box.lo.y, pmax_x = box.hi.x, pmax_y = box.hi.y;
     const int c0 = std::max(0, int(std::floor(pmin_x)) - 1);
     const int c1 = std::min(forbidden->width() - 1, int(std::floor(pmax_x)) + 1);
     const int r0 = std::max(0, int(std::floor(pmin_y)) - 1);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "raster/footprint.hpp"
 #include "synth/detail/cost.hpp"
 #include "synth/detail/coverage_term.hpp"
 #include "synth/detail/dp.hpp"
@@ -41,12 +42,8 @@ std::vector<std::uint32_t> left_samples(const CostTexels& texels, int C, int ux,
 bool stitch_respects_avoidance(const CostTexels& texels, const Placement& placement,
                                const Piece& piece, const GridSpec& canvas,
                                const SparseRaster<std::uint8_t>& avoidance, int n) {
-  double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
-  for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-    const Vec2 p = canvas.world_to_pixel(w);
-    min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
-    min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
-  }
+  const PieceBox box = piece_pixel_box(piece, canvas);
+  const double min_x = box.lo.x, min_y = box.lo.y, max_x = box.hi.x, max_y = box.hi.y;
   for (int row = std::max(0, int(min_y) - 1); row <= std::min(canvas.height - 1, int(max_y) + 1);
        ++row) {
     for (int col = std::max(0, int(min_x) - 1); col <= std::min(canvas.width - 1, int(max_x) + 1);

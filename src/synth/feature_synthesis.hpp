@@ -1,0 +1,112 @@
+#pragma once
+// One feature's pattern synthesis on its own canvas (issue #4, docs/patterns.md): the avoidance
+// on the canvas (existing features, junction discs, the opaque coverage of the features
+// synthesized before it, its own fold-overs), a clear start for a closed curve, the DP over one
+// or several exemplars, and the violation check that yields the opaque coverage later features
+// avoid. The pipeline orders the features, caches the results and maps its config to these
+// options; this is the whole per-feature run.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "raster/avoidance.hpp"
+#include "raster/sparse_raster.hpp"
+#include "ribbon/curve.hpp"
+#include "ribbon/ribbon.hpp"
+#include "synth/backend_kind.hpp"
+#include "synth/exemplar.hpp"
+#include "synth/synthesize.hpp"
+
+namespace tw {
+
+enum class ExemplarChoice {
+  by_seed,  // each feature uses exemplars[feature seed % count]
+  best,     // each feature runs every exemplar and keeps the lowest Omega / N
+};
+
+// What one feature's synthesis reports (report.json `synthesis`).
+struct FeatureSynthesisReport {
+  std::string exemplar;               // the exemplar used
+  std::uint64_t seed = 0;             // the feature's seed: hash(run seed, class seed, FID)
+  std::string backend;                // cpu or opencl (what ran)
+  double mean_valid_positions = 0.0;  // per piece
+  std::int64_t omega = 0;             // optimal cost, cost units
+  double mean_seam_cost = 0.0;        // Omega / N in colour units, before stitching
+  double mean_seam_cost_stitched = 0.0;
+  // Quality (issue #11): the objective and coverage floor used, the chosen windows' coverage
+  // against windows centred on the exemplar's band, and parametric texture mapping's mean seam
+  // cost on the same ribbon (colour units, like mean_seam_cost).
+  std::string objective;
+  double min_coverage = 0.0;
+  bool min_coverage_from_exemplar = false;
+  double coverage_ratio = 0.0, mean_coverage = 0.0, natural_coverage = 0.0;
+  double parametric_seam_cost = 0.0;
+  std::int64_t violations = 0;  // opaque canvas pixels on forbidden ones (must be 0)
+  int empty_pieces = 0;         // pieces left empty (no valid position: junctions, avoidance)
+  int canvas_width = 0, canvas_height = 0;  // the synthesis window, cells
+  double avoidance_seconds = 0.0, synthesis_seconds = 0.0, render_seconds = 0.0;
+  std::string placements;  // file name under the output folder
+};
+
+// The backends of a run, each made on first use (an OpenCL context is costly to create).
+class SynthesisBackends {
+ public:
+  SynthesisBackends();
+  ~SynthesisBackends();
+  SynthesisBackends(const SynthesisBackends&) = delete;
+  SynthesisBackends& operator=(const SynthesisBackends&) = delete;
+
+  detail::Backend& get(BackendKind kind);
+
+ private:
+  std::map<BackendKind, std::unique_ptr<detail::Backend>> backends_;
+};
+
+// Whether two canvases' boxes share area (touching edges do not): only then does an earlier
+// pattern's coverage reach a later canvas.
+bool canvases_overlap(const GridSpec& a, const GridSpec& b);
+
+// A pattern synthesized before, as a later feature avoids it: its opaque coverage on its canvas
+// (both owned by the caller, alive for the call).
+struct EarlierPattern {
+  const GridSpec* canvas = nullptr;
+  const SparseRaster<std::uint8_t>* opaque = nullptr;
+};
+
+struct FeatureSynthesisOptions {
+  // The DP's parameters; `seed` is the feature's and `feature_label` (e.g. "features.roads:
+  // FID 3") starts every message.
+  SynthParams params;
+  ExemplarChoice choice = ExemplarChoice::by_seed;
+  // The synthesis ribbon's width and delta: a closed curve's ribbon is remade at its clear start.
+  RibbonParams ribbon;
+  // Cells per side of a canvas tile; 0: one tile for the whole canvas (the same results).
+  int canvas_tile = SparseRaster<std::uint8_t>::kDefaultTileSize;
+};
+
+struct FeatureSynthesisResult {
+  Ribbon ribbon;                      // what was synthesized: a closed curve's starts in the clear
+  std::optional<Curve> start;         // a closed curve's rotated centreline (start_in_the_clear)
+  Synthesis synthesis;                // one placement per piece of `ribbon`
+  std::size_t exemplar_slot = 0;      // index into `exemplars`
+  SparseRaster<std::uint8_t> opaque;  // over the canvas: 1 where the pattern has coverage > 0
+  FeatureSynthesisReport report;      // without `placements` (the caller names the file)
+};
+
+// Synthesizes `ribbon` (made from `curve`) on `canvas` (synthesis_canvas) with one of
+// `exemplars` (by seed) or the best of them, avoiding `fixed` (include_foldovers false), every
+// `earlier` pattern whose canvas overlaps and the ribbon's own fold-overs. Throws tw::Error
+// starting with the label when no piece has room, or when the pattern puts an opaque pixel on a
+// forbidden one (a bug).
+FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
+                                          const std::vector<const Exemplar*>& exemplars,
+                                          const Curve& curve, const Ribbon& ribbon,
+                                          const GridSpec& canvas, const AvoidanceInputs& fixed,
+                                          const std::vector<EarlierPattern>& earlier,
+                                          const FeatureSynthesisOptions& options);
+
+}  // namespace tw
