@@ -140,7 +140,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       FeaturePattern pattern;
       const Curve curve{line.points, line.closed};
       const double width = synthesis.width.value_or(line.width);
-      pattern.ribbon = synthesis.width ? make_ribbon(curve, {width, synthesis.delta, 0.0})
+      pattern.ribbon = synthesis.width ? make_ribbon(curve, {width, *synthesis.delta, 0.0})
                                        : ribbons.ribbons[plan.class_index][f];
       pattern.class_index = plan.class_index;
       pattern.feature_index = f;
@@ -163,7 +163,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       if (std::optional<CachedSynthesis> cached = cache.find(
               "features." + feature_class.name, line.fid, pattern.name, key, pattern.cache)) {
         if (cached->start)
-          pattern.ribbon = make_ribbon(*cached->start, {width, synthesis.delta, 0.0});
+          pattern.ribbon = make_ribbon(*cached->start, {width, *synthesis.delta, 0.0});
         pattern.synthesis = std::move(cached->synthesis);
         pattern.exemplar_index = plan.exemplars.at(cached->exemplar_slot);
         pattern.opaque = std::move(cached->opaque);
@@ -188,7 +188,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       std::optional<Curve> start;
       if (curve.closed) {
         start = start_in_the_clear(curve, pattern.ribbon, canvas, forbidden);
-        pattern.ribbon = make_ribbon(*start, {width, synthesis.delta, 0.0});
+        pattern.ribbon = make_ribbon(*start, {width, *synthesis.delta, 0.0});
         // The rotated ribbon's pieces differ: it may read a tile more.
         std::vector<TileIndex> more = canvas_tiles(pattern.ribbon, canvas, options.canvas_tile);
         more.erase(std::remove_if(more.begin(), more.end(),
