@@ -26,10 +26,10 @@ using namespace tw;
 
 namespace {
 
-// Built-in curves at the ribbon's scale: the S-curve's arcs have radius 1.25 widths, the
-// circle's 2.5, the hairpin's legs lie 1.2 widths apart (closer, the legs would overlap whole).
+// Built-in curves at the ribbon's scale, as in tests/synth/test_default_quality.cpp: the
+// S-curve's arcs have radius 1 width, the circle's 2, the hairpin's legs lie 1.2 widths apart.
 double shape_length(const std::string& shape, double width) {
-  return shape == "hairpin" ? 10.0 * width : 5.0 * width;
+  return shape == "hairpin" ? 10.0 * width : 4.0 * width;
 }
 
 const fs::path kExemplars = fs::path(TERRAWEAVE_SOURCE_DIR) / "samples/exemplars";
@@ -74,7 +74,9 @@ void table() {
   std::sort(files.begin(), files.end());
   std::printf(
       "| exemplar | curve | N | coverage ratio paper / pattern | seam stitched paper / pattern / "
-      "parametric | DP row update ms paper / pattern |\n|---|---|---|---|---|---|\n");
+      "parametric | DP row update ms paper / pattern | s paper / pattern | properties |\n"
+      "|---|---|---|---|---|---|---|---|\n");
+  int cases = 0, passed = 0;
   double update_paper = 0, update_pattern = 0;
   int rows_paper = 0, rows_pattern = 0;
   for (const fs::path& file : files) {
@@ -105,18 +107,32 @@ void table() {
       auto cell = [&](int k, double v) {
         return error[k].empty() ? fmt::format("{:.2f}", v) : std::string("failed");
       };
+      // The properties of the default-quality test, on the whole exemplar (pattern objective).
+      std::string failed;
+      if (!error[1].empty())
+        failed = "run fails";
+      else if (result[1].coverage_ratio < 0.8)
+        failed = "coverage < 0.8";
+      else if (!(result[1].mean_seam_cost_stitched < base.mean_seam_cost))
+        failed = "seam";
+      ++cases, passed += failed.empty();
       std::printf(
-          "| %s | %s | %zu | %s / **%s** | %s / **%s** / %.1f | %.1f / %.1f |\n",
+          "| %s | %s | %zu | %s / **%s** | %s / **%s** / %.1f | %.1f / %.1f | %.2f / %.2f | %s |\n",
           file.stem().c_str(), shape, ribbon.pieces.size(),
           cell(0, result[0].coverage_ratio).c_str(), cell(1, result[1].coverage_ratio).c_str(),
           cell(0, result[0].mean_seam_cost_stitched).c_str(),
           cell(1, result[1].mean_seam_cost_stitched).c_str(), base.mean_seam_cost,
           result[0].timings.rows ? result[0].timings.update_ms / result[0].timings.rows : 0.0,
-          result[1].timings.rows ? result[1].timings.update_ms / result[1].timings.rows : 0.0);
+          result[1].timings.rows ? result[1].timings.update_ms / result[1].timings.rows : 0.0,
+          result[0].timings.total_ms / 1000.0, result[1].timings.total_ms / 1000.0,
+          failed.empty() ? "ok" : failed.c_str());
       for (int k = 0; k < 2; ++k)
         if (!error[k].empty()) std::printf("<!-- %s -->\n", error[k].c_str());
     }
   }
+  std::printf(
+      "\nDefault quality on the whole exemplars: %d of %d cases hold all three properties\n",
+      passed, cases);
   std::printf(
       "\nDP row update (unary term included) over all cases: paper %.2f ms per row (%d rows), "
       "pattern %.2f ms per row (%d rows), ratio %.3f\n",
@@ -133,8 +149,8 @@ void pictures(const fs::path& dir) {
     const char* shape;
   };
   for (const Case c :
-       {Case{"ridge_band_200x64.png", "s-curve"}, Case{"chain_199x82.png", "hairpin"},
-        Case{"gen_sparse_160x48.png", "circle"}}) {
+       {Case{"ridge_band_200x64.png", "s-curve"}, Case{"rock_band_260x80.png", "s-curve"},
+        Case{"gen_holes_160x48.png", "circle"}}) {
     const Exemplar exemplar = load_exemplar((kExemplars / c.exemplar).string());
     const double width = suggested_width(exemplar_stats(exemplar), 1.0);
     for (int k = 0; k < 2; ++k) {

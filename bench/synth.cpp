@@ -4,10 +4,12 @@
 // exemplar width (H = 64, N = 23, C = 90: quadratic), peak memory, and ratios to the paper's
 // GTX 580 figures (30 ms and 650 ms per row). Prints numbers only; never fails on time.
 //
-// usage: bench_synth [--quick] [--pictures DIR] [--rows [REPEATS]]
+// usage: bench_synth [--quick] [--pictures DIR] [--rows [REPEATS]] [--objective [REPEATS]]
 //   --pictures DIR: write synth_*.png result pictures
 //   --rows: replay the recorded DP rows of both exemplars REPEATS times (default 5), CPU against
 //           OpenCL (when a device exists) on the same rows: best and median ms per row.
+//   --objective: ms per DP row with objective paper and pattern (the unary term's cost), both
+//           exemplars, CPU and OpenCL (when a device exists), best of REPEATS (default 3).
 #include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
 
@@ -280,17 +282,55 @@ void picture(const Exemplar& e, const std::string& shape, double size, double wi
 
 }  // namespace
 
+// The cost of the pattern objective's unary term: whole syntheses along the arc with objective
+// paper and pattern (the same coverage floor), best of `repeats`, ms per DP row of the row
+// update alone and of the whole synthesis (find valid, unary costs, extraction, update,
+// backtracking, stitching), on the CPU backend and on OpenCL when a device exists.
+void objective_cost(const std::string& file, int pieces, int repeats, detail::Backend* opencl) {
+  const Exemplar e = load_exemplar(sample(file));
+  const Ribbon ribbon = arc_ribbon(pieces, 90.0, 12.0);
+  auto cpu = detail::make_cpu_backend();
+  for (detail::Backend* backend : {cpu.get(), opencl}) {
+    if (!backend) continue;
+    double update[2] = {1e300, 1e300}, whole[2] = {1e300, 1e300};
+    std::int64_t omega[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      SynthParams params;
+      params.scale = 1.0;
+      params.allow_empty_pieces = true;
+      params.objective = k == 0 ? Objective::paper : Objective::pattern;
+      for (int pass = 0; pass < repeats; ++pass) {
+        const Synthesis s =
+            detail::synthesize_on(*backend, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
+        const double rows = std::max(1, s.timings.rows);
+        update[k] = std::min(update[k], s.timings.update_ms / rows);
+        whole[k] = std::min(whole[k], s.timings.total_ms / rows);
+        omega[k] = s.total_cost;
+      }
+    }
+    std::printf(
+        "%-17s %-6s N=%d  ms per DP row, best of %d: row update paper %7.1f pattern %7.1f "
+        "(ratio %.2fx) | whole synthesis paper %7.1f pattern %7.1f (ratio %.2fx) | Omega %lld / "
+        "%lld\n",
+        file.c_str(), backend->name().c_str(), pieces, repeats, update[0], update[1],
+        update[1] / update[0], whole[0], whole[1], whole[1] / whole[0], (long long)omega[0],
+        (long long)omega[1]);
+  }
+}
+
 int main(int argc, char** argv) {
   bool quick = false;
   std::string pictures;
-  int rows = 0;
+  int rows = 0, objective = 0;
   for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--objective"))
+      objective = i + 1 < argc && std::isdigit(argv[i + 1][0]) ? std::atoi(argv[++i]) : 3;
     if (!std::strcmp(argv[i], "--rows"))
       rows = i + 1 < argc && std::isdigit(argv[i + 1][0]) ? std::atoi(argv[++i]) : 5;
     if (!std::strcmp(argv[i], "--quick")) quick = true;
     if (!std::strcmp(argv[i], "--pictures") && i + 1 < argc) pictures = argv[++i];
   }
-  if (rows > 0) {
+  if (rows > 0 || objective > 0) {
     std::string why;
     auto context = OpenCLContext::create_default(&why);
     std::unique_ptr<detail::Backend> opencl;
@@ -302,6 +342,11 @@ int main(int argc, char** argv) {
       opencl->update_table_row({0}, {1, {0u}, true}, {1, {0u}, true}, c, a);  // build kernels
     } else {
       std::printf("no OpenCL device (%s): CPU only\n", why.c_str());
+    }
+    if (objective > 0) {
+      objective_cost("chain_199x82.png", 9, objective, opencl.get());
+      objective_cost("braid_325x64.png", 5, objective, opencl.get());
+      return 0;
     }
     replay_rows("chain_199x82.png", 30.0, 9, rows, opencl.get());
     replay_rows("braid_325x64.png", 650.0, 5, rows, opencl.get());

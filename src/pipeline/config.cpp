@@ -194,10 +194,13 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
   } else {
     s.exemplars.push_back(input_file(m, "exemplar", InputFile::Kind::exemplar, inputs));
   }
-  s.delta = m.positive_or("delta", s.delta);
+  if (m.has("delta")) s.delta = m.positive("delta");
   s.scale = m.positive_or("scale", s.scale);
   s.stitch = m.bool_or("stitch", s.stitch);
-  if (m.has("width")) s.width = read_width(m, "width");
+  if (m.has("width") && m.get("width").IsScalar() && m.get("width").Scalar() == "feature")
+    s.width_of_feature = true;
+  else if (m.has("width"))
+    s.width = read_width(m, "width");
   s.empty_pieces = m.bool_or("empty_pieces", s.empty_pieces);
   s.seed =
       m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;

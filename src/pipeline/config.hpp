@@ -44,11 +44,16 @@ struct SynthesisConfig {
   // One or more; NAME_height.tif beside NAME.png, when present, is read as channel "height".
   std::vector<std::filesystem::path> exemplars;
   ExemplarChoice choice = ExemplarChoice::by_seed;
-  double delta = 4.0;  // piece length, metres
+  // Piece length, metres; absent: from the exemplar (with_exemplar_defaults).
+  std::optional<double> delta;
   double scale = 8.0;  // exemplar texels per metre of ribbon
-  // Ribbon width of the synthesis in metres; absent = each feature's width (attribute or
-  // `width`). s * width texels of the exemplar span the ribbon.
+  // Ribbon width of the synthesis in metres (s * width texels of the exemplar span it); absent:
+  // from the exemplar (with_exemplar_defaults); `width: feature`: each feature's width
+  // (attribute or the class's `width`).
   std::optional<double> width;
+  bool width_of_feature = false;
+  // Set by with_exemplar_defaults where width / delta were derived from the exemplar.
+  bool width_from_exemplar = false, delta_from_exemplar = false;
   bool stitch = true;
   // A piece with no valid position (a junction disc, an earlier pattern) stays empty; false:
   // such a piece is an error naming the feature and the piece.

@@ -15,6 +15,7 @@
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/detail/synthesis_defaults.hpp"
 #include "raster/footprint.hpp"
 #include "synth/pattern_canvas.hpp"
 
@@ -149,6 +150,15 @@ void plan_areas(const PipelineConfig& config, detail::AreaRun run, WorldPlan& pl
   plan.report.areas = std::move(run.reports);
 }
 
+// The synthesis ribbon's width and delta in the feature's report, and where they came from.
+void record_geometry(const SynthesisConfig& s, FeatureReport& feature) {
+  FeatureSynthesisReport& r = *feature.synthesis;
+  r.width_m = s.width.value_or(feature.width_m);
+  r.width_from = s.width_of_feature ? "feature" : s.width_from_exemplar ? "exemplar" : "config";
+  r.delta_m = s.delta.value_or(0.0);
+  r.delta_from = s.delta_from_exemplar ? "exemplar" : "config";
+}
+
 }  // namespace
 
 namespace detail {
@@ -169,6 +179,7 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
     if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
     FeatureReport& feature = plan.report.classes[p.class_index].features[p.feature_index];
     feature.synthesis = p.report;
+    record_geometry(*config.features[p.class_index].synthesis, feature);
     feature.cache = p.cache;
     plan.report.pattern_violations += p.report.violations;
   }
@@ -195,14 +206,16 @@ void index_plan(WorldPlan& plan) {
   plan.area_index = index_windows(plan.grid, std::move(areas));
 }
 
-WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings) {
+WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Warnings& warnings) {
   WorldPlan plan;
   RunReport& report = plan.report;
-  report.seed = config.seed;
+  report.seed = given.seed;
   StageClock clock(report.stages);
 
   clock.start("ingest");
-  detail::check_inputs(config);
+  detail::check_inputs(given);
+  // Synthesis width and delta from the exemplars where a class gives none.
+  const PipelineConfig config = detail::with_exemplar_defaults(given);
   const std::shared_ptr<const HeightfieldSource> source =
       detail::open_heightfield_source(config, warnings);
   require_some_height(*source);

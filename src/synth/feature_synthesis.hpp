@@ -45,6 +45,10 @@ struct FeatureSynthesisReport {
   bool min_coverage_from_exemplar = false;
   double coverage_ratio = 0.0, mean_coverage = 0.0, natural_coverage = 0.0;
   double parametric_seam_cost = 0.0;
+  // The synthesis ribbon's width and piece length, metres, and where they came from: "config",
+  // "exemplar" (issue #11: derived from its statistics) or, for the width, "feature".
+  double width_m = 0.0, delta_m = 0.0;
+  std::string width_from, delta_from;
   std::int64_t violations = 0;  // opaque canvas pixels on forbidden ones (must be 0)
   int empty_pieces = 0;         // pieces left empty (no valid position: junctions, avoidance)
   int canvas_width = 0, canvas_height = 0;  // the synthesis window, cells

@@ -101,7 +101,7 @@ existing:
   ASSERT_TRUE(roads.synthesis.has_value());
   EXPECT_EQ(roads.synthesis->exemplars,
             (std::vector<fs::path>{"/base/dir/a.png", "/base/dir/b.png"}));
-  EXPECT_DOUBLE_EQ(roads.synthesis->delta, 3.0);
+  EXPECT_DOUBLE_EQ(roads.synthesis->delta.value_or(0.0), 3.0);
   EXPECT_FALSE(roads.synthesis->stitch);
   EXPECT_EQ(roads.synthesis->seed, 3u);  // the pipeline's seed by default
   EXPECT_EQ(roads.synthesis->backend, "opencl");
@@ -254,7 +254,14 @@ features:
   EXPECT_EQ(s.channels[1].channel, "height");
   EXPECT_TRUE(c.features[1].synthesis->channels.empty());
   EXPECT_DOUBLE_EQ(c.features[1].synthesis->height_detail, 1.0);
-  EXPECT_FALSE(c.features[1].synthesis->width.has_value());
+  EXPECT_FALSE(c.features[1].synthesis->width.has_value());  // from the exemplar (plan_world)
+  EXPECT_FALSE(c.features[1].synthesis->delta.has_value());
+  EXPECT_FALSE(c.features[1].synthesis->width_of_feature);
+  EXPECT_TRUE(parse(classes, {{"features.rivers.synthesis.width", "feature"}})
+                  .features[1]
+                  .synthesis->width_of_feature);
+  EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.width", "wide"}}),
+              HasSubstr("features.rivers.synthesis.width: expected a number, got 'wide'"));
 
   EXPECT_EQ(parse(classes + "synthesis_order: [rivers, roads]\n").synthesis_order,
             (std::vector<std::string>{"rivers", "roads"}));

@@ -29,7 +29,7 @@ double shape_length(const std::string& shape, double width) {
 
 using Case = std::tuple<std::string, std::string>;  // exemplar file name, shape
 
-[[maybe_unused]] std::vector<std::string> exemplar_files() {
+std::vector<std::string> exemplar_files() {
   std::vector<std::string> names;
   for (const auto& entry :
        std::filesystem::directory_iterator(test::source_dir() / "samples/exemplars"))
@@ -112,25 +112,11 @@ std::string case_name(const testing::TestParamInfo<Case>& info) {
   return name;
 }
 
-// Verified cases. Not yet in the list (issue #11, open): chain x circle, where the single-DP
-// cycle approximation finds no cycle and the exact mode runs minutes, and ridge_band x hairpin /
-// circle, road_lanes, rock_band, zigzag, which did not finish in time on the shared machine.
-INSTANTIATE_TEST_SUITE_P(
-    Samples, DefaultQuality,
-    testing::Values(
-        Case{"braid_325x64.png", "s-curve"}, Case{"braid_325x64.png", "hairpin"},
-        Case{"braid_325x64.png", "circle"}, Case{"chain_199x82.png", "s-curve"},
-        Case{"chain_199x82.png", "hairpin"}, Case{"cobble_edging_200x56.png", "s-curve"},
-        Case{"cobble_edging_200x56.png", "hairpin"}, Case{"cobble_edging_200x56.png", "circle"},
-        Case{"gen_holes_160x48.png", "s-curve"}, Case{"gen_holes_160x48.png", "hairpin"},
-        Case{"gen_holes_160x48.png", "circle"}, Case{"gen_lines_160x48.png", "s-curve"},
-        Case{"gen_lines_160x48.png", "hairpin"}, Case{"gen_lines_160x48.png", "circle"},
-        Case{"gen_photo_160x48.png", "s-curve"}, Case{"gen_photo_160x48.png", "hairpin"},
-        Case{"gen_photo_160x48.png", "circle"}, Case{"gen_soft_160x48.png", "s-curve"},
-        Case{"gen_soft_160x48.png", "hairpin"}, Case{"gen_soft_160x48.png", "circle"},
-        Case{"gen_sparse_160x48.png", "s-curve"}, Case{"gen_sparse_160x48.png", "hairpin"},
-        Case{"gen_sparse_160x48.png", "circle"}, Case{"ridge_band_200x64.png", "s-curve"}),
-    case_name);
+// Every exemplar of samples/exemplars x the three built-in curves.
+INSTANTIATE_TEST_SUITE_P(Samples, DefaultQuality,
+                         testing::Combine(testing::ValuesIn(exemplar_files()),
+                                          testing::Values("s-curve", "hairpin", "circle")),
+                         case_name);
 
 }  // namespace
 }  // namespace tw

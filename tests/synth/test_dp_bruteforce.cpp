@@ -120,9 +120,70 @@ TEST(DpBruteForce, ClosedCurvesExactModeIsOptimalAndApproximationNoBetter) {
     EXPECT_EQ(
         detail::sequence_cost(*p.input.texels, p.input.space, p.input.pieces, e.positions, true),
         e.total_cost);
-    std::printf("closed seed %u: exact %lld, approximate %lld (%d exact starts)\n", seed,
-                (long long)e.total_cost, (long long)a.total_cost, e.exact_starts_run);
+    std::printf("closed seed %u: exact %lld, approximate %lld (%d exact DP passes)\n", seed,
+                (long long)e.total_cost, (long long)a.total_cost, e.exact_dp_passes);
   }
+}
+
+// The exact cycle search (branch and bound over sets of starts, with remaining-cost bounds)
+// against its definition, one DP per start with piece 0 and the terminal fixed to it: the same
+// (cost, lowest start) and the same positions, ties included. Circles over chains and bands of
+// a few dozen columns, paper and pattern objectives, cut where the single-DP approximation
+// finds no cycle or a worse one.
+TEST(DpBruteForce, ExactCycleSearchEqualsOneDpPerStart) {
+  int improved = 0, approximation_failed = 0, checked = 0;
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const bool chain = seed % 2 == 1;
+    const Exemplar exemplar = chain ? test::chain_exemplar(36 + 4 * int(seed), 20, 12 + int(seed))
+                                    : test::band_exemplar(40, 12, 4, 7, seed, 5);
+    const double width = chain ? 14.0 : 6.0;
+    const Ribbon ribbon = make_ribbon(make_shape("circle", 3.0 * width), {width, 4.0 + seed % 3});
+    const int C = detail::column_count(width, 1.0);
+    for (const std::int32_t weight : {0, 2000}) {
+      detail::DpInput input;
+      input.texels = &exemplar.cost;
+      input.space = {exemplar.width, exemplar.height, C};
+      input.closed = true;
+      input.coverage = {weight, chain ? 10 * 256 : 6 * 256};
+      for (const Piece& piece : ribbon.pieces)
+        input.pieces.push_back(detail::make_piece_footprint(piece, 1.0, C, GridSpec{}, nullptr));
+      auto backend = detail::make_cpu_backend();
+      const detail::DpResult approximate = detail::run_dp(*backend, input);
+      input.exact_cycle = true;
+      const detail::DpResult exact = detail::run_dp(*backend, input);
+      // The definition: for each start u0, the DP with piece 0 fixed there closes at u0.
+      detail::DpInput per_start = input;
+      per_start.exact_cycle = false;
+      std::int64_t best = std::numeric_limits<std::int64_t>::max();
+      std::vector<std::int32_t> positions;
+      std::vector<std::uint8_t> valid0;
+      backend->find_valid_positions(*input.texels, input.space, input.pieces[0], valid0);
+      for (std::int64_t u = 0; u < input.space.count(); ++u) {
+        if (!valid0[std::size_t(u)]) continue;
+        per_start.first_index = std::int32_t(u);
+        const detail::DpResult r = detail::run_dp(*backend, per_start);
+        if (r.total_cost < best) best = r.total_cost, positions = r.positions;
+      }
+      ASSERT_LT(best, std::numeric_limits<std::int64_t>::max());
+      EXPECT_EQ(exact.total_cost, best) << "seed " << seed << " weight " << weight;
+      EXPECT_EQ(exact.positions, positions) << "seed " << seed << " weight " << weight;
+      EXPECT_EQ(detail::objective_cost(*input.texels, input.space, input.pieces, exact.positions,
+                                       true, input.coverage),
+                exact.total_cost);
+      EXPECT_GE(approximate.total_cost, exact.total_cost);
+      improved += approximate.total_cost > exact.total_cost;
+      approximation_failed += approximate.approximate_cycle_cost < 0;
+      ++checked;
+      std::printf(
+          "seed %u weight %d: %zu pieces, %d valid starts, exact %lld in %d passes, "
+          "approximation %lld\n",
+          seed, weight, input.pieces.size(), exact.valid_counts[0], (long long)exact.total_cost,
+          exact.exact_dp_passes, (long long)approximate.approximate_cycle_cost);
+    }
+  }
+  EXPECT_EQ(checked, 8);
+  EXPECT_GE(improved, 4);  // the exact search did work: a better cycle than the approximation's
+  EXPECT_GE(approximation_failed, 1);
 }
 
 // The pattern objective's unary term (band rows 2..3: centre row 3) keeps the DP exact, open

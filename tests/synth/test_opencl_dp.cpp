@@ -120,7 +120,7 @@ TEST_P(OpenCLFullDp, SameOptimumAndPlacementsAsCpu) {
   EXPECT_EQ(actual.total_cost, expected.total_cost);
   EXPECT_EQ(actual.positions, expected.positions);
   EXPECT_EQ(actual.approximate_cycle_cost, expected.approximate_cycle_cost);
-  EXPECT_EQ(actual.exact_starts_run, expected.exact_starts_run);
+  EXPECT_EQ(actual.exact_dp_passes, expected.exact_dp_passes);
   // The pieces are mostly filled, and the reported optimum is the cost of the placements.
   const auto empty = std::count(actual.positions.begin(), actual.positions.end(), -1);
   EXPECT_LT(empty, std::ptrdiff_t(actual.positions.size() / 4));
@@ -128,6 +128,20 @@ TEST_P(OpenCLFullDp, SameOptimumAndPlacementsAsCpu) {
     EXPECT_EQ(actual.total_cost, detail::sequence_cost(texels, input.space, input.pieces,
                                                        actual.positions, input.closed));
   }
+  if (!input.closed) return;
+  // The exact cycle search: its remaining-cost bounds run the row update with the edges
+  // swapped, on each backend.
+  detail::DpInput exact = input;
+  exact.exact_cycle = true;
+  const detail::DpResult cpu_exact = detail::run_dp(*cpu, exact);
+  const detail::DpResult opencl_exact = detail::run_dp(*opencl, exact);
+  EXPECT_EQ(opencl_exact.total_cost, cpu_exact.total_cost);
+  EXPECT_EQ(opencl_exact.positions, cpu_exact.positions);
+  EXPECT_EQ(opencl_exact.exact_dp_passes, cpu_exact.exact_dp_passes);
+  EXPECT_GT(cpu_exact.exact_dp_passes, 1);
+  std::printf("exact cycle %lld in %d passes, approximation %lld\n",
+              (long long)cpu_exact.total_cost, cpu_exact.exact_dp_passes,
+              (long long)expected.approximate_cycle_cost);
 }
 
 std::string curve_name(const testing::TestParamInfo<int>& info) {

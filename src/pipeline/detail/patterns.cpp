@@ -129,7 +129,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
     const SynthesisConfig& synthesis = *config.features[plan.class_index].synthesis;
     const LineFeature& line = lines[plan.class_index][f];
     return synthesis.width ? make_ribbon(Curve{line.points, line.closed},
-                                         {*synthesis.width, synthesis.delta, 0.0})
+                                         {*synthesis.width, *synthesis.delta, 0.0})
                            : ribbons.ribbons[plan.class_index][f];
   };
   std::vector<bool> needed;
@@ -206,7 +206,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       }
       if (cached) {
         if (cached->start)
-          pattern.ribbon = make_ribbon(*cached->start, {width, synthesis.delta, 0.0});
+          pattern.ribbon = make_ribbon(*cached->start, {width, *synthesis.delta, 0.0});
         pattern.synthesis = std::move(cached->synthesis);
         pattern.exemplar_index = plan.exemplars.at(cached->exemplar_slot);
         pattern.opaque = std::move(cached->opaque);
@@ -218,7 +218,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       FeatureSynthesisOptions feature_options;
       feature_options.params = synth_params(synthesis, plan.backend, report.seed, label);
       feature_options.choice = synthesis.choice;
-      feature_options.ribbon = {width, synthesis.delta, 0.0};
+      feature_options.ribbon = {width, *synthesis.delta, 0.0};
       feature_options.canvas_tile = options.canvas_tile;
       std::vector<const Exemplar*> exemplars;
       for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/log.hpp"
+#include "pipeline/detail/synthesis_defaults.hpp"
 #include "raster/junction_discs.hpp"
 #include "ribbon/junctions.hpp"
 
@@ -19,8 +20,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   std::vector<double> synthesis_widths;  // the synthesis ribbon's width where it has its own
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& feature_class = config.features[c];
-    const double delta =
-        feature_class.synthesis ? feature_class.synthesis->delta : SynthesisConfig{}.delta;
+    const double delta = class_delta(feature_class);
     out.delta.push_back(delta);
     auto& lengths = out.lengths.emplace_back();
     auto& ribbons = out.ribbons.emplace_back();

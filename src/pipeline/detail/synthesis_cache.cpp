@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/version.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/placements_io.hpp"
@@ -165,7 +166,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   c.u64(config.seed).real(config.synthesis_resolution).u64(feature_seed);
   c.u64(s.exemplars.size());
   for (const fs::path& path : s.exemplars) c.text(path.string());
-  c.u64(std::uint64_t(s.choice)).real(s.delta).real(s.scale);
+  c.u64(std::uint64_t(s.choice)).real(class_delta(feature_class)).real(s.scale);
   c.boolean(s.width.has_value()).real(s.width.value_or(0.0));
   c.boolean(s.stitch).boolean(s.empty_pieces).boolean(s.continuous_alpha);
   c.boolean(s.min_coverage.has_value()).real(s.min_coverage.value_or(0.0));

@@ -4,198 +4,28 @@
 #include <chrono>
 #include <limits>
 #include <memory>
-#include <numeric>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "synth/detail/closed_cycle.hpp"
 #include "synth/detail/cost.hpp"
+#include "synth/detail/dp_driver.hpp"
 
 namespace tw::detail {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr std::int64_t kNoCost = std::numeric_limits<std::int64_t>::max();
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-struct Row {
-  std::vector<std::int32_t> indices;
-  std::vector<std::int32_t> argmin;  // into the previous row's indices; -1: previous is empty
-  bool empty = false;
-  std::int32_t empty_from = -1;  // for an empty row: the previous row's entry it continues
-};
-
-struct Pass {
-  std::vector<Row> rows;
-  std::vector<std::int64_t> last_cost;  // of the last row (one entry if it is empty)
-};
 
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ull;
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
   return x ^ (x >> 31);
-}
-
-// Lowest (cost, entry) of a row's costs.
-std::int32_t best_entry(const std::vector<std::int64_t>& cost) {
-  std::int32_t best = -1;
-  for (std::size_t j = 0; j < cost.size(); ++j)
-    if (best < 0 || cost[j] < cost[std::size_t(best)]) best = std::int32_t(j);
-  return best;
-}
-
-class Driver {
- public:
-  Driver(Backend& backend, const DpInput& input, DpTimings& timings)
-      : backend_(backend), input_(input), timings_(timings) {}
-
-  // Valid indices of every piece; identical consecutive footprints share one computation.
-  std::vector<std::vector<std::int32_t>> valid_positions() {
-    std::vector<std::vector<std::int32_t>> valid(input_.pieces.size());
-    std::vector<std::uint8_t> flags;
-    std::vector<std::int32_t> shape_valid;  // of the last shape, before keep_positions
-    for (std::size_t i = 0; i < input_.pieces.size(); ++i) {
-      const PieceFootprint& p = input_.pieces[i];
-      if (i == 0 || !same_shape(p, input_.pieces[i - 1])) {
-        auto start = Clock::now();
-        backend_.find_valid_positions(*input_.texels, input_.space, p, flags);
-        timings_.find_valid_ms += ms_since(start);
-        start = Clock::now();
-        backend_.compact_valid_positions(flags, shape_valid);
-        timings_.compact_ms += ms_since(start);
-      }
-      valid[i] = shape_valid;
-      if (input_.keep_positions) input_.keep_positions(int(i), valid[i]);
-      if (with_unary()) {
-        // A piece of the same shape at the same positions pays the same coverage costs.
-        if (i > 0 && same_shape(p, input_.pieces[i - 1]) && valid[i] == valid[i - 1]) {
-          unary_.push_back(unary_.back());
-        } else {
-          unary_.emplace_back();
-          coverage_costs(*input_.texels, input_.space, p, input_.coverage, valid[i], unary_.back());
-        }
-      }
-    }
-    valid_sizes_.clear();
-    for (const auto& v : valid) valid_sizes_.push_back(v.size());
-    return valid;
-  }
-
-  // One forward pass over rows 0..R-1; row r > 0 holds piece r (piece 0 again for the terminal
-  // row r = N of a closed curve) at positions `row_indices(r)`.
-  Pass forward(const std::vector<std::int32_t>& first_row, int row_count,
-               const std::function<const std::vector<std::int32_t>&(int)>& row_indices,
-               Progress* progress) {
-    const int N = int(input_.pieces.size());
-    Pass pass;
-    pass.rows.reserve(std::size_t(row_count));
-    std::vector<std::int64_t> cost, next_cost;
-    pass.rows.push_back({first_row, {}, first_row.empty(), -1});
-    if (first_row.empty()) {
-      require_empty_allowed(0);
-      cost.assign(1, empty_piece_penalty(input_.space.column));
-    } else {
-      cost.assign(first_row.size(), 0);
-      add_unary(0, first_row, cost);
-    }
-    for (int r = 1; r < row_count; ++r) {
-      const PieceFootprint& previous_piece = input_.pieces[std::size_t(r - 1)];
-      const std::vector<std::int32_t>& indices = row_indices(r);
-      const Row& previous = pass.rows.back();
-      Row row;
-      row.indices = indices;
-      if (indices.empty()) {
-        require_empty_allowed(r % N);
-        row.empty = true;
-        row.empty_from = previous.empty ? -1 : best_entry(cost);
-        next_cost.assign(1, cost[std::size_t(std::max(0, row.empty_from))] +
-                                empty_piece_penalty(input_.space.column));
-      } else if (previous.empty) {
-        next_cost.assign(indices.size(), cost[0]);
-        row.argmin.assign(indices.size(), -1);
-        if (r < N) add_unary(r, indices, next_cost);
-      } else {
-        // The following row's edges, when it runs an update too: a device backend extracts
-        // them while this row's update runs.
-        const RowEdges edges{&previous_piece, &previous.indices, &indices};
-        RowEdges following;
-        if (r + 1 < row_count && !row_indices(r + 1).empty())
-          following = {&input_.pieces[std::size_t(r)], &indices, &row_indices(r + 1)};
-        RowTimes times;
-        backend_.dp_row(*input_.texels, input_.space, edges,
-                        following.indices ? &following : nullptr, cost, next_cost, row.argmin,
-                        times);
-        timings_.extract_ms += times.extract_ms;
-        timings_.update_ms += times.update_ms;
-        if (r < N) add_unary(r, indices, next_cost);  // the terminal row is piece 0, paid in row 0
-        ++timings_.rows;
-      }
-      cost.swap(next_cost);
-      pass.rows.push_back(std::move(row));
-      if (progress) progress->advance();
-    }
-    pass.last_cost = std::move(cost);
-    return pass;
-  }
-
- private:
-  bool with_unary() const { return input_.coverage.weight_milli > 0; }
-
-  // cost[j] += the unary cost of piece `piece` at indices[j]: cached for the piece's valid
-  // positions, computed for a fixed or drawn first position.
-  void add_unary(int piece, const std::vector<std::int32_t>& indices,
-                 std::vector<std::int64_t>& cost) const {
-    if (!with_unary()) return;
-    const std::vector<std::int64_t>* unary = &unary_[std::size_t(piece)];
-    std::vector<std::int64_t> own;
-    if (indices.size() != valid_sizes_[std::size_t(piece)]) {
-      coverage_costs(*input_.texels, input_.space, input_.pieces[std::size_t(piece)],
-                     input_.coverage, indices, own);
-      unary = &own;
-    }
-    for (std::size_t j = 0; j < cost.size(); ++j) cost[j] += (*unary)[j];
-  }
-
-  static bool same_shape(const PieceFootprint& a, const PieceFootprint& b) {
-    auto same = [](const std::vector<TexelOffset>& x, const std::vector<TexelOffset>& y) {
-      return x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin(), [](auto p, auto q) {
-               return p.dx == q.dx && p.dy == q.dy;
-             });
-    };
-    return a.min_opaque == b.min_opaque && same(a.must_be_clear, b.must_be_clear) &&
-           same(a.interior, b.interior);
-  }
-
-  void require_empty_allowed(int piece) const {
-    if (input_.allow_empty) return;
-    if (input_.no_valid_message) throw Error(input_.no_valid_message(piece));
-    fail("piece {}: no valid position in the exemplar", piece);
-  }
-
-  Backend& backend_;
-  const DpInput& input_;
-  DpTimings& timings_;
-  std::vector<std::vector<std::int64_t>> unary_;  // per piece, over its valid positions
-  std::vector<std::size_t> valid_sizes_;
-};
-
-// Positions per row, backtracked from entry `entry` of the last row.
-std::vector<std::int32_t> backtrack(const Pass& pass, std::int32_t entry) {
-  std::vector<std::int32_t> positions(pass.rows.size(), -1);
-  for (std::size_t r = pass.rows.size(); r-- > 0;) {
-    const Row& row = pass.rows[r];
-    if (row.empty) {
-      entry = row.empty_from;
-      continue;
-    }
-    positions[r] = row.indices[std::size_t(entry)];
-    entry = row.argmin.empty() ? -1 : row.argmin[std::size_t(entry)];
-  }
-  return positions;
 }
 
 }  // namespace
@@ -245,8 +75,8 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
   const int N = int(input.pieces.size());
   if (N == 0) fail("synthesis needs at least one piece");
   DpResult result;
-  Driver driver(backend, input, result.timings);
-  const auto valid = driver.valid_positions();
+  DpDriver driver(backend, input, result.timings);
+  const auto& valid = driver.valid_positions();
   for (const auto& v : valid) result.valid_counts.push_back(int(v.size()));
 
   std::vector<std::int32_t> first_row = valid[0];
@@ -270,7 +100,12 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
       return r < N ? valid[std::size_t(r)] : terminal;
     };
   };
-  const Pass pass = driver.forward(first_row, rows, free_rows(first_row), progress.get());
+  // Closed curves keep the costs of every row: the exact mode's bounds (exact_cycle).
+  std::vector<std::vector<std::int64_t>> root_costs;
+  PassOptions options;
+  options.progress = progress.get();
+  if (input.closed) options.record = &root_costs;
+  const Pass pass = driver.forward(first_row, rows, free_rows(first_row), options);
 
   auto start = Clock::now();
   if (!input.closed) {
@@ -282,55 +117,28 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
   }
 
   // Closed: the terminal row N stands for piece 0 again; a cycle has equal first and terminal
-  // positions. Approximation: backtrack from terminal entries in increasing (cost, entry).
+  // positions. The approximation (the paper's): backtrack from terminal entries in increasing
+  // (cost, entry) and keep the first cycle; `examine` does it and keeps the starts that the
+  // exact mode must still look at.
   const Row& terminal = pass.rows.back();
-  std::vector<std::int32_t> order(terminal.indices.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
-    return pass.last_cost[a] != pass.last_cost[b] ? pass.last_cost[a] < pass.last_cost[b] : a < b;
-  });
-  std::int64_t best_cost = kNoCost;
-  std::int32_t best_start = std::numeric_limits<std::int32_t>::max();
-  for (std::int32_t entry : order) {
-    auto positions = backtrack(pass, entry);
-    if (positions.front() != positions.back()) continue;
-    best_cost = pass.last_cost[std::size_t(entry)];
-    best_start = positions.front();
-    positions.pop_back();
-    result.positions = std::move(positions);
-    result.approximate_cycle_cost = best_cost;
-    break;
-  }
-  result.timings.backtrack_ms += ms_since(start);
   if (terminal.empty) fail("closed curve: piece 0 has no valid position to close the cycle");
-  if (!input.exact_cycle && result.approximate_cycle_cost >= 0) {
-    result.total_cost = best_cost;
+  CycleSearch search;
+  std::vector<Bounded> open = examine(pass, search);
+  result.approximate_cycle_cost = search.cost == kNoCost ? -1 : search.cost;
+  result.timings.backtrack_ms += ms_since(start);
+  if (!input.exact_cycle && search.cost != kNoCost) {
+    result.total_cost = search.cost;
+    result.positions = std::move(search.positions);
     return result;
   }
   if (!input.exact_cycle)
     logger().info(
         "closed curve: the single-DP approximation found no cycle; running the exact mode");
-
-  // Exact: one DP per start u0, in increasing free-DP terminal cost, which bounds the cost of
-  // every cycle through u0 from below; stop once the bound cannot win.
-  for (std::int32_t entry : order) {
-    const std::int64_t bound = pass.last_cost[std::size_t(entry)];
-    const std::int32_t start_index = terminal.indices[std::size_t(entry)];
-    if (bound > best_cost || (bound == best_cost && start_index >= best_start)) break;
-    const std::vector<std::int32_t> single{start_index};
-    const Pass cycle = driver.forward(single, rows, free_rows(single), nullptr);
-    ++result.exact_starts_run;
-    if (cycle.rows.back().empty) continue;
-    const std::int64_t cost = cycle.last_cost[0];
-    if (cost < best_cost || (cost == best_cost && start_index < best_start)) {
-      best_cost = cost;
-      best_start = start_index;
-      result.positions = backtrack(cycle, 0);
-      result.positions.pop_back();
-    }
-  }
-  if (best_cost == kNoCost) fail("closed curve: no cycle of valid positions exists");
-  result.total_cost = best_cost;
+  exact_cycle(driver, rows, valid, first_row, root_costs, std::move(open), search,
+              result.exact_dp_passes);
+  if (search.cost == kNoCost) fail("closed curve: no cycle of valid positions exists");
+  result.total_cost = search.cost;
+  result.positions = std::move(search.positions);
   return result;
 }
 

@@ -42,9 +42,9 @@ struct DpResult {
   std::int64_t total_cost = 0;          // Omega + unary costs (+ empty penalties)
   std::vector<int> valid_counts;        // per piece
   // Closed curves: the single-DP approximation's cycle cost (-1 if it found no cycle) and the
-  // number of start positions the exact mode ran a DP for.
+  // number of DP passes the exact mode ran (each over a set of start positions).
   std::int64_t approximate_cycle_cost = -1;
-  int exact_starts_run = 0;
+  int exact_dp_passes = 0;
   DpTimings timings;
 };
 
