@@ -125,12 +125,10 @@ class Driver {
         RowEdges following;
         if (r + 1 < row_count && !row_indices(r + 1).empty())
           following = {&input_.pieces[std::size_t(r)], &indices, &row_indices(r + 1)};
-        RowTimes times;
-        backend_.dp_row(*input_.texels, input_.space, edges,
-                        following.indices ? &following : nullptr, cost, next_cost, row.argmin,
-                        times);
-        timings_.extract_ms += times.extract_ms;
-        timings_.update_ms += times.update_ms;
+        if (input_.exemplar_switch.active())
+          switching_row(edges, cost, next_cost, row.argmin);
+        else
+          timed_row(edges, following.indices ? &following : nullptr, cost, next_cost, row.argmin);
         if (r < N) add_unary(r, indices, next_cost);  // the terminal row is piece 0, paid in row 0
         ++timings_.rows;
       }
@@ -144,6 +142,45 @@ class Driver {
 
  private:
   bool with_unary() const { return input_.coverage.weight_milli > 0; }
+
+  void timed_row(const RowEdges& edges, const RowEdges* following,
+                 const std::vector<std::int64_t>& cost, std::vector<std::int64_t>& next_cost,
+                 std::vector<std::int32_t>& argmin) {
+    RowTimes times;
+    backend_.dp_row(*input_.texels, input_.space, edges, following, cost, next_cost, argmin, times);
+    timings_.extract_ms += times.extract_ms;
+    timings_.update_ms += times.update_ms;
+  }
+
+  // A row under a switching cost: for the current positions of each exemplar e, one update
+  // over every previous position with P'[v] = P[v] + cost * [exemplar(v) != e]. That is the
+  // update with D' exactly (same minimum, same lowest-v ties), and D keeps its pruning bounds.
+  void switching_row(const RowEdges& edges, const std::vector<std::int64_t>& cost,
+                     std::vector<std::int64_t>& next_cost, std::vector<std::int32_t>& argmin) {
+    const ExemplarSwitch& change = input_.exemplar_switch;
+    const std::vector<std::int32_t>& indices = *edges.indices;
+    std::vector<int> previous_exemplar, exemplar;
+    for (std::int32_t v : *edges.previous_indices) previous_exemplar.push_back(change.exemplar(v));
+    for (std::int32_t j : indices) exemplar.push_back(change.exemplar(j));
+    std::vector<int> exemplars = exemplar;
+    std::sort(exemplars.begin(), exemplars.end());
+    exemplars.erase(std::unique(exemplars.begin(), exemplars.end()), exemplars.end());
+    next_cost.assign(indices.size(), 0);
+    argmin.assign(indices.size(), -1);
+    std::vector<std::int32_t> subset, sub_argmin;
+    std::vector<std::int64_t> shifted(cost.size()), sub_cost;
+    for (int e : exemplars) {
+      subset.clear();
+      for (std::size_t j = 0; j < indices.size(); ++j)
+        if (exemplar[j] == e) subset.push_back(indices[j]);
+      for (std::size_t v = 0; v < cost.size(); ++v)
+        shifted[v] = cost[v] + (previous_exemplar[v] != e ? change.cost : 0);
+      timed_row({edges.previous_piece, edges.previous_indices, &subset}, nullptr, shifted, sub_cost,
+                sub_argmin);
+      for (std::size_t j = 0, k = 0; j < indices.size(); ++j)
+        if (exemplar[j] == e) next_cost[j] = sub_cost[k], argmin[j] = sub_argmin[k++];
+    }
+  }
 
   // cost[j] += the unary cost of piece `piece` at indices[j]: cached for the piece's valid
   // positions, computed for a fixed or drawn first position.
@@ -228,11 +265,24 @@ std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
   return sum;
 }
 
+int exemplar_switches(const std::vector<std::int32_t>& positions, bool closed,
+                      const std::function<int(std::int32_t)>& exemplar) {
+  const std::size_t n = positions.size();
+  const std::size_t seams = closed && n > 1 ? n : (n > 0 ? n - 1 : 0);
+  int switches = 0;
+  for (std::size_t i = 0; i < seams; ++i) {
+    const std::int32_t a = positions[i], b = positions[(i + 1) % n];
+    if (a >= 0 && b >= 0 && exemplar(a) != exemplar(b)) ++switches;
+  }
+  return switches;
+}
+
 std::int64_t objective_cost(const CostTexels& texels, const PositionSpace& space,
                             const std::vector<PieceFootprint>& pieces,
                             const std::vector<std::int32_t>& positions, bool closed,
-                            const CoverageTerm& coverage) {
+                            const CoverageTerm& coverage, const ExemplarSwitch& change) {
   std::int64_t sum = sequence_cost(texels, space, pieces, positions, closed);
+  if (change.active()) sum += change.cost * exemplar_switches(positions, closed, change.exemplar);
   std::vector<std::int64_t> unary;
   for (std::size_t i = 0; i < positions.size() && coverage.weight_milli > 0; ++i) {
     coverage_costs(texels, space, pieces[i], coverage, {positions[i]}, unary);
