@@ -5,7 +5,6 @@
 
 #include "core/error.hpp"
 #include "synth/detail/exemplar_mix.hpp"
-#include "synth/detail/footprint.hpp"
 
 namespace tw {
 
@@ -15,18 +14,57 @@ int MixLayout::exemplar_at(int ux, int uy) const {
   return -1;
 }
 
-int mix_gap(const Ribbon& ribbon, double scale) {
-  double reach = 1.0;
-  for (const Piece& piece : ribbon.pieces) {
-    const detail::PieceFrame frame = detail::piece_frame(piece, scale);
-    double lo = 0.0, hi = 0.0;
-    for (const Vec2& w : {piece.top_left, piece.bottom_left, piece.bottom_right, piece.top_right}) {
-      const double x = detail::to_exemplar(frame, w).x;
-      lo = std::min(lo, x), hi = std::max(hi, x);
-    }
-    reach = std::max(reach, std::ceil(hi) - std::floor(lo));
+int mix_gap(double scale, double delta, double width) {
+  return int(std::ceil(2.0 * scale * (delta + width))) + 4;
+}
+
+namespace {
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double length2 = dot(ab, ab);
+  const double t = length2 > 0.0 ? std::clamp(dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+  return distance(p, a + ab * t);
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint8_t>> bind_pieces(const Ribbon& ribbon, int exemplar_count,
+                                                   const std::vector<PieceBinding>& rules,
+                                                   const std::vector<Vec2>& junctions) {
+  std::vector<std::uint8_t> unbound(std::size_t(exemplar_count), 1);
+  for (const PieceBinding& rule : rules) {
+    if (rule.exemplar < 0 || rule.exemplar >= exemplar_count)
+      fail("binding rule names exemplar {} of a mix of {}", rule.exemplar, exemplar_count);
+    unbound[std::size_t(rule.exemplar)] = 0;
   }
-  return int(reach) + 4;  // + the bilinear neighbour and a texel of edge rounding each side
+  if (std::find(unbound.begin(), unbound.end(), 1) == unbound.end())
+    unbound.assign(unbound.size(), 1);
+  std::vector<std::vector<std::uint8_t>> out;
+  for (const Piece& piece : ribbon.pieces) {
+    const Vec2 left = lerp(piece.top_left, piece.bottom_left, 0.5);
+    const Vec2 right = lerp(piece.top_right, piece.bottom_right, 0.5);
+    const PieceBinding* bound = nullptr;
+    for (const PieceBinding& rule : rules) {
+      if (!rule.line_matches) continue;
+      const bool near =
+          rule.near_junction <= 0.0 || std::any_of(junctions.begin(), junctions.end(), [&](Vec2 j) {
+            return distance_to_segment(j, left, right) <= rule.near_junction;
+          });
+      if (near) {
+        bound = &rule;
+        break;
+      }
+    }
+    if (!bound) {
+      out.push_back(unbound);
+      continue;
+    }
+    std::vector<std::uint8_t> only(std::size_t(exemplar_count), 0);
+    only[std::size_t(bound->exemplar)] = 1;
+    out.push_back(std::move(only));
+  }
+  return out;
 }
 
 MixedExemplar mix_exemplars(const std::vector<const Exemplar*>& exemplars, int gap) {

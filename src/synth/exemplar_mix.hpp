@@ -4,6 +4,7 @@
 // positions of all of them and seams across exemplars use the same xi as within one; a piece
 // at an atlas position reads (costs, validity, rendered channels) exactly what it reads at that
 // position of its own exemplar. See docs/synthesis.md, "Several exemplars in one feature".
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,28 @@ struct MixedExemplar {
   MixLayout layout;
 };
 
-// Columns of gap that the pieces of `ribbon` at `scale` never read across (their exemplar-space
-// extent along x, plus the bilinear and edge margins).
-int mix_gap(const Ribbon& ribbon, double scale);
+// Columns of gap that no piece of a ribbon `width` metres wide sliced every `delta` metres
+// reads across at `scale` texels per metre: along e_a, a piece's corners lie within delta +
+// width of its top-left corner (an offset curve's chord over one piece, normals turning by at
+// most 180 degrees), so its reads span at most 2 s (delta + width) texels, plus the bilinear
+// and rounding margins. synthesize() checks the footprints against the layout's gap.
+int mix_gap(double scale, double delta, double width);
+
+// A binding rule: the pieces it selects may use only `exemplar`. It selects every piece of a
+// line it matches (line_matches: an attribute or tag predicate on the piece's line), and with
+// near_junction > 0 only those whose centre segment (left-edge midpoint to right-edge
+// midpoint) passes within near_junction metres of a junction.
+struct PieceBinding {
+  int exemplar = 0;
+  bool line_matches = true;
+  double near_junction = 0.0;
+};
+
+// SynthParams::piece_exemplars for a ribbon: the first rule that selects a piece binds it; a
+// piece no rule selects may use the exemplars no rule names (any, when every one is named).
+std::vector<std::vector<std::uint8_t>> bind_pieces(const Ribbon& ribbon, int exemplar_count,
+                                                   const std::vector<PieceBinding>& rules,
+                                                   const std::vector<Vec2>& junctions);
 
 // Throws tw::Error when the list is empty or the exemplars use different alpha modes.
 MixedExemplar mix_exemplars(const std::vector<const Exemplar*>& exemplars, int gap);

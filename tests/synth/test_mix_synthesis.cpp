@@ -8,8 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "synth/detail/cpu_backend.hpp"
+#include "synth/detail/exemplar_mix.hpp"
+#include "synth/detail/footprint.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"
+#include "synth/shapes.hpp"
 #include "synth/synthesize.hpp"
 #include "synth_fixtures.hpp"
 #include "test_support.hpp"
@@ -29,7 +32,7 @@ Exemplar band_of_height(int width, unsigned seed, float height) {
 struct BoundMix {
   Exemplar plain = band_of_height(30, 3, 1.0f), deck = band_of_height(20, 9, 7.0f);
   Ribbon ribbon = make_ribbon(Curve{{{0, 0}, {30, 0}}, false}, {5.0, 2.0});
-  MixedExemplar mix = mix_exemplars({&plain, &deck}, mix_gap(ribbon, 1.0));
+  MixedExemplar mix = mix_exemplars({&plain, &deck}, mix_gap(1.0, 2.0, 5.0));
   SynthParams params;
   BoundMix() {
     params.scale = 1.0;
@@ -110,6 +113,52 @@ TEST(MixSynthesis, PlacementsKeepEachPiecesExemplar) {
   EXPECT_NE(old.find("\"version\": 1"), std::string::npos);
   EXPECT_EQ(old.find("exemplar\": 0"), std::string::npos);
   EXPECT_FALSE(placements_from_json(old, "old.json").mix.has_value());
+}
+
+// Rules in order: a bridge rule whose line predicate matched binds every piece to the deck; a
+// junction rule binds the pieces within its distance; the rest use the unnamed exemplar.
+TEST(MixSynthesis, JunctionAndLineRulesBindTheirPieces) {
+  const Exemplar plain = band_of_height(30, 3, 1.0f), crossing = band_of_height(24, 5, 3.0f),
+                 deck = band_of_height(20, 9, 7.0f);
+  const Ribbon ribbon = make_ribbon(Curve{{{0, 0}, {60, 0}}, false}, {5.0, 2.0});
+  const MixedExemplar mix = mix_exemplars({&plain, &crossing, &deck}, mix_gap(1.0, 2.0, 5.0));
+  const std::vector<Vec2> junctions = {{30.0, 0.0}};
+  const GridSpec canvas = test::canvas_around(ribbon, 0.5, 2.0);
+  auto backend = detail::make_cpu_backend();
+  SynthParams params;
+  params.scale = 1.0;
+  params.mix = mix.layout;
+  params.switch_cost = 16;
+  for (const bool on_bridge : {false, true}) {
+    SCOPED_TRACE(on_bridge ? "the line is a bridge" : "the line is on the ground");
+    params.piece_exemplars =
+        bind_pieces(ribbon, 3, {{2, on_bridge, 0.0}, {1, true, 8.0}}, junctions);
+    const Synthesis s = detail::synthesize_on(*backend, mix.atlas, ribbon, canvas, nullptr, params);
+    int near = 0;
+    for (std::size_t i = 0; i < ribbon.pieces.size(); ++i) {
+      // Piece i spans x in [2i, 2i + 2]: within 8 m of x = 30 when 22 <= 2i + 2 and 2i <= 38.
+      const bool close = 2.0 * double(i) + 2.0 >= 22.0 && 2.0 * double(i) <= 38.0;
+      const int expected = on_bridge ? 2 : close ? 1 : 0;
+      EXPECT_EQ(s.placements[i].exemplar, expected) << "piece " << i;
+      near += close ? 1 : 0;
+    }
+    EXPECT_EQ(near, 10);
+    EXPECT_EQ(s.exemplar_switches, on_bridge ? 0 : 2);
+  }
+}
+
+// mix_gap's bound holds for the footprints of folded and tight curves (synthesize checks it).
+TEST(MixSynthesis, GapBoundsEveryFootprintsReach) {
+  for (const char* shape : {"line", "s-curve", "circle", "heart", "hairpin"}) {
+    const Ribbon ribbon = make_ribbon(make_shape(shape, 40.0), {10.0, 3.0});
+    const int column = detail::column_count(10.0, 2.0);
+    std::vector<detail::PieceFootprint> pieces;
+    for (const Piece& piece : ribbon.pieces)
+      pieces.push_back(detail::make_piece_footprint(piece, 2.0, column, GridSpec{}, nullptr));
+    const int needed = detail::mix_gap(pieces);
+    EXPECT_LE(needed, mix_gap(2.0, 3.0, 10.0)) << shape;
+    EXPECT_GT(needed, 6) << shape;  // a piece reads at least its 3 m x 2 texels
+  }
 }
 
 }  // namespace
