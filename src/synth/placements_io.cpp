@@ -13,7 +13,9 @@ namespace {
 
 using nlohmann::json;
 constexpr const char* kFormat = "terraweave.placements";
-constexpr int kVersion = 1;
+// Version 2 adds the mix (its layout, each placement's exemplar, ux in its own exemplar); files
+// without a mix are still written as version 1, byte for byte as before.
+constexpr int kVersion = 1, kMixVersion = 2;
 
 json vec(Vec2 v) {
   return json::array({v.x, v.y});
@@ -37,7 +39,7 @@ Int integer(const json& j, const std::string& path, const std::string& key) {
 std::string placements_to_json(const Synthesis& s, const std::string& exemplar_path) {
   json doc;
   doc["format"] = kFormat;
-  doc["version"] = kVersion;
+  doc["version"] = s.mix ? kMixVersion : kVersion;
   doc["exemplar"] = exemplar_path;
   doc["column"] = s.column;
   doc["closed"] = s.closed;
@@ -46,9 +48,17 @@ std::string placements_to_json(const Synthesis& s, const std::string& exemplar_p
   doc["mean_seam_cost"] = s.mean_seam_cost;
   doc["mean_seam_cost_stitched"] = s.mean_seam_cost_stitched;
   doc["valid_counts"] = s.valid_counts;
+  if (s.mix)
+    doc["mix"] = {{"x0", s.mix->x0},
+                  {"width", s.mix->width},
+                  {"height", s.mix->height},
+                  {"gap", s.mix->gap},
+                  {"pieces_per_exemplar", s.pieces_per_exemplar},
+                  {"switches", s.exemplar_switches}};
   json list = json::array();
   for (const Placement& p : s.placements) {
-    list.push_back({{"ux", p.ux},
+    const int x0 = s.mix && !p.empty ? s.mix->x0[std::size_t(p.exemplar)] : 0;
+    list.push_back({{"ux", p.ux - x0},
                     {"uy", p.uy},
                     {"empty", p.empty},
                     {"origin", vec(p.origin)},
@@ -56,6 +66,7 @@ std::string placements_to_json(const Synthesis& s, const std::string& exemplar_p
                     {"across", vec(p.across)},
                     {"scale", p.scale},
                     {"stitch", p.stitch}});
+    if (s.mix) list.back()["exemplar"] = p.exemplar;
   }
   doc["placements"] = std::move(list);
   return doc.dump(1) + '\n';
@@ -90,7 +101,8 @@ Synthesis placements_from_json(std::string_view text, const std::string& path,
     if (doc.at(key).get<std::string>() != kFormat)
       fail("placements {}: key \"format\" is not \"{}\"", path, kFormat);
     key = "version";
-    if (integer<int>(doc.at(key), path, key) != kVersion)
+    const int version = integer<int>(doc.at(key), path, key);
+    if (version != kVersion && version != kMixVersion)
       fail("placements {}: unsupported version {}", path, doc.at(key).dump());
     Synthesis s;
     key = "exemplar";
@@ -111,6 +123,29 @@ Synthesis placements_from_json(std::string_view text, const std::string& path,
     key = "valid_counts";
     for (const json& count : doc.at(key).get_ref<const json::array_t&>())
       s.valid_counts.push_back(integer<int>(count, path, key));
+    if (version == kMixVersion && doc.contains("mix")) {
+      const json& mix = doc.at("mix");
+      auto ints = [&](const char* name) {
+        key = std::string("mix.") + name;
+        std::vector<int> out;
+        for (const json& v : mix.at(name).get_ref<const json::array_t&>())
+          out.push_back(integer<int>(v, path, key));
+        return out;
+      };
+      MixLayout layout;
+      layout.x0 = ints("x0");
+      layout.width = ints("width");
+      layout.height = ints("height");
+      s.pieces_per_exemplar = ints("pieces_per_exemplar");
+      key = "mix.gap";
+      layout.gap = integer<int>(mix.at("gap"), path, key);
+      key = "mix.switches";
+      s.exemplar_switches = integer<int>(mix.at("switches"), path, key);
+      if (layout.x0.empty() || layout.width.size() != layout.x0.size() ||
+          layout.height.size() != layout.x0.size())
+        fail("placements {}: key \"mix\": x0, width and height need one entry per exemplar", path);
+      s.mix = std::move(layout);
+    }
     const json& list = doc.at("placements");
     for (std::size_t i = 0; i < list.size(); ++i) {
       const json& j = list[i];
@@ -119,6 +154,13 @@ Synthesis placements_from_json(std::string_view text, const std::string& path,
       p.ux = integer<int>(j.at("ux"), path, key + ".ux");
       p.uy = integer<int>(j.at("uy"), path, key + ".uy");
       p.empty = j.at("empty").get<bool>();
+      if (s.mix) {
+        p.exemplar = integer<int>(j.at("exemplar"), path, key + ".exemplar");
+        if (p.exemplar < 0 || p.exemplar >= s.mix->count())
+          fail("placements {}: {}.exemplar {} is not one of the mix's {} exemplars", path, key,
+               p.exemplar, s.mix->count());
+        if (!p.empty) p.ux += s.mix->x0[std::size_t(p.exemplar)];
+      }
       auto v = [&](const char* name) {
         const auto a = j.at(name).get<std::vector<double>>();
         if (a.size() != 2) fail("placements {}: {}.{} must have two numbers", path, key, name);

@@ -13,6 +13,7 @@
 #include "ribbon/ribbon.hpp"
 #include "synth/backend_kind.hpp"
 #include "synth/exemplar.hpp"
+#include "synth/exemplar_mix.hpp"
 
 namespace tw {
 
@@ -51,12 +52,20 @@ struct SynthParams {
   std::optional<std::pair<int, int>> first_position;  // fixes piece 0 at (ux, uy)
   int stitch_penalty = 32;                            // the paper's P, in 0..255 colour units
   std::string feature_label;  // names the feature in messages, e.g. "feature 42"
+  // Several exemplars in one feature: the exemplar is the atlas of mix_exemplars with this
+  // layout. switch_cost (colour units, as the seam costs; 0: none) is added to every seam
+  // between pieces of different exemplars; piece_exemplars[i][e] != 0 allows piece i to use
+  // exemplar e (an empty list, or an empty entry: any exemplar).
+  std::optional<MixLayout> mix;
+  int switch_cost = 0;
+  std::vector<std::vector<std::uint8_t>> piece_exemplars;
 };
 
 // Where one piece reads the exemplar: exemplar = (ux + 0.5, uy) + s * (dot(p - origin, along),
 // dot(p - origin, across)) for a world point p, plus the stitching deformation.
 struct Placement {
   int ux = 0, uy = 0;  // position of the top-left corner (uy may be negative, down to -C)
+  int exemplar = 0;    // in a mix: the exemplar of the position (ux is an atlas column)
   bool empty = false;  // no valid position (allow_empty_pieces): renders transparent
   Vec2 origin;         // T(x_i), world metres
   Vec2 along;          // e_a: world unit vector mapped to exemplar +x
@@ -93,6 +102,11 @@ struct Synthesis {
   // Mean opaque fraction of the chosen windows (non-empty pieces) and of windows centred on the
   // exemplar's band, of the same pieces; coverage_ratio = mean_coverage / natural_coverage.
   double mean_coverage = 0.0, natural_coverage = 0.0, coverage_ratio = 0.0;
+  // A mix: its layout, the non-empty pieces drawn from each exemplar and the seams between
+  // pieces of different exemplars.
+  std::optional<MixLayout> mix;
+  std::vector<int> pieces_per_exemplar;
+  int exemplar_switches = 0;
 };
 
 // `forbidden` (may be null): the avoidance map over `canvas`, non-zero = forbidden; it must hold

@@ -58,11 +58,24 @@ std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
   return sum;
 }
 
+int exemplar_switches(const std::vector<std::int32_t>& positions, bool closed,
+                      const std::function<int(std::int32_t)>& exemplar) {
+  const std::size_t n = positions.size();
+  const std::size_t seams = closed && n > 1 ? n : (n > 0 ? n - 1 : 0);
+  int switches = 0;
+  for (std::size_t i = 0; i < seams; ++i) {
+    const std::int32_t a = positions[i], b = positions[(i + 1) % n];
+    if (a >= 0 && b >= 0 && exemplar(a) != exemplar(b)) ++switches;
+  }
+  return switches;
+}
+
 std::int64_t objective_cost(const CostTexels& texels, const PositionSpace& space,
                             const std::vector<PieceFootprint>& pieces,
                             const std::vector<std::int32_t>& positions, bool closed,
-                            const CoverageTerm& coverage) {
+                            const CoverageTerm& coverage, const ExemplarSwitch& change) {
   std::int64_t sum = sequence_cost(texels, space, pieces, positions, closed);
+  if (change.active()) sum += change.cost * exemplar_switches(positions, closed, change.exemplar);
   std::vector<std::int64_t> unary;
   for (std::size_t i = 0; i < positions.size() && coverage.weight_milli > 0; ++i) {
     coverage_costs(texels, space, pieces[i], coverage, {positions[i]}, unary);

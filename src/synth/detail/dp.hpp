@@ -13,6 +13,19 @@
 
 namespace tw::detail {
 
+// Exemplar mixes (synth/detail/exemplar_mix.hpp): a cost added to every seam between pieces
+// from different exemplars, D'(v, j) = D(v, j) + cost * [exemplar(v) != exemplar(j)]. It is
+// pairwise but depends on the exemplars only, so the DP adds it to the previous row's costs
+// per exemplar of the current row and D itself (with its pruning bounds) is untouched.
+struct ExemplarSwitch {
+  std::int64_t cost = 0;                      // in cost units (xi); 0: none
+  std::function<int(std::int32_t)> exemplar;  // of a position index
+  bool active() const { return cost > 0 && exemplar != nullptr; }
+  std::int64_t between(std::int32_t a, std::int32_t b) const {
+    return active() && exemplar(a) != exemplar(b) ? cost : 0;
+  }
+};
+
 struct DpInput {
   const CostTexels* texels = nullptr;
   PositionSpace space;
@@ -30,6 +43,7 @@ struct DpInput {
   std::string label;  // names the feature in progress lines, e.g. "features.roads: FID 3"
   // The pattern objective's unary term (weight 0: the paper's objective, Omega alone).
   CoverageTerm coverage;
+  ExemplarSwitch exemplar_switch;
 };
 
 struct DpTimings {
@@ -58,11 +72,15 @@ DpResult run_dp(Backend& backend, const DpInput& input);
 std::int64_t sequence_cost(const CostTexels& texels, const PositionSpace& space,
                            const std::vector<PieceFootprint>& pieces,
                            const std::vector<std::int32_t>& positions, bool closed);
-// The DP's objective of a sequence: sequence_cost plus every piece's unary coverage cost.
+// The DP's objective of a sequence: sequence_cost plus every piece's unary coverage cost and
+// every seam's switching cost.
 std::int64_t objective_cost(const CostTexels& texels, const PositionSpace& space,
                             const std::vector<PieceFootprint>& pieces,
                             const std::vector<std::int32_t>& positions, bool closed,
-                            const CoverageTerm& coverage);
+                            const CoverageTerm& coverage, const ExemplarSwitch& change = {});
+// The seams of a sequence (no -1) whose two pieces come from different exemplars.
+int exemplar_switches(const std::vector<std::int32_t>& positions, bool closed,
+                      const std::function<int(std::int32_t)>& exemplar);
 // D between piece i at position a (its right edge) and the next piece at position b.
 std::int64_t seam_cost(const CostTexels& texels, const PositionSpace& space,
                        const PieceFootprint& piece, std::int32_t a, std::int32_t b);

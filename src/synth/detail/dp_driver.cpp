@@ -117,11 +117,10 @@ Pass DpDriver::forward(const std::vector<std::int32_t>& first_row, int row_count
       RowEdges following;
       if (r + 1 < row_count && !row_indices(r + 1).empty() && !options.remaining)
         following = {&input_.pieces[std::size_t(r)], &indices, &row_indices(r + 1)};
-      RowTimes times;
-      backend_.dp_row(*input_.texels, input_.space, edges, following.indices ? &following : nullptr,
-                      cost, next_cost, row.argmin, times);
-      timings_.extract_ms += times.extract_ms;
-      timings_.update_ms += times.update_ms;
+      if (input_.exemplar_switch.active())
+        switching_row(edges, cost, next_cost, row.argmin);
+      else
+        timed_row(edges, following.indices ? &following : nullptr, cost, next_cost, row.argmin);
       if (r < N) add_unary(r, indices, next_cost);  // the terminal row is piece 0, paid in row 0
       ++timings_.rows;
     }
@@ -138,8 +137,51 @@ Pass DpDriver::forward(const std::vector<std::int32_t>& first_row, int row_count
   return pass;
 }
 
+void DpDriver::timed_row(const RowEdges& edges, const RowEdges* following,
+                         const std::vector<std::int64_t>& cost, std::vector<std::int64_t>& next_cost,
+                         std::vector<std::int32_t>& argmin) {
+  RowTimes times;
+  backend_.dp_row(*input_.texels, input_.space, edges, following, cost, next_cost, argmin, times);
+  timings_.extract_ms += times.extract_ms;
+  timings_.update_ms += times.update_ms;
+}
+
+// A row under a switching cost: for the current positions of each exemplar e, one update over
+// every previous position with P'[v] = P[v] + cost * [exemplar(v) != e]. That is the update with
+// D' = D + cost * [exemplar change] exactly (same minimum, same lowest-v ties), and D keeps its
+// pruning bounds.
+void DpDriver::switching_row(const RowEdges& edges, const std::vector<std::int64_t>& cost,
+                             std::vector<std::int64_t>& next_cost,
+                             std::vector<std::int32_t>& argmin) {
+  const ExemplarSwitch& change = input_.exemplar_switch;
+  const std::vector<std::int32_t>& indices = *edges.indices;
+  std::vector<int> previous_exemplar, exemplar;
+  for (std::int32_t v : *edges.previous_indices) previous_exemplar.push_back(change.exemplar(v));
+  for (std::int32_t j : indices) exemplar.push_back(change.exemplar(j));
+  std::vector<int> exemplars = exemplar;
+  std::sort(exemplars.begin(), exemplars.end());
+  exemplars.erase(std::unique(exemplars.begin(), exemplars.end()), exemplars.end());
+  next_cost.assign(indices.size(), 0);
+  argmin.assign(indices.size(), -1);
+  std::vector<std::int32_t> subset, sub_argmin;
+  std::vector<std::int64_t> shifted(cost.size()), sub_cost;
+  for (int e : exemplars) {
+    subset.clear();
+    for (std::size_t j = 0; j < indices.size(); ++j)
+      if (exemplar[j] == e) subset.push_back(indices[j]);
+    for (std::size_t v = 0; v < cost.size(); ++v)
+      shifted[v] = cost[v] + (previous_exemplar[v] != e ? change.cost : 0);
+    timed_row({edges.previous_piece, edges.previous_indices, &subset}, nullptr, shifted, sub_cost,
+              sub_argmin);
+    for (std::size_t j = 0, k = 0; j < indices.size(); ++j)
+      if (exemplar[j] == e) next_cost[j] = sub_cost[k], argmin[j] = sub_argmin[k++];
+  }
+}
+
 // Row updates with the edges swapped: D is symmetric (xi(p, q) = xi(q, p)), so the "previous"
-// columns are the next row's left edges and the "current" ones this row's right edges.
+// columns are the next row's left edges and the "current" ones this row's right edges. Without
+// the switching cost (it is >= 0): still a lower bound of what remains, which is all the cycle
+// search asks of it.
 std::vector<std::vector<std::int64_t>> DpDriver::remaining_costs(
     const std::vector<std::int32_t>& terminal) {
   const auto& valid = valid_;

@@ -59,6 +59,11 @@ class DpDriver {
 
  private:
   bool with_unary() const { return input_.coverage.weight_milli > 0; }
+  void timed_row(const RowEdges& edges, const RowEdges* following,
+                 const std::vector<std::int64_t>& cost, std::vector<std::int64_t>& next_cost,
+                 std::vector<std::int32_t>& argmin);
+  void switching_row(const RowEdges& edges, const std::vector<std::int64_t>& cost,
+                     std::vector<std::int64_t>& next_cost, std::vector<std::int32_t>& argmin);
   void add_unary(int piece, const std::vector<std::int32_t>& indices,
                  std::vector<std::int64_t>& cost) const;
   void require_empty_allowed(int piece) const;

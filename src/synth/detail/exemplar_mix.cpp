@@ -30,12 +30,13 @@ ExemplarMix make_exemplar_mix(const std::vector<const CostTexels*>& exemplars, i
     const CostTexels& t = *exemplars[e];
     if (t.binary_alpha != mix.atlas.binary_alpha)
       fail("exemplar {} of the mix uses another alpha mode than exemplar 0", e);
-    mix.x0.push_back(width);
-    mix.width.push_back(t.width);
-    mix.height.push_back(t.height);
+    mix.layout.x0.push_back(width);
+    mix.layout.width.push_back(t.width);
+    mix.layout.height.push_back(t.height);
     width += t.width + (e + 1 < exemplars.size() ? std::max(gap, 1) : 0);
     height = std::max(height, t.height);
   }
+  mix.layout.gap = std::max(gap, 1);
   mix.atlas.width = width;
   mix.atlas.height = height;
   mix.atlas.rgba.assign(std::size_t(width) * height, 0u);
@@ -43,22 +44,19 @@ ExemplarMix make_exemplar_mix(const std::vector<const CostTexels*>& exemplars, i
     const CostTexels& t = *exemplars[e];
     for (int y = 0; y < t.height; ++y)
       std::copy_n(t.rgba.data() + std::size_t(y) * t.width, t.width,
-                  mix.atlas.rgba.data() + std::size_t(y) * width + mix.x0[e]);
+                  mix.atlas.rgba.data() + std::size_t(y) * width + mix.layout.x0[e]);
   }
   return mix;
 }
 
-int exemplar_of(const ExemplarMix& mix, const PositionSpace& space, std::int32_t index) {
-  const int ux = space.ux(index), uy = space.uy(index);
-  for (std::size_t e = 0; e < mix.x0.size(); ++e)
-    if (ux >= mix.x0[e] && ux < mix.x0[e] + mix.width[e]) return uy < mix.height[e] ? int(e) : -1;
-  return -1;
+int exemplar_of(const MixLayout& layout, const PositionSpace& space, std::int32_t index) {
+  return layout.exemplar_at(space.ux(index), space.uy(index));
 }
 
-void keep_exemplars(const ExemplarMix& mix, const PositionSpace& space,
+void keep_exemplars(const MixLayout& layout, const PositionSpace& space,
                     const std::vector<std::uint8_t>& allowed, std::vector<std::int32_t>& indices) {
   std::erase_if(indices, [&](std::int32_t index) {
-    const int e = exemplar_of(mix, space, index);
+    const int e = exemplar_of(layout, space, index);
     return e < 0 || (!allowed.empty() && !allowed[std::size_t(e)]);
   });
 }

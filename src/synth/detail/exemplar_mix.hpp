@@ -7,19 +7,19 @@
 // that leaves an exemplar lands in a gap, the padding below a shorter exemplar or outside the
 // atlas: transparent black, as outside the exemplar). Positions that belong to no exemplar
 // (in a gap, or below a shorter exemplar's height) are dropped, and each piece may be bound
-// to a subset of the exemplars (a stretch: bridge decks, a `surface` tag). No switching cost
-// yet: a change of exemplar costs its seam only.
+// to a subset of the exemplars (a stretch: bridge decks, a `surface` tag). A switching cost
+// (DpInput::exemplar_switch) may add to the seams between exemplars.
 #include <cstdint>
 #include <vector>
 
 #include "synth/detail/stages.hpp"
+#include "synth/exemplar_mix.hpp"
 
 namespace tw::detail {
 
 struct ExemplarMix {
   CostTexels atlas;
-  std::vector<int> x0;             // atlas column of each exemplar's column 0
-  std::vector<int> width, height;  // of each exemplar
+  MixLayout layout;
   PositionSpace space(int column) const { return {atlas.width, atlas.height, column}; }
 };
 
@@ -31,10 +31,10 @@ int mix_gap(const std::vector<PieceFootprint>& pieces);
 ExemplarMix make_exemplar_mix(const std::vector<const CostTexels*>& exemplars, int gap);
 
 // The exemplar of an atlas position, -1 where it is none's.
-int exemplar_of(const ExemplarMix& mix, const PositionSpace& space, std::int32_t index);
+int exemplar_of(const MixLayout& layout, const PositionSpace& space, std::int32_t index);
 
 // Keeps the positions of `indices` whose exemplar e has allowed[e] != 0 (empty: any exemplar).
-void keep_exemplars(const ExemplarMix& mix, const PositionSpace& space,
+void keep_exemplars(const MixLayout& layout, const PositionSpace& space,
                     const std::vector<std::uint8_t>& allowed, std::vector<std::int32_t>& indices);
 
 }  // namespace tw::detail

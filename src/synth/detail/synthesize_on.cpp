@@ -9,6 +9,7 @@
 #include "synth/detail/cost.hpp"
 #include "synth/detail/coverage_term.hpp"
 #include "synth/detail/dp.hpp"
+#include "synth/detail/exemplar_mix.hpp"
 #include "synth/detail/foldover.hpp"
 #include "synth/detail/footprint.hpp"
 #include "synth/detail/stitch.hpp"
@@ -102,6 +103,34 @@ void measure_coverage(const CostTexels& texels, const PositionSpace& space, cons
   out.coverage_ratio = natural > 0.0 ? chosen / natural : 0.0;
 }
 
+// A mix: positions of no exemplar are dropped, each piece keeps its allowed exemplars' and the
+// switching cost joins the objective.
+void bind_to_exemplars(const SynthParams& params, const std::string& feature, Synthesis& out,
+                       DpInput& input) {
+  const MixLayout& layout = *params.mix;
+  const int needed = mix_gap(input.pieces);
+  if (needed > layout.gap)
+    fail("{}: the exemplar mix's gaps of {} columns are narrower than the pieces' reach ({})",
+         feature, layout.gap, needed);
+  if (!params.piece_exemplars.empty() && params.piece_exemplars.size() != input.pieces.size())
+    fail("{}: {} exemplar bindings for {} pieces", feature, params.piece_exemplars.size(),
+         input.pieces.size());
+  if (params.switch_cost < 0)
+    fail("synthesis switch_cost must be >= 0 (got {})", params.switch_cost);
+  out.mix = layout;
+  const PositionSpace space = input.space;
+  input.keep_positions = [&params, space](int piece, std::vector<std::int32_t>& indices) {
+    static const std::vector<std::uint8_t> any;
+    const auto& allowed =
+        params.piece_exemplars.empty() ? any : params.piece_exemplars[std::size_t(piece)];
+    keep_exemplars(*params.mix, space, allowed, indices);
+  };
+  input.exemplar_switch.cost = std::int64_t(params.switch_cost) * kColourScale;
+  input.exemplar_switch.exemplar = [&params, space](std::int32_t index) {
+    return exemplar_of(*params.mix, space, index);
+  };
+}
+
 }  // namespace
 
 Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon& ribbon,
@@ -182,6 +211,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
                        i, feature, at.x, at.y, exemplar.path, reason);
   };
 
+  if (params.mix) bind_to_exemplars(params, feature, out, input);
+
   const DpResult dp = run_dp(backend, input);
   out.objective_cost = dp.total_cost;
   out.total_cost = dp.total_cost;
@@ -201,6 +232,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     p.empty = index < 0;
     p.ux = p.empty ? 0 : space.ux(index);
     p.uy = p.empty ? 0 : space.uy(index);
+    p.exemplar = p.empty || !params.mix ? 0 : params.mix->exemplar_at(p.ux, p.uy);
     p.origin = frame.origin;
     p.along = frame.along;
     p.across = frame.across;
@@ -208,6 +240,15 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     out.placements.push_back(std::move(p));
   }
 
+  if (params.mix) {
+    out.pieces_per_exemplar.assign(std::size_t(params.mix->count()), 0);
+    for (const Placement& p : out.placements)
+      if (!p.empty) ++out.pieces_per_exemplar[std::size_t(p.exemplar)];
+    out.exemplar_switches = exemplar_switches(dp.positions, ribbon.closed, [&](std::int32_t i) {
+      return exemplar_of(*params.mix, space, i);
+    });
+    out.total_cost -= std::int64_t(params.switch_cost) * kColourScale * out.exemplar_switches;
+  }
   measure_coverage(texels, space, input, dp.positions, stats, out);
   out.total_cost -= unary_sum(texels, space, input, dp.positions);
 
