@@ -76,8 +76,8 @@ features:
   roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }
 )";
   }
-  RunReport run(const std::string& out, std::vector<std::pair<std::string, std::string>> sets) {
-    sets.emplace_back("output.dir", (dir / out).string());
+  RunReport run(const std::string& out, std::vector<Override> sets) {
+    sets.push_back({"output.dir", (dir / out).string()});
     return run_pipeline(load_pipeline(dir / "pipeline.yaml", sets));
   }
   test::TempDir dir;
