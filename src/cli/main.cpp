@@ -389,6 +389,9 @@ int main(int argc, char** argv) {
   export_run->add_option(
       "--size", export_args.options.size,
       "heightmap samples per side (default: the smallest size holding the world)");
+  export_run->add_option("--tile-size", export_args.options.tile_size,
+                         "samples per tile (Unreal World Partition, Unity; 0: one heightmap; "
+                         "default: tiles when the run is tiled)");
   export_run->add_option("--nodata-height", export_args.options.nodata_height,
                          "metres written on nodata (default: the nearest valid heights)");
   export_run

@@ -83,9 +83,11 @@ detail::WarpTarget local_metric_target(GDALDataset& source, const OGRSpatialRefe
     }
   }
   detail::WarpTarget target;
-  const std::string crs = options.crs.empty()    ? "local"
-                          : options.crs == "utm" ? utm_zone_epsg(lon_lat[0].x, lon_lat[0].y)
-                                                 : options.crs;
+  // By default a geographic DEM goes to its centre's UTM zone (a CRS every GIS names by its
+  // EPSG code); other DEMs without a metric north-up grid (feet, rotated) to a local one.
+  const std::string asked =
+      options.crs.empty() ? (srs.IsGeographic() ? "utm" : "local") : options.crs;
+  const std::string crs = asked == "utm" ? utm_zone_epsg(lon_lat[0].x, lon_lat[0].y) : asked;
   if (crs == "local") {
     target.crs_wkt = local_transverse_mercator_wkt(lon_lat[0].x, lon_lat[0].y);
   } else {

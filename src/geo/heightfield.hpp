@@ -36,8 +36,9 @@ struct HeightfieldOptions {
   // when the source is geographic).
   std::optional<double> resolution;
   Resampling resampling = Resampling::bilinear;
-  // The CRS of the grid: "" = a metric north-up DEM keeps its own, any other DEM goes to a
-  // local transverse Mercator centred on it (as "local" does for every DEM); "utm" = the UTM
+  // The CRS of the grid: "" = a metric north-up DEM keeps its own, a geographic one goes to
+  // the UTM zone of its centre (as "utm"), any other (feet, rotated) to a local transverse
+  // Mercator centred on it (as "local" does for every DEM); "utm" = the UTM
   // zone of the DEM's centre (utm_zone_epsg); else any projected CRS in metres PROJ reads
   // (EPSG:2169, WKT, a PROJ string), which every DEM not already in it is warped to.
   std::string crs;

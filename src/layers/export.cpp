@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "geo/resample.hpp"
 #include "layers/detail/engine_exports.hpp"
 #include "layers/detail/engine_raster.hpp"
 
@@ -34,6 +35,12 @@ const std::vector<int>& engine_heightmap_sizes(Engine engine) {
   static const std::vector<int> unreal = {127, 253, 505, 1009, 2017, 4033, 8129};
   static const std::vector<int> power_of_two_plus_one = {33, 65, 129, 257, 513, 1025, 2049, 4097};
   return engine == Engine::unreal ? unreal : power_of_two_plus_one;
+}
+
+int export_tile_size(const EngineExportOptions& options, int run_tile_size) {
+  if (options.tile_size) return *options.tile_size;
+  if (run_tile_size <= 0 || options.engine == Engine::godot) return 0;
+  return engine_heightmap_size(options.engine, run_tile_size + 1);
 }
 
 int engine_heightmap_size(Engine engine, int cells) {
@@ -85,6 +92,10 @@ std::vector<Raster<float>> resampled_weights(const ExportSource& source, const G
     out.push_back(resample_band(clean, source.set.grid, to));
   }
   return out;
+}
+
+HeightAt height_at(const ExportSource& source) {
+  return [&source](Vec2 p) { return sample_height_bilinear(source.heights, source.set.grid, p); };
 }
 
 void write_json(const std::filesystem::path& path, const std::string& text, OutputStager& stager) {

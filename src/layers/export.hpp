@@ -30,6 +30,10 @@ struct EngineExportOptions {
   // inverse-distance weighted over the nearest valid cell in each direction, no smoothing).
   std::optional<double> nodata_height;
   GodotHeightFormat godot_height = GodotHeightFormat::exr;
+  // Tiles (Unreal World Partition, Unity Terrain Tools): samples per tile side, an engine size;
+  // neighbours share one edge row and column. 0 = one heightmap; absent = tiles when the run is
+  // tiled (export_tile_size), else one heightmap. Godot takes one heightmap.
+  std::optional<int> tile_size;
 };
 
 // A road, river or ridge centerline (world coordinates of the run's grid), for the splines.
@@ -55,12 +59,33 @@ const std::vector<int>& engine_heightmap_sizes(Engine engine);
 // The smallest size >= cells (the largest when none is).
 int engine_heightmap_size(Engine engine, int cells);
 
+// The tile size an export uses for a run tiled at `run_tile_size` (0: untiled): the option's,
+// else for a tiled run the smallest engine size holding one run tile and its shared edge (0 for
+// Godot, and for untiled runs).
+int export_tile_size(const EngineExportOptions& options, int run_tile_size);
+
 // Writes the export of `set` (layers "height", required, and "splat") and `curves` into `dir`,
 // every file staged in `stager`. Throws tw::Error naming the problem (no height layer, a size
 // the engine does not take, nothing but nodata).
 EngineExportResult export_for_engine(const LayerSet& set, const std::vector<ExportCurve>& curves,
                                      const EngineExportOptions& options,
                                      const std::filesystem::path& dir, OutputStager& stager);
+
+// A run's layers on disk: GeoTIFFs, or the VRT mosaics of a tiled run (docs/tiles.md).
+struct ExportFiles {
+  std::filesystem::path height;
+  std::optional<std::filesystem::path> splat;
+};
+
+// The export of `files` in tiles of options.tile_size samples (> 0; Unreal and Unity), named
+// `_x<i>_y<j>` (Unreal: i west to east, j north to south) or `_<i>_<k>` (Unity: k south to
+// north), neighbours sharing their edge row and column. The vertices of all tiles form one
+// grid over the world, so every tile reads a window of the files through GDAL and memory
+// follows one tile; heights use the world's min and max (one Z scale for every tile).
+EngineExportResult export_tiles_for_engine(const ExportFiles& files,
+                                           const std::vector<ExportCurve>& curves,
+                                           const EngineExportOptions& options,
+                                           const std::filesystem::path& dir, OutputStager& stager);
 
 // The run's centerlines as GeoJSON (features.geojson: LineStrings with class, kind, fid,
 // width), in the CRS of `crs_wkt`, and read back.

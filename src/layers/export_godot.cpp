@@ -66,21 +66,19 @@ EngineExportResult export_godot(const ExportSource& source, const EngineExportOp
       write_png(stager.stage(result.files.back()), n, n, rgba);
     }
   }
-  const double x0 = vertices.origin_x + vertices.pixel_width / 2.0;
-  const double y0 = vertices.origin_y - vertices.pixel_height / 2.0;
-  const nlohmann::json sidecar = {
-      {"engine", "godot"},        {"height", height_file},
-      {"resolution", n},          {"map_scale", {vertices.pixel_width, 1.0, vertices.pixel_height}},
-      {"height_min_m", map.min},  {"height_max_m", map.max},
-      {"world_origin", {x0, y0}}, {"crs_wkt", source.set.crs_wkt},
-      {"splat", layers}};
+  const EngineFrame frame = engine_frame(Engine::godot, grid);
+  const nlohmann::json sidecar = {{"engine", "godot"},
+                                  {"height", height_file},
+                                  {"resolution", n},
+                                  {"map_scale", {vertices.pixel_width, 1.0, vertices.pixel_height}},
+                                  {"height_min_m", map.min},
+                                  {"height_max_m", map.max},
+                                  {"world_origin", frame.origin},
+                                  {"crs_wkt", source.set.crs_wkt},
+                                  {"splat", layers}};
   result.files.push_back(dir / "godot.json");
   write_json(result.files.back(), sidecar.dump(2) + "\n", stager);
-  const EngineFrame frame{"godot", "x east, y up, z south; metres from the terrain corner", 1.0,
-                          [x0, y0](double x, double y, double h) {
-                            return std::array<double, 3>{x - x0, h, y0 - y};
-                          }};
-  for (const auto& p : write_splines(source.curves, source.heights, grid, frame, dir, stager))
+  for (const auto& p : write_splines(source.curves, height_at(source), frame, dir, stager))
     result.files.push_back(p);
   result.settings = {
       fmt::format("godot: import {} ({} x {}{})", (dir / height_file).string(), n, n,

@@ -49,8 +49,7 @@ EngineExportResult export_unity(const ExportSource& source, const EngineExportOp
   const double size_z = (grid.height - 1) * grid.pixel_height;
   const double range = map.max - map.min;
   // The terrain's corner (0, min, 0) is the world's south-west outer cell centre.
-  const double x0 = grid.origin_x + grid.pixel_width / 2.0;
-  const double y0 = grid.origin_y - (grid.height - 0.5) * grid.pixel_height;
+  const EngineFrame frame = engine_frame(Engine::unity, grid);
   const nlohmann::json sidecar = {{"engine", "unity"},
                                   {"heightmap", "heightmap.raw"},
                                   {"heightmap_resolution", n},
@@ -62,17 +61,13 @@ EngineExportResult export_unity(const ExportSource& source, const EngineExportOp
                                   {"position", {0.0, map.min, 0.0}},
                                   {"height_min_m", map.min},
                                   {"height_max_m", map.max},
-                                  {"world_origin", {x0, y0}},
+                                  {"world_origin", frame.origin},
                                   {"crs_wkt", source.set.crs_wkt},
                                   {"layers", layers}};
   result.files.push_back(dir / "unity.json");
   write_json(result.files.back(), sidecar.dump(2) + "\n", stager);
   // The terrain at (0, min, 0) with height `range`: a point's y is its height in metres.
-  const EngineFrame frame{"unity", "x east, y up, z north; metres from the terrain corner", 1.0,
-                          [x0, y0](double x, double y, double h) {
-                            return std::array<double, 3>{x - x0, h, y - y0};
-                          }};
-  for (const auto& p : write_splines(source.curves, source.heights, grid, frame, dir, stager))
+  for (const auto& p : write_splines(source.curves, height_at(source), frame, dir, stager))
     result.files.push_back(p);
   result.settings = {
       fmt::format("unity: Import Raw {} (Depth 16, Windows byte order, resolution {})",

@@ -40,8 +40,7 @@ EngineExportResult export_unreal(const ExportSource& source, const EngineExportO
   const double scale_z = (map.max - map.min) * 100.0 / 512.0;
   const double location_z = (map.min + map.max) / 2.0 * 100.0;
   // Vertex (0, 0), the landscape's corner at Location (0, 0): the world's north-west centre.
-  const double x0 = vertices.origin_x + vertices.pixel_width / 2.0;
-  const double y0 = vertices.origin_y - vertices.pixel_height / 2.0;
+  const EngineFrame frame = engine_frame(Engine::unreal, grid);
   const nlohmann::json sidecar = {{"engine", "unreal"},
                                   {"heightmap", "heightmap.png"},
                                   {"size", {nx, ny}},
@@ -50,18 +49,13 @@ EngineExportResult export_unreal(const ExportSource& source, const EngineExportO
                                   {"height_min_m", map.min},
                                   {"height_max_m", map.max},
                                   {"height_step_m", map.step()},
-                                  {"world_origin", {x0, y0}},
+                                  {"world_origin", frame.origin},
                                   {"crs_wkt", source.set.crs_wkt},
                                   {"weightmaps", layers}};
   result.files.push_back(dir / "unreal.json");
   write_json(result.files.back(), sidecar.dump(2) + "\n", stager);
 
-  const EngineFrame frame{
-      "unreal", "X east, Y south, Z up; centimetres from the landscape corner", 100.0,
-      [x0, y0](double x, double y, double h) {
-        return std::array<double, 3>{(x - x0) * 100.0, (y0 - y) * 100.0, h * 100.0};
-      }};
-  for (const auto& p : write_splines(source.curves, source.heights, grid, frame, dir, stager))
+  for (const auto& p : write_splines(source.curves, height_at(source), frame, dir, stager))
     result.files.push_back(p);
 
   result.settings = {

@@ -31,6 +31,12 @@ void write_vrt_mosaic(const std::filesystem::path& vrt,
     fail("{}: cannot build the VRT mosaic of {} tiles: {}", vrt.string(), sources.size(),
          CPLGetLastErrorMsg());
   }
+  // GDALBuildVRT keeps no band descriptions; the tiles' (material names) name the mosaic's.
+  if (GDALDatasetH first = GDALOpen(names.front().c_str(), GA_ReadOnly)) {
+    for (int b = 1; b <= GDALGetRasterCount(first) && b <= GDALGetRasterCount(ds); ++b)
+      GDALSetDescription(GDALGetRasterBand(ds, b), GDALGetDescription(GDALGetRasterBand(first, b)));
+    GDALClose(first);
+  }
   GDALClose(ds);
   if (CPLGetLastErrorType() >= CE_Failure) {
     fail("{}: cannot write the VRT mosaic: {}", vrt.string(), CPLGetLastErrorMsg());

@@ -461,7 +461,8 @@ void read_output_encoding(const MapReader& out, OutputConfig& output) {
   }
 }
 
-// export: [unreal, unity] or {unreal: {size: 1009, nodata_height: 0}, godot: {height: r16}}.
+// export: [unreal, unity] or {unreal: {size: 1009, nodata_height: 0, tile_size: 505},
+// godot: {height: r16}}.
 std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML::Node& node) {
   const std::vector<std::string> engines = {"unreal", "unity", "godot"};
   std::vector<EngineExportOptions> out;
@@ -488,7 +489,7 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
       const std::string path = "export." + name;
       EngineExportOptions* e = add(name, entry.first, path);
       if (entry.second.IsNull()) continue;
-      const MapReader m(src, entry.second, path, {"size", "nodata_height", "height"});
+      const MapReader m(src, entry.second, path, {"size", "nodata_height", "height", "tile_size"});
       if (m.has("size")) {
         e->size = m.int_or("size", 0);
         const auto& sizes = engine_heightmap_sizes(e->engine);
@@ -498,6 +499,16 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
                                sizes.back(),
                                e->engine == Engine::unreal ? "Epic's landscape sizes" : "2^n + 1",
                                e->size));
+      }
+      if (m.has("tile_size")) {
+        e->tile_size = m.int_or("tile_size", 0);
+        const auto& sizes = engine_heightmap_sizes(e->engine);
+        if (e->engine == Engine::godot && *e->tile_size != 0)
+          src.fail(m.get("tile_size"), m.path("tile_size"), "godot takes one heightmap, not tiles");
+        if (*e->tile_size != 0 && !std::binary_search(sizes.begin(), sizes.end(), *e->tile_size))
+          src.fail(m.get("tile_size"), m.path("tile_size"),
+                   fmt::format("{} takes tile sizes {} ... {}, not {} (0: one heightmap)", name,
+                               sizes.front(), sizes.back(), *e->tile_size));
       }
       if (m.has("nodata_height"))
         e->nodata_height =

@@ -1,5 +1,8 @@
 #include "pipeline/export_command.hpp"
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 
@@ -7,21 +10,44 @@ namespace tw {
 
 namespace fs = std::filesystem;
 
+EngineExportResult export_layer_files(const ExportFiles& files,
+                                      const std::vector<ExportCurve>& curves,
+                                      EngineExportOptions options, int run_tile_size,
+                                      const fs::path& dir, OutputStager& stager) {
+  options.tile_size = export_tile_size(options, run_tile_size);
+  if (*options.tile_size > 0) return export_tiles_for_engine(files, curves, options, dir, stager);
+  LayerSet set;
+  set.layers.push_back(read_geotiff_layer(files.height, "height", set));
+  if (files.splat) set.layers.push_back(read_geotiff_layer(*files.splat, "splat", set));
+  return export_for_engine(set, curves, options, dir, stager);
+}
+
 EngineExportResult run_export_command(const ExportCommand& command) {
   const fs::path& run = command.run_dir;
   if (!fs::exists(run / "report.json"))
     fail("{}: not a finished run (no report.json)", run.string());
-  if (!fs::exists(run / "height.tif"))
-    fail("{}: the run wrote no height.tif (output.geotiff: false?)", run.string());
-  LayerSet set;
-  set.layers.push_back(read_geotiff_layer(run / "height.tif", "height", set));
-  if (fs::exists(run / "splat.tif"))
-    set.layers.push_back(read_geotiff_layer(run / "splat.tif", "splat", set));
+  // A tiled run has VRT mosaics of its tiles where an untiled one has GeoTIFFs.
+  const bool tiled = fs::exists(run / "height.vrt");
+  const std::string ext = tiled ? ".vrt" : ".tif";
+  if (!fs::exists(run / ("height" + ext)))
+    fail("{}: the run wrote no height{} (output.geotiff: false?)", run.string(), ext);
+  ExportFiles files{run / ("height" + ext), {}};
+  if (fs::exists(run / ("splat" + ext))) files.splat = run / ("splat" + ext);
+  int run_tile_size = 0;
+  if (tiled) {
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
+                                                        /*allow_exceptions=*/false);
+    if (report.is_object() && report.contains("tiles") && report["tiles"].contains("size") &&
+        report["tiles"]["size"].is_number_integer())
+      run_tile_size = report["tiles"]["size"].get<int>();
+    if (run_tile_size <= 0) fail("{}: report.json gives no tiles.size", run.string());
+  }
   const std::vector<ExportCurve> curves = fs::exists(run / "features.geojson")
                                               ? read_curves_geojson(run / "features.geojson")
                                               : std::vector<ExportCurve>{};
   OutputFolder out(command.out_dir);
-  EngineExportResult result = export_for_engine(set, curves, command.options, command.out_dir, out);
+  EngineExportResult result =
+      export_layer_files(files, curves, command.options, run_tile_size, command.out_dir, out);
   out.commit();
   return result;
 }

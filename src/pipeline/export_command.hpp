@@ -1,6 +1,7 @@
 #pragma once
-// `terraweave export RUN_DIR --to ENGINE --out DIR`: a finished run's height.tif, splat.tif
-// and features.geojson as an engine export (layers/export.hpp), written atomically into DIR.
+// `terraweave export RUN_DIR --to ENGINE --out DIR`: a finished run's height and splat layers
+// (GeoTIFFs, or a tiled run's VRT mosaics) and features.geojson as an engine export
+// (layers/export.hpp), written atomically into DIR.
 #include <filesystem>
 
 #include "layers/export.hpp"
@@ -15,5 +16,13 @@ struct ExportCommand {
 
 // Throws tw::Error naming the missing or unreadable file of the run.
 EngineExportResult run_export_command(const ExportCommand& command);
+
+// The export of a run's layer files (run tiled at `run_tile_size`, 0: untiled): in tiles read
+// by windows when export_tile_size says so, else one heightmap from the layers read whole.
+// Shared by the command and by `export:` on tiled runs.
+EngineExportResult export_layer_files(const ExportFiles& files,
+                                      const std::vector<ExportCurve>& curves,
+                                      EngineExportOptions options, int run_tile_size,
+                                      const std::filesystem::path& dir, OutputStager& stager);
 
 }  // namespace tw

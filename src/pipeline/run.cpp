@@ -23,6 +23,7 @@
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
+#include "pipeline/export_command.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
@@ -94,10 +95,13 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     return std::move(report);
   }
   finish_warnings(warnings, strict, report);
-  if (plan.tile_size > 0 && !config.exports.empty()) {
-    fail(
-        "export: engine exports read whole layers and do not work with output.tiles yet; run "
-        "`terraweave export` on an untiled run (docs/exports.md)");
+  for (const EngineExportOptions& engine : config.exports) {
+    // Tiled runs and tiled exports read the layers back by windows from the GeoTIFFs.
+    if ((plan.tile_size > 0 || export_tile_size(engine, 0) > 0) && !config.output.geotiff)
+      fail(
+          "export.{}: a tiled run or tiled export reads the run's GeoTIFFs; output.geotiff is "
+          "false",
+          to_string(engine.engine));
   }
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
@@ -158,6 +162,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
         write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
       }
       for (const EngineExportOptions& engine : config.exports) {
+        if (export_tile_size(engine, 0) > 0) continue;  // tiles: from the files, below
         const EngineExportResult exported = export_for_engine(
             layers, curves, engine, dir / "export" / to_string(engine.engine), transaction);
         for (const std::string& line : exported.settings) logger().info("{}", line);
@@ -182,12 +187,26 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     tile_report.seconds = seconds_since(started);
     progress.advance();
   }
+  const auto writing = std::chrono::steady_clock::now();
+  std::map<std::string, fs::path> layer_files;  // staged height / splat GeoTIFF or mosaic
   if (tiled) {
-    const auto writing = std::chrono::steady_clock::now();
     for (const auto& [layer, tifs] : tile_tifs)
-      write_vrt_mosaic(transaction.stage(dir / (layer + ".vrt")), tifs);
-    write_seconds += seconds_since(writing);
+      write_vrt_mosaic(layer_files[layer] = transaction.stage(dir / (layer + ".vrt")), tifs);
+  } else {
+    for (const auto& [name, staged] : transaction.staged_files())
+      if (name.parent_path().empty() && name.extension() == ".tif")
+        layer_files[name.stem().string()] = staged;
   }
+  for (const EngineExportOptions& engine : config.exports) {
+    if (!tiled && export_tile_size(engine, 0) == 0) continue;  // written with the layers
+    ExportFiles files{layer_files.at("height"), {}};
+    if (layer_files.contains("splat")) files.splat = layer_files.at("splat");
+    const EngineExportResult exported =
+        export_layer_files(files, curves, engine, plan.tile_size,
+                           dir / "export" / to_string(engine.engine), transaction);
+    for (const std::string& line : exported.settings) logger().info("{}", line);
+  }
+  write_seconds += seconds_since(writing);
   report.stages.push_back({"render", render_seconds});
   report.stages.push_back({"layers", write_seconds});
   logger().info("render: {} tiles, {:.3f} s; layers: {:.3f} s", plan.tiles.size(), render_seconds,

@@ -4,10 +4,13 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfMatrixAttribute.h>
+#include <ImfMultiPartInputFile.h>
 #include <ImfRgbaFile.h>
 #include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
+
+#include <array>
 
 #include "layers/write.hpp"
 #include "sample_layers.hpp"
@@ -87,6 +90,55 @@ TEST(ExrInterop, GeoreferencingIsAlsoUnderGdalsOwnKeys) {
   EXPECT_EQ(m[1][2], 5000300.0);
   EXPECT_EQ(m[1][0], 0.0);
   EXPECT_EQ(m[1][1], -10.0);
+}
+
+// Debian 12's GDAL (3.6) is built without its EXR driver (`gdalinfo --formats` lists none), so
+// this replays what GDALEXRDataset::Open (OSGeo/gdal frmts/exr/exrdataset.cpp) does with a
+// file: a single part (several become subdatasets, georeferencing unread), every header
+// attribute dynamic_cast to StringAttribute / M33dAttribute and matched by exact name, the
+// geotransform taken as {m[0][2], m[0][0], m[0][1], m[1][2], m[1][0], m[1][1]} (its writer puts
+// {0, 0, 1} in the last row), the WKT through importFromWkt, and a channel not named Band<i>
+// as the band's description.
+TEST(ExrInterop, GdalsEXRDriverWouldReadTheGeoreferencingAsItsOpenDoes) {
+  test::TempDir dir;
+  const LayerSet set = test::interop_set();
+  for (const Layer& layer : set.layers) {
+    const fs::path path = dir / (layer.name + ".exr");
+    write_exr(set, layer, path, ExrCompression::zip);
+    Imf::MultiPartInputFile parts(path.c_str());
+    ASSERT_EQ(parts.parts(), 1) << layer.name;
+    const Imf::Header& header = parts.header(0);
+    int wkts = 0, transforms = 0;
+    std::array<double, 6> gt{};
+    OGRSpatialReference srs;
+    for (auto it = header.begin(); it != header.end(); ++it) {
+      const Imf::Attribute* attr = &it.attribute();
+      const auto* text = dynamic_cast<const Imf::StringAttribute*>(attr);
+      const auto* m33d = dynamic_cast<const Imf::M33dAttribute*>(attr);
+      if (text && std::string(it.name()) == "gdal:crsWkt") {
+        ++wkts;
+        srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        EXPECT_EQ(srs.importFromWkt(text->value().c_str()), OGRERR_NONE);
+      } else if (m33d && std::string(it.name()) == "gdal:geoTransform") {
+        ++transforms;
+        const Imath::M33d& m = m33d->value();
+        gt = {m[0][2], m[0][0], m[0][1], m[1][2], m[1][0], m[1][1]};
+        EXPECT_EQ(m[2][0], 0.0);
+        EXPECT_EQ(m[2][1], 0.0);
+        EXPECT_EQ(m[2][2], 1.0);
+      }
+    }
+    EXPECT_EQ(wkts, 1) << layer.name;
+    EXPECT_EQ(transforms, 1) << layer.name;
+    EXPECT_EQ(gt, set.grid.geotransform()) << layer.name;
+    OGRSpatialReference expected;
+    ASSERT_EQ(expected.importFromWkt(set.crs_wkt.c_str()), OGRERR_NONE);
+    EXPECT_TRUE(srs.IsSame(&expected)) << layer.name;
+    // Each channel becomes a band named after it: none reads as GDAL's anonymous "Band<i>".
+    int i = 1;
+    for (auto c = header.channels().begin(); c != header.channels().end(); ++c, ++i)
+      EXPECT_NE(std::string(c.name()), "Band" + std::to_string(i));
+  }
 }
 
 TEST(ExrInterop, HalfFloatsAreAnOptionAndKeepThreeDigits) {

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
+#include <GeographicLib/UTMUPS.hpp>
 
 #include <cmath>
 #include <cstring>
@@ -300,15 +301,46 @@ TEST(PipelineRun, ValidateOnlyReadsAndWritesNothing) {
   EXPECT_TRUE(report.outputs.empty());
 }
 
-// The geographic sample (EPSG:4326 DEM and lines): warped into a local transverse Mercator,
+// The geographic sample (EPSG:4326 DEM and lines): warped into the UTM zone of its centre,
 // lengths in metres that agree with GeographicLib's geodesics, nodata kept outside the country.
 TEST(PipelineRun, GeographicSamplePipelineWorksInMetres) {
   test::TempDir out;
   const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
                                               {{"output.dir", out.path().string()}});
   const RunReport report = run_pipeline(config);
-  EXPECT_NE(report.crs_wkt.find("Transverse Mercator"), std::string::npos);
+  // The DEM's centre, 6.3208 E 49.5708 N, lies in zone floor((6.3208 + 180) / 6) + 1 = 32,
+  // north of the equator: EPSG:32632, named so in report.json.
+  OGRSpatialReference srs;
+  ASSERT_EQ(srs.importFromWkt(report.crs_wkt.c_str()), OGRERR_NONE);
+  ASSERT_NE(srs.GetAuthorityCode(nullptr), nullptr);
+  EXPECT_STREQ(srs.GetAuthorityCode(nullptr), "32632");
+  const auto json = nlohmann::json::parse(std::ifstream(out / "report.json"));
+  EXPECT_EQ(json["grid"]["crs"], "EPSG:32632");
   EXPECT_DOUBLE_EQ(report.grid.pixel_width, 50.0);
+  // The grid is the bounding box of the DEM in that zone: its corners (6.116667..6.525 E,
+  // 49.441667..49.70 N) projected by GeographicLib's own UTM (not PROJ, which warped the DEM)
+  // lie within it, and it reaches at most 2 pixels past them (a parallel bows ~21 m over the
+  // DEM's 30 km; the grid rounds out to whole pixels).
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const double lon : {6.1166667, 6.525})
+    for (const double lat : {49.4416667, 49.7}) {
+      int zone = 0;
+      bool north = false;
+      double x = 0, y = 0;
+      GeographicLib::UTMUPS::Forward(lat, lon, zone, north, x, y, 32);
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  const GridSpec& g = report.grid;
+  const double gx1 = g.origin_x + g.width * g.pixel_width;
+  const double gy0 = g.origin_y - g.height * g.pixel_height;
+  EXPECT_LE(g.origin_x, x0 + 1.0);
+  EXPECT_GE(g.origin_x, x0 - 100.0);
+  EXPECT_GE(gx1, x1 - 1.0);
+  EXPECT_LE(gx1, x1 + 100.0);
+  EXPECT_GE(g.origin_y, y1 - 1.0);
+  EXPECT_LE(g.origin_y, y1 + 100.0);
+  EXPECT_LE(gy0, y0 + 1.0);
+  EXPECT_GE(gy0, y0 - 100.0);
   ASSERT_EQ(report.classes.size(), 2u);
   const FeatureClassReport& roads = report.classes[1];
   ASSERT_EQ(roads.name, "roads");

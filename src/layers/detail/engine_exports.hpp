@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/atomic_output.hpp"
+#include "layers/detail/splines.hpp"
 #include "layers/export.hpp"
 
 namespace tw::detail {
@@ -20,6 +21,8 @@ struct ExportSource {
 std::vector<std::string> material_names(const Layer& splat);
 // Each splat band resampled onto `to`.
 std::vector<Raster<float>> resampled_weights(const ExportSource& source, const GridSpec& to);
+// The filled height layer read bilinearly (the splines' heights).
+HeightAt height_at(const ExportSource& source);
 // Writes `json` (pretty) to dir/name, staged.
 void write_json(const std::filesystem::path& path, const std::string& text, OutputStager& stager);
 

@@ -113,12 +113,16 @@ Raster<float> resample_band(const Raster<float>& band, const GridSpec& from, con
 }
 
 Heightmap16 quantize_heights(const Raster<float>& heights) {
+  const auto [lo, hi] = std::minmax_element(heights.pixels.begin(), heights.pixels.end());
+  return quantize_heights(heights, *lo, *hi);
+}
+
+Heightmap16 quantize_heights(const Raster<float>& heights, double min, double max) {
   Heightmap16 map;
   map.width = heights.width;
   map.height = heights.height;
-  const auto [lo, hi] = std::minmax_element(heights.pixels.begin(), heights.pixels.end());
-  map.min = *lo;
-  map.max = *hi;
+  map.min = min;
+  map.max = max;
   const double range = map.max - map.min;
   map.pixels.resize(heights.pixels.size());
   for (std::size_t i = 0; i < map.pixels.size(); ++i) {

@@ -31,6 +31,8 @@ struct Heightmap16 {
 };
 // min -> 0, max -> 65535, rounded to nearest (a flat world: all 0, max = min).
 Heightmap16 quantize_heights(const Raster<float>& heights);
+// The same with min and max given (a tile of a larger heightmap: one scale for all tiles).
+Heightmap16 quantize_heights(const Raster<float>& heights, double min, double max);
 
 // One 8-bit map per material, summing to exactly 255 per pixel: floor(255 w) plus the
 // remainder to the largest fractions (lowest index on ties). NaN weights count as 0; a pixel

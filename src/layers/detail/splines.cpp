@@ -6,12 +6,44 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "geo/resample.hpp"
 
 namespace tw::detail {
 
+EngineFrame engine_frame(Engine engine, const GridSpec& world) {
+  const double x0 = world.origin_x + world.pixel_width / 2.0;
+  const double north = world.origin_y - world.pixel_height / 2.0;
+  const double south = world.origin_y - (world.height - 0.5) * world.pixel_height;
+  switch (engine) {
+    case Engine::unity:
+      return {"unity",
+              "x east, y up, z north; metres from the terrain corner",
+              1.0,
+              [x0, south](double x, double y, double h) {
+                return std::array<double, 3>{x - x0, h, y - south};
+              },
+              {x0, south}};
+    case Engine::godot:
+      return {"godot",
+              "x east, y up, z south; metres from the terrain corner",
+              1.0,
+              [x0, north](double x, double y, double h) {
+                return std::array<double, 3>{x - x0, h, north - y};
+              },
+              {x0, north}};
+    case Engine::unreal:
+      break;
+  }
+  return {"unreal",
+          "X east, Y south, Z up; centimetres from the landscape corner",
+          100.0,
+          [x0, north](double x, double y, double h) {
+            return std::array<double, 3>{(x - x0) * 100.0, (north - y) * 100.0, h * 100.0};
+          },
+          {x0, north}};
+}
+
 std::vector<std::filesystem::path> write_splines(const std::vector<ExportCurve>& curves,
-                                                 const Raster<float>& heights, const GridSpec& grid,
+                                                 const HeightAt& height_at,
                                                  const EngineFrame& frame,
                                                  const std::filesystem::path& dir,
                                                  OutputStager& stager) {
@@ -23,7 +55,7 @@ std::vector<std::filesystem::path> write_splines(const std::vector<ExportCurve>&
     nlohmann::json points = nlohmann::json::array();
     for (std::size_t i = 0; i < curve.points.size(); ++i) {
       const Vec2 p = curve.points[i];
-      double h = sample_height_bilinear(heights, grid, p);
+      double h = height_at(p);
       if (std::isnan(h)) h = 0.0;  // off the grid: a clipped line's end
       const auto e = frame.to_engine(p.x, p.y, h);
       points.push_back({{"world", {p.x, p.y, h}}, {"engine", {e[0], e[1], e[2]}}});

@@ -20,12 +20,21 @@ struct EngineFrame {
   double unit = 1.0;   // engine units per metre (widths)
   // (world x, world y, height in metres) -> engine coordinates.
   std::function<std::array<double, 3>(double, double, double)> to_engine;
+  std::array<double, 2> origin{};  // the world point at the engine's (0, 0): a corner centre
 };
 
-// The heights of the points are the terrain's (`heights` over `grid`, nodata filled) under
-// them. Returns the final paths written, staged in `stager`.
+// The engine's frame over `world` (the run's grid): Unreal X east, Y south, Z up, cm from the
+// north-west cell centre; Unity x east, y up, z north, metres from the south-west one; Godot
+// x east, y up, z south, metres from the north-west one.
+EngineFrame engine_frame(Engine engine, const GridSpec& world);
+
+// The terrain's height (metres, nodata filled) at a world point; NaN off the grid.
+using HeightAt = std::function<double(Vec2)>;
+
+// The heights of the points are the terrain's under them. Returns the final paths written,
+// staged in `stager`.
 std::vector<std::filesystem::path> write_splines(const std::vector<ExportCurve>& curves,
-                                                 const Raster<float>& heights, const GridSpec& grid,
+                                                 const HeightAt& height_at,
                                                  const EngineFrame& frame,
                                                  const std::filesystem::path& dir,
                                                  OutputStager& stager);

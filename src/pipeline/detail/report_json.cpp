@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <gdal.h>
+#include <ogr_spatialref.h>
 
 #include "pipeline/version.hpp"
 
@@ -10,6 +11,16 @@ namespace tw::detail {
 namespace {
 
 using nlohmann::json;
+
+// "EPSG:32632" when the CRS carries an authority code (a UTM zone, EPSG:2169...); else null.
+json crs_code(const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (wkt.empty() || srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return nullptr;
+  const char* name = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (name == nullptr || code == nullptr) return nullptr;
+  return fmt::format("{}:{}", name, code);
+}
 
 json files_json(const std::vector<FileRecord>& files) {
   json list = json::array();
@@ -207,6 +218,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
         {"height", g.height},
         {"origin", {g.origin_x, g.origin_y}},
         {"pixel_size", {g.pixel_width, g.pixel_height}},
+        {"crs", crs_code(report.crs_wkt)},
         {"crs_wkt", report.crs_wkt}}},
       {"forbidden_pixels", report.forbidden_pixels},
       {"synthesis_resolution", config.synthesis_resolution},

@@ -1,0 +1,336 @@
+// Engine exports in tiles (Unreal World Partition, Unity Terrain Tools) from a run's layer files
+// read by windows through GDAL. One grid of vertices spans the world (as one heightmap's
+// would); tiles of S samples cut it, tile i starting at vertex i (S - 1), so neighbours share
+// their edge row and column and compute them from the same vertices: the same bits. Two
+// passes: the first finds the world's height range (one Z scale for every tile), the second
+// writes. Memory: one tile and its source window.
+#include <cpl_string.h>
+#include <fmt/format.h>
+#include <gdal_alg.h>
+#include <gdal_priv.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "geo/resample.hpp"
+#include "layers/detail/engine_exports.hpp"
+#include "layers/detail/engine_raster.hpp"
+#include "layers/detail/gdal_init.hpp"
+
+namespace tw {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DatasetCloser {
+  void operator()(GDALDataset* d) const { GDALClose(d); }
+};
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+struct LayerFile {
+  DatasetPtr ds;
+  GridSpec grid;
+  std::string crs_wkt;
+  std::vector<std::string> channels;
+};
+
+LayerFile open_layer_file(const fs::path& path, bool update = false) {
+  detail::ensure_gdal_registered();
+  LayerFile f;
+  f.ds.reset(GDALDataset::Open(path.c_str(),
+                               GDAL_OF_RASTER | (update ? GDAL_OF_UPDATE : GDAL_OF_READONLY)));
+  if (!f.ds) fail("cannot open {}: {}", path.string(), CPLGetLastErrorMsg());
+  double gt[6];
+  if (f.ds->GetGeoTransform(gt) != CE_None || gt[2] != 0.0 || gt[4] != 0.0 || gt[5] >= 0.0)
+    fail("{}: not a north-up georeferenced raster", path.string());
+  f.grid = {f.ds->GetRasterXSize(), f.ds->GetRasterYSize(), gt[0], gt[3], gt[1], -gt[5]};
+  if (const OGRSpatialReference* srs = f.ds->GetSpatialRef()) {
+    char* wkt = nullptr;
+    srs->exportToWkt(&wkt);
+    f.crs_wkt = wkt ? wkt : "";
+    CPLFree(wkt);
+  }
+  for (int b = 1; b <= f.ds->GetRasterCount(); ++b) {
+    const char* d = f.ds->GetRasterBand(b)->GetDescription();
+    f.channels.push_back(d && *d ? d : fmt::format("band{}", b));
+  }
+  return f;
+}
+
+// `window` of band `band` (1-based), nodata as NaN.
+Raster<float> read_window(const LayerFile& f, int band, const Window& w) {
+  GDALRasterBand* b = f.ds->GetRasterBand(band);
+  Raster<float> r(w.width, w.height);
+  if (b->RasterIO(GF_Read, w.col0, w.row0, w.width, w.height, r.pixels.data(), w.width, w.height,
+                  GDT_Float32, 0, 0) != CE_None)
+    fail("cannot read {}: {}", f.ds->GetDescription(), CPLGetLastErrorMsg());
+  int has_nodata = 0;
+  const double nodata = b->GetNoDataValue(&has_nodata);
+  if (has_nodata && !std::isnan(nodata))
+    for (float& v : r.pixels)
+      if (v == float(nodata)) v = std::nanf("");
+  return r;
+}
+
+bool has_nodata(const LayerFile& f) {
+  for (int row = 0; row < f.grid.height; row += 256) {
+    const Raster<float> r =
+        read_window(f, 1, {0, row, f.grid.width, std::min(256, f.grid.height - row)});
+    for (float v : r.pixels)
+      if (std::isnan(v)) return true;
+  }
+  return false;
+}
+
+// A temporary copy of the height file with its nodata filled by GDALFillNodata as fill_nodata
+// fills a whole layer (search distance: the world), worked through a few rows at a time.
+struct FilledCopy {
+  fs::path path;
+  ~FilledCopy() {
+    if (!path.empty()) fs::remove(path);
+  }
+};
+
+void fill_into_copy(const LayerFile& height, FilledCopy& copy) {
+  static int counter = 0;
+  copy.path = fs::temp_directory_path() /
+              fmt::format("terraweave-export-fill-{}-{}.tif", ::getpid(), counter++);
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  CPLStringList options;
+  options.SetNameValue("TILED", "YES");
+  options.SetNameValue("BIGTIFF", "IF_SAFER");
+  DatasetPtr out(gtiff->CreateCopy(copy.path.c_str(), height.ds.get(), false, options.List(),
+                                   nullptr, nullptr));
+  if (!out) fail("cannot copy the height layer for filling: {}", CPLGetLastErrorMsg());
+  GDALRasterBand* band = out->GetRasterBand(1);
+  int declared = 0;
+  band->GetNoDataValue(&declared);
+  if (!declared) band->SetNoDataValue(std::nan(""));  // NaN is nodata, as fill_nodata reads it
+  const double distance = double(std::max(height.grid.width, height.grid.height));
+  if (GDALFillNodata(band, nullptr, distance, 0, 0, nullptr, nullptr, nullptr) != CE_None)
+    fail("cannot fill nodata: {}", CPLGetLastErrorMsg());
+}
+
+struct TileLayout {
+  int size = 0;        // samples per tile side
+  int nx = 0, ny = 0;  // tiles
+  GridSpec vertices;   // every tile's vertices: nx (size - 1) + 1 by ny (size - 1) + 1
+  Window tile(int i, int j) const { return {i * (size - 1), j * (size - 1), size, size}; }
+};
+
+TileLayout tile_layout(const GridSpec& grid, int size) {
+  TileLayout l;
+  l.size = size;
+  l.nx = std::max(1, (grid.width - 1 + size - 2) / (size - 1));
+  l.ny = std::max(1, (grid.height - 1 + size - 2) / (size - 1));
+  l.vertices = detail::vertex_grid(grid, l.nx * (size - 1) + 1, l.ny * (size - 1) + 1);
+  return l;
+}
+
+class TiledSource {
+ public:
+  TiledSource(const ExportFiles& files, const EngineExportOptions& options)
+      : height_(open_layer_file(files.height)), nodata_height_(options.nodata_height) {
+    if (files.splat) {
+      splat_ = open_layer_file(*files.splat);
+      if (!(splat_->grid == height_.grid))
+        fail("{}: its grid differs from {}'s", files.splat->string(), files.height.string());
+    }
+    if (!nodata_height_ && has_nodata(height_)) {
+      fill_into_copy(height_, filled_);
+      height_ = open_layer_file(filled_.path);
+    }
+  }
+  const GridSpec& grid() const { return height_.grid; }
+  const std::string& crs_wkt() const { return height_.crs_wkt; }
+  const LayerFile* splat() const { return splat_ ? &*splat_ : nullptr; }
+
+  // Heights at the cells of `window` of `to` (vertices or texels over the world).
+  Raster<float> heights(const GridSpec& to, const Window& window) const {
+    return resampled(height_, 1, to, window, true);
+  }
+  // Splat band `band` (0-based) at the cells of `window` of `to`; nodata weighs nothing.
+  Raster<float> weights(int band, const GridSpec& to, const Window& window) const {
+    return resampled(*splat_, band + 1, to, window, false);
+  }
+  double height_at(Vec2 p) const {
+    const Vec2 px = grid().world_to_pixel(p);
+    const int c0 = std::clamp(int(std::floor(px.x)) - 2, 0, std::max(0, grid().width - 4));
+    const int r0 = std::clamp(int(std::floor(px.y)) - 2, 0, std::max(0, grid().height - 4));
+    const Window w{c0, r0, std::min(4, grid().width), std::min(4, grid().height)};
+    GridSpec sub = grid();
+    sub.width = w.width;
+    sub.height = w.height;
+    sub.origin_x += c0 * sub.pixel_width;
+    sub.origin_y -= r0 * sub.pixel_height;
+    return sample_height_bilinear(clean(read_window(height_, 1, w), true), sub, p);
+  }
+
+ private:
+  Raster<float> clean(Raster<float> r, bool height) const {
+    for (float& v : r.pixels)
+      if (std::isnan(v)) v = height ? float(*nodata_height_) : 0.0f;
+    return r;
+  }
+  Raster<float> resampled(const LayerFile& f, int band, const GridSpec& to, const Window& window,
+                          bool height) const {
+    const GridSpec& from = f.grid;
+    if (to == detail::vertex_grid(from, from.width, from.height))
+      return clean(read_window(f, band, window), height);  // the vertices are the cell centres
+    const Window source = resample_source_window(from, to, window);
+    return resample_heights_window(clean(read_window(f, band, source), height), source, from, to,
+                                   window, Resampling::bilinear);
+  }
+
+  LayerFile height_;
+  std::optional<LayerFile> splat_;
+  std::optional<double> nodata_height_;
+  FilledCopy filled_;
+};
+
+std::vector<std::string> material_names(const LayerFile& splat) {
+  std::vector<std::string> names;
+  for (const std::string& c : splat.channels)
+    names.push_back(c.starts_with("splat.") ? c.substr(6) : c);
+  return names;
+}
+
+// What one engine writes per tile, and its sidecar.
+struct TileWriter {
+  std::string suffix(int i, int j) const {
+    return engine == Engine::unreal ? fmt::format("_x{}_y{}", i, j)
+                                    : fmt::format("_{}_{}", i, layout.ny - 1 - j);
+  }
+  Engine engine;
+  TileLayout layout;
+};
+
+}  // namespace
+
+EngineExportResult export_tiles_for_engine(const ExportFiles& files,
+                                           const std::vector<ExportCurve>& curves,
+                                           const EngineExportOptions& options,
+                                           const std::filesystem::path& dir, OutputStager& stager) {
+  const std::string engine = to_string(options.engine);
+  const int size = options.tile_size.value_or(0);
+  const std::vector<int>& sizes = engine_heightmap_sizes(options.engine);
+  if (options.engine == Engine::godot) fail("export godot: Godot takes one heightmap, not tiles");
+  if (!std::binary_search(sizes.begin(), sizes.end(), size))
+    fail("export {}: tile size {} is not one the engine takes ({} ... {})", engine, size,
+         sizes.front(), sizes.back());
+  const TiledSource source(files, options);
+  const GridSpec& grid = source.grid();
+  const TileLayout layout = tile_layout(grid, size);
+  const TileWriter names{options.engine, layout};
+
+  double min = std::numeric_limits<double>::infinity(), max = -min;
+  for (int j = 0; j < layout.ny; ++j)
+    for (int i = 0; i < layout.nx; ++i) {
+      const Raster<float> h = source.heights(layout.vertices, layout.tile(i, j));
+      const auto [lo, hi] = std::minmax_element(h.pixels.begin(), h.pixels.end());
+      min = std::min(min, double(*lo));
+      max = std::max(max, double(*hi));
+    }
+
+  const bool unreal = options.engine == Engine::unreal;
+  const int alpha = size - 1;  // Unity's control maps: 2^n texels per tile
+  const GridSpec texels = detail::texel_grid(grid, layout.nx * alpha, layout.ny * alpha);
+  const std::vector<std::string> materials =
+      source.splat() ? material_names(*source.splat()) : std::vector<std::string>{};
+  EngineExportResult result;
+  nlohmann::json tiles = nlohmann::json::array();
+  for (int j = 0; j < layout.ny; ++j)
+    for (int i = 0; i < layout.nx; ++i) {
+      const std::string suffix = names.suffix(i, j);
+      const Window window = layout.tile(i, j);
+      const detail::Heightmap16 map =
+          detail::quantize_heights(source.heights(layout.vertices, window), min, max);
+      const std::string height_file = "heightmap" + suffix + (unreal ? ".png" : ".raw");
+      result.files.push_back(dir / height_file);
+      if (unreal)
+        detail::write_png16(stager.stage(result.files.back()), map);
+      else
+        detail::write_raw16(stager.stage(result.files.back()), map, true);
+      nlohmann::json weight_files = nlohmann::json::array();
+      if (source.splat()) {
+        const GridSpec& on = unreal ? layout.vertices : texels;
+        const Window w = unreal ? window : Window{i * alpha, j * alpha, alpha, alpha};
+        std::vector<Raster<float>> bands;
+        for (std::size_t m = 0; m < materials.size(); ++m)
+          bands.push_back(source.weights(int(m), on, w));
+        const auto weights = detail::quantize_weights(bands);
+        const std::vector<std::uint8_t> zero(std::size_t(w.width) * w.height, 0);
+        const std::size_t per_file = unreal ? 1 : 4;
+        for (std::size_t first = 0; first < weights.size(); first += per_file) {
+          const std::string file = unreal ? "weightmap_" + materials[first] + suffix + ".png"
+                                          : fmt::format("splatmap_{}{}.png", first / 4, suffix);
+          std::vector<const std::uint8_t*> channels;
+          for (std::size_t m = first; m < first + per_file; ++m)
+            channels.push_back(m < weights.size() ? weights[m].data() : zero.data());
+          result.files.push_back(dir / file);
+          detail::write_png(stager.stage(result.files.back()), w.width, w.height, channels);
+          weight_files.push_back(file);
+        }
+      }
+      const double tile_x = i * (size - 1) * layout.vertices.pixel_width;
+      const double tile_z = (layout.ny - 1 - j) * (size - 1) * layout.vertices.pixel_height;
+      tiles.push_back({{"x", i},
+                       {unreal ? "y" : "z", unreal ? j : layout.ny - 1 - j},
+                       {"heightmap", height_file},
+                       {unreal ? "weightmaps" : "splatmaps", weight_files}});
+      if (!unreal) tiles.back()["position"] = {tile_x, min, tile_z};
+    }
+  const double vx = layout.vertices.pixel_width, vz = layout.vertices.pixel_height;
+  const detail::EngineFrame frame = detail::engine_frame(options.engine, grid);
+  nlohmann::json sidecar = {{"engine", engine},
+                            {"tile_size", size},
+                            {"tiles_x", layout.nx},
+                            {"tiles_y", layout.ny},
+                            {"size", {layout.vertices.width, layout.vertices.height}},
+                            {"height_min_m", min},
+                            {"height_max_m", max},
+                            {"height_step_m", (max - min) / 65535.0},
+                            {"world_origin", frame.origin},
+                            {"crs_wkt", source.crs_wkt()},
+                            {"materials", materials},
+                            {"tiles", tiles}};
+  if (unreal) {
+    sidecar["location_cm"] = {0.0, 0.0, (min + max) / 2.0 * 100.0};
+    sidecar["scale"] = {vx * 100.0, vz * 100.0, (max - min) * 100.0 / 512.0};
+  } else {
+    sidecar["heightmap_resolution"] = size;
+    sidecar["alphamap_resolution"] = alpha;
+    sidecar["depth"] = 16;
+    sidecar["byte_order"] = "little-endian (Windows)";
+    sidecar["flip_vertically"] = false;
+    sidecar["terrain_size"] = {(size - 1) * vx, max - min, (size - 1) * vz};
+  }
+  result.files.push_back(dir / (engine + ".json"));
+  detail::write_json(result.files.back(), sidecar.dump(2) + "\n", stager);
+  for (const auto& p : detail::write_splines(
+           curves, [&source](Vec2 p) { return source.height_at(p); }, frame, dir, stager))
+    result.files.push_back(p);
+
+  result.settings.push_back(fmt::format(
+      "{}: {} x {} tiles of {} x {} ({}), heights {:.3f} .. {:.3f} m", engine, layout.nx, layout.ny,
+      size, size, (dir / (unreal ? "heightmap_x0_y0.png" : "heightmap_0_0.raw")).string(), min,
+      max));
+  if (unreal) {
+    result.settings.push_back(
+        fmt::format("unreal: Location X 0 Y 0 Z {:.3f}", (min + max) / 2.0 * 100.0));
+    result.settings.push_back(fmt::format("unreal: Scale X {:.4f} Y {:.4f} Z {:.4f}", vx * 100.0,
+                                          vz * 100.0, (max - min) * 100.0 / 512.0));
+  } else {
+    result.settings.push_back(
+        fmt::format("unity: each terrain Width {:.3f} Length {:.3f} Height {:.3f}; tile (x, z) at "
+                    "(x (W), {:.3f}, z (L)); Control Texture Resolution {}",
+                    (size - 1) * vx, (size - 1) * vz, max - min, min, alpha));
+  }
+  return result;
+}
+
+}  // namespace tw
