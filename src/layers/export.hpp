@@ -75,6 +75,9 @@ EngineExportResult export_for_engine(const LayerSet& set, const std::vector<Expo
 struct ExportFiles {
   std::filesystem::path height;
   std::optional<std::filesystem::path> splat;
+  // The run's CRS as its plan holds it; empty: as the files give it. A VRT mosaic and a GeoTIFF
+  // of the same CRS export different WKT strings, and the sidecars must not differ by that.
+  std::string crs_wkt;
 };
 
 // The export of `files` in tiles of options.tile_size samples (> 0; Unreal and Unity), named

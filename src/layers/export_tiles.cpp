@@ -144,6 +144,7 @@ class TiledSource {
       fill_into_copy(height_, filled_);
       height_ = open_layer_file(filled_.path);
     }
+    if (!files.crs_wkt.empty()) height_.crs_wkt = files.crs_wkt;
   }
   const GridSpec& grid() const { return height_.grid; }
   const std::string& crs_wkt() const { return height_.crs_wkt; }

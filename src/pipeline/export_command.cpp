@@ -19,6 +19,7 @@ EngineExportResult export_layer_files(const ExportFiles& files,
   LayerSet set;
   set.layers.push_back(read_geotiff_layer(files.height, "height", set));
   if (files.splat) set.layers.push_back(read_geotiff_layer(*files.splat, "splat", set));
+  if (!files.crs_wkt.empty()) set.crs_wkt = files.crs_wkt;
   return export_for_engine(set, curves, options, dir, stager);
 }
 
@@ -31,7 +32,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const std::string ext = tiled ? ".vrt" : ".tif";
   if (!fs::exists(run / ("height" + ext)))
     fail("{}: the run wrote no height{} (output.geotiff: false?)", run.string(), ext);
-  ExportFiles files{run / ("height" + ext), {}};
+  ExportFiles files{run / ("height" + ext), {}, {}};
   if (fs::exists(run / ("splat" + ext))) files.splat = run / ("splat" + ext);
   int run_tile_size = 0;
   if (tiled) {
@@ -41,6 +42,9 @@ EngineExportResult run_export_command(const ExportCommand& command) {
         report["tiles"]["size"].is_number_integer())
       run_tile_size = report["tiles"]["size"].get<int>();
     if (run_tile_size <= 0) fail("{}: report.json gives no tiles.size", run.string());
+    if (report.contains("grid") && report["grid"].contains("crs_wkt") &&
+        report["grid"]["crs_wkt"].is_string())
+      files.crs_wkt = report["grid"]["crs_wkt"].get<std::string>();
   }
   const std::vector<ExportCurve> curves = fs::exists(run / "features.geojson")
                                               ? read_curves_geojson(run / "features.geojson")

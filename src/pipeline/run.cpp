@@ -199,8 +199,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   }
   for (const EngineExportOptions& engine : config.exports) {
     if (!tiled && export_tile_size(engine, 0) == 0) continue;  // written with the layers
-    ExportFiles files{layer_files.at("height"), {}};
+    ExportFiles files{layer_files.at("height"), {}, {}};
     if (layer_files.contains("splat")) files.splat = layer_files.at("splat");
+    files.crs_wkt = plan.crs_wkt;
     const EngineExportResult exported =
         export_layer_files(files, curves, engine, plan.tile_size,
                            dir / "export" / to_string(engine.engine), transaction);

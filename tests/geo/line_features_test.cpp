@@ -130,8 +130,8 @@ TEST_F(LineFeatures, ReprojectsFromWgs84InLonLatOrder) {
 }
 
 TEST_F(LineFeatures, GeographicFeaturesOnAWarpedGeographicDem) {
-  // The DEM is in degrees, so it is warped into a local transverse Mercator; features in
-  // lon/lat follow it there and keep their geodesic lengths.
+  // The DEM is in degrees, so it is warped into its centre's UTM zone; features in lon/lat
+  // follow it there and keep their geodesic lengths.
   const std::string dem = (dir / "dem_4326.tif").string();
   test::DemSpec spec;
   spec.width = 200;
@@ -153,8 +153,14 @@ TEST_F(LineFeatures, GeographicFeaturesOnAWarpedGeographicDem) {
   const double geodesic = geodesic_length(lon_lat);
   EXPECT_GT(geodesic, 12000.0);
   EXPECT_LT(std::abs(planar_length(lines[0].points) / geodesic - 1.0), 1e-4);
-  // The frame is centred on the DEM (6.5 E, 45.325 N): x is metres east of 6.5 E.
-  EXPECT_NEAR(lines[0].points[1].x, (6.47 - 6.5) * 78.4e3, 100.0);
+  // The frame is the UTM zone of the DEM's centre (6.5 E: zone 32, issue #12): the vertex is
+  // where GeographicLib's UTM puts it.
+  int zone = 0;
+  bool north = false;
+  double x = 0.0, y = 0.0;
+  GeographicLib::UTMUPS::Forward(45.31, 6.47, zone, north, x, y, 32);
+  EXPECT_NEAR(lines[0].points[1].x, x, 1.0);
+  EXPECT_NEAR(lines[0].points[1].y, y, 1.0);
 }
 
 TEST_F(LineFeatures, CurvedGeometriesAreLinearized) {

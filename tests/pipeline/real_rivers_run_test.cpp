@@ -29,20 +29,27 @@ TEST(RealRiversRun, WdbRiversOverTheLuxembourgDemRun) {
   const RunReport report = run_pipeline(config, options);
   std::set<std::int64_t> fids;
   for (const FeatureReport& f : report.classes[0].features) fids.insert(f.fid);
-  // FID 1's last 2 km and FID 4 lie on the DEM; 2, 3 and 5 lie off it.
-  EXPECT_EQ(fids, (std::set<std::int64_t>{1, 4}));
-  // FID 1's piece on the DEM lies over its nodata (outside Luxembourg): left out of the
-  // terrain, and said so. Nothing about its spike, which lies off the DEM.
-  ASSERT_EQ(report.warnings.size(), 1u);
-  EXPECT_EQ(report.warnings[0].code, "over_nodata");
-  EXPECT_EQ(report.warnings[0].subject, "features.rivers");
-  EXPECT_EQ(report.warnings[0].fid, 1);
+  // FID 1's last 2 km and FID 4 lie on the DEM; 3 and 5 lie off it. The DEM is geographic, so
+  // the grid is UTM 32N (its centre's zone, issue #12): at 6 E, 3 degrees west of the zone's
+  // central meridian, grid north turns about 2 degrees from true north, and the grid's
+  // bounding box holds nodata corners beyond the DEM's edges, where FID 2 ends.
+  EXPECT_THAT(report.crs_wkt, testing::HasSubstr("UTM zone 32N"));
+  EXPECT_EQ(fids, (std::set<std::int64_t>{1, 2, 4}));
+  // FIDs 1 and 2 on the grid lie over nodata (outside Luxembourg, in the corners): left out of
+  // the terrain, and said so. Nothing about FID 1's spike, which lies off the grid.
+  ASSERT_EQ(report.warnings.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(report.warnings[i].code, "over_nodata");
+    EXPECT_EQ(report.warnings[i].subject, "features.rivers");
+    EXPECT_EQ(report.warnings[i].fid, std::int64_t(i + 1));
+  }
   EXPECT_FALSE(report.outputs.empty());
   // validate (nothing written) reports the same warning.
   options.write_outputs = false;
   const RunReport validated = run_pipeline(config, options);
-  ASSERT_EQ(validated.warnings.size(), 1u);
+  ASSERT_EQ(validated.warnings.size(), 2u);
   EXPECT_EQ(to_string(validated.warnings[0]), to_string(report.warnings[0]));
+  EXPECT_EQ(to_string(validated.warnings[1]), to_string(report.warnings[1]));
 }
 
 // The 7 real segments that are not simple, over a generated terrain that holds them all

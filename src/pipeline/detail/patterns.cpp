@@ -59,7 +59,7 @@ std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
   for (std::size_t i = 0; i < canvases.size(); ++i) needed[i] = wanted(canvases[i]);
   for (std::size_t i = canvases.size(); i-- > 0;) {
     if (!needed[i]) continue;
-    for (std::size_t j = 0; j < i; ++j) needed[j] = needed[j] || overlaps(canvases[j], canvases[i]);
+    for (std::size_t j = 0; j < i; ++j) needed[j] = needed[j] || canvases_overlap(canvases[j], canvases[i]);
   }
   return needed;
 }
@@ -180,7 +180,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
           cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys);
       pattern.key = key.combined();
       for (std::size_t e = 0; e < earlier_keys.size(); ++e)
-        if (overlaps(earlier_keys[e].canvas, canvas)) pattern.after.push_back(e);
+        if (canvases_overlap(earlier_keys[e].canvas, canvas)) pattern.after.push_back(e);
       earlier_keys.push_back({canvas, pattern.key});
       const std::size_t index = earlier_keys.size() - 1;
       using Scope = PatternOptions::Scope;
