@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <set>
 
 #include "core/error.hpp"
@@ -78,12 +79,14 @@ BezierSpline spline_of(const Json& value, const Where& where) {
   return spline;
 }
 
-bool is_spline_end(const DecorativeElement& element, Vec2 p) {
+// The spline end at p (within 1e-9), so a growth point and its spline share the exact point.
+std::optional<Vec2> spline_end_at(const DecorativeElement& element, Vec2 p) {
   for (const BezierSpline& s : element.splines) {
-    if (distance(s.control_points.front(), p) < 1e-9 || distance(s.control_points.back(), p) < 1e-9)
-      return true;
+    for (Vec2 end : {s.control_points.front(), s.control_points.back()}) {
+      if (distance(end, p) < 1e-9) return end;
+    }
   }
-  return false;
+  return std::nullopt;
 }
 
 DecorativeElement element_of(const Json& value, const Where& where) {
@@ -97,7 +100,7 @@ DecorativeElement element_of(const Json& value, const Where& where) {
   }
   // The element hangs from its origin: a spline must start or end there, or the ornament
   // would have a gap at every joint.
-  if (!is_spline_end(e, {0.0, 0.0})) {
+  if (!spline_end_at(e, {0.0, 0.0})) {
     where.at("splines").fail("no spline starts or ends at the origin [0, 0]");
   }
   if (value.contains("growth_points")) {
@@ -113,7 +116,9 @@ DecorativeElement element_of(const Json& value, const Where& where) {
       g.angle = optional_number(points[i], w, "angle_deg", 0.0) * std::numbers::pi / 180.0;
       g.priority = int(optional_number(points[i], w, "priority", 0.0));
       // Growth points sit on spline ends so the next element joins the line exactly there.
-      if (!is_spline_end(e, g.at)) w.at("at").fail("not the end of one of the element's splines");
+      const auto end = spline_end_at(e, g.at);
+      if (!end) w.at("at").fail("not the end of one of the element's splines");
+      g.at = *end;
       e.growth_points.push_back(g);
     }
   }
