@@ -12,7 +12,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
-  libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev
+  libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev libcgal-dev
   nodejs chromium
   python3-distributed
   "$@"

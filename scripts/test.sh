@@ -3,7 +3,7 @@
 #   bash scripts/test.sh                        the whole suite in build/, then the geo, layers
 #                                               and pipeline tests under the sanitizers (CI)
 #   bash scripts/test.sh --sanitize [MODULE...] the suite (or only the tests of these modules:
-#                                               core geo ribbon raster synth terrain layers
+#                                               core geo ribbon raster synth terrain ornament layers
 #                                               pipeline) built with ASan + UBSan in build-asan/;
 #                                               any sanitizer report fails its test
 set -euo pipefail

@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/area_command.hpp"
+#include "pipeline/grow_command.hpp"
 
 #include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
@@ -354,6 +355,43 @@ int main(int argc, char** argv) {
       ->required()
       ->check(non_empty);
 
+  tw::GrowCommand grow_args;
+  CLI::App* grow = app.add_subcommand(
+      "grow",
+      "grow FloralSurf ornaments (hedges, terrace walls, trails, ditches) over a region of a "
+      "DEM (lines with heights, preview)");
+  grow->add_option("--dem", grow_args.dem, "heightfield: any raster GDAL reads")->required();
+  grow->add_option("--region", grow_args.region,
+                   "minx,miny,maxx,maxy in the DEM's CRS, or OGR polygons path[:layer]")
+      ->required();
+  grow->add_option("--where", grow_args.where, "OGR SQL attribute filter on the region");
+  grow->add_option("--element", grow_args.element, "element set (samples/ornaments/*.json)")
+      ->required();
+  grow->add_option("--avoid", grow_args.avoid,
+                   "features no ornament may enter: OGR path[:layer] (lines or polygons; "
+                   "repeatable)");
+  grow->add_option("--avoid-width", grow_args.avoid_width,
+                   "metres, the width of avoided lines without a width or OSM tags")
+      ->check(CLI::PositiveNumber);
+  grow->add_option("--resolution", grow_args.resolution,
+                   "metres between mesh vertices (the DEM resampled, cubic); default: the DEM's")
+      ->check(CLI::PositiveNumber);
+  grow->add_option("--seed", grow_args.seed, "same seed, same ornaments");
+  grow->add_flag("--contour", grow_args.contour,
+                 "align elements to the contour direction (terraces along the slope)");
+  grow->add_flag("--first-fit", grow_args.first_fit,
+                 "take the first candidate that fits (the greedy variant) instead of the best");
+  grow->add_option("--trials", grow_args.trials, "candidates per growth point")
+      ->check(CLI::Range(1, 1000));
+  grow->add_option("--max-ornaments", grow_args.max_ornaments, "ornaments started at most")
+      ->check(CLI::Range(1, 100000));
+  grow->add_option("--coverage-radius", grow_args.coverage_radius,
+                   "metres for the reported coverage; default: half the element set's scale")
+      ->check(CLI::PositiveNumber);
+  grow->add_option("--out", grow_args.out, "folder for ornaments.gpkg, preview.png")
+      ->required()
+      ->check(non_empty);
+
   // Hidden (no group): the generated world of bench/bigworld.sh.
   tw::BigWorldOptions world;
   CLI::App* make_world =
@@ -442,6 +480,15 @@ int main(int argc, char** argv) {
           "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
           "%d overlapping)\n",
           r.instances, r.strokes, r.polygons, r.outside, r.forbidden, r.overlapping);
+      return 0;
+    }
+    if (grow->parsed()) {
+      const tw::GrowCommandResult r = tw::run_grow_command(grow_args);
+      std::printf(
+          "%d ornaments, %d elements, %d lines; coverage within %.1f m: %.3f (rejected: %d "
+          "crossing, %d forbidden, %d off the window)\n",
+          r.ornaments, r.elements, r.lines, r.coverage_radius, r.coverage, r.rejected_crossing,
+          r.rejected_forbidden, r.rejected_untraceable);
       return 0;
     }
     if (make_world->parsed()) {

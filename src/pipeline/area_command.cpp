@@ -16,6 +16,7 @@
 #include "geo/heightfield.hpp"
 #include "pipeline/detail/analysis_png.hpp"
 #include "pipeline/detail/area_output.hpp"
+#include "pipeline/detail/vector_inputs.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 
@@ -23,38 +24,10 @@ namespace tw {
 
 namespace {
 
-VectorSource vector_source(const std::string& source, const std::string& where) {
-  VectorSource vector;
-  vector.path = source;
-  vector.where = where;
-  if (const auto colon = source.rfind(':'); colon != std::string::npos && colon > 1) {
-    vector.path = source.substr(0, colon);
-    vector.layer = source.substr(colon + 1);
-  }
-  return vector;
-}
-
-// The source's layer (its first when none is named), with the dataset that owns it.
-struct OpenLayer {
-  std::unique_ptr<GDALDataset> dataset;
-  OGRLayer* layer = nullptr;
-};
-OpenLayer open_layer(const VectorSource& source) {
-  GDALAllRegister();
-  OpenLayer out;
-  out.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
-                                      nullptr, nullptr, nullptr));
-  if (!out.dataset) fail("{}: cannot open as vector data", source.path);
-  out.layer = source.layer.empty() ? out.dataset->GetLayer(0)
-                                   : out.dataset->GetLayerByName(source.layer.c_str());
-  if (!out.layer) fail("{}: no layer '{}'", source.path, source.layer);
-  return out;
-}
-
 // A grid over the layer's extent in its own CRS, for geo's polygon reader (which reprojects to
 // and clips by a grid): the polygons come back as they are, repaired where GEOS must.
 Heightfield frame_of(const VectorSource& source) {
-  const OpenLayer opened = open_layer(source);
+  const detail::OpenLayer opened = detail::open_layer(source);
   OGRLayer* layer = opened.layer;
   const OGRSpatialReference* srs = layer->GetSpatialRef();
   if (!srs || !srs->IsProjected()) {
@@ -76,40 +49,6 @@ Heightfield frame_of(const VectorSource& source) {
   frame.grid.height = int(std::ceil(extent.MaxY) - std::floor(extent.MinY) + 2 * pad);
   frame.source = source.path;
   return frame;
-}
-
-bool is_polygon_layer(const VectorSource& source) {
-  const OpenLayer opened = open_layer(source);
-  OGRLayer* layer = opened.layer;
-  const auto type = wkbFlatten(layer->GetGeomType());
-  return type == wkbPolygon || type == wkbMultiPolygon;
-}
-
-// The avoided features, read once over the polygons' extent.
-AvoidanceInputs avoided_features(const Heightfield& frame, const AreaCommand& c,
-                                 Warnings& warnings) {
-  AvoidanceInputs inputs;
-  for (const std::string& avoid : c.avoid) {
-    const VectorSource source = vector_source(avoid, "");
-    if (is_polygon_layer(source)) {
-      for (PolygonFeature& f : read_polygon_features(source, frame, "area.avoid", warnings)) {
-        inputs.polygons.emplace_back(f.rings.begin(), f.rings.end());
-      }
-      continue;
-    }
-    LineClassSpec spec;
-    spec.name = "avoid";
-    spec.source = source;
-    spec.width_attribute = "width";
-    spec.default_width = c.avoid_width;
-    spec.osm_widths = true;
-    spec.subject = "area.avoid";
-    for (LineFeature& line : read_line_features(spec, frame, warnings)) {
-      inputs.lines.push_back(std::move(line.points));
-      inputs.line_widths.push_back(line.width);
-    }
-  }
-  return inputs;
 }
 
 // The avoidance map on the frame's 1 m lattice, over the polygon's bounding box only: memory
@@ -149,14 +88,15 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
   AreaCommandResult result;
   result.analysis_ms = elapsed_ms(started);
 
-  const VectorSource source = vector_source(c.polygons, c.where);
+  const VectorSource source = detail::vector_source(c.polygons, c.where);
   const Heightfield frame = frame_of(source);
   Warnings warnings;
   const std::vector<PolygonFeature> features =
       read_polygon_features(source, frame, "area.polygons", warnings);
   if (features.empty()) fail("{}: no polygon to fill", c.polygons);
 
-  const AvoidanceInputs avoided = avoided_features(frame, c, warnings);
+  const AvoidanceInputs avoided =
+      detail::avoided_features(frame, c.avoid, c.avoid_width, "area.avoid", warnings);
 
   const auto synthesis_started = std::chrono::steady_clock::now();
   std::vector<detail::AreaResult> results;
