@@ -4,7 +4,10 @@
 // summing to 255 per pixel) at the heightmap's resolution, and godot.json with the map scale.
 #include <fmt/format.h>
 
-#include <OpenImageIO/imageio.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
@@ -16,15 +19,24 @@ namespace tw::detail {
 
 namespace {
 
+// Through OpenEXR itself: OpenImageIO's writer stamps a capDate of the current time, and an
+// export must be the same bytes on every run.
 void write_float_exr(const std::filesystem::path& path, const Raster<float>& heights) {
-  auto out = OIIO::ImageOutput::create("exr");
-  if (!out) fail("cannot write {}: OpenImageIO has no EXR writer", path.string());
-  OIIO::ImageSpec spec(heights.width, heights.height, 1, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R"};
-  spec.attribute("compression", "zip");
-  if (!out->open(path.string(), spec) ||
-      !out->write_image(OIIO::TypeDesc::FLOAT, heights.pixels.data()) || !out->close())
-    fail("cannot write {}: {}", path.string(), out->geterror());
+  try {
+    Imf::Header header(heights.width, heights.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer frame;
+    // const_cast: OpenEXR's Slice takes char* for reading and writing alike; it only reads.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(heights.pixels.data()));
+    frame.insert("R", Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                 sizeof(float) * std::size_t(heights.width)));
+    file.setFrameBuffer(frame);
+    file.writePixels(heights.height);
+  } catch (const std::exception& e) {
+    fail("cannot write {}: {}", path.string(), e.what());
+  }
 }
 
 }  // namespace
