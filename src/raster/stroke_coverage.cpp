@@ -4,19 +4,9 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/segment_distance.hpp"
 
 namespace tw {
-
-namespace {
-
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double l2 = dot(ab, ab);
-  const double t = l2 > 0.0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-  return distance(p, a + ab * t);
-}
-
-}  // namespace
 
 Raster<float> stroke_coverage(const std::vector<const std::vector<Vec2>*>& lines,
                               const std::vector<double>& widths, const GridSpec& grid,

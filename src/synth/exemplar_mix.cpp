@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/segment_distance.hpp"
 #include "synth/detail/exemplar_mix.hpp"
 
 namespace tw {
@@ -17,17 +18,6 @@ int MixLayout::exemplar_at(int ux, int uy) const {
 int mix_gap(double scale, double delta, double width) {
   return int(std::ceil(2.0 * scale * (delta + width))) + 4;
 }
-
-namespace {
-
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double length2 = dot(ab, ab);
-  const double t = length2 > 0.0 ? std::clamp(dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
-  return distance(p, a + ab * t);
-}
-
-}  // namespace
 
 std::vector<std::vector<std::uint8_t>> bind_pieces(const Ribbon& ribbon, int exemplar_count,
                                                    const std::vector<PieceBinding>& rules,

@@ -4,18 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/segment_distance.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
 
 namespace {
-
-double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double l2 = dot(ab, ab);
-  const double t = l2 > 0.0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-  return distance(p, a + ab * t);
-}
 
 bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
@@ -25,8 +19,8 @@ bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 
 double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   if (segments_cross(a, b, c, d)) return 0.0;
-  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d),
-                   point_segment_distance(c, a, b), point_segment_distance(d, a, b)});
+  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d),
+                   distance_to_segment(c, a, b), distance_to_segment(d, a, b)});
 }
 
 double folded_angle(Vec2 v) {
