@@ -385,6 +385,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   grow->add_option("--max-ornaments", grow_args.max_ornaments, "ornaments started at most")
       ->check(CLI::Range(1, 100000));
+  grow->add_option("--clearance", grow_args.clearance,
+                   "metres between unrelated lines; default: the element set's clearance_m")
+      ->check(CLI::NonNegativeNumber);
   grow->add_option("--coverage-radius", grow_args.coverage_radius,
                    "metres for the reported coverage; default: half the element set's scale")
       ->check(CLI::PositiveNumber);

@@ -231,12 +231,67 @@ class Grower {
       }
     }
     ++result_.elements;
-    // The paper's update_geodesic_distances: distance to a union is the least distance.
-    const std::vector<double> d = surface_.heat_distances(sources);
-    for (std::size_t v = 0; v < d.size(); ++v) to_placed_[v] = std::min(to_placed_[v], d[v]);
+    update_distances(sources);
     for (const TracedGrowthPoint& p : c.traced.growth_points) {
       queue_.push({p.priority, order_++, p.frame, p.tag, ornament});
     }
+  }
+
+  // The paper's update_geodesic_distances: distance to a union is the least distance. Only
+  // reach = min(to_placed, to_blocked) is ever read (the score, the next seed), so a vertex
+  // needs the new distance only where it can fall below its reach; the new distance is at
+  // least the horizontal distance to the element's box, so every such vertex, and the path to
+  // it, lies within the largest such reach of the box. The heat method runs on that part of
+  // the mesh plus a margin (its boundary bends distances near it), or on the whole mesh,
+  // already factored, when the part would be a large share of it.
+  void update_distances(const std::vector<SurfacePoint>& sources) {
+    const int w = surface_.window().width, h = surface_.window().height;
+    if (!params_.local_distances) {
+      const std::vector<double> d = surface_.heat_distances(sources);
+      for (std::size_t v = 0; v < d.size(); ++v) to_placed_[v] = std::min(to_placed_[v], d[v]);
+      ++result_.whole_solves;
+      return;
+    }
+    int i0 = w, j0 = h, i1 = -1, j1 = -1;
+    for (const SurfacePoint& p : sources) {
+      const int v = surface_.nearest_vertex(p);
+      i0 = std::min(i0, v % w), i1 = std::max(i1, v % w);
+      j0 = std::min(j0, v / w), j1 = std::max(j1, v / w);
+    }
+    const double dx = surface_.grid().pixel_width, dy = surface_.grid().pixel_height;
+    // Slack for the heat method's error against the true geodesic (it may read a little
+    // shorter than the straight line on a coarse mesh).
+    constexpr double kSlack = 1.25;
+    const double spacing = std::max(dx, dy);
+    double reach_max = 0.0;
+    for (int j = 0; j < h; ++j) {
+      const double hy = std::max({0, j0 - j, j - j1}) * dy;
+      for (int i = 0; i < w; ++i) {
+        const double hx = std::max({0, i0 - i, i - i1}) * dx;
+        const double r = reach(j * w + i);
+        if (r > reach_max && std::hypot(hx, hy) < kSlack * r + 2.0 * spacing) reach_max = r;
+      }
+    }
+    const int margin = int(std::ceil(kSlack * reach_max / spacing)) + 4;
+    Window part;
+    part.col0 = std::max(i0 - margin, 0);
+    part.row0 = std::max(j0 - margin, 0);
+    part.width = std::min(i1 + margin + 1, w) - part.col0;
+    part.height = std::min(j1 + margin + 1, h) - part.row0;
+    // A factorization costs about ten solves of the same size.
+    if (std::int64_t(part.width) * part.height * 8 > std::int64_t(w) * h) {
+      const std::vector<double> d = surface_.heat_distances(sources);
+      for (std::size_t v = 0; v < d.size(); ++v) to_placed_[v] = std::min(to_placed_[v], d[v]);
+      ++result_.whole_solves;
+      return;
+    }
+    const std::vector<double> d = surface_.heat_distances(sources, part);
+    for (int j = 0; j < part.height; ++j)
+      for (int i = 0; i < part.width; ++i) {
+        double& t = to_placed_[std::size_t(j + part.row0) * w + i + part.col0];
+        t = std::min(t, d[std::size_t(j) * part.width + i]);
+      }
+    ++result_.local_solves;
   }
 
   const TerrainSurface& surface_;

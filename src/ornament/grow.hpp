@@ -35,6 +35,9 @@ struct GrowthParams {
   // from placed ornaments and forbidden ground; <= 0: max(2 clearance, scale / 2).
   double min_seed_distance_m = 0.0;
   int subdivision_depth = 3;
+  // Each placed element's distances solved on the part of the mesh they can change (see
+  // grow.cpp) instead of the whole mesh; false: the whole mesh every time (the reference).
+  bool local_distances = true;
 };
 
 struct GrownLine {
@@ -50,6 +53,8 @@ struct GrowthResult {
   std::vector<GrownLine> lines;
   int ornaments = 0, elements = 0;
   int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
+  // Heat-method solves after placing an element: on a part of the mesh, on the whole of it.
+  int local_solves = 0, whole_solves = 0;
 };
 
 // `allowed` is window-sized: nonzero where ornaments may go (inside the region, off avoided

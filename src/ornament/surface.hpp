@@ -66,6 +66,13 @@ class TerrainSurface {
   // Heat-method geodesic distance (Crane et al., CGAL Heat_method_3) from the nearest vertices
   // of `sources` to every vertex, in metres; +inf everywhere when sources is empty.
   std::vector<double> heat_distances(const std::vector<SurfacePoint>& sources) const;
+  // The same on the part of the mesh inside `part` (vertex columns and rows of this surface's
+  // window, at least 2 x 2, inside it) only: a mesh and factorization of its vertices, so the
+  // cost follows the part, not the surface. Part-sized (row-major over `part`); sources outside
+  // it are dropped (+inf everywhere when none is left). Its edge is the heat method's boundary,
+  // so distances well inside it match the whole mesh's (tests/ornament/surface_test.cpp).
+  std::vector<double> heat_distances(const std::vector<SurfacePoint>& sources,
+                                     const Window& part) const;
   // A per-vertex field at a point (barycentric in its triangle).
   double interpolate(const std::vector<double>& vertex_values, const SurfacePoint& p) const;
   // The exact geodesic distance between two points (CGAL Surface_mesh_shortest_path; costly:

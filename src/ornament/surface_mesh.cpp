@@ -7,10 +7,12 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
 
+#include <algorithm>
 #include <limits>
 #include <mutex>
 #include <set>
 
+#include "core/error.hpp"
 #include "ornament/detail/surface_impl.hpp"
 
 namespace tw::detail {
@@ -87,6 +89,43 @@ std::vector<double> TerrainSurface::heat_distances(const std::vector<SurfacePoin
   cgal.heat->estimate_geodesic_distances(distance);
   for (detail::Vertex v : cgal.mesh.vertices()) out[v.idx()] = std::max(0.0, distance[v]);
   cgal.mesh.remove_property_map(distance);
+  return out;
+}
+
+std::vector<double> TerrainSurface::heat_distances(const std::vector<SurfacePoint>& sources,
+                                                   const Window& part) const {
+  const Impl& s = *impl_;
+  if (part.col0 < 0 || part.row0 < 0 || part.width < 2 || part.height < 2 ||
+      part.col0 + part.width > s.nx || part.row0 + part.height > s.ny) {
+    fail("surface: part {}+{}x{}+{} is not a 2 x 2 or larger part of the {}x{} mesh", part.col0,
+         part.width, part.row0, part.height, s.nx, s.ny);
+  }
+  std::vector<double> out(std::size_t(part.width) * part.height,
+                          std::numeric_limits<double>::infinity());
+  std::set<int> vertices;  // in the part's numbering
+  for (const SurfacePoint& p : sources) {
+    const int v = nearest_vertex(p), i = v % s.nx - part.col0, j = v / s.nx - part.row0;
+    if (i >= 0 && j >= 0 && i < part.width && j < part.height) vertices.insert(j * part.width + i);
+  }
+  if (vertices.empty()) return out;
+  // The part as a surface of its own: same spacing, its heights; its local coordinates shift by
+  // whole vertices, which distances do not see.
+  Impl sub;
+  sub.grid = s.grid;
+  sub.window = {s.window.col0 + part.col0, s.window.row0 + part.row0, part.width, part.height};
+  sub.nx = part.width;
+  sub.ny = part.height;
+  sub.dx = s.dx;
+  sub.dy = s.dy;
+  sub.z.reserve(out.size());
+  for (int j = part.row0; j < part.row0 + part.height; ++j)
+    for (int i = part.col0; i < part.col0 + part.width; ++i)
+      sub.z.push_back(s.z[std::size_t(j) * s.nx + i]);
+  const auto cgal = detail::make_cgal_mesh(sub);
+  for (int v : vertices) cgal->heat->add_source(detail::Vertex(v));
+  auto distance = cgal->mesh.add_property_map<detail::Vertex, double>("v:heat", 0.0).first;
+  cgal->heat->estimate_geodesic_distances(distance);
+  for (detail::Vertex v : cgal->mesh.vertices()) out[v.idx()] = std::max(0.0, distance[v]);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
 #include "pipeline/detail/area_config.hpp"
+#include "pipeline/detail/grow_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
@@ -86,10 +87,18 @@ double read_width(const MapReader& m, const std::string& key) {
   return width;
 }
 
-FeatureKind read_kind(const MapReader& m) {
-  static const std::vector<FeatureKind> kinds{FeatureKind::road, FeatureKind::river,
-                                              FeatureKind::ridge};
-  return kinds[read_one_of(m, "kind", "kind", {"road", "river", "ridge"}, std::nullopt)];
+// The kind as written: a line kind, or a grown one (detail/grow_config.hpp).
+std::string read_kind_name(const MapReader& m) {
+  static const std::vector<std::string> kinds{"road", "river", "ridge", "hedge",
+                                              "wall", "trail", "ditch"};
+  return kinds[read_one_of(m, "kind", "kind", kinds, std::nullopt)];
+}
+
+FeatureKind kind_of(const std::string& name) {
+  if (name == "road") return FeatureKind::road;
+  if (name == "river") return FeatureKind::river;
+  if (name == "ridge") return FeatureKind::ridge;
+  return detail::terrain_kind_of(name);
 }
 
 std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback) {
@@ -293,17 +302,54 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
                                       std::vector<InputFile>& inputs) {
   FeatureClassConfig f;
   f.name = name;
-  f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
+  const std::string kind_name = m.has("kind") ? read_kind_name(m) : "";
+  if (detail::is_grown_kind(kind_name) && !m.has("grow")) {
+    m.source().fail(m.get("kind"), m.path("kind"),
+                    fmt::format("a {} class grows its lines: give a grow: block with at least "
+                                "an element set (grow: {{ element: ... }})",
+                                kind_name));
+  }
+  if (m.has("grow")) {
+    f.grow = detail::read_grow(
+        MapReader(m.source(), m.get("grow"), m.path("grow"),
+                  {"element", "region", "resolution", "seed", "alignment", "first_fit", "trials",
+                   "max_ornaments", "max_elements", "coverage_radius", "clearance"}),
+        kind_name.empty() ? "road" : kind_name, seed, inputs);
+    if (m.has("tags") || m.has("width_attribute")) {
+      const std::string key = m.has("tags") ? "tags" : "width_attribute";
+      m.source().fail(m.get(key), m.path(key),
+                      "a grown class has no features to read tags or widths from");
+    }
+  }
+  // A grown class reads its source as the region's polygons, and needs none with grow.region.
+  if (!f.grow || m.has("source") || (!f.grow->region_box && f.grow->region_source.empty()))
+    f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
   if (m.has("tags")) f.tags = read_tags(m);
-  f.kind = m.has("kind") || f.tags.empty() ? read_kind(m) : kind_from_tags(m, f.tags);
-  f.width_attribute = m.string_or("width_attribute", "");
-  if ((f.width_attribute.empty() && f.tags.empty()) || m.has("width")) {
-    f.width = read_width(m, "width");
+  if (!kind_name.empty()) {
+    f.kind = kind_of(kind_name);
+  } else {
+    f.kind = f.tags.empty() ? kind_of(read_kind_name(m)) : kind_from_tags(m, f.tags);
+  }
+  if (f.grow) {
+    f.grow->kind = kind_name;  // never empty: without tags, `kind` is required
+    detail::apply_grown_defaults(kind_name, f);
+    if (m.has("width")) f.width = read_width(m, "width");
+    if (f.width <= 0.0) f.width = read_width(m, "width");  // road, river, ridge + grow: required
+  } else {
+    f.width_attribute = m.string_or("width_attribute", "");
+    if ((f.width_attribute.empty() && f.tags.empty()) || m.has("width")) {
+      f.width = read_width(m, "width");
+    }
   }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("conform")) {
+    if (f.grow) {
+      m.source().fail(m.get("conform"), m.path("conform"),
+                      "grown lines are drawn on the surface already; conform applies to lines "
+                      "read from a source");
+    }
     if (f.kind == FeatureKind::road) {
       m.source().fail(m.get("conform"), m.path("conform"),
                       "roads keep their line (bound their earthwork with profile.max_cut and "
@@ -314,12 +360,12 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   }
   f.repair = m.has("repair") ? read_repair(repair_reader(m), repair) : repair;
   if (m.has("synthesis")) {
-    f.synthesis =
-        read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                                 {"exemplar", "choose", "width", "delta", "scale", "stitch",
-                                  "empty_pieces", "min_coverage", "objective", "coverage_weight", "alpha", "feather", "seed",
-                                  "backend", "height_detail", "channels"}),
-                       seed, inputs);
+    f.synthesis = read_synthesis(
+        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
+                  {"exemplar", "choose", "width", "delta", "scale", "stitch", "empty_pieces",
+                   "min_coverage", "objective", "coverage_weight", "alpha", "feather", "seed",
+                   "backend", "height_detail", "channels"}),
+        seed, inputs);
   }
   return f;
 }
@@ -527,11 +573,11 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
 }
 
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
-  const MapReader root(src, tree, "",
-                       {"version", "seed", "heightfield", "generate", "resolution", "output",
-                        "backend", "precedence", "features", "existing", "synthesis_resolution",
-                        "synthesis_order", "region", "resampling", "strict", "repair",
-                        "avoidance", "cache", "export"});
+  const MapReader root(
+      src, tree, "",
+      {"version", "seed", "heightfield", "generate", "resolution", "output", "backend",
+       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order", "region",
+       "resampling", "strict", "repair", "avoidance", "cache", "export"});
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -560,8 +606,9 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.output.exr = out.bool_or("exr", c.output.exr);
     c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
     c.output.preview = out.bool_or("preview", c.output.preview);
-    if (out.has("tiles")) c.output.tiles = read_tiles(MapReader(src, out.get("tiles"),
-                                                                "output.tiles", {"size", "overlap"}));
+    if (out.has("tiles"))
+      c.output.tiles =
+          read_tiles(MapReader(src, out.get("tiles"), "output.tiles", {"size", "overlap"}));
     read_output_encoding(out, c.output);
   } else {
     c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
@@ -595,11 +642,11 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                                                 name, c.seed, c.inputs));
       continue;
     }
-    c.features.push_back(
-        read_feature_class(MapReader(src, entry.second, path,
-                                     {"source", "layer", "where", "tags", "kind", "width_attribute",
-                                      "width", "profile", "conform", "synthesis", "repair"}),
-                           name, c.seed, c.repair, c.inputs));
+    c.features.push_back(read_feature_class(
+        MapReader(src, entry.second, path,
+                  {"source", "layer", "where", "tags", "kind", "width_attribute", "width",
+                   "profile", "conform", "synthesis", "repair", "grow"}),
+        name, c.seed, c.repair, c.inputs));
   }
   if (c.features.empty() && c.areas.empty())
     src.fail(root.get("features"), "features", "no feature classes");

@@ -16,6 +16,7 @@
 #include "layers/export.hpp"
 #include "layers/write.hpp"
 #include "pipeline/area_config.hpp"
+#include "pipeline/grow_config.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "terrain/features.hpp"
 
@@ -106,6 +107,9 @@ struct FeatureClassConfig {
   double conform_corridor = 0.0;
   std::optional<SynthesisConfig> synthesis;
   LineRepair repair;  // the pipeline's `repair`, overridden key by key by the class's own
+  // `kind: hedge | wall | trail | ditch` or a `grow:` block: the lines are grown (FloralSurf,
+  // docs/ornaments.md) after ingest instead of read from `source`.
+  std::optional<GrowConfig> grow;
 };
 
 // Avoidance input: polygons are burnt as they are, lines are buffered by `width`.
@@ -163,7 +167,7 @@ struct RegionConfig {
 // A file a run opens, and where the pipeline names it, so that a missing or unreadable one is
 // reported at its key (check_inputs).
 struct InputFile {
-  enum class Kind { raster, vector, exemplar };
+  enum class Kind { raster, vector, exemplar, ornament };  // ornament: an element set (JSON)
   std::filesystem::path path;
   Kind kind = Kind::raster;
   std::string named_at;  // "file:line:col: key.path" or "--set key=value: key.path"

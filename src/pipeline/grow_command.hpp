@@ -6,9 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/grow_config.hpp"
+
 namespace tw {
 
-struct GrowCommand {
+// The growth's knobs (resolution, seed, contour, first_fit, trials, max_ornaments,
+// coverage_radius, clearance) are those of a pipeline class's `grow:` block.
+struct GrowCommand : GrowSettings {
   std::string dem;  // any raster GDAL reads (warped to a metric CRS as for `run`)
   // "minx,miny,maxx,maxy" in the DEM's (metric) CRS, or an OGR polygon source "path[:layer]"
   std::string region;

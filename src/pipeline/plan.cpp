@@ -8,6 +8,7 @@
 #include "geo/height_sampler.hpp"
 #include "pipeline/detail/areas.hpp"
 #include "pipeline/detail/conformance.hpp"
+#include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/patterns.hpp"
@@ -225,7 +226,10 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
-    lines.push_back(detail::load_feature_class(feature_class, heightfield, warnings));
+    // A grown class's lines come from the growth stage, below.
+    lines.push_back(feature_class.grow
+                        ? std::vector<LineFeature>{}
+                        : detail::load_feature_class(feature_class, heightfield, warnings));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
@@ -251,6 +255,16 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   report.heightfield = heightfield.source;
   clock.stop();
 
+  // Grown lines avoid the lines read and the existing features; everything after treats them
+  // as the class's features.
+  if (std::any_of(config.features.begin(), config.features.end(),
+                  [](const FeatureClassConfig& c) { return bool(c.grow); })) {
+    clock.start("grow");
+    plan.grown = detail::grow_classes(config, *source, heightfield, existing, lines, report.classes,
+                                      warnings);
+    clock.stop();
+  }
+
   clock.start("ribbons");
   detail::FeatureRibbons ribbons =
       detail::make_feature_ribbons(config, lines, heightfield.grid, warnings);
@@ -262,8 +276,10 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
       feature.length_m = ribbons.lengths[c][i];
       feature.width_m = lines[c][i].width;
       feature.pieces = int(ribbons.ribbons[c][i].pieces.size());
-      feature.moved_max_m = moves[c][i].max_m;
-      feature.moved_mean_m = moves[c][i].mean_m;
+      if (i < moves[c].size()) {  // grown lines are not conformed
+        feature.moved_max_m = moves[c][i].max_m;
+        feature.moved_mean_m = moves[c][i].mean_m;
+      }
       feature.structure = lines[c][i].structure;
       feature.layer = lines[c][i].layer;
     }

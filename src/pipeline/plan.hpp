@@ -16,6 +16,7 @@
 #include "geo/heightfield.hpp"
 #include "geo/heightfield_source.hpp"
 #include "layers/layer_set.hpp"
+#include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
 #include "raster/avoidance.hpp"
@@ -120,6 +121,15 @@ struct PlannedArea {
   Window window;                    // the output pixels its strokes can touch
 };
 
+// A grown class's lines as ornaments.gpkg holds them (docs/pipeline.md, "Grown classes"); line
+// i is the class's feature with FID i + 1.
+struct GrownClass {
+  std::size_t class_index = 0;  // in config.features / WorldPlan::class_names
+  std::string kind;             // hedge, wall, trail, ditch, or the line kind it was given
+  double height_m = 0.0;        // the profile's raise (+) or carve (-)
+  std::vector<GrownLine> lines;
+};
+
 // The options of render_tile, one per stage (not the pipeline config).
 struct RenderOptions {
   // Metres: the avoidance distance layer is min(distance, max_distance), which bounds the halo
@@ -146,6 +156,9 @@ struct WorldPlan {
   // The same on the synthesis canvas's tolerance: what syntheses avoid (a plan's syntheses may
   // run later, as tasks: pipeline/synthesis_job.hpp).
   std::vector<Polygon> synthesis_junction_discs;
+
+  // The grown classes' lines (ornaments.gpkg), in class order.
+  std::vector<GrownClass> grown;
 
   // Existing features (polygons, buffered lines) burnt into the avoidance layer.
   AvoidanceInputs existing;

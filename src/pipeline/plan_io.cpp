@@ -201,6 +201,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
                                        {"patterns", encode(plan.pattern_index)},
                                        {"areas", encode(plan.area_index)}});
   files["areas"] = store.put_cbor(encode(plan.areas));
+  files["grown"] = store.put_cbor(encode(plan.grown));
   RunReport report = plan.report;
   const json timings = take_timings(report);
   files["report"] = store.put_cbor(encode(report));
@@ -321,6 +322,7 @@ WorldPlan load_plan(const fs::path& dir) {
     index_reader("patterns", plan.pattern_index);
     index_reader("areas", plan.area_index);
     get_cbor(dir, files, "areas", plan.areas);
+    get_cbor(dir, files, "grown", plan.grown);
     get_cbor(dir, files, "report", plan.report);
     if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
     for (std::size_t i = 0; i < doc.at("exemplars").size(); ++i) {

@@ -216,6 +216,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
   detail::write_placements(plan, dir, transaction, report);
   detail::write_area_outputs(plan, dir, transaction);
+  detail::write_ornament_outputs(plan, dir, transaction);
 
   report.total_seconds = seconds_since(run_started);
   report.output_files = detail::record_outputs(transaction);

@@ -55,13 +55,26 @@ struct FeatureReport {
   double grade_max = 0.0;
 };
 
+// A grown class (docs/pipeline.md, "Grown classes"): what the space filling placed, the
+// candidates it refused by reason, and the coverage (the fraction of the region's allowed mesh
+// vertices within coverage_radius_m, geodesic, of a line).
+struct GrowthReport {
+  std::string kind;     // hedge, wall, trail, ditch (or the line kind given with grow:)
+  std::string element;  // the element set
+  int ornaments = 0, elements = 0, lines = 0;
+  int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
+  double coverage = 0.0, coverage_radius_m = 0.0;
+  int mesh_width = 0, mesh_height = 0;  // vertices (the time is the stage `grow`'s)
+};
+
 struct FeatureClassReport {
   std::string name;
   FeatureKind kind = FeatureKind::road;
-  std::string source;  // path:layer
+  std::string source;  // path:layer (a grown class: its element set)
   double delta_m = 0.0;
   std::vector<FeatureReport> features;  // in reading order (a multi-part FID repeats)
   double ingest_seconds = 0.0;
+  std::optional<GrowthReport> grow;  // grown classes only
 };
 
 // One polygon of a `kind: area` class (docs/shape-patterns.md): what was placed, the candidates

@@ -137,6 +137,36 @@ TEST(Grow, SameSeedSameLinesBitForBit) {
   EXPECT_NE(c.lines.front().points, a.lines.front().points);
 }
 
+TEST(Grow, LocalDistanceUpdatesKeepTheWholeMeshsCoverage) {
+  // Each placed element's distances solved on the part of the mesh they can change (local
+  // once the region has filled, whole while an ornament runs into open ground): the growth
+  // covers the region as the whole-mesh reference does (the placements may differ through
+  // the heat method's last digits near the part's edge).
+  const World w = hillside(rolling);
+  const TerrainSurface surface(w.heights, w.grid, Window::whole(w.grid));
+  for (const char* name : {"hedge", "ditch"}) {
+    const ElementSet set = sample(name);
+    GrowthParams local;
+    local.seed = 5;
+    GrowthParams whole = local;
+    whole.local_distances = false;
+    const GrowthResult a = grow_ornaments(surface, w.allowed, set, local);
+    const GrowthResult b = grow_ornaments(surface, w.allowed, set, whole);
+    EXPECT_EQ(b.local_solves, 0);
+    EXPECT_EQ(b.whole_solves, b.elements);
+    EXPECT_EQ(a.local_solves + a.whole_solves, a.elements);
+    EXPECT_GT(a.local_solves, 0) << name;
+    const double cover_a = ornament_coverage(surface, w.allowed, a.lines, set.scale_m / 2);
+    const double cover_b = ornament_coverage(surface, w.allowed, b.lines, set.scale_m / 2);
+    std::printf(
+        "%s: local %d elements (%d local, %d whole solves) coverage %.3f; whole %d "
+        "elements coverage %.3f\n",
+        name, a.elements, a.local_solves, a.whole_solves, cover_a, b.elements, cover_b);
+    EXPECT_NEAR(cover_a, cover_b, 0.05) << name;
+    EXPECT_NEAR(a.elements, b.elements, 0.15 * b.elements + 2) << name;
+  }
+}
+
 TEST(Grow, ContourAlignmentKeepsTerraceWallsLevel) {
   const World w = hillside([](Vec2 p) { return 0.3 * (p.y - 1920.0); });
   const ElementSet set = sample("wall");

@@ -109,5 +109,41 @@ TEST(Surface, HeatDistancesApproximateTheGeodesicDistance) {
   EXPECT_TRUE(std::isinf(none[0]));
 }
 
+TEST(Surface, HeatDistancesOnAPartMatchTheWholeMeshWellInsideIt) {
+  // Rolling hills, a short line of sources in the middle of a 40 x 30 part of a 96 x 96 mesh:
+  // the part's distances agree with the whole mesh's wherever the part reaches 1.2 times the
+  // distance beyond the vertex (what the growth's local update relies on), and are +inf
+  // nowhere inside it.
+  const int n = 96;
+  const TerrainSurface hills = surface_of(n, [](Vec2 w) {
+    return 0.2 * (w.y - 2000) + 4.0 * std::sin((w.x - 1000) / 17.0) * std::cos((w.y - 2000) / 23.0);
+  });
+  std::vector<SurfacePoint> sources;
+  for (int i = 44; i <= 52; ++i) sources.push_back(hills.vertex_point(48 * n + i));
+  const Window part{30, 33, 40, 30};
+  const std::vector<double> whole = hills.heat_distances(sources);
+  const std::vector<double> local = hills.heat_distances(sources, part);
+  ASSERT_EQ(local.size(), 40u * 30u);
+  int compared = 0;
+  for (int j = 0; j < part.height; ++j) {
+    for (int i = 0; i < part.width; ++i) {
+      const int c = part.col0 + i, r = part.row0 + j;
+      const double d = whole[std::size_t(r) * n + c], l = local[std::size_t(j) * part.width + i];
+      ASSERT_TRUE(std::isfinite(l));
+      // Metres from the vertex to the part's edge, horizontally.
+      const double room = 2.0 * std::min({i, j, part.width - 1 - i, part.height - 1 - j});
+      if (room < 0.2 * d) continue;
+      EXPECT_NEAR(l, d, 0.01 * d + 2.0) << "vertex " << c << "," << r;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 400);
+  EXPECT_NEAR(local[std::size_t(48 - 33) * 40 + (48 - 30)], 0.0, 0.5);
+  // No source inside: nothing is reached; a part off the mesh is an error.
+  const std::vector<double> empty = hills.heat_distances({hills.vertex_point(0)}, part);
+  EXPECT_TRUE(std::isinf(empty[0]));
+  EXPECT_THROW(hills.heat_distances(sources, Window{80, 0, 20, 10}), Error);
+}
+
 }  // namespace
 }  // namespace tw

@@ -3,6 +3,7 @@
 #include <gdal_priv.h>
 
 #include "core/error.hpp"
+#include "ornament/element.hpp"
 #include "pipeline/detail/patterns.hpp"
 
 namespace tw::detail {
@@ -40,6 +41,14 @@ void check_inputs(const PipelineConfig& config) {
     VSIStatBufL stat;
     if (VSIStatL(input.path.c_str(), &stat) != 0) {
       fail("{}: {}: file does not exist", input.named_at, input.path.string());
+    }
+    if (input.kind == InputFile::Kind::ornament) {
+      try {
+        read_element_set(input.path);
+      } catch (const Error& e) {
+        fail("{}: cannot be used as an element set: {}", input.named_at, e.what());
+      }
+      continue;
     }
     if (input.kind != InputFile::Kind::exemplar) {
       check_gdal_input(input);

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "layers/vrt.hpp"
 #include "pipeline/detail/area_output.hpp"
+#include "pipeline/detail/grow_region.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "synth/placements_io.hpp"
 
@@ -53,6 +54,14 @@ void write_area_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder
   write_instances_json(transaction.stage(out / "instances.json"), results);
 }
 
+void write_ornament_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction) {
+  if (plan.grown.empty()) return;
+  std::vector<OrnamentLayer> layers;
+  for (const GrownClass& g : plan.grown)
+    layers.push_back({plan.class_names.at(g.class_index), g.kind, g.height_m, &g.lines, {}});
+  write_ornament_geopackage(transaction.stage(out / "ornaments.gpkg"), plan.crs_wkt, layers);
+}
+
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
                             const std::vector<RenderedTile>& tiles, const fs::path& out,
                             OutputFolder& transaction) {
@@ -76,6 +85,7 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
     write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
   write_placements(plan, out, transaction, report);
   write_area_outputs(plan, out, transaction);
+  write_ornament_outputs(plan, out, transaction);
   return report;
 }
 

@@ -55,6 +55,11 @@ void write_placements(const WorldPlan& plan, const std::filesystem::path& out,
 void write_area_outputs(const WorldPlan& plan, const std::filesystem::path& out,
                         OutputFolder& transaction);
 
+// ornaments.gpkg of the plan's grown classes (one layer per class, named by it; FIDs as the
+// class's features'); nothing when it has none.
+void write_ornament_outputs(const WorldPlan& plan, const std::filesystem::path& out,
+                            OutputFolder& transaction);
+
 // <out>/report.json, as terraweave run writes it.
 void write_job_report(const RunReport& report, const PipelineConfig& config,
                       const std::filesystem::path& out, OutputFolder& transaction);

@@ -23,6 +23,8 @@ const char* role_of(InputFile::Kind kind) {
       return "vector";
     case InputFile::Kind::exemplar:
       return "exemplar";
+    case InputFile::Kind::ornament:
+      return "element_set";
   }
   return "input";
 }

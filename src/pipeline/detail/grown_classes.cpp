@@ -1,0 +1,150 @@
+#include "pipeline/detail/grown_classes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "geo/height_sampler.hpp"
+#include "pipeline/detail/grow_region.hpp"
+
+namespace tw::detail {
+
+namespace {
+
+std::vector<Polygon> region_of(const FeatureClassConfig& c, const Heightfield& heightfield,
+                               const std::string& key, Warnings& warnings) {
+  const GrowConfig& g = *c.grow;
+  if (g.region_box) return {box_polygon(*g.region_box)};
+  const VectorSource source =
+      g.region_source.empty()
+          ? VectorSource{c.source.string(), c.layer, c.where}
+          : VectorSource{g.region_source.string(), g.region_layer, g.region_where};
+  std::vector<Polygon> out;
+  try {
+    for (PolygonFeature& f : read_polygon_features(source, heightfield, key, warnings))
+      out.emplace_back(f.rings.begin(), f.rings.end());
+  } catch (const Error& error) {
+    fail("{}: {}", key, error.what());
+  }
+  return out;
+}
+
+// The mesh's grid: the heightfield's origin at `resolution` metres (the heightfield's own by
+// default), so that the growth does not depend on the output grid unless asked to.
+GridSpec mesh_grid(const GridSpec& grid, double resolution) {
+  if (resolution <= 0.0) return grid;
+  GridSpec mesh = grid;
+  mesh.pixel_width = mesh.pixel_height = resolution;
+  mesh.width = std::max(2, int(std::ceil(grid.width * grid.pixel_width / resolution)));
+  mesh.height = std::max(2, int(std::ceil(grid.height * grid.pixel_height / resolution)));
+  return mesh;
+}
+
+// The profile's raise (+) or carve (-) in metres, for ornaments.gpkg's height_m.
+double profile_height(const FeatureClassConfig& c) {
+  switch (c.kind) {
+    case FeatureKind::ridge:
+      return c.ridge.height;
+    case FeatureKind::river:
+      return -c.river.depth;
+    case FeatureKind::road:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+std::vector<GrownClass> grow_classes(const PipelineConfig& config, const HeightfieldSource& source,
+                                     const Heightfield& heightfield,
+                                     const ExistingFeatures& existing,
+                                     std::vector<std::vector<LineFeature>>& lines,
+                                     std::vector<FeatureClassReport>& reports, Warnings& warnings) {
+  std::vector<GrownClass> out;
+  HeightSampler sampler(source);
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    const FeatureClassConfig& fc = config.features[c];
+    if (!fc.grow) continue;
+    const GrowConfig& g = *fc.grow;
+    const std::string key = "features." + fc.name;
+    ElementSet set;
+    try {
+      set = with_settings(read_element_set(g.element), g.settings);
+    } catch (const Error& error) {
+      fail("{}.grow.element: {}", key, error.what());
+    }
+    const std::vector<Polygon> region = region_of(fc, heightfield, key, warnings);
+    FeatureClassReport& report = reports[c];
+    report.source = g.element.string();
+    GrowthReport& r = report.grow.emplace();
+    r.kind = g.kind;
+    r.element = g.element.string();
+    GrownClass& grown = out.emplace_back();
+    grown.class_index = c;
+    grown.kind = g.kind;
+    grown.height_m = profile_height(fc);
+    const GridSpec mesh = mesh_grid(heightfield.grid, g.settings.resolution);
+    const Window window = window_around(region, mesh);
+    if (region.empty() || window.width < 2 || window.height < 2) {
+      warnings.add("empty_class", key, std::nullopt,
+                   "no region polygon lies on the heightfield: nothing is grown");
+      continue;
+    }
+    // What the lines keep off: every footprint there, widened by this class's half width on
+    // each side so that the footprints do not overlap.
+    AvoidanceInputs avoided;
+    avoided.polygons = existing.polygons;
+    for (std::size_t i = 0; i < existing.lines.size(); ++i) {
+      avoided.lines.push_back(existing.lines[i]);
+      avoided.line_widths.push_back(existing.line_widths[i] + fc.width);
+    }
+    for (std::size_t other = 0; other < config.features.size(); ++other) {
+      if (other == c || (config.features[other].grow && other > c)) continue;
+      for (const LineFeature& line : lines[other]) {
+        avoided.lines.push_back(line.points);
+        if (line.closed && !line.points.empty())
+          avoided.lines.back().push_back(line.points.front());
+        avoided.line_widths.push_back(line.width + fc.width);
+      }
+    }
+    Raster<float> heights(window.width, window.height);
+    for (int row = 0; row < window.height; ++row)
+      for (int col = 0; col < window.width; ++col)
+        heights.at(col, row) =
+            float(sampler.bilinear(mesh.pixel_centre_world(window.col0 + col, window.row0 + row)));
+    GrownRegion result =
+        grow_region(set, g.settings, mesh, window, std::move(heights), region, avoided, key);
+    r.ornaments = result.grown.ornaments;
+    r.elements = result.grown.elements;
+    r.lines = int(result.grown.lines.size());
+    r.rejected_crossing = result.grown.rejected_crossing;
+    r.rejected_forbidden = result.grown.rejected_forbidden;
+    r.rejected_untraceable = result.grown.rejected_untraceable;
+    r.coverage = result.coverage;
+    r.coverage_radius_m = result.coverage_radius;
+    r.mesh_width = window.width;
+    r.mesh_height = window.height;
+    for (GrownLine& line : result.grown.lines) {
+      // A river's points run downstream: a ditch drains from its higher end.
+      if (fc.kind == FeatureKind::river && line.heights.front() < line.heights.back()) {
+        std::reverse(line.points.begin(), line.points.end());
+        std::reverse(line.heights.begin(), line.heights.end());
+      }
+      LineFeature& feature = lines[c].emplace_back();
+      feature.fid = std::int64_t(lines[c].size());
+      feature.points = line.points;
+      feature.width = fc.width;
+      feature.source = g.element.string();
+    }
+    grown.lines = std::move(result.grown.lines);
+    logger().info(
+        "{}: {} ornaments, {} elements, {} lines over {}x{} vertices in {:.1f} s; "
+        "coverage within {:.1f} m: {:.3f}",
+        key, r.ornaments, r.elements, r.lines, window.width, window.height, result.growth_ms / 1000,
+        r.coverage_radius_m, r.coverage);
+  }
+  return out;
+}
+
+}  // namespace tw::detail

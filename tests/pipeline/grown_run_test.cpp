@@ -1,0 +1,326 @@
+// Grown classes inside a run (docs/pipeline.md, "Grown classes"): hedges, terrace walls and
+// ditches grown over their regions (FloralSurf, docs/ornaments.md) become line features: they
+// keep off the run's road and each other, change the terrain in their profile's direction, are
+// written to ornaments.gpkg (named in report.json with its hash), are the same bytes for the
+// same seed and travel in a saved plan; their config errors name the key.
+#include <gdal_priv.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "geo/resample.hpp"
+#include "layers/layer_set.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// 150 x 150 cells of 2 m: x 500000..500300, y 4999700..5000000. A road runs north-south
+// through x = 500150; hedges fill the south strip (both sides of the road), ditches the north
+// strip, and walls the east half after the hedges (so they must keep off them too).
+constexpr const char* kWorld = R"(
+version: 1
+seed: 3
+generate: { width: 150, height: 150, pixel_size: 2, relief: 30 }
+output: { dir: out, preview: false }
+precedence: [roads, hedges, ditches, walls]
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 6 }
+  hedges:
+    kind: hedge
+    grow: { element: hedge.json, region: [500010, 4999710, 500290, 4999850], seed: 5 }
+  ditches:
+    kind: ditch
+    grow: { element: ditch.json, region: [500010, 4999860, 500290, 4999990], max_ornaments: 6 }
+  walls:
+    kind: wall
+    grow:
+      element: wall.json
+      region: { source: map.gpkg, layer: terraces }
+      alignment: contour
+      max_ornaments: 8
+)";
+
+constexpr double kRoadX = 500150.0, kRoadWidth = 6.0;
+
+int orient(Vec2 a, Vec2 b, Vec2 c) {
+  const long double v =
+      (long double)(b.x - a.x) * (c.y - a.y) - (long double)(b.y - a.y) * (c.x - a.x);
+  return (v > 0) - (v < 0);
+}
+bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  if (a == c || a == d || b == c || b == d) return false;  // meeting end to end at a joint
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  return o1 * o2 <= 0 && o3 * o4 <= 0 && !(o1 == 0 && o2 == 0 && o3 == 0 && o4 == 0);
+}
+
+struct ReadLine {
+  std::int64_t fid = 0;
+  int ornament = 0;
+  std::string name, material, kind;
+  double height_m = 0.0;
+  std::vector<Vec2> points;
+  std::vector<double> z;
+};
+
+// Every layer of an ornaments.gpkg, read back with OGR.
+std::map<std::string, std::vector<ReadLine>> read_ornaments(const fs::path& path) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR));
+  std::map<std::string, std::vector<ReadLine>> out;
+  if (!ds) return out;
+  for (OGRLayer* layer : ds->GetLayers()) {
+    auto& lines = out[layer->GetName()];
+    for (const auto& feature : *layer) {
+      ReadLine& l = lines.emplace_back();
+      l.fid = feature->GetFID();
+      l.ornament = feature->GetFieldAsInteger("ornament");
+      l.name = feature->GetFieldAsString("name");
+      l.material = feature->GetFieldAsString("material");
+      l.kind = feature->GetFieldAsString("kind");
+      l.height_m = feature->GetFieldAsDouble("height_m");
+      const auto* g = feature->GetGeometryRef()->toLineString();
+      for (int i = 0; i < g->getNumPoints(); ++i) {
+        l.points.push_back({g->getX(i), g->getY(i)});
+        l.z.push_back(g->getZ(i));
+      }
+    }
+  }
+  return out;
+}
+
+class GrownRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_layer(dir_ / "map.gpkg", "roads",
+                      {{fmt::format("LINESTRING ({} 4999700, {} 5000000)", kRoadX, kRoadX)}});
+    test::write_layer(dir_ / "map.gpkg", "terraces",
+                      {{"POLYGON ((500160 4999710, 500290 4999710, 500290 4999990, "
+                        "500160 4999990, 500160 4999710))"}});
+    for (const char* name : {"hedge.json", "ditch.json", "wall.json"})
+      fs::copy_file(test::source_dir() / "samples/ornaments" / name, dir_ / name);
+  }
+
+  PipelineConfig config(const std::string& out, std::vector<Override> overrides = {}) const {
+    overrides.push_back({"output.dir", (dir_ / out).string()});
+    return parse_pipeline(kWorld, "world.yaml", dir_.path(), overrides);
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(GrownRun, LinesInOrnamentsGpkgKeepOffTheRoadAndEachOther) {
+  const RunReport report = run_pipeline(config("a"));
+  const auto layers = read_ornaments(dir_ / "a/ornaments.gpkg");
+  ASSERT_EQ(layers.size(), 3u);
+  std::vector<const ReadLine*> all;
+  for (const auto& [name, lines] : layers) {
+    const auto c = std::find_if(report.classes.begin(), report.classes.end(),
+                                [&](const FeatureClassReport& r) { return r.name == name; });
+    ASSERT_NE(c, report.classes.end()) << name;
+    ASSERT_TRUE(c->grow) << name;
+    EXPECT_EQ(int(lines.size()), c->grow->lines) << name;
+    EXPECT_GE(c->grow->elements, 5) << name;
+    EXPECT_GT(c->grow->coverage, 0.2) << name;
+    // The class's features are the grown lines, FID for FID.
+    ASSERT_EQ(c->features.size(), lines.size()) << name;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      EXPECT_EQ(lines[i].fid, std::int64_t(i + 1));
+      EXPECT_EQ(c->features[i].fid, lines[i].fid);
+      EXPECT_EQ(lines[i].kind, name.substr(0, name.size() - 1));  // hedges -> hedge
+      all.push_back(&lines[i]);
+    }
+  }
+  EXPECT_DOUBLE_EQ(layers.at("hedges").front().height_m, 1.5);    // the hedge bank's default
+  EXPECT_DOUBLE_EQ(layers.at("ditches").front().height_m, -1.0);  // a ditch a metre deep
+  // No line crosses another, in a class or across classes (the walls were grown after the
+  // hedges, over the same ground).
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = i + 1; j < all.size(); ++j)
+      for (std::size_t a = 0; a + 1 < all[i]->points.size(); ++a)
+        for (std::size_t b = 0; b + 1 < all[j]->points.size(); ++b)
+          ASSERT_FALSE(segments_cross(all[i]->points[a], all[i]->points[a + 1], all[j]->points[b],
+                                      all[j]->points[b + 1]))
+              << all[i]->kind << " " << all[i]->fid << " x " << all[j]->kind << " " << all[j]->fid;
+  // None enters the road's footprint widened by its own half width (the forbidden pixels, by
+  // the pixel-centre rule on the 2 m mesh: up to half a pixel diagonal closer).
+  int west = 0, east = 0;
+  for (const ReadLine& l : layers.at("hedges"))
+    for (Vec2 p : l.points) {
+      EXPECT_GT(std::abs(p.x - kRoadX), 0.5 * (kRoadWidth + 2.0) - std::sqrt(2.0)) << l.fid;
+      (p.x < kRoadX ? west : east)++;
+    }
+  EXPECT_GT(west, 0);
+  EXPECT_GT(east, 0);
+  // ornaments.gpkg is in the manifest with its hash, and report.json has the class's growth.
+  const nlohmann::json json = nlohmann::json::parse(test::read_file(dir_ / "a/report.json"));
+  const auto output = std::find_if(json["outputs"].begin(), json["outputs"].end(),
+                                   [](const auto& f) { return f["path"] == "ornaments.gpkg"; });
+  ASSERT_NE(output, json["outputs"].end());
+  EXPECT_EQ((*output)["xxh3_128"].get<std::string>().size(), 32u);
+  const auto& hedges = json["classes"][1];
+  EXPECT_EQ(hedges["name"], "hedges");
+  EXPECT_EQ(hedges["kind"], "ridge");
+  EXPECT_EQ(hedges["grown_kind"], "hedge");
+  EXPECT_EQ(hedges["grow"]["lines"].get<int>(), int(layers.at("hedges").size()));
+  EXPECT_GT(hedges["grow"]["rejected"]["forbidden"].get<int>(), 0);  // the road and the edge
+  EXPECT_GT(hedges["grow"]["coverage"].get<double>(), 0.2);
+}
+
+TEST_F(GrownRun, HedgesAndWallsRaiseTheTerrainDitchesLowerIt) {
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  ASSERT_EQ(plan.grown.size(), 3u);
+  const TileSpec& tile = plan.tiles.at(0);
+  const GridSpec grid = window_grid(plan.grid, tile.halo_window);
+  const Raster<float> before = read_height_window(plan.heights, plan.grid, tile.halo_window);
+  const LayerSet layers = render_tile(plan, tile);
+  const Raster<float>& after = find_layer(layers, "height")->bands[0];
+  for (const GrownClass& g : plan.grown) {
+    // The change at every line's vertices, averaged: hedge banks and walls stand proud of
+    // the ground by about their height, ditches are cut about their depth into it.
+    double sum = 0.0;
+    int count = 0, wrong_way = 0;
+    for (const LineFeature& line : plan.lines[g.class_index])
+      for (Vec2 p : line.points) {
+        const double d =
+            sample_height_bilinear(after, grid, p) - sample_height_bilinear(before, grid, p);
+        sum += d;
+        ++count;
+        wrong_way += g.height_m > 0 ? d < -0.05 : d > 0.05;
+      }
+    ASSERT_GT(count, 0) << g.kind;
+    const double mean = sum / count;
+    std::printf("%s: mean change %.3f m at %d vertices (profile %.2f m), %d the wrong way\n",
+                g.kind.c_str(), mean, count, g.height_m, wrong_way);
+    if (g.height_m > 0) {
+      EXPECT_GT(mean, 0.5 * g.height_m) << g.kind;
+      EXPECT_LT(mean, 1.2 * g.height_m) << g.kind;
+    } else {
+      EXPECT_LT(mean, 0.5 * g.height_m) << g.kind;
+    }
+    EXPECT_LT(wrong_way, count / 50 + 1) << g.kind;
+  }
+}
+
+TEST_F(GrownRun, SameSeedSameBytesOtherSeedOtherLinesAndThePlanKeepsThem) {
+  run_pipeline(config("a"));
+  run_pipeline(config("b"));
+  EXPECT_EQ(test::read_file(dir_ / "a/ornaments.gpkg"), test::read_file(dir_ / "b/ornaments.gpkg"));
+  EXPECT_EQ(test::read_file(dir_ / "a/height.tif"), test::read_file(dir_ / "b/height.tif"));
+  run_pipeline(config("c", {{"features.hedges.grow.seed", "9"}}));
+  const auto a = read_ornaments(dir_ / "a/ornaments.gpkg");
+  const auto c = read_ornaments(dir_ / "c/ornaments.gpkg");
+  EXPECT_NE(a.at("hedges").front().points, c.at("hedges").front().points);
+  EXPECT_EQ(a.at("ditches").front().points, c.at("ditches").front().points);  // its own seed
+
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  save_plan(plan, dir_ / "plan");
+  const WorldPlan loaded = load_plan(dir_ / "plan");
+  ASSERT_EQ(loaded.grown.size(), plan.grown.size());
+  for (std::size_t i = 0; i < plan.grown.size(); ++i) {
+    ASSERT_EQ(loaded.grown[i].lines.size(), plan.grown[i].lines.size());
+    EXPECT_EQ(loaded.grown[i].lines.back().points, plan.grown[i].lines.back().points);
+    EXPECT_EQ(loaded.grown[i].lines.back().name, plan.grown[i].lines.back().name);
+  }
+  EXPECT_EQ(loaded.report.classes.at(1).grow->elements, plan.report.classes.at(1).grow->elements);
+}
+
+TEST(GrownConfig, DefaultsByKindAndErrorsNameTheKey) {
+  const auto parse = [](const std::string& cls) {
+    return parse_pipeline("version: 1\nfeatures:\n  h: " + cls + "\n", "t.yaml", "/data");
+  };
+  const auto message = [&](const std::string& cls) {
+    try {
+      parse(cls);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const PipelineConfig hedge =
+      parse("{ kind: hedge, grow: { element: e.json, region: [0, 0, 9, 9] } }");
+  ASSERT_EQ(hedge.features.size(), 1u);
+  const FeatureClassConfig& h = hedge.features[0];
+  ASSERT_TRUE(h.grow);
+  EXPECT_EQ(h.kind, FeatureKind::ridge);
+  EXPECT_EQ(h.grow->kind, "hedge");
+  EXPECT_DOUBLE_EQ(h.width, 2.0);
+  EXPECT_DOUBLE_EQ(h.ridge.height, 1.5);
+  EXPECT_EQ(h.grow->element, fs::path("/data/e.json"));
+  EXPECT_TRUE(h.source.empty());  // the region is given: no source needed
+  const FeatureClassConfig d =
+      parse(
+          "{ kind: ditch, source: r.gpkg, width: 3, profile: { depth: 2 }, grow: { element: "
+          "e.json, alignment: contour, trials: 4, clearance: 2 } }")
+          .features[0];
+  EXPECT_EQ(d.kind, FeatureKind::river);
+  EXPECT_DOUBLE_EQ(d.width, 3.0);
+  EXPECT_DOUBLE_EQ(d.river.depth, 2.0);
+  EXPECT_DOUBLE_EQ(d.river.bank_width, 0.5);  // the ditch's default, not the river's
+  EXPECT_TRUE(d.grow->settings.contour);
+  EXPECT_EQ(d.grow->settings.trials, 4);
+  EXPECT_EQ(d.grow->settings.clearance, 2.0);
+  EXPECT_EQ(parse("{ kind: trail, source: r.gpkg, grow: { element: e.json } }").features[0].kind,
+            FeatureKind::road);
+
+  EXPECT_THAT(message("{ kind: hedge, source: r.gpkg }"),
+              HasSubstr("features.h.kind: a hedge class grows its lines: give a grow: block"));
+  EXPECT_THAT(message("{ kind: hedge, source: r.gpkg, grow: { element: e.json, alignment: "
+                      "contur } }"),
+              HasSubstr("features.h.grow.alignment: unknown alignment 'contur', expected growth "
+                        "or contour (did you mean 'contour'?)"));
+  EXPECT_THAT(message("{ kind: wall, source: r.gpkg, grow: { element: e.json, trials: 0 } }"),
+              HasSubstr("features.h.grow.trials: must be in [1, 1000], got 0"));
+  EXPECT_THAT(message("{ kind: wall, grow: { element: e.json, region: [0, 0, 1] } }"),
+              HasSubstr("features.h.grow.region: expected [minx, miny, maxx, maxy]"));
+  EXPECT_THAT(message("{ kind: wall, grow: { region: [0, 0, 1, 1] } }"),
+              HasSubstr("features.h.grow.element"));
+  EXPECT_THAT(message("{ kind: wall, grow: { element: e.json } }"), HasSubstr("features.h.source"));
+  EXPECT_THAT(message("{ kind: wall, source: r.gpkg, grow: { element: e.json, seeds: 2 } }"),
+              HasSubstr("features.h.grow.seeds: unknown key"));
+  EXPECT_THAT(message("{ kind: ditch, source: r.gpkg, conform: { corridor: 5 }, grow: { "
+                      "element: e.json } }"),
+              HasSubstr("features.h.conform: grown lines are drawn on the surface already"));
+  EXPECT_THAT(message("{ kind: road, source: r.gpkg, grow: { element: e.json } }"),
+              HasSubstr("features.h.width"));  // a road grown needs its width
+}
+
+TEST(GrownConfig, ABadElementSetFailsTheRunNamingTheKeyAndTheJsonKey) {
+  test::TempDir dir;
+  {
+    std::ofstream bad(dir / "bad.json");
+    bad << R"({"name": "x", "kind": "hedge", "seed_tag": "t", "elements": []})";
+  }
+  const PipelineConfig config = parse_pipeline(
+      "version: 1\ngenerate: { width: 40, height: 40, pixel_size: 4 }\noutput: { dir: out }\n"
+      "features:\n  h: { kind: hedge, grow: { element: bad.json, region: [500000, 4999900, "
+      "500100, 5000000] } }\n",
+      "t.yaml", dir.path());
+  try {
+    run_pipeline(config);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("features.h.grow.element"));
+    EXPECT_THAT(e.what(), HasSubstr("bad.json"));
+  }
+  EXPECT_FALSE(fs::exists(dir / "out/report.json"));
+}
+
+}  // namespace
+}  // namespace tw
