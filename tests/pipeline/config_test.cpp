@@ -149,8 +149,8 @@ features:
 features:
   roads: { source: m.gpkg, kind: raod, width: 3 }
 )"),
-              HasSubstr("features.roads.kind: unknown kind 'raod', expected road, river or ridge "
-                        "(did you mean 'road'?)"));
+              HasSubstr("features.roads.kind: unknown kind 'raod', expected road, river, ridge, "
+                        "hedge, wall, trail or ditch (did you mean 'road'?)"));
   EXPECT_THAT(error_of("version: 2\n"), HasSubstr("p.yaml:1:10: version: only version 1"));
   EXPECT_THAT(error_of("version: 1\nbackend: gpu\n"), HasSubstr("backend: unknown backend 'gpu'"));
   EXPECT_THAT(error_of("version: [1\n"), HasSubstr("p.yaml:"));
