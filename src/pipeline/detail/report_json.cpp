@@ -64,7 +64,8 @@ json timings_json(const RunReport& report) {
     }
   }
   json tiles = json::array();
-  for (const TileReport& t : report.tiles.tiles) tiles.push_back({{"index", t.index}, {"seconds", t.seconds}});
+  for (const TileReport& t : report.tiles.tiles)
+    tiles.push_back({{"index", t.index}, {"seconds", t.seconds}});
   return {{"started_utc", report.started_utc},
           {"total_seconds", report.total_seconds},
           {"stages", stages},
@@ -131,30 +132,35 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       }
       if (f.synthesis) {
         const FeatureSynthesisReport& s = *f.synthesis;
-        feature["synthesis"] = {{"exemplar", s.exemplar},
-                                {"seed", s.seed},
-                                {"backend", s.backend},
-                                {"mean_valid_positions", s.mean_valid_positions},
-                                {"omega", s.omega},
-                                {"mean_seam_cost", s.mean_seam_cost},
-                                {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
-                                {"objective", s.objective},
-                                {"min_coverage", s.min_coverage},
-                                {"min_coverage_from", s.min_coverage_from_exemplar
-                                                          ? "exemplar"
-                                                          : "pipeline"},
-                                {"coverage_ratio", s.coverage_ratio},
-                                {"mean_coverage", s.mean_coverage},
-                                {"natural_coverage", s.natural_coverage},
-                                {"parametric_seam_cost", s.parametric_seam_cost},
-                                {"width_m", s.width_m},
-                                {"width_from", s.width_from},
-                                {"delta_m", s.delta_m},
-                                {"delta_from", s.delta_from},
-                                {"empty_pieces", s.empty_pieces},
-                                {"violations", s.violations},
-                                {"canvas", {s.canvas_width, s.canvas_height}},
-                                {"placements", s.placements}};
+        feature["synthesis"] = {
+            {"exemplar", s.exemplar},
+            {"seed", s.seed},
+            {"backend", s.backend},
+            {"mean_valid_positions", s.mean_valid_positions},
+            {"omega", s.omega},
+            {"mean_seam_cost", s.mean_seam_cost},
+            {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
+            {"objective", s.objective},
+            {"min_coverage", s.min_coverage},
+            {"min_coverage_from", s.min_coverage_from_exemplar ? "exemplar" : "pipeline"},
+            {"coverage_ratio", s.coverage_ratio},
+            {"mean_coverage", s.mean_coverage},
+            {"natural_coverage", s.natural_coverage},
+            {"parametric_seam_cost", s.parametric_seam_cost},
+            {"width_m", s.width_m},
+            {"width_from", s.width_from},
+            {"delta_m", s.delta_m},
+            {"delta_from", s.delta_from},
+            {"empty_pieces", s.empty_pieces},
+            {"violations", s.violations},
+            {"canvas", {s.canvas_width, s.canvas_height}},
+            {"placements", s.placements}};
+        if (!s.mix_exemplars.empty()) {  // choose: mix
+          feature["synthesis"]["mix"] = {{"exemplars", s.mix_exemplars},
+                                         {"pieces_per_exemplar", s.pieces_per_exemplar},
+                                         {"switches", s.exemplar_switches},
+                                         {"switch_cost", s.switch_cost}};
+        }
       }
       if (f.cache) {
         feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},
