@@ -127,7 +127,7 @@ FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
   // Synthesis: by seed one exemplar, every exemplar and the lowest Omega / N, or one DP over
   // the atlas of them all.
   started = std::chrono::steady_clock::now();
-  const MixedExemplar* mix = options.mix;
+  const MixedExemplar* mix = options.choice == ExemplarChoice::mix ? options.mix : nullptr;
   if (options.choice == ExemplarChoice::mix) {
     if (!mix) {
       out.mix =
