@@ -45,9 +45,17 @@ struct ExportCurve {
   std::vector<Vec2> points;
 };
 
+// What an export read of the layer files, one RasterIO per window: the largest window bounds
+// what it held of them at once (tiled exports: one tile's source window, whatever the world).
+struct ExportReads {
+  std::int64_t windows = 0;
+  std::int64_t largest_cells = 0;
+};
+
 struct EngineExportResult {
   std::vector<std::filesystem::path> files;  // final paths, in writing order
   std::vector<std::string> settings;         // "what to type in", one line each (printed)
+  ExportReads reads;                         // tiled exports; zero for layers in memory
 };
 
 Engine parse_engine(std::string_view name);  // unreal | unity | godot, else tw::Error

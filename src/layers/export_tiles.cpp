@@ -15,9 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "geo/resample.hpp"
 #include "layers/detail/engine_exports.hpp"
 #include "layers/detail/engine_raster.hpp"
+#include "layers/detail/gdal_cache.hpp"
 #include "layers/detail/gdal_init.hpp"
 
 namespace tw {
@@ -76,16 +78,6 @@ Raster<float> read_window(const LayerFile& f, int band, const Window& w) {
   return r;
 }
 
-bool has_nodata(const LayerFile& f) {
-  for (int row = 0; row < f.grid.height; row += 256) {
-    const Raster<float> r =
-        read_window(f, 1, {0, row, f.grid.width, std::min(256, f.grid.height - row)});
-    for (float v : r.pixels)
-      if (std::isnan(v)) return true;
-  }
-  return false;
-}
-
 // A temporary copy of the height file with its nodata filled by GDALFillNodata as fill_nodata
 // fills a whole layer (search distance: the world), worked through a few rows at a time.
 struct FilledCopy {
@@ -131,6 +123,10 @@ TileLayout tile_layout(const GridSpec& grid, int size) {
   return l;
 }
 
+// The layer files read by windows, never whole. Nodata is filled the first time a read meets
+// it (no nodata_height given): a copy of the height file, filled over the whole world as the
+// untiled export fills, read from then on. The filling only changes nodata cells, so windows
+// read before it stay valid.
 class TiledSource {
  public:
   TiledSource(const ExportFiles& files, const EngineExportOptions& options)
@@ -140,25 +136,27 @@ class TiledSource {
       if (!(splat_->grid == height_.grid))
         fail("{}: its grid differs from {}'s", files.splat->string(), files.height.string());
     }
-    if (!nodata_height_ && has_nodata(height_)) {
-      fill_into_copy(height_, filled_);
-      height_ = open_layer_file(filled_.path);
-    }
     if (!files.crs_wkt.empty()) height_.crs_wkt = files.crs_wkt;
   }
   const GridSpec& grid() const { return height_.grid; }
   const std::string& crs_wkt() const { return height_.crs_wkt; }
   const LayerFile* splat() const { return splat_ ? &*splat_ : nullptr; }
+  const ExportReads& reads() const { return reads_; }
 
   // Heights at the cells of `window` of `to` (vertices or texels over the world).
-  Raster<float> heights(const GridSpec& to, const Window& window) const {
-    return resampled(height_, 1, to, window, true);
+  Raster<float> heights(const GridSpec& to, const Window& window) {
+    return resampled(to, window, [this](const Window& w) { return read_heights(w); });
   }
   // Splat band `band` (0-based) at the cells of `window` of `to`; nodata weighs nothing.
-  Raster<float> weights(int band, const GridSpec& to, const Window& window) const {
-    return resampled(*splat_, band + 1, to, window, false);
+  Raster<float> weights(int band, const GridSpec& to, const Window& window) {
+    return resampled(to, window, [this, band](const Window& w) {
+      Raster<float> r = read(*splat_, band + 1, w);
+      for (float& v : r.pixels)
+        if (std::isnan(v)) v = 0.0f;
+      return r;
+    });
   }
-  double height_at(Vec2 p) const {
+  double height_at(Vec2 p) {
     const Vec2 px = grid().world_to_pixel(p);
     const int c0 = std::clamp(int(std::floor(px.x)) - 2, 0, std::max(0, grid().width - 4));
     const int r0 = std::clamp(int(std::floor(px.y)) - 2, 0, std::max(0, grid().height - 4));
@@ -168,29 +166,46 @@ class TiledSource {
     sub.height = w.height;
     sub.origin_x += c0 * sub.pixel_width;
     sub.origin_y -= r0 * sub.pixel_height;
-    return sample_height_bilinear(clean(read_window(height_, 1, w), true), sub, p);
+    return sample_height_bilinear(read_heights(w), sub, p);
   }
 
  private:
-  Raster<float> clean(Raster<float> r, bool height) const {
-    for (float& v : r.pixels)
-      if (std::isnan(v)) v = height ? float(*nodata_height_) : 0.0f;
-    return r;
+  Raster<float> read(const LayerFile& f, int band, const Window& w) {
+    ++reads_.windows;
+    reads_.largest_cells = std::max(reads_.largest_cells, std::int64_t(w.width) * w.height);
+    return read_window(f, band, w);
   }
-  Raster<float> resampled(const LayerFile& f, int band, const GridSpec& to, const Window& window,
-                          bool height) const {
-    const GridSpec& from = f.grid;
+  // `w` of the height file, nodata-free.
+  Raster<float> read_heights(const Window& w) {
+    Raster<float> r = read(height_, 1, w);
+    if (std::none_of(r.pixels.begin(), r.pixels.end(), [](float v) { return std::isnan(v); }))
+      return r;
+    if (nodata_height_) {
+      for (float& v : r.pixels)
+        if (std::isnan(v)) v = float(*nodata_height_);
+      return r;
+    }
+    if (!filled_.path.empty()) fail("{}: nodata left after filling", height_.ds->GetDescription());
+    std::string crs = height_.crs_wkt;
+    fill_into_copy(height_, filled_);
+    height_ = open_layer_file(filled_.path);
+    height_.crs_wkt = std::move(crs);
+    return read_heights(w);
+  }
+  template <class Read>
+  Raster<float> resampled(const GridSpec& to, const Window& window, const Read& read) {
+    const GridSpec& from = height_.grid;
     if (to == detail::vertex_grid(from, from.width, from.height))
-      return clean(read_window(f, band, window), height);  // the vertices are the cell centres
+      return read(window);  // the vertices are the cell centres
     const Window source = resample_source_window(from, to, window);
-    return resample_heights_window(clean(read_window(f, band, source), height), source, from, to,
-                                   window, Resampling::bilinear);
+    return resample_heights_window(read(source), source, from, to, window, Resampling::bilinear);
   }
 
   LayerFile height_;
   std::optional<LayerFile> splat_;
   std::optional<double> nodata_height_;
   FilledCopy filled_;
+  ExportReads reads_;
 };
 
 std::vector<std::string> material_names(const LayerFile& splat) {
@@ -223,7 +238,9 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
   if (!std::binary_search(sizes.begin(), sizes.end(), size))
     fail("export {}: tile size {} is not one the engine takes ({} ... {})", engine, size,
          sizes.front(), sizes.back());
-  const TiledSource source(files, options);
+  // A bounded block cache: GDAL's default would keep every block read (up to 5 % of RAM).
+  const detail::ScopedGdalCacheMax cache(detail::kExportGdalCacheBytes);
+  TiledSource source(files, options);
   const GridSpec& grid = source.grid();
   const TileLayout layout = tile_layout(grid, size);
   const TileWriter names{options.engine, layout};
@@ -244,6 +261,8 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
       source.splat() ? material_names(*source.splat()) : std::vector<std::string>{};
   EngineExportResult result;
   nlohmann::json tiles = nlohmann::json::array();
+  // The writing pass: the range pass before it reads heights alone, a fraction of the time.
+  Progress progress("export " + engine, std::int64_t(layout.nx) * layout.ny, "tile");
   for (int j = 0; j < layout.ny; ++j)
     for (int i = 0; i < layout.nx; ++i) {
       const std::string suffix = names.suffix(i, j);
@@ -284,6 +303,7 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
                        {"heightmap", height_file},
                        {unreal ? "weightmaps" : "splatmaps", weight_files}});
       if (!unreal) tiles.back()["position"] = {tile_x, min, tile_z};
+      progress.advance();
     }
   const double vx = layout.vertices.pixel_width, vz = layout.vertices.pixel_height;
   const detail::EngineFrame frame = detail::engine_frame(options.engine, grid);
@@ -300,9 +320,18 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
                             {"materials", materials},
                             {"tiles", tiles}};
   if (unreal) {
-    sidecar["location_cm"] = {0.0, 0.0, (min + max) / 2.0 * 100.0};
-    sidecar["scale"] = {vx * 100.0, vz * 100.0, (max - min) * 100.0 / 512.0};
+    const detail::UnrealZ z = detail::unreal_z(min, max);
+    sidecar["location_cm"] = {0.0, 0.0, z.location_cm};
+    sidecar["scale"] = {vx * 100.0, vz * 100.0, z.scale};
   } else {
+    // The untiled unity.json's layer table: material i is channel RGBA[i % 4] of every tile's
+    // splatmap_<i / 4>_<x>_<z>.png.
+    nlohmann::json layers = nlohmann::json::array();
+    for (std::size_t m = 0; m < materials.size(); ++m)
+      layers.push_back({{"material", materials[m]},
+                        {"control", fmt::format("splatmap_{}", m / 4)},
+                        {"channel", std::string(1, "RGBA"[m % 4])}});
+    sidecar["layers"] = layers;
     sidecar["heightmap_resolution"] = size;
     sidecar["alphamap_resolution"] = alpha;
     sidecar["depth"] = 16;
@@ -316,15 +345,16 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
            curves, [&source](Vec2 p) { return source.height_at(p); }, frame, dir, stager))
     result.files.push_back(p);
 
+  result.reads = source.reads();
   result.settings.push_back(fmt::format(
       "{}: {} x {} tiles of {} x {} ({}), heights {:.3f} .. {:.3f} m", engine, layout.nx, layout.ny,
       size, size, (dir / (unreal ? "heightmap_x0_y0.png" : "heightmap_0_0.raw")).string(), min,
       max));
   if (unreal) {
+    const detail::UnrealZ z = detail::unreal_z(min, max);
+    result.settings.push_back(fmt::format("unreal: Location X 0 Y 0 Z {:.3f}", z.location_cm));
     result.settings.push_back(
-        fmt::format("unreal: Location X 0 Y 0 Z {:.3f}", (min + max) / 2.0 * 100.0));
-    result.settings.push_back(fmt::format("unreal: Scale X {:.4f} Y {:.4f} Z {:.4f}", vx * 100.0,
-                                          vz * 100.0, (max - min) * 100.0 / 512.0));
+        fmt::format("unreal: Scale X {:.4f} Y {:.4f} Z {:.4f}", vx * 100.0, vz * 100.0, z.scale));
   } else {
     result.settings.push_back(
         fmt::format("unity: each terrain Width {:.3f} Length {:.3f} Height {:.3f}; tile (x, z) at "

@@ -1,9 +1,6 @@
 // Unreal Engine landscape: a 16-bit grayscale PNG heightmap at one of Epic's landscape sizes,
 // an 8-bit weightmap per splat material, the location and scale to type in (unreal.json), and
-// the splines. Epic's formula (Landscape Technical Guide): a 16-bit value v lies at
-// Location.Z + (v - 32768) * Scale.Z / 128 cm, so Scale.Z = (max - min) * 100 / 512 spans the
-// 65535 steps over the height range and Location.Z = (min + max) / 2 * 100 puts them at the
-// true heights (within one 16-bit step).
+// the splines (Z scale and location: unreal_z).
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +10,11 @@
 #include "layers/detail/splines.hpp"
 
 namespace tw::detail {
+
+UnrealZ unreal_z(double min, double max) {
+  const double scale = (max - min) * 100.0 * 128.0 / 65535.0;
+  return {scale, min * 100.0 + 32768.0 * scale / 128.0};
+}
 
 EngineExportResult export_unreal(const ExportSource& source, const EngineExportOptions& options,
                                  const std::filesystem::path& dir, OutputStager& stager) {
@@ -37,8 +39,8 @@ EngineExportResult export_unreal(const ExportSource& source, const EngineExportO
     }
   }
   const double scale_x = vertices.pixel_width * 100.0, scale_y = vertices.pixel_height * 100.0;
-  const double scale_z = (map.max - map.min) * 100.0 / 512.0;
-  const double location_z = (map.min + map.max) / 2.0 * 100.0;
+  const UnrealZ z = unreal_z(map.min, map.max);
+  const double scale_z = z.scale, location_z = z.location_cm;
   // Vertex (0, 0), the landscape's corner at Location (0, 0): the world's north-west centre.
   const EngineFrame frame = engine_frame(Engine::unreal, grid);
   const nlohmann::json sidecar = {{"engine", "unreal"},

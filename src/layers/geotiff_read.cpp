@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "layers/detail/gdal_cache.hpp"
 #include "layers/detail/gdal_init.hpp"
 #include "layers/export.hpp"
 
@@ -13,6 +14,8 @@ namespace tw {
 Layer read_geotiff_layer(const std::filesystem::path& path, const std::string& name,
                          LayerSet& set) {
   detail::ensure_gdal_registered();
+  // The layer is read whole into memory once: blocks cached on top of it would double it.
+  const detail::ScopedGdalCacheMax cache(detail::kExportGdalCacheBytes);
   struct Closer {
     void operator()(GDALDataset* d) const { GDALClose(d); }
   };

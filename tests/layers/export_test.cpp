@@ -82,12 +82,23 @@ TEST(EngineExport, UnrealHeightmapSpansTheFull16BitsAndRoundTripsWithinOneStep) 
     worst =
         std::max(worst, std::abs(min + map.bands[0][i] * step - set.layers[0].bands[0].pixels[i]));
   EXPECT_LE(worst, step);
-  // Epic's formula: Z scale (max - min) * 100 / 512 cm, Location Z at the middle height.
-  EXPECT_NEAR(ue["scale"][2].get<double>(), (max - min) * 100.0 / 512.0, 1e-9);
-  EXPECT_NEAR(ue["location_cm"][2].get<double>(), (min + max) * 50.0, 1e-6);
+  // What Unreal makes of a value v (Epic's formula: Location.Z + (v - 32768) * Scale.Z / 128
+  // cm) is the true height within the rounding, half a step: 0 at min, 65535 at max.
+  const double scale_z = ue["scale"][2], location_z = ue["location_cm"][2];
+  const auto unreal_m = [&](double v) {
+    return (location_z + (v - 32768.0) * scale_z / 128.0) / 100;
+  };
+  EXPECT_NEAR(unreal_m(0), min, 1e-9);
+  EXPECT_NEAR(unreal_m(65535), max, 1e-9);
+  double worst_unreal = 0.0;
+  for (std::size_t i = 0; i < map.bands[0].size(); ++i)
+    worst_unreal = std::max(worst_unreal,
+                            std::abs(unreal_m(map.bands[0][i]) - set.layers[0].bands[0].pixels[i]));
+  EXPECT_LE(worst_unreal, step / 2 + 1e-6);
   EXPECT_NEAR(ue["scale"][0].get<double>(), 1000.0, 1e-9);  // 10 m cells, in centimetres
   ASSERT_EQ(result.settings.size(), 4u);
-  EXPECT_NE(result.settings[2].find("Z 32.8125"), std::string::npos) << result.settings[2];
+  EXPECT_NE(result.settings[2].find(fmt::format("Z {:.4f}", scale_z)), std::string::npos)
+      << result.settings[2];
 
   // One 8-bit weightmap per material, summing to 255 everywhere.
   const auto names = ue["weightmaps"];

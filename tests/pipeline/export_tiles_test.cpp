@@ -8,7 +8,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_output.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/export_command.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
@@ -181,6 +183,32 @@ TEST_F(ExportTiles, WorldPartitionTilesShareEdgesAndOneZScale) {
     }
   EXPECT_EQ(lo, 0.0);
   EXPECT_EQ(hi, 65535.0);
+}
+
+TEST_F(ExportTiles, TilesReadTheLayerFilesByWindowsOfOneTile) {
+  // Unreal tiles of 127 over the 300 cells (run tiles of 64): 3 x 3 tiles of 126 vertex steps,
+  // 299 / 378 cells each, so a tile's window spans about 100 cells and the world 300. The
+  // world's nodata hole is filled on a copy, which the export reads by windows as well.
+  run("tiled", {{"output.tiles", "{size: 64, overlap: 2}"}});
+  const fs::path out = dir / "tiled";
+  ExportFiles files{out / "height.vrt", out / "splat.vrt", {}};
+  EngineExportOptions options;
+  options.engine = Engine::unreal;
+  options.tile_size = 127;
+  const std::int64_t cache_before = GDALGetCacheMax64();
+  OutputTransaction tx;
+  const EngineExportResult result = export_layer_files(files, {}, options, 64, dir / "ue", tx);
+  tx.commit();
+  EXPECT_EQ(GDALGetCacheMax64(), cache_before);  // the export's bounded cache is given back
+  ASSERT_TRUE(fs::exists(dir / "ue/heightmap_x2_y2.png"));
+  const int span = int(std::ceil(126.0 * 299.0 / 378.0)) + 3;  // + the bilinear neighbours
+  EXPECT_GT(result.reads.largest_cells, std::int64_t(span - 6) * (span - 6));
+  EXPECT_LE(result.reads.largest_cells, std::int64_t(span) * span);
+  // Two passes over 9 tiles: heights, then heights and the splat's bands again.
+  const std::unique_ptr<GDALDataset> splat(
+      GDALDataset::Open((out / "splat.vrt").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(splat);
+  EXPECT_GE(result.reads.windows, 9 * (2 + std::int64_t(splat->GetRasterCount())));
 }
 
 }  // namespace

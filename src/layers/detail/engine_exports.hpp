@@ -26,6 +26,16 @@ HeightAt height_at(const ExportSource& source);
 // Writes `json` (pretty) to dir/name, staged.
 void write_json(const std::filesystem::path& path, const std::string& text, OutputStager& stager);
 
+// Unreal's landscape Z: a 16-bit value v lies at Location.Z + (v - 32768) * Scale.Z / 128 cm
+// (Epic's Landscape Technical Guide). Solved for v = 0 at `min` and v = 65535 at `max` metres,
+// the quantization's ends, so every value lands on its true height (Epic's rounder
+// "(max - min) * 100 / 512" puts 65535 one step below max).
+struct UnrealZ {
+  double scale = 0.0;        // Scale.Z
+  double location_cm = 0.0;  // Location.Z
+};
+UnrealZ unreal_z(double min, double max);
+
 EngineExportResult export_unreal(const ExportSource& source, const EngineExportOptions& options,
                                  const std::filesystem::path& dir, OutputStager& stager);
 EngineExportResult export_unity(const ExportSource& source, const EngineExportOptions& options,

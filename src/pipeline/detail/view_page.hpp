@@ -1,7 +1,8 @@
 #pragma once
 // The page of `terraweave view`: @THREE@ becomes three.module.min.js in base64, @DATA@ the
-// run's data as JSON. The title turns to "terraweave view: ready in N ms" once drawn (what
-// the headless-browser test and the load-time measurement wait for).
+// run's data as JSON. Once the first frame is drawn, window.__terraweaveReady holds its time
+// since the navigation started, the title turns to "terraweave view: ready in N ms" and the
+// console says so (what bench/view_load.sh waits for).
 namespace tw::detail {
 
 inline constexpr const char* kViewPage = R"html(<!doctype html>
@@ -110,8 +111,13 @@ const toggle = () => {
 };
 for (const id of ['splat', 'avoidance', 'features']) document.getElementById(id).onchange = toggle;
 draw();
-document.title = `terraweave view: ready in ${Math.round(performance.now() - t0)} ms`;
-console.log(document.title);
+// The frame is on screen at the next animation frame; performance.now() counts from the
+// navigation's start, so the stamp is the page's whole load (parse, three.js, data, mesh).
+requestAnimationFrame(() => {
+  window.__terraweaveReady = performance.now();
+  document.title = `terraweave view: ready in ${Math.round(window.__terraweaveReady)} ms`;
+  console.log(`${document.title} (script ${Math.round(window.__terraweaveReady - t0)} ms)`);
+});
 </script></body></html>
 )html";
 
