@@ -8,6 +8,7 @@
 #include "sketch/detail/area_candidates.hpp"
 #include "sketch/detail/area_filter.hpp"
 #include "sketch/detail/clustering.hpp"
+#include "sketch/detail/field_frame.hpp"
 
 namespace tw {
 
@@ -38,6 +39,11 @@ Vec2 centroid(const Ring& ring) {
 
 }  // namespace
 
+Vec2 area_anchor(const Polygon& domain) {
+  if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
+  return centroid(domain.front());
+}
+
 double long_axis_bearing(const Polygon& domain) {
   if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
   // Points every 1/64 of the perimeter, so a densely digitized side does not pull the axis.
@@ -64,6 +70,30 @@ AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& do
     fail("area: jitter must be in [0, 1], got {}", params.jitter);
   }
   const Vec2 anchor = centroid(domain.front());
+  if (params.lead_field) {
+    // Rows along the field: input space (q - centre) * scale is the frame's (u, v).
+    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    double reach = 0.0;
+    for (Vec2 p : domain.front()) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      reach = std::max(reach, distance(p, anchor));
+    }
+    reach += 0.5 * params.scale;  // curves bend: the frame reaches past the polygon
+    const double step =
+        params.lead_step > 0.0 ? params.lead_step : std::max(params.scale / 16.0, reach / 512.0);
+    const detail::FieldFrame frame(anchor, params.bearing, params.lead_field, reach, step);
+    Vec2 uv_lo, uv_hi;
+    frame.extent_within(lo, hi, uv_lo, uv_hi);
+    const auto to_world = [&](Vec2 q) {
+      return frame.to_world((q - Vec2{0.5, 0.5}) * params.scale);
+    };
+    const auto candidates = detail::area_candidates(
+        hierarchy, Vec2{0.5, 0.5} + uv_lo / params.scale, Vec2{0.5, 0.5} + uv_hi / params.scale,
+        params.jitter, params.keep_input, params.seed);
+    return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale,
+                                    avoidance, step / params.scale);
+  }
   const auto to_world = [&](Vec2 q) {
     return anchor + rotated((q - Vec2{0.5, 0.5}) * params.scale, params.bearing);
   };
@@ -78,7 +108,8 @@ AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& do
   }
   const auto candidates =
       detail::area_candidates(hierarchy, lo, hi, params.jitter, params.keep_input, params.seed);
-  return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale, avoidance);
+  return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale, avoidance,
+                                  0.0);
 }
 
 SupportHierarchy hybridize(const SupportHierarchy& structure, const SupportHierarchy& shapes,

@@ -8,6 +8,8 @@
 // mirror duplication). Nothing leaves the polygon, touches a forbidden pixel, or overlaps a
 // shape it was disjoint from in the sketch (H3).
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,12 +19,22 @@
 
 namespace tw {
 
+// A lead direction field: at a world point, the angle (radians counter-clockwise from +x, modulo
+// pi) the rows follow there; none where it is undefined (flat ground), where rows go straight on.
+using LeadField = std::function<std::optional<double>(Vec2)>;
+
 struct AreaSynthesisParams {
   double scale = 10.0;     // metres per input-space unit (the sketch covers scale x scale m)
   double bearing = 0.0;    // radians, counter-clockwise from +x: the input space's +x axis
   std::uint64_t seed = 1;  // same seed, same result
   double jitter = 0.5;     // fraction of each allowed displacement used, in [0, 1]
   bool keep_input = true;  // the sketch itself, unperturbed, at the centroid
+  // Empty: the input space is laid straight along `bearing`. Otherwise its rows curve with the
+  // field (detail/field_frame.hpp), starting along `bearing` at the centroid (the field's value
+  // there, as a rule); `lead_step` metres between the frame's nodes (0: scale / 16, coarser for
+  // polygons wider than 512 steps from the centroid).
+  LeadField lead_field;
+  double lead_step = 0.0;
 };
 
 // One placed shape: where engines put an instance of it.
@@ -55,6 +67,9 @@ struct AreaPattern {
 AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& domain,
                             const AreaSynthesisParams& params,
                             const AvoidanceMap* avoidance = nullptr);
+
+// Where the input space's centre is laid: the area centroid of the outer ring (holes ignored).
+Vec2 area_anchor(const Polygon& domain);
 
 // The bearing of the polygon's long axis (principal axis of its outer ring's vertices,
 // boundary-sampled so that vertex density does not bias it), in [0, pi).

@@ -125,6 +125,51 @@ TEST(AreaSynthesis, RepeatsRowsOverTheFieldWithoutOverlapOrLeavingIt) {
   EXPECT_LT(longest, 301.0);
 }
 
+// A lead field of circles about a point south of the field (a cone's contours): the wires
+// curve with it. At every placed segment their direction is the circle's tangent there, and
+// each keeps its distance to the centre; laid straight, the field's ends would be off by
+// about 40 degrees. H3 still holds.
+TEST(AreaSynthesis, RowsCurveWithTheLeadField) {
+  const SupportHierarchy h = analyze_sketch(vineyard());
+  const Vec2 apex{1000.0, 1800.0};
+  AreaSynthesisParams params;
+  params.scale = 40.0;
+  params.seed = 7;
+  params.lead_field = [&](Vec2 p) -> std::optional<double> {
+    return std::atan2(p.y - apex.y, p.x - apex.x) + 0.5 * std::numbers::pi;
+  };
+  params.bearing = *params.lead_field({1000.0, 2000.0});
+  const Polygon domain = field();
+  const AreaPattern p = synthesize_area(h, domain, params);
+  int wires = 0;
+  double worst_turn = 0.0, worst_spread = 0.0, widest_span = 0.0;
+  for (const PlacedStroke& s : p.strokes) {
+    if (!p.instances[s.instance].unbounded) continue;
+    ++wires;
+    double r0 = INFINITY, r1 = -INFINITY, a0 = INFINITY, a1 = -INFINITY;
+    for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+      const Vec2 d = s.points[i + 1] - s.points[i];
+      const Vec2 mid = (s.points[i] + s.points[i + 1]) * 0.5;
+      r0 = std::min(r0, distance(mid, apex)), r1 = std::max(r1, distance(mid, apex));
+      const double bearing = std::atan2(mid.y - apex.y, mid.x - apex.x);
+      a0 = std::min(a0, bearing), a1 = std::max(a1, bearing);
+      if (length(d) < 0.5) continue;  // a clipped end's sliver
+      const Vec2 tangent = perp(normalized(mid - apex));
+      worst_turn =
+          std::max(worst_turn, std::asin(std::min(1.0, std::abs(cross(normalized(d), tangent)))));
+    }
+    worst_spread = std::max(worst_spread, r1 - r0);
+    widest_span = std::max(widest_span, a1 - a0);
+  }
+  EXPECT_GE(wires, 12);
+  EXPECT_LT(worst_turn * 180.0 / std::numbers::pi, 2.0);
+  EXPECT_LT(worst_spread, 1.0);  // a wire is a circle about the apex, to a metre
+  EXPECT_GT(widest_span * 180.0 / std::numbers::pi, 60.0);  // and it does bend
+  expect_disjoint_where_sketch_was(p);
+  for (const PlacedStroke& s : p.strokes)
+    for (Vec2 q : s.points) ASSERT_LT(bg::distance(BgPoint(q.x, q.y), to_bg(domain)), 1e-6);
+}
+
 TEST(AreaSynthesis, KeepsTheSketchAsDrawnAtTheCentroid) {
   const SupportHierarchy h = analyze_sketch(test::staggered_dots());
   AreaSynthesisParams params;

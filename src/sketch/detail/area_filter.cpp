@@ -176,7 +176,7 @@ std::vector<Vec2> densified(const std::vector<Vec2>& line, double step) {
 
 AreaPattern place_candidates(const SupportHierarchy& h, const std::vector<Candidate>& candidates,
                              const Polygon& domain, const std::function<Vec2(Vec2)>& to_world,
-                             double scale, const AvoidanceMap* avoidance) {
+                             double scale, const AvoidanceMap* avoidance, double densify) {
   AreaPattern out;
   const BgPolygon region = to_bg(domain);
   Overlaps overlaps(h);
@@ -191,12 +191,15 @@ AreaPattern place_candidates(const SupportHierarchy& h, const std::vector<Candid
     double half_width = 0.0;
     for (std::size_t s = 0; s < c.strokes.size(); ++s) {
       auto& world = strokes.emplace_back();
-      for (Vec2 q : c.strokes[s]) world.push_back(to_world(q));
+      for (Vec2 q : densify > 0.0 ? densified(c.strokes[s], densify) : c.strokes[s])
+        world.push_back(to_world(q));
       widths.push_back(h.sketch.strokes[std::size_t(shape.strokes[s])].thickness * scale);
       half_width = std::max(half_width, 0.5 * widths.back());
     }
     const Vec2 centre = to_world(c.centre);
-    const Vec2 axis = normalized(to_world(c.centre + c.axis) - centre);
+    // The axis's image over one input unit when affine; over `densify` when curved.
+    const Vec2 axis =
+        normalized(to_world(c.centre + c.axis * (densify > 0.0 ? densify : 1.0)) - centre);
     ShapeInstance instance{
         c.shape,    c.lead,
         centre,     std::atan2(axis.y, axis.x),

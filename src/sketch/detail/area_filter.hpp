@@ -11,8 +11,11 @@
 
 namespace tw::detail {
 
+// `to_world` maps input space into the map; when it is not affine (a curved lead frame),
+// `densify` > 0 is the longest segment of input space mapped as a straight one, and shape axes
+// are taken over that length.
 AreaPattern place_candidates(const SupportHierarchy& h, const std::vector<Candidate>& candidates,
                              const Polygon& domain, const std::function<Vec2(Vec2)>& to_world,
-                             double scale, const AvoidanceMap* avoidance);
+                             double scale, const AvoidanceMap* avoidance, double densify);
 
 }  // namespace tw::detail
