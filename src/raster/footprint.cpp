@@ -5,15 +5,31 @@
 
 namespace tw {
 
-namespace {
-
 void include(PieceBox& box, Vec2 p) {
   // std::min(a, NaN) is a: a non-finite corner coordinate never widens the box.
   box.lo = {std::min(box.lo.x, p.x), std::min(box.lo.y, p.y)};
   box.hi = {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y)};
 }
 
-}  // namespace
+PieceBox points_box(const std::vector<Vec2>& points) {
+  PieceBox box;
+  for (const Vec2 p : points) include(box, p);
+  return box;
+}
+
+PieceBox grown(const PieceBox& box, double margin) {
+  return {{box.lo.x - margin, box.lo.y - margin}, {box.hi.x + margin, box.hi.y + margin}};
+}
+
+PieceBox world_box(const Window& window, const GridSpec& grid) {
+  const Vec2 a = grid.pixel_to_world({double(window.col0), double(window.row_end())});
+  const Vec2 b = grid.pixel_to_world({double(window.col_end()), double(window.row0)});
+  return {a, b};
+}
+
+bool meets(const PieceBox& a, const PieceBox& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
+}
 
 PieceBox piece_box(const Piece& piece) {
   PieceBox box;

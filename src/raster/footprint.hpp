@@ -8,11 +8,23 @@
 
 namespace tw {
 
-// The box of a ribbon piece's four corners (or of all pieces of a ribbon): lo = (+inf, +inf)
-// and hi = (-inf, -inf) when there is none; non-finite coordinates are skipped axis by axis.
+// The box of a ribbon piece's four corners (or of all pieces of a ribbon, or of any points):
+// lo = (+inf, +inf) and hi = (-inf, -inf) when there is none; non-finite coordinates are
+// skipped axis by axis.
 struct PieceBox {
   Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
 };
+
+// Grows `box` to hold `p` (a non-finite coordinate never widens it).
+void include(PieceBox& box, Vec2 p);
+// The box of `points`; empty when there are none.
+PieceBox points_box(const std::vector<Vec2>& points);
+// `box` grown by `margin` on every side.
+PieceBox grown(const PieceBox& box, double margin);
+// The world-metre box of a window of `grid`.
+PieceBox world_box(const Window& window, const GridSpec& grid);
+// Whether two boxes share a point (touching edges count); an empty box meets nothing.
+bool meets(const PieceBox& a, const PieceBox& b);
 
 // In world metres.
 PieceBox piece_box(const Piece& piece);

@@ -39,6 +39,32 @@ TEST(RibbonWindow, ARibbonBesideTheGridHasAnEmptyWindow) {
   EXPECT_EQ(ribbon_box(ribbon).hi, (Vec2{-350, 520}));
 }
 
+// The boxes the caches and the junction finder select inputs with: a NaN coordinate never
+// widens a box, an empty box meets nothing, and touching edges meet.
+TEST(PointsBox, SkipsNonFiniteCoordinatesAndMeetsAtTouchingEdges) {
+  const PieceBox box = points_box({{10.0, 20.0}, {NAN, 5.0}, {30.0, -4.0}});
+  EXPECT_EQ(box.lo, (Vec2{10.0, -4.0}));
+  EXPECT_EQ(box.hi, (Vec2{30.0, 20.0}));
+  EXPECT_FALSE(meets(points_box({}), box));
+  EXPECT_FALSE(meets(grown(points_box({}), 1e9), box));
+  EXPECT_TRUE(meets(box, PieceBox{{30.0, 20.0}, {31.0, 21.0}}));
+  EXPECT_FALSE(meets(box, PieceBox{{30.5, 0.0}, {31.0, 1.0}}));
+  EXPECT_TRUE(meets(grown(box, 0.5), PieceBox{{30.5, 0.0}, {31.0, 1.0}}));
+  const PieceBox g = grown(box, 2.0);
+  EXPECT_EQ(g.lo, (Vec2{8.0, -6.0}));
+  EXPECT_EQ(g.hi, (Vec2{32.0, 22.0}));
+}
+
+TEST(WorldBox, IsTheWindowsExtentInWorldMetres) {
+  const GridSpec grid{100, 80, 1000.0, 2000.0, 2.0, 4.0};
+  const PieceBox box = world_box({10, 20, 5, 3}, grid);
+  EXPECT_EQ(box.lo, (Vec2{1020.0, 1908.0}));  // column 10, row 23 (the window's south edge)
+  EXPECT_EQ(box.hi, (Vec2{1030.0, 1920.0}));  // column 15, row 20
+  const PieceBox whole = world_box(Window::whole(grid), grid);
+  EXPECT_EQ(whole.lo, (Vec2{1000.0, 1680.0}));
+  EXPECT_EQ(whole.hi, (Vec2{1200.0, 2000.0}));
+}
+
 TEST(Windows, IntersectAndGrowClampToTheGrid) {
   const GridSpec grid{100, 80, 0.0, 0.0, 1.0, 1.0};
   EXPECT_EQ(intersect({10, 10, 20, 20}, {25, 0, 50, 15}), (Window{25, 10, 5, 5}));

@@ -5,8 +5,10 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/detail/polygons_hash.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/version.hpp"
+#include "raster/footprint.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/placements_io.hpp"
 
@@ -19,35 +21,6 @@ namespace {
 
 // Bumped whenever an entry's layout or meaning changes: old entries then miss.
 constexpr std::uint64_t kSynthesisCacheFormat = 1;
-
-struct Box {
-  double x0, y0, x1, y1;
-};
-
-Box box_of(const GridSpec& g) {
-  return {g.origin_x, g.origin_y - g.height * g.pixel_height, g.origin_x + g.width * g.pixel_width,
-          g.origin_y};
-}
-
-Box box_of(const std::vector<Vec2>& points, double grow) {
-  Box b{1e300, 1e300, -1e300, -1e300};
-  for (const Vec2 p : points) {
-    b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
-  }
-  return {b.x0 - grow, b.y0 - grow, b.x1 + grow, b.y1 + grow};
-}
-
-bool meets(const Box& a, const Box& b) {
-  return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
-}
-
-void hash_polygons_meeting(Hasher& h, const std::vector<Polygon>& polygons, const Box& canvas) {
-  for (const Polygon& polygon : polygons) {
-    if (polygon.empty() || !meets(box_of(polygon.front(), 0.0), canvas)) continue;
-    h.u64(polygon.size());
-    for (const Ring& ring : polygon) h.points(ring);
-  }
-}
 
 std::string encode_opaque(const SparseRaster<std::uint8_t>& opaque) {
   std::string out;
@@ -195,13 +168,13 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   key.exemplar = e.digest();
 
   // Only what can reach a canvas cell: inputs whose box (lines grown by their width) meets it.
-  const Box box = box_of(canvas);
+  const PieceBox box = world_box(Window::whole(canvas), canvas);
   Hasher a;
   a.text("polygons");
   hash_polygons_meeting(a, fixed.polygons, box);
   a.text("lines");
   for (std::size_t i = 0; i < fixed.lines.size(); ++i) {
-    if (!meets(box_of(fixed.lines[i], fixed.line_widths[i]), box)) continue;
+    if (!meets(grown(points_box(fixed.lines[i]), fixed.line_widths[i]), box)) continue;
     a.points(fixed.lines[i]).real(fixed.line_widths[i]);
   }
   a.text("junctions");

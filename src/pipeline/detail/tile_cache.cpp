@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "pipeline/detail/polygons_hash.hpp"
 #include "pipeline/version.hpp"
 #include "raster/footprint.hpp"
 #include "raster/window_index.hpp"
@@ -29,32 +30,6 @@ void hash_window(Hasher& h, const Window& w) {
 
 void hash_optional(Hasher& h, const std::optional<double>& v) {
   h.boolean(v.has_value()).real(v.value_or(0.0));
-}
-
-struct Box {
-  double x0, y0, x1, y1;
-  bool meets(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
-};
-
-Box box_of(const GridSpec& grid, const Window& w) {
-  const Vec2 a = grid.pixel_to_world({double(w.col0), double(w.row_end())});
-  const Vec2 b = grid.pixel_to_world({double(w.col_end()), double(w.row0)});
-  return {a.x, a.y, b.x, b.y};
-}
-
-Box box_of(const std::vector<Vec2>& points, double grow) {
-  Box b{1e300, 1e300, -1e300, -1e300};
-  for (const Vec2 p : points)
-    b = {std::min(b.x0, p.x), std::min(b.y0, p.y), std::max(b.x1, p.x), std::max(b.y1, p.y)};
-  return {b.x0 - grow, b.y0 - grow, b.x1 + grow, b.y1 + grow};
-}
-
-void hash_polygons_meeting(Hasher& h, const std::vector<Polygon>& polygons, const Box& box) {
-  for (const Polygon& polygon : polygons) {
-    if (polygon.empty() || !box.meets(box_of(polygon.front(), 0.0))) continue;
-    h.u64(polygon.size());
-    for (const Ring& ring : polygon) h.points(ring);
-  }
 }
 
 ContentHash terrain_hash(const TerrainFeature& f,
@@ -205,12 +180,12 @@ TileKey TileCache::key(const TileSpec& tile) const {
   const Window reach = grow_window(window, avoidance_halo_pixels(plan_), plan_.grid);
   f.text("ribbons");
   for (const std::size_t i : items_meeting(plan_.ribbon_index, reach)) f.hash(ribbons_[i]);
-  const Box box = box_of(plan_.grid, reach);
+  const PieceBox box = world_box(reach, plan_.grid);
   f.text("existing");
   hash_polygons_meeting(f, plan_.existing.polygons, box);
   for (std::size_t i = 0; i < plan_.existing.lines.size(); ++i) {
     const double width = plan_.existing.line_widths[i];
-    if (box.meets(box_of(plan_.existing.lines[i], width)))
+    if (meets(box, grown(points_box(plan_.existing.lines[i]), width)))
       f.points(plan_.existing.lines[i]).real(width);
   }
   f.text("junctions");

@@ -3,17 +3,11 @@
 #include <algorithm>
 #include <limits>
 
+#include "raster/footprint.hpp"
+
 namespace tw::detail {
 
 namespace {
-
-struct Box {
-  Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  Vec2 hi{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  bool near(Vec2 p, double r) const {
-    return p.x >= lo.x - r && p.x <= hi.x + r && p.y >= lo.y - r && p.y <= hi.y + r;
-  }
-};
 
 // Nearest point of a curve to p: (distance, arc length).
 std::pair<double, double> nearest_on(const Curve& c, Vec2 p) {
@@ -38,13 +32,10 @@ std::pair<double, double> nearest_on(const Curve& c, Vec2 p) {
 
 std::vector<std::vector<EndContact>> find_end_contacts(const std::vector<TerrainFeature>& features,
                                                        double tolerance) {
-  std::vector<Box> boxes(features.size());
+  std::vector<PieceBox> boxes(features.size());
   std::vector<double> lengths(features.size());
   for (std::size_t i = 0; i < features.size(); ++i) {
-    for (const Vec2 p : features[i].centerline.points) {
-      boxes[i].lo = {std::min(boxes[i].lo.x, p.x), std::min(boxes[i].lo.y, p.y)};
-      boxes[i].hi = {std::max(boxes[i].hi.x, p.x), std::max(boxes[i].hi.y, p.y)};
-    }
+    boxes[i] = points_box(features[i].centerline.points);
     lengths[i] = arc_length(features[i].centerline);
   }
   std::vector<std::vector<EndContact>> contacts(features.size());
@@ -57,7 +48,7 @@ std::vector<std::vector<EndContact>> find_end_contacts(const std::vector<Terrain
         const auto& g = features[j];
         if (j == i || g.kind != f.kind) continue;
         const double reach = 0.5 * std::max(f.width, g.width) + tolerance;
-        if (!boxes[j].near(end, reach)) continue;
+        if (!meets(grown(boxes[j], reach), PieceBox{end, end})) continue;
         const auto [d, s] = nearest_on(g.centerline, end);
         if (d > reach) continue;
         const bool other_end = !g.centerline.closed && (s <= reach || s >= lengths[j] - reach);
