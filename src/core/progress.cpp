@@ -64,10 +64,7 @@ std::string Progress::eta(std::int64_t done) const {
   if (done <= 0 || done >= total_) return "";
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const auto left = std::int64_t(elapsed * double(total_ - done) / double(done) + 0.5);
-  if (left >= 3600) return fmt::format(" (ETA {} h {:02} min)", left / 3600, left % 3600 / 60);
-  if (left >= 60) return fmt::format(" (ETA {} min {:02} s)", left / 60, left % 60);
-  return fmt::format(" (ETA {} s)", left);
+  return " (" + eta_text(done, total_, elapsed) + ")";
 }
 
 void Progress::report(std::int64_t done) {

@@ -2,7 +2,8 @@
 // Progress of a long stage: a redrawn bar when stderr is a terminal, otherwise a few plain
 // log lines (every 10 %, and only once the stage has run for a couple of seconds), so CI and
 // nightly logs stay readable: a demo of 19 short features prints none. Lines between 0 and
-// 100 % end with the estimated time left, "(ETA 12 s)".
+// 100 % end with the estimated time left, "(ETA 12 s)". Our own: Debian bookworm packages no C++
+// progress-bar library (docs/cli.md, "Global options").
 #include <atomic>
 #include <chrono>
 #include <cstdint>

@@ -75,9 +75,9 @@ EngineExportResult export_for_engine(const LayerSet& set, const std::vector<Expo
 
 namespace detail {
 
-std::vector<std::string> material_names(const Layer& splat) {
+std::vector<std::string> material_names(const std::vector<std::string>& splat_channels) {
   std::vector<std::string> names;
-  for (const std::string& c : splat.channels)
+  for (const std::string& c : splat_channels)
     names.push_back(c.starts_with("splat.") ? c.substr(6) : c);
   return names;
 }

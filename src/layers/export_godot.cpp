@@ -62,7 +62,7 @@ EngineExportResult export_godot(const ExportSource& source, const EngineExportOp
   nlohmann::json layers = nlohmann::json::array();
   if (source.splat != nullptr) {
     const auto weights = quantize_weights(resampled_weights(source, vertices));
-    const auto names = material_names(*source.splat);
+    const auto names = material_names(source.splat->channels);
     const std::vector<std::uint8_t> zero(std::size_t(n) * n, 0);
     for (std::size_t first = 0; first < weights.size(); first += 4) {
       const std::string file = fmt::format("splat_{}.png", first / 4);

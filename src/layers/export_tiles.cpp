@@ -208,13 +208,6 @@ class TiledSource {
   ExportReads reads_;
 };
 
-std::vector<std::string> material_names(const LayerFile& splat) {
-  std::vector<std::string> names;
-  for (const std::string& c : splat.channels)
-    names.push_back(c.starts_with("splat.") ? c.substr(6) : c);
-  return names;
-}
-
 // What one engine writes per tile, and its sidecar.
 struct TileWriter {
   std::string suffix(int i, int j) const {
@@ -257,8 +250,9 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
   const bool unreal = options.engine == Engine::unreal;
   const int alpha = size - 1;  // Unity's control maps: 2^n texels per tile
   const GridSpec texels = detail::texel_grid(grid, layout.nx * alpha, layout.ny * alpha);
-  const std::vector<std::string> materials =
-      source.splat() ? material_names(*source.splat()) : std::vector<std::string>{};
+  const std::vector<std::string> materials = source.splat()
+                                                 ? detail::material_names(source.splat()->channels)
+                                                 : std::vector<std::string>{};
   EngineExportResult result;
   nlohmann::json tiles = nlohmann::json::array();
   // The writing pass: the range pass before it reads heights alone, a fraction of the time.

@@ -29,7 +29,7 @@ EngineExportResult export_unity(const ExportSource& source, const EngineExportOp
   if (source.splat != nullptr) {
     const auto weights =
         quantize_weights(resampled_weights(source, texel_grid(grid, alpha, alpha)));
-    const auto names = material_names(*source.splat);
+    const auto names = material_names(source.splat->channels);
     const std::vector<std::uint8_t> zero(std::size_t(alpha) * alpha, 0);
     for (std::size_t first = 0; first < weights.size(); first += 4) {
       const std::string file = fmt::format("splatmap_{}.png", first / 4);

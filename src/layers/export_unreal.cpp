@@ -30,7 +30,7 @@ EngineExportResult export_unreal(const ExportSource& source, const EngineExportO
   nlohmann::json layers = nlohmann::json::array();
   if (source.splat != nullptr) {
     const auto weights = quantize_weights(resampled_weights(source, vertices));
-    const auto names = material_names(*source.splat);
+    const auto names = material_names(source.splat->channels);
     for (std::size_t m = 0; m < weights.size(); ++m) {
       const std::string file = "weightmap_" + names[m] + ".png";
       result.files.push_back(dir / file);

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "pipeline/run_layers.hpp"
 
 namespace tw {
 
@@ -27,15 +28,9 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const fs::path& run = command.run_dir;
   if (!fs::exists(run / "report.json"))
     fail("{}: not a finished run (no report.json)", run.string());
-  // A tiled run has VRT mosaics of its tiles where an untiled one has GeoTIFFs.
-  const bool tiled = fs::exists(run / "height.vrt");
-  const std::string ext = tiled ? ".vrt" : ".tif";
-  if (!fs::exists(run / ("height" + ext)))
-    fail("{}: the run wrote no height{} (output.geotiff: false?)", run.string(), ext);
-  ExportFiles files{run / ("height" + ext), {}, {}};
-  if (fs::exists(run / ("splat" + ext))) files.splat = run / ("splat" + ext);
+  ExportFiles files{required_run_layer_raster(run, "height"), run_layer_raster(run, "splat"), {}};
   int run_tile_size = 0;
-  if (tiled) {
+  if (is_tiled_run(run)) {
     const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
                                                         /*allow_exceptions=*/false);
     if (report.is_object() && report.contains("tiles") && report["tiles"].contains("size") &&

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/view_page.hpp"
+#include "pipeline/run_layers.hpp"
 
 namespace tw {
 
@@ -45,8 +46,8 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// Every band of a GeoTIFF read at w x h (GDAL resamples on reading: memory follows the page,
-// not the world); nodata as NaN. Band descriptions in `names`.
+// Every band of a layer raster (GeoTIFF or a tiled run's VRT mosaic) read at w x h (GDAL resamples
+// on reading: memory follows the page, not the world); nodata as NaN. Band descriptions in `names`.
 std::vector<std::vector<float>> read_bands(const fs::path& path, int w, int h,
                                            std::vector<std::string>* names = nullptr) {
   GDALAllRegister();
@@ -78,8 +79,8 @@ std::pair<int, int> fit(int width, int height, int longest) {
 // base in an elevation tint (green low, brown high).
 std::string splat_rgb(const fs::path& run, int w, int h) {
   std::vector<std::string> names;
-  const auto splat = read_bands(run / "splat.tif", w, h, &names);
-  const auto height = read_bands(run / "height.tif", w, h).at(0);
+  const auto splat = read_bands(required_run_layer_raster(run, "splat"), w, h, &names);
+  const auto height = read_bands(required_run_layer_raster(run, "height"), w, h).at(0);
   float lo = INFINITY, hi = -INFINITY;
   for (const float v : height)
     if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
@@ -106,7 +107,7 @@ std::string splat_rgb(const fs::path& run, int w, int h) {
 }
 
 std::string forbidden_mask(const fs::path& run, int w, int h) {
-  const auto forbidden = read_bands(run / "avoidance.tif", w, h).at(0);
+  const auto forbidden = read_bands(required_run_layer_raster(run, "avoidance"), w, h).at(0);
   std::string mask(std::size_t(w) * h, '\0');
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c)
@@ -124,7 +125,8 @@ json view_data(const fs::path& run, const ViewOptions& options) {
   data["grid"].erase("crs_wkt");
   const auto [mw, mh] = fit(width, height, options.mesh_size);
   json heights = json::array();
-  const std::vector<float> mesh = read_bands(run / "height.tif", mw, mh).at(0);
+  const std::vector<float> mesh =
+      read_bands(required_run_layer_raster(run, "height"), mw, mh).at(0);
   for (const float v : mesh)
     heights.push_back(std::isfinite(v) ? json(std::round(v * 100.0) / 100.0) : json(nullptr));
   data["mesh"] = {{"width", mw}, {"height", mh}, {"heights", heights}};

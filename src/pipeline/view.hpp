@@ -13,8 +13,9 @@ struct ViewOptions {
   int texture_size = 1024;    // most texels along the longer side
 };
 
-// Reads height.tif, splat.tif, avoidance.tif, features.geojson and report.json (only what the
-// page shows, downsampled by GDAL on reading) and writes the page atomically; returns its path.
+// Reads the height, splat and avoidance layers (GeoTIFFs, or a tiled run's VRT mosaics: see
+// pipeline/run_layers.hpp), features.geojson and report.json (only what the page shows,
+// downsampled by GDAL on reading) and writes the page atomically; returns its path.
 // Throws tw::Error naming a missing file.
 std::filesystem::path write_view(const ViewOptions& options);
 

@@ -1,6 +1,7 @@
 // `terraweave view` (issue #12 item 6): the page loads in headless Chromium (Debian's, with
 // SwiftShader for WebGL) from a file:// URL with no network, and its screenshot shows the
-// terrain: not blank, many colours, the splat's base green and the sky around it.
+// terrain: not blank, many colours, the splat's base green and the sky around it. A tiled run
+// (output.tiles) is read through its VRT mosaics and gives the untiled run's page.
 #include <OpenImageIO/imageio.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -18,57 +19,101 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-TEST(View, APageOfARunShowsTheTerrainInAHeadlessBrowser) {
-  TempDir dir;
-  write_layer(dir / "map.gpkg", "roads",
-              {{"LINESTRING (500050 4999600, 500300 4999800, 500600 4999700)", 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << R"(version: 1
+class View : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_layer(dir / "map.gpkg", "roads",
+                {{"LINESTRING (500050 4999600, 500300 4999800, 500600 4999700)", 12.0}});
+    std::ofstream(dir / "pipeline.yaml") << R"(version: 1
 seed: 3
 generate: { width: 64, height: 48, pixel_size: 10, relief: 60, origin: [500000, 5000000] }
 output: { dir: out, preview: false, exr: false }
 features:
   roads: { source: map.gpkg, layer: roads, kind: road, width: 12 }
 )";
-  const std::string cd = "cd '" + dir.path().string() + "' && ";
-  const std::string tw = "'" + terraweave_binary().string() + "' ";
-  ASSERT_EQ(run_command(cd + tw + "-q run pipeline.yaml").exit_code, 0);
-  const CommandResult view = run_command(cd + tw + "view out --out page.html");
+  }
+  // `terraweave ARGS` in the test's folder.
+  CommandResult terraweave(const std::string& args) const {
+    return run_command("cd '" + dir.path().string() + "' && '" + terraweave_binary().string() +
+                       "' " + args);
+  }
+  // Opens `page` in headless Chromium and checks its screenshot shows terrain under a sky.
+  void expect_terrain_on_screen(const fs::path& page) const {
+    const fs::path png = page.parent_path() / (page.stem().string() + "_shot.png");
+    const CommandResult shot =
+        run_command("cd '" + page.parent_path().string() +
+                    "' && timeout 90 chromium --headless --no-sandbox --use-angle=swiftshader "
+                    "--enable-unsafe-swiftshader --window-size=400,300 --virtual-time-budget=8000 "
+                    "--screenshot='" +
+                    png.string() + "' 'file://" + page.string() + "' 2>&1");
+    ASSERT_TRUE(fs::exists(png)) << shot.output;
+
+    auto input = OIIO::ImageInput::open(png.string());
+    ASSERT_TRUE(input);
+    const OIIO::ImageSpec spec = input->spec();
+    ASSERT_EQ(spec.width, 400);
+    std::vector<unsigned char> rgb(std::size_t(spec.width) * spec.height * 3);
+    ASSERT_TRUE(input->read_image(0, 0, 0, 3, OIIO::TypeUInt8, rgb.data()));
+    std::set<int> colours;
+    double sum = 0, sum2 = 0;
+    int green = 0, sky = 0;
+    const std::size_t pixels = rgb.size() / 3;
+    for (std::size_t p = 0; p < pixels; ++p) {
+      const int r = rgb[3 * p], g = rgb[3 * p + 1], b = rgb[3 * p + 2];
+      colours.insert(r << 16 | g << 8 | b);
+      const double l = 0.299 * r + 0.587 * g + 0.114 * b;
+      sum += l, sum2 += l * l;
+      green += g > r + 10 && g > b + 10;  // the base, low ground
+      sky += std::abs(r - 0x9d) + std::abs(g - 0xb4) + std::abs(b - 0xc8) < 6;  // clear colour
+    }
+    const double variance = sum2 / pixels - (sum / pixels) * (sum / pixels);
+    EXPECT_GT(variance, 100.0) << page;
+    EXPECT_GT(colours.size(), 500u) << page;
+    EXPECT_GT(green, int(pixels / 100)) << page << ": no terrain colours";
+    EXPECT_GT(sky, int(pixels / 20)) << page << ": the terrain should not fill the whole window";
+    EXPECT_LT(sky, int(pixels * 3 / 4)) << page << ": the terrain should fill a good part of it";
+  }
+  TempDir dir;
+};
+
+TEST_F(View, APageOfARunShowsTheTerrainInAHeadlessBrowser) {
+  ASSERT_EQ(terraweave("-q run pipeline.yaml").exit_code, 0);
+  const CommandResult view = terraweave("view out --out page.html");
   ASSERT_EQ(view.exit_code, 0) << view.output;
   const std::string page = read_file(dir / "page.html");
   EXPECT_THAT(page, Not(HasSubstr("http://")));  // nothing to fetch: three.js is inlined
   EXPECT_THAT(page, Not(HasSubstr("https://")));
-  const CommandResult shot =
-      run_command(cd +
-                  "timeout 90 chromium --headless --no-sandbox --use-angle=swiftshader "
-                  "--enable-unsafe-swiftshader --window-size=400,300 --virtual-time-budget=8000 "
-                  "--screenshot=shot.png file://" +
-                  (dir / "page.html").string() + " 2>&1");
-  ASSERT_TRUE(fs::exists(dir / "shot.png")) << shot.output;
+  expect_terrain_on_screen(dir / "page.html");
+}
 
-  auto input = OIIO::ImageInput::open((dir / "shot.png").string());
-  ASSERT_TRUE(input);
-  const OIIO::ImageSpec spec = input->spec();
-  ASSERT_EQ(spec.width, 400);
-  std::vector<unsigned char> rgb(std::size_t(spec.width) * spec.height * 3);
-  ASSERT_TRUE(input->read_image(0, 0, 0, 3, OIIO::TypeUInt8, rgb.data()));
-  std::set<int> colours;
-  double sum = 0, sum2 = 0;
-  int green = 0, sky = 0;
-  const std::size_t pixels = rgb.size() / 3;
-  for (std::size_t p = 0; p < pixels; ++p) {
-    const int r = rgb[3 * p], g = rgb[3 * p + 1], b = rgb[3 * p + 2];
-    colours.insert(r << 16 | g << 8 | b);
-    const double l = 0.299 * r + 0.587 * g + 0.114 * b;
-    sum += l, sum2 += l * l;
-    green += g > r + 10 && g > b + 10;  // the base, low ground
-    sky += std::abs(r - 0x9d) + std::abs(g - 0xb4) + std::abs(b - 0xc8) < 6;  // the clear colour
-  }
-  const double variance = sum2 / pixels - (sum / pixels) * (sum / pixels);
-  EXPECT_GT(variance, 100.0);
-  EXPECT_GT(colours.size(), 500u);
-  EXPECT_GT(green, int(pixels / 100)) << "no terrain colours";
-  EXPECT_GT(sky, int(pixels / 20)) << "the terrain should not fill the whole window";
-  EXPECT_LT(sky, int(pixels * 3 / 4)) << "the terrain should fill a good part of it";
+TEST_F(View, ATiledRunIsViewedThroughItsMosaicsAsTheUntiledRun) {
+  // Both run folders are named "out" (the page's title), under different parents.
+  ASSERT_EQ(terraweave("-q run pipeline.yaml --set output.dir=untiled/out").exit_code, 0);
+  const CommandResult tiled = terraweave(
+      "-q run pipeline.yaml --set output.dir=tiled/out --set 'output.tiles={size: 24, overlap: "
+      "2}'");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
+  ASSERT_TRUE(fs::exists(dir / "tiled/out/height.vrt"));
+  ASSERT_FALSE(fs::exists(dir / "tiled/out/height.tif"));  // the case this test is about
+
+  const CommandResult view = terraweave("view tiled/out --out tiled.html");
+  ASSERT_EQ(view.exit_code, 0) << view.output;
+  ASSERT_EQ(terraweave("view untiled/out --out untiled.html").exit_code, 0);
+  // The mosaics hold the untiled run's pixels, so the page is the same, byte for byte.
+  EXPECT_TRUE(read_file(dir / "tiled.html") == read_file(dir / "untiled.html"));
+  expect_terrain_on_screen(dir / "tiled.html");
+}
+
+TEST_F(View, ARunWithoutItsLayersIsNamedInTheError) {
+  ASSERT_EQ(terraweave("-q run pipeline.yaml --set output.dir=tiled/out --set "
+                       "'output.tiles={size: 24, overlap: 2}'")
+                .exit_code,
+            0);
+  fs::remove(dir / "tiled/out/avoidance.vrt");
+  const CommandResult view = terraweave("view tiled/out --out page.html");
+  EXPECT_NE(view.exit_code, 0);
+  EXPECT_THAT(view.output, HasSubstr("the run wrote no avoidance.vrt"));
+  EXPECT_FALSE(fs::exists(dir / "page.html"));
 }
 
 }  // namespace

@@ -17,8 +17,9 @@ struct ExportSource {
   const std::vector<ExportCurve>& curves;
 };
 
-// The splat layer's material names ("splat.road" -> "road").
-std::vector<std::string> material_names(const Layer& splat);
+// The material names of a splat layer's channels or band descriptions ("splat.road" -> "road"),
+// for a layer in memory and for a layer file read by windows alike.
+std::vector<std::string> material_names(const std::vector<std::string>& splat_channels);
 // Each splat band resampled onto `to`.
 std::vector<Raster<float>> resampled_weights(const ExportSource& source, const GridSpec& to);
 // The filled height layer read bilinearly (the splines' heights).
