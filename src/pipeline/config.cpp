@@ -15,6 +15,7 @@
 #include "pipeline/detail/area_config.hpp"
 #include "pipeline/detail/grow_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
+#include "pipeline/detail/tag_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -252,32 +253,6 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
   return s;
 }
 
-// tags: { key: [value, ...] } (a single value may stand alone).
-std::vector<TagSelection> read_tags(const MapReader& m) {
-  const YAML::Node node = m.get("tags");
-  const std::string key = m.path("tags");
-  if (!node.IsMap() || node.size() == 0) {
-    m.source().fail(node, key, "expected a mapping of tag keys to lists of values");
-  }
-  std::vector<TagSelection> tags;
-  for (const auto& entry : node) {
-    TagSelection& tag = tags.emplace_back();
-    tag.key = detail::read_string(m.source(), entry.first, key);
-    const std::string entry_key = key + "." + tag.key;
-    if (tag.key.empty()) m.source().fail(entry.first, key, "empty tag key");
-    if (entry.second.IsSequence()) {
-      if (entry.second.size() == 0) m.source().fail(entry.second, entry_key, "empty list");
-      for (std::size_t i = 0; i < entry.second.size(); ++i) {
-        tag.values.push_back(
-            detail::read_string(m.source(), entry.second[i], entry_key + "." + std::to_string(i)));
-      }
-    } else {
-      tag.values.push_back(detail::read_string(m.source(), entry.second, entry_key));
-    }
-  }
-  return tags;
-}
-
 // Without `kind`, the tag keys decide it (highway: road, waterway: river, natural: ridge).
 FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& tags) {
   std::string kind;
@@ -326,7 +301,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
-  if (m.has("tags")) f.tags = read_tags(m);
+  if (m.has("tags")) f.tags = detail::read_tags(m);
   if (!kind_name.empty()) {
     f.kind = kind_of(kind_name);
   } else {
@@ -375,7 +350,7 @@ ExistingConfig read_existing(const MapReader& m, std::vector<InputFile>& inputs)
   e.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   e.layer = m.string_or("layer", "");
   e.where = m.string_or("where", "");
-  if (m.has("tags")) e.tags = read_tags(m);
+  if (m.has("tags")) e.tags = detail::read_tags(m);
   e.width = m.has("width") ? read_width(m, "width") : 0.0;
   return e;
 }

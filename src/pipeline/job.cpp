@@ -14,10 +14,12 @@
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
+#include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
@@ -150,12 +152,9 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (cache) cache = fs::absolute(*cache).lexically_normal();
   plan_options.cache_dir = cache;
   plan_options.synthesize = !options.synthesis_tasks;
-  // Areas avoid the curve patterns, which the tasks synthesize after this plan: not yet apart.
-  if (options.synthesis_tasks && !config.areas.empty())
-    fail("areas.{}: `kind: area` classes are synthesized in the plan; use --synthesis inline",
-         config.areas.front().name);
   if (options.synthesis_tasks && config.region)
-    fail("region: a close-up synthesizes only what reaches it, in the plan; use --synthesis inline");
+    fail(
+        "region: a close-up synthesizes only what reaches it, in the plan; use --synthesis inline");
   if (config.output.tiles.size <= 0)
     fail(
         "output.tiles.size: a distributed run renders tiles; set it (e.g. --set "
@@ -166,6 +165,12 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (options.synthesis_tasks)
     syntheses =
         detail::plan_synthesis_tasks(config, plan, options.backend, cache, plan_dir, warnings);
+  // Areas avoid the curve patterns, so complete-plan synthesizes them after the tasks; with no
+  // synthesis to wait for, the plan is complete here.
+  if (syntheses && syntheses->at("features").empty() && !config.areas.empty()) {
+    detail::add_areas(config, detail::synthesize_plan_areas(config, plan, nullptr, warnings), plan);
+    index_plan(plan);
+  }
   plan.report.warnings = warnings.list();
   if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
     fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
@@ -236,6 +241,8 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
                                spec.halo_window, spec.window));
         facts["output_height"] = detail::range_fact(detail::core_range(
             find_layer(layers, "height")->bands[0], spec.halo_window, spec.window));
+        facts["instance_heights"] = detail::instance_heights_fact(
+            plan, find_layer(layers, "height")->bands[0], spec.halo_window, spec.window);
         detail::write_tile_files(layers, spec, dir, to, write);
       });
   stager.commit();
@@ -262,6 +269,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
       {"xxh64", std::stoull(outcome.facts.at("xxh64"))},
       {"input_height", outcome.facts.at("input_height")},
       {"output_height", outcome.facts.at("output_height")},
+      {"instance_heights", outcome.facts.at("instance_heights")},
       {"cache", {{"reused", status.reused}, {"why", status.why}, {"key", status.key}}},
       {"seconds", result.seconds}};
   // Last: a result names only complete files.
@@ -302,6 +310,7 @@ RunReport finish_job(const fs::path& plan_dir) {
     rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
     rendered.input_height = result.value("input_height", std::string());
     rendered.output_height = result.value("output_height", std::string());
+    rendered.instance_heights = result.value("instance_heights", std::string());
     if (cached && result.contains("cache")) {  // as run reports it: only with a cache
       const json& c = result["cache"];
       rendered.cache = CacheStatus{c.at("reused").get<bool>(), c.at("why").get<std::string>(),

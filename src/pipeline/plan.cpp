@@ -122,35 +122,6 @@ void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPl
   plan.exemplars = std::move(run.exemplars);
 }
 
-// The areas as the renderer needs them: their splat materials after the patterns' (in order of
-// first use) and the output pixels their strokes can touch.
-void plan_areas(const PipelineConfig& config, detail::AreaRun run, WorldPlan& plan) {
-  for (const AreaClassConfig& a : config.areas) plan.area_names.push_back(a.name);
-  for (std::size_t i = 0; i < run.areas.size(); ++i) {
-    PlannedArea& area = run.areas[i];
-    std::vector<Vec2> points;
-    double reach = 0.0;
-    for (const PlacedStroke& s : area.pattern.strokes) {
-      points.insert(points.end(), s.points.begin(), s.points.end());
-      reach = std::max(reach, 0.5 * s.width);
-    }
-    area.window = points.empty() ? Window{} : points_window(points, reach, plan.grid);
-    if (area.window.width > 0) {  // off the grid: no band is added
-      for (std::size_t t = 0; t < area.targets.size(); ++t) {
-        const std::string& material = run.splats[i][t];
-        auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
-        if (it == plan.splat_materials.end()) {
-          plan.splat_materials.push_back(material);
-          it = plan.splat_materials.end() - 1;
-        }
-        area.targets[t].material = std::size_t(it - plan.splat_materials.begin());
-      }
-    }
-    plan.areas.push_back(std::move(area));
-  }
-  plan.report.areas = std::move(run.reports);
-}
-
 // The synthesis ribbon's width and delta in the feature's report, and where they came from.
 void record_geometry(const SynthesisConfig& s, FeatureReport& feature) {
   FeatureSynthesisReport& r = *feature.synthesis;
@@ -185,6 +156,47 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
     plan.report.pattern_violations += p.report.violations;
   }
   plan_patterns(config, std::move(patterns), plan);
+}
+
+void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
+  plan.area_names.clear();
+  plan.areas.clear();
+  for (const AreaClassConfig& a : config.areas) plan.area_names.push_back(a.name);
+  for (std::size_t i = 0; i < run.areas.size(); ++i) {
+    PlannedArea& area = run.areas[i];
+    std::vector<Vec2> points;
+    double reach = 0.0;
+    for (const PlacedStroke& s : area.pattern.strokes) {
+      points.insert(points.end(), s.points.begin(), s.points.end());
+      reach = std::max(reach, 0.5 * s.width);
+    }
+    area.window = points.empty() ? Window{} : points_window(points, reach, plan.grid);
+    if (area.window.width > 0) {  // off the grid: no band is added
+      for (std::size_t t = 0; t < area.targets.size(); ++t) {
+        const std::string& material = run.splats[i][t];
+        auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
+        if (it == plan.splat_materials.end()) {
+          plan.splat_materials.push_back(material);
+          it = plan.splat_materials.end() - 1;
+        }
+        area.targets[t].material = std::size_t(it - plan.splat_materials.begin());
+      }
+    }
+    plan.areas.push_back(std::move(area));
+  }
+  plan.report.areas = std::move(run.reports);
+}
+
+AreaRun synthesize_plan_areas(const PipelineConfig& config, const WorldPlan& plan,
+                              const PatternRun* patterns, Warnings& warnings) {
+  // The plan's ingest read these polygons and reported their repairs already.
+  Warnings read_again;
+  const Heightfield heightfield = plan.heights.reader->without_pixels();
+  const std::vector<std::vector<PolygonFeature>> polygons =
+      load_area_polygons(config, heightfield, read_again);
+  HeightSampler heights(*plan.heights.reader);
+  return synthesize_areas(config, polygons, plan.lines, synthesis_ribbons(plan),
+                          existing_features(plan), patterns, heights, warnings);
 }
 
 }  // namespace detail
@@ -336,7 +348,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   } else {
     plan.splat_materials = splat_materials();
   }
-  plan_areas(config, std::move(areas), plan);
+  detail::add_areas(config, std::move(areas), plan);
 
   plan.existing.polygons = std::move(existing.polygons);
   plan.existing.lines = std::move(existing.lines);

@@ -17,6 +17,8 @@
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/areas.hpp"
+#include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
@@ -90,6 +92,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   report.started_utc = started_utc;
   if (options.write_outputs) report.inputs = detail::record_inputs(config);
   if (!options.write_outputs) {
+    detail::check_area_sketches(config, warnings);
     finish_warnings(warnings, strict, report);
     report.total_seconds = seconds_since(run_started);
     return std::move(report);
@@ -132,8 +135,11 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                            tile.halo_window, tile.window));
     facts["output_height"] = detail::range_fact(
         detail::core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
+    facts["instance_heights"] = detail::instance_heights_fact(
+        plan, find_layer(layers, "height")->bands[0], tile.halo_window, tile.window);
     detail::write_tile_files(layers, tile, dir, stager, write_options);
   };
+  detail::InstanceHeights instance_heights = detail::unknown_instance_heights(plan);
   for (const TileSpec& tile : plan.tiles) {
     const auto started = std::chrono::steady_clock::now();
     TileReport& tile_report = report.tiles.tiles.emplace_back();
@@ -154,6 +160,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                              tile.halo_window, tile.window));
       detail::widen(report.output_height, detail::core_range(find_layer(layers, "height")->bands[0],
                                                              tile.halo_window, tile.window));
+      detail::add_instance_heights(
+          detail::instance_heights_fact(plan, find_layer(layers, "height")->bands[0],
+                                        tile.halo_window, tile.window),
+          "tile", instance_heights);
       write_layer_set(layers, dir, transaction, write_options);
       if (config.output.preview) {
         std::vector<std::vector<Vec2>> centerlines;
@@ -181,6 +191,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
       detail::widen(report.input_height, detail::range_of_fact(outcome.facts.at("input_height")));
       detail::widen(report.output_height, detail::range_of_fact(outcome.facts.at("output_height")));
+      detail::add_instance_heights(outcome.facts.at("instance_heights"),
+                                   fmt::format("tile {}", tile.index), instance_heights);
       if (cache_dir) tile_report.cache = outcome.status;
       render_seconds += seconds_since(started);
     }
@@ -215,7 +227,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
   detail::write_placements(plan, dir, transaction, report);
-  detail::write_area_outputs(plan, dir, transaction);
+  detail::write_area_outputs(plan, instance_heights, dir, transaction);
   detail::write_ornament_outputs(plan, dir, transaction);
 
   report.total_seconds = seconds_since(run_started);

@@ -1,7 +1,9 @@
 #include "pipeline/synthesis_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <system_error>
 
 #include "core/error.hpp"
@@ -209,8 +211,30 @@ PlannedJob complete_job_plan(const fs::path& plan_dir) {
     }
     seconds += p.report.avoidance_seconds + p.report.synthesis_seconds + p.report.render_seconds;
   }
+  // The areas avoid the curve patterns: here, after every synthesis, as plan_world orders them.
+  Warnings area_warnings;
+  std::optional<detail::AreaRun> areas;
+  const auto areas_started = std::chrono::steady_clock::now();
+  if (!config.areas.empty())
+    areas = detail::synthesize_plan_areas(config, plan, &run, area_warnings);
+  const double area_seconds = seconds_since(areas_started);
   detail::add_patterns(config, std::move(run), plan);
   plan.report.stages.push_back({"synthesis", seconds});
+  if (areas) {
+    if (config.strict && !area_warnings.list().empty())
+      fail("strict: {} (the areas' synthesis); nothing completed",
+           to_string(area_warnings.list().front()));
+    detail::add_areas(config, std::move(*areas), plan);
+    plan.report.stages.push_back({"areas", area_seconds});
+    // Appended as plan_world's Warnings would keep them: each once.
+    std::vector<Warning>& kept = plan.report.warnings;
+    for (const Warning& w : area_warnings.list())
+      if (std::none_of(kept.begin(), kept.end(), [&](const Warning& k) {
+            return k.code == w.code && k.subject == w.subject && k.fid == w.fid &&
+                   k.message == w.message;
+          }))
+        kept.push_back(w);
+  }
   index_plan(plan);
   const std::string complete = save_plan(plan, plan_dir);
   job["plan"] = complete;

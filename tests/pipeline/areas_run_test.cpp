@@ -3,19 +3,23 @@
 // splat materials, the vector and instance outputs with their manifest hashes, determinism, and
 // the plan folder's round trip.
 #include <gdal_priv.h>
-#include <ogrsf_frmts.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/synthesis_job.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -215,6 +219,114 @@ TEST_F(AreaRun, ARenderFromTheSavedPlanIsTheSameBytes) {
       EXPECT_EQ(a.layers[l].bands[c].pixels, b.layers[l].bands[c].pixels) << a.layers[l].name;
 }
 
+// Band 1 of a GeoTIFF, row-major.
+std::vector<float> read_band(const fs::path& path, int& width) {
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  if (!ds) return {};
+  width = ds->GetRasterXSize();
+  std::vector<float> pixels(std::size_t(width) * ds->GetRasterYSize());
+  if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, width, ds->GetRasterYSize(), pixels.data(),
+                                     width, ds->GetRasterYSize(), GDT_Float32, 0, 0) != CE_None)
+    return {};
+  return pixels;
+}
+
+TEST_F(AreaRun, InstancesStandOnTheFinalHeightNotTheInput) {
+  run_pipeline(config("a"), {});
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config("p"), {}, warnings);
+  int width = 0;
+  const std::vector<float> final_height = read_band(dir_ / "a/height.tif", width);
+  ASSERT_EQ(width, plan.grid.width);
+  const Raster<float> input = read_height_window(plan.heights, plan.grid, Window::whole(plan.grid));
+  const nlohmann::json instances =
+      nlohmann::json::parse(test::read_file(dir_ / "a/instances.json"));
+  ASSERT_GT(instances.size(), 30u);
+  int raised = 0;
+  for (const auto& instance : instances) {
+    const Vec2 p =
+        plan.grid.world_to_pixel({instance["x"].get<double>(), instance["y"].get<double>()});
+    const int col = int(std::floor(p.x)), row = int(std::floor(p.y));
+    ASSERT_TRUE(instance["z"].is_number()) << instance.dump();
+    const double z = instance["z"].get<double>();
+    EXPECT_NEAR(z, final_height[std::size_t(row * width + col)], 5e-4) << instance.dump();
+    raised += std::abs(z - input.at(col, row)) > 0.02;  // the vine rows' +0.3 m, the road's grade
+  }
+  EXPECT_GT(raised, 10);
+  // The CSV and the GeoPackage say the same.
+  const std::string csv = test::read_file(dir_ / "a/instances.csv");
+  const std::size_t second_line = csv.find('\n') + 1;
+  const std::string first = csv.substr(second_line, csv.find('\n', second_line) - second_line);
+  EXPECT_THAT(first, HasSubstr(fmt::format(",{:.3f},", instances[0]["z"].get<double>())));
+  std::unique_ptr<GDALDataset> gpkg(
+      GDALDataset::Open((dir_ / "a/areas.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(gpkg);
+  OGRLayer* layer = gpkg->GetLayerByName("instances");
+  ASSERT_NE(layer, nullptr);
+  std::unique_ptr<OGRFeature> feature(layer->GetNextFeature());
+  ASSERT_TRUE(feature);
+  const OGRPoint* point = feature->GetGeometryRef()->toPoint();
+  EXPECT_NEAR(point->getZ(), instances[0]["z"].get<double>(), 5e-4);
+}
+
+// The world tiled, its roads with a cobble pattern the areas avoid: the areas need every curve
+// synthesis first, so `plan --synthesis tasks` leaves them to complete-plan.
+std::string distributed_world(const std::string& out) {
+  std::string text = kWorld;
+  text.replace(text.find("output: { dir: out, preview: false }"),
+               std::strlen("output: { dir: out, preview: false }"),
+               "output: { dir: " + out + ", preview: false, tiles: { size: 40, overlap: 4 } }");
+  const std::string road = "kind: road, width: 8";
+  text.replace(text.find(road), road.size(),
+               road +
+                   ", synthesis: { exemplar: cobble.png, width: 8, scale: 5, delta: 8, channels: "
+                   "{ alpha: splat.cobble } }");
+  return text;
+}
+
+TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
+  test::crop_raster(test::source_dir() / "samples/exemplars/cobble_edging_200x56.png",
+                    dir_ / "cobble.png", "PNG", 60, 56);
+  const fs::path file = dir_ / "distributed.yaml";
+  write_file_atomic(file, distributed_world((dir_ / "local").string()));
+  const PipelineConfig config = load_pipeline(file, {});
+  const RunReport local = run_pipeline(config, {});
+  ASSERT_EQ(local.areas.size(), 2u);
+
+  PlanJobOptions options;
+  options.output_dir = dir_ / "inline";
+  const std::string inline_plan = plan_job(config, options).plan;
+  options.output_dir = dir_ / "tasks";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config, options);
+  ASSERT_GE(job.syntheses, 1u);
+  EXPECT_TRUE(load_plan(job.plan_dir).areas.empty());  // not before the curve patterns
+  for (std::size_t i = 0; i < job.syntheses; ++i) synthesize_job_feature(job.plan_dir, int(i));
+  const PlannedJob complete = complete_job_plan(job.plan_dir);
+  EXPECT_EQ(complete.plan, inline_plan);  // the same plan: the same areas, the same tiles
+  const WorldPlan plan = load_plan(job.plan_dir);
+  ASSERT_EQ(plan.areas.size(), 2u);
+  EXPECT_FALSE(plan.patterns.empty());
+  EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
+  for (std::size_t t = 0; t < complete.tiles; ++t) render_job_tile(job.plan_dir, int(t));
+  finish_job(job.plan_dir);
+
+  std::vector<fs::path> compared = {"areas.gpkg", "instances.csv", "instances.json"};
+  for (const auto& entry : fs::directory_iterator(dir_ / "local/tiles"))
+    compared.push_back(fs::path("tiles") / entry.path().filename());
+  EXPECT_GE(compared.size(), 3u + 9u);
+  for (const fs::path& name : compared)
+    EXPECT_EQ(test::read_file(dir_ / "local" / name), test::read_file(dir_ / "tasks" / name))
+        << name;
+  const nlohmann::json a = nlohmann::json::parse(test::read_file(dir_ / "local/report.json"));
+  const nlohmann::json b = nlohmann::json::parse(test::read_file(dir_ / "tasks/report.json"));
+  EXPECT_EQ(a["areas"], b["areas"]);
+  // Every instance has its z from a tile (the tiles' facts, through the workers' results).
+  for (const auto& instance : nlohmann::json::parse(test::read_file(dir_ / "tasks/instances.json")))
+    EXPECT_TRUE(instance["z"].is_number()) << instance.dump();
+  EXPECT_GT(a["areas"][0]["shapes"].get<int>(), 20);
+}
+
 // A plane rising eastward: contours run north-south.
 TEST(AreaContours, RowsRunAlongTheContours) {
   test::TempDir dir;
@@ -259,6 +371,90 @@ features:
     const Vec2 d = s.points.back() - s.points.front();
     EXPECT_LT(std::abs(d.x), 0.1 * std::abs(d.y) + 1e-6);  // furrows run north-south
   }
+}
+
+TEST_F(AreaRun, TagsSelectThePolygonsAsTheirWhereClause) {
+  Warnings warnings;
+  const WorldPlan by_where = plan_world(config("p"), {}, warnings);
+  const WorldPlan by_tags = plan_world(config("q", {{"features.vines.where", "\"\""},
+                                                    {"features.vines.tags", "{ crop: [vine] }"},
+                                                    {"features.orchard.where", "\"\""},
+                                                    {"features.orchard.tags", "{ crop: fruit }"}}),
+                                       {}, warnings);
+  ASSERT_EQ(by_tags.areas.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(by_tags.areas[i].fid, by_where.areas[i].fid);
+    EXPECT_EQ(by_tags.areas[i].pattern.instances.size(),
+              by_where.areas[i].pattern.instances.size());
+  }
+  const WorldPlan none =
+      plan_world(config("r", {{"features.vines.tags", "{ crop: [rice] }"}}), {}, warnings);
+  EXPECT_EQ(none.areas.size(), 1u);  // the orchard only
+  bool empty_warned = false;
+  for (const Warning& w : warnings.list())
+    empty_warned |= w.code == "empty_class" && w.subject == "features.vines";
+  EXPECT_TRUE(empty_warned);
+}
+
+// OSM land use as it comes: samples/olinda.osm's landuse=forest multipolygon, over its DEM.
+TEST(AreaTags, AnOsmLanduseSelectsItsPolygon) {
+  test::TempDir dir;
+  const fs::path samples = test::source_dir() / "samples";
+  const std::string pipeline = fmt::format(R"(
+version: 1
+heightfield: {0}/dem.tif
+resolution: 10
+features:
+  forest:
+    kind: area
+    source: {0}/olinda.osm
+    layer: multipolygons
+    tags: {{ landuse: [forest, orchard] }}
+    sketch: {0}/sketches/boulders.geojson
+    scale: 60
+)",
+                                           samples.string());
+  Warnings warnings;
+  const WorldPlan plan =
+      plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path()), {}, warnings);
+  ASSERT_EQ(plan.areas.size(), 1u);
+  EXPECT_GT(plan.areas[0].pattern.instances.size(), 5u);
+  EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
+  Warnings none_warnings;
+  const WorldPlan none =
+      plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path(),
+                                {{"features.forest.tags", "{ landuse: vineyard }"}}),
+                 {}, none_warnings);
+  EXPECT_TRUE(none.areas.empty());
+}
+
+// terraweave validate analyses the sketches it would synthesize from.
+TEST_F(AreaRun, ValidateNamesTheSketchAndTheStrokeOfABrokenSketch) {
+  const std::string bad = R"({"type": "FeatureCollection", "features": [
+{"type": "Feature", "id": 0, "properties": {"type": "unbounded", "material": "vine"},
+ "geometry": {"type": "LineString", "coordinates": [[0, 0.5], [1, 0.5]]}},
+{"type": "Feature", "id": 7, "properties": {"material": "post"},
+ "geometry": {"type": "LineString", "coordinates": [[0.5, 0.4], [1.5, 0.6]]}}]})";
+  write_file_atomic(dir_ / "broken.geojson", bad);
+  RunOptions validate;
+  validate.write_outputs = false;
+  EXPECT_NO_THROW(run_pipeline(config("v"), validate));
+  try {
+    run_pipeline(config("v", {{"features.orchard.sketch", (dir_ / "broken.geojson").string()}}),
+                 validate);
+    ADD_FAILURE() << "a broken sketch validated";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("features.orchard: "));
+    EXPECT_THAT(e.what(),
+                HasSubstr("broken.geojson: stroke 1 (FID 7): point (1.5, 0.6) lies outside"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "v"));  // validate writes nothing
+  // A material the class maps but the sketch lacks: a warning, as a run gives it.
+  const RunReport report = run_pipeline(
+      config("v", {{"features.orchard.materials", "{ leaf: orchard_leaf }"}}), validate);
+  bool unused = false;
+  for (const Warning& w : report.warnings) unused |= w.code == "area_material_unused";
+  EXPECT_TRUE(unused);
 }
 
 TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "pipeline/detail/tag_config.hpp"
 
 namespace tw::detail {
 
@@ -83,8 +84,8 @@ void read_materials(const MapReader& m, AreaClassConfig& a) {
 MapReader area_class_reader(const YamlSource& src, const YAML::Node& node,
                             const std::string& path) {
   return MapReader(src, node, path,
-                   {"kind", "source", "layer", "where", "sketch", "shapes_from", "scale", "lead",
-                    "jitter", "materials", "height", "seed"});
+                   {"kind", "source", "layer", "where", "tags", "sketch", "shapes_from", "scale",
+                    "lead", "jitter", "materials", "height", "seed"});
 }
 
 bool is_area_class(const YAML::Node& node) {
@@ -97,7 +98,9 @@ AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
   a.name = name;
   a.source = input(m, "source", InputFile::Kind::vector, inputs);
   a.layer = m.string_or("layer", "");
-  a.where = m.string_or("where", "");
+  // `tags` (OSM-style, ANDed with `where`) read as the SQL they select.
+  a.where = selection_where(m.has("tags") ? read_tags(m) : std::vector<TagSelection>{},
+                            m.string_or("where", ""));
   a.sketch = input(m, "sketch", InputFile::Kind::vector, inputs);
   if (m.has("shapes_from"))
     a.shapes_from = input(m, "shapes_from", InputFile::Kind::vector, inputs);

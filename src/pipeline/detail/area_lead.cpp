@@ -1,26 +1,25 @@
 #include "pipeline/detail/area_lead.hpp"
 
 #include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numbers>
 
-#include "core/segment_distance.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
 
 namespace {
 
-bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
-  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-}
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BgPoint = bg::model::d2::point_xy<double>;
+using BgSegment = bg::model::segment<BgPoint>;
+using BgBox = bg::model::box<BgPoint>;
 
-double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  if (segments_cross(a, b, c, d)) return 0.0;
-  return std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d),
-                   distance_to_segment(c, a, b), distance_to_segment(d, a, b)});
+BgPoint to_bg(Vec2 p) {
+  return {p.x, p.y};
 }
 
 double folded_angle(Vec2 v) {
@@ -34,39 +33,58 @@ double folded_angle(Vec2 v) {
 std::optional<double> nearest_line_angle(const Polygon& polygon,
                                          const std::vector<const LineFeature*>& lines) {
   const Ring& ring = polygon.front();
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ring)
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  // Segments by the distance of their box to the ring's box (a lower bound), then exactly.
-  struct Candidate {
-    double bound;
-    Vec2 a, b;
-  };
-  std::vector<Candidate> candidates;
+  std::vector<BgSegment> edges;
+  BgBox ring_box = bg::make_inverse<BgBox>();
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    edges.emplace_back(to_bg(ring[i]), to_bg(ring[(i + 1) % ring.size()]));
+    bg::expand(ring_box, to_bg(ring[i]));
+  }
+  // The lines' segments by their boxes, in reading order (ties keep it).
+  std::vector<BgSegment> segments;
+  std::vector<std::pair<BgBox, std::size_t>> boxes;
   for (const LineFeature* line : lines) {
     const auto& pts = line->points;
     if (pts.size() < 2) continue;
     const std::size_t n = line->closed ? pts.size() : pts.size() - 1;
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 a = pts[i], b = pts[(i + 1) % pts.size()];
-      const double dx = std::max({0.0, lo.x - std::max(a.x, b.x), std::min(a.x, b.x) - hi.x});
-      const double dy = std::max({0.0, lo.y - std::max(a.y, b.y), std::min(a.y, b.y) - hi.y});
-      candidates.push_back({std::hypot(dx, dy), a, b});
+      segments.emplace_back(to_bg(pts[i]), to_bg(pts[(i + 1) % pts.size()]));
+      boxes.emplace_back(bg::return_envelope<BgBox>(segments.back()), segments.size() - 1);
     }
   }
-  if (candidates.empty()) return std::nullopt;
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& x, const Candidate& y) { return x.bound < y.bound; });
+  if (segments.empty()) return std::nullopt;
+  const bgi::rtree<std::pair<BgBox, std::size_t>, bgi::rstar<16>> index(boxes);
+  // Segments nearest first by the distance of their box to the ring's box (a lower bound on
+  // their distance to the ring), then exactly (Boost.Geometry's segment distance: 0 where they
+  // intersect), until the bound passes the best distance found. Segments of equal bound go in
+  // reading order, so the first of equally near segments wins whatever the tree's order.
   double best = INFINITY;
   Vec2 direction{1.0, 0.0};
-  for (const Candidate& c : candidates) {
-    if (c.bound > best) break;
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const double d = segment_distance(ring[i], ring[(i + 1) % ring.size()], c.a, c.b);
-      if (d < best) best = d, direction = c.b - c.a;
+  std::vector<std::size_t> group;
+  double group_bound = -1.0;
+  const auto measure = [&] {
+    std::sort(group.begin(), group.end());
+    for (const std::size_t s : group)
+      for (const BgSegment& edge : edges) {
+        const double d = bg::distance(edge, segments[s]);
+        if (d < best) {
+          best = d;
+          direction = Vec2{segments[s].second.x() - segments[s].first.x(),
+                           segments[s].second.y() - segments[s].first.y()};
+        }
+      }
+    group.clear();
+  };
+  for (auto it = index.qbegin(bgi::nearest(ring_box, unsigned(boxes.size()))); it != index.qend();
+       ++it) {
+    const double bound = bg::distance(ring_box, it->first);
+    if (bound != group_bound) {
+      measure();
+      if (bound > best) break;
+      group_bound = bound;
     }
+    group.push_back(it->second);
   }
+  measure();
   return folded_angle(direction);
 }
 

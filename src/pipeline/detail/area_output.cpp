@@ -5,8 +5,10 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -27,6 +29,11 @@ double compass_degrees(double radians) {
 
 std::string type_of(const ShapeInstance& i) {
   return fmt::format("shape_{}", i.shape);
+}
+
+// NaN when unknown.
+double z_of(const AreaResult& r, std::size_t instance) {
+  return instance < r.z.size() ? r.z[instance] : std::numeric_limits<double>::quiet_NaN();
 }
 
 void create_field(OGRLayer& layer, const char* name, OGRFieldType type) {
@@ -51,7 +58,10 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE) fail("area: unreadable CRS");
   OGRLayer* strokes = dataset->CreateLayer("strokes", &srs, wkbLineString, nullptr);
-  OGRLayer* instances = dataset->CreateLayer("instances", &srs, wkbPoint, nullptr);
+  const bool with_z =
+      std::any_of(results.begin(), results.end(), [](const AreaResult& r) { return !r.z.empty(); });
+  OGRLayer* instances =
+      dataset->CreateLayer("instances", &srs, with_z ? wkbPoint25D : wkbPoint, nullptr);
   if (!strokes || !instances) fail("{}: cannot create layers", path.string());
   for (auto [name, type] : {std::pair{"class", OFTString},
                             {"polygon_fid", OFTInteger64},
@@ -86,7 +96,8 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
       feature.SetGeometry(&line);
       if (strokes->CreateFeature(&feature) != OGRERR_NONE) fail("{}: write failed", path.string());
     }
-    for (const ShapeInstance& i : r.pattern.instances) {
+    for (std::size_t n = 0; n < r.pattern.instances.size(); ++n) {
+      const ShapeInstance& i = r.pattern.instances[n];
       OGRFeature feature(instances->GetLayerDefn());
       feature.SetField("class", r.area_class.c_str());
       feature.SetField("polygon_fid", GIntBig(r.fid));
@@ -96,6 +107,7 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
       feature.SetField("rotation_deg", compass_degrees(i.rotation));
       feature.SetField("scale", i.scale);
       OGRPoint point(i.position.x, i.position.y);
+      if (with_z) point.setZ(z_of(r, n));
       feature.SetGeometry(&point);
       if (instances->CreateFeature(&feature) != OGRERR_NONE)
         fail("{}: write failed", path.string());
@@ -111,8 +123,11 @@ void write_instances_csv(const std::filesystem::path& path,
   std::ofstream out(path);
   out << "x,y,z,rotation_deg,scale,type,material,class\n";
   for (const AreaResult& r : results) {
-    for (const ShapeInstance& i : r.pattern.instances) {
-      out << fmt::format("{:.3f},{:.3f},0,{:.3f},{:.6g},{},{},{}\n", i.position.x, i.position.y,
+    for (std::size_t n = 0; n < r.pattern.instances.size(); ++n) {
+      const ShapeInstance& i = r.pattern.instances[n];
+      const double z = z_of(r, n);
+      out << fmt::format("{:.3f},{:.3f},{},{:.3f},{:.6g},{},{},{}\n", i.position.x, i.position.y,
+                         std::isfinite(z) ? fmt::format("{:.3f}", z) : "",
                          compass_degrees(i.rotation), i.scale, type_of(i), i.material,
                          r.area_class);
     }
@@ -129,15 +144,18 @@ void write_instances_json(const std::filesystem::path& path,
   };
   nlohmann::json instances = nlohmann::json::array();
   for (const AreaResult& r : results)
-    for (const ShapeInstance& i : r.pattern.instances) {
-      instances.push_back({{"x", rounded(i.position.x, 3)},
-                           {"y", rounded(i.position.y, 3)},
-                           {"z", 0},
-                           {"rotation_deg", rounded(compass_degrees(i.rotation), 3)},
-                           {"scale", i.scale},
-                           {"type", type_of(i)},
-                           {"material", i.material},
-                           {"class", r.area_class}});
+    for (std::size_t n = 0; n < r.pattern.instances.size(); ++n) {
+      const ShapeInstance& i = r.pattern.instances[n];
+      const double z = z_of(r, n);
+      instances.push_back(
+          {{"x", rounded(i.position.x, 3)},
+           {"y", rounded(i.position.y, 3)},
+           {"z", std::isfinite(z) ? nlohmann::json(rounded(z, 3)) : nlohmann::json()},
+           {"rotation_deg", rounded(compass_degrees(i.rotation), 3)},
+           {"scale", i.scale},
+           {"type", type_of(i)},
+           {"material", i.material},
+           {"class", r.area_class}});
     }
   std::ofstream out(path);
   out << instances.dump(1) << '\n';

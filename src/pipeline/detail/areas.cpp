@@ -163,6 +163,22 @@ std::vector<AreaMaterial> stroke_materials(const AreaClassConfig& a, const Sketc
 
 }  // namespace
 
+SupportHierarchy area_hierarchy(const AreaClassConfig& a) {
+  try {
+    SupportHierarchy hierarchy = analyze_sketch(load_sketch(a.sketch));
+    if (a.shapes_from)
+      hierarchy = hybridize(hierarchy, analyze_sketch(load_sketch(*a.shapes_from)));
+    return hierarchy;
+  } catch (const Error& error) {
+    fail("features.{}: {}", a.name, error.what());
+  }
+}
+
+void check_area_sketches(const PipelineConfig& config, Warnings& warnings) {
+  for (const AreaClassConfig& a : config.areas)
+    stroke_materials(a, area_hierarchy(a).sketch, warnings);
+}
+
 std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
                                                             const Heightfield& heightfield,
                                                             Warnings& warnings) {
@@ -197,14 +213,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
   for (std::size_t ai = 0; ai < config.areas.size(); ++ai) {
     const AreaClassConfig& a = config.areas[ai];
     const std::string key = "features." + a.name;
-    SupportHierarchy hierarchy;
-    try {
-      hierarchy = analyze_sketch(load_sketch(a.sketch));
-      if (a.shapes_from)
-        hierarchy = hybridize(hierarchy, analyze_sketch(load_sketch(*a.shapes_from)));
-    } catch (const Error& error) {
-      fail("{}: {}", key, error.what());
-    }
+    const SupportHierarchy hierarchy = area_hierarchy(a);
     const std::vector<AreaMaterial> materials = stroke_materials(a, hierarchy.sketch, warnings);
     double thickest = 0.0;
     for (const Stroke& s : hierarchy.sketch.strokes) thickest = std::max(thickest, s.thickness);

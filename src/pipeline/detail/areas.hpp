@@ -14,6 +14,7 @@
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/plan.hpp"
+#include "sketch/hierarchy.hpp"
 
 namespace tw::detail {
 
@@ -22,6 +23,16 @@ namespace tw::detail {
 std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
                                                             const Heightfield& heightfield,
                                                             Warnings& warnings);
+
+// The class's sketch (and its `shapes_from` donor) loaded and analysed: the Support Structure
+// Hierarchy it is synthesized from. Throws tw::Error naming features.<class>, the sketch file
+// and the FID of the stroke it cannot use.
+SupportHierarchy area_hierarchy(const AreaClassConfig& area);
+
+// What `terraweave validate` checks of the areas without synthesizing them: every class's
+// sketches analysed (area_hierarchy's errors), its `materials` and `height` keys matched against
+// the sketch's stroke materials (a warning for each the sketch lacks).
+void check_area_sketches(const PipelineConfig& config, Warnings& warnings);
 
 struct AreaRun {
   std::vector<PlannedArea> areas;                // targets' `material` still unresolved (0)

@@ -44,11 +44,14 @@ void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& 
   }
 }
 
-void write_area_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction) {
+void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights, const fs::path& out,
+                        OutputFolder& transaction) {
   if (plan.area_names.empty()) return;
   std::vector<AreaResult> results;
-  for (const PlannedArea& a : plan.areas)
-    results.push_back({plan.area_names.at(a.area_class), a.fid, a.pattern});
+  for (std::size_t i = 0; i < plan.areas.size(); ++i) {
+    const PlannedArea& a = plan.areas[i];
+    results.push_back({plan.area_names.at(a.area_class), a.fid, a.pattern, heights.at(i)});
+  }
   write_area_geopackage(transaction.stage(out / "areas.gpkg"), plan.crs_wkt, results);
   write_instances_csv(transaction.stage(out / "instances.csv"), results);
   write_instances_json(transaction.stage(out / "instances.json"), results);
@@ -84,7 +87,10 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
   for (const auto& [layer, sources] : tifs)
     write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
   write_placements(plan, out, transaction, report);
-  write_area_outputs(plan, out, transaction);
+  InstanceHeights heights = unknown_instance_heights(plan);
+  for (const RenderedTile& t : tiles)
+    add_instance_heights(t.instance_heights, fmt::format("tile {}", t.tile.index), heights);
+  write_area_outputs(plan, heights, out, transaction);
   write_ornament_outputs(plan, out, transaction);
   return report;
 }

@@ -11,6 +11,7 @@
 #include "layers/write.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/plan.hpp"
 
 namespace tw::detail {
@@ -29,6 +30,7 @@ struct RenderedTile {
   std::int64_t forbidden_pixels = 0;        // in its core window
   std::uint64_t xxh64 = 0;                  // of its pixels (detail/tile_stats.hpp)
   std::string input_height, output_height;  // over its core (detail::range_fact)
+  std::string instance_heights;             // detail::instance_heights_fact
   std::optional<CacheStatus> cache;         // with a cache: rendered or reused, and why
 };
 
@@ -51,9 +53,10 @@ void write_placements(const WorldPlan& plan, const std::filesystem::path& out,
                       OutputFolder& transaction, RunReport& report);
 
 // areas.gpkg (layers strokes and instances), instances.csv and instances.json of the plan's
-// `kind: area` classes (docs/shape-patterns.md); nothing when it has none.
-void write_area_outputs(const WorldPlan& plan, const std::filesystem::path& out,
-                        OutputFolder& transaction);
+// `kind: area` classes (docs/shape-patterns.md), the instances' z from `heights`; nothing when
+// it has none.
+void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights,
+                        const std::filesystem::path& out, OutputFolder& transaction);
 
 // ornaments.gpkg of the plan's grown classes (one layer per class, named by it; FIDs as the
 // class's features'); nothing when it has none.

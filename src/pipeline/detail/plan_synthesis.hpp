@@ -1,7 +1,9 @@
 #pragma once
 // A plan's syntheses made apart from plan_world (pipeline/synthesis_job.hpp): the inputs of
-// synthesize_patterns as a WorldPlan holds them, and the step that puts the results into it.
+// synthesize_patterns as a WorldPlan holds them, the steps that put the results into it, and
+// the areas, which avoid the curve patterns and so are synthesized after all of them.
 #include "pipeline/config.hpp"
+#include "pipeline/detail/areas.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/stages.hpp"
@@ -17,5 +19,17 @@ ExistingFeatures existing_features(const WorldPlan& plan);
 // them into plan.patterns, their exemplars and splat materials (plan_world does the same).
 // Throws tw::Error naming the class and the channel when an exemplar lacks a mapped channel.
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan);
+
+// The areas as the renderer needs them, replacing those the plan held: their splat materials
+// after the patterns' (call add_patterns first), the output pixels their strokes can touch,
+// their report.
+void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan);
+
+// The `kind: area` classes synthesized on a plan as plan_world synthesizes them: its lines,
+// ribbons, existing features and heights, the polygons read again from their sources, after
+// the curve patterns `patterns` (null: none). Warnings are the synthesis's only (the polygons'
+// repairs were the plan's).
+AreaRun synthesize_plan_areas(const PipelineConfig& config, const WorldPlan& plan,
+                              const PatternRun* patterns, Warnings& warnings);
 
 }  // namespace tw::detail

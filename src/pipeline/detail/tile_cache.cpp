@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::uint64_t kTileCacheFormat = 1;
+constexpr std::uint64_t kTileCacheFormat = 2;  // 2: the instance heights fact
 constexpr const char* kFilePrefix = "file:";
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
