@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numbers>
 
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
@@ -15,6 +14,7 @@
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/detail/analysis_png.hpp"
+#include "pipeline/detail/area_lead.hpp"
 #include "pipeline/detail/area_output.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
 #include "raster/avoidance.hpp"
@@ -110,7 +110,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
     // One seed per polygon part: the same part gets the same shapes whatever else is in the file.
     params.seed = c.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(f.fid) * 0x100000001B3ull + k;
     params.bearing =
-        c.bearing ? (90.0 - *c.bearing) * std::numbers::pi / 180.0 : long_axis_bearing(polygon);
+        c.bearing ? detail::angle_from_compass(*c.bearing) : long_axis_bearing(polygon);
     detail::AreaResult& r = results.emplace_back();
     r.area_class = c.sketch.stem().string();
     r.fid = f.fid;

@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/detail/area_lead.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -490,6 +492,19 @@ TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
   EXPECT_EQ(c.areas[0].materials[1].stroke, "post");
   EXPECT_DOUBLE_EQ(c.areas[0].materials[1].height, -0.1);
   EXPECT_EQ(c.areas[0].lead, AreaLead::long_axis);
+}
+
+TEST(AreaCompass, BearingsAreClockwiseFromNorthInZeroTo360) {
+  const double pi = std::numbers::pi;
+  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi / 2.0), 0.0);  // +y: north
+  EXPECT_DOUBLE_EQ(detail::compass_degrees(0.0), 90.0);      // +x: east
+  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi), 270.0);
+  // Just past north counter-clockwise: fmod leaves a tiny negative whose + 360 rounds to 360.
+  const double just_past = detail::compass_degrees(std::nextafter(pi / 2.0, 4.0));
+  EXPECT_GE(just_past, 0.0);
+  EXPECT_LT(just_past, 360.0);
+  for (double deg : {0.0, 30.0, 90.0, 181.5, 359.0})
+    EXPECT_NEAR(detail::compass_degrees(detail::angle_from_compass(deg)), deg, 1e-9);
 }
 
 }  // namespace

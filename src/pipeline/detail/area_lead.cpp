@@ -30,6 +30,17 @@ double folded_angle(Vec2 v) {
 
 }  // namespace
 
+double compass_degrees(double radians) {
+  const double d = std::fmod(90.0 - radians * 180.0 / std::numbers::pi, 360.0);
+  // fmod keeps the sign, and a tiny negative d + 360 rounds to 360 itself: fold both into [0, 360).
+  const double folded = d < 0.0 ? d + 360.0 : d;
+  return folded >= 360.0 ? 0.0 : folded;
+}
+
+double angle_from_compass(double degrees) {
+  return (90.0 - degrees) * std::numbers::pi / 180.0;
+}
+
 std::optional<double> nearest_line_angle(const Polygon& polygon,
                                          const std::vector<const LineFeature*>& lines) {
   const Ring& ring = polygon.front();

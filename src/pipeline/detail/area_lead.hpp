@@ -10,6 +10,11 @@
 
 namespace tw::detail {
 
+// A compass bearing in degrees, in [0, 360) (clockwise from north), of the angle `radians`
+// counter-clockwise from +x; and back. One convention for reports, instances and `lead.bearing`.
+double compass_degrees(double radians);
+double angle_from_compass(double degrees);
+
 // The angle (radians counter-clockwise from +x, in [0, pi)) of the segment of `lines` nearest
 // to the polygon's outer ring (0 distance when they cross); none without a segment.
 std::optional<double> nearest_line_angle(const Polygon& polygon,

@@ -12,20 +12,14 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "core/error.hpp"
+#include "pipeline/detail/area_lead.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
 
 namespace {
-
-double compass_degrees(double radians) {
-  double d = 90.0 - radians * 180.0 / std::numbers::pi;
-  d = std::fmod(d, 360.0);
-  return d < 0.0 ? d + 360.0 : d;
-}
 
 std::string type_of(const ShapeInstance& i) {
   return fmt::format("shape_{}", i.shape);

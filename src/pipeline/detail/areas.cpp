@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -33,11 +32,6 @@ const char* lead_name(AreaLead lead) {
       return "contours";
   }
   return "";
-}
-
-double compass_degrees(double radians) {
-  const double d = std::fmod(90.0 - radians * 180.0 / std::numbers::pi, 360.0);
-  return d < 0.0 ? d + 360.0 : d;
 }
 
 double polygon_area(const Polygon& polygon) {
@@ -237,7 +231,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       std::optional<double> angle;
       switch (a.lead) {
         case AreaLead::bearing:
-          angle = (90.0 - a.bearing_deg) * std::numbers::pi / 180.0;
+          angle = angle_from_compass(a.bearing_deg);
           break;
         case AreaLead::long_axis:
           break;
