@@ -147,13 +147,21 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
 }
 
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan) {
+  for (std::size_t c = 0; c < config.features.size(); ++c)
+    if (config.features[c].synthesis && plan.report.classes[c].grow)
+      plan.report.classes[c].grow->synthesis.emplace();
   for (const FeaturePattern& p : patterns.patterns) {
     if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
-    FeatureReport& feature = plan.report.classes[p.class_index].features[p.feature_index];
+    FeatureClassReport& feature_class = plan.report.classes[p.class_index];
+    FeatureReport& feature = feature_class.features[p.feature_index];
     feature.synthesis = p.report;
     record_geometry(*config.features[p.class_index].synthesis, feature);
     feature.cache = p.cache;
     plan.report.pattern_violations += p.report.violations;
+    if (feature_class.grow) {
+      const bool bare = std::size_t(p.report.empty_pieces) == p.synthesis.placements.size();
+      ++(bare ? feature_class.grow->synthesis->no_room : feature_class.grow->synthesis->dressed);
+    }
   }
   plan_patterns(config, std::move(patterns), plan);
 }
@@ -283,6 +291,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
+      if (report.classes[c].grow && ribbons.ribbons[c][i].pieces.empty())
+        ++report.classes[c].grow->short_lines;
       FeatureReport& feature = report.classes[c].features.emplace_back();
       feature.fid = lines[c][i].fid;
       feature.length_m = ribbons.lengths[c][i];

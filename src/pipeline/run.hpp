@@ -58,6 +58,12 @@ struct FeatureReport {
 // A grown class (docs/pipeline.md, "Grown classes"): what the space filling placed, the
 // candidates it refused by reason, and the coverage (the fraction of the region's allowed mesh
 // vertices within coverage_radius_m, geodesic, of a line).
+// A grown class's `synthesis:` over its lines (of those synthesized): `dressed` have a pattern on
+// some piece, `no_room` had every piece blocked and are left bare (not an error).
+struct GrownSynthesisReport {
+  int dressed = 0, no_room = 0;
+};
+
 struct GrowthReport {
   std::string kind;     // hedge, wall, trail, ditch (or the line kind given with grow:)
   std::string element;  // the element set
@@ -65,6 +71,8 @@ struct GrowthReport {
   int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
   double coverage = 0.0, coverage_radius_m = 0.0;
   int mesh_width = 0, mesh_height = 0;  // vertices (the time is the stage `grow`'s)
+  int short_lines = 0;  // lines shorter than one piece (delta): no ribbon, no pattern
+  std::optional<GrownSynthesisReport> synthesis;  // the class has `synthesis:`
 };
 
 struct FeatureClassReport {

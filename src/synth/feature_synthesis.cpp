@@ -130,13 +130,17 @@ FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
   const Synthesis& result = out.synthesis;
   const auto empty = std::count_if(result.placements.begin(), result.placements.end(),
                                    [](const Placement& p) { return p.empty; });
-  if (std::size_t(empty) == result.placements.size()) {
+  const bool no_room = std::size_t(empty) == result.placements.size();
+  if (no_room && options.no_room_is_error) {
     const Piece& first = synthesized.pieces.front();
     fail(
         "{}: no room for the pattern: none of the {} pieces has a valid position in {} "
         "(piece 0 at ({:.2f}, {:.2f}); the avoidance map blocks them all)",
         label, synthesized.pieces.size(), exemplar.path, first.top_left.x, first.top_left.y);
   }
+  if (no_room)
+    logger().info("{}: no room for the pattern: all {} pieces left empty", label,
+                  synthesized.pieces.size());
   report.synthesis_seconds = seconds_since(started);
 
   // The check: opaque pattern pixels on forbidden canvas pixels, by the synthesizer's own

@@ -90,6 +90,10 @@ struct FeatureSynthesisOptions {
   RibbonParams ribbon;
   // Cells per side of a canvas tile; 0: one tile for the whole canvas (the same results).
   int canvas_tile = SparseRaster<std::uint8_t>::kDefaultTileSize;
+  // Whether a feature none of whose pieces has room is an error. false: it keeps its all-empty
+  // placements (nothing rendered, report.empty_pieces == pieces), for the many short lines of
+  // a grown class packed between their own joints and other patterns.
+  bool no_room_is_error = true;
 };
 
 struct FeatureSynthesisResult {
@@ -104,8 +108,8 @@ struct FeatureSynthesisResult {
 // Synthesizes `ribbon` (made from `curve`) on `canvas` (synthesis_canvas) with one of
 // `exemplars` (by seed) or the best of them, avoiding `fixed` (include_foldovers false), every
 // `earlier` pattern whose canvas overlaps and the ribbon's own fold-overs. Throws tw::Error
-// starting with the label when no piece has room, or when the pattern puts an opaque pixel on a
-// forbidden one (a bug).
+// starting with the label when no piece has room (unless options.no_room_is_error is false), or
+// when the pattern puts an opaque pixel on a forbidden one (a bug).
 FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
                                           const std::vector<const Exemplar*>& exemplars,
                                           const Curve& curve, const Ribbon& ribbon,

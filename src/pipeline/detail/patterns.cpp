@@ -59,7 +59,8 @@ std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
   for (std::size_t i = 0; i < canvases.size(); ++i) needed[i] = wanted(canvases[i]);
   for (std::size_t i = canvases.size(); i-- > 0;) {
     if (!needed[i]) continue;
-    for (std::size_t j = 0; j < i; ++j) needed[j] = needed[j] || canvases_overlap(canvases[j], canvases[i]);
+    for (std::size_t j = 0; j < i; ++j)
+      needed[j] = needed[j] || canvases_overlap(canvases[j], canvases[i]);
   }
   return needed;
 }
@@ -220,6 +221,9 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       feature_options.choice = synthesis.choice;
       feature_options.ribbon = {width, *synthesis.delta, 0.0};
       feature_options.canvas_tile = options.canvas_tile;
+      // A grown class is many short lines between joints (junction discs) and the patterns
+      // of its own earlier lines: one without room is left bare and counted (grow.synthesis).
+      feature_options.no_room_is_error = !feature_class.grow;
       std::vector<const Exemplar*> exemplars;
       for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
       std::vector<EarlierPattern> earlier;

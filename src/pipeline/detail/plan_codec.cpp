@@ -62,9 +62,11 @@ TW_FIELDS(CacheStatus, F(reused) F(why) F(key))
 TW_FIELDS(FeatureReport,
           F(fid) F(length_m) F(width_m) F(pieces) F(synthesis) F(structure) F(layer) F(deck_m)
               F(moved_max_m) F(moved_mean_m) F(cut_max_m) F(fill_max_m) F(grade_max) F(cache))
-TW_FIELDS(GrowthReport, F(kind) F(element) F(ornaments) F(elements) F(lines) F(rejected_crossing)
-                            F(rejected_forbidden) F(rejected_untraceable) F(coverage)
-                                F(coverage_radius_m) F(mesh_width) F(mesh_height))
+TW_FIELDS(GrownSynthesisReport, F(dressed) F(no_room))
+TW_FIELDS(GrowthReport,
+          F(kind) F(element) F(ornaments) F(elements) F(lines) F(rejected_crossing)
+              F(rejected_forbidden) F(rejected_untraceable) F(coverage) F(coverage_radius_m)
+                  F(mesh_width) F(mesh_height) F(short_lines) F(synthesis))
 TW_FIELDS(FeatureClassReport,
           F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow))
 TW_FIELDS(GrownLine, F(ornament) F(element) F(name) F(material) F(points) F(heights))

@@ -32,6 +32,7 @@ TW_PLAN_FIELDS(Warning);
 TW_PLAN_FIELDS(StageTiming);
 TW_PLAN_FIELDS(FeatureSynthesisReport);
 TW_PLAN_FIELDS(FeatureReport);
+TW_PLAN_FIELDS(GrownSynthesisReport);
 TW_PLAN_FIELDS(GrowthReport);
 TW_PLAN_FIELDS(FeatureClassReport);
 TW_PLAN_FIELDS(GrownLine);

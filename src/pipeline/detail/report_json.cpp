@@ -181,7 +181,11 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
                        {"coverage", g.coverage},
                        {"coverage_radius_m", g.coverage_radius_m},
                        {"mesh", {g.mesh_width, g.mesh_height}},
+                       {"short_lines", g.short_lines},
                        {"layer", "ornaments.gpkg:" + c.name}};
+      if (g.synthesis)
+        entry["grow"]["synthesis"] = {{"dressed", g.synthesis->dressed},
+                                      {"no_room", g.synthesis->no_room}};
     }
     classes.push_back(std::move(entry));
   }

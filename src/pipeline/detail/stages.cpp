@@ -24,15 +24,20 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
     out.delta.push_back(delta);
     auto& lengths = out.lengths.emplace_back();
     auto& ribbons = out.ribbons.emplace_back();
+    int short_lines = 0;
     for (const LineFeature& line : lines[c]) {
       const Curve curve{line.points, line.closed};
       const double length = arc_length(curve);
       lengths.push_back(length);
       if (length < delta) {
-        warnings.add("shorter_than_delta", "features." + feature_class.name, line.fid,
-                     fmt::format("{:.2f} m long, shorter than one piece (delta {} m): it gets no "
-                                 "ribbon, so no pattern and no avoidance footprint",
-                                 length, delta));
+        // Grown lines are short by design (one per spline of an element): counted in the
+        // report (grow.short_lines), not a warning each.
+        if (!feature_class.grow)
+          warnings.add("shorter_than_delta", "features." + feature_class.name, line.fid,
+                       fmt::format("{:.2f} m long, shorter than one piece (delta {} m): it gets "
+                                   "no ribbon, so no pattern and no avoidance footprint",
+                                   length, delta));
+        ++short_lines;
         ribbons.push_back({curve, line.width, delta, line.closed, {}});
       } else {
         ribbons.push_back(make_ribbon(curve, {line.width, delta, 0.0}));
@@ -44,6 +49,11 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                      ? std::max(line.width, *feature_class.synthesis->width)
                                      : line.width);
     }
+    if (feature_class.grow && short_lines > 0)
+      logger().info(
+          "features.{}: {} of {} grown lines shorter than one piece (delta {} m): no "
+          "ribbon, no pattern",
+          feature_class.name, short_lines, lines[c].size(), delta);
   }
   // Meeting points closer than a pixel are one junction; the disc covers the widest member
   // plus a pixel of margin.

@@ -26,7 +26,8 @@ struct FeatureRibbons {
 
 // Slices every feature into pieces of its class's delta (the synthesis delta, or its default)
 // and finds the junctions between all features. A feature shorter than one piece gets no
-// pieces and a "shorter_than_delta" warning.
+// pieces and a "shorter_than_delta" warning (a grown class's only a count in the log; the run
+// reports them in grow.short_lines).
 FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
                                     const std::vector<std::vector<LineFeature>>& lines,
                                     const GridSpec& grid, Warnings& warnings);
