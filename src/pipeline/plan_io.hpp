@@ -24,7 +24,7 @@ namespace tw {
 
 inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
-inline constexpr int kPlanVersion = 3;  // 3: the grown classes (files.grown)
+inline constexpr int kPlanVersion = 3;  // 3: the grown classes (files.grown), synthesis_junctions (choose: mix)
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's
