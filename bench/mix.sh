@@ -2,7 +2,7 @@
 # Several exemplars in one feature (docs/synthesis.md, "Several exemplars in one feature"): the
 # time per feature of pipelines/mix.yaml as it is (roads: a mix of 3 exemplars with bindings;
 # rivers: a free mix of 2 with a switching cost) against the same run with one exemplar per
-# class (lanes; boulders), from report.json's per-feature synthesis seconds. Prints numbers,
+# class (lanes; cobbles), from report.json's per-feature synthesis seconds. Prints numbers,
 # never fails on time. Usage: bench/mix.sh   (env TERRAWEAVE=build/src/terraweave,
 # WORK=/tmp/terraweave-mix, THREADS: --threads for both runs)
 set -euo pipefail
@@ -19,9 +19,9 @@ for class in roads rivers; do
            --set "features.$class.synthesis.switch_cost=null")
 done
 single+=(--set features.roads.synthesis.exemplar=samples/exemplars/road_lanes_240x64.png
-         --set features.rivers.synthesis.exemplar=samples/exemplars/rock_band_260x80.png)
-"$bin" -q run pipelines/mix.yaml "${threads[@]}" --out "$work/mix" --set output.exr=false
-"$bin" -q run pipelines/mix.yaml "${threads[@]}" --out "$work/single" --set output.exr=false \
+         --set features.rivers.synthesis.exemplar=samples/exemplars/cobble_bed_260x80.png)
+"$bin" -q run pipelines/mix.yaml "${threads[@]}" --out "$work/mix"
+"$bin" -q run pipelines/mix.yaml "${threads[@]}" --out "$work/single" \
   "${single[@]}"
 python3 - "$work/mix/report.json" "$work/single/report.json" <<'PY'
 import json, sys

@@ -24,7 +24,8 @@ namespace tw {
 
 inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
-inline constexpr int kPlanVersion = 3;  // 3: the grown classes (files.grown), synthesis_junctions (choose: mix)
+// 3: the grown classes (files.grown); 4: synthesis_junctions (choose: mix).
+inline constexpr int kPlanVersion = 4;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

@@ -32,7 +32,7 @@ version: 1
 seed: 5
 heightfield: dem.tif
 resolution: 10
-output: { dir: out, exr: false, geotiff: false, preview: false }
+output: { dir: out, exr: false, geotiff: true, preview: false }
 synthesis_resolution: 1
 features:
   roads:
@@ -190,13 +190,17 @@ TEST_F(MixWorld, BoundStretchesAndJunctionsUseTheirExemplarAndTheReportCountsThe
       const double d = distance_to_segment(junction, lerp(piece.top_left, piece.bottom_left, 0.5),
                                            lerp(piece.top_right, piece.bottom_right, 0.5));
       const int expected = fid == 2 ? 1 : d <= kNear ? 2 : 0;
-      if (std::abs(d - kNear) > 0.5) EXPECT_EQ(p.exemplar, expected) << "piece " << i << ", " << d;
+      if (std::abs(d - kNear) > 0.5) {
+        EXPECT_EQ(p.exemplar, expected) << "piece " << i << ", " << d;
+      }
       near += fid == 1 && expected == 2 ? 1 : 0;
       ++counts[std::size_t(p.exemplar)];
       if (previous >= 0 && previous != p.exemplar) ++switches;
       previous = p.exemplar;
     }
-    if (fid == 1) EXPECT_GE(near, 3);
+    if (fid == 1) {
+      EXPECT_GE(near, 3);
+    }
     EXPECT_EQ(s["mix"]["pieces_per_exemplar"].get<std::vector<int>>(), counts);
     EXPECT_EQ(s["mix"]["switches"].get<int>(), switches);
     EXPECT_EQ(s["mix"]["switch_cost"].get<int>(), 8);
