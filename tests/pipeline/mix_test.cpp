@@ -47,7 +47,7 @@ features:
       bind:
         - { exemplar: sett.png, tags: { surface: [sett] } }
         - { exemplar: 2, near_junction: 16 }
-      width: 9
+      width: 10                      # 40 texels: clear rows above and below the lanes band (14..49)
       scale: 4
       delta: 6
 )";
@@ -173,10 +173,10 @@ TEST_F(MixWorld, BoundStretchesAndJunctionsUseTheirExemplarAndTheReportCountsThe
     const Synthesis placed =
         load_placements((dir_ / "out" / s["placements"].get<std::string>()).string());
     ASSERT_TRUE(placed.mix.has_value());
-    // The synthesis ribbon, as the pipeline slices it (width 9, delta 6).
+    // The synthesis ribbon, as the pipeline slices it (width 10, delta 6).
     const Curve line = fid == 1 ? Curve{{{500050, 5000300}, {500590, 5000330}}, false}
                                 : Curve{{{500310, 5000050}, {500330, 5000590}}, false};
-    const Ribbon ribbon = make_ribbon(line, {9.0, 6.0});
+    const Ribbon ribbon = make_ribbon(line, {10.0, 6.0});
     ASSERT_EQ(placed.placements.size(), ribbon.pieces.size());
     std::vector<int> counts(3, 0);
     int switches = 0, near = 0, previous = -1;
