@@ -7,6 +7,9 @@ with, so that seams across the mix are meaningful.
   crossing_240x64      road_lanes_240x64 with zebra stripes across it. Height: 0.
   sand_band_260x80     the band of rock_band_260x80 (rows 18..62): rippled sand and a few
                        pebbles. Height: ripples up to 0.06 m.
+  cobble_bed_260x80    cobbles bedded in sand_band_260x80 (its texels where no cobble lies,
+                       the same band): the river bed the sand alternates with. Height: cobble
+                       domes up to 0.5 m on the ripples.
 Usage: make_mix_exemplars.py [EXEMPLAR_DIR]. Deterministic (numpy default_rng, fixed seeds);
 shapes are drawn 4x larger and box-filtered down, as make_exemplars.py does.
 """
@@ -84,7 +87,8 @@ def crossing(rng, road_lanes_png):
     return finish(rgb, alpha, np.zeros_like(alpha))
 
 
-def sand_band(rng):
+def sand(rng):
+    """The sand band's supersampled grid, colour, band mask and ripple."""
     x, y = grid(260, 80)
     phase = np.cumsum(rng.normal(0.0, 0.05, size=x.shape[1])) / SS
     ripple = 0.5 + 0.5 * np.sin(2 * np.pi * (x / 9.0 + 0.15 * np.sin(y / 7.0) + phase[None, :]))
@@ -95,7 +99,31 @@ def sand_band(rng):
         cx, cy, r = rng.uniform(0, 260), rng.uniform(26, 54), rng.uniform(1.0, 2.2)
         pebble = ((x - cx) / r) ** 2 + ((y - cy) / (0.8 * r)) ** 2 <= 1.0
         rgb[pebble] = np.array([128.0, 118.0, 104.0]) * rng.uniform(0.8, 1.1)
+    return x, y, rgb, inside, ripple
+
+
+def sand_band(rng):
+    x, y, rgb, inside, ripple = sand(rng)
     return finish(rgb, inside.astype(float), np.where(inside, 0.06 * ripple, 0.0))
+
+
+def cobble_bed(rng):
+    """Cobbles bedded in the sand band: the sand's texels wherever no cobble lies, so that
+    seams between the two exemplars are as cheap as the sand's own where the bed is bare."""
+    x, y, rgb, inside, ripple = sand(np.random.default_rng(9))
+    height = np.where(inside, 0.06 * ripple, 0.0)
+    for _ in range(70):
+        cx, cy = rng.uniform(-4, 264), rng.uniform(22, 58)
+        rx = rng.uniform(2.5, 6.0)
+        ry = rx * rng.uniform(0.6, 0.9)
+        d2 = ((x - cx) / rx) ** 2 + ((y - cy) / ry) ** 2
+        cobble = (d2 <= 1.0) & inside
+        shade = np.array([126.0, 122.0, 116.0]) * rng.uniform(0.75, 1.1)
+        light = 0.8 + 0.35 * (1.0 - d2[cobble]) - 0.15 * (y[cobble] - cy) / ry
+        rgb[cobble] = shade * light[..., None]
+        dome = 0.5 * rx / 6.0 * np.sqrt(np.clip(1.0 - d2, 0.0, 1.0))
+        height = np.where(cobble, np.maximum(height, dome), height)
+    return finish(rgb, inside.astype(float), height)
 
 
 def main():
@@ -104,6 +132,7 @@ def main():
     write(out_dir, "crossing_240x64",
           *crossing(np.random.default_rng(8), os.path.join(out_dir, "road_lanes_240x64.png")))
     write(out_dir, "sand_band_260x80", *sand_band(np.random.default_rng(9)))
+    write(out_dir, "cobble_bed_260x80", *cobble_bed(np.random.default_rng(10)))
 
 
 if __name__ == "__main__":

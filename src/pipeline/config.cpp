@@ -187,6 +187,90 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
   }
 }
 
+// tags: { key: [value, ...] } (a single value may stand alone).
+std::vector<TagSelection> read_tags(const MapReader& m) {
+  const YAML::Node node = m.get("tags");
+  const std::string key = m.path("tags");
+  if (!node.IsMap() || node.size() == 0) {
+    m.source().fail(node, key, "expected a mapping of tag keys to lists of values");
+  }
+  std::vector<TagSelection> tags;
+  for (const auto& entry : node) {
+    TagSelection& tag = tags.emplace_back();
+    tag.key = detail::read_string(m.source(), entry.first, key);
+    const std::string entry_key = key + "." + tag.key;
+    if (tag.key.empty()) m.source().fail(entry.first, key, "empty tag key");
+    if (entry.second.IsSequence()) {
+      if (entry.second.size() == 0) m.source().fail(entry.second, entry_key, "empty list");
+      for (std::size_t i = 0; i < entry.second.size(); ++i) {
+        tag.values.push_back(
+            detail::read_string(m.source(), entry.second[i], entry_key + "." + std::to_string(i)));
+      }
+    } else {
+      tag.values.push_back(detail::read_string(m.source(), entry.second, entry_key));
+    }
+  }
+  return tags;
+}
+
+// A colour unit is a 0..255 channel difference: more than this would only overflow costs.
+constexpr int kMaxSwitchCost = 1 << 20;
+
+// `bind: [{exemplar: PATH-or-index, where, tags, near_junction}]` (choose: mix). The exemplar is
+// an index into the list or one of its paths (resolved as the list's are).
+std::vector<ExemplarBinding> read_bindings(const MapReader& m,
+                                           const std::vector<fs::path>& exemplars) {
+  const YAML::Node list = m.get("bind");
+  const std::string list_key = m.path("bind");
+  if (!list.IsSequence() || list.size() == 0)
+    m.source().fail(list, list_key, "expected a list of {exemplar, where, tags, near_junction}");
+  std::vector<ExemplarBinding> out;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string key = list_key + "." + std::to_string(i);
+    const MapReader r(m.source(), list[i], key, {"exemplar", "where", "tags", "near_junction"});
+    ExemplarBinding& b = out.emplace_back();
+    b.key = key;
+    const YAML::Node e = r.get("exemplar");
+    const std::string value = detail::read_string(m.source(), e, r.path("exemplar"));
+    const bool is_index = !value.empty() && std::all_of(value.begin(), value.end(), [](char ch) {
+      return std::isdigit((unsigned char)ch);
+    });
+    if (is_index) {
+      b.exemplar = std::size_t(detail::read_uint64(m.source(), e, r.path("exemplar")));
+      if (b.exemplar >= exemplars.size()) {
+        m.source().fail(e, r.path("exemplar"),
+                        fmt::format("exemplar {} of a list of {} (indices start at 0)", b.exemplar,
+                                    exemplars.size()));
+      }
+    } else {
+      const fs::path path = m.source().resolve(value, r.path("exemplar"));
+      const auto it = std::find(exemplars.begin(), exemplars.end(), path);
+      if (it == exemplars.end()) {
+        std::vector<std::string> names;
+        for (const fs::path& p : exemplars) names.push_back(p.filename().string());
+        m.source().fail(e, r.path("exemplar"),
+                        fmt::format("'{}' is not one of the class's exemplars ({})", value,
+                                    fmt::join(names, ", ")));
+      }
+      b.exemplar = std::size_t(it - exemplars.begin());
+    }
+    b.where = r.string_or("where", "");
+    if (r.has("tags")) b.tags = read_tags(r);
+    b.near_junction = r.non_negative_or("near_junction", 0.0);
+    if (b.near_junction > kMaxFeatureWidth) {
+      m.source().fail(
+          r.get("near_junction"), r.path("near_junction"),
+          fmt::format("must be at most {:g} m, got {:g}", kMaxFeatureWidth, b.near_junction));
+    }
+    if (b.where.empty() && b.tags.empty() && b.near_junction <= 0.0) {
+      m.source().fail(list[i], key,
+                      "a binding needs where, tags or near_junction (else it binds every piece; "
+                      "list only that exemplar instead)");
+    }
+  }
+  return out;
+}
+
 SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
                                std::vector<InputFile>& inputs) {
   SynthesisConfig s;
@@ -228,8 +312,22 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
                     : Objective::pattern;
   s.coverage_weight = m.non_negative_or("coverage_weight", s.coverage_weight);
   s.continuous_alpha = read_one_of(m, "alpha", "alpha", {"binary", "continuous"}) == 1;
-  s.choice = read_one_of(m, "choose", "choice", {"seed", "best"}) == 1 ? ExemplarChoice::best
-                                                                       : ExemplarChoice::by_seed;
+  static const ExemplarChoice choices[] = {ExemplarChoice::by_seed, ExemplarChoice::best,
+                                           ExemplarChoice::mix};
+  s.choice = choices[read_one_of(m, "choose", "choice", {"seed", "best", "mix"})];
+  for (const char* key : {"switch_cost", "bind"}) {
+    if (m.has(key) && s.choice != ExemplarChoice::mix)
+      m.source().fail(m.get(key), m.path(key), "only with choose: mix");
+  }
+  if (m.has("switch_cost")) {
+    const int cost = m.int_or("switch_cost", 0);
+    if (cost < 0 || cost > kMaxSwitchCost) {
+      m.source().fail(m.get("switch_cost"), m.path("switch_cost"),
+                      fmt::format("must be in [0, {}] colour units, got {}", kMaxSwitchCost, cost));
+    }
+    s.switch_cost = cost;
+  }
+  if (m.has("bind")) s.bind = read_bindings(m, s.exemplars);
   if (m.has("channels")) {
     const YAML::Node channels = m.get("channels");
     const std::string key = m.path("channels");
@@ -337,9 +435,9 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (m.has("synthesis")) {
     f.synthesis = read_synthesis(
         MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                  {"exemplar", "choose", "width", "delta", "scale", "stitch", "empty_pieces",
-                   "min_coverage", "objective", "coverage_weight", "alpha", "feather", "seed",
-                   "backend", "height_detail", "channels"}),
+                  {"exemplar", "choose", "switch_cost", "bind", "width", "delta", "scale", "stitch",
+                   "empty_pieces", "min_coverage", "objective", "coverage_weight", "alpha",
+                   "feather", "seed", "backend", "height_detail", "channels"}),
         seed, inputs);
   }
   return f;

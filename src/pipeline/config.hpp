@@ -41,10 +41,33 @@ struct ChannelMapping {
   std::string target;   // "height" or "splat.<material>"
 };
 
+// An OSM-style tag selection (docs/osm.md): features whose column `key` holds one of
+// `values`. Several selections must all match; they are ANDed with `where`.
+struct TagSelection {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+// One `bind` rule of a mix (choose: mix): the pieces it selects use only exemplar `exemplar`
+// (an index into SynthesisConfig::exemplars). It selects the lines its `where` / `tags` match
+// (evaluated by OGR on the class's layer, both empty: every line) and, with near_junction > 0,
+// only their pieces within that many metres of a junction (synth/exemplar_mix.hpp PieceBinding).
+struct ExemplarBinding {
+  std::size_t exemplar = 0;
+  std::string where;
+  std::vector<TagSelection> tags;
+  double near_junction = 0.0;
+  std::string key;  // "features.roads.synthesis.bind.0", for messages
+};
+
 struct SynthesisConfig {
   // One or more; NAME_height.tif beside NAME.png, when present, is read as channel "height".
   std::vector<std::filesystem::path> exemplars;
   ExemplarChoice choice = ExemplarChoice::by_seed;
+  // choose: mix only. Colour units added to every seam between pieces of different exemplars
+  // (SynthParams::switch_cost), and the rules binding stretches to exemplars, first match wins.
+  int switch_cost = 0;
+  std::vector<ExemplarBinding> bind;
   // Piece length, metres; absent: from the exemplar (with_exemplar_defaults).
   std::optional<double> delta;
   double scale = 8.0;  // exemplar texels per metre of ribbon
@@ -75,13 +98,6 @@ struct SynthesisConfig {
   double height_detail = 1.0;  // factor on the metres of the exemplar's channels mapped to height
   // Empty = the default mapping: A -> splat.<class>_pattern, height -> height (when present).
   std::vector<ChannelMapping> channels;
-};
-
-// An OSM-style tag selection (docs/osm.md): features whose column `key` holds one of
-// `values`. Several selections must all match; they are ANDed with `where`.
-struct TagSelection {
-  std::string key;
-  std::vector<std::string> values;
 };
 
 // The OGR SQL attribute filter of `tags` and `where` together ("" when both are empty).

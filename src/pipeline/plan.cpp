@@ -139,6 +139,7 @@ FeatureRibbons synthesis_ribbons(const WorldPlan& plan) {
   FeatureRibbons ribbons;
   ribbons.ribbons = plan.ribbons;
   ribbons.synthesis_junction_discs = plan.synthesis_junction_discs;
+  ribbons.synthesis_junctions = plan.synthesis_junctions;
   return ribbons;
 }
 
@@ -365,6 +366,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan.existing.line_widths = std::move(existing.line_widths);
   plan.junction_discs = std::move(ribbons.junction_discs);
   plan.synthesis_junction_discs = std::move(ribbons.synthesis_junction_discs);
+  plan.synthesis_junctions = std::move(ribbons.synthesis_junctions);
   plan.ribbons = std::move(ribbons.ribbons);
   plan.lines = std::move(lines);
 

@@ -156,6 +156,8 @@ struct WorldPlan {
   // The same on the synthesis canvas's tolerance: what syntheses avoid (a plan's syntheses may
   // run later, as tasks: pipeline/synthesis_job.hpp).
   std::vector<Polygon> synthesis_junction_discs;
+  // Per class and feature, the synthesis junctions it meets (FeatureRibbons).
+  std::vector<std::vector<std::vector<Vec2>>> synthesis_junctions;
 
   // The grown classes' lines (ornaments.gpkg), in class order.
   std::vector<GrownClass> grown;

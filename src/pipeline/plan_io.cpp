@@ -192,6 +192,7 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   files["ribbons"] = store.put_cbor(encode(plan.ribbons));
   files["junction_discs"] = store.put_cbor(encode(plan.junction_discs));
   files["synthesis_junction_discs"] = store.put_cbor(encode(plan.synthesis_junction_discs));
+  files["synthesis_junctions"] = store.put_cbor(encode(plan.synthesis_junctions));
   files["existing"] = store.put_cbor(encode(plan.existing));
   files["terrain_features"] = store.put_cbor(encode(plan.terrain_features));
   files["terrain_params"] = store.put_cbor(encode(plan.terrain_params));
@@ -311,6 +312,7 @@ WorldPlan load_plan(const fs::path& dir) {
     get_cbor(dir, files, "ribbons", plan.ribbons);
     get_cbor(dir, files, "junction_discs", plan.junction_discs);
     get_cbor(dir, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
+    get_cbor(dir, files, "synthesis_junctions", plan.synthesis_junctions);
     get_cbor(dir, files, "existing", plan.existing);
     get_cbor(dir, files, "terrain_features", plan.terrain_features);
     get_cbor(dir, files, "terrain_params", plan.terrain_params);

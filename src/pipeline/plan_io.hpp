@@ -24,8 +24,9 @@ namespace tw {
 
 inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
-// 3: the grown classes (files.grown); 4: their short_lines and synthesis counts
-inline constexpr int kPlanVersion = 4;
+// 3: the grown classes (files.grown); 4: their short_lines and synthesis counts; 5:
+// synthesis_junctions (choose: mix).
+inline constexpr int kPlanVersion = 5;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

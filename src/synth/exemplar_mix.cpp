@@ -88,4 +88,26 @@ MixedExemplar mix_exemplars(const std::vector<const Exemplar*>& exemplars, int g
   return out;
 }
 
+Exemplar exemplar_of_mix(const Exemplar& atlas, const MixLayout& layout, int e) {
+  if (e < 0 || e >= layout.count()) fail("exemplar {} of a mix of {}", e, layout.count());
+  Exemplar out;
+  out.width = layout.width[std::size_t(e)];
+  out.height = layout.height[std::size_t(e)];
+  out.channel_names = atlas.channel_names;
+  out.path = atlas.path;
+  out.cost.width = out.width;
+  out.cost.height = out.height;
+  out.cost.binary_alpha = atlas.cost.binary_alpha;
+  const std::size_t n = atlas.channel_names.size();
+  const std::size_t x0 = std::size_t(layout.x0[std::size_t(e)]);
+  for (int y = 0; y < out.height; ++y) {
+    const std::size_t row = std::size_t(y) * std::size_t(atlas.width) + x0;
+    out.cost.rgba.insert(out.cost.rgba.end(), atlas.cost.rgba.begin() + std::ptrdiff_t(row),
+                         atlas.cost.rgba.begin() + std::ptrdiff_t(row + std::size_t(out.width)));
+    out.texels.insert(out.texels.end(), atlas.texels.begin() + std::ptrdiff_t(row * n),
+                      atlas.texels.begin() + std::ptrdiff_t((row + std::size_t(out.width)) * n));
+  }
+  return out;
+}
+
 }  // namespace tw

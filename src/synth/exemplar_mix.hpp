@@ -54,4 +54,8 @@ std::vector<std::vector<std::uint8_t>> bind_pieces(const Ribbon& ribbon, int exe
 // Throws tw::Error when the list is empty or the exemplars use different alpha modes.
 MixedExemplar mix_exemplars(const std::vector<const Exemplar*>& exemplars, int gap);
 
+// Exemplar e of a mix as it lies in the atlas (its texels and cost texels, the atlas's channels):
+// what synthesize() reads its own statistics from (band, coverage floor) inside a mix.
+Exemplar exemplar_of_mix(const Exemplar& atlas, const MixLayout& layout, int e);
+
 }  // namespace tw

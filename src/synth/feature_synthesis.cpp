@@ -53,6 +53,22 @@ void report_synthesis(const Exemplar& exemplar, const Ribbon& ribbon, const Synt
   report.parametric_seam_cost = parametric_baseline(exemplar, ribbon, scale).mean_seam_cost;
 }
 
+// A mix's part of the report; the parametric baseline is that of its best single exemplar.
+void report_mix(const std::vector<const Exemplar*>& exemplars, const Ribbon& ribbon,
+                const Synthesis& result, const SynthParams& params,
+                FeatureSynthesisReport& report) {
+  report.mix_exemplars.clear();
+  for (const Exemplar* e : exemplars) report.mix_exemplars.push_back(e->path);
+  report.pieces_per_exemplar = result.pieces_per_exemplar;
+  report.exemplar_switches = result.exemplar_switches;
+  report.switch_cost = params.switch_cost;
+  for (std::size_t e = 0; e < exemplars.size(); ++e) {
+    const double baseline = parametric_baseline(*exemplars[e], ribbon, params.scale).mean_seam_cost;
+    report.parametric_seam_cost =
+        e == 0 ? baseline : std::min(report.parametric_seam_cost, baseline);
+  }
+}
+
 }  // namespace
 
 SynthesisBackends::SynthesisBackends() = default;
@@ -108,25 +124,41 @@ FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
   add_foldovers(synthesized, canvas, forbidden);
   report.avoidance_seconds = seconds_since(started);
 
-  // Synthesis: by seed one exemplar, or every exemplar and the lowest Omega / N.
+  // Synthesis: by seed one exemplar, every exemplar and the lowest Omega / N, or one DP over
+  // the atlas of them all.
   started = std::chrono::steady_clock::now();
-  std::vector<std::size_t> candidates;
-  if (options.choice == ExemplarChoice::by_seed) {
-    candidates = {std::size_t(params.seed % exemplars.size())};
+  const MixedExemplar* mix = options.choice == ExemplarChoice::mix ? options.mix : nullptr;
+  if (options.choice == ExemplarChoice::mix) {
+    if (!mix) {
+      out.mix =
+          mix_exemplars(exemplars, mix_gap(params.scale, synthesized.delta, synthesized.width));
+      mix = &*out.mix;
+    }
+    SynthParams mixed = params;
+    mixed.mix = mix->layout;
+    mixed.piece_exemplars =
+        bind_pieces(synthesized, mix->layout.count(), options.bindings, options.junctions);
+    out.synthesis = detail::synthesize_on(backends.get(params.backend), mix->atlas, synthesized,
+                                          canvas, &forbidden, mixed);
   } else {
-    for (std::size_t e = 0; e < exemplars.size(); ++e) candidates.push_back(e);
-  }
-  bool have = false;
-  for (const std::size_t e : candidates) {
-    Synthesis result = detail::synthesize_on(backends.get(params.backend), *exemplars[e],
-                                             synthesized, canvas, &forbidden, params);
-    if (!have || result.mean_seam_cost < out.synthesis.mean_seam_cost) {
-      out.synthesis = std::move(result);
-      out.exemplar_slot = e;
-      have = true;
+    std::vector<std::size_t> candidates;
+    if (options.choice == ExemplarChoice::by_seed) {
+      candidates = {std::size_t(params.seed % exemplars.size())};
+    } else {
+      for (std::size_t e = 0; e < exemplars.size(); ++e) candidates.push_back(e);
+    }
+    bool have = false;
+    for (const std::size_t e : candidates) {
+      Synthesis result = detail::synthesize_on(backends.get(params.backend), *exemplars[e],
+                                               synthesized, canvas, &forbidden, params);
+      if (!have || result.mean_seam_cost < out.synthesis.mean_seam_cost) {
+        out.synthesis = std::move(result);
+        out.exemplar_slot = e;
+        have = true;
+      }
     }
   }
-  const Exemplar& exemplar = *exemplars[out.exemplar_slot];
+  const Exemplar& exemplar = mix ? mix->atlas : *exemplars[out.exemplar_slot];
   const Synthesis& result = out.synthesis;
   const auto empty = std::count_if(result.placements.begin(), result.placements.end(),
                                    [](const Placement& p) { return p.empty; });
@@ -157,6 +189,7 @@ FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
   report.render_seconds = seconds_since(started);
 
   report_synthesis(exemplar, synthesized, result, params.scale, report);
+  if (mix) report_mix(exemplars, synthesized, result, params, report);
   report.empty_pieces = int(empty);
   report.canvas_width = canvas.width;
   report.canvas_height = canvas.height;

@@ -19,6 +19,7 @@
 #include "ribbon/ribbon.hpp"
 #include "synth/backend_kind.hpp"
 #include "synth/exemplar.hpp"
+#include "synth/exemplar_mix.hpp"
 #include "synth/synthesize.hpp"
 
 namespace tw {
@@ -26,11 +27,18 @@ namespace tw {
 enum class ExemplarChoice {
   by_seed,  // each feature uses exemplars[feature seed % count]
   best,     // each feature runs every exemplar and keeps the lowest Omega / N
+  mix,      // one DP over all of them (synth/exemplar_mix.hpp): pieces switch where seams match
 };
 
 // What one feature's synthesis reports (report.json `synthesis`).
 struct FeatureSynthesisReport {
-  std::string exemplar;               // the exemplar used
+  std::string exemplar;  // the exemplar used (a mix: its paths joined by " + ")
+  // choose: mix (empty otherwise): the exemplars in atlas order, the non-empty pieces drawn from
+  // each, the seams between pieces of different exemplars and the switching cost, colour units.
+  std::vector<std::string> mix_exemplars;
+  std::vector<int> pieces_per_exemplar;
+  int exemplar_switches = 0;
+  int switch_cost = 0;
   std::uint64_t seed = 0;             // the feature's seed: hash(run seed, class seed, FID)
   std::string backend;                // cpu or opencl (what ran)
   double mean_valid_positions = 0.0;  // per piece
@@ -94,22 +102,31 @@ struct FeatureSynthesisOptions {
   // placements (nothing rendered, report.empty_pieces == pieces), for the many short lines of
   // a grown class packed between their own joints and other patterns.
   bool no_room_is_error = true;
+  // choose: mix. The exemplars' atlas (null: made here with the gap mix_gap(scale, delta,
+  // width) of the ribbon), the binding rules in order and the junctions the feature meets
+  // (bind_pieces on the synthesized ribbon); params.switch_cost is the switching cost.
+  const MixedExemplar* mix = nullptr;
+  std::vector<PieceBinding> bindings;
+  std::vector<Vec2> junctions;
 };
 
 struct FeatureSynthesisResult {
-  Ribbon ribbon;                      // what was synthesized: a closed curve's starts in the clear
-  std::optional<Curve> start;         // a closed curve's rotated centreline (start_in_the_clear)
-  Synthesis synthesis;                // one placement per piece of `ribbon`
-  std::size_t exemplar_slot = 0;      // index into `exemplars`
+  Ribbon ribbon;                  // what was synthesized: a closed curve's starts in the clear
+  std::optional<Curve> start;     // a closed curve's rotated centreline (start_in_the_clear)
+  Synthesis synthesis;            // one placement per piece of `ribbon`
+  std::size_t exemplar_slot = 0;  // index into `exemplars` (0 for a mix)
+  // choose: mix with options.mix null: the atlas made here, which the placements read.
+  std::optional<MixedExemplar> mix;
   SparseRaster<std::uint8_t> opaque;  // over the canvas: 1 where the pattern has coverage > 0
   FeatureSynthesisReport report;      // without `placements` (the caller names the file)
 };
 
 // Synthesizes `ribbon` (made from `curve`) on `canvas` (synthesis_canvas) with one of
-// `exemplars` (by seed) or the best of them, avoiding `fixed` (include_foldovers false), every
-// `earlier` pattern whose canvas overlaps and the ribbon's own fold-overs. Throws tw::Error
-// starting with the label when no piece has room (unless options.no_room_is_error is false), or
-// when the pattern puts an opaque pixel on a forbidden one (a bug).
+// `exemplars` (by seed), the best of them or a mix of them all (placements in atlas columns),
+// avoiding `fixed` (include_foldovers false), every `earlier` pattern whose canvas overlaps and the
+// ribbon's own fold-overs. Throws tw::Error starting with the label when no piece has room (unless
+// options.no_room_is_error is false), or when the pattern puts an opaque pixel on a forbidden one
+// (a bug).
 FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
                                           const std::vector<const Exemplar*>& exemplars,
                                           const Curve& curve, const Ribbon& ribbon,

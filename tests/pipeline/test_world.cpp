@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 
 namespace tw::test {
 
@@ -58,6 +59,13 @@ void write_layer(const fs::path& path, const std::string& layer_name,
   ASSERT_NE(layer, nullptr);
   OGRFieldDefn width("width", OFTReal);
   ASSERT_EQ(layer->CreateField(&width), OGRERR_NONE);
+  std::set<std::string> columns;
+  for (const VectorFeature& f : features)
+    for (const auto& entry : f.text) columns.insert(entry.first);
+  for (const std::string& name : columns) {
+    OGRFieldDefn column(name.c_str(), OFTString);
+    ASSERT_EQ(layer->CreateField(&column), OGRERR_NONE);
+  }
   for (const VectorFeature& f : features) {
     OGRFeature feature(layer->GetLayerDefn());
     if (f.wkt.empty()) {
@@ -71,6 +79,7 @@ void write_layer(const fs::path& path, const std::string& layer_name,
       feature.SetGeometryDirectly(geometry);
     }
     if (f.width) feature.SetField("width", *f.width);
+    for (const auto& [key, value] : f.text) feature.SetField(key.c_str(), value.c_str());
     ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
   }
 }

@@ -2,6 +2,7 @@
 // Small GDAL data sets made inside a test's TempDir: a DEM and vector layers (from WKT).
 #include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ void write_dem(const std::filesystem::path& path, const DemSpec& spec = {});
 struct VectorFeature {
   VectorFeature(std::string wkt, std::optional<double> width = std::nullopt)
       : wkt(std::move(wkt)), width(width) {}
+  VectorFeature(std::string wkt, double width, std::map<std::string, std::string> text)
+      : wkt(std::move(wkt)), width(width), text(std::move(text)) {}
   // A LineString from raw points, which may hold NaN (WKT cannot).
   VectorFeature(std::vector<std::array<double, 2>> points, double width)
       : width(width), points(std::move(points)) {}
@@ -32,6 +35,8 @@ struct VectorFeature {
   std::string wkt;              // "" = a LineString of `points`
   std::optional<double> width;  // the `width` attribute (null when absent)
   std::vector<std::array<double, 2>> points;
+  // String attributes (e.g. bridge=yes, surface=sett): one column per key over the layer.
+  std::map<std::string, std::string> text;
 };
 
 // Adds a layer to a GeoPackage (created when missing), or writes a Shapefile (.shp, whose

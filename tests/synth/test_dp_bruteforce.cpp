@@ -144,7 +144,7 @@ TEST(DpBruteForce, ExactCycleSearchEqualsOneDpPerStart) {
       input.texels = &exemplar.cost;
       input.space = {exemplar.width, exemplar.height, C};
       input.closed = true;
-      input.coverage = {weight, chain ? 10 * 256 : 6 * 256};
+      input.coverage = {weight, chain ? 10 * 256 : 6 * 256, {}};
       for (const Piece& piece : ribbon.pieces)
         input.pieces.push_back(detail::make_piece_footprint(piece, 1.0, C, GridSpec{}, nullptr));
       auto backend = detail::make_cpu_backend();
@@ -203,7 +203,7 @@ TEST(DpBruteForce, PatternObjectiveReachesTheGlobalOptimum) {
       if (p.input.pieces.size() > 4) p.input.pieces.resize(4), p.valid.resize(4);
       auto backend = detail::make_cpu_backend();
       const detail::DpResult paper = detail::run_dp(*backend, p.input);
-      p.input.coverage = {weight, 3 * 256};
+      p.input.coverage = {weight, 3 * 256, {}};
       p.input.exact_cycle = closed;
       const detail::DpResult r = detail::run_dp(*backend, p.input);
       EXPECT_EQ(r.total_cost, brute_force(p)) << "seed " << seed << " weight " << weight;

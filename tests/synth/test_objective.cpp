@@ -35,8 +35,8 @@ TEST(CoverageTerm, CostsFollowTheFormulaOnADirectCount) {
     detail::PieceFootprint piece = test::random_piece(rng, column);
     piece.interior.push_back({1, column / 2});  // never empty
     const detail::PositionSpace space{width, height, column};
-    const detail::CoverageTerm term{test::uniform(rng, 1, 5000),
-                                    test::uniform(rng, 0, 256 * height)};
+    const detail::CoverageTerm term{
+        test::uniform(rng, 1, 5000), test::uniform(rng, 0, 256 * height), {}};
     std::vector<std::int32_t> all(std::size_t(space.count()));
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = std::int32_t(i);
     std::vector<std::int64_t> costs;

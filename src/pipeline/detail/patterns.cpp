@@ -6,7 +6,9 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "pipeline/detail/bindings.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/detail/synthesis_defaults.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/pattern_canvas.hpp"
@@ -28,6 +30,11 @@ struct ClassPlan {
   std::size_t class_index = 0;
   std::vector<std::size_t> exemplars;  // indices into PatternRun::exemplars
   BackendKind backend = BackendKind::automatic;
+  // choose: mix: the atlas (its copy in PatternRun::exemplars at mix_index), and [rule][feature]
+  // whether each bind rule's predicate selects the line.
+  std::optional<MixedExemplar> mix;
+  std::size_t mix_index = 0;
+  std::vector<std::vector<std::uint8_t>> matches;
 };
 
 // The DP's parameters from a class's synthesis values.
@@ -43,6 +50,7 @@ SynthParams synth_params(const SynthesisConfig& synthesis, BackendKind backend, 
   params.objective = synthesis.objective;
   params.coverage_weight = synthesis.coverage_weight;
   params.feature_label = label;
+  params.switch_cost = synthesis.switch_cost;
   return params;
 }
 
@@ -99,6 +107,18 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
     for (const fs::path& path : it->synthesis->exemplars) {
       plan.exemplars.push_back(run.exemplars.size());
       run.exemplars.push_back(load_exemplar_with_height(path, it->synthesis->continuous_alpha));
+    }
+    if (it->synthesis->choice == ExemplarChoice::mix) {
+      plan.matches = binding_matches(*it, lines[plan.class_index]);
+      // One atlas for the class: its gap holds the widest feature's pieces (synthesize checks).
+      double width = 0.0;
+      for (const LineFeature& line : lines[plan.class_index])
+        width = std::max(width, it->synthesis->width.value_or(line.width));
+      std::vector<const Exemplar*> exemplars;
+      for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
+      plan.mix = mix_exemplars(exemplars, mix_gap(it->synthesis->scale, class_delta(*it), width));
+      plan.mix_index = run.exemplars.size();
+      run.exemplars.push_back(plan.mix->atlas);
     }
     const std::string backend = options.backend.value_or(
         it->synthesis->backend.empty() ? config.backend : it->synthesis->backend);
@@ -177,8 +197,17 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         run.patterns.push_back(std::move(pattern));
         continue;
       }
-      const SynthesisKey key =
-          cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys);
+      // A mix's bindings: each rule's verdict on the line and the junctions it meets.
+      std::vector<PieceBinding> bindings;
+      std::vector<Vec2> junctions;
+      if (plan.mix) {
+        bindings = feature_bindings(synthesis, plan.matches, f);
+        if (plan.class_index < ribbons.synthesis_junctions.size() &&
+            f < ribbons.synthesis_junctions[plan.class_index].size())
+          junctions = ribbons.synthesis_junctions[plan.class_index][f];
+      }
+      const SynthesisKey key = cache.key(config, feature_class, line, report.seed, canvas, fixed,
+                                         earlier_keys, bindings, junctions);
       pattern.key = key.combined();
       for (std::size_t e = 0; e < earlier_keys.size(); ++e)
         if (canvases_overlap(earlier_keys[e].canvas, canvas)) pattern.after.push_back(e);
@@ -209,9 +238,17 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         if (cached->start)
           pattern.ribbon = make_ribbon(*cached->start, {width, *synthesis.delta, 0.0});
         pattern.synthesis = std::move(cached->synthesis);
-        pattern.exemplar_index = plan.exemplars.at(cached->exemplar_slot);
+        pattern.exemplar_index =
+            plan.mix ? plan.mix_index : plan.exemplars.at(cached->exemplar_slot);
         pattern.opaque = std::move(cached->opaque);
         pattern.report = std::move(cached->report);
+        if (plan.mix) {
+          for (const fs::path& path : synthesis.exemplars)
+            pattern.report.mix_exemplars.push_back(path.string());
+          pattern.report.pieces_per_exemplar = pattern.synthesis.pieces_per_exemplar;
+          pattern.report.exemplar_switches = pattern.synthesis.exemplar_switches;
+          pattern.report.switch_cost = synthesis.switch_cost;
+        }
         logger().info("{}: reused from the cache ({})", label, pattern.cache.key);
         run.patterns.push_back(std::move(pattern));
         continue;
@@ -224,6 +261,11 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       // A grown class is many short lines between joints (junction discs) and the patterns
       // of its own earlier lines: one without room is left bare and counted (grow.synthesis).
       feature_options.no_room_is_error = !feature_class.grow;
+      if (plan.mix) {
+        feature_options.mix = &*plan.mix;
+        feature_options.bindings = std::move(bindings);
+        feature_options.junctions = std::move(junctions);
+      }
       std::vector<const Exemplar*> exemplars;
       for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
       std::vector<EarlierPattern> earlier;
@@ -233,7 +275,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
                                                          canvas, fixed, earlier, feature_options);
       pattern.ribbon = std::move(result.ribbon);
       pattern.synthesis = std::move(result.synthesis);
-      pattern.exemplar_index = plan.exemplars[result.exemplar_slot];
+      pattern.exemplar_index = plan.mix ? plan.mix_index : plan.exemplars[result.exemplar_slot];
       pattern.opaque = std::move(result.opaque);
       pattern.report = std::move(result.report);
       cache.store(pattern.name, key, pattern.synthesis, result.exemplar_slot,

@@ -155,6 +155,12 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
             {"violations", s.violations},
             {"canvas", {s.canvas_width, s.canvas_height}},
             {"placements", s.placements}};
+        if (!s.mix_exemplars.empty()) {  // choose: mix
+          feature["synthesis"]["mix"] = {{"exemplars", s.mix_exemplars},
+                                         {"pieces_per_exemplar", s.pieces_per_exemplar},
+                                         {"switches", s.exemplar_switches},
+                                         {"switch_cost", s.switch_cost}};
+        }
       }
       if (f.cache) {
         feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},

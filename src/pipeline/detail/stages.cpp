@@ -75,6 +75,17 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
     synthesis_radii.push_back(junction_disc_radius(member_widths, cell));
   }
   out.synthesis_junction_discs = junction_discs(synthesis_junctions, synthesis_radii);
+  std::vector<std::vector<Vec2>*> junctions_of;  // by curve index
+  for (std::size_t c = 0; c < lines.size(); ++c) {
+    auto& per_feature = out.synthesis_junctions.emplace_back(lines[c].size());
+    for (auto& points : per_feature) junctions_of.push_back(&points);
+  }
+  for (const Junction& j : synthesis_junctions) {
+    for (const JunctionMember& m : j.members) {
+      std::vector<Vec2>& points = *junctions_of[m.curve];
+      if (points.empty() || points.back() != j.position) points.push_back(j.position);
+    }
+  }
   logger().info("ribbons: {} features, {} junctions", curves.size(), junctions.size());
   return out;
 }

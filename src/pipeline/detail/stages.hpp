@@ -22,6 +22,9 @@ struct FeatureRibbons {
   // The same found with the synthesis canvas's cell as tolerance and margin: independent of
   // the output grid, for the synthesis avoidance.
   std::vector<Polygon> synthesis_junction_discs;
+  // Per class and feature: the positions of those junctions it is a member of (the
+  // near_junction rules of a mix, synth/exemplar_mix.hpp).
+  std::vector<std::vector<std::vector<Vec2>>> synthesis_junctions;
 };
 
 // Slices every feature into pieces of its class's delta (the synthesis delta, or its default)

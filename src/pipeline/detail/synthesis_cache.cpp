@@ -123,15 +123,19 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
                                  const FeatureClassConfig& feature_class, const LineFeature& line,
                                  std::uint64_t feature_seed, const GridSpec& canvas,
                                  const AvoidanceInputs& fixed,
-                                 const std::vector<EarlierSynthesis>& earlier) {
+                                 const std::vector<EarlierSynthesis>& earlier,
+                                 const std::vector<PieceBinding>& bindings,
+                                 const std::vector<Vec2>& junctions) {
   SynthesisKey key;
-  key.geometry = Hasher()
-                     .points(line.points)
-                     .boolean(line.closed)
-                     .real(line.width)
-                     .u64(std::uint64_t(line.structure))
-                     .i64(line.layer)
-                     .digest();
+  Hasher g;
+  g.points(line.points)
+      .boolean(line.closed)
+      .real(line.width)
+      .u64(std::uint64_t(line.structure))
+      .i64(line.layer);
+  g.u64(bindings.size());
+  for (const PieceBinding& b : bindings) g.boolean(b.line_matches);
+  key.geometry = g.digest();
 
   const SynthesisConfig& s = *feature_class.synthesis;
   Hasher c;
@@ -145,6 +149,14 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   c.boolean(s.min_coverage.has_value()).real(s.min_coverage.value_or(0.0));
   c.u64(std::uint64_t(s.objective)).real(s.coverage_weight);
   c.u64(s.seed);
+  c.i64(s.switch_cost).u64(s.bind.size());
+  for (const ExemplarBinding& b : s.bind) {
+    c.u64(b.exemplar).text(b.where).real(b.near_junction).u64(b.tags.size());
+    for (const TagSelection& t : b.tags) {
+      c.text(t.key).u64(t.values.size());
+      for (const std::string& v : t.values) c.text(v);
+    }
+  }
   key.config = c.digest();
 
   Hasher e;
@@ -167,6 +179,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   }
   a.text("junctions");
   hash_polygons_meeting(a, fixed.junction_discs, box);
+  a.text("mix junctions").points(junctions);
   key.avoidance = a.digest();
 
   // The same overlap test as synthesize_feature uses to burn an earlier feature's coverage.

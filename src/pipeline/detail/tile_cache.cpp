@@ -125,9 +125,19 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   for (const PlannedPattern& p : plan.patterns) {
     auto it = exemplars.find(p.exemplar_index);
     if (it == exemplars.end()) {
-      const fs::path path = plan.exemplars[p.exemplar_index].path;
+      const Exemplar& exemplar = plan.exemplars[p.exemplar_index];
+      const fs::path path = exemplar.path;
       const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
-      it = exemplars.emplace(p.exemplar_index, Hasher().file(path).file(height).digest()).first;
+      std::error_code ec;
+      Hasher e;
+      if (fs::is_regular_file(path, ec)) {
+        e.file(path).file(height);
+      } else {  // a mix's atlas (synth/exemplar_mix.hpp) names no one file: its texels
+        e.text(exemplar.path).i64(exemplar.width).i64(exemplar.height);
+        for (const std::string& name : exemplar.channel_names) e.text(name);
+        e.bytes(std::as_bytes(std::span(exemplar.texels)));
+      }
+      it = exemplars.emplace(p.exemplar_index, e.digest()).first;
     }
     Hasher h;
     h.hash(it->second).text(placements_to_json(p.synthesis, "")).hash(ribbon_hash(p.ribbon));

@@ -52,14 +52,29 @@ std::int32_t count_at(const OpaquePrefix& opaque, const std::vector<std::array<i
   return count;
 }
 
-// o_c(ux) for every column.
-std::vector<std::int32_t> centred_counts(const OpaquePrefix& opaque,
-                                         const std::vector<std::array<int, 3>>& runs, int width,
-                                         int centred_uy) {
-  std::vector<std::int32_t> counts(static_cast<std::size_t>(width));
-  for (int ux = 0; ux < width; ++ux)
-    counts[std::size_t(ux)] = count_at(opaque, runs, ux, centred_uy);
-  return counts;
+// o_c(ux) for every column of `band`, and their sum.
+struct CentredCounts {
+  std::vector<std::int32_t> counts;
+  std::int64_t sum = 0;
+};
+CentredCounts centred_counts(const OpaquePrefix& opaque,
+                             const std::vector<std::array<int, 3>>& runs,
+                             const PieceFootprint& piece, const CoverageBand& band) {
+  CentredCounts out;
+  out.counts.resize(std::size_t(band.width));
+  const int uy = centred_row(piece, band.band_centre_fixed);
+  for (int k = 0; k < band.width; ++k) {
+    out.counts[std::size_t(k)] = count_at(opaque, runs, band.x0 + k, uy);
+    out.sum += out.counts[std::size_t(k)];
+  }
+  return out;
+}
+
+// The band holding column ux, -1 for none.
+int band_of(const std::vector<CoverageBand>& bands, int ux) {
+  for (std::size_t b = 0; b < bands.size(); ++b)
+    if (ux >= bands[b].x0 && ux < bands[b].x0 + bands[b].width) return int(b);
+  return -1;
 }
 
 }  // namespace
@@ -74,12 +89,17 @@ void count_opaque_interior(const CostTexels& texels, const PositionSpace& space,
     counts[j] = count_at(opaque, runs, space.ux(indices[j]), space.uy(indices[j]));
 }
 
-int centred_row(const PieceFootprint& piece, const CoverageTerm& term) {
+std::vector<CoverageBand> coverage_bands(const CoverageTerm& term, int width) {
+  if (!term.bands.empty()) return term.bands;
+  return {{0, width, term.band_centre_fixed}};
+}
+
+int centred_row(const PieceFootprint& piece, std::int32_t band_centre_fixed) {
   if (piece.interior.empty()) return 0;
   int dy0 = piece.interior.front().dy, dy1 = dy0;
   for (const TexelOffset& o : piece.interior) dy0 = std::min(dy0, o.dy), dy1 = std::max(dy1, o.dy);
   // uy_c + (dy0 + dy1 + 1) / 2 = band centre, rounded to the nearest row (in fixed point).
-  const std::int32_t offset = term.band_centre_fixed - (dy0 + dy1 + 1) * 128;
+  const std::int32_t offset = band_centre_fixed - (dy0 + dy1 + 1) * 128;
   return int(std::floor((offset + 128) / 256.0));
 }
 
@@ -91,30 +111,36 @@ void coverage_costs(const CostTexels& texels, const PositionSpace& space,
   if (term.weight_milli <= 0 || n == 0) return;
   const OpaquePrefix opaque(texels);
   const auto runs = interior_runs(piece);
-  const int W = space.width;
-  const auto centred = centred_counts(opaque, runs, W, centred_row(piece, term));
-  std::int64_t sum = 0;
-  for (const std::int32_t c : centred) sum += c;
-  // In units of 1 / W texel: target(ux) = max(sum, W * o_c(ux)), lost = target - W * o(u).
+  const std::vector<CoverageBand> bands = coverage_bands(term, space.width);
+  std::vector<CentredCounts> centred;
+  for (const CoverageBand& band : bands)
+    centred.push_back(centred_counts(opaque, runs, piece, band));
+  // Per band of W columns, in units of 1 / W texel: target(ux) = max(sum, W * o_c(ux)),
+  // lost = target - W * o(u).
   const __int128 scale = __int128(term.weight_milli) * kGamma * piece.column;
-  const __int128 denominator = __int128(1000) * W * n;
   for (std::size_t j = 0; j < indices.size(); ++j) {
     const int ux = space.ux(indices[j]), uy = space.uy(indices[j]);
-    const std::int64_t target = std::max(sum, std::int64_t(W) * centred[std::size_t(ux)]);
-    const std::int64_t lost = target - std::int64_t(W) * count_at(opaque, runs, ux, uy);
-    if (lost > 0) costs[j] = std::int64_t(scale * lost / denominator);
+    const int b = band_of(bands, ux);
+    if (b < 0) continue;
+    const std::int64_t W = bands[std::size_t(b)].width;
+    const CentredCounts& c = centred[std::size_t(b)];
+    const std::int64_t target =
+        std::max(c.sum, W * c.counts[std::size_t(ux - bands[std::size_t(b)].x0)]);
+    const std::int64_t lost = target - W * count_at(opaque, runs, ux, uy);
+    if (lost > 0) costs[j] = std::int64_t(scale * lost / (__int128(1000) * W * n));
   }
 }
 
 double natural_coverage(const CostTexels& texels, const PositionSpace& space,
-                        const PieceFootprint& piece, const CoverageTerm& term) {
+                        const PieceFootprint& piece, const CoverageTerm& term, int ux) {
   if (piece.interior.empty()) return 0.0;
+  const std::vector<CoverageBand> bands = coverage_bands(term, space.width);
+  const int b = band_of(bands, ux);
+  if (b < 0) return 0.0;
   const OpaquePrefix opaque(texels);
-  const auto centred =
-      centred_counts(opaque, interior_runs(piece), space.width, centred_row(piece, term));
-  double sum = 0.0;
-  for (const std::int32_t c : centred) sum += c;
-  return sum / double(space.width) / double(piece.interior.size());
+  const CentredCounts centred =
+      centred_counts(opaque, interior_runs(piece), piece, bands[std::size_t(b)]);
+  return double(centred.sum) / double(bands[std::size_t(b)].width) / double(piece.interior.size());
 }
 
 }  // namespace tw::detail

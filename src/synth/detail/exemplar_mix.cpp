@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "synth/detail/coverage_term.hpp"
+#include "synth/detail/footprint.hpp"
 
 namespace tw::detail {
 
@@ -59,6 +61,26 @@ void keep_exemplars(const MixLayout& layout, const PositionSpace& space,
     const int e = exemplar_of(layout, space, index);
     return e < 0 || (!allowed.empty() && !allowed[std::size_t(e)]);
   });
+}
+
+void keep_own_coverage_floors(const CostTexels& atlas, const MixLayout& layout,
+                              const PositionSpace& space, const PieceFootprint& piece,
+                              const std::vector<double>& floors,
+                              std::vector<std::int32_t>& indices) {
+  std::vector<int> needed;
+  for (const double floor : floors)
+    needed.push_back(min_opaque_texels(floor, piece.interior.size()));
+  // The valid positions hold piece.min_opaque already (the lowest floor).
+  if (std::all_of(needed.begin(), needed.end(), [&](int n) { return n <= piece.min_opaque; }))
+    return;
+  std::vector<std::int32_t> counts;
+  count_opaque_interior(atlas, space, piece, indices, counts);
+  std::size_t kept = 0;
+  for (std::size_t j = 0; j < indices.size(); ++j) {
+    const int e = exemplar_of(layout, space, indices[j]);
+    if (e >= 0 && counts[j] >= needed[std::size_t(e)]) indices[kept++] = indices[j];
+  }
+  indices.resize(kept);
 }
 
 }  // namespace tw::detail

@@ -37,4 +37,12 @@ int exemplar_of(const MixLayout& layout, const PositionSpace& space, std::int32_
 void keep_exemplars(const MixLayout& layout, const PositionSpace& space,
                     const std::vector<std::uint8_t>& allowed, std::vector<std::int32_t>& indices);
 
+// Keeps the positions of `indices` (of exemplars, valid under the lowest floor) whose interior
+// holds their own exemplar's coverage floor, floors[e] (SynthParams::min_coverage per exemplar):
+// validity in a mix is validity in the position's own exemplar.
+void keep_own_coverage_floors(const CostTexels& atlas, const MixLayout& layout,
+                              const PositionSpace& space, const PieceFootprint& piece,
+                              const std::vector<double>& floors,
+                              std::vector<std::int32_t>& indices);
+
 }  // namespace tw::detail

@@ -161,9 +161,12 @@ PieceFootprint make_piece_footprint(const Piece& piece, double scale, int column
   }
   for (const auto& e : edges) blocked.erase(e);
   append(blocked, footprint.must_be_clear);
-  footprint.min_opaque =
-      std::max(1, int(std::ceil(min_coverage * double(footprint.interior.size()) - 1e-9)));
+  footprint.min_opaque = min_opaque_texels(min_coverage, footprint.interior.size());
   return footprint;
+}
+
+int min_opaque_texels(double min_coverage, std::size_t interior) {
+  return std::max(1, int(std::ceil(min_coverage * double(interior) - 1e-9)));
 }
 
 }  // namespace tw::detail

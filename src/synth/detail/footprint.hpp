@@ -37,6 +37,9 @@ int piece_winding(const Piece& piece, Vec2 world);
 int supersampling(double scale, const GridSpec& canvas);
 Vec2 subsample_world(const GridSpec& canvas, int col, int row, int i, int j, int n);
 
+// The opaque interior texels a valid position needs under the floor `min_coverage`: at least one.
+int min_opaque_texels(double min_coverage, std::size_t interior);
+
 // The footprint of `piece`. `forbidden` (over `canvas`, non-zero = forbidden) may be null; it
 // is read within a pixel of the piece's box.
 // `min_coverage` in [0, 1): the fraction of interior texels that must be opaque at a valid

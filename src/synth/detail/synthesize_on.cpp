@@ -1,6 +1,7 @@
 // synthesize() on a given backend: footprints, the DP, placements, seam costs, stitching.
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -80,12 +81,11 @@ std::int64_t unary_sum(const CostTexels& texels, const PositionSpace& space, con
   return sum;
 }
 
-// Mean window coverage of the chosen positions against windows centred on the band.
+// Mean window coverage of the chosen positions against windows centred on the band (each
+// piece's own exemplar's band in a mix).
 void measure_coverage(const CostTexels& texels, const PositionSpace& space, const DpInput& input,
-                      const std::vector<std::int32_t>& positions, const ExemplarStats& stats,
+                      const std::vector<std::int32_t>& positions, const CoverageTerm& centred,
                       Synthesis& out) {
-  CoverageTerm centred;
-  centred.band_centre_fixed = std::int32_t(std::lround(stats.band_centre * 256.0));
   double chosen = 0.0, natural = 0.0;
   int counted = 0;
   std::vector<std::int32_t> count;
@@ -94,7 +94,7 @@ void measure_coverage(const CostTexels& texels, const PositionSpace& space, cons
     if (positions[i] < 0 || piece.interior.empty()) continue;
     count_opaque_interior(texels, space, piece, {positions[i]}, count);
     chosen += double(count[0]) / double(piece.interior.size());
-    natural += natural_coverage(texels, space, piece, centred);
+    natural += natural_coverage(texels, space, piece, centred, space.ux(positions[i]));
     ++counted;
   }
   if (counted == 0) return;
@@ -103,10 +103,47 @@ void measure_coverage(const CostTexels& texels, const PositionSpace& space, cons
   out.coverage_ratio = natural > 0.0 ? chosen / natural : 0.0;
 }
 
+// What the exemplar implies for its synthesis: its statistics and coverage floor, or in a mix
+// those of each exemplar as it is alone (exemplar_of_mix), so that a position's validity and
+// coverage cost are those it has in its own exemplar and the mix stays exact.
+struct OwnStatistics {
+  std::vector<ExemplarStats> stats;  // per exemplar of the mix (one without a mix)
+  std::vector<double> floors;        // the coverage floor (min_coverage) of each
+};
+
+OwnStatistics own_statistics(const Exemplar& exemplar, const SynthParams& params, int C) {
+  OwnStatistics out;
+  const int count = params.mix ? params.mix->count() : 1;
+  for (int e = 0; e < count; ++e) {
+    const Exemplar part = params.mix ? exemplar_of_mix(exemplar, *params.mix, e) : Exemplar{};
+    const Exemplar& own = params.mix ? part : exemplar;
+    out.stats.push_back(exemplar_stats(own));
+    out.floors.push_back(params.min_coverage < 0.0
+                             ? kCoverageFloorOfNatural * window_coverage(own, out.stats.back(), C)
+                             : params.min_coverage);
+  }
+  return out;
+}
+
+std::int32_t fixed_row(double row) {
+  return std::int32_t(std::lround(row * 256.0));
+}
+
+// Windows centred on the band: the exemplar's, or each mixed exemplar's own over its columns.
+CoverageTerm centring(const OwnStatistics& own, const SynthParams& params) {
+  CoverageTerm term;
+  term.band_centre_fixed = fixed_row(own.stats[0].band_centre);
+  for (int e = 0; params.mix && e < params.mix->count(); ++e) {
+    term.bands.push_back({params.mix->x0[std::size_t(e)], params.mix->width[std::size_t(e)],
+                          fixed_row(own.stats[std::size_t(e)].band_centre)});
+  }
+  return term;
+}
+
 // A mix: positions of no exemplar are dropped, each piece keeps its allowed exemplars' and the
 // switching cost joins the objective.
-void bind_to_exemplars(const SynthParams& params, const std::string& feature, Synthesis& out,
-                       DpInput& input) {
+void bind_to_exemplars(const SynthParams& params, const std::string& feature,
+                       const std::vector<double>& floors, Synthesis& out, DpInput& input) {
   const MixLayout& layout = *params.mix;
   const int needed = mix_gap(input.pieces);
   if (needed > layout.gap)
@@ -119,11 +156,14 @@ void bind_to_exemplars(const SynthParams& params, const std::string& feature, Sy
     fail("synthesis switch_cost must be >= 0 (got {})", params.switch_cost);
   out.mix = layout;
   const PositionSpace space = input.space;
-  input.keep_positions = [&params, space](int piece, std::vector<std::int32_t>& indices) {
+  input.keep_positions = [&params, space, floors, texels = input.texels, pieces = &input.pieces](
+                             int piece, std::vector<std::int32_t>& indices) {
     static const std::vector<std::uint8_t> any;
     const auto& allowed =
         params.piece_exemplars.empty() ? any : params.piece_exemplars[std::size_t(piece)];
     keep_exemplars(*params.mix, space, allowed, indices);
+    keep_own_coverage_floors(*texels, *params.mix, space, (*pieces)[std::size_t(piece)], floors,
+                             indices);
   };
   input.exemplar_switch.cost = std::int64_t(params.switch_cost) * kColourScale;
   input.exemplar_switch.exemplar = [&params, space](std::int32_t index) {
@@ -150,13 +190,13 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
   const CostTexels& texels = exemplar.cost;
   const PositionSpace space{exemplar.width, exemplar.height, C};
 
-  const ExemplarStats stats = exemplar_stats(exemplar);
+  const OwnStatistics own = own_statistics(exemplar, params, C);
+  const CoverageTerm centred = centring(own, params);
   Synthesis out;
   out.objective = params.objective == Objective::paper ? "paper" : "pattern";
   out.min_coverage_from_exemplar = params.min_coverage < 0.0;
-  out.min_coverage = out.min_coverage_from_exemplar
-                         ? kCoverageFloorOfNatural * window_coverage(exemplar, stats, C)
-                         : params.min_coverage;
+  // The footprints hold the lowest floor; a mix keeps each position to its own exemplar's.
+  out.min_coverage = *std::min_element(own.floors.begin(), own.floors.end());
   out.backend = backend.name();
   out.column = C;
   out.closed = ribbon.closed;
@@ -170,8 +210,8 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
                                                         C, canvas, &avoidance, out.min_coverage);
   });
   if (params.objective == Objective::pattern) {
+    input.coverage = centred;
     input.coverage.weight_milli = std::int32_t(std::lround(params.coverage_weight * 1000.0));
-    input.coverage.band_centre_fixed = std::int32_t(std::lround(stats.band_centre * 256.0));
   }
   out.timings.footprints_ms = ms_since(start);
   input.closed = ribbon.closed;
@@ -193,16 +233,21 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     backend.find_valid_positions(
         texels, space,
         make_piece_footprint(piece, params.scale, C, canvas, nullptr, out.min_coverage), flags);
-    std::int64_t without = 0;
-    for (auto f : flags) without += f;
+    std::vector<std::int32_t> candidates;
+    for (std::size_t k = 0; k < flags.size(); ++k)
+      if (flags[k]) candidates.push_back(std::int32_t(k));
+    // A mix: only the positions of the piece's exemplars, at their own floors.
+    if (input.keep_positions) input.keep_positions(i, candidates);
+    const std::int64_t without = std::int64_t(candidates.size());
     const std::string reason =
         without > 0 ? fmt::format(
                           "avoidance (forbidden pixels or fold-overs) blocks all {} "
                           "positions that are valid without it",
                           without)
                     : fmt::format(
-                          "no position where the top and bottom edges clear the "
+                          "no position{} where the top and bottom edges clear the "
                           "pattern{}: ribbon width {} m x s = {} texels, exemplar {}x{}",
+                          params.mix ? " of the exemplars it may use" : "",
                           out.min_coverage > 0.0
                               ? fmt::format(" with min_coverage {:.3f}", out.min_coverage)
                               : std::string(),
@@ -211,7 +256,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
                        i, feature, at.x, at.y, exemplar.path, reason);
   };
 
-  if (params.mix) bind_to_exemplars(params, feature, out, input);
+  if (params.mix) bind_to_exemplars(params, feature, own.floors, out, input);
 
   const DpResult dp = run_dp(backend, input);
   out.objective_cost = dp.total_cost;
@@ -249,7 +294,7 @@ Synthesis synthesize_on(Backend& backend, const Exemplar& exemplar, const Ribbon
     });
     out.total_cost -= std::int64_t(params.switch_cost) * kColourScale * out.exemplar_switches;
   }
-  measure_coverage(texels, space, input, dp.positions, stats, out);
+  measure_coverage(texels, space, input, dp.positions, centred, out);
   out.total_cost -= unary_sum(texels, space, input, dp.positions);
 
   // Seams, their costs before and after stitching.
