@@ -187,32 +187,6 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
   }
 }
 
-// tags: { key: [value, ...] } (a single value may stand alone).
-std::vector<TagSelection> read_tags(const MapReader& m) {
-  const YAML::Node node = m.get("tags");
-  const std::string key = m.path("tags");
-  if (!node.IsMap() || node.size() == 0) {
-    m.source().fail(node, key, "expected a mapping of tag keys to lists of values");
-  }
-  std::vector<TagSelection> tags;
-  for (const auto& entry : node) {
-    TagSelection& tag = tags.emplace_back();
-    tag.key = detail::read_string(m.source(), entry.first, key);
-    const std::string entry_key = key + "." + tag.key;
-    if (tag.key.empty()) m.source().fail(entry.first, key, "empty tag key");
-    if (entry.second.IsSequence()) {
-      if (entry.second.size() == 0) m.source().fail(entry.second, entry_key, "empty list");
-      for (std::size_t i = 0; i < entry.second.size(); ++i) {
-        tag.values.push_back(
-            detail::read_string(m.source(), entry.second[i], entry_key + "." + std::to_string(i)));
-      }
-    } else {
-      tag.values.push_back(detail::read_string(m.source(), entry.second, entry_key));
-    }
-  }
-  return tags;
-}
-
 // A colour unit is a 0..255 channel difference: more than this would only overflow costs.
 constexpr int kMaxSwitchCost = 1 << 20;
 
@@ -255,7 +229,7 @@ std::vector<ExemplarBinding> read_bindings(const MapReader& m,
       b.exemplar = std::size_t(it - exemplars.begin());
     }
     b.where = r.string_or("where", "");
-    if (r.has("tags")) b.tags = read_tags(r);
+    if (r.has("tags")) b.tags = detail::read_tags(r);
     b.near_junction = r.non_negative_or("near_junction", 0.0);
     if (b.near_junction > kMaxFeatureWidth) {
       m.source().fail(
