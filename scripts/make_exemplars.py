@@ -18,6 +18,8 @@ import numpy as np
 from osgeo import gdal, ogr
 from PIL import Image, ImageDraw
 
+from exemplar_files import write_height
+
 gdal.UseExceptions()
 ogr.UseExceptions()
 
@@ -288,18 +290,7 @@ def ridge_band(dem_path, map_path, width=200, height=64, along_step=25.0, across
 def write(out_dir, name, rgba, height_m=None):
     Image.fromarray(rgba, "RGBA").save(os.path.join(out_dir, name + ".png"), optimize=True)
     if height_m is not None:
-        path = os.path.join(out_dir, name + "_height.tif")
-        ds = gdal.GetDriverByName("GTiff").Create(path, rgba.shape[1], rgba.shape[0], 1, gdal.GDT_Float32,
-                                                  options=["COMPRESS=DEFLATE", "PREDICTOR=3"])
-        band = ds.GetRasterBand(1)
-        band.WriteArray(height_m)
-        band.SetDescription("height")
-        band.SetUnitType("m")
-        ds = None
-        # GDAL writes a .aux.xml for the unit/description; they live in the TIFF already.
-        aux = path + ".aux.xml"
-        if os.path.exists(aux):
-            os.remove(aux)
+        write_height(os.path.join(out_dir, name + "_height.tif"), height_m)
 
 
 def main():

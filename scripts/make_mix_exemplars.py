@@ -19,6 +19,8 @@ import sys
 import numpy as np
 from osgeo import gdal
 
+from exemplar_files import write_height, write_png
+
 gdal.UseExceptions()
 SS = 4
 
@@ -40,23 +42,8 @@ def finish(rgb, alpha, height_m):
 
 
 def write(out_dir, name, rgba, height_m):
-    mem = gdal.GetDriverByName("MEM").Create("", rgba.shape[1], rgba.shape[0], 4, gdal.GDT_Byte)
-    for b in range(4):
-        mem.GetRasterBand(b + 1).WriteArray(rgba[..., b])
-    mem.GetRasterBand(4).SetColorInterpretation(gdal.GCI_AlphaBand)
-    gdal.GetDriverByName("PNG").CreateCopy(os.path.join(out_dir, name + ".png"), mem)
-    path = os.path.join(out_dir, name + "_height.tif")
-    ds = gdal.GetDriverByName("GTiff").Create(path, rgba.shape[1], rgba.shape[0], 1,
-                                              gdal.GDT_Float32,
-                                              options=["COMPRESS=DEFLATE", "PREDICTOR=3"])
-    band = ds.GetRasterBand(1)
-    band.WriteArray(height_m)
-    band.SetDescription("height")
-    band.SetUnitType("m")
-    ds = None
-    for aux in (path + ".aux.xml", os.path.join(out_dir, name + ".png.aux.xml")):
-        if os.path.exists(aux):
-            os.remove(aux)
+    write_png(os.path.join(out_dir, name + ".png"), rgba)
+    write_height(os.path.join(out_dir, name + "_height.tif"), height_m)
 
 
 def bridge_deck(rng):

@@ -16,6 +16,8 @@ import sys
 import numpy as np
 from osgeo import gdal
 
+from exemplar_files import write_height, write_png
+
 gdal.UseExceptions()
 
 SS = 4  # supersampling factor
@@ -111,39 +113,14 @@ def dry_wall(rng):
     return c
 
 
-def write_png(path, rgba):
-    mem = gdal.GetDriverByName("MEM").Create("", rgba.shape[1], rgba.shape[0], 4, gdal.GDT_Byte)
-    for band in range(4):
-        mem.GetRasterBand(band + 1).WriteArray(rgba[..., band])
-    mem.GetRasterBand(4).SetColorInterpretation(gdal.GCI_AlphaBand)
-    gdal.GetDriverByName("PNG").CreateCopy(path, mem, options=["ZLEVEL=9"])
-    aux = path + ".aux.xml"
-    if os.path.exists(aux):
-        os.remove(aux)
-
-
-def write_height(path, height_m):
-    ds = gdal.GetDriverByName("GTiff").Create(path, height_m.shape[1], height_m.shape[0], 1,
-                                              gdal.GDT_Float32,
-                                              options=["COMPRESS=DEFLATE", "PREDICTOR=3"])
-    band = ds.GetRasterBand(1)
-    band.WriteArray(height_m)
-    band.SetDescription("height")
-    band.SetUnitType("m")
-    ds = None
-    aux = path + ".aux.xml"
-    if os.path.exists(aux):
-        os.remove(aux)
-
-
 def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "samples", "exemplars")
     os.makedirs(out_dir, exist_ok=True)
     rgba, _ = hedge(np.random.default_rng(21)).finish()
-    write_png(os.path.join(out_dir, "hedge_192x48.png"), rgba)
+    write_png(os.path.join(out_dir, "hedge_192x48.png"), rgba, ["ZLEVEL=9"])
     rgba, height_m = dry_wall(np.random.default_rng(22)).finish()
-    write_png(os.path.join(out_dir, "dry_wall_200x40.png"), rgba)
+    write_png(os.path.join(out_dir, "dry_wall_200x40.png"), rgba, ["ZLEVEL=9"])
     write_height(os.path.join(out_dir, "dry_wall_200x40_height.tif"), height_m)
 
 
