@@ -103,10 +103,9 @@ void write_tiled(const LayerSet& set, const Layer& layer, const std::filesystem:
   // By its channel, not its name: a tile's height layer is named height_x<i>_y<j>.
   const bool is_height = layer.channels == std::vector<std::string>{"height"};
   // The height layer's NaN cells become the source's nodata value when it has one; the other
-  // layers are NaN (their nodata) where the height is nodata.
+  // layers declare NaN, which they hold where the height is nodata (blank_where_height_is_nodata,
+  // applied where the layers are rendered: the writers write what they are given).
   const bool replace_nan = is_height && set.nodata && !std::isnan(*set.nodata);
-  const Layer* height = is_height ? nullptr : find_layer(set, "height");
-  const float* height_pixels = height ? height->bands.front().pixels.data() : nullptr;
   constexpr int kRowsPerChunk = 256;
   std::vector<float> chunk;
   for (std::size_t b = 0; b < layer.bands.size(); ++b) {
@@ -124,13 +123,6 @@ void write_tiled(const LayerSet& set, const Layer& layer, const std::filesystem:
         const float nodata = float(*set.nodata);
         for (float& v : chunk)
           if (std::isnan(v)) v = nodata;
-        src = chunk.data();
-      } else if (height_pixels != nullptr &&
-                 std::any_of(height_pixels + offset, height_pixels + offset + count,
-                             [](float h) { return std::isnan(h); })) {
-        chunk.assign(src, src + count);
-        for (std::size_t i = 0; i < count; ++i)
-          if (std::isnan(height_pixels[offset + i])) chunk[i] = std::nanf("");
         src = chunk.data();
       }
       if (band->RasterIO(GF_Write, 0, row, g.width, rows, const_cast<float*>(src), g.width, rows,

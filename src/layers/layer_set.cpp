@@ -1,5 +1,7 @@
 #include "layers/layer_set.hpp"
 
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "core/error.hpp"
@@ -46,6 +48,23 @@ const Layer* find_layer(const LayerSet& set, const std::string& name) {
   for (const auto& layer : set.layers)
     if (layer.name == name) return &layer;
   return nullptr;
+}
+
+void blank_where_height_is_nodata(LayerSet& set) {
+  const Layer* height = find_layer(set, "height");
+  if (height == nullptr) return;
+  const std::vector<float>& h = height->bands.front().pixels;
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  for (Layer& layer : set.layers) {
+    if (&layer == height) continue;
+    for (Raster<float>& band : layer.bands) {
+      if (band.pixels.size() != h.size())
+        fail("layer '{}': band is {} x {}, the height is {} x {}", layer.name, band.width,
+             band.height, height->bands.front().width, height->bands.front().height);
+      for (std::size_t i = 0; i < h.size(); ++i)
+        if (std::isnan(h[i])) band.pixels[i] = kNaN;
+    }
+  }
 }
 
 }  // namespace tw

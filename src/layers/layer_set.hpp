@@ -34,4 +34,9 @@ void validate_layer_set(const LayerSet& set);
 
 const Layer* find_layer(const LayerSet& set, const std::string& name);
 
+// Nodata in every layer: each band of every layer but "height" becomes NaN where the height is
+// NaN (nodata), as GIS readers expect (docs/pipeline.md, "Nodata"). render_tile calls it on
+// every window it renders, so untiled and tiled runs and every writer see the same pixels.
+void blank_where_height_is_nodata(LayerSet& set);
+
 }  // namespace tw

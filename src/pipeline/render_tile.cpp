@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "layers/layer_set.hpp"
 #include "pipeline/plan.hpp"
 #include "raster/footprint.hpp"
 #include "raster/stroke_coverage.hpp"
@@ -149,6 +150,9 @@ LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
   layers.layers.push_back(height_layer(std::move(height)));
   layers.layers.push_back(splat_layer(std::move(splat)));
   layers.layers.push_back(avoidance_layer(tile_avoidance(plan, window)));
+  // Splat and avoidance are NaN where the height is nodata: here, the one place every run
+  // (untiled, tiled, render-tile) renders, so no writer decides it on its own.
+  blank_where_height_is_nodata(layers);
   return layers;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <compare>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -67,8 +68,8 @@ std::vector<CorridorCell> corridor_cells(HeightSampler& heights, const Curve& li
 }
 
 // Per cell, the cost per metre: height above the lowest (below the highest) cell of the
-// corridor within one corridor width along the line, plus the length term. A river along a
-// border (the DEM's nodata edge) may run over nodata, where nothing is carved.
+// corridor within one corridor width along the line, plus the length term. Over nodata the
+// length term only: the path's length over nodata is minimized first (least_cost_path).
 std::vector<double> cost_density(const std::vector<CorridorCell>& cells, double corridor,
                                  ConformTarget target) {
   const double sign = target == ConformTarget::valley_floor ? 1.0 : -1.0;
@@ -86,7 +87,7 @@ std::vector<double> cost_density(const std::vector<CorridorCell>& cells, double 
     double local = floor[b];
     if (b > 0) local = std::min(local, floor[b - 1]);
     if (b + 1 < bins) local = std::min(local, floor[b + 1]);
-    // Nodata is never carved (nor read as a height): crossing it costs its length only.
+    // Nodata is never read as a height; what crossing it costs is least_cost_path's.
     const double above = std::isnan(cells[i].height) ? 0.0 : sign * cells[i].height - local;
     density[i] = above + kLengthWeight * (1.0 + kDistanceWeight * cells[i].distance / corridor);
   }
@@ -104,23 +105,35 @@ std::ptrdiff_t cell_at(const std::vector<CorridorCell>& cells, const GridSpec& g
   return it != cells.end() && it->id == id ? it - cells.begin() : -1;
 }
 
+// What a path costs: first its metres over nodata, then the cost of its density (compared in
+// that order), so nodata costs more than any path over valid cells: a river drawn along the
+// DEM's nodata edge is not drawn into it, and crosses it only where the corridor has no way
+// around (where nothing would be carved and the river would vanish).
+struct PathCost {
+  double nodata_metres = 0.0;
+  double cost = 0.0;
+  auto operator<=>(const PathCost&) const = default;
+};
+
 // Dijkstra over the 8-connected corridor cells; the cells of the cheapest path, start to
 // goal (empty when the goal cannot be reached).
 std::vector<std::size_t> least_cost_path(const std::vector<CorridorCell>& cells,
                                          const std::vector<double>& density, const GridSpec& grid,
                                          std::size_t start, std::size_t goal) {
   const std::size_t n = cells.size();
-  std::vector<double> cost(n, std::numeric_limits<double>::infinity());
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::vector<PathCost> cost(n, PathCost{kInfinity, kInfinity});
   std::vector<std::ptrdiff_t> previous(n, -1);
-  using Entry = std::pair<double, std::size_t>;  // ties: the lowest index first
+  using Entry = std::pair<PathCost, std::size_t>;  // ties: the lowest index first
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
-  cost[start] = 0.0;
-  open.push({0.0, start});
+  cost[start] = PathCost{};
+  open.push({PathCost{}, start});
   const double diagonal = std::hypot(grid.pixel_width, grid.pixel_height);
+  const auto over_nodata = [&](std::size_t i) { return std::isnan(cells[i].height) ? 1.0 : 0.0; };
   while (!open.empty()) {
     const auto [c, i] = open.top();
     open.pop();
-    if (c > cost[i]) continue;
+    if (cost[i] < c) continue;
     if (i == goal) break;
     const int col = int(cells[i].id % grid.width), row = int(cells[i].id / grid.width);
     for (int dr = -1; dr <= 1; ++dr)
@@ -135,7 +148,8 @@ std::vector<std::size_t> least_cost_path(const std::vector<CorridorCell>& cells,
         if (it == cells.end() || it->id != id) continue;
         const std::size_t j = std::size_t(it - cells.begin());
         const double step = dr == 0 ? grid.pixel_width : dc == 0 ? grid.pixel_height : diagonal;
-        const double next = c + step * 0.5 * (density[i] + density[j]);
+        const PathCost next{c.nodata_metres + step * 0.5 * (over_nodata(i) + over_nodata(j)),
+                            c.cost + step * 0.5 * (density[i] + density[j])};
         if (next < cost[j]) {
           cost[j] = next;
           previous[j] = std::ptrdiff_t(i);
@@ -144,7 +158,7 @@ std::vector<std::size_t> least_cost_path(const std::vector<CorridorCell>& cells,
       }
   }
   std::vector<std::size_t> path;
-  if (!std::isfinite(cost[goal])) return path;
+  if (!std::isfinite(cost[goal].cost)) return path;
   for (std::ptrdiff_t i = std::ptrdiff_t(goal); i >= 0; i = previous[std::size_t(i)])
     path.push_back(std::size_t(i));
   std::reverse(path.begin(), path.end());
@@ -152,12 +166,16 @@ std::vector<std::size_t> least_cost_path(const std::vector<CorridorCell>& cells,
 }
 
 // A moving average over +-2 vertices takes the staircase out of a cell path; ends are pinned.
-Curve smoothed(std::vector<Vec2> points) {
+// A vertex whose window holds a `rigid` one (a cell next to nodata) keeps its cell's centre:
+// averaging there would cut the corners of the nodata the path goes round.
+Curve smoothed(std::vector<Vec2> points, const std::vector<bool>& rigid) {
   constexpr int kHalf = 2;
   const auto n = std::ptrdiff_t(points.size());
   std::vector<Vec2> out = points;
   for (std::ptrdiff_t i = 1; i + 1 < n; ++i) {
     const std::ptrdiff_t h = std::min<std::ptrdiff_t>({kHalf, i, n - 1 - i});
+    if (std::any_of(rigid.begin() + (i - h), rigid.begin() + (i + h + 1), [](bool r) { return r; }))
+      continue;
     Vec2 sum{0.0, 0.0};
     for (std::ptrdiff_t k = i - h; k <= i + h; ++k) sum += points[std::size_t(k)];
     out[std::size_t(i)] = sum / double(2 * h + 1);
@@ -276,15 +294,22 @@ ConformResult conform_line(HeightSampler& heights, const Curve& line,
   // The exact points where the conformed stretch begins and ends take the place of their
   // cells' centres.
   std::vector<Vec2> middle{point_at(given, cumulative, s_start)};
-  for (std::size_t k = 1; k + 1 < path.size(); ++k) {
-    const auto id = cells[path[k]].id;
-    middle.push_back(grid.pixel_centre_world(int(id % grid.width), int(id / grid.width)));
+  std::vector<bool> rigid(path.size(), false);
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    const int col = int(cells[path[k]].id % grid.width), row = int(cells[path[k]].id / grid.width);
+    for (int dr = -1; dr <= 1; ++dr)
+      for (int dc = -1; dc <= 1; ++dc) {
+        const int c = col + dc, r = row + dr;
+        const bool on_grid = c >= 0 && r >= 0 && c < grid.width && r < grid.height;
+        if (on_grid && std::isnan(heights.cell(c, r))) rigid[k] = true;
+      }
+    if (k > 0 && k + 1 < path.size()) middle.push_back(grid.pixel_centre_world(col, row));
   }
   middle.push_back(point_at(given, cumulative, s_goal));
   std::vector<Vec2> points;
   for (std::size_t i = 0; i < given.points.size() && cumulative[i] < s_start; ++i)
     points.push_back(given.points[i]);
-  for (const Vec2 p : smoothed(std::move(middle)).points) points.push_back(p);
+  for (const Vec2 p : smoothed(std::move(middle), rigid).points) points.push_back(p);
   for (std::size_t i = 0; i < given.points.size(); ++i)
     if (cumulative[i] > s_goal) points.push_back(given.points[i]);
   result.line = without_duplicates(Curve{std::move(points), false});

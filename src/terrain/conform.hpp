@@ -28,10 +28,12 @@ struct ConformResult {
 
 // The least-cost 8-connected path over the cells within `corridor` metres of the line, from
 // the cell of its first point on the grid to the cell of its last, smoothed; those two points
-// keep their exact positions (clipped ends and junctions stay where they are). Nodata cells
-// may be crossed at the cost of their length only: nothing is carved there (a river along a
-// border, the DEM's nodata edge, keeps to it). Closed lines and corridors wholly over nodata
-// are kept as given. Deterministic (ties broken by the lowest cell index).
+// keep their exact positions (clipped ends and junctions stay where they are). Nodata costs
+// more than any path over valid cells: the path's length over nodata is the least the
+// corridor allows (none where a valid path exists), then its cost is the least; nothing is
+// carved over nodata, so a river drawn along the DEM's nodata edge keeps to the valid side.
+// Closed lines and corridors wholly over nodata are kept as given. Deterministic (ties
+// broken by the lowest cell index).
 ConformResult conform_line(HeightSampler& heights, const Curve& line,
                            const ConformOptions& options);
 // The same over `height`, which covers the whole grid.

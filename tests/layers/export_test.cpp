@@ -263,6 +263,56 @@ TEST(EngineExport, ASizeTheEngineDoesNotTakeIsOneClearError) {
   EXPECT_THROW(parse_engine("cryengine"), Error);
 }
 
+// A line beyond the map (features are read with a margin) is clipped to the terrain's extent
+// in the engine, the corner cell centres; one that leaves and comes back is two splines. Every
+// height is the terrain's there, never 0.
+TEST(EngineExport, SplinesAreClippedToTheTerrainAndCarryItsHeights) {
+  const LayerSet set = test::interop_set(40, 30);  // x 500000..500400, y 5000000..5000300
+  const double west = 500005.0, east = 500395.0, south = 5000005.0, north = 5000295.0;
+  // From 100 m west of the map, out through the north edge and back, to 50 m east of it.
+  const std::vector<ExportCurve> curves = {{"rivers",
+                                            "river",
+                                            4,
+                                            10.0,
+                                            {{499900.0, 5000150.0},
+                                             {500100.0, 5000150.0},
+                                             {500200.0, 5000400.0},
+                                             {500300.0, 5000150.0},
+                                             {500450.0, 5000100.0}}}};
+  for (const Engine engine : {Engine::unreal, Engine::unity, Engine::godot}) {
+    SCOPED_TRACE(to_string(engine));
+    test::TempDir dir;
+    EngineExportOptions options;
+    options.engine = engine;
+    run_export(set, options, dir.path(), curves);
+    const nlohmann::json splines = read_json(dir / "splines.json");
+    ASSERT_EQ(splines["splines"].size(), 2u);
+    EXPECT_EQ(splines["splines"][0]["name"], "rivers_4_0");
+    EXPECT_EQ(splines["splines"][1]["name"], "rivers_4_1");
+    int points = 0;
+    for (const auto& spline : splines["splines"])
+      for (const auto& p : spline["points"]) {
+        const double x = p["world"][0], y = p["world"][1], z = p["world"][2];
+        EXPECT_GE(x, west);
+        EXPECT_LE(x, east);
+        EXPECT_GE(y, south);
+        EXPECT_LE(y, north);
+        EXPECT_NEAR(z, plane(set.grid, x, y), 1e-3) << x << " " << y;
+        EXPECT_GT(z, 100.0);
+        ++points;
+      }
+    // The first part: the west edge, the inner vertex, the north edge; the second: the
+    // north edge, the inner vertex, the east edge.
+    EXPECT_EQ(points, 6);
+    const auto& first = splines["splines"][0]["points"];
+    EXPECT_EQ(first[0]["world"][0].get<double>(), west);
+    EXPECT_EQ(first[0]["world"][1].get<double>(), 5000150.0);
+    EXPECT_EQ(first[2]["world"][1].get<double>(), north);
+    EXPECT_EQ(splines["splines"][1]["points"][2]["world"][0].get<double>(), east);
+    EXPECT_EQ(test::lines_of(test::read_file(dir / "splines.csv")).size(), 7u);  // header + 6
+  }
+}
+
 TEST(EngineExport, CenterlinesRoundTripThroughGeoJson) {
   test::TempDir dir;
   const std::vector<ExportCurve> curves = {

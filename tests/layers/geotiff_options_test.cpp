@@ -97,6 +97,9 @@ TEST(GeoTiffOptions, EveryBandHasNodataUnitsAndProvenance) {
   set.nodata = -9999.0;
   for (int r = 0; r < 5; ++r)
     for (int c = 0; c < 5; ++c) set.layers[0].bands[0].at(c, r) = std::nanf("");
+  // Nodata in every layer (what render_tile does before anything is written): the writer
+  // writes the NaN it is given and declares it.
+  blank_where_height_is_nodata(set);
   GeoTiffOptions options;
   options.metadata = {{"TERRAWEAVE_VERSION", "9.9.9"}, {"TERRAWEAVE_PIPELINE", "demo.yaml"}};
   write_geotiff(set, set.layers[0], dir / "height.tif", options);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ribbon/curve.hpp"
 #include "terrain/height_ops.hpp"
 #include "terrain/splat.hpp"
 #include "terrain_test_support.hpp"
@@ -87,11 +88,27 @@ TEST(Conform, ARidgeLineSnapsToTheCrest) {
   }
 }
 
-TEST(Conform, NodataIsCrossedAtTheCostOfItsLengthOnly) {
+// Metres of `line` over nodata cells of `h` (sampled every 0.5 m), and its length.
+std::pair<double, double> length_over_nodata(const Raster<float>& h, const GridSpec& grid,
+                                             const Curve& line) {
+  const auto cumulative = cumulative_lengths(line);
+  const double total = cumulative.back(), step = 0.5;
+  double over = 0.0;
+  for (double s = 0.5 * step; s < total; s += step) {
+    const Vec2 px = grid.world_to_pixel(point_at(line, cumulative, s));
+    const int col = int(std::floor(px.x)), row = int(std::floor(px.y));
+    if (col >= 0 && row >= 0 && col < grid.width && row < grid.height && std::isnan(h.at(col, row)))
+      over += step;
+  }
+  return {over, total};
+}
+
+TEST(Conform, NodataCostsMoreThanAnyPathOverValidCells) {
   const GridSpec grid = ten_metre_grid();
   Raster<float> h = test::heights_from(grid, valley);
-  // The valley floor is nodata between y = 800 and 1200 (a lake cut out of the DEM): the
-  // line stays in the valley through it rather than climbing onto the slopes beside it.
+  // The valley floor is nodata between y = 800 and 1200 (a lake cut out of the DEM): nothing
+  // can be carved there, so the line goes round it on valid cells (beside it on the slope)
+  // rather than through it, where the river would vanish.
   for (int row = 0; row < grid.height; ++row)
     for (int col = 0; col < grid.width; ++col) {
       const Vec2 p = grid.pixel_centre_world(col, row);
@@ -100,18 +117,48 @@ TEST(Conform, NodataIsCrossedAtTheCostOfItsLengthOnly) {
     }
   const ConformResult r = conform_line(h, grid, kOffsetRiver, {400.0});
   ASSERT_TRUE(r.conformed);
-  int inside = 0;
+  const auto [over, total] = length_over_nodata(h, grid, r.line);
+  EXPECT_GT(total, 1900.0);
+  EXPECT_EQ(over, 0.0);  // not a metre over nodata: a valid path exists
+  int beside = 0;
   for (const Vec2 p : r.line.points) {
     if (p.y < 850.0 || p.y > 1150.0) continue;
-    ++inside;
-    EXPECT_LT(std::abs(p.x - 805.0), 60.0) << p.y;
+    ++beside;
+    EXPECT_GE(std::abs(p.x - 805.0), 60.0) << p.y;
+    EXPECT_LE(std::abs(p.x - 805.0), 80.0) << p.y;  // as close to the floor as valid cells go
   }
-  EXPECT_GT(inside, 20);
+  EXPECT_GT(beside, 20);
+  // Away from the lake it is still on the floor (the smoothing is kept).
+  for (const Vec2 p : r.line.points)
+    if (p.y > 300.0 && p.y < 600.0) EXPECT_LE(std::abs(p.x - 805.0), 10.0) << p.y;
+  // The drawn line crosses no nodata; one drawn through the lake crosses 400 m of it and its
+  // conformed line none.
+  const Curve through{{{805.0, 1950.0}, {805.0, 50.0}}, false};
+  EXPECT_NEAR(length_over_nodata(h, grid, through).first, 400.0, 10.0);
+  const ConformResult around = conform_line(h, grid, through, {400.0});
+  ASSERT_TRUE(around.conformed);
+  EXPECT_EQ(length_over_nodata(h, grid, around.line).first, 0.0);
+
   // A corridor wholly over nodata keeps the line.
   const Raster<float> none(grid.width, grid.height, std::numeric_limits<float>::quiet_NaN());
   const ConformResult kept = conform_line(none, grid, kOffsetRiver, {400.0});
   EXPECT_FALSE(kept.conformed);
   EXPECT_EQ(kept.line.points, kOffsetRiver.points);
+}
+
+TEST(Conform, NodataAcrossTheWholeCorridorIsCrossedTheShortestWay) {
+  const GridSpec grid = ten_metre_grid();
+  Raster<float> h = test::heights_from(grid, valley);
+  // A band of nodata across the whole grid, y 1000..1100, drawn across at a slant: the
+  // path cannot go round, so it crosses it straight (100 m), never along it.
+  for (int row = 0; row < grid.height; ++row)
+    for (int col = 0; col < grid.width; ++col) {
+      const Vec2 p = grid.pixel_centre_world(col, row);
+      if (p.y > 1000.0 && p.y < 1100.0) h.at(col, row) = std::numeric_limits<float>::quiet_NaN();
+    }
+  const ConformResult r = conform_line(h, grid, kOffsetRiver, {400.0});
+  ASSERT_TRUE(r.conformed);
+  EXPECT_NEAR(length_over_nodata(h, grid, r.line).first, 100.0, 15.0);
 }
 
 TEST(Conform, ATributaryEndingOnTheTrunkStillMeetsItAfterBothMove) {

@@ -21,6 +21,8 @@ struct EngineFrame {
   // (world x, world y, height in metres) -> engine coordinates.
   std::function<std::array<double, 3>(double, double, double)> to_engine;
   std::array<double, 2> origin{};  // the world point at the engine's (0, 0): a corner centre
+  // The terrain's extent in the engine, world metres: west, south, east, north cell centres.
+  std::array<double, 4> extent{};
 };
 
 // The engine's frame over `world` (the run's grid): Unreal X east, Y south, Z up, cm from the
@@ -31,7 +33,9 @@ EngineFrame engine_frame(Engine engine, const GridSpec& world);
 // The terrain's height (metres, nodata filled) at a world point; NaN off the grid.
 using HeightAt = std::function<double(Vec2)>;
 
-// The heights of the points are the terrain's under them. Returns the final paths written,
+// Each curve is clipped to the frame's extent (a line that leaves it and comes back gives one
+// spline per part, named <class>_<fid>_<part>); the heights of the points are the terrain's
+// under them (a point without one is an error, never 0). Returns the final paths written,
 // staged in `stager`.
 std::vector<std::filesystem::path> write_splines(const std::vector<ExportCurve>& curves,
                                                  const HeightAt& height_at,
