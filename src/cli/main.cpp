@@ -2,6 +2,7 @@
 // Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
 // code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
@@ -156,6 +157,19 @@ int finish_command(const std::string& plan) {
                   ? "-"
                   : tw::single_line(report.outputs.front().parent_path().string()).c_str());
   return 0;
+}
+
+// `terraweave run --help` shows the run's own options; the global ones (accepted before or
+// after the subcommand) are listed in every subcommand's footer, read from the app itself so
+// the two lists cannot disagree.
+void list_global_options_in_subcommand_help(CLI::App& app) {
+  std::string footer = "Global options (before or after the subcommand):";
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_name().empty() || option->get_name() == "--help") continue;
+    footer +=
+        fmt::format("\n  {:<18} {}", option->get_name(false, true), option->get_description());
+  }
+  for (CLI::App* sub : app.get_subcommands({})) sub->footer(footer);
 }
 
 }  // namespace
@@ -445,6 +459,7 @@ int main(int argc, char** argv) {
           "exr (32-bit float metres, the default) or r16")
       ->check(CLI::IsMember({"exr", "r16"}));
 
+  list_global_options_in_subcommand_help(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

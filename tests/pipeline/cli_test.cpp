@@ -432,6 +432,18 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(snapshot(dir / "out").size(), 2u);
 }
 
+TEST_F(Cli, SubcommandHelpListsTheGlobalOptions) {
+  for (const char* sub : {"run", "grow", "export", "view", "render-tile"}) {
+    const CommandResult r = terraweave(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_THAT(r.output, HasSubstr("Global options (before or after the subcommand):")) << sub;
+    for (const char* global : {"--verbose", "--quiet", "--threads", "--strict", "--allow-network"})
+      EXPECT_THAT(r.output, HasSubstr(global)) << sub << " --help lacks " << global;
+  }
+  // The run's own options are still there.
+  EXPECT_THAT(terraweave("run --help").output, HasSubstr("--backend"));
+}
+
 TEST_F(Cli, VersionNamesTheLibraries) {
   const CommandResult r = terraweave("--version");
   EXPECT_EQ(r.exit_code, 0);
