@@ -560,7 +560,8 @@ void read_output_encoding(const MapReader& out, OutputConfig& output) {
   if (out.has("crs")) {
     output.crs = out.string("crs");
     OGRSpatialReference srs;
-    if (output.crs != "utm" && !import_crs(srs, output.crs))
+    // `utm` and `local` are frames the heightfield's reader derives from the DEM (docs).
+    if (output.crs != "utm" && output.crs != "local" && !import_crs(srs, output.crs))
       out.source().fail(out.get("crs"), out.path("crs"),
                         fmt::format("PROJ does not know the CRS '{}'", output.crs));
   }
