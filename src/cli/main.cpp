@@ -2,12 +2,15 @@
 // Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
 // code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
 #include <cstdint>
 
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -158,6 +161,52 @@ int finish_command(const std::string& plan) {
   return 0;
 }
 
+// `terraweave run --help` shows the run's own options; the global ones (accepted before or
+// after the subcommand) are listed in every subcommand's footer, read from the app itself so
+// the two lists cannot disagree.
+void list_global_options_in_subcommand_help(CLI::App& app) {
+  std::string footer = "Global options (before or after the subcommand):";
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_name().empty() || option->get_name() == "--help") continue;
+    footer +=
+        fmt::format("\n  {:<18} {}", option->get_name(false, true), option->get_description());
+  }
+  for (CLI::App* sub : app.get_subcommands({})) sub->footer(footer);
+}
+
+// CLI11's PositiveNumber and NonNegativeNumber let NaN through and print their upper bound,
+// DBL_MAX, in 309 digits: these say what is wrong in a few words.
+CLI::Validator number_above(double bound, bool or_equal) {
+  return CLI::Validator(
+      [bound, or_equal](std::string& value) {
+        char* end = nullptr;
+        const double x = std::strtod(value.c_str(), &end);
+        if (end == value.c_str() || *end != '\0') return "'" + value + "' is not a number";
+        if (!std::isfinite(x)) return "'" + value + "' is not a finite number";
+        if (or_equal ? x >= bound : x > bound) return std::string();
+        return fmt::format("'{}' must be {} {:g}", value, or_equal ? ">=" : ">", bound);
+      },
+      or_equal ? "NONNEGATIVE" : "POSITIVE");
+}
+
+// NaN and infinities pass CLI11's ranges (every comparison with NaN is false), and then run for
+// minutes or place nothing: every number option (CLI11's FLOAT, of every subcommand) is refused
+// unless finite, here once so that a new option cannot forget it.
+void refuse_non_finite_numbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& value) {
+        char* end = nullptr;
+        const double x = std::strtod(value.c_str(), &end);
+        return std::isfinite(x) ? std::string() : "'" + value + "' is not a finite number";
+      },
+      "");
+  std::vector<CLI::App*> apps = app.get_subcommands({});
+  apps.push_back(&app);
+  for (CLI::App* a : apps)
+    for (CLI::Option* option : a->get_options())
+      if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -253,7 +302,7 @@ int main(int argc, char** argv) {
       ->required();
   synth_feature->add_option("--feature", synth_feature_index, "feature index (syntheses.json)")
       ->required()
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_above(0.0, true));
 
   std::string complete_plan;
   CLI::App* complete = app.add_subcommand(
@@ -269,7 +318,7 @@ int main(int argc, char** argv) {
       ->required();
   render_tile->add_option("--tile", render_tile_index, "tile index (tasks.json)")
       ->required()
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_above(0.0, true));
 
   std::string finish_plan;
   CLI::App* finish = app.add_subcommand(
@@ -335,7 +384,7 @@ int main(int argc, char** argv) {
   area->add_option("--shapes-from", area_args.shapes_from,
                    "hybrid: a second sketch whose shapes go on the first one's rows");
   area->add_option("--scale", area_args.scale, "metres per sketch unit")
-      ->check(CLI::PositiveNumber);
+      ->check(number_above(0.0, false));
   area->add_option("--bearing", area_args.bearing,
                    "compass bearing (degrees) of the sketch's x axis; default: each polygon's "
                    "long axis")
@@ -347,7 +396,7 @@ int main(int argc, char** argv) {
                    "features no shape may touch: OGR path[:layer] (lines or polygons; repeatable)");
   area->add_option("--avoid-width", area_args.avoid_width,
                    "metres, the width of avoided lines without a width or OSM tags")
-      ->check(CLI::PositiveNumber);
+      ->check(number_above(0.0, false));
   area->add_option("--analysis-png", area_args.analysis_png,
                    "also draw the sketch's analysis levels (strokes, shapes, fibres, medians, "
                    "lead directions) into this PNG");
@@ -372,10 +421,10 @@ int main(int argc, char** argv) {
                    "repeatable)");
   grow->add_option("--avoid-width", grow_args.avoid_width,
                    "metres, the width of avoided lines without a width or OSM tags")
-      ->check(CLI::PositiveNumber);
+      ->check(number_above(0.0, false));
   grow->add_option("--resolution", grow_args.resolution,
                    "metres between mesh vertices (the DEM resampled, cubic); default: the DEM's")
-      ->check(CLI::PositiveNumber);
+      ->check(number_above(0.0, false));
   grow->add_option("--seed", grow_args.seed, "same seed, same ornaments");
   grow->add_flag("--contour", grow_args.contour,
                  "align elements to the contour direction (terraces along the slope)");
@@ -387,10 +436,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   grow->add_option("--clearance", grow_args.clearance,
                    "metres between unrelated lines; default: the element set's clearance_m")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_above(0.0, true));
   grow->add_option("--coverage-radius", grow_args.coverage_radius,
                    "metres for the reported coverage; default: half the element set's scale")
-      ->check(CLI::PositiveNumber);
+      ->check(number_above(0.0, false));
   grow->add_option("--out", grow_args.out, "folder for ornaments.gpkg, preview.png")
       ->required()
       ->check(non_empty);
@@ -445,6 +494,8 @@ int main(int argc, char** argv) {
           "exr (32-bit float metres, the default) or r16")
       ->check(CLI::IsMember({"exr", "r16"}));
 
+  list_global_options_in_subcommand_help(app);
+  refuse_non_finite_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -428,7 +428,10 @@ ExistingConfig read_existing(const MapReader& m, std::vector<InputFile>& inputs)
 }
 
 // Orders the feature classes by `precedence` (lowest first), which must name each exactly once.
-void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& features) {
+// Area classes are painted after every line class (docs/pipeline.md, "Areas") and take no part
+// in the order, so naming one is refused with what to do instead.
+void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& features,
+                      const std::vector<AreaClassConfig>& areas) {
   if (!root.has("precedence")) return;
   const YAML::Node list = root.get("precedence");
   const std::string list_path = root.path("precedence");
@@ -441,6 +444,15 @@ void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& fe
     const std::string name = detail::read_string(root.source(), list[i], key);
     auto it = std::find_if(features.begin(), features.end(),
                            [&](const FeatureClassConfig& f) { return f.name == name; });
+    const bool is_area = std::any_of(areas.begin(), areas.end(),
+                                     [&](const AreaClassConfig& a) { return a.name == name; });
+    if (is_area) {
+      root.source().fail(list[i], key,
+                         fmt::format("'{}' is an area class (kind: area): areas are painted after "
+                                     "every line class and are not ordered; remove it from "
+                                     "precedence",
+                                     name));
+    }
     if (it == features.end()) {
       const bool repeated =
           std::any_of(ordered.begin(), ordered.end(),
@@ -548,7 +560,8 @@ void read_output_encoding(const MapReader& out, OutputConfig& output) {
   if (out.has("crs")) {
     output.crs = out.string("crs");
     OGRSpatialReference srs;
-    if (output.crs != "utm" && !import_crs(srs, output.crs))
+    // `utm` and `local` are frames the heightfield's reader derives from the DEM (docs).
+    if (output.crs != "utm" && output.crs != "local" && !import_crs(srs, output.crs))
       out.source().fail(out.get("crs"), out.path("crs"),
                         fmt::format("PROJ does not know the CRS '{}'", output.crs));
   }
@@ -697,7 +710,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   }
   if (c.features.empty() && c.areas.empty())
     src.fail(root.get("features"), "features", "no feature classes");
-  apply_precedence(root, c.features);
+  apply_precedence(root, c.features, c.areas);
   if (root.has("synthesis_resolution")) {
     c.synthesis_resolution = root.positive("synthesis_resolution");
   }

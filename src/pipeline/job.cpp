@@ -195,6 +195,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
       {"cache", cache ? json(cache->string()) : json()},
       {"backend", options.backend ? json(*options.backend) : json()},
       {"plan_seconds", seconds_since(started)},
+      // What complete-plan must find: without these, a deleted syntheses.json would read as
+      // "no syntheses" and finish would commit a world without its patterns (issue #24).
+      {"synthesis_tasks", pending},
+      {"syntheses_complete", pending == 0},
   };
   write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
   detail::delete_other_plans(plan_dir, hash);

@@ -102,7 +102,19 @@ std::size_t write_synthesis_tasks(const fs::path& plan_dir, const std::optional<
   return list["features"].size();
 }
 
+void require_syntheses_file(const fs::path& plan_dir, const json& job) {
+  std::error_code ec;
+  if (fs::is_regular_file(syntheses_path(plan_dir), ec)) return;
+  const std::size_t tasks = job.value("synthesis_tasks", std::size_t(0));
+  if (tasks > 0 && !job.value("syntheses_complete", false))
+    fail(
+        "{}: missing, but plan {} has {} syntheses to run and complete; its patterns cannot be "
+        "recovered without it: plan again (terraweave plan ... --synthesis tasks)",
+        syntheses_path(plan_dir).string(), job.value("plan", ""), tasks);
+}
+
 void require_complete_plan(const fs::path& plan_dir, const std::string& plan) {
+  require_syntheses_file(plan_dir, read_job(plan_dir));
   std::error_code ec;
   if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return;
   const json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
@@ -167,6 +179,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir) {
   const std::size_t tiles =
       read_plan_file(plan_dir / "tasks.json", kTasksFormat).at("tiles").size();
   std::error_code ec;
+  detail::require_syntheses_file(plan_dir, job);
   if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return {plan_dir, hash, tiles, 0, 0};
   json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
   if (list.value("plan", "") != hash) {
@@ -238,6 +251,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir) {
   index_plan(plan);
   const std::string complete = save_plan(plan, plan_dir);
   job["plan"] = complete;
+  job["syntheses_complete"] = true;
   write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
   list["completed"] = complete;
   write_file_atomic(syntheses_path(plan_dir), list.dump(1) + "\n");

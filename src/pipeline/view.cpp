@@ -1,5 +1,6 @@
 #include "pipeline/view.hpp"
 
+#include <cpl_string.h>
 #include <gdal_priv.h>
 
 #include <algorithm>
@@ -29,20 +30,11 @@ std::string read_text(const fs::path& path) {
   return text.str();
 }
 
+// GDAL's encoder (cpl_string.h), which the project links already.
 std::string base64(const std::string& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    std::uint32_t n = std::uint32_t((unsigned char)bytes[i]) << 16;
-    if (i + 1 < bytes.size()) n |= std::uint32_t((unsigned char)bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) n |= (unsigned char)bytes[i + 2];
-    out += kAlphabet[n >> 18 & 63];
-    out += kAlphabet[n >> 12 & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[n >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
-  }
+  char* encoded = CPLBase64Encode(int(bytes.size()), reinterpret_cast<const GByte*>(bytes.data()));
+  std::string out(encoded);
+  CPLFree(encoded);
   return out;
 }
 

@@ -322,8 +322,8 @@ ConformResult conform_line(HeightSampler& heights, const Curve& line,
   double sum = 0.0;
   for (const double d : moved) sum += d;
   result.mean_move = sum / double(moved.size());
-  result.max_move = std::max(*std::max_element(moved.begin(), moved.end()),
-                             *std::max_element(back.begin(), back.end()));
+  result.max_offset = *std::max_element(moved.begin(), moved.end());
+  result.max_move = std::max(result.max_offset, *std::max_element(back.begin(), back.end()));
   return result;
 }
 

@@ -23,6 +23,9 @@ struct ConformResult {
   bool conformed = false;         // false: kept as given (see `kept_because`)
   const char* kept_because = "";  // why not conformed (closed, over nodata, ...), "" otherwise
   double max_move = 0.0;          // metres: the largest distance between the two lines
+  // metres: the farthest the conformed line lies from the given one (within the corridor, up
+  // to a cell's diagonal); max_move can be larger where the path cuts across a drawn bend.
+  double max_offset = 0.0;
   double mean_move = 0.0;         // metres: mean distance of the conformed line from the given one
 };
 

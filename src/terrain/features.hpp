@@ -44,7 +44,7 @@ struct RiverProfile {
   std::optional<double> max_carve;
 };
 
-inline constexpr double kDefaultCarveDepths = 5.0;
+inline constexpr double kDefaultCarveDepths = 2.0;
 // The bound in metres (max_carve, or its default).
 inline double max_carve(const RiverProfile& river) {
   return river.max_carve.value_or(kDefaultCarveDepths * river.depth);

@@ -432,6 +432,30 @@ TEST_F(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(snapshot(dir / "out").size(), 2u);
 }
 
+TEST_F(Cli, SubcommandHelpListsTheGlobalOptions) {
+  for (const char* sub : {"run", "grow", "export", "view", "render-tile"}) {
+    const CommandResult r = terraweave(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_THAT(r.output, HasSubstr("Global options (before or after the subcommand):")) << sub;
+    for (const char* global : {"--verbose", "--quiet", "--threads", "--strict", "--allow-network"})
+      EXPECT_THAT(r.output, HasSubstr(global)) << sub << " --help lacks " << global;
+  }
+  // The run's own options are still there.
+  EXPECT_THAT(terraweave("run --help").output, HasSubstr("--backend"));
+}
+
+// Issue #24: NaN and infinities are refused by every number option before anything runs.
+TEST_F(Cli, NonFiniteNumbersAreRefusedByEveryNumberOption) {
+  for (const char* args : {"area sketch.geojson --polygons map.gpkg:existing --bearing nan",
+                           "grow --dem dem.tif --region 0,0,1,1 --resolution nan",
+                           "grow --dem dem.tif --region 0,0,1,1 --resolution inf",
+                           "synth --exemplar e.png --scale 1e400 -o o.png"}) {
+    const CommandResult r = terraweave(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_THAT(r.output, HasSubstr("is not a finite number")) << args;
+  }
+}
+
 TEST_F(Cli, VersionNamesTheLibraries) {
   const CommandResult r = terraweave("--version");
   EXPECT_EQ(r.exit_code, 0);

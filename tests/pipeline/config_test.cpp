@@ -460,3 +460,50 @@ existing:
 
 }  // namespace
 }  // namespace tw
+
+namespace tw {
+namespace {
+
+using ::testing::Not;
+
+constexpr const char* kLinesAndArea = R"(version: 1
+heightfield: ../samples/dem.tif
+features:
+  rivers: { source: map.gpkg, layer: rivers, kind: river, width: 8, conform: { corridor: 300 } }
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 8 }
+  vines: { kind: area, source: map.gpkg, layer: fields, sketch: vineyard.geojson }
+precedence: [rivers, roads]
+)";
+
+TEST(PipelineConfig, AnAreaClassInPrecedenceSaysWhyAndWhatToDo) {
+  const std::string error = error_of(kLinesAndArea, {{"precedence", "[rivers, vines, roads]"}});
+  EXPECT_THAT(error, HasSubstr("--set precedence=[rivers, vines, roads]: precedence.1"));
+  EXPECT_THAT(error, HasSubstr("'vines' is an area class (kind: area)"));
+  EXPECT_THAT(error, HasSubstr("remove it from precedence"));
+  EXPECT_THAT(error, Not(HasSubstr("is not a feature class")));
+}
+
+TEST(PipelineConfig, NullOverrideRemovesAKeyOrDropsAClass) {
+  const PipelineConfig all = parse(kLinesAndArea);
+  ASSERT_EQ(all.features.size(), 2u);
+  EXPECT_EQ(all.features[0].conform_corridor, 300.0);
+
+  // A dropped class leaves precedence with it, so one flag is enough.
+  const PipelineConfig no_roads = parse(kLinesAndArea, {{"features.roads", "null"}});
+  ASSERT_EQ(no_roads.features.size(), 1u);
+  EXPECT_EQ(no_roads.features[0].name, "rivers");
+  EXPECT_EQ(no_roads.areas.size(), 1u);
+  const PipelineConfig no_vines = parse(kLinesAndArea, {{"features.vines", "~"}});
+  EXPECT_EQ(no_vines.features.size(), 2u);
+  EXPECT_TRUE(no_vines.areas.empty());
+
+  // A nested key goes back to its default.
+  const PipelineConfig drawn = parse(kLinesAndArea, {{"features.rivers.conform", "null"}});
+  EXPECT_EQ(drawn.features[0].conform_corridor, 0.0);
+
+  EXPECT_THAT(error_of(kLinesAndArea, {{"features.lakes", "null"}}),
+              HasSubstr("--set features.lakes=null: there is no 'features.lakes' to remove"));
+}
+
+}  // namespace
+}  // namespace tw

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -282,6 +284,39 @@ TEST_F(PlanFolder, SynthesesAsTasksInTheirDependencyOrderGiveTheSamePlan) {
   expect_error([&] { synthesize_job_feature(job.plan_dir, 0); }, "complete already");
   EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
+}
+
+// Issue #24: a deleted syntheses.json is an error naming it, never "no syntheses" (which
+// committed a world without its patterns); once the plan is complete it is not needed.
+TEST_F(PlanFolder, AMissingSynthesesFileIsAnErrorUntilThePlanIsComplete) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "out";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config_, options);
+  ASSERT_EQ(job.syntheses, 3u);
+  const fs::path list = job.plan_dir / "syntheses.json";
+  const std::string kept = read_file_bytes(list);
+  fs::remove(list);
+  for (const auto& step : std::vector<std::function<void()>>{
+           [&] { complete_job_plan(job.plan_dir); }, [&] { render_job_tile(job.plan_dir, 0); },
+           [&] { finish_job(job.plan_dir); }}) {
+    try {
+      step();
+      ADD_FAILURE() << "a missing syntheses.json was read as no syntheses";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("syntheses.json: missing, but plan"));
+      EXPECT_THAT(e.what(), HasSubstr("has 3 syntheses to run and complete"));
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out/report.json"));  // nothing committed
+  // Put back, the tasks run and the plan completes; then the file is no longer needed.
+  std::ofstream(list, std::ios::binary) << kept;
+  for (int f = 0; f < 3; ++f) synthesize_job_feature(job.plan_dir, f);
+  const PlannedJob complete = complete_job_plan(job.plan_dir);
+  fs::remove(list);
+  EXPECT_EQ(complete_job_plan(job.plan_dir).plan, complete.plan);
+  EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
+  EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
 }
 
 }  // namespace

@@ -301,6 +301,25 @@ TEST(PipelineRun, ValidateOnlyReadsAndWritesNothing) {
   EXPECT_TRUE(report.outputs.empty());
 }
 
+// `output.crs: local` (docs/pipeline.md, issue #24): the local transverse Mercator centred on
+// the DEM, for a geographic DEM as the docs promise (it was refused as an unknown CRS).
+TEST(PipelineRun, OutputCrsLocalIsATransverseMercatorOnTheDemsCentre) {
+  test::TempDir out;
+  const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
+                                              {{"output.dir", out.path().string()},
+                                               {"output.crs", "local"},
+                                               {"resolution", "500"}});
+  EXPECT_EQ(config.output.crs, "local");
+  const RunReport report = run_pipeline(config);
+  OGRSpatialReference srs;
+  ASSERT_EQ(srs.importFromWkt(report.crs_wkt.c_str()), OGRERR_NONE);
+  EXPECT_TRUE(srs.IsProjected());
+  EXPECT_STREQ(srs.GetAttrValue("PROJECTION"), "Transverse_Mercator");
+  EXPECT_NEAR(srs.GetProjParm(SRS_PP_CENTRAL_MERIDIAN), 6.3208333, 1e-4);
+  EXPECT_NEAR(srs.GetProjParm(SRS_PP_LATITUDE_OF_ORIGIN), 49.5708333, 1e-4);
+  EXPECT_EQ(report.classes.size(), 2u);
+}
+
 // The geographic sample (EPSG:4326 DEM and lines): warped into the UTM zone of its centre,
 // lengths in metres that agree with GeographicLib's geodesics, nodata kept outside the country.
 TEST(PipelineRun, GeographicSamplePipelineWorksInMetres) {

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "test_support.hpp"
@@ -84,6 +85,43 @@ TEST_F(View, APageOfARunShowsTheTerrainInAHeadlessBrowser) {
   EXPECT_THAT(page, Not(HasSubstr("http://")));  // nothing to fetch: three.js is inlined
   EXPECT_THAT(page, Not(HasSubstr("https://")));
   expect_terrain_on_screen(dir / "page.html");
+}
+
+// Issue #22 item 7: nodata is no terrain. Over Luxembourg's DEM (nodata outside the country,
+// 45 %) the page draws exactly the triangles whose three corners have heights, counted by the
+// page itself in Chromium and here from the page's data.
+TEST_F(View, NodataIsLeftOutOfTheMesh) {
+  const CommandResult run = terraweave("-q run '" +
+                                       (source_dir() / "pipelines/luxembourg.yaml").string() +
+                                       "' --set resolution=500 --out lux");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  ASSERT_EQ(terraweave("view lux --out lux.html").exit_code, 0);
+  const std::string page = read_file(dir / "lux.html");
+  const std::string open = R"(<script id="data" type="application/json">)";
+  const std::size_t begin = page.find(open) + open.size();
+  const nlohmann::json data =
+      nlohmann::json::parse(page.substr(begin, page.find("</script>", begin) - begin));
+  const int mw = data["mesh"]["width"], mh = data["mesh"]["height"];
+  const nlohmann::json& z = data["mesh"]["heights"];
+  // three.js's PlaneGeometry: cell (i, j) is the triangles (a, b, d) and (b, c, d).
+  int expected = 0;
+  for (int j = 0; j + 1 < mh; ++j) {
+    for (int i = 0; i + 1 < mw; ++i) {
+      const bool a = !z[j * mw + i].is_null(), b = !z[(j + 1) * mw + i].is_null();
+      const bool c = !z[(j + 1) * mw + i + 1].is_null(), d = !z[j * mw + i + 1].is_null();
+      expected += (a && b && d) + (b && c && d);
+    }
+  }
+  const int all = 2 * (mw - 1) * (mh - 1);
+  ASSERT_GT(expected, all / 4);  // Luxembourg itself...
+  ASSERT_LT(expected, all * 3 / 4);  // ...and much nodata around it
+  const CommandResult dom = run_command(
+      "cd '" + dir.path().string() +
+      "' && timeout 90 chromium --headless --no-sandbox --use-angle=swiftshader "
+      "--enable-unsafe-swiftshader --virtual-time-budget=8000 --dump-dom 'file://" +
+      (dir / "lux.html").string() + "' 2>/dev/null");
+  EXPECT_THAT(dom.output, HasSubstr("data-triangles=\"" + std::to_string(expected) + "\""))
+      << "expected " << expected << " of " << all << " triangles";
 }
 
 TEST_F(View, ATiledRunIsViewedThroughItsMosaicsAsTheUntiledRun) {

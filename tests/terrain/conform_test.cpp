@@ -222,13 +222,14 @@ TEST(CarveLimit, TheBedIsNeverMoreThanMaxCarveBelowTheTerrain) {
   EXPECT_NEAR(e.cut_limited.along, 950.0, 20.0);
 }
 
-TEST(CarveLimit, TheDefaultIsFiveDepthsAndAnUnboundedRiverCutsTheSpur) {
+TEST(CarveLimit, TheDefaultIsTwoDepthsAndAnUnboundedRiverCutsTheSpur) {
   const GridSpec grid = ten_metre_grid();
   const Raster<float> before = test::heights_from(grid, spur);
   Raster<float> bounded = before, unbounded = before;
   shape_terrain(bounded, grid, Window::whole(grid), {spur_river(std::nullopt)}, {});
-  EXPECT_LE(deepest_lowering(before, bounded), 5.0 * 2.5 + 1e-3);
-  EXPECT_GT(deepest_lowering(before, bounded), 5.0 * 2.5 - 0.1);
+  EXPECT_EQ(kDefaultCarveDepths, 2.0);  // issue #21 item 6 (docs/terrain.md)
+  EXPECT_LE(deepest_lowering(before, bounded), 2.0 * 2.5 + 1e-3);
+  EXPECT_GT(deepest_lowering(before, bounded), 2.0 * 2.5 - 0.1);
   shape_terrain(unbounded, grid, Window::whole(grid), {spur_river(1e9)}, {});
   EXPECT_NEAR(deepest_lowering(before, unbounded), unbounded_cut_at_the_spur(), 0.2);  // as before
 }

@@ -54,6 +54,7 @@ TEST(ShapeTerrain, WaterSurfaceNeverRisesDownstreamOverABump) {
   auto river = test::feature(FeatureKind::river, 3, {{15.0, 100.5}, {185.0, 100.5}}, 4.0);
   river.river.depth = 2.0;
   river.river.min_slope = 0.001;
+  river.river.max_carve = 1e9;  // the surface alone: max_carve's default would meet the bump
   shape_terrain(h, grid, Window::whole(grid), {river}, {});
   const int centre_row = kSize - 101;
   float upstream_min = before.at(16, centre_row);
@@ -381,6 +382,9 @@ TEST(ShapeTerrain, ATributaryIsEasedDownToTheMainRiverSurface) {
   auto trib = test::feature(FeatureKind::river, 2, {{100.5, 190.0}, {100.5, 60.5}}, 4.0);
   main.river.depth = 2.0;
   trib.river.depth = 1.0;
+  // The surfaces alone: the tributary's descent to the main surface is deeper than
+  // max_carve's default, which would let it meet the terrain instead (CarveLimit tests).
+  main.river.max_carve = trib.river.max_carve = 1e9;
   shape_terrain(h, grid, Window::whole(grid), {main, trib}, {});
   // Along the tributary the bed never rises downstream, right into the confluence.
   const int col = 100;

@@ -49,11 +49,15 @@ std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
       }
       moves[c][i] = {r.max_move, r.mean_move};
       if (r.max_move > half_cell) {
+        // Two distances, so the message never reads as a move beyond the corridor: how far
+        // the new line lies from the drawn one (bounded by the corridor), and how far apart
+        // the two lines are anywhere (larger where the path cuts across a drawn bend).
         warnings.add("conformed", subject, line.fid,
-                     fmt::format("moved onto the {} within its {:g} m corridor: up to {:.1f} m "
-                                 "(mean {:.1f} m)",
-                                 ridge ? "crest" : "valley floor", options.corridor, r.max_move,
-                                 r.mean_move));
+                     fmt::format("moved onto the {} (corridor {:g} m): the new line lies at "
+                                 "most {:.1f} m from the drawn one (mean {:.1f} m); the lines "
+                                 "are up to {:.1f} m apart where it cuts across a drawn bend",
+                                 ridge ? "crest" : "valley floor", options.corridor, r.max_offset,
+                                 r.mean_move, r.max_move));
       }
     }
   }
@@ -63,13 +67,30 @@ std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
 namespace {
 
 void warn_limit(Warnings& warnings, const std::string& subject, std::int64_t fid, const char* code,
-                const char* held, double bound, const ProfileLimit& limit) {
+                const char* held, double bound, const ProfileLimit& limit,
+                const std::string& advice) {
   if (limit.length <= 0.0) return;
   warnings.add(code, subject, fid,
                fmt::format("{} at most {:g} m {} the terrain over {:.0f} m of the line; worst at "
-                           "{:.0f} m along (x {:.1f}, y {:.1f}), {:.1f} m beyond the bound",
+                           "{:.0f} m along (x {:.1f}, y {:.1f}), {:.1f} m beyond the bound{}",
                            held, bound, code[0] == 'f' ? "above" : "below", limit.length,
-                           limit.along, limit.at.x, limit.at.y, limit.excess));
+                           limit.along, limit.at.x, limit.at.y, limit.excess, advice));
+}
+
+// What to do about a river held by max_carve: the line most likely misses the DEM's valley
+// (a coarse map crossing spurs), which conformance answers; once conformed, a wider corridor.
+std::string carve_advice(const FeatureClassConfig& feature_class) {
+  if (feature_class.conform_corridor <= 0.0) {
+    return fmt::format(
+        ". The line likely misses the DEM's valley: add `conform: {{ corridor: <metres> }}` to "
+        "{} (about the map's positional accuracy, e.g. 250 for 1:250 000 data) to move it "
+        "onto the valley floor (docs/terrain.md, Conformance)",
+        "features." + feature_class.name);
+  }
+  return fmt::format(
+      ". The valley lies beyond the {:g} m corridor here: widen conform.corridor, or raise "
+      "profile.max_carve to allow a deeper cut",
+      feature_class.conform_corridor);
 }
 
 }  // namespace
@@ -106,12 +127,12 @@ void report_earthwork(const PipelineConfig& config,
     const std::int64_t fid = lines[c][i].fid;
     if (feature_class.kind == FeatureKind::river) {
       warn_limit(warnings, subject, fid, "carve_limited", "bed held",
-                 max_carve(feature_class.river), e.cut_limited);
+                 max_carve(feature_class.river), e.cut_limited, carve_advice(feature_class));
     } else if (feature_class.kind == FeatureKind::road) {
       warn_limit(warnings, subject, fid, "cut_limited", "cut held",
-                 feature_class.road.max_cut.value_or(0.0), e.cut_limited);
+                 feature_class.road.max_cut.value_or(0.0), e.cut_limited, "");
       warn_limit(warnings, subject, fid, "fill_limited", "fill held",
-                 feature_class.road.max_fill.value_or(0.0), e.fill_limited);
+                 feature_class.road.max_fill.value_or(0.0), e.fill_limited, "");
     }
   }
 }

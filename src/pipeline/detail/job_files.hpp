@@ -42,6 +42,10 @@ std::size_t write_synthesis_tasks(const std::filesystem::path& plan_dir,
                                   const std::optional<nlohmann::json>& syntheses,
                                   const std::string& plan);
 
+// Throws tw::Error when syntheses.json is gone while the plan (job.json) still has syntheses to
+// complete: a missing file is never read as "no syntheses".
+void require_syntheses_file(const std::filesystem::path& plan_dir, const nlohmann::json& job);
+
 // Throws tw::Error when the plan `plan` in `plan_dir` still waits for its syntheses.
 void require_complete_plan(const std::filesystem::path& plan_dir, const std::string& plan);
 

@@ -42,6 +42,14 @@ const exaggeration = Math.max(D.exaggeration, 0.1 * Math.max(W, H) / Math.max(hi
 const geometry = new THREE.PlaneGeometry(W, H, mw - 1, mh - 1);
 const pos = geometry.attributes.position;
 for (let k = 0; k < pos.count; ++k) pos.setZ(k, ((z[k] ?? lo) - lo) * exaggeration);
+// Nodata is no terrain: only triangles whose three corners have heights are drawn.
+const corners = geometry.index.array, kept = [];
+for (let k = 0; k < corners.length; k += 3) {
+  if (z[corners[k]] !== null && z[corners[k + 1]] !== null && z[corners[k + 2]] !== null)
+    kept.push(corners[k], corners[k + 1], corners[k + 2]);
+}
+geometry.setIndex(kept);
+document.body.dataset.triangles = kept.length / 3;  // for the tests (and the curious)
 geometry.rotateX(-Math.PI / 2);
 geometry.computeVertexNormals();
 const texture = (rgba, w, h) => {

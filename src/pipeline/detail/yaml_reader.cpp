@@ -116,6 +116,36 @@ std::vector<YAML::Mark> document_starts(std::string_view text, std::size_t limit
 
 }  // namespace
 
+namespace {
+
+// The name without the items that equal `name` (a YAML list of scalars).
+YAML::Node without_item(const YAML::Node& list, const std::string& name) {
+  YAML::Node kept(YAML::NodeType::Sequence);
+  for (const YAML::Node& item : list)
+    if (!(item.IsScalar() && item.Scalar() == name)) kept.push_back(item);
+  return kept;
+}
+
+// `--set key=null` removes the key (a class, an option back to its default). A removed class
+// leaves `precedence` and `synthesis_order` too, so dropping one is one flag.
+void remove_key(YAML::Node& map, const std::vector<std::string>& parts, const Override& o) {
+  const std::string& key = parts.back();
+  if (!map.IsMap() || !map[key]) {
+    tw::fail("--set {}={}: there is no '{}' to remove (null removes a key that is set)", o.key_path,
+             o.value, o.key_path);
+  }
+  map.remove(key);
+}
+
+void drop_from_orders(YAML::Node& root, const std::vector<std::string>& parts) {
+  if (parts.size() != 2 || parts[0] != "features") return;
+  for (const char* order : {"precedence", "synthesis_order"}) {
+    if (root[order] && root[order].IsSequence()) root[order] = without_item(root[order], parts[1]);
+  }
+}
+
+}  // namespace
+
 YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Override> overrides,
                        Variables variables)
     : file_label_(std::move(file_label)),
@@ -172,7 +202,9 @@ YAML::Node YamlSource::load(std::string_view text) const {
       if (!current.IsMap() && !current.IsNull()) {
         tw::fail("--set {}={}: '{}' is a value, not a mapping", o.key_path, o.value, parts[i - 1]);
       }
-      if (last) {
+      if (last && value.IsNull()) {
+        remove_key(current, parts, o);
+      } else if (last) {
         current[parts[i]] = value;
       } else {
         YAML::Node child = current[parts[i]];
@@ -183,6 +215,7 @@ YAML::Node YamlSource::load(std::string_view text) const {
         current.reset(child);
       }
     }
+    if (value.IsNull()) drop_from_orders(root, parts);
   }
   return root;
 }
