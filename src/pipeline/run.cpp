@@ -75,9 +75,6 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   }
   const std::string started_utc = detail::utc_timestamp();
-  std::vector<StageTiming> setup_stages;  // before the plan's: its report does not exist yet
-  detail::StageClock setup_clock(setup_stages);
-  setup_clock.start("setup");
   Warnings warnings;
   const bool strict = options.strict || config.strict;
   set_network_access(options.allow_network);
@@ -86,7 +83,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const fs::path dir = options.output_dir.value_or(config.output.dir);
   std::unique_ptr<OutputFolder> output =
       options.write_outputs ? OutputFolder::lock_if_used(dir) : nullptr;
-  setup_clock.stop();
+  // Timed quietly: its errors (a URL without --allow-network, a locked folder) stay one line.
+  const StageTiming setup{"setup", seconds_since(run_started)};
 
   PlanOptions plan_options;
   plan_options.backend = options.backend;
@@ -94,7 +92,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   plan_options.cache_dir = options.cache_dir;
   WorldPlan plan = plan_world(config, plan_options, warnings);
   RunReport& report = plan.report;
-  report.stages.insert(report.stages.begin(), setup_stages.begin(), setup_stages.end());
+  report.stages.insert(report.stages.begin(), setup);  // before the plan's stages
   report.started_utc = started_utc;
   detail::StageClock clock(report.stages);
   if (!options.write_outputs) {
