@@ -73,9 +73,9 @@ tw::PipelineConfig load(const PipelineArgs& args) {
 int run_command(const PipelineArgs& args, const tw::RunOptions& options) {
   const tw::RunReport report = tw::run_pipeline(load(args), options);
   for (const auto& stage : report.stages)
-    std::printf("%-10s %8.3f s\n", stage.stage.c_str(), stage.seconds);
-  if (!report.warnings.empty()) std::printf("%-10s %8zu\n", "warnings", report.warnings.size());
-  std::printf("%-10s %8.3f s, %zu files in %s\n", "total", report.total_seconds,
+    std::printf("%-16s %8.3f s\n", stage.stage.c_str(), stage.seconds);
+  if (!report.warnings.empty()) std::printf("%-16s %8zu\n", "warnings", report.warnings.size());
+  std::printf("%-16s %8.3f s, %zu files in %s\n", "total", report.total_seconds,
               report.outputs.size(),
               report.outputs.empty()
                   ? "-"

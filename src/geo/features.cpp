@@ -166,7 +166,8 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
   OpenVectorLayer layer = detail::open_vector_layer(spec.source, grid_of);
   const AttributeColumns columns = attribute_columns(spec, layer);
   std::vector<LineFeature> lines;
-  for (const auto& feature : *layer.layer) {
+  layer.layer->ResetReading();
+  while (const OGRFeatureUniquePtr feature = detail::next_feature(layer)) {
     const std::int64_t fid = feature->GetFID();
     const double width = feature_width(*feature, columns, spec, layer, warnings);
     Structure structure = Structure::ground;
@@ -179,14 +180,22 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
           fmt::format("{}: Z/M values dropped (heights come from the heightfield)", layer.label));
     }
     detail::check_coordinates(*parts, layer, fid);
-    detail::transform_to_grid(*parts, layer, fid);
-    // Clip first, then judge: nothing outside the world (and its halo) can fail a run.
-    const OGRPolygon extent =
-        detail::grid_extent_polygon(grid_of.grid, 0.5 * width + spec.clip_margin);
+    // Clip first, then judge: nothing outside the world (and its halo) can fail a run. Cut in
+    // the layer's own CRS before transforming, so that a country border or coastline reaching
+    // beyond the grid CRS's domain (a UTM zone) transforms only where it is near the grid.
+    const double margin = 0.5 * width + spec.clip_margin;
+    if (layer.to_grid) {
+      if (const std::optional<OGREnvelope> box = detail::grid_box_in_layer_crs(layer, margin))
+        parts = detail::cut_to_box(*parts, *box, layer, fid);
+    }
     std::vector<detail::ClippedLine> pieces;
-    for (const OGRLineString* part : *parts) {
-      for (detail::ClippedLine& piece : detail::clip_line(*part, extent, layer, fid)) {
-        pieces.push_back(std::move(piece));
+    if (!parts->IsEmpty() &&
+        detail::transform_parts_to_grid(*parts, layer, fid, warning_subject(spec), warnings)) {
+      const OGRPolygon extent = detail::grid_extent_polygon(grid_of.grid, margin);
+      for (const OGRLineString* part : *parts) {
+        for (detail::ClippedLine& piece : detail::clip_line(*part, extent, layer, fid)) {
+          pieces.push_back(std::move(piece));
+        }
       }
     }
     if (pieces.empty()) {
@@ -200,6 +209,11 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
     }
   }
   return lines;
+}
+
+std::optional<std::string> why_no_features(const VectorSource& source, const Heightfield& grid_of) {
+  OpenVectorLayer layer = detail::open_vector_layer(source, grid_of);
+  return detail::why_no_features(layer, source.where);
 }
 
 LineFeature read_first_line_feature(const VectorSource& source) {

@@ -1,6 +1,7 @@
 #pragma once
 // Vector features (OGR) brought into a heightfield's grid CRS and clipped to its extent.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,12 @@ std::vector<LineFeature> read_line_features(const LineClassSpec& spec, const Hei
 // closed curve.
 // `terraweave synth` draws it. width is 0.
 LineFeature read_first_line_feature(const VectorSource& source);
+
+// Why `source` (its where clause applied) gives no feature on the grid, for an `empty_source`
+// warning: the layer has no rows, the where clause matches none, or its features lie off the
+// heightfield though its extent meets it. nullopt when the layer's extent does not meet the grid
+// (nothing was to be expected from it there). Same errors as read_line_features.
+std::optional<std::string> why_no_features(const VectorSource& source, const Heightfield& grid_of);
 
 struct PolygonFeature {
   std::int64_t fid = 0;

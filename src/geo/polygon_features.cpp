@@ -1,4 +1,5 @@
 #include <memory>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -67,6 +68,37 @@ std::unique_ptr<OGRGeometry> valid_polygons(std::unique_ptr<OGRGeometry> parts,
   return multi;
 }
 
+// The polygons of `parts` (in the layer's CRS) near the grid: cut to `box` (GEOS), so that only
+// what can land on the grid is transformed. An invalid polygon that GEOS cannot cut is made
+// valid first (valid_polygons, with its warning).
+std::unique_ptr<OGRGeometry> cut_to_box(std::unique_ptr<OGRGeometry> parts, const OGREnvelope& box,
+                                        const OpenVectorLayer& layer, std::int64_t fid,
+                                        const std::string& subject, Warnings& warnings) {
+  OGREnvelope parts_box;
+  parts->getEnvelope(&parts_box);
+  if (box.Contains(parts_box)) return parts;
+  if (!box.Intersects(parts_box)) return std::make_unique<OGRMultiPolygon>();
+  const OGRPolygon box_polygon = detail::densified_box(box);
+  std::unique_ptr<OGRGeometry> inside;
+  {
+    detail::QuietGdalErrors quiet;
+    inside.reset(parts->Intersection(&box_polygon));
+  }
+  if (!inside) {
+    parts = valid_polygons(std::move(parts), layer, fid, subject, warnings);
+    detail::QuietGdalErrors quiet;
+    inside.reset(parts->Intersection(&box_polygon));
+    if (!inside) {
+      fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid, detail::last_gdal_error());
+    }
+  }
+  std::vector<const OGRPolygon*> polygons;
+  collect_polygons(*inside, polygons);
+  auto multi = std::make_unique<OGRMultiPolygon>();
+  for (const OGRPolygon* polygon : polygons) multi->addGeometry(polygon);
+  return multi;
+}
+
 std::vector<Vec2> open_ring(const OGRLinearRing& ring) {
   std::vector<Vec2> points = detail::distinct_points(ring);
   if (points.size() >= 2 && points.front() == points.back()) points.pop_back();
@@ -83,7 +115,8 @@ std::vector<PolygonFeature> read_polygon_features(const VectorSource& source,
   OGREnvelope extent_box;
   extent.getEnvelope(&extent_box);
   std::vector<PolygonFeature> result;
-  for (const auto& feature : *layer.layer) {
+  layer.layer->ResetReading();
+  while (const OGRFeatureUniquePtr feature = detail::next_feature(layer)) {
     const std::int64_t fid = feature->GetFID();
     std::unique_ptr<OGRGeometry> parts = polygon_parts(*feature, layer);
     if (detail::drop_z_and_m(*parts)) {
@@ -92,13 +125,21 @@ std::vector<PolygonFeature> read_polygon_features(const VectorSource& source,
           fmt::format("{}: Z/M values dropped (heights come from the heightfield)", layer.label));
     }
     detail::check_coordinates(*parts, layer, fid);
-    detail::transform_to_grid(*parts, layer, fid);
+    // Clip first, then judge: a polygon off the grid is skipped whatever its shape. Cut in the
+    // layer's own CRS before transforming, so that a continent or a country reaching beyond the
+    // grid CRS's domain (a UTM zone) transforms only where it is near the grid.
+    if (layer.to_grid) {
+      if (const std::optional<OGREnvelope> near = detail::grid_box_in_layer_crs(layer, 0.0))
+        parts = cut_to_box(std::move(parts), *near, layer, fid, subject, warnings);
+    }
     OGREnvelope box;
-    parts->getEnvelope(&box);
     std::vector<const OGRPolygon*> polygons;
     std::unique_ptr<OGRGeometry> inside;
-    // Clip first, then judge: a polygon off the grid is skipped whatever its shape.
-    if (box.Intersects(extent_box)) {
+    if (!parts->IsEmpty() && detail::transform_parts_to_grid(*parts->toGeometryCollection(), layer,
+                                                             fid, subject, warnings)) {
+      parts->getEnvelope(&box);
+    }
+    if (!parts->IsEmpty() && box.Intersects(extent_box)) {
       parts = valid_polygons(std::move(parts), layer, fid, subject, warnings);
       detail::QuietGdalErrors quiet;
       inside.reset(parts->Intersection(&extent));

@@ -14,6 +14,7 @@
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
+#include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
@@ -25,28 +26,6 @@ namespace tw {
 namespace fs = std::filesystem;
 
 namespace {
-
-class StageClock {
- public:
-  explicit StageClock(std::vector<StageTiming>& timings) : timings_(timings) {}
-
-  void start(std::string stage) {
-    stage_ = std::move(stage);
-    logger().info("{}...", stage_);
-    started_ = std::chrono::steady_clock::now();
-  }
-  void stop() {
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    timings_.push_back({stage_, seconds});
-    logger().info("{}: {:.3f} s", stage_, seconds);
-  }
-
- private:
-  std::vector<StageTiming>& timings_;
-  std::string stage_;
-  std::chrono::steady_clock::time_point started_;
-};
 
 // The deck heights of bridges and tunnels; plan features come from terrain_features, which
 // lists the classes' features in report order.
@@ -232,7 +211,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   WorldPlan plan;
   RunReport& report = plan.report;
   report.seed = given.seed;
-  StageClock clock(report.stages);
+  detail::StageClock clock(report.stages);
 
   clock.start("ingest");
   detail::check_inputs(given);
@@ -354,6 +333,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
                                      patterns ? &*patterns : nullptr, heights, warnings);
     clock.stop();
   }
+  // Collecting the plan: patterns and areas into its indexes, the tiles.
+  clock.start("plan");
   if (patterns) {
     detail::add_patterns(config, std::move(*patterns), plan);
   } else {
@@ -385,6 +366,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan.tile_size = config.output.tiles.size;
   plan.tile_overlap = config.output.tiles.overlap;
   plan.tiles = tile_grid(plan.grid, plan.output_window, plan.tile_size, plan.tile_overlap);
+  clock.stop();
   return plan;
 }
 

@@ -23,6 +23,7 @@
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
+#include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/export_command.hpp"
@@ -82,6 +83,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   const fs::path dir = options.output_dir.value_or(config.output.dir);
   std::unique_ptr<OutputFolder> output =
       options.write_outputs ? OutputFolder::lock_if_used(dir) : nullptr;
+  // Timed quietly: its errors (a URL without --allow-network, a locked folder) stay one line.
+  const StageTiming setup{"setup", seconds_since(run_started)};
 
   PlanOptions plan_options;
   plan_options.backend = options.backend;
@@ -89,14 +92,21 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   plan_options.cache_dir = options.cache_dir;
   WorldPlan plan = plan_world(config, plan_options, warnings);
   RunReport& report = plan.report;
+  report.stages.insert(report.stages.begin(), setup);  // before the plan's stages
   report.started_utc = started_utc;
-  if (options.write_outputs) report.inputs = detail::record_inputs(config);
+  detail::StageClock clock(report.stages);
   if (!options.write_outputs) {
+    clock.start("sketches");
     detail::check_area_sketches(config, warnings);
+    clock.stop();
     finish_warnings(warnings, strict, report);
     report.total_seconds = seconds_since(run_started);
+    detail::add_untimed_stage(report.stages, report.total_seconds);
     return std::move(report);
   }
+  clock.start("inputs");  // hashes of every input file, for the manifest
+  report.inputs = detail::record_inputs(config);
+  clock.stop();
   finish_warnings(warnings, strict, report);
   for (const EngineExportOptions& engine : config.exports) {
     // Tiled runs and tiled exports read the layers back by windows from the GeoTIFFs.
@@ -116,7 +126,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   report.tiles.overlap = plan.tile_overlap;
   // Tile by tile: each is rendered, written and dropped, so memory follows the tile.
   std::map<std::string, std::vector<fs::path>> tile_tifs;  // per layer, for the mosaics
-  double render_seconds = 0.0, write_seconds = 0.0;
+  // Per tile, each part's time goes to its stage (`render`, `layers`, `preview`, `exports`).
+  double render_seconds = 0.0, layer_seconds = 0.0, preview_seconds = 0.0, export_seconds = 0.0;
   Progress progress("render", std::int64_t(plan.tiles.size()), "tile");
   // Tiled: each tile goes through the tile cache, which renders it (or, under --cache, copies
   // its files when nothing it reads changed) and keeps the numbers the report gives of it.
@@ -165,19 +176,23 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                                         tile.halo_window, tile.window),
           "tile", instance_heights);
       write_layer_set(layers, dir, transaction, write_options);
+      layer_seconds += seconds_since(writing);
+      const auto previewing = std::chrono::steady_clock::now();
       if (config.output.preview) {
         std::vector<std::vector<Vec2>> centerlines;
         for (const auto& feature : plan.terrain_features)
           centerlines.push_back(feature.centerline.points);
         write_preview_png(layers, transaction.stage(dir / "preview.png"), centerlines);
       }
+      preview_seconds += seconds_since(previewing);
+      const auto exporting = std::chrono::steady_clock::now();
       for (const EngineExportOptions& engine : config.exports) {
         if (export_tile_size(engine, 0) > 0) continue;  // tiles: from the files, below
         const EngineExportResult exported = export_for_engine(
             layers, curves, engine, dir / "export" / to_string(engine.engine), transaction);
         for (const std::string& line : exported.settings) logger().info("{}", line);
       }
-      write_seconds += seconds_since(writing);
+      export_seconds += seconds_since(exporting);
     } else {
       const detail::TileCache::Outcome outcome = tile_cache->render_or_reuse(
           tile, transaction, dir,
@@ -199,7 +214,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     tile_report.seconds = seconds_since(started);
     progress.advance();
   }
-  const auto writing = std::chrono::steady_clock::now();
+  const auto mosaics = std::chrono::steady_clock::now();
   std::map<std::string, fs::path> layer_files;  // staged height / splat GeoTIFF or mosaic
   if (tiled) {
     for (const auto& [layer, tifs] : tile_tifs)
@@ -209,6 +224,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       if (name.parent_path().empty() && name.extension() == ".tif")
         layer_files[name.stem().string()] = staged;
   }
+  layer_seconds += seconds_since(mosaics);
+  const auto tiled_exports = std::chrono::steady_clock::now();
   for (const EngineExportOptions& engine : config.exports) {
     if (!tiled && export_tile_size(engine, 0) == 0) continue;  // written with the layers
     ExportFiles files{layer_files.at("height"), {}, {}};
@@ -219,19 +236,38 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                            dir / "export" / to_string(engine.engine), transaction);
     for (const std::string& line : exported.settings) logger().info("{}", line);
   }
-  write_seconds += seconds_since(writing);
+  export_seconds += seconds_since(tiled_exports);
   report.stages.push_back({"render", render_seconds});
-  report.stages.push_back({"layers", write_seconds});
-  logger().info("render: {} tiles, {:.3f} s; layers: {:.3f} s", plan.tiles.size(), render_seconds,
-                write_seconds);
+  report.stages.push_back({"layers", layer_seconds});
+  if (config.output.preview && !tiled) report.stages.push_back({"preview", preview_seconds});
+  if (!config.exports.empty()) report.stages.push_back({"exports", export_seconds});
+  logger().info(
+      "render: {} tiles, {:.3f} s; layers: {:.3f} s; preview: {:.3f} s; exports: {:.3f} s",
+      plan.tiles.size(), render_seconds, layer_seconds, preview_seconds, export_seconds);
 
+  clock.start("features.geojson");
   write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
+  clock.stop();
+  clock.start("placements");
   detail::write_placements(plan, dir, transaction, report);
-  detail::write_area_outputs(plan, instance_heights, dir, transaction);
-  detail::write_ornament_outputs(plan, dir, transaction);
-
-  report.total_seconds = seconds_since(run_started);
+  clock.stop();
+  if (!plan.area_names.empty()) {
+    clock.start("areas.gpkg");  // with instances.csv and instances.json
+    detail::write_area_outputs(plan, instance_heights, dir, transaction);
+    clock.stop();
+  }
+  if (!plan.grown.empty()) {
+    clock.start("ornaments.gpkg");
+    detail::write_ornament_outputs(plan, dir, transaction);
+    clock.stop();
+  }
+  clock.start("manifest");  // the hash of every output file
   report.output_files = detail::record_outputs(transaction);
+  clock.stop();
+
+  // Only report.json itself and the commit (a rename) come after the total.
+  report.total_seconds = seconds_since(run_started);
+  detail::add_untimed_stage(report.stages, report.total_seconds);
   write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
   transaction.commit();
   report.outputs = transaction.committed();

@@ -5,8 +5,13 @@
 
 #include <fmt/format.h>
 
+#include <cpl_conv.h>
+
+#include <algorithm>
 #include <fstream>
 #include <map>
+#include <regex>
+#include <sstream>
 
 #include "geo/features.hpp"
 #include "geo/osm_tags.hpp"
@@ -226,6 +231,118 @@ TEST(OsmSample, XmlAndPbfGiveTheSameFeatures) {
   EXPECT_EQ(xml[1].fid, 2002);
   EXPECT_EQ(xml[1].structure, Structure::bridge);
   EXPECT_TRUE(xml[6].closed);  // the residential loop stays a line, closed
+}
+
+// samples/olinda.osm as JOSM saves new data before upload: every id negative (-1, -2...), no
+// version, `action="modify"`, and the nodes in reverse order (so ids are not increasing).
+std::string josm_copy(const test::TempDir& dir) {
+  std::ifstream in(test::source_dir() / "samples/olinda.osm");
+  std::vector<std::string> nodes;
+  std::string rest;
+  for (std::string line; std::getline(in, line);) {
+    line = std::regex_replace(line, std::regex(R"re(( id| ref)="(\d+)")re"), "$1=\"-$2\"");
+    line = std::regex_replace(line, std::regex(R"re( version="\d+")re"), R"re( action="modify")re");
+    if (line.find("<node ") != std::string::npos) {
+      nodes.push_back(line);
+    } else {
+      if (line.find("<way ") != std::string::npos && !nodes.empty()) {
+        std::reverse(nodes.begin(), nodes.end());
+        for (const std::string& n : nodes) rest += n + "\n";
+        nodes.clear();
+      }
+      rest += line + "\n";
+    }
+  }
+  const std::string path = (dir / "josm.osm").string();
+  std::ofstream(path) << rest;
+  return path;
+}
+
+// An editor's file reads as the positive-id sample does: the same ways, FIDs negated.
+TEST(OsmSample, JosmFileWithNegativeIdsAndUnsortedNodesReadsWhole) {
+  const test::TempDir dir;
+  const std::string josm = josm_copy(dir);
+  {
+    std::ifstream check(josm);
+    const std::string text((std::istreambuf_iterator<char>(check)), {});
+    ASSERT_THAT(text, HasSubstr(R"(<nd ref="-1"/>)"));
+    ASSERT_LT(text.find(R"(<node id="-95")"), text.find(R"(<node id="-1")"));
+  }
+  const Heightfield dem = read_heightfield((test::source_dir() / "samples/dem.tif").string());
+  auto read = [&](const std::string& path, const char* where) {
+    LineClassSpec spec;
+    spec.name = "roads";
+    spec.source = {path, "lines", where};
+    spec.osm_widths = true;
+    return read_line_features(spec, dem);
+  };
+  const std::string sample = (test::source_dir() / "samples/olinda.osm").string();
+  for (const char* where : {"", "highway IS NOT NULL"}) {
+    const std::vector<LineFeature> positive = read(sample, where);
+    const std::vector<LineFeature> negative = read(josm, where);
+    ASSERT_EQ(positive.size(), where[0] ? 8u : 11u);
+    ASSERT_EQ(negative.size(), positive.size()) << where;
+    for (std::size_t i = 0; i < positive.size(); ++i) {
+      EXPECT_EQ(negative[i].fid, -positive[i].fid);
+      EXPECT_EQ(negative[i].width, positive[i].width);
+      ASSERT_EQ(negative[i].points.size(), positive[i].points.size());
+      for (std::size_t k = 0; k < positive[i].points.size(); ++k)
+        EXPECT_EQ(negative[i].points[k], positive[i].points[k]);
+    }
+  }
+  Warnings warnings;
+  const std::vector<PolygonFeature> areas =
+      read_polygon_features({josm, "multipolygons", ""}, dem, "existing.0", warnings);
+  ASSERT_EQ(areas.size(), 1u);
+  EXPECT_LT(areas[0].fid, 0);
+  EXPECT_GE(areas[0].rings[0].size(), 4u);
+}
+
+// Where GDAL's own node index is forced on (the user's OSM_USE_CUSTOM_INDEXING=YES), the file
+// cannot be read: an error that says so, never 0 features, never "bad where clause".
+TEST(OsmSample, UnreadableFileIsAReadErrorNotAnEmptyLayerOrABadClause) {
+  const test::TempDir dir;
+  const std::string josm = josm_copy(dir);
+  const Heightfield dem = read_heightfield((test::source_dir() / "samples/dem.tif").string());
+  CPLSetConfigOption("OSM_USE_CUSTOM_INDEXING", "YES");
+  for (const char* where : {"", "highway IS NOT NULL"}) {
+    LineClassSpec spec;
+    spec.name = "roads";
+    spec.source = {josm, "lines", where};
+    spec.default_width = 5.0;
+    const std::string error = test::error_of([&] { read_line_features(spec, dem); });
+    EXPECT_THAT(error, HasSubstr("josm.osm:lines: reading its features failed")) << where;
+    EXPECT_THAT(error, HasSubstr("OSM_USE_CUSTOM_INDEXING")) << where;
+    EXPECT_THAT(error, ::testing::Not(HasSubstr("where clause"))) << where;
+  }
+  CPLSetConfigOption("OSM_USE_CUSTOM_INDEXING", nullptr);
+  LineClassSpec bad;
+  bad.name = "roads";
+  bad.source = {josm, "lines", "highway IS"};
+  bad.default_width = 5.0;
+  EXPECT_THAT(test::error_of([&] { read_line_features(bad, dem); }),
+              HasSubstr("bad where clause 'highway IS'"));
+}
+
+// Why a source gave nothing: no rows, a clause matching none, or features off the grid; nothing
+// to say when the layer's extent does not meet the grid.
+TEST(OsmSample, WhyNoFeaturesSaysWhichItIs) {
+  const test::TempDir dir;
+  const std::string josm = josm_copy(dir);
+  const Heightfield dem = read_heightfield((test::source_dir() / "samples/dem.tif").string());
+  const std::optional<std::string> clause =
+      why_no_features({josm, "lines", "highway = 'motorway'"}, dem);
+  ASSERT_TRUE(clause.has_value());
+  EXPECT_THAT(*clause,
+              HasSubstr("the where clause 'highway = 'motorway'' matches none of its 11 rows"));
+  const std::optional<std::string> none = why_no_features({josm, "points", ""}, dem);
+  ASSERT_TRUE(none.has_value());
+  EXPECT_THAT(*none, HasSubstr("the layer has no rows"));
+  // A layer far away (UTM 31N, France) has nothing to say over Olinda.
+  const std::string far = (dir / "far.gpkg").string();
+  test::write_vector(far, "GPKG", "roads", "EPSG:32631",
+                     {{1, "LINESTRING (500100 4999100,500200 4999200)", 5.0}});
+  EXPECT_FALSE(why_no_features({far, "roads", ""}, dem).has_value());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "core/error.hpp"
 
@@ -53,7 +54,42 @@ void join_touching_pieces(std::vector<std::vector<Vec2>>& pieces) {
   }
 }
 
+// The pieces of `line` inside `extent` (GEOS), those meeting at a vertex joined again.
+std::vector<std::vector<Vec2>> pieces_inside(const OGRLineString& line, const OGRPolygon& extent,
+                                             const OpenVectorLayer& layer, std::int64_t fid) {
+  QuietGdalErrors quiet;
+  std::unique_ptr<OGRGeometry> inside(line.Intersection(&extent));
+  if (!inside) fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid, last_gdal_error());
+  std::vector<std::vector<Vec2>> pieces;
+  collect_lines(*inside, pieces);
+  join_touching_pieces(pieces);
+  return pieces;
+}
+
 }  // namespace
+
+std::unique_ptr<OGRMultiLineString> cut_to_box(const OGRMultiLineString& parts,
+                                               const OGREnvelope& box, const OpenVectorLayer& layer,
+                                               std::int64_t fid) {
+  auto result = std::make_unique<OGRMultiLineString>();
+  std::optional<OGRPolygon> box_polygon;
+  for (const OGRLineString* part : parts) {
+    OGREnvelope part_box;
+    part->getEnvelope(&part_box);
+    if (box.Contains(part_box)) {
+      result->addGeometry(part);
+      continue;
+    }
+    if (!box.Intersects(part_box)) continue;
+    if (!box_polygon) box_polygon = densified_box(box);
+    for (const std::vector<Vec2>& piece : pieces_inside(*part, *box_polygon, layer, fid)) {
+      OGRLineString line;
+      for (const Vec2& p : piece) line.addPoint(p.x, p.y);
+      result->addGeometry(&line);
+    }
+  }
+  return result;
+}
 
 std::vector<ClippedLine> clip_line(const OGRLineString& line, const OGRPolygon& extent,
                                    const OpenVectorLayer& layer, std::int64_t fid) {
@@ -69,13 +105,7 @@ std::vector<ClippedLine> clip_line(const OGRLineString& line, const OGRPolygon& 
   }
   if (!extent_box.Intersects(line_box)) return result;
 
-  QuietGdalErrors quiet;
-  std::unique_ptr<OGRGeometry> inside(line.Intersection(&extent));
-  if (!inside) fail("{}: FID {}: cannot clip to the grid: {}", layer.label, fid, last_gdal_error());
-  std::vector<std::vector<Vec2>> pieces;
-  collect_lines(*inside, pieces);
-  join_touching_pieces(pieces);
-  for (std::vector<Vec2>& piece : pieces) {
+  for (std::vector<Vec2>& piece : pieces_inside(line, extent, layer, fid)) {
     check_finite(piece, layer, fid);
     const bool closed = piece.size() >= 4 && piece.front() == piece.back();
     if (closed) piece.pop_back();

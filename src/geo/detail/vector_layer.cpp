@@ -33,7 +33,17 @@ void apply_where(OGRLayer& layer, const std::string& where, const std::string& l
     failed = CPLGetLastErrorType() >= CE_Failure;
     layer.ResetReading();
   }
-  if (failed) fail("{}: bad where clause '{}': {}", label, where, last_gdal_error());
+  if (!failed) return;
+  const std::string error = last_gdal_error();
+  // A layer that cannot be read at all fails with any clause: say so, not "bad where clause".
+  CPLErrorReset();
+  layer.SetAttributeFilter(nullptr);
+  layer.ResetReading();
+  OGRFeatureUniquePtr unfiltered(layer.GetNextFeature());
+  const bool unreadable = CPLGetLastErrorType() >= CE_Failure;
+  layer.ResetReading();
+  if (unreadable) fail("{}: reading its features failed: {}", label, last_gdal_error());
+  fail("{}: bad where clause '{}': {}", label, where, error);
 }
 
 }  // namespace
@@ -50,6 +60,11 @@ OpenVectorLayer open_vector_layer(const VectorSource& source) {
       osm_config.emplace("OSM_CONFIG_FILE", osm_config_file().c_str(),
                          /*bSetOnlyIfUndefined=*/true);
     }
+    // GDAL's own node index takes only positive ids in increasing order: files saved by an
+    // editor (JOSM: negative ids of new objects, nodes in any order) read as nothing. Its
+    // SQLite index takes every file (spilling to a temporary file past OSM_MAX_TMPFILE_SIZE).
+    const CPLConfigOptionSetter osm_index("OSM_USE_CUSTOM_INDEXING", "NO",
+                                          /*bSetOnlyIfUndefined=*/true);
     result.dataset.reset(GDALDataset::Open(source.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   }
   if (!result.dataset) {
@@ -95,7 +110,9 @@ OpenVectorLayer open_vector_layer(const VectorSource& source, const Heightfield&
       fail("{}: no transformation from the layer's CRS to the grid's: {}", result.label,
            last_gdal_error());
     }
+    result.to_layer.reset(OGRCreateCoordinateTransformation(&to, &from));
   }
+  result.grid = grid_of.grid;
   return result;
 }
 
@@ -115,10 +132,68 @@ OGRPolygon grid_extent_polygon(const GridSpec& grid, double margin) {
   return polygon;
 }
 
+std::optional<OGREnvelope> grid_box_in_layer_crs(OpenVectorLayer& layer, double margin) {
+  const auto cached = layer.grid_boxes.find(margin);
+  if (cached != layer.grid_boxes.end()) return cached->second;
+  std::optional<OGREnvelope>& box = layer.grid_boxes[margin];
+  OGREnvelope extent;
+  grid_extent_polygon(*layer.grid, margin).getEnvelope(&extent);
+  if (!layer.to_grid) {
+    box = extent;
+    return box;
+  }
+  if (!layer.to_layer) return box;
+  QuietGdalErrors quiet;
+  OGREnvelope out;
+  constexpr int kSamplesPerEdge = 64;
+  const bool ok =
+      layer.to_layer->TransformBounds(extent.MinX, extent.MinY, extent.MaxX, extent.MaxY, &out.MinX,
+                                      &out.MinY, &out.MaxX, &out.MaxY, kSamplesPerEdge) == TRUE;
+  // An antimeridian crossing comes back as MinX > MaxX: no single box, no cut.
+  if (!ok || !(out.MinX < out.MaxX && out.MinY < out.MaxY) || !std::isfinite(out.MinX) ||
+      !std::isfinite(out.MaxX) || !std::isfinite(out.MinY) || !std::isfinite(out.MaxY)) {
+    return box;
+  }
+  const double slack_x = 0.1 * (out.MaxX - out.MinX);
+  const double slack_y = 0.1 * (out.MaxY - out.MinY);
+  out.MinX -= slack_x;
+  out.MaxX += slack_x;
+  out.MinY -= slack_y;
+  out.MaxY += slack_y;
+  if (layer.source_is_geographic) {  // latitudes end at the poles
+    out.MinY = std::max(out.MinY, -90.0);
+    out.MaxY = std::min(out.MaxY, 90.0);
+  }
+  box = out;
+  return box;
+}
+
+OGRPolygon densified_box(const OGREnvelope& box) {
+  constexpr int kSegments = 64;
+  OGRLinearRing ring;
+  const std::pair<double, double> corners[] = {{box.MinX, box.MinY},
+                                               {box.MaxX, box.MinY},
+                                               {box.MaxX, box.MaxY},
+                                               {box.MinX, box.MaxY},
+                                               {box.MinX, box.MinY}};
+  for (int edge = 0; edge < 4; ++edge) {
+    const auto [x0, y0] = corners[edge];
+    const auto [x1, y1] = corners[edge + 1];
+    for (int i = 0; i < kSegments; ++i) {
+      const double t = double(i) / kSegments;
+      ring.addPoint(x0 + t * (x1 - x0), y0 + t * (y1 - y0));
+    }
+  }
+  ring.closeRings();
+  OGRPolygon polygon;
+  polygon.addRing(&ring);
+  return polygon;
+}
+
 namespace {
 
-// `reprojected`: the curve is in the grid's CRS after transform_to_grid; an implausible vertex
-// there means the layer's CRS does not describe its coordinates (or PROJ does not know it).
+// `reprojected`: the curve is in the grid's CRS after transform_parts_to_grid; an implausible
+// vertex there means the layer's CRS does not describe its coordinates (or PROJ does not know it).
 void check_curve(const OGRSimpleCurve& curve, bool geographic, bool reprojected,
                  const OpenVectorLayer& layer, std::int64_t fid) {
   for (int i = 0; i < curve.getNumPoints(); ++i) {
@@ -170,14 +245,67 @@ void check_coordinates(const OGRGeometry& geometry, const OpenVectorLayer& layer
   check_geometry(geometry, layer.source_is_geographic, false, layer, fid);
 }
 
-void transform_to_grid(OGRGeometry& geometry, const OpenVectorLayer& layer, std::int64_t fid) {
-  if (!layer.to_grid) return;
+bool transform_parts_to_grid(OGRGeometryCollection& parts, const OpenVectorLayer& layer,
+                             std::int64_t fid, const std::string& subject, Warnings& warnings) {
+  if (!layer.to_grid) return !parts.IsEmpty();
   QuietGdalErrors quiet;
-  if (geometry.transform(layer.to_grid.get()) != OGRERR_NONE) {
-    fail("{}: FID {}: cannot reproject into the grid's CRS: {}", layer.label, fid,
-         last_gdal_error());
+  for (int i = parts.getNumGeometries() - 1; i >= 0; --i) {
+    CPLErrorReset();
+    if (parts.getGeometryRef(i)->transform(layer.to_grid.get()) == OGRERR_NONE) continue;
+    warnings.add("dropped_part", subject, fid,
+                 fmt::format("{}: a part PROJ cannot move into the grid's CRS ({}) was dropped",
+                             layer.label, last_gdal_error()));
+    parts.removeGeometry(i);
   }
-  check_geometry(geometry, false, true, layer, fid);
+  check_geometry(parts, false, true, layer, fid);
+  return !parts.IsEmpty();
+}
+
+OGRFeatureUniquePtr next_feature(const OpenVectorLayer& layer) {
+  QuietGdalErrors quiet;
+  CPLErrorReset();
+  OGRFeatureUniquePtr feature(layer.layer->GetNextFeature());
+  if (CPLGetLastErrorType() >= CE_Failure) {
+    fail("{}: reading its features failed: {}", layer.label, last_gdal_error());
+  }
+  return feature;
+}
+
+namespace {
+
+// Rows under the layer's current filter; counted one by one where the driver cannot (OSM).
+GIntBig count_rows(OGRLayer& rows) {
+  GIntBig count = rows.GetFeatureCount(TRUE);
+  if (count >= 0) return count;
+  count = 0;
+  rows.ResetReading();
+  while (OGRFeatureUniquePtr(rows.GetNextFeature())) ++count;
+  rows.ResetReading();
+  return count;
+}
+
+}  // namespace
+
+std::optional<std::string> why_no_features(OpenVectorLayer& layer, const std::string& where) {
+  QuietGdalErrors quiet;
+  OGRLayer& rows = *layer.layer;
+  const GIntBig selected = count_rows(rows);
+  rows.SetAttributeFilter(nullptr);
+  const GIntBig all = count_rows(rows);
+  OGREnvelope extent;
+  const bool has_extent = rows.GetExtent(&extent, TRUE) == OGRERR_NONE;
+  rows.SetAttributeFilter(where.empty() ? nullptr : where.c_str());
+  rows.ResetReading();
+  const std::optional<OGREnvelope> box = grid_box_in_layer_crs(layer, 0.0);
+  if (all > 0 && has_extent && box && !extent.Intersects(*box)) return std::nullopt;
+  if (all == 0) return fmt::format("{}: the layer has no rows", layer.label);
+  if (selected == 0) {
+    return fmt::format("{}: the where clause '{}' matches none of its {} rows", layer.label, where,
+                       all);
+  }
+  return fmt::format(
+      "{}: none of its {} feature{} lies on the heightfield, though the layer's extent meets it",
+      layer.label, selected, selected == 1 ? "" : "s");
 }
 
 std::vector<Vec2> curve_points(const OGRSimpleCurve& curve) {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/progress.hpp"
 #include "pipeline/detail/area_lead.hpp"
 #include "raster/rasterize.hpp"
 
@@ -76,6 +77,8 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
   }
   dataset->StartTransaction();
   int base = 0;  // instance numbers run on across polygons
+  // Millions of strokes take minutes: a line per tenth, with the time left.
+  Progress progress("areas.gpkg", std::int64_t(results.size()));
   for (const AreaResult& r : results) {
     for (const PlacedStroke& s : r.pattern.strokes) {
       OGRFeature feature(strokes->GetLayerDefn());
@@ -107,6 +110,7 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
         fail("{}: write failed", path.string());
     }
     base += int(r.pattern.instances.size());
+    progress.advance();
   }
   if (dataset->CommitTransaction() != OGRERR_NONE) fail("{}: commit failed", path.string());
   dataset.reset();  // GDALClose flushes; an error here would be a disk error

@@ -82,12 +82,12 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
     fail("{}: {}", spec.subject, e.what());  // the key too: file, layer and FID are named
   }
   if (lines.empty()) {
+    const std::optional<std::string> why = why_no_features(spec.source, heightfield);
     warnings.add(
         "empty_class", "features." + config.name, std::nullopt,
-        fmt::format("{}{}{}: no line feature on the heightfield (empty layer, a where "
-                    "clause that matches nothing, or lines outside the heightfield's "
-                    "extent); the class is left out",
-                    config.source.string(), config.layer.empty() ? "" : ":", config.layer));
+        fmt::format("{}{}{}: no line feature on the heightfield ({}); the class is left out",
+                    config.source.string(), config.layer.empty() ? "" : ":", config.layer,
+                    why ? *why : "the layer's extent lies off the heightfield"));
   }
   return lines;
 }
@@ -100,6 +100,7 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
     const ExistingConfig& e = existing[i];
     const std::string key = "existing." + std::to_string(i);
     const VectorSource source{e.source.string(), e.layer, selection_where(e.tags, e.where)};
+    const std::size_t before = out.polygons.size() + out.lines.size();
     try {
       if (e.width > 0.0) {
         LineClassSpec spec;
@@ -116,6 +117,11 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
         for (PolygonFeature& polygon : read_polygon_features(source, heightfield, key, warnings)) {
           out.polygons.push_back(std::move(polygon.rings));
         }
+      }
+      // A source that meets the heightfield and gives nothing is a warning, never a silent 0.
+      if (out.polygons.size() + out.lines.size() == before) {
+        if (const std::optional<std::string> why = why_no_features(source, heightfield))
+          warnings.add("empty_source", key, std::nullopt, *why);
       }
     } catch (const Error& error) {
       fail("{}: {}", key, error.what());
