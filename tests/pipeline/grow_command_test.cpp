@@ -136,16 +136,21 @@ class GrowOptions : public ::testing::Test {
   static constexpr const char* kAbsent = "<absent>";
 
   void SetUp() override {
-    // Two 300 m boxes on the hillside, for --region as polygons and --where.
+    // Two 200 m boxes on the hillside, for --region as polygons and --where; a track without a
+    // width attribute across it, for --avoid-width.
     std::ofstream(dir / "fields.geojson") << R"({"type": "FeatureCollection",
       "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::31985"}},
       "features": [
       {"type": "Feature", "properties": {"name": "upper"}, "geometry": {"type": "Polygon",
-       "coordinates": [[[291000, 9114300], [291300, 9114300], [291300, 9114600],
-                        [291000, 9114600], [291000, 9114300]]]}},
+       "coordinates": [[[291200, 9115250], [291400, 9115250], [291400, 9115400],
+                        [291200, 9115400], [291200, 9115250]]]}},
       {"type": "Feature", "properties": {"name": "lower"}, "geometry": {"type": "Polygon",
-       "coordinates": [[[291100, 9114000], [291400, 9114000], [291400, 9114300],
-                        [291100, 9114300], [291100, 9114000]]]}}]})";
+       "coordinates": [[[291300, 9115100], [291500, 9115100], [291500, 9115250],
+                        [291300, 9115250], [291300, 9115100]]]}}]})";
+    std::ofstream(dir / "track.geojson") << R"({"type": "FeatureCollection",
+      "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::31985"}},
+      "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+       "coordinates": [[291350, 9115050], [291350, 9115450]]}}]})";
     // The demo DEM with every height doubled: the same ground, steeper.
     GDALAllRegister();
     std::unique_ptr<GDALDataset> dem(GDALDataset::Open((source_dir() / "samples/dem.tif").c_str(),
@@ -167,7 +172,7 @@ class GrowOptions : public ::testing::Test {
   static Args base() {
     const std::string samples = (source_dir() / "samples").string();
     return {{"--dem", samples + "/dem.tif"},
-            {"--region", "291000,9114000,291400,9114400"},
+            {"--region", "291200,9115100,291500,9115400"},  // the West spur road crosses it
             {"--where", kAbsent},
             {"--element", samples + "/ornaments/hedge.json"},
             {"--avoid", kAbsent},
@@ -177,7 +182,7 @@ class GrowOptions : public ::testing::Test {
             {"--contour", kAbsent},
             {"--first-fit", kAbsent},
             {"--trials", kAbsent},
-            {"--max-ornaments", kAbsent},
+            {"--max-ornaments", "4"},
             {"--clearance", kAbsent},
             {"--coverage-radius", kAbsent},
             {"--out", "out"}};
@@ -188,7 +193,9 @@ class GrowOptions : public ::testing::Test {
         "cd '" + dir.path().string() + "' && '" + terraweave_binary().string() + "' -q grow";
     for (const auto& [option, value] : args) {
       if (value == kAbsent) continue;
-      line += " " + option + (value.empty() ? "" : " '" + value + "'");
+      std::string quoted = "'";  // a shell word: ' as '\''
+      for (char ch : value) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+      line += " " + option + (value.empty() ? "" : " " + quoted + "'");
     }
     const auto cached = runs_.find(line);
     if (cached != runs_.end()) return cached->second;
@@ -213,7 +220,8 @@ class GrowOptions : public ::testing::Test {
 TEST_F(GrowOptions, EveryOptionChangesTheOutput) {
   const std::string samples = (source_dir() / "samples").string();
   const std::string fields = (dir / "fields.geojson").string();
-  const std::string roads = samples + "/map.gpkg:roads";
+  const std::string roads = samples + "/map.gpkg:roads";  // with a width attribute
+  const std::string track = (dir / "track.geojson").string();  // without
   struct Row {
     std::string option;
     Args a, b;  // overrides of base()
@@ -221,15 +229,15 @@ TEST_F(GrowOptions, EveryOptionChangesTheOutput) {
   };
   const std::vector<Row> table = {
       {"--dem", {}, {{"--dem", (dir / "steep.tif").string()}}},
-      {"--region", {}, {{"--region", "291100,9114100,291500,9114500"}}},
+      {"--region", {}, {{"--region", "291250,9115150,291550,9115450"}}},
       {"--where",
        {{"--region", fields}, {"--where", "name = 'upper'"}},
        {{"--region", fields}, {"--where", "name = 'lower'"}}},
       {"--element", {}, {{"--element", samples + "/ornaments/ditch.json"}}},
       {"--avoid", {}, {{"--avoid", roads}}},
       {"--avoid-width",
-       {{"--avoid", roads}, {"--avoid-width", "6"}},
-       {{"--avoid", roads}, {"--avoid-width", "60"}}},
+       {{"--avoid", track}, {"--avoid-width", "6"}},
+       {{"--avoid", track}, {"--avoid-width", "60"}}},
       {"--resolution", {}, {{"--resolution", "8"}}},
       {"--seed", {}, {{"--seed", "8"}}},
       {"--contour", {}, {{"--contour", ""}}},

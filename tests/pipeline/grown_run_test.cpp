@@ -328,7 +328,7 @@ TEST(GrownConfig, ABadElementSetFailsTheRunNamingTheKeyAndTheJsonKey) {
 }
 
 // Issue #21: on the demo DEM (90 m cells, UTM), hedges (2 m) and ditches (1 m) grow over two
-// overlapping regions on a 10 m mesh, beside a road (10 m) and two streams (12 and 15 m): the
+// overlapping regions on a 10 m mesh, beside a road (6 m) and two streams (10 and 15 m): the
 // footprints are narrower than the mesh's vertex spacing, so the mesh's mask alone lets lines
 // through them. Checked here independently of the run's own check, with GEOS (OGR): no hedge
 // footprint meets a ditch footprint, no line of a class crosses another of it (they may meet
