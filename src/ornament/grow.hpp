@@ -2,7 +2,8 @@
 // FloralSurf's space filling (Albano et al. 2023, Algorithm 1) over a heightfield window:
 // ornaments grow element by element from a priority queue of growth points; at each point ten
 // seeded random candidates are traced, those that cross a placed ornament, come within the
-// set's clearance of one or enter a forbidden pixel are rejected, and the one farthest on
+// set's clearance of one, enter a forbidden pixel or overlap a footprint to keep off (exactly,
+// in vector space: ornament/footprints.hpp) are rejected, and the one farthest on
 // average (heat-method geodesic distance) from what is placed wins. When the queue is empty
 // the next ornament starts at the allowed point farthest from everything placed.
 #include <cstdint>
