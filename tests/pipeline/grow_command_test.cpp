@@ -220,7 +220,7 @@ class GrowOptions : public ::testing::Test {
 TEST_F(GrowOptions, EveryOptionChangesTheOutput) {
   const std::string samples = (source_dir() / "samples").string();
   const std::string fields = (dir / "fields.geojson").string();
-  const std::string roads = samples + "/map.gpkg:roads";  // with a width attribute
+  const std::string roads = samples + "/map.gpkg:roads";       // with a width attribute
   const std::string track = (dir / "track.geojson").string();  // without
   struct Row {
     std::string option;
