@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -455,6 +456,67 @@ features:
     }
   }
   EXPECT_GT(near_other_class, 0);  // the regions overlap: hedges and ditches meet there
+}
+
+
+// Issue #21: the check after growth counts what the growth should have refused and fails the
+// run naming the lines; lines that only meet end to end (an ornament's joint) and keep their
+// footprints apart pass with zero counts.
+TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
+  PipelineConfig config;
+  config.features.resize(3);
+  config.features[0].name = "roads";
+  config.features[1].name = "hedges";
+  config.features[1].width = 2.0;
+  config.features[1].grow.emplace();
+  config.features[2].name = "ditches";
+  config.features[2].width = 1.0;
+  config.features[2].grow.emplace();
+  std::vector<std::vector<LineFeature>> lines(3);
+  LineFeature road;
+  road.fid = 4;
+  road.points = {{100.0, 0.0}, {100.0, 200.0}};
+  road.width = 6.0;
+  lines[0].push_back(road);
+  const auto line = [](std::vector<Vec2> points) {
+    GrownLine l;
+    l.points = std::move(points);
+    return l;
+  };
+  std::vector<GrownClass> grown(2);
+  grown[0].class_index = 1;
+  grown[1].class_index = 2;
+  // Hedges: FID 1 and 2 meet end to end at (50, 50); FID 3 ends 1.9 m from the road's centre
+  // line (its 1 m half width and the road's 3 m overlap).
+  grown[0].lines = {line({{10, 50}, {50, 50}}), line({{50, 50}, {60, 90}}),
+                    line({{60, 20}, {98.1, 20}})};
+  // Ditches: FID 1 1.4 m from hedge FID 1 (1 m + 0.5 m overlap), FID 2 1.6 m (apart).
+  grown[1].lines = {line({{20, 51.4}, {40, 51.4}}), line({{20, 48.4}, {40, 48.4}})};
+  std::vector<FeatureClassReport> reports(3);
+  reports[1].grow.emplace();
+  reports[2].grow.emplace();
+  try {
+    detail::check_grown_lines(config, {}, lines, grown, {}, reports);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("grow: 2 grown crossings (1 between grown lines, 1 with "
+                                    "features, 0 through nodata cells"));
+    EXPECT_THAT(e.what(), HasSubstr("hedges FID 3 overlaps the footprint of roads FID 4"));
+    EXPECT_THAT(e.what(), HasSubstr("ditches FID 1 overlaps hedges FID 1"));
+  }
+  EXPECT_EQ(reports[1].grow->crossings.feature, 1);
+  EXPECT_EQ(reports[1].grow->crossings.grown, 0);
+  EXPECT_EQ(reports[2].grow->crossings.grown, 1);  // a pair counts in the later class
+  // Apart, and meeting only end to end: no error, zero counts.
+  grown[0].lines[2] = line({{60, 20}, {95.9, 20}});
+  grown[1].lines[0] = line({{20, 51.6}, {40, 51.6}});
+  EXPECT_NO_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports));
+  EXPECT_EQ(reports[1].grow->crossings.feature, 0);
+  EXPECT_EQ(reports[2].grow->crossings.grown, 0);
+  // A hedge across another in its class is a crossing, not a joint.
+  grown[0].lines.push_back(line({{30, 40}, {30, 60}}));
+  EXPECT_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports), Error);
+  EXPECT_EQ(reports[1].grow->crossings.grown, 1);
 }
 
 }  // namespace

@@ -104,9 +104,8 @@ FootprintIndex keep_off_footprints(const PipelineConfig& config, std::size_t c,
   return index;
 }
 
-// The safety net (docs/ornaments.md, "Crossings"): the lines that ornaments.gpkg gets, checked
-// exactly against each other, the features read and the nodata cells; counted in each class's
-// report; any crossing fails the run (a growth bug, like a pattern violation).
+}  // namespace
+
 void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& existing,
                        const std::vector<std::vector<LineFeature>>& lines,
                        const std::vector<GrownClass>& grown,
@@ -136,8 +135,6 @@ void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& exi
       "cells; a growth bug): {}",
       check.total.total(), check.total.grown, check.total.feature, check.total.forbidden, first);
 }
-
-}  // namespace
 
 std::vector<GrownClass> grow_classes(const PipelineConfig& config, const HeightfieldSource& source,
                                      const Heightfield& heightfield,
