@@ -540,9 +540,10 @@ int main(int argc, char** argv) {
       const tw::GrowCommandResult r = tw::run_grow_command(grow_args);
       std::printf(
           "%d ornaments, %d elements, %d lines; coverage within %.1f m: %.3f (rejected: %d "
-          "crossing, %d forbidden, %d off the window)\n",
+          "crossing, %d forbidden, %d onto a footprint, %d off the window); %lld crossings\n",
           r.ornaments, r.elements, r.lines, r.coverage_radius, r.coverage, r.rejected_crossing,
-          r.rejected_forbidden, r.rejected_untraceable);
+          r.rejected_forbidden, r.rejected_footprint, r.rejected_untraceable,
+          static_cast<long long>(r.crossings.total()));
       return 0;
     }
     if (make_world->parsed()) {

@@ -48,11 +48,12 @@ struct Candidate {
 class Grower {
  public:
   Grower(const TerrainSurface& surface, const Raster<std::uint8_t>& allowed, const ElementSet& set,
-         const GrowthParams& params)
+         const GrowthParams& params, const KeepOff& keep_off)
       : surface_(surface),
         allowed_(allowed),
         set_(set),
         params_(params),
+        keep_off_(keep_off),
         index_(std::max({set.clearance_m, 2.0 * surface.grid().pixel_width, 1e-3})) {
     const int n = surface.vertex_count(), w = surface.window().width, h = surface.window().height;
     // Forbidden ground and the window's border (a walk cannot leave the window) as seen from
@@ -163,8 +164,12 @@ class Grower {
   }
 
   bool forbidden(const std::vector<Vec2>& line) const {
+    const ForbiddenCells* cells = keep_off_.cells;
     for (std::size_t k = 0; k + 1 < line.size(); ++k) {
       if (enters_forbidden(surface_.grid(), surface_.window(), allowed_, line[k], line[k + 1]))
+        return true;
+      if (cells &&
+          enters_forbidden(cells->grid, cells->window, cells->allowed, line[k], line[k + 1]))
         return true;
     }
     return false;
@@ -200,6 +205,13 @@ class Grower {
       if (std::any_of(c.polylines.begin(), c.polylines.end(),
                       [&](const auto& l) { return forbidden(l); })) {
         ++result_.rejected_forbidden;
+        continue;
+      }
+      if (keep_off_.footprints &&
+          std::any_of(c.polylines.begin(), c.polylines.end(), [&](const auto& l) {
+            return keep_off_.footprints->overlaps(l, keep_off_.half_width);
+          })) {
+        ++result_.rejected_footprint;
         continue;
       }
       if (std::any_of(c.polylines.begin(), c.polylines.end(), [&](const auto& l) {
@@ -298,6 +310,7 @@ class Grower {
   const Raster<std::uint8_t>& allowed_;
   const ElementSet& set_;
   const GrowthParams& params_;
+  const KeepOff& keep_off_;
   SegmentIndex index_;
   std::vector<double> to_blocked_, to_placed_;
   std::vector<std::uint8_t> dead_;
@@ -340,14 +353,15 @@ bool enters_forbidden(const GridSpec& grid, const Window& window,
 }
 
 GrowthResult grow_ornaments(const TerrainSurface& surface, const Raster<std::uint8_t>& allowed,
-                            const ElementSet& set, const GrowthParams& params) {
+                            const ElementSet& set, const GrowthParams& params,
+                            const KeepOff& keep_off) {
   if (allowed.width != surface.window().width || allowed.height != surface.window().height) {
     fail("grow: the allowed mask is {}x{}, the surface window {}x{}", allowed.width, allowed.height,
          surface.window().width, surface.window().height);
   }
   if (params.trials < 1) fail("grow: trials must be >= 1, not {}", params.trials);
   if (elements_with_tag(set, set.seed_tag).empty()) fail("grow: no element has the seed tag");
-  return Grower(surface, allowed, set, params).run();
+  return Grower(surface, allowed, set, params, keep_off).run();
 }
 
 double ornament_coverage(const TerrainSurface& surface, const Raster<std::uint8_t>& allowed,

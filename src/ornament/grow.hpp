@@ -2,7 +2,8 @@
 // FloralSurf's space filling (Albano et al. 2023, Algorithm 1) over a heightfield window:
 // ornaments grow element by element from a priority queue of growth points; at each point ten
 // seeded random candidates are traced, those that cross a placed ornament, come within the
-// set's clearance of one or enter a forbidden pixel are rejected, and the one farthest on
+// set's clearance of one, enter a forbidden pixel or overlap a footprint to keep off (exactly,
+// in vector space: ornament/footprints.hpp) are rejected, and the one farthest on
 // average (heat-method geodesic distance) from what is placed wins. When the queue is empty
 // the next ornament starts at the allowed point farthest from everything placed.
 #include <cstdint>
@@ -11,6 +12,7 @@
 
 #include "core/grid.hpp"
 #include "ornament/element.hpp"
+#include "ornament/footprints.hpp"
 #include "ornament/surface.hpp"
 
 namespace tw {
@@ -53,14 +55,34 @@ struct GrowthResult {
   std::vector<GrownLine> lines;
   int ornaments = 0, elements = 0;
   int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
+  int rejected_footprint = 0;  // candidates that came onto a footprint of KeepOff
   // Heat-method solves after placing an element: on a part of the mesh, on the whole of it.
   int local_solves = 0, whole_solves = 0;
 };
 
+// Cells of a grid no line may pass through (a heightfield's nodata, on its own grid, which may
+// be finer than the mesh's): nonzero in `allowed` where a line may go; outside `window` none.
+struct ForbiddenCells {
+  GridSpec grid;
+  Window window;
+  Raster<std::uint8_t> allowed;  // window-sized
+};
+
+// What the lines keep off exactly, on the vector lines a candidate would write (the mesh's
+// `allowed` mask is coarser: a footprint narrower than its vertex spacing slips through it).
+struct KeepOff {
+  const FootprintIndex* footprints = nullptr;  // features read, lines grown before
+  double half_width = 0.0;                     // the grown lines' own footprint, metres
+  const ForbiddenCells* cells = nullptr;
+};
+
 // `allowed` is window-sized: nonzero where ornaments may go (inside the region, off avoided
-// features). Deterministic: the same inputs and seed give the same lines, bit for bit.
+// features). A candidate whose lines, buffered by keep_off.half_width, overlap a footprint of
+// keep_off or pass through one of its forbidden cells is rejected like one that crosses a
+// placed line. Deterministic: the same inputs and seed give the same lines, bit for bit.
 GrowthResult grow_ornaments(const TerrainSurface& surface, const Raster<std::uint8_t>& allowed,
-                            const ElementSet& set, const GrowthParams& params);
+                            const ElementSet& set, const GrowthParams& params,
+                            const KeepOff& keep_off = {});
 
 // The fraction of allowed vertices within `radius_m` (heat-method geodesic distance) of a line.
 double ornament_coverage(const TerrainSurface& surface, const Raster<std::uint8_t>& allowed,

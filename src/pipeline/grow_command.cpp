@@ -16,6 +16,7 @@
 #include "geo/heightfield_source.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
+#include "ornament/crossings.hpp"
 #include "ornament/grow.hpp"
 #include "pipeline/detail/grow_region.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
@@ -65,9 +66,16 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
   AvoidanceInputs avoided;
   if (!c.avoid.empty())
     avoided = detail::avoided_features(frame, c.avoid, c.avoid_width, "grow.avoid", warnings);
+  // The lines are their kind's width (a hedge bank 2 m, as in a run): footprints keep apart.
+  const double width = detail::grown_kind_width(set.kind);
+  const FootprintIndex footprints = detail::footprints_of(avoided);
+  for (double& w : avoided.line_widths) w += width;  // the mesh's mask: footprints apart
+  Raster<float> dem_heights = dem->read(window);
+  const ForbiddenCells cells = detail::nodata_cells(grid, window, dem_heights);
+  const KeepOff keep_off{&footprints, 0.5 * width, &cells};
   const detail::GrownRegion grown_region =
-      detail::grow_region(detail::with_settings(set, c), c, grid, window, dem->read(window), region,
-                          avoided, "--region " + c.region);
+      detail::grow_region(detail::with_settings(set, c), c, grid, window, std::move(dem_heights),
+                          region, avoided, keep_off, "--region " + c.region);
   const GrowthResult& grown = grown_region.grown;
   const Raster<float>& heights = grown_region.heights;
 
@@ -79,6 +87,7 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
   result.rejected_crossing = grown.rejected_crossing;
   result.rejected_forbidden = grown.rejected_forbidden;
   result.rejected_untraceable = grown.rejected_untraceable;
+  result.rejected_footprint = grown.rejected_footprint;
   result.width = window.width;
   result.height = window.height;
   result.coverage_radius = grown_region.coverage_radius;
@@ -92,6 +101,19 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
   preview.grid.origin_y = grid.origin_y - window.row0 * grid.pixel_height;
   preview.crs_wkt = frame.crs_wkt;
   preview.layers.push_back(height_layer(heights));
+  // The safety net: the lines about to be written, checked exactly (docs/ornaments.md,
+  // "Crossings"); any crossing is a growth bug and nothing is written.
+  const CrossingCheck check = check_crossings({{&grown.lines, 0.5 * width, &cells}}, footprints);
+  result.crossings = check.total;
+  if (check.total.total() != 0) {
+    std::string first;
+    for (const Crossing& x : check.first)
+      first += (first.empty() ? "" : "; ") + describe(x, {"ornaments"}, {});
+    fail(
+        "grow: {} grown crossings ({} between grown lines, {} with avoided features, {} through "
+        "nodata cells; a growth bug): {}",
+        check.total.total(), check.total.grown, check.total.feature, check.total.forbidden, first);
+  }
   std::vector<std::vector<Vec2>> drawn;
   for (const GrownLine& line : grown.lines) drawn.push_back(line.points);
 

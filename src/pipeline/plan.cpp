@@ -262,6 +262,10 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
     clock.start("grow");
     plan.grown = detail::grow_classes(config, *source, heightfield, existing, lines, report.classes,
                                       warnings);
+    for (const FeatureClassReport& c : report.classes)
+      if (c.grow)
+        report.grown_crossings +=
+            c.grow->crossings.grown + c.grow->crossings.feature + c.grow->crossings.forbidden;
     clock.stop();
   }
 

@@ -64,11 +64,21 @@ struct GrownSynthesisReport {
   int dressed = 0, no_room = 0;
 };
 
+// Grown lines that cross (docs/ornaments.md, "Crossings"): checked exactly on the lines
+// written; 0, or the run fails.
+struct GrownCrossings {
+  std::int64_t grown = 0;      // pairs of grown lines (crossing in a class, overlapping across)
+  std::int64_t feature = 0;    // (grown line, feature read) footprints overlapping
+  std::int64_t forbidden = 0;  // grown lines through a nodata cell
+};
+
 struct GrowthReport {
   std::string kind;     // hedge, wall, trail, ditch (or the line kind given with grow:)
   std::string element;  // the element set
   int ornaments = 0, elements = 0, lines = 0;
   int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
+  int rejected_footprint = 0;  // candidates onto a footprint, exactly (vector space)
+  GrownCrossings crossings;
   double coverage = 0.0, coverage_radius_m = 0.0;
   int mesh_width = 0, mesh_height = 0;  // vertices (the time is the stage `grow`'s)
   int short_lines = 0;  // lines shorter than one piece (delta): no ribbon, no pattern
@@ -146,6 +156,7 @@ struct RunReport {
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
   std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)
+  std::int64_t grown_crossings = 0;            // sum over grown classes (0, or the run fails)
   double total_seconds = 0.0;
   std::vector<Warning> warnings;  // in the order they were raised (report.json `warnings`)
   TilesReport tiles;

@@ -12,11 +12,14 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "core/error.hpp"
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -323,6 +326,197 @@ TEST(GrownConfig, ABadElementSetFailsTheRunNamingTheKeyAndTheJsonKey) {
     EXPECT_THAT(e.what(), HasSubstr("bad.json"));
   }
   EXPECT_FALSE(fs::exists(dir / "out/report.json"));
+}
+
+// Issue #21: on the demo DEM (90 m cells, UTM), hedges (2 m) and ditches (1 m) grow over two
+// overlapping regions on a 10 m mesh, beside a road (6 m) and two streams (10 and 15 m): the
+// footprints are narrower than the mesh's vertex spacing, so the mesh's mask alone lets lines
+// through them. Checked here independently of the run's own check, with GEOS (OGR): no hedge
+// footprint meets a ditch footprint, no line of a class crosses another of it (they may meet
+// end to end), no footprint meets a road's or a stream's; report.json counts 0 crossings and
+// the exact footprint test rejected candidates the mesh let through.
+TEST(GrownCrossings, HedgesAndDitchesOverlappingOnTheDemoDemNeverCross) {
+  test::TempDir dir;
+  const std::string samples = (test::source_dir() / "samples").string();
+  const std::string yaml = fmt::format(R"(
+version: 1
+seed: 7
+heightfield: {0}/dem.tif
+resolution: 5
+resampling: cubic
+region: [291200, 9114800, 291800, 9115400]
+output: {{ dir: out, preview: false, exr: false }}
+precedence: [rivers, roads, hedges, ditches]
+features:
+  rivers: {{ source: {0}/map.gpkg, layer: rivers, kind: river, width_attribute: width, width: 10 }}
+  roads: {{ source: {0}/map.gpkg, layer: roads, kind: road, width_attribute: width, width: 6 }}
+  hedges:
+    kind: hedge
+    grow: {{ element: {0}/ornaments/hedge.json, region: [291200, 9114800, 291650, 9115250],
+            resolution: 10, seed: 7 }}
+  ditches:
+    kind: ditch
+    grow: {{ element: {0}/ornaments/ditch.json, region: [291350, 9114950, 291800, 9115400],
+            resolution: 10, seed: 7 }}
+)",
+                                       samples);
+  const PipelineConfig config = parse_pipeline(yaml, "crossings.yaml", dir.path());
+  const RunReport report = run_pipeline(config);
+  EXPECT_EQ(report.grown_crossings, 0);
+  const nlohmann::json json = nlohmann::json::parse(test::read_file(dir / "out/report.json"));
+  EXPECT_EQ(json["grown_crossings"].get<int>(), 0);
+  int footprint_rejections = 0;
+  for (const auto& c : json["classes"]) {
+    if (!c.contains("grow")) continue;
+    EXPECT_EQ(c["grow"]["crossings"]["grown"].get<int>(), 0) << c["name"];
+    EXPECT_EQ(c["grow"]["crossings"]["feature"].get<int>(), 0) << c["name"];
+    EXPECT_EQ(c["grow"]["crossings"]["forbidden"].get<int>(), 0) << c["name"];
+    footprint_rejections += c["grow"]["rejected"]["footprint"].get<int>();
+  }
+  // The mesh's mask let candidates onto footprints; the exact test caught them.
+  EXPECT_GT(footprint_rejections, 0);
+
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> gpkg(
+      GDALDataset::Open((dir / "out/ornaments.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(gpkg);
+  struct Footprint {
+    std::string what;
+    std::unique_ptr<OGRGeometry> line;
+    double half_width = 0.0;
+    int set = 0;
+  };
+  const auto footprint = [](const std::string& what, const OGRGeometry* g, double width, int set) {
+    std::unique_ptr<OGRGeometry> flat(g->clone());
+    flat->flattenTo2D();
+    return Footprint{what, std::move(flat), 0.5 * width, set};
+  };
+  std::vector<Footprint> grown, features;
+  for (auto [layer_name, width, set] :
+       {std::tuple{"hedges", 2.0, 0}, std::tuple{"ditches", 1.0, 1}}) {
+    OGRLayer* layer = gpkg->GetLayerByName(layer_name);
+    ASSERT_TRUE(layer) << layer_name;
+    for (const auto& f : *layer)
+      grown.push_back(footprint(fmt::format("{} FID {}", layer_name, f->GetFID()),
+                                f->GetGeometryRef(), width, set));
+  }
+  std::unique_ptr<GDALDataset> map(
+      GDALDataset::Open((samples + "/map.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(map);
+  OGREnvelope region;
+  region.MinX = 291200, region.MinY = 9114800, region.MaxX = 291800, region.MaxY = 9115400;
+  for (const char* layer_name : {"roads", "rivers"}) {
+    for (const auto& f : *map->GetLayerByName(layer_name)) {
+      OGREnvelope e;
+      f->GetGeometryRef()->getEnvelope(&e);
+      if (!e.Intersects(region)) continue;
+      features.push_back(footprint(fmt::format("{} FID {}", layer_name, f->GetFID()),
+                                   f->GetGeometryRef(), f->GetFieldAsDouble("width"), -1));
+    }
+  }
+  int hedges = 0, ditches = 0;
+  for (const Footprint& g : grown) ++(g.set == 0 ? hedges : ditches);
+  std::printf("%d hedge lines, %d ditch lines, %zu roads and streams near\n", hedges, ditches,
+              features.size());
+  ASSERT_GT(hedges, 20);
+  ASSERT_GT(ditches, 20);
+  ASSERT_GE(features.size(), 2u);
+  // A centimetre of slack: the run reads the features through its repair (duplicate points).
+  constexpr double kSlack = 0.01;
+  int near_features = 0;
+  for (const Footprint& g : grown) {
+    for (const Footprint& f : features) {
+      const double d = g.line->Distance(f.line.get());
+      EXPECT_GE(d, g.half_width + f.half_width - kSlack) << g.what << " onto " << f.what;
+      near_features += d < g.half_width + f.half_width + 10.0;
+    }
+  }
+  EXPECT_GT(near_features, 0);  // lines grew up to the features' footprints
+  int near_other_class = 0;
+  for (std::size_t i = 0; i < grown.size(); ++i) {
+    const OGRLineString* a = grown[i].line->toLineString();
+    for (std::size_t j = i + 1; j < grown.size(); ++j) {
+      const OGRLineString* b = grown[j].line->toLineString();
+      if (grown[i].set != grown[j].set) {
+        const double d = a->Distance(b);
+        EXPECT_GE(d, grown[i].half_width + grown[j].half_width)
+            << grown[i].what << " onto " << grown[j].what;
+        near_other_class += d < 10.0;
+        continue;
+      }
+      if (!a->Intersects(b)) continue;
+      // In a class lines meet only end to end, at a point that ends both.
+      std::unique_ptr<OGRGeometry> common(a->Intersection(b));
+      OGRPoint start_a, end_a, start_b, end_b;
+      a->StartPoint(&start_a), a->EndPoint(&end_a), b->StartPoint(&start_b), b->EndPoint(&end_b);
+      const bool joint = common && wkbFlatten(common->getGeometryType()) == wkbPoint &&
+                         (common->Equals(&start_a) || common->Equals(&end_a)) &&
+                         (common->Equals(&start_b) || common->Equals(&end_b));
+      EXPECT_TRUE(joint) << grown[i].what << " crosses " << grown[j].what;
+    }
+  }
+  EXPECT_GT(near_other_class, 0);  // the regions overlap: hedges and ditches meet there
+}
+
+
+// Issue #21: the check after growth counts what the growth should have refused and fails the
+// run naming the lines; lines that only meet end to end (an ornament's joint) and keep their
+// footprints apart pass with zero counts.
+TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
+  PipelineConfig config;
+  config.features.resize(3);
+  config.features[0].name = "roads";
+  config.features[1].name = "hedges";
+  config.features[1].width = 2.0;
+  config.features[1].grow.emplace();
+  config.features[2].name = "ditches";
+  config.features[2].width = 1.0;
+  config.features[2].grow.emplace();
+  std::vector<std::vector<LineFeature>> lines(3);
+  LineFeature road;
+  road.fid = 4;
+  road.points = {{100.0, 0.0}, {100.0, 200.0}};
+  road.width = 6.0;
+  lines[0].push_back(road);
+  const auto line = [](std::vector<Vec2> points) {
+    GrownLine l;
+    l.points = std::move(points);
+    return l;
+  };
+  std::vector<GrownClass> grown(2);
+  grown[0].class_index = 1;
+  grown[1].class_index = 2;
+  // Hedges: FID 1 and 2 meet end to end at (50, 50); FID 3 ends 1.9 m from the road's centre
+  // line (its 1 m half width and the road's 3 m overlap).
+  grown[0].lines = {line({{10, 50}, {50, 50}}), line({{50, 50}, {60, 90}}),
+                    line({{60, 20}, {98.1, 20}})};
+  // Ditches: FID 1 1.4 m from hedge FID 1 (1 m + 0.5 m overlap), FID 2 1.6 m (apart).
+  grown[1].lines = {line({{20, 51.4}, {40, 51.4}}), line({{20, 48.4}, {40, 48.4}})};
+  std::vector<FeatureClassReport> reports(3);
+  reports[1].grow.emplace();
+  reports[2].grow.emplace();
+  try {
+    detail::check_grown_lines(config, {}, lines, grown, {}, reports);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("grow: 2 grown crossings (1 between grown lines, 1 with "
+                                    "features, 0 through nodata cells"));
+    EXPECT_THAT(e.what(), HasSubstr("hedges FID 3 overlaps the footprint of roads FID 4"));
+    EXPECT_THAT(e.what(), HasSubstr("ditches FID 1 overlaps hedges FID 1"));
+  }
+  EXPECT_EQ(reports[1].grow->crossings.feature, 1);
+  EXPECT_EQ(reports[1].grow->crossings.grown, 0);
+  EXPECT_EQ(reports[2].grow->crossings.grown, 1);  // a pair counts in the later class
+  // Apart, and meeting only end to end: no error, zero counts.
+  grown[0].lines[2] = line({{60, 20}, {95.9, 20}});
+  grown[1].lines[0] = line({{20, 51.6}, {40, 51.6}});
+  EXPECT_NO_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports));
+  EXPECT_EQ(reports[1].grow->crossings.feature, 0);
+  EXPECT_EQ(reports[2].grow->crossings.grown, 0);
+  // A hedge across another in its class is a crossing, not a joint.
+  grown[0].lines.push_back(line({{30, 40}, {30, 60}}));
+  EXPECT_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports), Error);
+  EXPECT_EQ(reports[1].grow->crossings.grown, 1);
 }
 
 }  // namespace

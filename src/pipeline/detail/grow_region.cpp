@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "ornament/surface.hpp"
+#include "pipeline/detail/grow_config.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
@@ -56,7 +57,7 @@ Window window_around(const std::vector<Polygon>& polygons, const GridSpec& grid)
 GrownRegion grow_region(const ElementSet& set, const GrowSettings& settings, const GridSpec& grid,
                         const Window& window, Raster<float> heights,
                         const std::vector<Polygon>& region, const AvoidanceInputs& avoided,
-                        const std::string& subject) {
+                        const KeepOff& keep_off, const std::string& subject) {
   if (window.width < 2 || window.height < 2)
     fail("{}: the region is outside the heightfield", subject);
   // The mesh, its heat-method factorization and the masks follow the region's window.
@@ -87,13 +88,35 @@ GrownRegion grow_region(const ElementSet& set, const GrowSettings& settings, con
   GrownRegion out;
   const auto started = std::chrono::steady_clock::now();
   const TerrainSurface surface(heights, grid, window);
-  out.grown = grow_ornaments(surface, allowed, set, growth_params(settings));
+  out.grown = grow_ornaments(surface, allowed, set, growth_params(settings), keep_off);
   out.growth_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   out.coverage_radius = settings.coverage_radius > 0.0 ? settings.coverage_radius : set.scale_m / 2;
   out.coverage = ornament_coverage(surface, allowed, out.grown.lines, out.coverage_radius);
   out.heights = std::move(heights);
   return out;
+}
+
+ForbiddenCells nodata_cells(const GridSpec& grid, const Window& window,
+                            const Raster<float>& heights) {
+  ForbiddenCells cells{grid, window, Raster<std::uint8_t>(window.width, window.height)};
+  for (std::size_t i = 0; i < heights.pixels.size(); ++i)
+    cells.allowed.pixels[i] = std::isfinite(heights.pixels[i]);
+  return cells;
+}
+
+FootprintIndex footprints_of(const AvoidanceInputs& avoided) {
+  FootprintIndex index;
+  for (const Polygon& p : avoided.polygons) index.add_polygon(p);
+  for (std::size_t i = 0; i < avoided.lines.size(); ++i)
+    index.add_line(avoided.lines[i], 0.5 * avoided.line_widths[i]);
+  return index;
+}
+
+double grown_kind_width(const std::string& kind) {
+  FeatureClassConfig c;
+  apply_grown_defaults(kind, c);
+  return c.width;
 }
 
 namespace {

@@ -41,11 +41,24 @@ struct GrownRegion {
 
 // Grows `set` over `region` on `window` of `grid`. `heights` is window-sized, NaN where nodata
 // (forbidden, never read as a height); no line enters `avoided` (pixel-centre rule on the
-// mesh). Throws tw::Error starting with `subject` when the window is too large or all nodata.
+// mesh, a coarse first filter that also steers the growth) nor, exactly in vector space, a
+// footprint or cell of `keep_off`. Throws tw::Error starting with `subject` when the window is
+// too large or all nodata.
 GrownRegion grow_region(const ElementSet& set, const GrowSettings& settings, const GridSpec& grid,
                         const Window& window, Raster<float> heights,
                         const std::vector<Polygon>& region, const AvoidanceInputs& avoided,
-                        const std::string& subject);
+                        const KeepOff& keep_off, const std::string& subject);
+
+// The cells of `window` of `grid` where `heights` (window-sized) is nodata, as ForbiddenCells.
+ForbiddenCells nodata_cells(const GridSpec& grid, const Window& window,
+                            const Raster<float>& heights);
+
+// The footprints of AvoidanceInputs' polygons and lines (each line buffered by half its width),
+// ids in that order.
+FootprintIndex footprints_of(const AvoidanceInputs& avoided);
+
+// A grown kind's width in metres (hedge 2, wall 1, trail 2, ditch 1: apply_grown_defaults).
+double grown_kind_width(const std::string& kind);
 
 // One layer of ornaments.gpkg: the grown lines of one class (or of `terraweave grow`).
 struct OrnamentLayer {

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
+#include "ornament/crossings.hpp"
 #include "pipeline/detail/grow_region.hpp"
 
 namespace tw::detail {
@@ -54,7 +57,84 @@ double profile_height(const FeatureClassConfig& c) {
   return 0.0;
 }
 
+// The heightfield's nodata cells (on its own grid, finer than the mesh's or not) around the
+// region's window on the mesh: no grown line passes through one. None without a nodata value.
+std::optional<ForbiddenCells> nodata_around(const HeightfieldSource& source, const GridSpec& grid,
+                                            const std::vector<Polygon>& region,
+                                            const GridSpec& mesh) {
+  if (!source.nodata_value()) return std::nullopt;
+  Window w = window_around(region, grid);
+  // A line keeps within half a mesh vertex of the region's outline.
+  const int margin = int(std::ceil(mesh.pixel_width / grid.pixel_width)) + 1;
+  const int col1 = std::min(w.col0 + w.width + margin, grid.width),
+            row1 = std::min(w.row0 + w.height + margin, grid.height);
+  w.col0 = std::max(w.col0 - margin, 0);
+  w.row0 = std::max(w.row0 - margin, 0);
+  w.width = col1 - w.col0;
+  w.height = row1 - w.row0;
+  if (w.width < 1 || w.height < 1) return std::nullopt;
+  return nodata_cells(grid, w, source.read(w));
+}
+
+// What the lines of class `c` keep off, exactly: the existing features, the lines read and the
+// lines grown before (each buffered by half its width); `names` gets what each id is.
+FootprintIndex keep_off_footprints(const PipelineConfig& config, std::size_t c,
+                                   const ExistingFeatures& existing,
+                                   const std::vector<std::vector<LineFeature>>& lines,
+                                   bool grown_ones, std::vector<std::string>* names) {
+  FootprintIndex index;
+  for (std::size_t i = 0; i < existing.polygons.size(); ++i) {
+    index.add_polygon(existing.polygons[i]);
+    if (names) names->push_back(fmt::format("existing polygon {}", i + 1));
+  }
+  for (std::size_t i = 0; i < existing.lines.size(); ++i) {
+    index.add_line(existing.lines[i], 0.5 * existing.line_widths[i]);
+    if (names) names->push_back(fmt::format("existing line {}", i + 1));
+  }
+  for (std::size_t other = 0; other < config.features.size(); ++other) {
+    const bool grown = bool(config.features[other].grow);
+    if (other == c || (grown && (!grown_ones || other > c))) continue;
+    for (const LineFeature& line : lines[other]) {
+      std::vector<Vec2> points = line.points;
+      if (line.closed && !points.empty()) points.push_back(points.front());
+      index.add_line(points, 0.5 * line.width);
+      if (names) names->push_back(fmt::format("{} FID {}", config.features[other].name, line.fid));
+    }
+  }
+  return index;
+}
+
 }  // namespace
+
+void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& existing,
+                       const std::vector<std::vector<LineFeature>>& lines,
+                       const std::vector<GrownClass>& grown,
+                       const std::map<std::size_t, std::optional<ForbiddenCells>>& cells,
+                       std::vector<FeatureClassReport>& reports) {
+  std::vector<std::string> feature_names, set_names;
+  const FootprintIndex features =
+      keep_off_footprints(config, config.features.size(), existing, lines, false, &feature_names);
+  std::vector<GrownLineSet> sets;
+  for (const GrownClass& g : grown) {
+    const auto found = cells.find(g.class_index);
+    const ForbiddenCells* c = found != cells.end() && found->second ? &*found->second : nullptr;
+    sets.push_back({&g.lines, 0.5 * config.features[g.class_index].width, c});
+    set_names.push_back(config.features[g.class_index].name);
+  }
+  const CrossingCheck check = check_crossings(sets, features);
+  for (std::size_t s = 0; s < grown.size(); ++s) {
+    GrowthReport& r = *reports[grown[s].class_index].grow;
+    r.crossings = {check.per_set[s].grown, check.per_set[s].feature, check.per_set[s].forbidden};
+  }
+  if (check.total.total() == 0) return;
+  std::string first;
+  for (const Crossing& c : check.first)
+    first += (first.empty() ? "" : "; ") + describe(c, set_names, feature_names);
+  fail(
+      "grow: {} grown crossings ({} between grown lines, {} with features, {} through nodata "
+      "cells; a growth bug): {}",
+      check.total.total(), check.total.grown, check.total.feature, check.total.forbidden, first);
+}
 
 std::vector<GrownClass> grow_classes(const PipelineConfig& config, const HeightfieldSource& source,
                                      const Heightfield& heightfield,
@@ -63,6 +143,7 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
                                      std::vector<FeatureClassReport>& reports, Warnings& warnings) {
   std::vector<GrownClass> out;
   HeightSampler sampler(source);
+  std::map<std::size_t, std::optional<ForbiddenCells>> forbidden_cells;  // by class
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& fc = config.features[c];
     if (!fc.grow) continue;
@@ -108,19 +189,27 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
         avoided.line_widths.push_back(line.width + fc.width);
       }
     }
+    // The same footprints, exactly, on the candidates' vector lines: a footprint narrower than
+    // the mesh's vertex spacing slips through the mask above.
+    const FootprintIndex footprints =
+        keep_off_footprints(config, c, existing, lines, true, nullptr);
+    const std::optional<ForbiddenCells>& cells = forbidden_cells[c] =
+        nodata_around(source, heightfield.grid, region, mesh);
+    const KeepOff keep_off{&footprints, 0.5 * fc.width, cells ? &*cells : nullptr};
     Raster<float> heights(window.width, window.height);
     for (int row = 0; row < window.height; ++row)
       for (int col = 0; col < window.width; ++col)
         heights.at(col, row) =
             float(sampler.bilinear(mesh.pixel_centre_world(window.col0 + col, window.row0 + row)));
-    GrownRegion result =
-        grow_region(set, g.settings, mesh, window, std::move(heights), region, avoided, key);
+    GrownRegion result = grow_region(set, g.settings, mesh, window, std::move(heights), region,
+                                     avoided, keep_off, key);
     r.ornaments = result.grown.ornaments;
     r.elements = result.grown.elements;
     r.lines = int(result.grown.lines.size());
     r.rejected_crossing = result.grown.rejected_crossing;
     r.rejected_forbidden = result.grown.rejected_forbidden;
     r.rejected_untraceable = result.grown.rejected_untraceable;
+    r.rejected_footprint = result.grown.rejected_footprint;
     r.coverage = result.coverage;
     r.coverage_radius_m = result.coverage_radius;
     r.mesh_width = window.width;
@@ -144,6 +233,7 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
         key, r.ornaments, r.elements, r.lines, window.width, window.height, result.growth_ms / 1000,
         r.coverage_radius_m, r.coverage);
   }
+  check_grown_lines(config, existing, lines, out, forbidden_cells, reports);
   return out;
 }
 

@@ -4,11 +4,14 @@
 // docs/ornaments.md), in class order, each off the existing features, the read classes' lines
 // and the lines grown before it (their footprints, widened by its own width). From then on the
 // lines are the class's features like any other: ribbons, terrain, synthesis.
+#include <map>
+#include <optional>
 #include <vector>
 
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield_source.hpp"
+#include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/plan.hpp"
@@ -23,5 +26,16 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
                                      const ExistingFeatures& existing,
                                      std::vector<std::vector<LineFeature>>& lines,
                                      std::vector<FeatureClassReport>& reports, Warnings& warnings);
+
+// The safety net after growth (docs/ornaments.md, "Crossings"): the grown lines (what
+// ornaments.gpkg gets) checked exactly against each other, the lines of the classes read and the
+// existing features, and each grown class's nodata cells (by class index; none if absent).
+// Fills each grown class's report `grow.crossings`; throws tw::Error counting them and naming
+// the first few lines when any is non-zero (a growth bug: the run fails, nothing is written).
+void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& existing,
+                       const std::vector<std::vector<LineFeature>>& lines,
+                       const std::vector<GrownClass>& grown,
+                       const std::map<std::size_t, std::optional<ForbiddenCells>>& cells,
+                       std::vector<FeatureClassReport>& reports);
 
 }  // namespace tw::detail

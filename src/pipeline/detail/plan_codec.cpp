@@ -63,10 +63,11 @@ TW_FIELDS(FeatureReport,
           F(fid) F(length_m) F(width_m) F(pieces) F(synthesis) F(structure) F(layer) F(deck_m)
               F(moved_max_m) F(moved_mean_m) F(cut_max_m) F(fill_max_m) F(grade_max) F(cache))
 TW_FIELDS(GrownSynthesisReport, F(dressed) F(no_room))
-TW_FIELDS(GrowthReport,
-          F(kind) F(element) F(ornaments) F(elements) F(lines) F(rejected_crossing)
-              F(rejected_forbidden) F(rejected_untraceable) F(coverage) F(coverage_radius_m)
-                  F(mesh_width) F(mesh_height) F(short_lines) F(synthesis))
+TW_FIELDS(GrownCrossings, F(grown) F(feature) F(forbidden))
+TW_FIELDS(GrowthReport, F(kind) F(element) F(ornaments) F(elements) F(lines) F(rejected_crossing)
+                            F(rejected_forbidden) F(rejected_untraceable) F(rejected_footprint)
+                                F(crossings) F(coverage) F(coverage_radius_m) F(mesh_width)
+                                    F(mesh_height) F(short_lines) F(synthesis))
 TW_FIELDS(FeatureClassReport,
           F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow))
 TW_FIELDS(GrownLine, F(ornament) F(element) F(name) F(material) F(points) F(heights))
@@ -80,7 +81,8 @@ TW_FIELDS(AreaFeatureReport, F(fid) F(area_m2) F(lead_bearing_deg) F(seed) F(sha
                                  F(outside) F(forbidden) F(overlapping) F(forbidden_touched))
 TW_FIELDS(AreaClassReport, F(name) F(source) F(sketch) F(lead) F(features))
 TW_FIELDS(RunReport, F(grid) F(crs_wkt) F(heightfield) F(seed) F(stages) F(classes) F(areas)
-                         F(forbidden_pixels) F(pattern_violations) F(total_seconds) F(warnings))
+                         F(forbidden_pixels) F(pattern_violations) F(grown_crossings)
+                             F(total_seconds) F(warnings))
 
 // Avoidance inputs that a plan holds own their geometry: ribbons of synthesized features are
 // the plan's own (`patterns`), so pointers into them are never stored.

@@ -33,6 +33,14 @@ bool is_polygon_layer(const VectorSource& source) {
   return type == wkbPolygon || type == wkbMultiPolygon;
 }
 
+namespace {
+
+bool has_field(const VectorSource& source, const char* name) {
+  return open_layer(source).layer->GetLayerDefn()->GetFieldIndex(name) >= 0;
+}
+
+}  // namespace
+
 AvoidanceInputs avoided_features(const Heightfield& frame, const std::vector<std::string>& avoid,
                                  double default_width, const std::string& subject,
                                  Warnings& warnings) {
@@ -48,7 +56,8 @@ AvoidanceInputs avoided_features(const Heightfield& frame, const std::vector<std
     LineClassSpec spec;
     spec.name = "avoid";
     spec.source = source;
-    spec.width_attribute = "width";
+    // Lines without a `width` column take the default width (or their OSM tags').
+    if (has_field(source, "width")) spec.width_attribute = "width";
     spec.default_width = default_width;
     spec.osm_widths = true;
     spec.subject = subject;
