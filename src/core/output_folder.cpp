@@ -43,7 +43,9 @@ fs::path sibling(const fs::path& real, const std::string& kind, const std::strin
 std::string sibling_token(const fs::path& real, const std::string& kind, const fs::path& entry) {
   const std::string prefix = "." + real.filename().string() + ".terraweave-" + kind + "-";
   const std::string name = entry.filename().string();
-  return name.starts_with(prefix) ? name.substr(prefix.size()) : std::string();
+  static const std::regex token(R"([0-9]+-[0-9a-f]{8})");
+  if (!name.starts_with(prefix) || !std::regex_match(name.substr(prefix.size()), token)) return {};
+  return name.substr(prefix.size());
 }
 
 // Entries of .terraweave/ that belong to one run and never travel to the next folder: the
@@ -277,8 +279,8 @@ void migrate_legacy(const fs::path& real) {
       continue;
     }
     std::error_code entry_ec;
-    if (it->is_symlink(entry_ec) && fs::read_symlink(it->path(), entry_ec) ==
-                                        legacy_link_target(name) &&
+    if (it->is_symlink(entry_ec) &&
+        fs::read_symlink(it->path(), entry_ec) == legacy_link_target(name) &&
         !fs::exists(it->path(), entry_ec))
       dangling.push_back(name);
   }
@@ -313,7 +315,8 @@ std::string read_holder(int fd) {
 }
 
 bool same_file(int fd, const fs::path& path) {
-  struct stat a {}, b {};
+  struct stat a {
+  }, b{};
   return ::fstat(fd, &a) == 0 && ::stat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
          a.st_ino == b.st_ino;
 }
@@ -418,8 +421,8 @@ OutputFolder::OutputFolder(fs::path dir) : dir_(std::move(dir)) {
   }
   ec.clear();
   for (const fs::path& folder : {fs::path(), fs::path("placements")}) {
-    for (auto it = fs::directory_iterator(real_ / folder, ec); !ec && it != fs::directory_iterator();
-         it.increment(ec)) {
+    for (auto it = fs::directory_iterator(real_ / folder, ec);
+         !ec && it != fs::directory_iterator(); it.increment(ec)) {
       std::error_code entry_ec;
       if (it->symlink_status(entry_ec).type() == fs::file_type::regular &&
           is_dead_legacy_temporary(folder / it->path().filename()))
@@ -445,11 +448,12 @@ OutputFolder::~OutputFolder() {
 void OutputFolder::prepare_staging() {
   if (mode_ != Mode::undecided) return;
   std::error_code ec;
-  struct stat folder {}, parent {};
-  const bool swappable =
-      !real_.parent_path().empty() && real_ != real_.root_path() && !holds_current_folder(real_) &&
-      ::stat(real_.c_str(), &folder) == 0 && ::stat(real_.parent_path().c_str(), &parent) == 0 &&
-      folder.st_dev == parent.st_dev;  // else a mount point
+  struct stat folder {
+  }, parent{};
+  const bool swappable = !real_.parent_path().empty() && real_ != real_.root_path() &&
+                         !holds_current_folder(real_) && ::stat(real_.c_str(), &folder) == 0 &&
+                         ::stat(real_.parent_path().c_str(), &parent) == 0 &&
+                         folder.st_dev == parent.st_dev;  // else a mount point
   if (swappable) {
     // The staging folder beside; it needs a writable parent, and hard links for the lock.
     const fs::path staging = sibling(real_, "staging", token_);

@@ -6,9 +6,9 @@
 // in place. The folder holds plain files only (cp -r and tar copy it as it is); a reader during
 // commits sees one run; a folder of the older layout (links) is migrated. Two runs into one
 // folder: the second fails at once naming the first, and writes nothing.
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -373,7 +373,8 @@ TEST_F(OutputFolderGuarantee, CopiesAndArchivesHoldThePlainFiles) {
                         "' -q export out --to unreal --out out-ue")
                 .exit_code,
             0);
-  for (const char* folder : {"out", "out-ue"}) EXPECT_THAT(not_plain(dir / folder), ::testing::IsEmpty());
+  for (const char* folder : {"out", "out-ue"})
+    EXPECT_THAT(not_plain(dir / folder), ::testing::IsEmpty());
   const CommandResult copied = run_command(
       "cd '" + dir.path().string() +
       "' && cp -r out copy && mkdir untarred && tar cf out.tar out out-ue && tar xf out.tar -C "
@@ -436,7 +437,8 @@ TEST_F(OutputFolderGuarantee, AReaderDuringCommitsSeesOneRunNeverAMix) {
       }
     }
   });
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(complete_run("out", i % 2 == 0 ? kRunB : ""), i % 2 == 0 ? b : a);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(complete_run("out", i % 2 == 0 ? kRunB : ""), i % 2 == 0 ? b : a);
   done = true;
   reader.join();
   EXPECT_EQ(mixed, 0);
