@@ -103,7 +103,7 @@ OpenCLContext OpenCLContext::create(const OpenCLOptions& options) {
   result.queue_ =
       cl::CommandQueue(result.context_, chosen.device, CL_QUEUE_PROFILING_ENABLE, &status);
   detail::check_cl(status, "clCreateCommandQueue");
-  result.kernel_dir_ = options.kernel_dir.empty() ? kernel_dir().string() : options.kernel_dir;
+  result.kernel_dir_ = options.kernel_dir.empty() ? tw::kernel_dir().string() : options.kernel_dir;
   result.programs_ = std::make_shared<ProgramCache>();
   return result;
 }

@@ -38,7 +38,7 @@ TEST(OutputFolder, StagesOnlyInsideTheFolder) {
   EXPECT_EQ(folder.committed()[0], dir / "out/placements/roads_1.json");
   EXPECT_TRUE(folder.swaps());
   EXPECT_EQ(fs::symlink_status(dir / "out/placements/roads_1.json").type(), fs::file_type::regular);
-  EXPECT_EQ(read_file(dir / "out/.terraweave/outputs").substr(0, 19), "terraweave outputs ");
+  EXPECT_EQ(test::read_file(dir / "out/.terraweave/outputs").substr(0, 19), "terraweave outputs ");
   std::ifstream in(dir / "out/placements/roads_1.json");
   std::string text;
   in >> text;

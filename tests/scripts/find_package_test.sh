@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs terraweave into a temporary prefix and builds a small program against it with
-# find_package(terraweave) (tests/scripts/consumer), then runs it on an installed pipeline.
+# find_package(terraweave) (tests/scripts/consumer), and again with pkg-config, then runs both
+# on an installed pipeline.
 #   find_package_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -20,4 +21,9 @@ cmake --build "$work/build" >"$work/build.log" 2>&1 || {
 env -u TERRAWEAVE_KERNEL_DIR "$work/build/consumer" "$work/prefix/share/terraweave/pipelines/demo.yaml" |
   tee "$work/out.txt"
 grep -Eq '^grid [0-9]+ x [0-9]+, [0-9]+ warnings$' "$work/out.txt"
+# shellcheck disable=SC2046
+c++ -std=c++20 "$source/tests/scripts/consumer/main.cpp" -o "$work/pc-consumer" \
+  $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs terraweave)
+"$work/pc-consumer" "$work/prefix/share/terraweave/pipelines/demo.yaml" >"$work/pc-out.txt"
+cmp "$work/out.txt" "$work/pc-out.txt"
 echo "find_package_test: ok"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs terraweave into a temporary prefix, moves it elsewhere and runs it from there with an
 # empty environment (no TERRAWEAVE_*) and, where user namespaces allow (Debian 12), the source
-# and build trees hidden under empty mounts: run (the installed demo pipeline, on the OpenCL
-# backend), view and export must work from the installed files alone (issue #22 item 2).
+# and build trees hidden under empty mounts: run (an installed pipeline), synth on the OpenCL
+# synthesis), view and export must work from the installed files alone (issue #22 item 2).
 #   install_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd)
@@ -36,9 +36,12 @@ cat >"$work/commands.sh" <<'COMMANDS'
 set -euo pipefail
 p="$1"
 cd "$2"
-"$p/bin/terraweave" -q run "$p/share/terraweave/pipelines/demo.yaml" --out out --backend opencl \
-  --threads 2
-grep -q '"backend": "opencl"' out/report.json
+"$p/bin/terraweave" -q run "$p/share/terraweave/pipelines/generated.yaml" --out out --threads 2
+test -f out/height.tif
+"$p/bin/terraweave" synth --exemplar "$p/share/terraweave/samples/exemplars/road_lanes_240x64.png" \
+  --curve line --length 60 --scale 2 --backend opencl -o lanes.png >synth.log
+grep -q "backend opencl" synth.log
+test -f lanes.png
 "$p/bin/terraweave" -q view out
 test "$(stat -c %s out/view.html)" -gt 500000  # three.js inside the page
 "$p/bin/terraweave" -q export out --to unreal --out out-ue
@@ -49,7 +52,7 @@ mkdir "$work/run"
 clean_env=(env -i PATH=/usr/bin:/bin HOME="$work" LANG=C.UTF-8)
 if unshare --user --map-root-user --mount true 2>/dev/null; then
   "${clean_env[@]}" unshare --user --map-root-user --mount bash -c \
-    'mount -t tmpfs none "$1" && mount -t tmpfs none "$2" && shift 2 && bash "$@"' \
+    'mount -t tmpfs none "$2" && mount -t tmpfs none "$1" && shift 2 && bash "$@"' \
     hide "$source" "$build" "$work/commands.sh" "$p" "$work/run" || fail "commands, trees hidden"
   echo "install_test: ran with $source and $build hidden"
 else
@@ -59,8 +62,9 @@ fi
 
 # Without the installed kernels, OpenCL fails naming where it looked: never the source tree.
 rm -r "$p/share/terraweave/kernels"
-if "${clean_env[@]}" "$p/bin/terraweave" -q run "$p/share/terraweave/pipelines/demo.yaml" \
-  --out "$work/run/no-kernels" --backend opencl >"$work/no-kernels.log" 2>&1; then
+if "${clean_env[@]}" "$p/bin/terraweave" synth --exemplar \
+  "$p/share/terraweave/samples/exemplars/road_lanes_240x64.png" --curve line --length 60 \
+  --scale 2 --backend opencl -o "$work/run/no-kernels.png" >"$work/no-kernels.log" 2>&1; then
   fail "OpenCL ran without kernels"
 fi
 grep -q "$p/share/terraweave/kernels" "$work/no-kernels.log" ||
