@@ -239,8 +239,21 @@ TEST_F(OutputFolderGuarantee, AKilledRunLeavesOneCompleteRunAndTheNextCleansUp) 
     EXPECT_EQ(read_file(dir / "out/notes.txt"), "kept");
     EXPECT_THAT(not_plain(dir / "out"), ::testing::IsEmpty());
 
+    // Swapped, not yet deleted: the previous folder beside. A file the user made there in the
+    // moment between the carrying of their files and the swap is moved to the folder.
+    const std::vector<std::string> beside = siblings_of(dir / "out");
+    if (point == "commit:2") {
+      EXPECT_EQ(seen, b);
+      ASSERT_EQ(beside.size(), 1u);
+      std::ofstream(dir / beside[0] / "late.txt") << "late";
+    }
     // The next run deletes the staging folder or the previous folder a dead run left beside.
-    EXPECT_EQ(complete_run("out", kRunB), b);
+    complete_run("out", kRunB);
+    if (point == "commit:2") {
+      EXPECT_EQ(read_file(dir / "out/late.txt"), "late");
+      fs::remove(dir / "out/late.txt");
+    }
+    EXPECT_EQ(visible_outputs(dir / "out"), b);
     expect_clean(dir / "out");
     // Every folder swapped in holds the same lock file (a second run would see it held).
     EXPECT_EQ(inode_of(dir / "out/.terraweave/lock"), lock);
