@@ -150,8 +150,9 @@ json view_data(const fs::path& run, const ViewOptions& options) {
 
 fs::path write_view(const ViewOptions& options) {
   if (detail::kThreeJs.empty())
-    fail("view: this terraweave was built without three.js (npm was missing): build it with npm "
-         "installed");
+    fail(
+        "view: this terraweave was built without three.js (npm was missing): build it with npm "
+        "installed");
   // "</" never appears in the JSON as written (a string holding it is escaped), so the script
   // element cannot end early.
   std::string data = view_data(options.run_dir, options).dump();
