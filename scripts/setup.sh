@@ -2,21 +2,35 @@
 # Installs terraweave's Debian dependencies, and the extra packages named as arguments (e.g.
 # scripts/fuzz.sh's clang). Idempotent and quiet: does nothing when all packages are already
 # installed, so a second run costs a second.
+#   bash scripts/setup.sh [PACKAGE...]          what building and testing need (scripts/test.sh)
+#   bash scripts/setup.sh --build [PACKAGE...]  what configuring, building and running need
+#                                               (scripts/build.sh, scripts/demo.sh): no browser,
+#                                               Dask, GDAL/OIIO command-line tools or clinfo
 set -euo pipefail
+
+build_only=false
+if [ "${1:-}" = "--build" ]; then
+  build_only=true
+  shift
+fi
 
 packages=(
   build-essential cmake ninja-build pkg-config git time
-  libgdal-dev gdal-bin python3-gdal
+  libgdal-dev
   libgeographiclib-dev
-  ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-  libopenimageio-dev openimageio-tools libopenexr-dev
+  ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
+  libopenimageio-dev libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
   libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev libcgal-dev
-  nodejs chromium
-  python3-distributed
+  nodejs
   "$@"
 )
+# What only the tests, benchmarks and scripts use: the viewer's screenshot test (chromium), the
+# Dask driver, GDAL's and OIIO's tools, clinfo, and dpkg-shlibdeps for the .deb (CPack).
+if ! $build_only; then
+  packages+=(gdal-bin python3-gdal clinfo openimageio-tools chromium python3-distributed dpkg-dev)
+fi
 
 # npm vendors three.js for `terraweave view` at build time. Debian's npm package conflicts with
 # a nodejs that bundles its own npm (NodeSource's), so it is installed only where npm is absent.

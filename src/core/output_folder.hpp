@@ -1,21 +1,26 @@
 #pragma once
 // A pipeline's output folder, replaced as a whole: the files of a run appear all at once, the
-// previous run's disappear with them, and the user's own files are left alone.
+// previous run's disappear with them, and the user's own files are left alone. Every file in it
+// is a plain file, so cp -r, tar, rsync, git, Perforce or a zip carry the folder as it is.
 //
 // Layout (docs/robustness.md, "Output folder guarantee"):
-//   <dir>/.terraweave/lock            flock'ed by the run writing here; holds its pid and start
-//   <dir>/.terraweave/staging-<pid>-<random>/   where a run writes every file
-//   <dir>/.terraweave/gen-<N>/        a complete run (the staging folder, renamed when complete)
-//   <dir>/.terraweave/current         symlink -> gen-<N>: THE commit is one rename(2) of it
-//   <dir>/<name>                      symlink -> .terraweave/current/<name>, for height.tif,
-//                                     report.json, placements/<x>.json, ...
-// Before the swap of `current`, every name the new run produces already has its link (one that
-// does not resolve yet reads as absent); after it, the previous run's links that no longer
-// resolve, and its generation, are deleted. So at every moment a reader sees, through the
-// links, exactly the files of one complete run, the old or the new, and report.json names
-// exactly those. A killed run leaves only .terraweave/ entries (and links that resolve to
-// nothing); the next run, holding the lock (so no other run is alive), deletes them, and the
-// temporaries an older terraweave left beside its outputs (.height.tmp<pid>.exr, dead pid).
+//   <dir>/height.tif, report.json, placements/<x>.json, ...   the outputs, plain files
+//   <dir>/.terraweave/outputs   the names of those outputs (the run's manifest, one a line)
+//   <dir>/.terraweave/lock      flock'ed by the run writing here; holds its pid and start. Each
+//                               new folder gets it as a hard link: always the same file
+//   <dir>/.terraweave/plan/     a distributed run's plan (pipeline/job.hpp)
+//   <parent>/.<name>.terraweave-staging-<pid>-<random>/   where a run writes the new folder
+// The commit: the user's files (and .terraweave/plan) are hard-linked into the staging folder
+// beside the run's outputs; then ONE renameat2(RENAME_EXCHANGE) swaps it with <dir>; then files
+// the user created meanwhile are moved over, and the previous folder is deleted. So at every
+// moment a reader sees exactly the files of one complete run, the old or the new.
+// Fallbacks: a file system without RENAME_EXCHANGE (e.g. NFS) gets two renames (<dir> absent
+// for an instant; a kill between them is repaired by the next command on <dir>). A folder that
+// cannot be swapped (its parent not writable, a mount point, the current folder or one holding
+// it) is committed in place: files renamed one by one from <dir>/.terraweave/commit-<token>,
+// which the next command completes after a kill (each file old or new; the set mixed meanwhile).
+// A folder of the older layout (outputs as symlinks into .terraweave/current) is migrated when
+// first locked: each link is replaced by its file (same bytes), then the generations deleted.
 // Not fsync'ed: the guarantee holds against kills, not against a power loss.
 #include <filesystem>
 #include <memory>
@@ -30,7 +35,7 @@ namespace tw {
 class OutputFolder final : public OutputStager {
  public:
   // Takes the folder's lock, creating <dir> and <dir>/.terraweave; fails at once, naming the
-  // holder's pid and start time, when another run holds it. Deletes what dead runs left.
+  // holder's pid and start time, when another run holds it. Repairs what dead runs left.
   explicit OutputFolder(std::filesystem::path dir);
   // The same, but only when terraweave has written into `dir` before (else nullptr): a run
   // locks early without creating anything in a folder it may never write to.
@@ -47,12 +52,22 @@ class OutputFolder final : public OutputStager {
   // The files staged so far, relative to the folder, and where each was written.
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_files() const;
   const std::vector<std::filesystem::path>& committed() const { return committed_; }
+  // Whether the commit swaps the folder (false: in place, see above). Decided on the first
+  // stage() or commit().
+  bool swaps() const { return mode_ == Mode::swap; }
 
  private:
-  std::filesystem::path dir_;
-  std::filesystem::path meta_;     // dir_/.terraweave
-  std::string token_;              // staging-<pid>-<random>: names this run's entries
-  std::filesystem::path staging_;  // this run's folder until it is current (empty: none)
+  enum class Mode { undecided, swap, in_place };
+  void prepare_staging();
+  void commit_swap();
+  void commit_in_place();
+
+  std::filesystem::path dir_;   // as given
+  std::filesystem::path real_;  // absolute, links resolved: what is swapped
+  std::filesystem::path meta_;  // real_/.terraweave
+  std::string token_;           // <pid>-<random>: names this run's entries
+  Mode mode_ = Mode::undecided;
+  std::filesystem::path staging_;  // this run's folder until committed (empty: none)
   int lock_fd_ = -1;
   std::vector<std::filesystem::path> staged_;  // relative to dir_
   std::vector<std::filesystem::path> committed_;
@@ -61,6 +76,8 @@ class OutputFolder final : public OutputStager {
 // Test hook: when the environment variable TERRAWEAVE_TEST_PAUSE_AT equals `point`, prints
 // "terraweave: paused at <point> (pid N)" to stderr and waits forever, so that a test kills
 // the process there (SIGKILL) deterministically. Points: lock, stage:<k>, commit:<k>.
+// TERRAWEAVE_TEST_NO_EXCHANGE=1 makes the commit take the fallback of a file system without
+// RENAME_EXCHANGE.
 void test_pause_point(const std::string& point);
 
 }  // namespace tw

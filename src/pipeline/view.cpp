@@ -8,10 +8,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/three_js.hpp"
 #include "pipeline/detail/view_page.hpp"
 #include "pipeline/run_layers.hpp"
 
@@ -31,7 +33,7 @@ std::string read_text(const fs::path& path) {
 }
 
 // GDAL's encoder (cpl_string.h), which the project links already.
-std::string base64(const std::string& bytes) {
+std::string base64(std::string_view bytes) {
   char* encoded = CPLBase64Encode(int(bytes.size()), reinterpret_cast<const GByte*>(bytes.data()));
   std::string out(encoded);
   CPLFree(encoded);
@@ -140,17 +142,17 @@ json view_data(const fs::path& run, const ViewOptions& options) {
 }  // namespace
 
 fs::path write_view(const ViewOptions& options) {
-  const fs::path three = TERRAWEAVE_THREE_JS;
-  std::error_code ec;
-  if (!fs::is_regular_file(three, ec))
-    fail("view: three.js is missing ({}): build terraweave with npm installed", three.string());
+  if (detail::kThreeJs.empty())
+    fail(
+        "view: this terraweave was built without three.js (npm was missing): build it with npm "
+        "installed");
   // "</" never appears in the JSON as written (a string holding it is escaped), so the script
   // element cannot end early.
   std::string data = view_data(options.run_dir, options).dump();
   for (std::size_t at = 0; (at = data.find("</", at)) != std::string::npos; at += 3)
     data.replace(at, 2, "<\\/");
   std::string page = detail::kViewPage;
-  page.replace(page.find("@THREE@"), 7, base64(read_text(three)));
+  page.replace(page.find("@THREE@"), 7, base64(detail::kThreeJs));
   page.replace(page.find("@DATA@"), 6, data);
   const fs::path out = options.out.empty() ? options.run_dir / "view.html" : options.out;
   OutputTransaction transaction;

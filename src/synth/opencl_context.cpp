@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/resources.hpp"
 #include "synth/detail/opencl_backend.hpp"
 
 namespace tw {
@@ -102,9 +103,7 @@ OpenCLContext OpenCLContext::create(const OpenCLOptions& options) {
   result.queue_ =
       cl::CommandQueue(result.context_, chosen.device, CL_QUEUE_PROFILING_ENABLE, &status);
   detail::check_cl(status, "clCreateCommandQueue");
-  result.kernel_dir_ = options.kernel_dir.empty()
-                           ? env_or("TERRAWEAVE_KERNEL_DIR", TERRAWEAVE_KERNEL_DIR)
-                           : options.kernel_dir;
+  result.kernel_dir_ = options.kernel_dir.empty() ? tw::kernel_dir().string() : options.kernel_dir;
   result.programs_ = std::make_shared<ProgramCache>();
   return result;
 }

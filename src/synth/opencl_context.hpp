@@ -16,7 +16,7 @@ struct OpenCLOptions {
   // TERRAWEAVE_OPENCL_DEVICE, else the first device.
   std::string device;
   // The folder of the kernels/*.cl files. Empty: the environment variable
-  // TERRAWEAVE_KERNEL_DIR, else the folder compiled in (TERRAWEAVE_KERNEL_DIR).
+  // TERRAWEAVE_KERNEL_DIR, else the one beside the program (core/resources.hpp, kernel_dir).
   std::string kernel_dir;
 };
 

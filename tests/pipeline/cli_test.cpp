@@ -125,7 +125,7 @@ TEST_F(Cli, GoodRunWritesEveryLayerAndKeepsOtherFiles) {
   EXPECT_THAT(read_file(dir / "out/report.json"), HasSubstr("\"name\": \"rivers\""));
 }
 
-// After a good run (outputs are links into .terraweave/), a failing one still changes nothing.
+// After a good run (a folder swapped in, with .terraweave/), a failing one still changes nothing.
 TEST_F(Cli, AFailingRunAfterAGoodOneLeavesItsOutputs) {
   ASSERT_EQ(terraweave("-q run pipeline.yaml").exit_code, 0);
   const std::string height = read_file(dir / "out/height.exr");
