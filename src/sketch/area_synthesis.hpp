@@ -35,9 +35,10 @@ struct AreaSynthesisParams {
   // polygons wider than 512 steps from the centroid).
   LeadField lead_field;
   double lead_step = 0.0;
-  // Metres: unbounded strokes are written simplified within this (Douglas-Peucker), and tested
-  // against forbidden cells and other shapes with their width grown by it. 0: a quarter of the
-  // avoidance cell, or scale / 400 without avoidance.
+  // Metres: unbounded strokes are written simplified within this (Douglas-Peucker); a
+  // simplified segment that leaves the traced line is tested again (forbidden cells, other
+  // shapes), and where it fails the traced points stay. 0: a quarter of the avoidance cell, or
+  // scale / 400 without avoidance.
   double tolerance = 0.0;
 };
 

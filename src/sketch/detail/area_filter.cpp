@@ -18,6 +18,8 @@
 #include <cmath>
 #include <map>
 
+#include "core/segment_distance.hpp"
+
 namespace tw::detail {
 
 namespace bg = boost::geometry;
@@ -177,13 +179,31 @@ std::vector<Vec2> densified(const std::vector<Vec2>& line, double step) {
   return out;
 }
 
-// Douglas-Peucker (Boost.Geometry) within `tolerance`, ends kept.
-std::vector<Vec2> simplified(const std::vector<Vec2>& line, double tolerance) {
+// Douglas-Peucker (Boost.Geometry) within `tolerance`, ends kept. A kept segment whose
+// skipped points do not all lie on it (beyond rounding) must pass `still_free`; where it does
+// not, the traced points in between are kept.
+template <class Test>
+std::vector<Vec2> simplified(const std::vector<Vec2>& line, double tolerance, Test still_free) {
   if (line.size() <= 2 || !(tolerance > 0.0)) return line;
   BgLine out;
   bg::simplify(to_bg(line), out, tolerance);
-  std::vector<Vec2> points;
-  for (const BgPoint& p : out) points.push_back({p.x(), p.y()});
+  std::vector<Vec2> points{line.front()};
+  std::size_t from = 0;  // index in `line` of points.back()
+  for (std::size_t k = 1; k < out.size(); ++k) {
+    const Vec2 target{out[k].x(), out[k].y()};
+    std::size_t to = from + 1;
+    while (to + 1 < line.size() && line[to] != target) ++to;  // simplify keeps a subsequence
+    double off = 0.0;
+    for (std::size_t i = from + 1; i < to; ++i)
+      off = std::max(off, distance_to_segment(line[i], line[from], line[to]));
+    const double rounding = 1e-9 * (1.0 + std::abs(line[from].x) + std::abs(line[from].y));
+    if (off <= rounding || still_free(line[from], line[to])) {
+      points.push_back(line[to]);
+    } else {
+      points.insert(points.end(), line.begin() + long(from) + 1, line.begin() + long(to) + 1);
+    }
+    from = to;
+  }
   return points;
 }
 
@@ -266,9 +286,9 @@ void Placer::place(const Candidate& c) {
   }
   // Unbounded: clipped to the polygon, then cut where a piece is forbidden or meets a shape it
   // was disjoint from (pieces bisected down to `step` where blocked); runs shorter than the
-  // stroke's width are dropped, the others simplified within `tolerance`. The tests are grown by
-  // the tolerance (twice against other strokes, which moved by as much), so what is written
-  // keeps the guarantees of what was tested.
+  // stroke's width are dropped, the others simplified within `tolerance`. A simplified segment
+  // that leaves the run's line is tested again, and where it fails the run keeps its traced
+  // points there: what is written, and goes into the R-tree, is what was tested.
   const double tolerance = options_.tolerance, step = options_.step;
   const int instance_index = int(out_.instances.size());
   bool kept = false, any_forbidden = false, any_overlap = false;
@@ -278,7 +298,6 @@ void Placer::place(const Candidate& c) {
     const double half = 0.5 * widths[s];
     struct Run {
       std::vector<Vec2> points;
-      std::vector<std::pair<Vec2, Vec2>> pieces;
     };
     std::vector<Run> runs;
     Run run;
@@ -287,10 +306,9 @@ void Placer::place(const Candidate& c) {
       run = Run{};
     };
     const auto free = [&](Vec2 a, Vec2 b, bool finest) {
-      const bool forbidden = avoidance_ && !segment_clear(*avoidance_, a, b, half + tolerance);
+      const bool forbidden = avoidance_ && !segment_clear(*avoidance_, a, b, half);
       const bool overlap =
-          !forbidden && state_->overlaps.conflict(ci, c.shape, BgLine{to_bg(a), to_bg(b)},
-                                                  half + 2.0 * tolerance);
+          !forbidden && state_->overlaps.conflict(ci, c.shape, BgLine{to_bg(a), to_bg(b)}, half);
       if (finest) {
         any_forbidden = any_forbidden || forbidden;
         any_overlap = any_overlap || overlap;
@@ -302,7 +320,6 @@ void Placer::place(const Candidate& c) {
       if (free(a, b, finest)) {
         if (run.points.empty()) run.points.push_back(a);
         run.points.push_back(b);
-        run.pieces.push_back({a, b});
         return;
       }
       if (finest) {
@@ -328,9 +345,22 @@ void Placer::place(const Candidate& c) {
       for (std::size_t i = 1; i < r.points.size(); ++i)
         run_length += distance(r.points[i - 1], r.points[i]);
       if (run_length < 2.0 * half) continue;
-      for (const auto& [a, b] : r.pieces)
-        state_->overlaps.add({ci, c.shape, float(half), true, {a, b, Vec2{}, Vec2{}}});
-      out_.strokes.push_back({simplified(r.points, tolerance),
+      std::vector<Vec2> written = simplified(r.points, tolerance, [&](Vec2 a, Vec2 b) {
+        const int n = std::max(1, int(std::ceil(distance(a, b) / options_.piece)));
+        for (int k = 0; k < n; ++k)
+          if (!free(lerp(a, b, double(k) / n), lerp(a, b, double(k + 1) / n), false)) return false;
+        return true;
+      });
+      // Into the R-tree in pieces: long segments would make boxes that every query meets.
+      for (std::size_t i = 0; i + 1 < written.size(); ++i) {
+        const Vec2 a = written[i], b = written[i + 1];
+        const int n = std::max(1, int(std::ceil(distance(a, b) / options_.piece)));
+        for (int k = 0; k < n; ++k) {
+          const Vec2 p = lerp(a, b, double(k) / n), q = lerp(a, b, double(k + 1) / n);
+          state_->overlaps.add({ci, c.shape, float(half), true, {p, q, Vec2{}, Vec2{}}});
+        }
+      }
+      out_.strokes.push_back({std::move(written),
                               h_.sketch.strokes[std::size_t(shape.strokes[s])].material, widths[s],
                               instance_index});
       kept = true;

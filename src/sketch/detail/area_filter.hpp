@@ -20,7 +20,8 @@ struct PlacementOptions {
   // as a straight one, and shape axes are taken over that length.
   double densify = 0.0;
   // Unbounded strokes are cut where blocked to within `step` metres, tested in pieces of at
-  // most `piece` metres, and simplified within `tolerance` metres (their tests grown by it).
+  // most `piece` metres, and simplified within `tolerance` metres (a simplified segment that
+  // leaves the traced line tested again).
   double step = 0.0, piece = 0.0, tolerance = 0.0;
 };
 
