@@ -154,6 +154,13 @@ class Overlaps {
   std::map<std::pair<int, int>, bool> sketch_overlap_;
 };
 
+// Half a cell's diagonal: a stroke kept that much farther from every forbidden cell centre stays
+// off the forbidden cells' squares, not only their centres (a polygon's edge is crossed by at
+// most a sliver of a cell).
+double cell_clearance(const SparseAvoidance& a) {
+  return 0.5 * std::hypot(a.grid.pixel_width, a.grid.pixel_height);
+}
+
 // Every segment of the strokes clear of forbidden cells, tested in pieces of at most `piece`.
 bool shape_clear(const SparseAvoidance& a, const std::vector<std::vector<Vec2>>& strokes,
                  const std::vector<double>& widths, double piece) {
@@ -163,7 +170,7 @@ bool shape_clear(const SparseAvoidance& a, const std::vector<std::vector<Vec2>>&
       const int n = std::max(1, int(std::ceil(distance(p, q) / piece)));
       for (int k = 0; k < n; ++k)
         if (!segment_clear(a, lerp(p, q, double(k) / n), lerp(p, q, double(k + 1) / n),
-                           0.5 * widths[s]))
+                           0.5 * widths[s] + cell_clearance(a)))
           return false;
     }
   return true;
@@ -306,7 +313,8 @@ void Placer::place(const Candidate& c) {
       run = Run{};
     };
     const auto free = [&](Vec2 a, Vec2 b, bool finest) {
-      const bool forbidden = avoidance_ && !segment_clear(*avoidance_, a, b, half);
+      const bool forbidden =
+          avoidance_ && !segment_clear(*avoidance_, a, b, half + cell_clearance(*avoidance_));
       const bool overlap =
           !forbidden && state_->overlaps.conflict(ci, c.shape, BgLine{to_bg(a), to_bg(b)}, half);
       if (finest) {
