@@ -397,6 +397,10 @@ int main(int argc, char** argv) {
   area->add_option("--avoid-width", area_args.avoid_width,
                    "metres, the width of avoided lines without a width or OSM tags")
       ->check(number_above(0.0, false));
+  area->add_option("--resolution", area_args.resolution,
+                   "metres per cell of the avoidance lattice; strokes are written within a "
+                   "quarter of it")
+      ->check(number_above(0.0, false));
   area->add_option("--analysis-png", area_args.analysis_png,
                    "also draw the sketch's analysis levels (strokes, shapes, fibres, medians, "
                    "lead directions) into this PNG");

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include <unistd.h>
+
 #include "core/error.hpp"
 
 namespace tw {
@@ -20,6 +22,12 @@ void require_grid_size(double columns, double rows, const std::string& what) {
         "allowed",
         what, columns, rows, gib, kMaxGridCells);
   }
+}
+
+double memory_budget_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return 8.0 * double(std::int64_t(1) << 30);
+  return 0.75 * double(pages) * double(page);
 }
 
 }  // namespace tw

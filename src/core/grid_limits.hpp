@@ -15,4 +15,8 @@ inline constexpr std::int64_t kMaxGridCells = std::int64_t(1) << 30;
 // at most 1073741824 cells are allowed". `what` names the cause ("dem.tif: resolution 0.1 m").
 void require_grid_size(double columns, double rows, const std::string& what);
 
+// The bytes one polygon's synthesis (an area's canvas and shapes) may claim before it is refused
+// with its estimate: three quarters of the machine's physical memory (8 GiB where unknown).
+double memory_budget_bytes();
+
 }  // namespace tw

@@ -14,6 +14,7 @@
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/detail/analysis_png.hpp"
+#include "pipeline/detail/area_canvas.hpp"
 #include "pipeline/detail/area_lead.hpp"
 #include "pipeline/detail/area_output.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
@@ -51,23 +52,11 @@ Heightfield frame_of(const VectorSource& source) {
   return frame;
 }
 
-// The avoidance map on the frame's 1 m lattice, over the polygon's bounding box only: memory
-// follows the polygon, not the file's extent.
-AvoidanceMap avoidance_around(const Polygon& polygon, const Heightfield& frame,
-                              const AvoidanceInputs& inputs) {
-  const GridSpec& grid = frame.grid;
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : polygon.front()) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const Vec2 a = grid.world_to_pixel({lo.x, hi.y}), b = grid.world_to_pixel({hi.x, lo.y});
-  Window window;
-  window.col0 = std::max(0, int(std::floor(a.x)) - 1);
-  window.row0 = std::max(0, int(std::floor(a.y)) - 1);
-  window.width = std::min(grid.width, int(std::ceil(b.x)) + 1) - window.col0;
-  window.height = std::min(grid.height, int(std::ceil(b.y)) + 1) - window.row0;
-  return build_avoidance_map(inputs, grid, window);
+// The thickest stroke's half width, and two cells: what the canvas reaches beyond the polygon.
+double canvas_margin(const SupportHierarchy& h, double scale, double cell) {
+  double thickest = 0.0;
+  for (const Stroke& s : h.sketch.strokes) thickest = std::max(thickest, s.thickness);
+  return 0.5 * thickest * scale + 2.0 * cell;
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
@@ -79,6 +68,7 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
 
 AreaCommandResult run_area_command(const AreaCommand& c) {
   if (c.out.empty()) fail("area: --out is required");
+  if (!(c.resolution > 0.0)) fail("area: --resolution must be > 0 metres, got {}", c.resolution);
   const auto started = std::chrono::steady_clock::now();
   SupportHierarchy hierarchy = analyze_sketch(load_sketch(c.sketch), c.analysis);
   if (c.shapes_from) {
@@ -111,12 +101,25 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
     params.seed = c.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(f.fid) * 0x100000001B3ull + k;
     params.bearing =
         c.bearing ? detail::angle_from_compass(*c.bearing) : long_axis_bearing(polygon);
+    params.tolerance = 0.25 * c.resolution;
+    const std::string label = fmt::format("{}: FID {}", c.polygons, f.fid);
+    const double cell = c.avoid.empty() ? 0.0 : c.resolution;
+    const double margin = canvas_margin(hierarchy, c.scale, c.resolution);
+    detail::require_area_memory(hierarchy, polygon, params, cell, margin, label);
     detail::AreaResult& r = results.emplace_back();
     r.area_class = c.sketch.stem().string();
     r.fid = f.fid;
-    std::optional<AvoidanceMap> avoidance;
-    if (!c.avoid.empty()) avoidance = avoidance_around(polygon, frame, avoided);
+    std::optional<SparseAvoidance> avoidance;
+    if (!c.avoid.empty()) {
+      detail::AreaCanvas canvas = detail::area_canvas(polygon, c.resolution, margin);
+      burn_avoidance(avoided, canvas.grid, canvas.forbidden);
+      avoidance = detail::finish_canvas(std::move(canvas));
+    }
     r.pattern = synthesize_area(hierarchy, polygon, params, avoidance ? &*avoidance : nullptr);
+    if (avoidance) {
+      if (const std::int64_t touched = detail::forbidden_touched(r.pattern, *avoidance))
+        fail("{}: {} stroke cells on forbidden ones (a synthesis bug)", label, touched);
+    }
     result.instances += int(r.pattern.instances.size());
     result.strokes += int(r.pattern.strokes.size());
     result.outside += r.pattern.outside;

@@ -29,6 +29,9 @@ struct AreaCommand {
   // are buffered to their width (`width`/OSM tags) or avoid_width metres.
   std::vector<std::string> avoid;
   double avoid_width = 10.0;
+  // Metres per cell of the avoidance lattice (over each polygon, sparse: docs/shape-patterns.md);
+  // unbounded strokes are written simplified within a quarter of it.
+  double resolution = 1.0;
   AnalysisParams analysis;
   // A picture of the sketch's analysis levels (strokes -> shapes -> fibres -> medians -> leads).
   std::optional<std::filesystem::path> analysis_png;

@@ -106,6 +106,10 @@ struct AreaFeatureReport {
   int shapes = 0, strokes = 0;
   int outside = 0, forbidden = 0, overlapping = 0;
   std::int64_t forbidden_touched = 0;
+  int on_nodata = 0;  // shapes left out: their instance stood on nodata heights
+  // Cells of the polygon's avoidance canvas allocated at its peak: they follow the polygon's
+  // area (and a band along its boundary), not its box.
+  std::int64_t canvas_cells = 0;
 };
 
 struct AreaClassReport {

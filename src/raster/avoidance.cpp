@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/segment_distance.hpp"
 #include "raster/distance.hpp"
 #include "raster/foldover.hpp"
 #include "raster/footprint.hpp"
@@ -106,6 +107,35 @@ void burn_avoidance(const AvoidanceInputs& inputs, const GridSpec& grid,
     Raster<std::uint8_t>& cells = *forbidden.tile(t);
     add_mask(cells, tile.forbidden);
   }
+}
+
+bool segment_clear(const SparseAvoidance& a, Vec2 p, Vec2 q, double half_width) {
+  const GridSpec& g = a.grid;
+  const SparseRaster<std::uint8_t>& cells = a.forbidden;
+  // Cells whose centre may lie within half_width of the segment.
+  const double c0 =
+      std::floor((std::min(p.x, q.x) - half_width - g.origin_x) / g.pixel_width - 0.5);
+  const double c1 = std::ceil((std::max(p.x, q.x) + half_width - g.origin_x) / g.pixel_width - 0.5);
+  const double r0 =
+      std::floor((g.origin_y - std::max(p.y, q.y) - half_width) / g.pixel_height - 0.5);
+  const double r1 =
+      std::ceil((g.origin_y - std::min(p.y, q.y) + half_width) / g.pixel_height - 0.5);
+  const int col0 = int(std::max(0.0, c0)), col1 = int(std::min(double(cells.width() - 1), c1));
+  const int row0 = int(std::max(0.0, r0)), row1 = int(std::min(double(cells.height() - 1), r1));
+  if (col0 > col1 || row0 > row1) return true;
+  const int size = cells.tile_size();
+  for (int ty = row0 / size; ty <= row1 / size; ++ty)
+    for (int tx = col0 / size; tx <= col1 / size; ++tx) {
+      const Raster<std::uint8_t>* tile = cells.tile({tx, ty});
+      if (tile == nullptr) continue;  // nothing forbidden there
+      const Window w = cells.tile_window({tx, ty});
+      for (int row = std::max(row0, w.row0); row <= std::min(row1, w.row_end() - 1); ++row)
+        for (int col = std::max(col0, w.col0); col <= std::min(col1, w.col_end() - 1); ++col) {
+          if (!tile->at(col - w.col0, row - w.row0)) continue;
+          if (distance_to_segment(g.pixel_centre_world(col, row), p, q) <= half_width) return false;
+        }
+    }
+  return true;
 }
 
 }  // namespace tw

@@ -38,6 +38,20 @@ AvoidanceMap build_avoidance_map(const AvoidanceInputs& inputs, const GridSpec& 
                                  const Window& window,
                                  double max_distance = std::numeric_limits<double>::infinity());
 
+// The forbidden cells of a canvas whose box is far larger than what it serves (an area's polygon,
+// docs/shape-patterns.md): tiles over `grid` held only where something is forbidden, every other
+// cell free. Memory follows what is forbidden near the polygon, not the polygon's box.
+struct SparseAvoidance {
+  GridSpec grid;
+  SparseRaster<std::uint8_t> forbidden;
+};
+
+// True when every forbidden cell centre lies farther than `half_width` metres from the segment
+// pq: a stroke of that width drawn there touches no forbidden cell (burn_buffered_lines' pixel-
+// centre rule). Exact; reads the cells of the segment's box grown by half_width, so callers keep
+// segments short where the canvas is busy.
+bool segment_clear(const SparseAvoidance& avoidance, Vec2 p, Vec2 q, double half_width);
+
 // The same union (no distance field) on the allocated tiles of `forbidden`, a sparse canvas over
 // `grid`: equal to build_avoidance_map's mask there.
 void burn_avoidance(const AvoidanceInputs& inputs, const GridSpec& grid,

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "raster/footprint.hpp"
+#include "raster/rasterize.hpp"
 
 namespace tw {
 
@@ -64,6 +65,48 @@ void add_on_lattice(const SparseRaster<std::uint8_t>& source, const GridSpec& so
               to->at(col - w.col0, row - w.row0) = 1;
       }
     }
+  }
+}
+
+void burn_buffered_lines_on(const std::vector<const std::vector<Vec2>*>& lines,
+                            const std::vector<double>& widths, const GridSpec& grid,
+                            SparseRaster<std::uint8_t>& target, std::uint8_t value) {
+  const int size = target.tile_size();
+  // Per allocated tile (by slot in target.tiles()), the lines whose buffered box meets it.
+  std::vector<std::int32_t> slot(std::size_t(target.tiles_x()) * target.tiles_y(), -1);
+  for (std::size_t k = 0; k < target.tiles().size(); ++k)
+    slot[std::size_t(target.tiles()[k].ty) * target.tiles_x() + target.tiles()[k].tx] =
+        std::int32_t(k);
+  std::vector<std::vector<std::size_t>> met(target.tiles().size());
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    if (lines[l]->empty()) continue;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (const Vec2 p : *lines[l])
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y),
+      y1 = std::max(y1, p.y);
+    const double r = 0.5 * widths[l];
+    // In double first: a line far off the canvas must not overflow an int.
+    const double c0 = std::floor((x0 - r - grid.origin_x) / grid.pixel_width) - 1;
+    const double c1 = std::floor((x1 + r - grid.origin_x) / grid.pixel_width) + 1;
+    const double r0 = std::floor((grid.origin_y - y1 - r) / grid.pixel_height) - 1;
+    const double r1 = std::floor((grid.origin_y - y0 + r) / grid.pixel_height) + 1;
+    if (!(c1 >= 0 && r1 >= 0 && c0 < target.width() && r0 < target.height())) continue;
+    const int tx0 = int(std::max(0.0, c0)) / size;
+    const int tx1 = int(std::min(double(target.width() - 1), c1)) / size;
+    const int ty0 = int(std::max(0.0, r0)) / size;
+    const int ty1 = int(std::min(double(target.height() - 1), r1)) / size;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx)
+        if (const std::int32_t s = slot[std::size_t(ty) * target.tiles_x() + tx]; s >= 0)
+          met[std::size_t(s)].push_back(l);
+  }
+  for (std::size_t k = 0; k < met.size(); ++k) {
+    if (met[k].empty()) continue;
+    std::vector<std::vector<Vec2>> some;
+    std::vector<double> some_widths;
+    for (const std::size_t l : met[k]) some.push_back(*lines[l]), some_widths.push_back(widths[l]);
+    const TileIndex t = target.tiles()[k];
+    burn_buffered_lines(some, some_widths, grid, target.tile_window(t), *target.tile(t), value);
   }
 }
 

@@ -83,6 +83,24 @@ class SparseRaster {
     return tiles_[std::size_t(slot)];
   }
 
+  // Frees the tiles whose every cell reads `background` (nobody needs them: they read the same
+  // unallocated); the others keep their order.
+  void drop_background_tiles() {
+    std::vector<Raster<T>> kept;
+    std::vector<TileIndex> kept_indices;
+    for (std::size_t k = 0; k < tiles_.size(); ++k) {
+      const auto& cells = tiles_[k].pixels;
+      const bool blank =
+          std::all_of(cells.begin(), cells.end(), [&](T v) { return v == background_; });
+      slots_[slot_of(indices_[k].tx, indices_[k].ty)] = blank ? -1 : std::int32_t(kept.size());
+      if (blank) continue;
+      kept.push_back(std::move(tiles_[k]));
+      kept_indices.push_back(indices_[k]);
+    }
+    tiles_ = std::move(kept);
+    indices_ = std::move(kept_indices);
+  }
+
   // Allocated tiles, in the order they were added.
   const std::vector<TileIndex>& tiles() const { return indices_; }
   std::size_t tile_count() const { return indices_.size(); }
@@ -119,6 +137,13 @@ void add_tiles(SparseRaster<T>& raster, const std::vector<TileIndex>& tiles) {
 // number of cells apart. Cells of absent target tiles are skipped (nobody reads them).
 void add_on_lattice(const SparseRaster<std::uint8_t>& source, const GridSpec& source_grid,
                     SparseRaster<std::uint8_t>& target, const GridSpec& target_grid);
+
+// Sets `value` where a cell centre of an allocated tile of `target` (over `grid`) lies within
+// widths[i] / 2 of lines[i] (burn_buffered_lines' exact buffers, tile by tile: each line is burnt
+// only on the allocated tiles its box meets, so a million short strokes cost their own cells).
+void burn_buffered_lines_on(const std::vector<const std::vector<Vec2>*>& lines,
+                            const std::vector<double>& widths, const GridSpec& grid,
+                            SparseRaster<std::uint8_t>& target, std::uint8_t value);
 
 // A sparse copy of a dense raster: only tiles holding a cell other than `background`.
 template <class T>

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/error.hpp"
 #include "sketch/detail/area_candidates.hpp"
 #include "sketch/detail/area_filter.hpp"
 #include "sketch/detail/clustering.hpp"
+#include "sketch/detail/domain_cover.hpp"
 #include "sketch/detail/field_frame.hpp"
 
 namespace tw {
@@ -37,7 +39,82 @@ Vec2 centroid(const Ring& ring) {
   return sum / (3.0 * area);
 }
 
+// Cut granularity, test pieces and simplification of unbounded strokes (detail/area_filter.hpp).
+detail::PlacementOptions placement(const AreaSynthesisParams& params, double cell) {
+  detail::PlacementOptions o;
+  o.scale = params.scale;
+  o.step = cell > 0.0 ? 0.5 * cell : 0.01 * params.scale;
+  o.piece = 32.0 * o.step;
+  o.tolerance = params.tolerance > 0.0 ? params.tolerance : 0.5 * o.step;
+  return o;
+}
+
+// Candidates streamed into the placer, those far from the polygon skipped unbuilt.
+AreaPattern place_all(const SupportHierarchy& h, const Polygon& domain, Vec2 lo, Vec2 hi,
+                      const AreaSynthesisParams& params, const std::function<Vec2(Vec2)>& to_world,
+                      const SparseAvoidance* avoidance, double densify) {
+  detail::PlacementOptions options =
+      placement(params, avoidance ? avoidance->grid.pixel_width : 0.0);
+  options.densify = densify;
+  const detail::DomainCover cover(domain, params.scale / 8.0);
+  // A shape's reach from its centre, in metres (twice its box's half diagonal: a curved frame
+  // may stretch it).
+  std::vector<double> reach;
+  for (const SketchShape& shape : h.shapes)
+    reach.push_back(2.0 * std::hypot(shape.box.half_length, shape.box.half_width) * params.scale);
+  detail::Placer placer(h, domain, cover, to_world, avoidance, options);
+  std::int64_t skipped = 0;
+  detail::area_candidates(
+      h, lo, hi, params.jitter, params.keep_input, params.seed,
+      [&](Vec2 centre, int shape) {
+        return cover.near(to_world(centre), reach[std::size_t(shape)]);
+      },
+      [&](detail::Candidate&& c) { placer.place(c); }, skipped);
+  AreaPattern out = placer.take();
+  out.outside +=
+      int(std::min<std::int64_t>(skipped, std::numeric_limits<int>::max() - out.outside));
+  return out;
+}
+
 }  // namespace
+
+double polygon_area(const Polygon& polygon) {
+  double area = 0.0;
+  for (std::size_t r = 0; r < polygon.size(); ++r) {
+    double twice = 0.0;
+    const Ring& ring = polygon[r];
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      twice += cross(ring[i], ring[(i + 1) % ring.size()]);
+    area += (r == 0 ? 0.5 : -0.5) * std::abs(twice);
+  }
+  return area;
+}
+
+AreaEstimate estimate_area(const SupportHierarchy& h, const Polygon& domain,
+                           const AreaSynthesisParams& params, double cell) {
+  const detail::PlacementOptions o = placement(params, cell);
+  const double squares = polygon_area(domain) / (params.scale * params.scale);
+  AreaEstimate e;
+  for (const SketchShape& shape : h.shapes) {
+    if (shape.support == ShapeSupport::fibre) {
+      // A stroke across the square repeats once per square along it: its length per square
+      // metre is its sketch length / scale per sketch square.
+      double length = 0.0;
+      const auto& points = h.sketch.strokes[std::size_t(shape.strokes.front())].points;
+      for (std::size_t i = 1; i < points.size(); ++i) length += distance(points[i - 1], points[i]);
+      const double pieces = squares * length * params.scale / o.piece;
+      e.shapes += pieces;
+      e.bytes += pieces * 160.0;  // an R-tree entry and its piece
+      continue;
+    }
+    // An instance, its strokes and points, its box in the R-tree.
+    double points = 0.0;
+    for (int s : shape.strokes) points += double(h.sketch.strokes[std::size_t(s)].points.size());
+    e.shapes += squares;
+    e.bytes += squares * (320.0 + 96.0 * double(shape.strokes.size()) + 16.0 * points);
+  }
+  return e;
+}
 
 Vec2 area_anchor(const Polygon& domain) {
   if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
@@ -61,7 +138,7 @@ double long_axis_bearing(const Polygon& domain) {
 }
 
 AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& domain,
-                            const AreaSynthesisParams& params, const AvoidanceMap* avoidance) {
+                            const AreaSynthesisParams& params, const SparseAvoidance* avoidance) {
   if (domain.empty() || domain.front().size() < 3) fail("area: the polygon has no outer ring");
   if (!(params.scale > 0.0) || !std::isfinite(params.scale)) {
     fail("area: scale must be > 0 metres per sketch unit, got {}", params.scale);
@@ -88,11 +165,9 @@ AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& do
     const auto to_world = [&](Vec2 q) {
       return frame.to_world((q - Vec2{0.5, 0.5}) * params.scale);
     };
-    const auto candidates = detail::area_candidates(
-        hierarchy, Vec2{0.5, 0.5} + uv_lo / params.scale, Vec2{0.5, 0.5} + uv_hi / params.scale,
-        params.jitter, params.keep_input, params.seed);
-    return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale,
-                                    avoidance, step / params.scale);
+    return place_all(hierarchy, domain, Vec2{0.5, 0.5} + uv_lo / params.scale,
+                     Vec2{0.5, 0.5} + uv_hi / params.scale, params, to_world, avoidance,
+                     step / params.scale);
   }
   const auto to_world = [&](Vec2 q) {
     return anchor + rotated((q - Vec2{0.5, 0.5}) * params.scale, params.bearing);
@@ -106,10 +181,7 @@ AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& do
     lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
     hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
   }
-  const auto candidates =
-      detail::area_candidates(hierarchy, lo, hi, params.jitter, params.keep_input, params.seed);
-  return detail::place_candidates(hierarchy, candidates, domain, to_world, params.scale, avoidance,
-                                  0.0);
+  return place_all(hierarchy, domain, lo, hi, params, to_world, avoidance, 0.0);
 }
 
 SupportHierarchy hybridize(const SupportHierarchy& structure, const SupportHierarchy& shapes,

@@ -35,6 +35,11 @@ struct AreaSynthesisParams {
   // polygons wider than 512 steps from the centroid).
   LeadField lead_field;
   double lead_step = 0.0;
+  // Metres: unbounded strokes are written simplified within this (Douglas-Peucker); a
+  // simplified segment that leaves the traced line is tested again (forbidden cells, other
+  // shapes), and where it fails the traced points stay. 0: a quarter of the avoidance cell, or
+  // scale / 400 without avoidance.
+  double tolerance = 0.0;
 };
 
 // One placed shape: where engines put an instance of it.
@@ -63,10 +68,26 @@ struct AreaPattern {
 };
 
 // `avoidance` may be null (nothing forbidden). Throws tw::Error for an empty polygon or a
-// scale <= 0.
+// scale <= 0. Work and memory follow the shapes placed: candidates are made one at a time and
+// only near the polygon, tested on a bounded lattice over it (detail/domain_cover.hpp), and an
+// unbounded stroke costs its vertices and pieces, not its length in cells.
 AreaPattern synthesize_area(const SupportHierarchy& hierarchy, const Polygon& domain,
                             const AreaSynthesisParams& params,
-                            const AvoidanceMap* avoidance = nullptr);
+                            const SparseAvoidance* avoidance = nullptr);
+
+// What synthesize_area will hold for a polygon, from its area and the sketch's density (bounded
+// shapes per sketch square, unbounded stroke length per square metre), before anything is made:
+// callers refuse a polygon that would not fit (a clear error instead of a bad_alloc).
+// `cell`: the avoidance lattice's cell in metres (0: none).
+struct AreaEstimate {
+  double shapes = 0.0;  // bounded shapes and unbounded strokes' tested pieces
+  double bytes = 0.0;
+};
+AreaEstimate estimate_area(const SupportHierarchy& hierarchy, const Polygon& domain,
+                           const AreaSynthesisParams& params, double cell);
+
+// The area of a polygon (outer ring less its holes), square metres.
+double polygon_area(const Polygon& polygon);
 
 // Where the input space's centre is laid: the area centroid of the outer ring (holes ignored).
 Vec2 area_anchor(const Polygon& domain);

@@ -124,5 +124,49 @@ TEST(AreaCommand, CliNamesTheBadInputAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// A Luxembourg canton (tests/data, 129 km²) at 5 cm per sketch unit: refused before anything is
+// allocated, naming the polygon, its FID and the estimate; nothing written.
+TEST(AreaCommand, AHugePolygonAtATinyScaleIsRefusedWithItsEstimate) {
+  TempDir dir;
+  const auto refused =
+      run_command(terraweave_binary().string() + " area " +
+                  (source_dir() / "samples/sketches/vineyard.geojson").string() + " --polygons " +
+                  (source_dir() / "tests/data/lux_remich_2169.geojson").string() +
+                  " --scale 0.05 --out " + (dir / "out").string() + " 2>&1");
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.output, HasSubstr("lux_remich_2169.geojson: FID 0: the polygon (129 km²) at "
+                                        "scale 0.05 m would need about "));
+  EXPECT_THAT(refused.output, HasSubstr("allowed (3/4 of this machine's memory)"));
+  EXPECT_THAT(refused.output, ::testing::Not(HasSubstr("bad_alloc")));
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// The canton with furrows on a 4 m lattice avoiding the Moselle: straight furrows are written
+// as straight runs (two points each, cut where the river passes), and the GeoPackage stays in
+// proportion to the canton (the ~0.1 MB per km² of docs/shape-patterns.md, at 40 m a unit).
+TEST(AreaCommand, ACantonOfFurrowsIsWrittenInProportionToItsArea) {
+  TempDir dir;
+  AreaCommand c;
+  c.sketch = source_dir() / "samples/sketches/furrows.geojson";
+  c.polygons = (source_dir() / "tests/data/lux_remich_2169.geojson").string();
+  c.scale = 40.0;
+  c.resolution = 4.0;
+  c.avoid = {(source_dir() / "samples/lines_wgs84.geojson").string()};
+  c.avoid_width = 60.0;
+  c.out = dir / "out";
+  const AreaCommandResult r = run_area_command(c);
+  EXPECT_EQ(r.polygons, 1);
+  EXPECT_GT(r.strokes, 1000);
+  EXPECT_GT(r.forbidden, 0);  // the Moselle cuts furrows
+  auto shapes = open_vector(dir / "out/shapes.gpkg");
+  ASSERT_TRUE(shapes);
+  OGRLayer* strokes = shapes->GetLayerByName("strokes");
+  ASSERT_TRUE(strokes);
+  for (auto& stroke : *strokes)
+    ASSERT_EQ(stroke->GetGeometryRef()->toLineString()->getNumPoints(), 2) << stroke->GetFID();
+  const double mb = double(fs::file_size(dir / "out/shapes.gpkg")) / 1e6;
+  EXPECT_LT(mb / 129.0, 0.5) << mb << " MB";
+}
+
 }  // namespace
 }  // namespace tw::test

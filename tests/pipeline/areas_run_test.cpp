@@ -329,6 +329,118 @@ TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
   EXPECT_GT(a["areas"][0]["shapes"].get<int>(), 20);
 }
 
+// A polygon far too large for its scale is refused before anything is allocated: one error
+// naming the class, the FID and the numbers (not a bare std::bad_alloc).
+TEST_F(AreaRun, APolygonTooLargeForItsScaleIsRefusedWithItsEstimate) {
+  Warnings warnings;
+  try {
+    plan_world(config("p", {{"features.vines.scale", "0.01"}}), {}, warnings);
+    ADD_FAILURE() << "a 36 000 m² polygon at 1 cm per sketch unit was synthesized";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_THAT(message, HasSubstr("features.vines: FID 1: the polygon (0.036 km²) at scale 0.01 m "
+                                   "on 1 m cells would need about "));
+    EXPECT_THAT(message, HasSubstr(" shapes, "));
+    EXPECT_THAT(message, HasSubstr("GiB allowed (3/4 of this machine's memory)"));
+    EXPECT_THAT(message, HasSubstr("split the polygon"));
+  }
+}
+
+// The vine rows (1.2 m) and posts (0.4 m) are narrower than the 4 m pixels: each warns with the
+// splat weight it can reach.
+TEST_F(AreaRun, StrokesNarrowerThanAPixelWarnWithTheWeightTheyReach) {
+  Warnings warnings;
+  plan_world(config("p"), {}, warnings);
+  std::vector<std::string> messages;
+  for (const Warning& w : warnings.list())
+    if (w.code == "area_stroke_subpixel" && w.subject == "features.vines")
+      messages.push_back(w.message);
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_THAT(messages[0], HasSubstr("strokes of 'post' are 0.4 m wide on 4 m pixels: their splat "
+                                     "weight reaches at most 0.10"));
+  EXPECT_THAT(messages[1], HasSubstr("strokes of 'vine' are 1.2 m wide on 4 m pixels: their splat "
+                                     "weight reaches at most 0.30"));
+  // At 1 m pixels the rows are wide enough; the posts still warn.
+  Warnings fine;
+  plan_world(
+      config("q", {{"resolution", "1"}, {"generate.width", "400"}, {"generate.height", "400"}}), {},
+      fine);
+  int subpixel = 0;
+  for (const Warning& w : fine.list())
+    if (w.code == "area_stroke_subpixel" && w.subject == "features.vines") {
+      ++subpixel;
+      EXPECT_THAT(w.message, HasSubstr("strokes of 'post' are 0.4 m wide on 1 m pixels"));
+    }
+  EXPECT_EQ(subpixel, 1);
+}
+
+// Memory follows the polygon, not its box: a 20 m wide strip along the diagonal of a 1.6 km
+// world (its box 50 times its area) allocates canvas cells for a band about it.
+TEST(AreaCanvas, AThinDiagonalPolygonAllocatesCellsForItsAreaNotItsBox) {
+  test::TempDir dir;
+  const Vec2 a{500100.0, 4998500.0}, b{501500.0, 4999900.0};
+  const Vec2 n = perp(normalized(b - a)) * 10.0;
+  test::write_layer(dir / "map.gpkg", "fields",
+                    {{fmt::format("POLYGON (({} {}, {} {}, {} {}, {} {}, {} {}))", (a - n).x,
+                                  (a - n).y, (b - n).x, (b - n).y, (b + n).x, (b + n).y, (a + n).x,
+                                  (a + n).y, (a - n).x, (a - n).y)}});
+  fs::copy_file(test::source_dir() / "samples/sketches/orchard.geojson", dir / "orchard.geojson");
+  const PipelineConfig config = parse_pipeline(R"(
+version: 1
+generate: { width: 400, height: 400, pixel_size: 4, relief: 30 }
+synthesis_resolution: 1
+features:
+  strip: { kind: area, source: map.gpkg, layer: fields, sketch: orchard.geojson, scale: 30 }
+)",
+                                               "strip.yaml", dir.path());
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config, {}, warnings);
+  const AreaFeatureReport& strip = plan.report.areas.at(0).features.at(0);
+  const double area = strip.area_m2;  // 1 m cells: cells and square metres alike
+  EXPECT_NEAR(area, 2.0 * 10.0 * distance(a, b), 1.0);
+  const double box = (b.x - a.x + 2.0 * std::abs(n.x)) * (b.y - a.y + 2.0 * std::abs(n.y));
+  EXPECT_GT(box, 45.0 * area);
+  EXPECT_GT(double(strip.canvas_cells), area);
+  EXPECT_LT(double(strip.canvas_cells), 10.0 * area);
+  EXPECT_GT(strip.shapes, 50);
+  EXPECT_EQ(strip.forbidden_touched, 0);
+}
+
+// A canton of Luxembourg over the 30" DEM (nodata -32768 beyond the border): shapes whose
+// instance would stand on nodata are left out with a warning; every instance written has a z.
+TEST(AreaNodata, InstancesOnNodataAreLeftOutAndEveryInstanceHasItsZ) {
+  test::TempDir dir;
+  const fs::path samples = test::source_dir() / "samples";
+  const std::string pipeline =
+      fmt::format(R"(
+version: 1
+heightfield: {0}/dem_wgs84.tif
+resolution: 100
+synthesis_resolution: 20
+output: {{ dir: {1}, preview: false, exr: false }}
+features:
+  rocks:
+    kind: area
+    source: {2}
+    sketch: {0}/sketches/boulders.geojson
+    scale: 400
+)",
+                  samples.string(), (dir / "out").string(),
+                  (test::source_dir() / "tests/data/lux_remich_2169.geojson").string());
+  const RunReport report = run_pipeline(parse_pipeline(pipeline, "remich.yaml", dir.path()), {});
+  const AreaFeatureReport& canton = report.areas.at(0).features.at(0);
+  EXPECT_GT(canton.on_nodata, 0);
+  EXPECT_GT(canton.shapes, 100);
+  bool warned = false;
+  for (const Warning& w : report.warnings)
+    warned |= w.code == "area_on_nodata" && w.subject == "features.rocks" && w.fid == canton.fid;
+  EXPECT_TRUE(warned);
+  const nlohmann::json instances =
+      nlohmann::json::parse(test::read_file(dir / "out/instances.json"));
+  ASSERT_EQ(int(instances.size()), canton.shapes);
+  for (const auto& instance : instances) ASSERT_TRUE(instance["z"].is_number()) << instance.dump();
+}
+
 // A plane rising eastward: contours run north-south.
 TEST(AreaContours, RowsRunAlongTheContours) {
   test::TempDir dir;

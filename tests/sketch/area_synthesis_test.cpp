@@ -216,7 +216,8 @@ TEST(AreaSynthesis, NothingTouchesAForbiddenPixel) {
   AvoidanceInputs inputs;
   inputs.lines = {{{800.0, 1900.0}, {1200.0, 2100.0}}};  // a road across the field
   inputs.line_widths = {12.0};
-  const AvoidanceMap avoidance = build_avoidance_map(inputs, grid, Window::whole(grid));
+  const AvoidanceMap map = build_avoidance_map(inputs, grid, Window::whole(grid));
+  const SparseAvoidance avoidance{grid, sparse_from_dense(map.forbidden, std::uint8_t(0), 64)};
   AreaSynthesisParams params;
   params.scale = 40.0;
   params.bearing = 20.0 * std::numbers::pi / 180.0;
@@ -230,10 +231,66 @@ TEST(AreaSynthesis, NothingTouchesAForbiddenPixel) {
   int touching = 0, drawn_pixels = 0;
   for (std::size_t i = 0; i < drawn.pixels.size(); ++i) {
     drawn_pixels += drawn.pixels[i];
-    touching += drawn.pixels[i] && avoidance.forbidden.pixels[i];
+    touching += drawn.pixels[i] && map.forbidden.pixels[i];
   }
   EXPECT_GT(drawn_pixels, 1000);
   EXPECT_EQ(touching, 0);
+}
+
+// Straight wires cut by the road are written as straight runs: two points each, however fine
+// the avoidance lattice (1 m here, where every half cell used to be a vertex).
+TEST(AreaSynthesis, StraightRunsAreTwoPointsWhereverTheyAreCut) {
+  const SupportHierarchy h = analyze_sketch(vineyard());
+  GridSpec grid;
+  grid.width = 400, grid.height = 300;
+  grid.origin_x = 800.0, grid.origin_y = 2150.0;
+  AvoidanceInputs inputs;
+  inputs.lines = {{{800.0, 1900.0}, {1200.0, 2100.0}}};
+  inputs.line_widths = {12.0};
+  const AvoidanceMap map = build_avoidance_map(inputs, grid, Window::whole(grid));
+  const SparseAvoidance avoidance{grid, sparse_from_dense(map.forbidden, std::uint8_t(0), 64)};
+  AreaSynthesisParams params;
+  params.scale = 40.0;
+  params.bearing = 20.0 * std::numbers::pi / 180.0;
+  const AreaPattern p = synthesize_area(h, field(), params, &avoidance);
+  int wires = 0, cut = 0;
+  for (const PlacedStroke& s : p.strokes) {
+    if (!p.instances[std::size_t(s.instance)].unbounded) continue;
+    ++wires;
+    ASSERT_EQ(s.points.size(), 2u);
+    cut += distance(s.points.front(), s.points.back()) < 280.0;
+  }
+  EXPECT_GE(wires, 20);
+  EXPECT_GT(cut, 10);  // the road cuts them: two runs each
+}
+
+// Unbounded curves (a wave laid along a cone's contours) are written within the tolerance of
+// the densely traced stroke, both ways (Hausdorff), with vertices at least a few metres apart.
+TEST(AreaSynthesis, CurvedStrokesAreSimplifiedWithinTheTolerance) {
+  const SupportHierarchy h = analyze_sketch(test::single_wave());
+  const Vec2 apex{0.0, -400.0};
+  AreaSynthesisParams params;
+  params.scale = 20.0;
+  params.lead_field = [&](Vec2 p) -> std::optional<double> {
+    return std::atan2(p.y - apex.y, p.x - apex.x) + 0.5 * std::numbers::pi;
+  };
+  params.bearing = *params.lead_field({0.0, 0.0});
+  const Polygon domain = {{{-150, -100}, {150, -100}, {150, 100}, {-150, 100}}};
+  params.tolerance = 1e-9;
+  const AreaPattern dense = synthesize_area(h, domain, params);
+  params.tolerance = 0.25;
+  const AreaPattern simple = synthesize_area(h, domain, params);
+  ASSERT_EQ(dense.strokes.size(), 1u);
+  ASSERT_EQ(simple.strokes.size(), 1u);
+  const BgLine a = to_bg(dense.strokes[0].points), b = to_bg(simple.strokes[0].points);
+  double hausdorff = 0.0;
+  for (const BgPoint& p : a) hausdorff = std::max(hausdorff, double(bg::distance(p, b)));
+  for (const BgPoint& p : b) hausdorff = std::max(hausdorff, double(bg::distance(p, a)));
+  EXPECT_LE(hausdorff, 0.25 + 1e-9);
+  const double length = bg::length(b);
+  EXPECT_GT(length, 290.0);
+  EXPECT_LT(double(simple.strokes[0].points.size()), 0.5 * double(dense.strokes[0].points.size()));
+  EXPECT_GT(length / double(simple.strokes[0].points.size() - 1), 2.0);
 }
 
 TEST(AreaSynthesis, DeterministicWithTheSeed) {

@@ -6,19 +6,14 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "pipeline/detail/area_canvas.hpp"
 #include "pipeline/detail/area_lead.hpp"
 #include "raster/avoidance.hpp"
-#include "raster/distance.hpp"
-#include "raster/footprint.hpp"
-#include "raster/rasterize.hpp"
 #include "sketch/area_synthesis.hpp"
 
 namespace tw::detail {
 
 namespace {
-
-// The largest avoidance canvas of one polygon (cells): 8 km square at 1 m.
-constexpr double kMaxAreaCanvasCells = double(1 << 26);
 
 const char* lead_name(AreaLead lead) {
   switch (lead) {
@@ -34,44 +29,9 @@ const char* lead_name(AreaLead lead) {
   return "";
 }
 
-double polygon_area(const Polygon& polygon) {
-  double area = 0.0;
-  for (std::size_t r = 0; r < polygon.size(); ++r) {
-    double twice = 0.0;
-    const Ring& ring = polygon[r];
-    for (std::size_t i = 0; i < ring.size(); ++i)
-      twice += cross(ring[i], ring[(i + 1) % ring.size()]);
-    area += (r == 0 ? 0.5 : -0.5) * std::abs(twice);
-  }
-  return area;
-}
-
-// Cells of the synthesis lattice (edges on multiples of `cell` in world coordinates, as the
-// curve patterns' canvases) over the polygon's box grown by `margin` metres.
-GridSpec canvas_around(const Polygon& polygon, double cell, double margin,
-                       const std::string& label) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : polygon.front()) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  GridSpec g;
-  g.pixel_width = g.pixel_height = cell;
-  g.origin_x = std::floor((lo.x - margin) / cell) * cell;
-  g.origin_y = std::ceil((hi.y + margin) / cell) * cell;
-  const double w = std::ceil((hi.x + margin - g.origin_x) / cell);
-  const double h = std::ceil((g.origin_y - (lo.y - margin)) / cell);
-  if (w * h > kMaxAreaCanvasCells)
-    fail(
-        "{}: the polygon's box is {:.0f} x {:.0f} cells of {} m (at most {:.0f} cells); raise "
-        "synthesis_resolution or split the polygon",
-        label, w, h, cell, kMaxAreaCanvasCells);
-  g.width = int(w), g.height = int(h);
-  return g;
-}
-
+// The strokes of the areas synthesized so far (in their plans, which keep them in place).
 struct StrokeSet {
-  std::vector<std::vector<Vec2>> lines;
+  std::vector<const std::vector<Vec2>*> lines;
   std::vector<double> widths;
 };
 
@@ -97,36 +57,39 @@ AvoidanceInputs fixed_avoidance(const std::vector<std::vector<LineFeature>>& lin
   return inputs;
 }
 
-AvoidanceMap area_avoidance(const AvoidanceInputs& fixed, const PatternRun* patterns,
-                            const StrokeSet& earlier, const GridSpec& canvas) {
-  SparseRaster<std::uint8_t> sparse(canvas.width, canvas.height, 0, 0);  // one dense tile
-  sparse.add_tile({0, 0});
-  burn_avoidance(fixed, canvas, sparse);
+// Everything the polygon's shapes avoid, on its sparse canvas.
+SparseAvoidance area_avoidance(const AvoidanceInputs& fixed, const PatternRun* patterns,
+                               const StrokeSet& earlier, AreaCanvas&& canvas) {
+  burn_avoidance(fixed, canvas.grid, canvas.forbidden);
   if (patterns)
     for (const FeaturePattern& p : patterns->patterns)
-      if (p.on_ground) add_on_lattice(p.opaque, p.canvas, sparse, canvas);
-  AvoidanceMap map;
-  map.grid = canvas;
-  map.window = Window::whole(canvas);
-  map.forbidden = std::move(*sparse.tile({0, 0}));
-  burn_buffered_lines(earlier.lines, earlier.widths, canvas, map.window, map.forbidden, 1);
-  map.distance = distance_to_mask(map.forbidden, canvas.pixel_width, canvas.pixel_height);
-  return map;
+      if (p.on_ground) add_on_lattice(p.opaque, p.canvas, canvas.forbidden, canvas.grid);
+  burn_buffered_lines_on(earlier.lines, earlier.widths, canvas.grid, canvas.forbidden, 1);
+  return finish_canvas(std::move(canvas));
 }
 
-// Canvas pixels under the placed strokes (pixel-centre rule, exact buffers) that are forbidden:
-// an independent check of the synthesis's conservative test.
-std::int64_t forbidden_touched(const AreaPattern& pattern, const AvoidanceMap& map) {
-  std::vector<std::vector<Vec2>> lines;
-  std::vector<double> widths;
-  for (const PlacedStroke& s : pattern.strokes)
-    lines.push_back(s.points), widths.push_back(s.width);
-  Raster<std::uint8_t> touched;
-  burn_buffered_lines(lines, widths, map.grid, map.window, touched, 1);
-  std::int64_t count = 0;
-  for (std::size_t i = 0; i < touched.pixels.size(); ++i)
-    count += touched.pixels[i] && map.forbidden.pixels[i];
-  return count;
+// The shapes whose instance stands on a nodata cell of the heights (where its z would be
+// empty) left out with their strokes; how many.
+int drop_on_nodata(AreaPattern& pattern, HeightSampler& heights) {
+  std::vector<int> index(pattern.instances.size(), -1);
+  std::vector<ShapeInstance> kept;
+  for (std::size_t i = 0; i < pattern.instances.size(); ++i) {
+    const Vec2 p = heights.grid().world_to_pixel(pattern.instances[i].position);
+    if (std::isnan(heights.cell(int(std::floor(p.x)), int(std::floor(p.y))))) continue;
+    index[i] = int(kept.size());
+    kept.push_back(std::move(pattern.instances[i]));
+  }
+  const int dropped = int(pattern.instances.size() - kept.size());
+  if (dropped == 0) return 0;
+  std::vector<PlacedStroke> strokes;
+  for (PlacedStroke& s : pattern.strokes) {
+    if (index[std::size_t(s.instance)] < 0) continue;
+    s.instance = index[std::size_t(s.instance)];
+    strokes.push_back(std::move(s));
+  }
+  pattern.instances = std::move(kept);
+  pattern.strokes = std::move(strokes);
+  return dropped;
 }
 
 // Every stroke material of the sketch: those the class names first, in its order, then the
@@ -204,6 +167,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
     if (config.features[c].kind == FeatureKind::road)
       for (const LineFeature& line : lines[c]) roads.push_back(&line);
   StrokeSet earlier;
+  const double pixel = std::min(heights.grid().pixel_width, heights.grid().pixel_height);
   for (std::size_t ai = 0; ai < config.areas.size(); ++ai) {
     const AreaClassConfig& a = config.areas[ai];
     const std::string key = "features." + a.name;
@@ -219,6 +183,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
     report.sketch = a.sketch.string();
     report.lead = lead_name(a.lead);
     std::map<std::int64_t, int> parts;
+    std::map<std::string, double> widest;  // per stroke material placed
     for (const PolygonFeature& f : polygons[ai]) {
       const Polygon polygon(f.rings.begin(), f.rings.end());
       const std::string label = fmt::format("{}: FID {}", key, f.fid);
@@ -248,12 +213,22 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       }
       params.bearing = angle.value_or(long_axis_bearing(polygon));
 
-      const GridSpec canvas = canvas_around(polygon, config.synthesis_resolution, margin, label);
-      const AvoidanceMap avoidance = area_avoidance(fixed, patterns, earlier, canvas);
+      // Strokes are written within a tenth of an output pixel (at most a quarter of a cell).
+      params.tolerance = std::min(0.1 * pixel, 0.25 * config.synthesis_resolution);
+      require_area_memory(hierarchy, polygon, params, config.synthesis_resolution, margin, label);
+      AreaCanvas canvas = area_canvas(polygon, config.synthesis_resolution, margin);
+      const std::int64_t canvas_cells = canvas.allocated_cells;
+      const SparseAvoidance avoidance = area_avoidance(fixed, patterns, earlier, std::move(canvas));
       PlannedArea planned;
       planned.area_class = ai;
       planned.fid = f.fid;
       planned.pattern = synthesize_area(hierarchy, polygon, params, &avoidance);
+      const int shapes = int(planned.pattern.instances.size());
+      const int on_nodata = drop_on_nodata(planned.pattern, heights);
+      if (on_nodata > 0)
+        warnings.add("area_on_nodata", key, f.fid,
+                     fmt::format("{} of {} shapes stood on nodata heights (no z): left out",
+                                 on_nodata, shapes));
 
       AreaFeatureReport& fr = report.features.emplace_back();
       fr.fid = f.fid;
@@ -265,6 +240,8 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       fr.outside = planned.pattern.outside;
       fr.forbidden = planned.pattern.forbidden;
       fr.overlapping = planned.pattern.overlapping;
+      fr.on_nodata = on_nodata;
+      fr.canvas_cells = canvas_cells;
       fr.forbidden_touched = forbidden_touched(planned.pattern, avoidance);
       if (fr.forbidden_touched != 0)
         fail("{}: {} stroke pixels on forbidden ones (a synthesis bug)", label,
@@ -277,14 +254,24 @@ AreaRun synthesize_areas(const PipelineConfig& config,
 
       for (const AreaMaterial& m : materials)
         planned.targets.push_back({m.stroke, 0, float(m.height)});
+      // The plan's strokes stay where they are when `planned` moves into the run.
       for (const PlacedStroke& s : planned.pattern.strokes) {
-        earlier.lines.push_back(s.points);
+        earlier.lines.push_back(&s.points);
         earlier.widths.push_back(s.width);
+        widest[s.material] = std::max(widest[s.material], s.width);
       }
       run.splats.push_back({});
       for (const AreaMaterial& m : materials) run.splats.back().push_back(m.splat);
       run.areas.push_back(std::move(planned));
     }
+    // A stroke narrower than a pixel covers at most width / pixel of it: its splat weight.
+    for (const auto& [material, width] : widest)
+      if (width < pixel)
+        warnings.add("area_stroke_subpixel", key, std::nullopt,
+                     fmt::format("strokes of '{}' are {:.3g} m wide on {:.3g} m pixels: their "
+                                 "splat weight reaches at most {:.2f}, the material is nearly "
+                                 "invisible (raise `scale`, or lower `resolution`)",
+                                 material, width, pixel, width / pixel));
   }
   return run;
 }

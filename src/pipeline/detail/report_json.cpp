@@ -92,7 +92,9 @@ nlohmann::json areas_json(const RunReport& report) {
            {"strokes", f.strokes},
            {"left_out",
             {{"outside", f.outside}, {"forbidden", f.forbidden}, {"overlapping", f.overlapping}}},
-           {"forbidden_touched", f.forbidden_touched}});
+           {"forbidden_touched", f.forbidden_touched},
+           {"on_nodata", f.on_nodata},
+           {"canvas_cells", f.canvas_cells}});
       shapes += f.shapes;
       touched += f.forbidden_touched;
     }

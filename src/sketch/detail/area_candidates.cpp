@@ -143,9 +143,9 @@ std::vector<Vec2> extend_unbounded(std::vector<Vec2> local, UnboundedCategory ca
 
 }  // namespace
 
-std::vector<Candidate> area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 hi, double jitter,
-                                       bool keep_input, std::uint64_t seed) {
-  std::vector<Candidate> out;
+void area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 hi, double jitter, bool keep_input,
+                     std::uint64_t seed, const CandidateFilter& near, const CandidateVisitor& visit,
+                     std::int64_t& skipped) {
   SplitMix rng(seed);
   for (std::size_t l = 0; l < h.leads.size(); ++l) {
     const Grouping& lead = h.leads[l];
@@ -175,7 +175,7 @@ std::vector<Candidate> area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 
           }
           c.centre = transform(frame, copy, shape.box.center);
           c.axis = u;
-          out.push_back(std::move(c));
+          visit(std::move(c));
           continue;
         }
         // Bounded: the fibre's sequence of shapes is periodic along it (toroidal input space).
@@ -203,6 +203,11 @@ std::vector<Candidate> area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 
               dy = jitter * room * rng.uniform(-1.0, 1.0);
             }
             const Vec2 offset = u * dx + n * dy;
+            const Vec2 centre = transform(frame, copy, shape.box.center + offset);
+            if (near && !near(centre, s)) {
+              ++skipped;
+              continue;
+            }
             Candidate c{s, int(l), false, unperturbed, {}, {}, {}};
             for (int stroke_index : shape.strokes) {
               std::vector<Vec2> stroke;
@@ -211,17 +216,16 @@ std::vector<Candidate> area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 
               }
               c.strokes.push_back(std::move(stroke));
             }
-            c.centre = transform(frame, copy, shape.box.center + offset);
+            c.centre = centre;
             c.axis = normalized(
                 transform(frame, copy, shape.box.center + offset + shape.box.axis * 1e-3) -
                 c.centre);
-            out.push_back(std::move(c));
+            visit(std::move(c));
           }
         }
       }
     }
   }
-  return out;
 }
 
 }  // namespace tw::detail
