@@ -77,14 +77,17 @@ void warn_limit(Warnings& warnings, const std::string& subject, std::int64_t fid
                            limit.along, limit.at.x, limit.at.y, limit.excess, advice));
 }
 
-// What to do about a river held by max_carve: the line most likely misses the DEM's valley
-// (a coarse map crossing spurs), which conformance answers; once conformed, a wider corridor.
+// What to do about a river held by max_carve: a line that misses the DEM's valley (a coarse map
+// crossing spurs) is answered by conformance; a depression the line really crosses (a DEM's
+// pit, even under a line traced from the DEM) by a larger max_carve, if a cut is wanted.
 std::string carve_advice(const FeatureClassConfig& feature_class) {
   if (feature_class.conform_corridor <= 0.0) {
     return fmt::format(
-        ". The line likely misses the DEM's valley: add `conform: {{ corridor: <metres> }}` to "
+        ". The river meets the terrain there (a spur, or the rim of a closed depression of the "
+        "DEM): if the line misses the DEM's valley, add `conform: {{ corridor: <metres> }}` to "
         "{} (about the map's positional accuracy, e.g. 250 for 1:250 000 data) to move it "
-        "onto the valley floor (docs/terrain.md, Conformance)",
+        "onto the valley floor; to cut deeper instead, raise profile.max_carve "
+        "(docs/terrain.md, Conformance)",
         "features." + feature_class.name);
   }
   return fmt::format(
