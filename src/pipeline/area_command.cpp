@@ -10,6 +10,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/output_guard.hpp"
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
@@ -68,6 +69,9 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
 
 AreaCommandResult run_area_command(const AreaCommand& c) {
   if (c.out.empty()) fail("area: --out is required");
+  std::vector<std::filesystem::path> inputs = {c.sketch};
+  if (c.shapes_from) inputs.push_back(*c.shapes_from);
+  require_safe_output(c.out, true, {"area", "--out", inputs});
   if (!(c.resolution > 0.0)) fail("area: --resolution must be > 0 metres, got {}", c.resolution);
   const auto started = std::chrono::steady_clock::now();
   SupportHierarchy hierarchy = analyze_sketch(load_sketch(c.sketch), c.analysis);

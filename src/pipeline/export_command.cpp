@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "core/output_guard.hpp"
 #include "pipeline/run_layers.hpp"
 
 namespace tw {
@@ -44,6 +45,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const std::vector<ExportCurve> curves = fs::exists(run / "features.geojson")
                                               ? read_curves_geojson(run / "features.geojson")
                                               : std::vector<ExportCurve>{};
+  require_safe_output(command.out_dir, true, {"export", "--out", {run}});
   OutputFolder out(command.out_dir);
   EngineExportResult result =
       export_layer_files(files, curves, command.options, run_tile_size, command.out_dir, out);

@@ -12,6 +12,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "core/output_guard.hpp"
 #include "core/warnings.hpp"
 #include "geo/heightfield_source.hpp"
 #include "layers/layer_set.hpp"
@@ -52,6 +53,7 @@ std::vector<Polygon> region_polygons(const GrowCommand& c, const Heightfield& fr
 
 GrowCommandResult run_grow_command(const GrowCommand& c) {
   if (c.out.empty()) fail("grow: --out is required");
+  require_safe_output(c.out, true, {"grow", "--out", {std::filesystem::path(c.dem), c.element}});
   const ElementSet set = read_element_set(c.element);
   Warnings warnings;
   HeightfieldOptions options;

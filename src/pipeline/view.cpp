@@ -12,6 +12,7 @@
 
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
+#include "core/output_guard.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/three_js.hpp"
 #include "pipeline/detail/view_page.hpp"
@@ -142,6 +143,10 @@ json view_data(const fs::path& run, const ViewOptions& options) {
 }  // namespace
 
 fs::path write_view(const ViewOptions& options) {
+  // Checked first: the page is built from the whole run, which takes seconds.
+  const fs::path out = options.out.empty() ? options.run_dir / "view.html" : options.out;
+  require_safe_output(out, false,
+                      {"view", "--out", {options.run_dir}, true, options.run_dir / "view.html"});
   if (detail::kThreeJs.empty())
     fail(
         "view: this terraweave was built without three.js (npm was missing): build it with npm "
@@ -154,7 +159,6 @@ fs::path write_view(const ViewOptions& options) {
   std::string page = detail::kViewPage;
   page.replace(page.find("@THREE@"), 7, base64(detail::kThreeJs));
   page.replace(page.find("@DATA@"), 6, data);
-  const fs::path out = options.out.empty() ? options.run_dir / "view.html" : options.out;
   OutputTransaction transaction;
   std::ofstream stream(transaction.stage(out), std::ios::binary);
   stream << page;

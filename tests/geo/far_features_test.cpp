@@ -79,8 +79,8 @@ double reference_area(const GridSpec& grid) {
   footprint.transform(to_lonlat.get());
   std::unique_ptr<OGRGeometry> inside(land_geometry()->Intersection(&footprint));
   inside->transform(to_utm.get());
-  return inside->toMultiPolygon() ? inside->toMultiPolygon()->get_Area()
-                                  : inside->toPolygon()->get_Area();
+  // The intersection is a Polygon or a MultiPolygon: both are surfaces with an area.
+  return OGR_G_Area(OGRGeometry::ToHandle(inside.get()));
 }
 
 double area_of(const std::vector<PolygonFeature>& polygons) {
