@@ -20,11 +20,11 @@ bool is_terraweave_folder(const std::filesystem::path& dir);
 // command may write into such a folder (view's RUN/view.html). Links are resolved, so another
 // spelling changes nothing.
 struct OutputGuard {
-  std::string command;  // "export", "area", ...: named in the message
-  std::string option;   // "--out"
-  std::vector<std::filesystem::path> inputs;
+  std::string command{};  // "export", "area", ...: named in the message
+  std::string option{};   // "--out"
+  std::vector<std::filesystem::path> inputs{};
   bool foreign_folders = true;  // refuse a run's output folder as the target folder
-  std::filesystem::path allowed;
+  std::filesystem::path allowed{};
 };
 void require_safe_output(const std::filesystem::path& target, bool is_folder,
                          const OutputGuard& guard);

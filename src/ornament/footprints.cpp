@@ -1,38 +1,19 @@
 #include "ornament/footprints.hpp"
 
-// GCC 12 sees maybe-uninitialized values inside Boost.Geometry's envelope and rescaling code
-// once inlined here (false positives in the library's headers); ours stays -Wall clean.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <boost/geometry.hpp>
-#include <boost/geometry/geometries/box.hpp>
-#include <boost/geometry/geometries/point_xy.hpp>
-#include <boost/geometry/geometries/polygon.hpp>
-#include <boost/geometry/geometries/segment.hpp>
-#include <boost/geometry/index/rtree.hpp>
-#pragma GCC diagnostic pop
-
 #include <algorithm>
 #include <optional>
 #include <utility>
+
+#include "core/boost_geometry.hpp"
 
 namespace tw {
 
 namespace {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BgPoint = bg::model::d2::point_xy<double>;
-using BgSegment = bg::model::segment<BgPoint>;
-using BgPolygon = bg::model::polygon<BgPoint>;
-using BgBox = bg::model::box<BgPoint>;
+using namespace geometry;
 // A segment's (or an area's) box and where it comes from: footprint id, segment number (-1 for
 // an area).
 using Entry = std::pair<BgBox, std::pair<int, int>>;
-
-BgPoint to_bg(Vec2 p) {
-  return {p.x, p.y};
-}
 
 BgBox box_of(Vec2 a, Vec2 b, double pad) {
   return {{std::min(a.x, b.x) - pad, std::min(a.y, b.y) - pad},

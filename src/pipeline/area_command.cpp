@@ -71,7 +71,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
   if (c.out.empty()) fail("area: --out is required");
   std::vector<std::filesystem::path> inputs = {c.sketch};
   if (c.shapes_from) inputs.push_back(*c.shapes_from);
-  require_safe_output(c.out, true, {"area", "--out", inputs});
+  require_safe_output(c.out, true, {.command = "area", .option = "--out", .inputs = inputs});
   if (!(c.resolution > 0.0)) fail("area: --resolution must be > 0 metres, got {}", c.resolution);
   const auto started = std::chrono::steady_clock::now();
   SupportHierarchy hierarchy = analyze_sketch(load_sketch(c.sketch), c.analysis);

@@ -45,7 +45,8 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const std::vector<ExportCurve> curves = fs::exists(run / "features.geojson")
                                               ? read_curves_geojson(run / "features.geojson")
                                               : std::vector<ExportCurve>{};
-  require_safe_output(command.out_dir, true, {"export", "--out", {run}});
+  require_safe_output(command.out_dir, true,
+                      {.command = "export", .option = "--out", .inputs = {run}});
   OutputFolder out(command.out_dir);
   EngineExportResult result =
       export_layer_files(files, curves, command.options, run_tile_size, command.out_dir, out);

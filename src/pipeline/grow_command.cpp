@@ -53,7 +53,9 @@ std::vector<Polygon> region_polygons(const GrowCommand& c, const Heightfield& fr
 
 GrowCommandResult run_grow_command(const GrowCommand& c) {
   if (c.out.empty()) fail("grow: --out is required");
-  require_safe_output(c.out, true, {"grow", "--out", {std::filesystem::path(c.dem), c.element}});
+  require_safe_output(
+      c.out, true,
+      {.command = "grow", .option = "--out", .inputs = {std::filesystem::path(c.dem), c.element}});
   const ElementSet set = read_element_set(c.element);
   Warnings warnings;
   HeightfieldOptions options;

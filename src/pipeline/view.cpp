@@ -146,7 +146,10 @@ fs::path write_view(const ViewOptions& options) {
   // Checked first: the page is built from the whole run, which takes seconds.
   const fs::path out = options.out.empty() ? options.run_dir / "view.html" : options.out;
   require_safe_output(out, false,
-                      {"view", "--out", {options.run_dir}, true, options.run_dir / "view.html"});
+                      {.command = "view",
+                       .option = "--out",
+                       .inputs = {options.run_dir},
+                       .allowed = options.run_dir / "view.html"});
   if (detail::kThreeJs.empty())
     fail(
         "view: this terraweave was built without three.js (npm was missing): build it with npm "

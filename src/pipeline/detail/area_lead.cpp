@@ -1,26 +1,17 @@
 #include "pipeline/detail/area_lead.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numbers>
 
+#include "core/boost_geometry.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
 
 namespace {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BgPoint = bg::model::d2::point_xy<double>;
-using BgSegment = bg::model::segment<BgPoint>;
-using BgBox = bg::model::box<BgPoint>;
-
-BgPoint to_bg(Vec2 p) {
-  return {p.x, p.y};
-}
+using namespace geometry;
 
 double folded_angle(Vec2 v) {
   double a = std::atan2(v.y, v.x);

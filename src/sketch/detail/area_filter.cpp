@@ -1,40 +1,20 @@
 #include "sketch/detail/area_filter.hpp"
 
-// GCC 12 sees maybe-uninitialized values inside Boost.Geometry's envelope and rescaling code
-// once inlined here (false positives in the library's headers); ours stays -Wall clean.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <boost/geometry.hpp>
-#include <boost/geometry/geometries/box.hpp>
-#include <boost/geometry/geometries/linestring.hpp>
-#include <boost/geometry/geometries/multi_linestring.hpp>
-#include <boost/geometry/geometries/point_xy.hpp>
-#include <boost/geometry/geometries/polygon.hpp>
-#include <boost/geometry/index/rtree.hpp>
-#pragma GCC diagnostic pop
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 
+#include "core/boost_geometry.hpp"
 #include "core/segment_distance.hpp"
 
 namespace tw::detail {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BgPoint = bg::model::d2::point_xy<double>;
-using BgLine = bg::model::linestring<BgPoint>;
-using BgLines = bg::model::multi_linestring<BgLine>;
-using BgPolygon = bg::model::polygon<BgPoint>;
-using BgBox = bg::model::box<BgPoint>;
+using namespace geometry;
 
 namespace {
 
-BgPoint to_bg(Vec2 p) {
-  return {p.x, p.y};
-}
+using geometry::to_bg;  // and the overloads below, for this file's shapes
 
 BgPolygon to_bg(const Polygon& polygon) {
   BgPolygon out;
