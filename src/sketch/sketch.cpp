@@ -53,7 +53,18 @@ Stroke stroke_from(const OGRLineString& line, const OGRFeature& feature, const s
                         : "shape";
   const int thickness_field = feature.GetFieldIndex("thickness");
   if (thickness_field >= 0 && feature.IsFieldSetAndNotNull(thickness_field)) {
-    stroke.thickness = feature.GetFieldAsDouble(thickness_field);
+    // GetFieldAsDouble reads "abc" as 0: a text field must hold a whole number, nothing else.
+    const OGRFieldType type = feature.GetFieldDefnRef(thickness_field)->GetType();
+    if (type == OFTReal || type == OFTInteger || type == OFTInteger64) {
+      stroke.thickness = feature.GetFieldAsDouble(thickness_field);
+    } else {
+      const std::string text = feature.GetFieldAsString(thickness_field);
+      const CPLValueType kind = CPLGetValueType(text.c_str());
+      if (kind != CPL_VALUE_REAL && kind != CPL_VALUE_INTEGER)
+        fail("{}: thickness must be a number (in input-space units, e.g. 0.02), got '{}'", where,
+             text);
+      stroke.thickness = CPLAtof(text.c_str());
+    }
   }
   return stroke;
 }

@@ -143,5 +143,33 @@ TEST(SketchLoad, ReadsGeoJsonStrokesAndNamesTheBadFid) {
   }
 }
 
+TEST(SketchLoad, AThicknessThatIsNotANumberNamesTheFidAndTheText) {
+  test::TempDir dir;
+  {
+    std::ofstream out(dir / "text.geojson");
+    out << R"({"type":"FeatureCollection","features":[
+      {"type":"Feature","id":4,"properties":{"thickness":"0.03"},
+       "geometry":{"type":"LineString","coordinates":[[0.1,0.5],[0.9,0.5]]}},
+      {"type":"Feature","id":5,"properties":{"thickness":"abc"},
+       "geometry":{"type":"LineString","coordinates":[[0.2,0.2],[0.3,0.3]]}}]})";
+  }
+  try {
+    load_sketch(dir / "text.geojson");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("FID 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("thickness must be a number"), std::string::npos) << message;
+    EXPECT_NE(message.find("'abc'"), std::string::npos) << message;
+  }
+  {
+    std::ofstream out(dir / "text.geojson");
+    out << R"({"type":"FeatureCollection","features":[
+      {"type":"Feature","id":4,"properties":{"thickness":"0.03"},
+       "geometry":{"type":"LineString","coordinates":[[0.1,0.5],[0.9,0.5]]}}]})";
+  }
+  EXPECT_DOUBLE_EQ(load_sketch(dir / "text.geojson").strokes[0].thickness, 0.03);
+}
+
 }  // namespace
 }  // namespace tw
