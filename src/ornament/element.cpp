@@ -76,6 +76,14 @@ BezierSpline spline_of(const Json& value, const Where& where) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     spline.control_points.push_back(point_of(points[i], where.at("points").at(i)));
   }
+  // A spline whose control points coincide has no length: grown, it becomes a centerline of
+  // one repeated point that fails far from this file.
+  const Vec2 first = spline.control_points.front();
+  if (std::all_of(spline.control_points.begin(), spline.control_points.end(),
+                  [&](Vec2 p) { return distance(p, first) < 1e-9; })) {
+    where.at("points").fail("all control points are at ({}, {}): a spline needs a length", first.x,
+                            first.y);
+  }
   return spline;
 }
 
@@ -145,7 +153,7 @@ ElementSet parse_element_set(const std::string& text, const std::string& origin)
   Json root;
   try {
     root = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for 1e400
     fail("{}: not JSON: {}", origin, e.what());
   }
   const Where top{origin, ""};

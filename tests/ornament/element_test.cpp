@@ -88,6 +88,11 @@ TEST(Element, ErrorsNameTheFileAndTheKey) {
       {"name": "e", "tag": "a", "sizes": [1, -2],
        "splines": [{"points": [[0,0],[1,0],[2,0],[3,0]]}]}]})"),
               HasSubstr("key 'elements[0].sizes[1]': a size must be > 0"));
+  EXPECT_THAT(error_of(R"({"name": "n", "kind": "hedge", "seed_tag": "a", "elements": [
+      {"name": "e", "tag": "a", "splines": [{"points": [[0,0],[0,0],[0,0],[0,0]]}]}]})"),
+              HasSubstr("key 'elements[0].splines[0].points': all control points are at (0, 0)"));
+  EXPECT_THAT(error_of(R"({"name": "n", "kind": "hedge", "scale_m": 1e400, "seed_tag": "a"})"),
+              HasSubstr("bad.json: not JSON"));
   EXPECT_THAT(error_of(R"({"kind": "wall"})"), HasSubstr("key '': missing 'name'"));
 }
 
