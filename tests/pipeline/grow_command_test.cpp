@@ -117,6 +117,16 @@ TEST(GrowCommand, ABadElementFileIsOneErrorAndWritesNothing) {
   c.region = "100,100,200,200";
   EXPECT_THROW(run_grow_command(c), Error);
   EXPECT_FALSE(fs::exists(dir / "out"));
+  // Four words that are not numbers: a mistyped box, said as such rather than "cannot open".
+  c.region = "a,b,c,d";
+  try {
+    run_grow_command(c);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--region a,b,c,d: neither a polygon file nor a box of four "
+                                    "numbers minx,miny,maxx,maxy"));
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 // What a `terraweave grow` run printed and wrote: its summary line and every line of
