@@ -129,8 +129,11 @@ TEST(Conform, NodataCostsMoreThanAnyPathOverValidCells) {
   }
   EXPECT_GT(beside, 20);
   // Away from the lake it is still on the floor (the smoothing is kept).
-  for (const Vec2 p : r.line.points)
-    if (p.y > 300.0 && p.y < 600.0) EXPECT_LE(std::abs(p.x - 805.0), 10.0) << p.y;
+  for (const Vec2 p : r.line.points) {
+    if (p.y > 300.0 && p.y < 600.0) {
+      EXPECT_LE(std::abs(p.x - 805.0), 10.0) << p.y;
+    }
+  }
   // The drawn line crosses no nodata; one drawn through the lake crosses 400 m of it and its
   // conformed line none.
   const Curve through{{{805.0, 1950.0}, {805.0, 50.0}}, false};
