@@ -1,7 +1,10 @@
 #include "core/file_io.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <system_error>
@@ -33,14 +36,20 @@ void write_file_atomic(const fs::path& path, std::string_view bytes) {
   if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
   if (ec) fail("cannot create {}: {}", path.parent_path().string(), ec.message());
   const fs::path temporary = temporary_beside(path);
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.close();
-    if (!out) {
-      fs::remove(temporary, ec);
-      fail("cannot write {}", path.string());
-    }
+  // POSIX calls rather than a stream: a full disk or a file-size limit must reach the message
+  // as its errno ("No space left on device"), which a stream's failbit loses.
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot write {}: {}", path.string(), std::strerror(errno));
+  int error = 0;
+  for (std::size_t done = 0; done < bytes.size() && error == 0;) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno != EINTR) error = errno;
+    if (n > 0) done += std::size_t(n);
+  }
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) {
+    fs::remove(temporary, ec);
+    fail("cannot write {}: {}", path.string(), std::strerror(error));
   }
   fs::rename(temporary, path, ec);
   if (ec) {
