@@ -19,7 +19,7 @@ namespace {
 // The heights of `path` over `grid`: the raster itself when it is on the grid, else the DEM read
 // with the run's cell size and CRS (read_heightfield's rules, as the pipeline read it), the
 // grid a window of it. Throws naming the file when neither holds.
-Raster<float> input_heights_on(const fs::path& path, const LayerSet& run) {
+Raster<float> input_heights_on(const fs::path& path, const LayerSet& run, Resampling resampling) {
   const GridSpec& grid = run.grid;
   {
     LayerSet probe;
@@ -29,6 +29,7 @@ Raster<float> input_heights_on(const fs::path& path, const LayerSet& run) {
   HeightfieldOptions options;
   options.resolution = grid.pixel_width;
   options.crs = run.crs_wkt;
+  options.resampling = resampling;
   const Heightfield dem = read_heightfield(path.string(), options);
   const double col = (grid.origin_x - dem.grid.origin_x) / dem.grid.pixel_width;
   const double row = (dem.grid.origin_y - grid.origin_y) / dem.grid.pixel_height;
@@ -52,7 +53,8 @@ EngineExportResult export_layer_files(const ExportFiles& files,
                                       const std::vector<ExportCurve>& curves,
                                       EngineExportOptions options, int run_tile_size,
                                       const fs::path& dir, OutputStager& stager,
-                                      const std::optional<fs::path>& input_height) {
+                                      const std::optional<fs::path>& input_height,
+                                      Resampling input_resampling) {
   options.tile_size = export_tile_size(options, run_tile_size);
   if (*options.tile_size > 0) return export_tiles_for_engine(files, curves, options, dir, stager);
   LayerSet set;
@@ -60,7 +62,7 @@ EngineExportResult export_layer_files(const ExportFiles& files,
   if (files.splat) set.layers.push_back(read_geotiff_layer(*files.splat, "splat", set));
   if (!files.crs_wkt.empty()) set.crs_wkt = files.crs_wkt;
   std::optional<Raster<float>> input;
-  if (input_height) input = input_heights_on(*input_height, set);
+  if (input_height) input = input_heights_on(*input_height, set, input_resampling);
   return export_for_engine(set, curves, options, dir, stager, input ? &*input : nullptr);
 }
 
@@ -81,6 +83,15 @@ EngineExportResult run_export_command(const ExportCommand& command) {
         report["grid"]["crs_wkt"].is_string())
       files.crs_wkt = report["grid"]["crs_wkt"].get<std::string>();
   }
+  // The DEM read again as the run read it: its `resampling` (report.json's config).
+  Resampling input_resampling = Resampling::bilinear;
+  if (command.input_height) {
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
+                                                        /*allow_exceptions=*/false);
+    if (report.is_object() && report.contains("config") && report["config"].is_object() &&
+        report["config"].value("resampling", "") == "cubic")
+      input_resampling = Resampling::cubic;
+  }
   const std::vector<ExportCurve> curves = fs::exists(run / "features.geojson")
                                               ? read_curves_geojson(run / "features.geojson")
                                               : std::vector<ExportCurve>{};
@@ -93,8 +104,9 @@ EngineExportResult run_export_command(const ExportCommand& command) {
       fail("--input-height {}: no such file", command.input_height->string());
     options.layers = true;
   }
-  EngineExportResult result = export_layer_files(files, curves, options, run_tile_size,
-                                                 command.out_dir, out, command.input_height);
+  EngineExportResult result =
+      export_layer_files(files, curves, options, run_tile_size, command.out_dir, out,
+                         command.input_height, input_resampling);
   out.commit();
   return result;
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "geo/heightfield.hpp"
 #include "layers/export.hpp"
 
 namespace tw {
@@ -14,8 +15,8 @@ struct ExportCommand {
   std::filesystem::path out_dir;
   EngineExportOptions options;
   // The heights before the run, for the non-destructive layers (options.layers): a raster on
-  // the run's grid, or the DEM the pipeline read (read again with the run's cell size and CRS,
-  // the run's grid a window of it).
+  // the run's grid, or the DEM the pipeline read (read again with the run's cell size, CRS and
+  // resampling, the run's grid a window of it).
   std::optional<std::filesystem::path> input_height;
 };
 
@@ -28,6 +29,7 @@ EngineExportResult run_export_command(const ExportCommand& command);
 EngineExportResult export_layer_files(
     const ExportFiles& files, const std::vector<ExportCurve>& curves, EngineExportOptions options,
     int run_tile_size, const std::filesystem::path& dir, OutputStager& stager,
-    const std::optional<std::filesystem::path>& input_height = std::nullopt);
+    const std::optional<std::filesystem::path>& input_height = std::nullopt,
+    Resampling input_resampling = Resampling::bilinear);
 
 }  // namespace tw
