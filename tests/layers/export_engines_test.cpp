@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "layers/export.hpp"
+#include "layers/write.hpp"
 #include "sample_layers.hpp"
 #include "test_support.hpp"
 
@@ -349,6 +350,43 @@ TEST(EditLayers, HeightDeltaIsResultMinusInputAndWeightLayersSumToTheSplat) {
   EngineExportOptions options;
   options.layers = true;
   EXPECT_THROW(run_export(set, options, dir.path()), Error);
+}
+
+// Tiles keep one spacing too: a non-square world in Unreal tiles of 127 is the single 253 x 253
+// heightmap (the same spacing, the shorter side padded) cut into windows sharing their edges.
+TEST(SquarePixels, UnrealTilesOfANonSquareWorldAreWindowsOfTheSquareHeightmap) {
+  test::TempDir dir;
+  const LayerSet set = test::interop_set(200, 150);
+  write_geotiff(set, set.layers[0], dir / "height.tif");
+  write_geotiff(set, set.layers[1], dir / "splat.tif");
+  run_export(set, {}, dir / "whole");
+  EngineExportOptions options;
+  options.tile_size = 127;
+  OutputTransaction tx;
+  export_tiles_for_engine({dir / "height.tif", dir / "splat.tif", set.crs_wkt}, {}, options,
+                          dir / "tiles", tx);
+  tx.commit();
+  const nlohmann::json tiles = read_json(dir / "tiles/unreal.json");
+  const nlohmann::json whole = read_json(dir / "whole/unreal.json");
+  EXPECT_NEAR(tiles["scale"][0].get<double>(), tiles["scale"][1].get<double>(), 1e-9);
+  EXPECT_NEAR(tiles["scale"][0].get<double>(), whole["scale"][0].get<double>(), 1e-9);
+  ASSERT_EQ(tiles["tiles_x"], 2);
+  ASSERT_EQ(tiles["tiles_y"], 2);
+  EXPECT_EQ(tiles["padding"]["world_window"], whole["padding"]["world_window"]);
+  const Image map = read_image(dir / "whole/heightmap.png");
+  const Image road = read_image(dir / "whole/weightmap_road.png");
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const std::string suffix = "_x" + std::to_string(i) + "_y" + std::to_string(j) + ".png";
+      const Image tile = read_image(dir / "tiles" / ("heightmap" + suffix));
+      const Image tile_road = read_image(dir / "tiles" / ("weightmap_road" + suffix));
+      ASSERT_EQ(tile.width, 127);
+      for (int r = 0; r < 127; ++r)
+        for (int c = 0; c < 127; ++c) {
+          ASSERT_EQ(tile.at(c, r), map.at(i * 126 + c, j * 126 + r)) << i << j << " " << c << r;
+          ASSERT_EQ(tile_road.at(c, r), road.at(i * 126 + c, j * 126 + r));
+        }
+    }
 }
 
 }  // namespace
