@@ -77,6 +77,13 @@ int region_size_for(int samples) {
   return size;
 }
 
+// A float literal GDScript types as float (6.0, not the int 6), round-tripping the double.
+std::string gdscript_float(double v) {
+  std::string text = fmt::format("{}", v);
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
+  return text;
+}
+
 std::string import_script(const nlohmann::json& sidecar) {
   // Runs in the editor (File > Run, with a scene holding a Terrain3D node selected, or attached to
   // an EditorScript): the same calls as Terrain3D's own importer (tools/importer.gd).
@@ -138,12 +145,12 @@ func apply_layers(terrain: Terrain3D) -> void:
 	terrain.data.update_maps()
 )",
       fmt::arg("region", sidecar["region_size"].get<int>()),
-      fmt::arg("spacing", sidecar["vertex_spacing"].get<double>()),
+      fmt::arg("spacing", gdscript_float(sidecar["vertex_spacing"].get<double>())),
       fmt::arg("px", sidecar["import_position"][0].get<int>()),
       fmt::arg("pz", sidecar["import_position"][1].get<int>()),
       fmt::arg("height", sidecar["height"].get<std::string>()),
-      fmt::arg("r16min", sidecar["height_min_m"].get<double>()),
-      fmt::arg("r16max", sidecar["height_max_m"].get<double>()),
+      fmt::arg("r16min", gdscript_float(sidecar["height_min_m"].get<double>())),
+      fmt::arg("r16max", gdscript_float(sidecar["height_max_m"].get<double>())),
       fmt::arg("w", sidecar["size"][0].get<int>()), fmt::arg("h", sidecar["size"][1].get<int>()));
 }
 

@@ -134,6 +134,7 @@ TEST(Terrain3DExport, ControlBitsDecodeToTheDominantMaterialsAndTheirBlend) {
   EXPECT_EQ(t3d["textures"][2]["material"], "bank");
   const std::string script = test::read_file(dir / "import_terrain3d.gd");
   EXPECT_NE(script.find("const REGION_SIZE := 256"), std::string::npos);
+  EXPECT_NE(script.find("const VERTEX_SPACING := 10.0\n"), std::string::npos);  // a float
   EXPECT_NE(script.find("import_images(images, position, 0.0, 1.0)"), std::string::npos);
 }
 
