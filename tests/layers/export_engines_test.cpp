@@ -354,8 +354,9 @@ TEST(EditLayers, HeightDeltaIsResultMinusInputAndWeightLayersSumToTheSplat) {
 }
 
 // Tiles keep one spacing too: a non-square world in Unreal tiles of 127 is the single 253 x 253
-// heightmap (the same spacing, the shorter side padded) cut into windows sharing their edges.
-TEST(SquarePixels, UnrealTilesOfANonSquareWorldAreWindowsOfTheSquareHeightmap) {
+// heightmap (the same spacing, the shorter side padded) cut into windows sharing their edges;
+// Unity's tiles of 129 are the single 257 x 257 heightmap's windows likewise.
+TEST(SquarePixels, TilesOfANonSquareWorldAreWindowsOfTheSquareHeightmap) {
   test::TempDir dir;
   const LayerSet set = test::interop_set(200, 150);
   write_geotiff(set, set.layers[0], dir / "height.tif");
@@ -387,6 +388,32 @@ TEST(SquarePixels, UnrealTilesOfANonSquareWorldAreWindowsOfTheSquareHeightmap) {
           ASSERT_EQ(tile.at(c, r), map.at(i * 126 + c, j * 126 + r)) << i << j << " " << c << r;
           ASSERT_EQ(tile_road.at(c, r), road.at(i * 126 + c, j * 126 + r));
         }
+    }
+
+  // Unity: padded north (the corner stays south-west); tiles of 129 are windows of the 257.
+  EngineExportOptions unity;
+  unity.engine = Engine::unity;
+  run_export(set, unity, dir / "unity_whole");
+  unity.tile_size = 129;
+  OutputTransaction unity_tx;
+  export_tiles_for_engine({dir / "height.tif", dir / "splat.tif", set.crs_wkt}, {}, unity,
+                          dir / "unity_tiles", unity_tx);
+  unity_tx.commit();
+  const nlohmann::json unity_tiles = read_json(dir / "unity_tiles/unity.json");
+  EXPECT_NEAR(unity_tiles["terrain_size"][0].get<double>(),
+              unity_tiles["terrain_size"][2].get<double>(), 1e-9);
+  const std::string whole_raw = test::read_file(dir / "unity_whole/heightmap.raw");
+  ASSERT_EQ(whole_raw.size(), 257u * 257u * 2u);
+  for (int z = 0; z < 2; ++z)
+    for (int x = 0; x < 2; ++x) {
+      const std::string tile =
+          test::read_file(dir / "unity_tiles" /
+                          ("heightmap_" + std::to_string(x) + "_" + std::to_string(z) + ".raw"));
+      ASSERT_EQ(tile.size(), 129u * 129u * 2u);
+      for (int rr = 0; rr < 129; ++rr)  // file rows: south to north in both
+        ASSERT_EQ(tile.substr(std::size_t(rr) * 129 * 2, 129 * 2),
+                  whole_raw.substr((std::size_t(z * 128 + rr) * 257 + x * 128) * 2, 129 * 2))
+            << x << " " << z << " " << rr;
     }
 }
 
