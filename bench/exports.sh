@@ -4,7 +4,8 @@
 # generated 8192^2 world run tiled (2048; heights, splat and the two roads of
 # pipelines/generated_lines.geojson: the export reads layers, whatever made them). Unreal and
 # Unity both as one heightmap (--tile-size 0) and as World Partition / Terrain Tools tiles
-# (the tiled run's default). Prints numbers, never fails on time. Usage: bench/exports.sh [demo] [8192]   (env TERRAWEAVE=build/src/terraweave,
+# (the tiled run's default); Godot's HTerrain and Terrain3D (the world's cells as they are).
+# Prints numbers, never fails on time. Usage: bench/exports.sh [demo] [8192]   (env TERRAWEAVE=build/src/terraweave,
 # WORK=/tmp/terraweave-exports)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -55,6 +56,7 @@ YAML
     [ "$world" = demo ] || measure "$world" "$engine-tiles" -- "$bin" -q export "$run" --to "$engine"
   done
   measure "$world" godot -- "$bin" -q export "$run" --to godot
+  measure "$world" terrain3d -- "$bin" -q export "$run" --to terrain3d
 done
 
 printf '\n%-6s %-13s %8s %9s %8s %6s %s\n' world export wall_s peak_MiB MiB files status

@@ -474,15 +474,19 @@ int main(int argc, char** argv) {
   CLI::App* export_run = app.add_subcommand(
       "export", "turn a finished run into an engine's heightmap, weightmaps and splines");
   export_run->add_option("RUN_DIR", export_args.run_dir, "output folder of a run")->required();
-  export_run->add_option("--to", export_engine, "unreal, unity or godot")
+  export_run->add_option("--to", export_engine, "unreal, unity, godot (HTerrain) or terrain3d")
       ->required()
-      ->check(CLI::IsMember({"unreal", "unity", "godot"}));
+      ->check(CLI::IsMember({"unreal", "unity", "godot", "terrain3d"}));
   export_run->add_option("--out", export_args.out_dir, "folder to write")
       ->required()
       ->check(non_empty);
   export_run->add_option(
       "--size", export_args.options.size,
-      "heightmap samples per side (default: the smallest size holding the world)");
+      "heightmap samples per side (default: the smallest size holding the world; Unreal: any "
+      "from 8 to 8129, a warning when not one of Epic's recommended sizes)");
+  export_run->add_option("--input-height", export_args.input_height,
+                         "the heights before the run (the pipeline's DEM, or a raster on the run's "
+                         "grid): also write the non-destructive layers (height delta, weights)");
   export_run->add_option("--tile-size", export_args.options.tile_size,
                          "samples per tile (Unreal World Partition, Unity; 0: one heightmap; "
                          "default: tiles when the run is tiled)");
@@ -495,7 +499,7 @@ int main(int argc, char** argv) {
             export_args.options.godot_height =
                 f == "r16" ? tw::GodotHeightFormat::r16 : tw::GodotHeightFormat::exr;
           },
-          "exr (32-bit float metres, the default) or r16")
+          "godot and terrain3d: exr (32-bit float metres, the default) or r16")
       ->check(CLI::IsMember({"exr", "r16"}));
 
   list_global_options_in_subcommand_help(app);
@@ -563,6 +567,7 @@ int main(int argc, char** argv) {
     if (export_run->parsed()) {
       export_args.options.engine = tw::parse_engine(export_engine);
       const tw::EngineExportResult result = tw::run_export_command(export_args);
+      for (const std::string& line : result.warnings) tw::logger().warn("{}", line);
       for (const std::string& line : result.settings) std::printf("%s\n", line.c_str());
       std::printf("%zu files in %s\n", result.files.size(),
                   tw::single_line(export_args.out_dir.string()).c_str());

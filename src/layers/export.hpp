@@ -17,15 +17,19 @@
 
 namespace tw {
 
-enum class Engine { unreal, unity, godot };
+enum class Engine { unreal, unity, godot, terrain3d };
 enum class GodotHeightFormat { exr, r16 };
 
 struct EngineExportOptions {
   Engine engine = Engine::unreal;
-  // Heightmap samples per side, one of the engine's sizes (engine_heightmap_sizes); 0 = the
-  // smallest one holding the world's cells (per axis for Unreal, the longer side for Unity and
-  // Godot, whose heightmaps are square).
+  // Heightmap samples per side (engine_takes_size); 0 = the smallest of the engine's sizes
+  // holding the world's cells (per axis for Unreal, the longer side for Unity and Godot, whose
+  // heightmaps are square; Terrain3D takes the world's cells as they are).
   int size = 0;
+  // Non-destructive layers (docs/exports.md): the height delta (result - input) and the
+  // weights of the materials the features painted, to apply over an existing terrain. Needs
+  // the input heights (export_for_engine's `input_height`).
+  bool layers = false;
   // Height written on nodata cells; absent = from the nearest valid cells (GDALFillNodata,
   // inverse-distance weighted over the nearest valid cell in each direction, no smoothing).
   std::optional<double> nodata_height;
@@ -56,9 +60,10 @@ struct EngineExportResult {
   std::vector<std::filesystem::path> files;  // final paths, in writing order
   std::vector<std::string> settings;         // "what to type in", one line each (printed)
   ExportReads reads;                         // tiled exports; zero for layers in memory
+  std::vector<std::string> warnings;         // printed as warnings (a size not recommended)
 };
 
-Engine parse_engine(std::string_view name);  // unreal | unity | godot, else tw::Error
+Engine parse_engine(std::string_view name);  // unreal|unity|godot|terrain3d, else tw::Error
 std::string to_string(Engine engine);
 
 // The heightmap sizes the engine takes: Epic's recommended landscape sizes (127 ... 8129) for
@@ -66,6 +71,12 @@ std::string to_string(Engine engine);
 const std::vector<int>& engine_heightmap_sizes(Engine engine);
 // The smallest size >= cells (the largest when none is).
 int engine_heightmap_size(Engine engine, int cells);
+// Whether `size` is a heightmap size the engine imports: Unreal any from 8 to 8129 (it builds
+// whole components, padding the rest: the recommended sizes fill them exactly), Unity and
+// Godot their 2^n + 1 sizes; Terrain3D takes no size (the world's cells).
+bool engine_takes_size(Engine engine, int size);
+// What the engine takes, for messages: "8 ... 8129 (Epic's recommended: 127, 253, ...)".
+std::string engine_size_text(Engine engine);
 
 // The tile size an export uses for a run tiled at `run_tile_size` (0: untiled): the option's,
 // else for a tiled run the smallest engine size holding one run tile and its shared edge (0 for
@@ -73,11 +84,13 @@ int engine_heightmap_size(Engine engine, int cells);
 int export_tile_size(const EngineExportOptions& options, int run_tile_size);
 
 // Writes the export of `set` (layers "height", required, and "splat") and `curves` into `dir`,
-// every file staged in `stager`. Throws tw::Error naming the problem (no height layer, a size
-// the engine does not take, nothing but nodata).
+// every file staged in `stager`. `input_height` (the heights before the run, on set.grid, NaN
+// for nodata) is needed by options.layers. Throws tw::Error naming the problem (no height
+// layer, a size the engine does not take, nothing but nodata, layers without input heights).
 EngineExportResult export_for_engine(const LayerSet& set, const std::vector<ExportCurve>& curves,
                                      const EngineExportOptions& options,
-                                     const std::filesystem::path& dir, OutputStager& stager);
+                                     const std::filesystem::path& dir, OutputStager& stager,
+                                     const Raster<float>* input_height = nullptr);
 
 // A run's layers on disk: GeoTIFFs, or the VRT mosaics of a tiled run (docs/tiles.md).
 struct ExportFiles {

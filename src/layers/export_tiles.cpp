@@ -110,17 +110,48 @@ void fill_into_copy(const LayerFile& height, FilledCopy& copy) {
 struct TileLayout {
   int size = 0;        // samples per tile side
   int nx = 0, ny = 0;  // tiles
-  GridSpec vertices;   // every tile's vertices: nx (size - 1) + 1 by ny (size - 1) + 1
+  // Every tile's vertices: nx (size - 1) + 1 by ny (size - 1) + 1, one spacing on both axes,
+  // the world's a window of them at the engine's origin corner, the rest padding.
+  detail::EngineVertices vertices;
   Window tile(int i, int j) const { return {i * (size - 1), j * (size - 1), size, size}; }
 };
 
-TileLayout tile_layout(const GridSpec& grid, int size) {
+int tiles_over(int vertices, int size) {
+  return std::max(1, (vertices - 1 + size - 2) / (size - 1));
+}
+
+TileLayout tile_layout(const GridSpec& grid, int size, detail::OriginCorner corner) {
   TileLayout l;
   l.size = size;
-  l.nx = std::max(1, (grid.width - 1 + size - 2) / (size - 1));
-  l.ny = std::max(1, (grid.height - 1 + size - 2) / (size - 1));
-  l.vertices = detail::vertex_grid(grid, l.nx * (size - 1) + 1, l.ny * (size - 1) + 1);
+  const int kx = tiles_over(grid.width, size), ky = tiles_over(grid.height, size);
+  const double spacing = detail::fitting_spacing(grid, kx * (size - 1) + 1, ky * (size - 1) + 1);
+  // The axis that does not set the spacing may need fewer tiles at it.
+  l.nx = tiles_over(detail::vertices_over((grid.width - 1) * grid.pixel_width, spacing), size);
+  l.ny = tiles_over(detail::vertices_over((grid.height - 1) * grid.pixel_height, spacing), size);
+  l.vertices =
+      detail::engine_vertices(grid, l.nx * (size - 1) + 1, l.ny * (size - 1) + 1, spacing, corner);
   return l;
+}
+
+// `tile` (a window of v's samples): its part of the world read through `read` (a window of
+// v.data), the padding carrying the nearest world sample on as pad_to_engine does (the same
+// samples as the whole heightmap's window).
+template <class Read>
+Raster<float> tile_samples(const detail::EngineVertices& v, const Window& tile, const Read& read) {
+  const Window& w = v.world;
+  const auto clamp_col = [&](int c) { return std::clamp(c - w.col0, 0, w.width - 1); };
+  const auto clamp_row = [&](int r) { return std::clamp(r - w.row0, 0, w.height - 1); };
+  const int c0 = clamp_col(tile.col0), c1 = clamp_col(tile.col0 + tile.width - 1);
+  const int r0 = clamp_row(tile.row0), r1 = clamp_row(tile.row0 + tile.height - 1);
+  const Raster<float> data = read(Window{c0, r0, c1 - c0 + 1, r1 - r0 + 1});
+  if (data.width == tile.width && data.height == tile.height && tile.col0 - w.col0 == c0 &&
+      tile.row0 - w.row0 == r0)
+    return data;
+  Raster<float> out(tile.width, tile.height);
+  for (int r = 0; r < tile.height; ++r)
+    for (int c = 0; c < tile.width; ++c)
+      out.at(c, r) = data.at(clamp_col(tile.col0 + c) - c0, clamp_row(tile.row0 + r) - r0);
+  return out;
 }
 
 // The layer files read by windows, never whole. Nodata is filled the first time a read meets
@@ -195,7 +226,7 @@ class TiledSource {
   template <class Read>
   Raster<float> resampled(const GridSpec& to, const Window& window, const Read& read) {
     const GridSpec& from = height_.grid;
-    if (to == detail::vertex_grid(from, from.width, from.height))
+    if (to == from || to == detail::vertex_grid(from, from.width, from.height))
       return read(window);  // the vertices are the cell centres
     const Window source = resample_source_window(from, to, window);
     return resample_heights_window(read(source), source, from, to, window, Resampling::bilinear);
@@ -227,7 +258,10 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
   const std::string engine = to_string(options.engine);
   const int size = options.tile_size.value_or(0);
   const std::vector<int>& sizes = engine_heightmap_sizes(options.engine);
-  if (options.engine == Engine::godot) fail("export godot: Godot takes one heightmap, not tiles");
+  if (options.engine == Engine::godot || options.engine == Engine::terrain3d)
+    fail("export {}: Godot takes one heightmap, not tiles", engine);
+  if (options.layers)
+    fail("export {}: layers are written with one heightmap (tile_size 0), not with tiles", engine);
   if (!std::binary_search(sizes.begin(), sizes.end(), size))
     fail("export {}: tile size {} is not one the engine takes ({} ... {})", engine, size,
          sizes.front(), sizes.back());
@@ -235,21 +269,29 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
   const detail::ScopedGdalCacheMax cache(detail::kExportGdalCacheBytes);
   TiledSource source(files, options);
   const GridSpec& grid = source.grid();
-  const TileLayout layout = tile_layout(grid, size);
+  const bool unreal = options.engine == Engine::unreal;
+  const detail::OriginCorner corner =
+      unreal ? detail::OriginCorner::north_west : detail::OriginCorner::south_west;
+  const TileLayout layout = tile_layout(grid, size, corner);
   const TileWriter names{options.engine, layout};
+  const detail::EngineVertices& vertices = layout.vertices;
+  const auto heights_of = [&](const Window& tile) {
+    return tile_samples(vertices, tile,
+                        [&](const Window& w) { return source.heights(vertices.data, w); });
+  };
 
   double min = std::numeric_limits<double>::infinity(), max = -min;
   for (int j = 0; j < layout.ny; ++j)
     for (int i = 0; i < layout.nx; ++i) {
-      const Raster<float> h = source.heights(layout.vertices, layout.tile(i, j));
+      const Raster<float> h = heights_of(layout.tile(i, j));
       const auto [lo, hi] = std::minmax_element(h.pixels.begin(), h.pixels.end());
       min = std::min(min, double(*lo));
       max = std::max(max, double(*hi));
     }
 
-  const bool unreal = options.engine == Engine::unreal;
   const int alpha = size - 1;  // Unity's control maps: 2^n texels per tile
-  const GridSpec texels = detail::texel_grid(grid, layout.nx * alpha, layout.ny * alpha);
+  const detail::EngineVertices texels =
+      detail::engine_texels(grid, layout.nx * alpha, layout.ny * alpha, vertices.spacing, corner);
   const std::vector<std::string> materials = source.splat()
                                                  ? detail::material_names(source.splat()->channels)
                                                  : std::vector<std::string>{};
@@ -261,8 +303,7 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
     for (int i = 0; i < layout.nx; ++i) {
       const std::string suffix = names.suffix(i, j);
       const Window window = layout.tile(i, j);
-      const detail::Heightmap16 map =
-          detail::quantize_heights(source.heights(layout.vertices, window), min, max);
+      const detail::Heightmap16 map = detail::quantize_heights(heights_of(window), min, max);
       const std::string height_file = "heightmap" + suffix + (unreal ? ".png" : ".raw");
       result.files.push_back(dir / height_file);
       if (unreal)
@@ -271,11 +312,13 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
         detail::write_raw16(stager.stage(result.files.back()), map, true);
       nlohmann::json weight_files = nlohmann::json::array();
       if (source.splat()) {
-        const GridSpec& on = unreal ? layout.vertices : texels;
+        const detail::EngineVertices& on = unreal ? vertices : texels;
         const Window w = unreal ? window : Window{i * alpha, j * alpha, alpha, alpha};
         std::vector<Raster<float>> bands;
         for (std::size_t m = 0; m < materials.size(); ++m)
-          bands.push_back(source.weights(int(m), on, w));
+          bands.push_back(tile_samples(on, w, [&](const Window& data_window) {
+            return source.weights(int(m), on.data, data_window);
+          }));
         const auto weights = detail::quantize_weights(bands);
         const std::vector<std::uint8_t> zero(std::size_t(w.width) * w.height, 0);
         const std::size_t per_file = unreal ? 1 : 4;
@@ -290,8 +333,8 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
           weight_files.push_back(file);
         }
       }
-      const double tile_x = i * (size - 1) * layout.vertices.pixel_width;
-      const double tile_z = (layout.ny - 1 - j) * (size - 1) * layout.vertices.pixel_height;
+      const double tile_x = i * (size - 1) * vertices.spacing;
+      const double tile_z = (layout.ny - 1 - j) * (size - 1) * vertices.spacing;
       tiles.push_back({{"x", i},
                        {unreal ? "y" : "z", unreal ? j : layout.ny - 1 - j},
                        {"heightmap", height_file},
@@ -299,13 +342,14 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
       if (!unreal) tiles.back()["position"] = {tile_x, min, tile_z};
       progress.advance();
     }
-  const double vx = layout.vertices.pixel_width, vz = layout.vertices.pixel_height;
+  const double vx = vertices.spacing, vz = vertices.spacing;
   const detail::EngineFrame frame = detail::engine_frame(options.engine, grid);
   nlohmann::json sidecar = {{"engine", engine},
                             {"tile_size", size},
                             {"tiles_x", layout.nx},
                             {"tiles_y", layout.ny},
-                            {"size", {layout.vertices.width, layout.vertices.height}},
+                            {"size", {vertices.width, vertices.height}},
+                            {"padding", detail::padding_json(vertices)},
                             {"height_min_m", min},
                             {"height_max_m", max},
                             {"height_step_m", (max - min) / 65535.0},

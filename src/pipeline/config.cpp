@@ -567,18 +567,18 @@ void read_output_encoding(const MapReader& out, OutputConfig& output) {
   }
 }
 
-// export: [unreal, unity] or {unreal: {size: 1009, nodata_height: 0, tile_size: 505},
-// godot: {height: r16}}.
+// export: [unreal, unity] or {unreal: {size: 1009, nodata_height: 0, tile_size: 505,
+// layers: true}, godot: {height: r16}, terrain3d: {}}.
 std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML::Node& node) {
-  const std::vector<std::string> engines = {"unreal", "unity", "godot"};
+  const std::vector<std::string> engines = {"unreal", "unity", "godot", "terrain3d"};
   std::vector<EngineExportOptions> out;
   const auto add = [&](const std::string& name, const YAML::Node& at, const std::string& path) {
     const auto it = std::find(engines.begin(), engines.end(), name);
     if (it == engines.end()) {
       const std::string hint = detail::closest_match(name, engines);
       src.fail(at, path,
-               fmt::format("unknown engine '{}', expected unreal, unity or godot{}", name,
-                           hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+               fmt::format("unknown engine '{}', expected unreal, unity, godot or terrain3d{}",
+                           name, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
     }
     for (const auto& e : out)
       if (to_string(e.engine) == name) src.fail(at, path, fmt::format("'{}' given twice", name));
@@ -595,22 +595,25 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
       const std::string path = "export." + name;
       EngineExportOptions* e = add(name, entry.first, path);
       if (entry.second.IsNull()) continue;
-      const MapReader m(src, entry.second, path, {"size", "nodata_height", "height", "tile_size"});
+      const MapReader m(src, entry.second, path,
+                        {"size", "nodata_height", "height", "tile_size", "layers"});
       if (m.has("size")) {
         e->size = m.int_or("size", 0);
-        const auto& sizes = engine_heightmap_sizes(e->engine);
-        if (!std::binary_search(sizes.begin(), sizes.end(), e->size))
-          src.fail(m.get("size"), m.path("size"),
-                   fmt::format("{} takes sizes {} ... {} ({}), not {}", name, sizes.front(),
-                               sizes.back(),
-                               e->engine == Engine::unreal ? "Epic's landscape sizes" : "2^n + 1",
-                               e->size));
+        if (!engine_takes_size(e->engine, e->size))
+          src.fail(
+              m.get("size"), m.path("size"),
+              fmt::format("{} takes sizes {}, not {}", name, engine_size_text(e->engine), e->size));
       }
+      e->layers = m.bool_or("layers", false);
       if (m.has("tile_size")) {
         e->tile_size = m.int_or("tile_size", 0);
         const auto& sizes = engine_heightmap_sizes(e->engine);
-        if (e->engine == Engine::godot && *e->tile_size != 0)
-          src.fail(m.get("tile_size"), m.path("tile_size"), "godot takes one heightmap, not tiles");
+        if ((e->engine == Engine::godot || e->engine == Engine::terrain3d) && *e->tile_size != 0)
+          src.fail(m.get("tile_size"), m.path("tile_size"),
+                   fmt::format("{} takes one heightmap, not tiles", name));
+        if (e->layers && *e->tile_size != 0)
+          src.fail(m.get("tile_size"), m.path("tile_size"),
+                   "layers are written with one heightmap (tile_size: 0)");
         if (*e->tile_size != 0 && !std::binary_search(sizes.begin(), sizes.end(), *e->tile_size))
           src.fail(m.get("tile_size"), m.path("tile_size"),
                    fmt::format("{} takes tile sizes {} ... {}, not {} (0: one heightmap)", name,
@@ -620,8 +623,9 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
         e->nodata_height =
             detail::read_double(src, m.get("nodata_height"), m.path("nodata_height"));
       if (m.has("height")) {
-        if (e->engine != Engine::godot)
-          src.fail(m.get("height"), m.path("height"), "only godot takes a height format");
+        if (e->engine != Engine::godot && e->engine != Engine::terrain3d)
+          src.fail(m.get("height"), m.path("height"),
+                   "only godot and terrain3d take a height format");
         e->godot_height =
             GodotHeightFormat(read_one_of(m, "height", "height format", {"exr", "r16"}));
       }

@@ -3,7 +3,9 @@
 // (GeoTIFFs, or a tiled run's VRT mosaics) and features.geojson as an engine export
 // (layers/export.hpp), written atomically into DIR.
 #include <filesystem>
+#include <optional>
 
+#include "geo/heightfield.hpp"
 #include "layers/export.hpp"
 
 namespace tw {
@@ -12,6 +14,10 @@ struct ExportCommand {
   std::filesystem::path run_dir;
   std::filesystem::path out_dir;
   EngineExportOptions options;
+  // The heights before the run, for the non-destructive layers (options.layers): a raster on
+  // the run's grid, or the DEM the pipeline read (read again with the run's cell size, CRS and
+  // resampling, the run's grid a window of it).
+  std::optional<std::filesystem::path> input_height;
 };
 
 // Throws tw::Error naming the missing or unreadable file of the run.
@@ -20,9 +26,10 @@ EngineExportResult run_export_command(const ExportCommand& command);
 // The export of a run's layer files (run tiled at `run_tile_size`, 0: untiled): in tiles read
 // by windows when export_tile_size says so, else one heightmap from the layers read whole.
 // Shared by the command and by `export:` on tiled runs.
-EngineExportResult export_layer_files(const ExportFiles& files,
-                                      const std::vector<ExportCurve>& curves,
-                                      EngineExportOptions options, int run_tile_size,
-                                      const std::filesystem::path& dir, OutputStager& stager);
+EngineExportResult export_layer_files(
+    const ExportFiles& files, const std::vector<ExportCurve>& curves, EngineExportOptions options,
+    int run_tile_size, const std::filesystem::path& dir, OutputStager& stager,
+    const std::optional<std::filesystem::path>& input_height = std::nullopt,
+    Resampling input_resampling = Resampling::bilinear);
 
 }  // namespace tw

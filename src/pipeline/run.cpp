@@ -115,6 +115,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
           "export.{}: a tiled run or tiled export reads the run's GeoTIFFs; output.geotiff is "
           "false",
           to_string(engine.engine));
+    if (engine.layers && plan.tile_size > 0)
+      fail("export.{}.layers: written by untiled runs (the run is tiled: output.tiles)",
+           to_string(engine.engine));
   }
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
@@ -186,11 +189,16 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       }
       preview_seconds += seconds_since(previewing);
       const auto exporting = std::chrono::steady_clock::now();
+      std::optional<Raster<float>> input_height;  // the layers' "before"
       for (const EngineExportOptions& engine : config.exports) {
         if (export_tile_size(engine, 0) > 0) continue;  // tiles: from the files, below
-        const EngineExportResult exported = export_for_engine(
-            layers, curves, engine, dir / "export" / to_string(engine.engine), transaction);
+        if (engine.layers && !input_height)
+          input_height = read_height_window(plan.heights, plan.grid, tile.window);
+        const EngineExportResult exported =
+            export_for_engine(layers, curves, engine, dir / "export" / to_string(engine.engine),
+                              transaction, input_height ? &*input_height : nullptr);
         for (const std::string& line : exported.settings) logger().info("{}", line);
+        for (const std::string& line : exported.warnings) logger().warn("{}", line);
       }
       export_seconds += seconds_since(exporting);
     } else {
@@ -235,6 +243,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
         export_layer_files(files, curves, engine, plan.tile_size,
                            dir / "export" / to_string(engine.engine), transaction);
     for (const std::string& line : exported.settings) logger().info("{}", line);
+    for (const std::string& line : exported.warnings) logger().warn("{}", line);
   }
   export_seconds += seconds_since(tiled_exports);
   report.stages.push_back({"render", render_seconds});

@@ -131,24 +131,25 @@ TEST(EngineExport, UnrealHeightmapSpansTheFull16BitsAndRoundTripsWithinOneStep) 
 
 TEST(EngineExport, UnrealResamplesOntoVerticesAtTheOuterCellCentres) {
   test::TempDir dir;
-  const LayerSet set = test::interop_set(200, 150);
+  const LayerSet set = test::interop_set(200, 200);
   run_export(set, {}, dir.path());
   const Image map = read_image(dir / "heightmap.png");
-  ASSERT_EQ(map.width, 253);  // the nearest sizes >= 200 and 150, per axis
+  ASSERT_EQ(map.width, 253);  // the nearest size >= 200
   ASSERT_EQ(map.height, 253);
   const nlohmann::json ue = read_json(dir / "unreal.json");
   const double min = ue["height_min_m"], max = ue["height_max_m"];
   EXPECT_NEAR(min, 100.0, 1e-4);  // the corner vertices are the corner cells' centres
-  EXPECT_NEAR(max, 100.0 + 199.0 + 149.0 / 3.0, 1e-3);
+  EXPECT_NEAR(max, 100.0 + 199.0 + 199.0 / 3.0, 1e-3);
   const double step = (max - min) / 65535.0;
   for (int r = 0; r < 253; r += 21)
     for (int c = 0; c < 253; c += 19) {
-      const double expected = 100.0 + c * 199.0 / 252.0 + r * 149.0 / 252.0 / 3.0;
+      const double expected = 100.0 + c * 199.0 / 252.0 + r * 199.0 / 252.0 / 3.0;
       EXPECT_NEAR(min + map.bands[0][std::size_t(r) * 253 + c] * step, expected, step + 1e-4)
           << c << " " << r;
     }
   EXPECT_NEAR(ue["scale"][0].get<double>(), 199.0 * 1000.0 / 252.0, 1e-9);
-  EXPECT_NEAR(ue["scale"][1].get<double>(), 149.0 * 1000.0 / 252.0, 1e-9);
+  EXPECT_NEAR(ue["scale"][1].get<double>(), 199.0 * 1000.0 / 252.0, 1e-9);
+  // (Non-square worlds: tests/layers/export_engines_test.cpp, SquarePixels.)
 }
 
 TEST(EngineExport, NodataIsFilledFromTheNearestHeightsOrAGivenValue) {
@@ -185,16 +186,20 @@ TEST(EngineExport, UnityWritesLittleEndianRawBottomUpAndRgbaControlMaps) {
     const std::size_t i = (std::size_t(r) * 65 + c) * 2;
     return int(std::uint8_t(raw[i])) | int(std::uint8_t(raw[i + 1])) << 8;
   };
-  EXPECT_EQ(sample(0, 64), 0);      // file row 64 = north edge, the lowest corner (north-west)
+  EXPECT_EQ(sample(0, 64), 0);      // file row 64: padding north, the lowest corner (north-west)
   EXPECT_EQ(sample(64, 0), 65535);  // file row 0 = south edge: the highest corner (south-east)
   const double min = unity["height_min_m"], max = unity["height_max_m"];
   const double step = (max - min) / 65535.0;
-  // File row 16 is 16/64 of the span north of the southern cell centres.
-  const double expected = 100.0 + 32 * 39.0 / 64.0 + (64 - 16) * 29.0 / 64.0 / 3.0;
+  // Square: 390 m over 64 spacings on x and z alike; file row 16 is 16 spacings north of the
+  // southern cell centres (the world's 290 m fill 48 rows, the rest is padding).
+  const double s = 390.0 / 64.0;
+  const double expected = 100.0 + 32 * s / 10.0 + (290.0 - 16 * s) / 10.0 / 3.0;
   EXPECT_NEAR(min + sample(32, 16) * step, expected, step + 1e-4);
   EXPECT_NEAR(unity["terrain_size"][0].get<double>(), 390.0, 1e-9);
   EXPECT_NEAR(unity["terrain_size"][1].get<double>(), max - min, 1e-9);
-  EXPECT_NEAR(unity["terrain_size"][2].get<double>(), 290.0, 1e-9);
+  EXPECT_NEAR(unity["terrain_size"][2].get<double>(), 390.0, 1e-9);
+  EXPECT_EQ(unity["padding"]["world_window"][3], 48);
+  EXPECT_EQ(sample(10, 60), sample(10, 47));  // padding: the northern edge carried on
   ASSERT_EQ(unity["layers"].size(), 6u);
   EXPECT_EQ(unity["layers"][5]["control"], "splatmap_1.png");
   EXPECT_EQ(unity["layers"][5]["channel"], "G");
@@ -228,7 +233,8 @@ TEST(EngineExport, GodotHeightIsFloatMetresOrR16AndSplatSumsTo255) {
   std::vector<float> h(65 * 65);
   ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, h.data()));
   EXPECT_NEAR(h[0], 100.0f, 1e-4f);
-  EXPECT_NEAR(h[16 * 65 + 32], 100.0 + 32 * 39.0 / 64.0 + 16 * 29.0 / 64.0 / 3.0, 1e-3);
+  const double s = 390.0 / 64.0;  // square: one spacing on x and z
+  EXPECT_NEAR(h[16 * 65 + 32], 100.0 + 32 * s / 10.0 + 16 * s / 10.0 / 3.0, 1e-3);
   const Image splat = read_image(dir / "exr/splat_0.png");
   const Image splat1 = read_image(dir / "exr/splat_1.png");
   ASSERT_EQ(splat.width, 65);
@@ -248,13 +254,15 @@ TEST(EngineExport, GodotHeightIsFloatMetresOrR16AndSplatSumsTo255) {
 TEST(EngineExport, ASizeTheEngineDoesNotTakeIsOneClearError) {
   test::TempDir dir;
   EngineExportOptions options;
+  options.engine = Engine::unity;
   options.size = 1000;
   OutputTransaction tx;
   try {
     export_for_engine(test::interop_set(), {}, options, dir.path(), tx);
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "export unreal: size 1000 is not one the engine takes (127 ... 8129)");
+    EXPECT_STREQ(e.what(),
+                 "export unity: size 1000 is not one the engine takes: 33 ... 4097 (2^n + 1)");
   }
   EXPECT_EQ(engine_heightmap_size(Engine::unreal, 1009), 1009);
   EXPECT_EQ(engine_heightmap_size(Engine::unreal, 1010), 2017);

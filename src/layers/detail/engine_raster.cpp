@@ -1,5 +1,9 @@
 #include "layers/detail/engine_raster.hpp"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <cpl_string.h>
 #include <gdal_alg.h>
 #include <gdal_priv.h>
@@ -105,7 +109,108 @@ GridSpec texel_grid(const GridSpec& grid, int nx, int ny) {
   return out;
 }
 
+double fitting_spacing(const GridSpec& world, int nx, int ny) {
+  if (world.width < 2 || world.height < 2 || nx < 2 || ny < 2)
+    fail("an engine heightmap needs at least 2 x 2 cells (the grid is {} x {})", world.width,
+         world.height);
+  // n == cells: the cell size itself, not (cells - 1) x cell / (cells - 1) with its rounding.
+  const double sx =
+      nx == world.width ? world.pixel_width : (world.width - 1) * world.pixel_width / (nx - 1);
+  const double sy =
+      ny == world.height ? world.pixel_height : (world.height - 1) * world.pixel_height / (ny - 1);
+  return std::max(sx, sy);
+}
+
+int vertices_over(double span, double spacing) {
+  // The tolerance keeps a span of exactly n spacings (up to rounding) at n + 1 vertices.
+  return int(std::floor(span / spacing * (1.0 + 1e-12) + 1e-9)) + 1;
+}
+
+namespace {
+
+// The world's samples at `corner` of a width x height raster.
+Window world_window(int width, int height, int data_width, int data_height, OriginCorner corner) {
+  data_width = std::clamp(data_width, 1, width);
+  data_height = std::clamp(data_height, 1, height);
+  return {0, corner == OriginCorner::north_west ? 0 : height - data_height, data_width,
+          data_height};
+}
+
+}  // namespace
+
+EngineVertices engine_vertices(const GridSpec& world, int width, int height, double spacing,
+                               OriginCorner corner) {
+  EngineVertices v{width, height, spacing, {}, {}};
+  const int mx = vertices_over((world.width - 1) * world.pixel_width, spacing);
+  const int my = vertices_over((world.height - 1) * world.pixel_height, spacing);
+  v.world = world_window(width, height, mx, my, corner);
+  if (spacing == world.pixel_width && spacing == world.pixel_height &&
+      v.world.width == world.width && v.world.height == world.height) {
+    v.data = world;  // the vertices are the cell centres
+    return v;
+  }
+  const double west = world.origin_x + 0.5 * world.pixel_width;
+  const double north = world.origin_y - 0.5 * world.pixel_height;
+  const double south = world.origin_y - (world.height - 0.5) * world.pixel_height;
+  v.data.width = v.world.width;
+  v.data.height = v.world.height;
+  v.data.pixel_width = v.data.pixel_height = spacing;
+  v.data.origin_x = west - 0.5 * spacing;
+  v.data.origin_y = corner == OriginCorner::north_west
+                        ? north + 0.5 * spacing
+                        : south + (v.world.height - 1) * spacing + 0.5 * spacing;
+  return v;
+}
+
+EngineVertices engine_texels(const GridSpec& world, int width, int height, double spacing,
+                             OriginCorner corner) {
+  EngineVertices v{width, height, spacing, {}, {}};
+  const auto texels = [spacing](double span) {
+    return std::max(1, int(std::floor(span / spacing * (1.0 + 1e-12) + 1e-9)));
+  };
+  v.world = world_window(width, height, texels((world.width - 1) * world.pixel_width),
+                         texels((world.height - 1) * world.pixel_height), corner);
+  const double west = world.origin_x + 0.5 * world.pixel_width;
+  const double north = world.origin_y - 0.5 * world.pixel_height;
+  const double south = world.origin_y - (world.height - 0.5) * world.pixel_height;
+  v.data.width = v.world.width;
+  v.data.height = v.world.height;
+  v.data.pixel_width = v.data.pixel_height = spacing;
+  v.data.origin_x = west;
+  v.data.origin_y = corner == OriginCorner::north_west ? north : south + v.world.height * spacing;
+  return v;
+}
+
+Raster<float> pad_to_engine(const Raster<float>& data, const EngineVertices& v,
+                            std::optional<float> fill) {
+  const Window& w = v.world;
+  if (data.width != w.width || data.height != w.height)
+    fail("padding {} x {} samples into a window of {} x {}", data.width, data.height, w.width,
+         w.height);
+  if (!v.padded()) return data;
+  Raster<float> out(v.width, v.height);
+  for (int r = 0; r < v.height; ++r) {
+    const int dr = std::clamp(r - w.row0, 0, w.height - 1);
+    const bool row_inside = r >= w.row0 && r < w.row0 + w.height;
+    for (int c = 0; c < v.width; ++c) {
+      const bool inside = row_inside && c >= w.col0 && c < w.col0 + w.width;
+      const int dc = std::clamp(c - w.col0, 0, w.width - 1);
+      out.at(c, r) = inside || !fill ? data.at(dc, dr) : *fill;
+    }
+  }
+  return out;
+}
+
+std::vector<std::uint8_t> world_mask(const EngineVertices& v) {
+  std::vector<std::uint8_t> mask(std::size_t(v.width) * v.height, 0);
+  for (int r = v.world.row0; r < v.world.row0 + v.world.height; ++r)
+    std::fill_n(mask.begin() + std::ptrdiff_t(std::size_t(r) * v.width + v.world.col0),
+                v.world.width, std::uint8_t(255));
+  return mask;
+}
+
 Raster<float> resample_band(const Raster<float>& band, const GridSpec& from, const GridSpec& to) {
+  if (to == from) return band;  // the vertices are the cell centres
   if (to.width == from.width && to.height == from.height &&
       to == vertex_grid(from, to.width, to.height))
     return band;  // the vertices are the cell centres
@@ -187,6 +292,27 @@ void write_png16(const std::filesystem::path& path, const Heightmap16& map) {
                                      map.height, GDT_UInt16, 0, 0) != CE_None)
     fail("cannot write {}: {}", path.string(), CPLGetLastErrorMsg());
   copy_to_png(*ds, path);
+}
+
+void write_float_exr(const std::filesystem::path& path, int width, int height,
+                     const float* pixels) {
+  // Through OpenEXR itself: OpenImageIO's writer stamps a capDate of the current time, and an
+  // export must be the same bytes on every run.
+  try {
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(path.c_str(), header);
+    Imf::FrameBuffer frame;
+    // const_cast: OpenEXR's Slice takes char* for reading and writing alike; it only reads.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(pixels));
+    frame.insert("R",
+                 Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(width)));
+    file.setFrameBuffer(frame);
+    file.writePixels(height);
+  } catch (const std::exception& e) {
+    fail("cannot write {}: {}", path.string(), e.what());
+  }
 }
 
 void write_raw16(const std::filesystem::path& path, const Heightmap16& map, bool bottom_up) {

@@ -33,7 +33,8 @@ EngineFrame engine_frame(Engine engine, const GridSpec& world) {
               {x0, south},
               extent};
     case Engine::godot:
-      return {"godot",
+    case Engine::terrain3d:
+      return {engine == Engine::godot ? "godot" : "terrain3d",
               "x east, y up, z south; metres from the terrain corner",
               1.0,
               [x0, north](double x, double y, double h) {
