@@ -47,6 +47,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
                                               : std::vector<ExportCurve>{};
   require_safe_output(command.out_dir, true,
                       {.command = "export", .option = "--out", .inputs = {run}});
+  if (command.verify) verify_run_files(run, "export");
   OutputFolder out(command.out_dir);
   EngineExportResult result =
       export_layer_files(files, curves, command.options, run_tile_size, command.out_dir, out);

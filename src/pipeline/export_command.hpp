@@ -12,9 +12,12 @@ struct ExportCommand {
   std::filesystem::path run_dir;
   std::filesystem::path out_dir;
   EngineExportOptions options;
+  // Check the run's files against report.json first (--no-verify: false).
+  bool verify = true;
 };
 
-// Throws tw::Error naming the missing or unreadable file of the run.
+// Throws tw::Error naming the missing or unreadable file of the run, or (verify) the file that
+// no longer matches report.json (pipeline/run_layers.hpp, verify_run_files).
 EngineExportResult run_export_command(const ExportCommand& command);
 
 // The export of a run's layer files (run tiled at `run_tile_size`, 0: untiled): in tiles read
