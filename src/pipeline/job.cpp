@@ -169,6 +169,9 @@ json read_job(const fs::path& plan_dir) {
         "{}: complete-plan was interrupted while it replaced the plan's files (completing.json); "
         "run it again: terraweave complete-plan {}",
         plan_dir.string(), plan_dir.string());
+  if (!fs::is_regular_file(plan_dir / "job.json", ec))
+    fail("{}: missing; plan again (terraweave plan PIPELINE --out DIR)",
+         (plan_dir / "job.json").string());
   json job = read_plan_file(plan_dir / "job.json", kJobFormat);
   const std::string hash = plan_hash(plan_dir);
   if (job.value("plan", "") != hash)

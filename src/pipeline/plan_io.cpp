@@ -305,6 +305,9 @@ std::string plan_hash(const fs::path& dir) {
 
 WorldPlan load_plan(const fs::path& dir) {
   const json doc = read_plan_file(dir / "plan.json", kPlanFormat);
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "tasks.json", ec))
+    fail("{}: missing; plan again ({})", (dir / "tasks.json").string(), detail::plan_again(dir));
   const json tasks = read_plan_file(dir / "tasks.json", kTasksFormat);
   const std::string where = "plan " + (dir / "plan.json").string();
   if (tasks.value("plan", "") != doc.value("plan", ""))

@@ -378,6 +378,17 @@ TEST_F(PlanFolder, EditedPlanFilesAreRefusedByName) {
   edited(
       "syntheses.json", [](auto& j) { j["features"][0]["after"] = {2}; }, synthesize,
       "a dependency cycle: feature 0 -> 2 -> 0");
+  {  // a missing tasks.json is named too
+    const std::string kept = read_file_bytes(job.plan_dir / "tasks.json");
+    fs::remove(job.plan_dir / "tasks.json");
+    try {
+      load_plan(job.plan_dir);
+      ADD_FAILURE() << "a plan without tasks.json loaded";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("tasks.json: missing; plan again (terraweave plan "));
+    }
+    write_file_atomic(job.plan_dir / "tasks.json", kept);
+  }
   // Put back, every file is whole again: the plan loads and the tasks run.
   EXPECT_EQ(load_plan(job.plan_dir).tiles.size(), 9u);
   EXPECT_TRUE(synthesize_job_feature(job.plan_dir, 0).synthesized);
