@@ -255,9 +255,9 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
     fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
          plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
   }
-  // plan.json goes first: a plan.json beside an older job.json would be a mixed plan. An
-  // earlier plan's completion journal and finish record go too (they would name this plan's
-  // hash when the inputs did not change).
+  // job.json is written last, so the old plan.json is deleted first: a plan.json beside an
+  // older job.json would be a mixed plan. An earlier plan's completion journal and finish
+  // record go too (they would name this plan's hash when the inputs did not change).
   std::error_code ec;
   fs::remove(plan_dir / "completing.json", ec);
   fs::remove(plan_dir / "finished.json", ec);

@@ -70,14 +70,16 @@ std::vector<RunFile> hash_run_files(const fs::path& run) {
 void verify_run_files(const fs::path& run, std::string_view command) {
   for (const RunFile& file : hash_run_files(run)) {
     if (file.matches()) continue;
-    const std::string what =
-        file.now ? fmt::format("{} bytes, xxh3_128 {}; the run wrote {} bytes, {}", file.now->bytes,
-                               file.now->xxh3_128, file.recorded.bytes, file.recorded.xxh3_128)
-                 : std::string("missing");
+    const std::string what_to_do = fmt::format(
+        "run the pipeline again, or use terraweave {} --no-verify to read the files as they are",
+        command);
+    if (!file.now)
+      fail("{}: {} is missing (report.json names it); {}", run.string(), file.name, what_to_do);
     fail(
-        "{}: {} does not match report.json ({}): it changed after the run; run the pipeline "
-        "again, or use terraweave {} --no-verify to read the files as they are",
-        run.string(), file.name, what, command);
+        "{}: {} does not match report.json ({} bytes, xxh3_128 {}; the run wrote {} bytes, {}): "
+        "it changed after the run; {}",
+        run.string(), file.name, file.now->bytes, file.now->xxh3_128, file.recorded.bytes,
+        file.recorded.xxh3_128, what_to_do);
   }
 }
 

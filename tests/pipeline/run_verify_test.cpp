@@ -113,7 +113,9 @@ TEST_F(RunVerify, AMissingFileIsNamed) {
   fs::remove(dir / "run/features.geojson");
   const CommandResult r = terraweave("export run --to godot --out engine");
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("features.geojson does not match report.json (missing)"));
+  EXPECT_THAT(
+      r.output,
+      HasSubstr("features.geojson is missing (report.json names it); run the pipeline again"));
   EXPECT_FALSE(fs::exists(dir / "engine"));
 }
 
