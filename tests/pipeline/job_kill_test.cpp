@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -97,7 +98,8 @@ features:
   // Kills `command` before its N-th call for N = 1, 2, ... until it completes; after each kill
   // reruns it and compares `compared` with `expected`. Returns the number of kill points.
   int kill_at_every_call(const std::string& command, const fs::path& pristine,
-                         const std::map<std::string, std::string>& expected) {
+                         const std::map<std::string, std::string>& expected,
+                         const std::function<void(int)>& after_kill = {}) {
     const std::string preload = std::string("LD_PRELOAD='") + TW_FAULT_INJECTION_LIB +
                                 "' ASAN_OPTIONS=verify_asan_link_order=0 TW_FAULT_UNDER='" +
                                 dir.path().string() + "'";
@@ -111,6 +113,7 @@ features:
       }
       EXPECT_TRUE(killed.exit_code == 137 || killed.exit_code == -1)
           << command << " at " << n << ": " << killed.output;
+      if (after_kill) after_kill(n);
       const CommandResult rerun = terraweave(command);
       std::cout << command << ": killed before call " << n << ", rerun "
                 << (rerun.exit_code == 0 ? "ok" : "FAILED: " + rerun.output) << std::endl;
@@ -139,7 +142,19 @@ TEST_F(JobKill, CompletePlanKilledAtEveryCallThenRerunGivesTheSamePlan) {
   const auto expected = snapshot(dir / "out");
   ASSERT_TRUE(expected.contains(".terraweave/plan/plan.json"));
   ASSERT_FALSE(expected.contains(".terraweave/plan/completing.json"));
-  const int points = kill_at_every_call("complete-plan out", dir / "pristine", expected);
+  int journaled = 0;
+  const int points =
+      kill_at_every_call("complete-plan out", dir / "pristine", expected, [&](int n) {
+        // Killed after its journal: the other commands say what to do, and that command works
+        // (the rerun below); before, render-tile advised the very command that failed.
+        if (!fs::exists(dir / "out/.terraweave/plan/completing.json")) return;
+        ++journaled;
+        const CommandResult tile = terraweave("render-tile out --tile 0");
+        EXPECT_EQ(tile.exit_code, 1) << n;
+        EXPECT_THAT(tile.output, ::testing::HasSubstr("complete-plan was interrupted"));
+        EXPECT_THAT(tile.output, ::testing::HasSubstr("run it again: terraweave complete-plan"));
+      });
+  EXPECT_GT(journaled, 3);
   std::cout << "complete-plan: " << points << " kill points" << std::endl;
   EXPECT_GT(points, 5);
   // The completed plan renders: every task after it works.
