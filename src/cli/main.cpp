@@ -96,8 +96,8 @@ int validate_command(const PipelineArgs& args, const tw::RunOptions& global) {
 }
 
 // Exit 0 when the runs are the same, 1 when they differ (as diff(1); 2 on trouble).
-int diff_command(const std::string& a, const std::string& b) {
-  const tw::RunDifference difference = tw::diff_runs(a, b);
+int diff_command(const std::string& a, const std::string& b, bool verify) {
+  const tw::RunDifference difference = tw::diff_runs(a, b, verify);
   for (const std::string& line : tw::describe(difference))
     std::printf("%s\n", tw::single_line(line).c_str());
   return difference.identical() ? 0 : 1;
@@ -257,6 +257,10 @@ int main(int argc, char** argv) {
       "diff", "what changed between two runs, layer by layer (exit 0: same, 1: different)");
   diff->add_option("RUN_A", diff_a, "output folder of a run")->required();
   diff->add_option("RUN_B", diff_b, "output folder of another run")->required();
+  const char* const no_verify_help =
+      "read the run's files as they are, without checking them against report.json's hashes";
+  bool diff_no_verify = false;
+  diff->add_flag("--no-verify", diff_no_verify, no_verify_help);
 
   tw::ViewOptions view_options;
   std::optional<int> serve_port;
@@ -264,6 +268,9 @@ int main(int argc, char** argv) {
       "view", "write a self-contained 3D page of a run (three.js inlined; no network needed)");
   view->add_option("RUN_DIR", view_options.run_dir, "output folder of a run")->required();
   view->add_option("--out", view_options.out, "the page to write (default: RUN_DIR/view.html)");
+  view->add_flag_function(
+      "--no-verify", [&view_options](std::int64_t) { view_options.verify = false; },
+      no_verify_help);
   view->add_option("--serve", serve_port,
                    "then serve its folder on 127.0.0.1:PORT (python3 -m http.server)")
       ->expected(0, 1)
@@ -487,6 +494,8 @@ int main(int argc, char** argv) {
   export_run->add_option("--input-height", export_args.input_height,
                          "the heights before the run (the pipeline's DEM, or a raster on the run's "
                          "grid): also write the non-destructive layers (height delta, weights)");
+  export_run->add_flag_function(
+      "--no-verify", [&export_args](std::int64_t) { export_args.verify = false; }, no_verify_help);
   export_run->add_option("--tile-size", export_args.options.tile_size,
                          "samples per tile (Unreal World Partition, Unity; 0: one heightmap; "
                          "default: tiles when the run is tiled)");
@@ -527,7 +536,7 @@ int main(int argc, char** argv) {
     if (validate->parsed()) return validate_command(validate_args, run_options);
     if (diff->parsed()) {
       try {
-        return diff_command(diff_a, diff_b);
+        return diff_command(diff_a, diff_b, !diff_no_verify);
       } catch (const std::exception& e) {
         std::fflush(stdout);
         std::fprintf(stderr, "terraweave: error: %s\n", tw::single_line(e.what()).c_str());

@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/detail/report_json.hpp"
+#include "pipeline/run_layers.hpp"
 
 namespace tw {
 
@@ -32,11 +33,10 @@ json read_manifest(const fs::path& run) {
   return report;
 }
 
-// name -> hash, from report.json `outputs`.
-std::map<std::string, std::string> output_hashes(const json& report) {
+// name -> hash of the file as it is now ("" when it is gone), for the files report.json names.
+std::map<std::string, std::string> output_hashes(const fs::path& run) {
   std::map<std::string, std::string> hashes;
-  for (const json& f : report.at("outputs"))
-    hashes[f.at("path").get<std::string>()] = f.value("xxh3_128", "");
+  for (const RunFile& f : hash_run_files(run)) hashes[f.name] = f.now ? f.now->xxh3_128 : "";
   return hashes;
 }
 
@@ -52,12 +52,16 @@ std::string value_text(const json& value) {
 
 }  // namespace
 
-RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b) {
+RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b, bool verify) {
   json a = read_manifest(run_a);
   json b = read_manifest(run_b);
+  if (verify) {
+    verify_run_files(run_a, "diff");
+    verify_run_files(run_b, "diff");
+  }
   RunDifference result;
-  const auto hashes_a = output_hashes(a);
-  const auto hashes_b = output_hashes(b);
+  const auto hashes_a = output_hashes(run_a);
+  const auto hashes_b = output_hashes(run_b);
   for (const auto& [name, hash] : hashes_a) {
     const auto other = hashes_b.find(name);
     if (other == hashes_b.end()) {
@@ -67,7 +71,17 @@ RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b) {
         result.files.push_back(name + ": contents differ");
         continue;
       }
-      RasterDifference raster = compare_rasters(run_a / name, run_b / name);
+      if (hash.empty() || other->second.empty()) {  // gone from a folder (--no-verify)
+        result.files.push_back(name + (hash.empty() ? ": missing in A" : ": missing in B"));
+        continue;
+      }
+      RasterDifference raster;
+      try {
+        raster = compare_rasters(run_a / name, run_b / name);
+      } catch (const Error& e) {  // unreadable as it is now (--no-verify): it differs
+        result.files.push_back(name + ": contents differ (" + e.what() + ")");
+        continue;
+      }
       if (!raster.identical()) {
         result.layers.push_back({name, std::move(raster)});
       } else if (other->second != hash) {  // same pixels, other bytes (metadata)

@@ -25,8 +25,12 @@ struct RunDifference {
 };
 
 // Throws tw::Error when a folder holds no report.json of schema 2 or later, or a file cannot
-// be read. Pixels are read only where the two files' hashes differ.
-RunDifference diff_runs(const std::filesystem::path& run_a, const std::filesystem::path& run_b);
+// be read. `verify`: first every file of both runs is checked against its run's report.json
+// (pipeline/run_layers.hpp, verify_run_files: an error names a changed file). Files are
+// compared by their hashes as they are now (never only as recorded: a truncated file differs);
+// pixels are read only where the two files' hashes differ.
+RunDifference diff_runs(const std::filesystem::path& run_a, const std::filesystem::path& run_b,
+                        bool verify = true);
 
 // The lines `terraweave diff` prints (one "identical" line when nothing differs).
 std::vector<std::string> describe(const RunDifference& difference);

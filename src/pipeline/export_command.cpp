@@ -97,6 +97,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
                                               : std::vector<ExportCurve>{};
   require_safe_output(command.out_dir, true,
                       {.command = "export", .option = "--out", .inputs = {run}});
+  if (command.verify) verify_run_files(run, "export");
   OutputFolder out(command.out_dir);
   EngineExportOptions options = command.options;
   if (command.input_height) {

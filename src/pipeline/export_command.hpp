@@ -18,9 +18,12 @@ struct ExportCommand {
   // the run's grid, or the DEM the pipeline read (read again with the run's cell size, CRS and
   // resampling, the run's grid a window of it).
   std::optional<std::filesystem::path> input_height;
+  // Check the run's files against report.json first (--no-verify: false).
+  bool verify = true;
 };
 
-// Throws tw::Error naming the missing or unreadable file of the run.
+// Throws tw::Error naming the missing or unreadable file of the run, or (verify) the file that
+// no longer matches report.json (pipeline/run_layers.hpp, verify_run_files).
 EngineExportResult run_export_command(const ExportCommand& command);
 
 // The export of a run's layer files (run tiled at `run_tile_size`, 0: untiled): in tiles read

@@ -8,6 +8,7 @@
 
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
+#include "core/file_hash.hpp"
 #include "core/file_io.hpp"
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
@@ -94,9 +95,60 @@ class ScopedCurrentPath {
   fs::path previous_;
 };
 
+constexpr const char* kFinishedFormat = "terraweave.finished";
+
+void delete_tiles(const fs::path& plan_dir, const std::string& plan) {
+  std::error_code ec;
+  fs::remove_all(tiles_dir(plan_dir, plan), ec);
+  fs::remove_all(results_dir(plan_dir, plan), ec);
+}
+
+// finished.json: the plan a finish committed, the hash of the report.json it wrote and the
+// files, relative to the output folder.
+void record_finished(const fs::path& plan_dir, const std::string& plan, const fs::path& out,
+                     const std::vector<fs::path>& outputs) {
+  json files = json::array();
+  for (const fs::path& f : outputs) files.push_back(f.lexically_relative(out).generic_string());
+  const json record = {{"format", kFinishedFormat},
+                       {"version", kPlanVersion},
+                       {"plan", plan},
+                       {"report_xxh3_128", file_digest(out / "report.json").xxh3_128},
+                       {"outputs", files}};
+  write_file_atomic(plan_dir / "finished.json", record.dump(1) + "\n");
+}
+
+// The run finish committed for `plan`, when the output folder still holds it (its report.json
+// unchanged since).
+std::optional<RunReport> finished_run(const fs::path& plan_dir, const std::string& plan,
+                                      const fs::path& out) {
+  std::error_code ec;
+  if (!fs::is_regular_file(plan_dir / "finished.json", ec) ||
+      !fs::is_regular_file(out / "report.json", ec))
+    return std::nullopt;
+  const json record = read_plan_file(plan_dir / "finished.json", kFinishedFormat);
+  if (record.value("plan", "") != plan ||
+      record.value("report_xxh3_128", "") != file_digest(out / "report.json").xxh3_128)
+    return std::nullopt;
+  RunReport report;
+  for (const json& f : record.at("outputs")) report.outputs.push_back(out / f.get<std::string>());
+  return report;
+}
+
 }  // namespace
 
 namespace detail {
+
+void delete_temporaries(const fs::path& plan_dir) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(plan_dir, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.starts_with(".") && name.find(".tmp-") != std::string::npos) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
 
 void delete_other_plans(const fs::path& plan_dir, const std::string& plan) {
   std::error_code ec;
@@ -111,12 +163,39 @@ void delete_other_plans(const fs::path& plan_dir, const std::string& plan) {
 }
 
 json read_job(const fs::path& plan_dir) {
+  std::error_code ec;
+  if (fs::exists(plan_dir / "completing.json", ec))
+    fail(
+        "{}: complete-plan was interrupted while it replaced the plan's files (completing.json); "
+        "run it again: terraweave complete-plan {}",
+        plan_dir.string(), plan_dir.string());
+  if (!fs::is_regular_file(plan_dir / "job.json", ec))
+    fail("{}: missing; plan again (terraweave plan PIPELINE --out DIR)",
+         (plan_dir / "job.json").string());
   json job = read_plan_file(plan_dir / "job.json", kJobFormat);
   const std::string hash = plan_hash(plan_dir);
   if (job.value("plan", "") != hash)
-    fail("{}: job.json belongs to plan {}, plan.json is {}", plan_dir.string(),
-         job.value("plan", ""), hash);
+    fail("{}: job.json belongs to plan {}, plan.json is {}; plan again ({})", plan_dir.string(),
+         job.value("plan", ""), hash, plan_again(plan_dir));
   return job;
+}
+
+std::string plan_again(const fs::path& plan_dir) {
+  try {
+    const json job = read_plan_file(plan_dir / "job.json", kJobFormat);
+    std::string command =
+        fmt::format("terraweave plan {} --out {}", job.at("pipeline").get<std::string>(),
+                    job.at("output_dir").get<std::string>());
+    for (const json& o : job.at("overrides")) command += " --set " + o.get<std::string>();
+    if (job.value("synthesis_tasks", std::size_t(0)) > 0) command += " --synthesis tasks";
+    if (job.contains("cache") && job["cache"].is_string())
+      command += " --cache " + job["cache"].get<std::string>();
+    if (job.contains("backend") && job["backend"].is_string())
+      command += " --backend " + job["backend"].get<std::string>();
+    return command;
+  } catch (const std::exception&) {  // job.json unreadable: the generic form
+    return "terraweave plan PIPELINE --out DIR";
+  }
 }
 
 PipelineConfig job_config(const json& job) {
@@ -176,8 +255,12 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
     fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
          plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
   }
-  // job.json goes first: a plan.json beside an older job.json would be a mixed plan.
+  // job.json is written last, so the old plan.json is deleted first: a plan.json beside an
+  // older job.json would be a mixed plan. An earlier plan's completion journal and finish
+  // record go too (they would name this plan's hash when the inputs did not change).
   std::error_code ec;
+  fs::remove(plan_dir / "completing.json", ec);
+  fs::remove(plan_dir / "finished.json", ec);
   fs::remove(plan_dir / "plan.json", ec);
   const std::string hash = save_plan(plan, plan_dir);
   const std::size_t pending = detail::write_synthesis_tasks(plan_dir, syntheses, hash);
@@ -199,6 +282,8 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
       // "no syntheses" and finish would commit a world without its patterns (issue #24).
       {"synthesis_tasks", pending},
       {"syntheses_complete", pending == 0},
+      // syntheses.json is checked against it (detail::read_syntheses).
+      {"syntheses_xxh3_128", pending > 0 ? json(detail::syntheses_hash(*syntheses)) : json()},
   };
   write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
   detail::delete_other_plans(plan_dir, hash);
@@ -286,9 +371,18 @@ RunReport finish_job(const fs::path& plan_dir) {
   const auto started = std::chrono::steady_clock::now();
   const fs::path out =
       read_plan_file(plan_dir / "job.json", kJobFormat).at("output_dir").get<std::string>();
-  OutputFolder transaction(out);  // the lock, then every check, then the commit
+  OutputFolder transaction(out);         // the lock, then every check, then the commit
+  detail::delete_temporaries(plan_dir);  // a killed finish's record (finished.json)
   const json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
+  // Finished already (a rerun, or a requeued job after a kill during the clean-up): the output
+  // folder holds this plan's run, so only the clean-up is left to do.
+  if (std::optional<RunReport> done = finished_run(plan_dir, hash, out)) {
+    delete_tiles(plan_dir, hash);
+    logger().info("plan {} was finished already: {} files in {}", hash, done->outputs.size(),
+                  out.string());
+    return *done;
+  }
   detail::require_complete_plan(plan_dir, hash);
   const bool cached = detail::job_cache(job).has_value();
   const PipelineConfig config = detail::job_config(job);
@@ -351,9 +445,11 @@ RunReport finish_job(const fs::path& plan_dir) {
   detail::write_job_report(report, config, out, transaction);
   transaction.commit();
   report.outputs = transaction.committed();
-  std::error_code ec;  // the tiles are the output folder's now (links or copies)
-  fs::remove_all(tiles_dir(plan_dir, hash), ec);
-  fs::remove_all(results_dir(plan_dir, hash), ec);
+  // Then the record that this plan is in the output folder, then the clean-up (the tiles are
+  // the output folder's now: links or copies). A kill before the record: a rerun finishes
+  // again (the same bytes); after it: a rerun only cleans up.
+  record_finished(plan_dir, hash, out, report.outputs);
+  delete_tiles(plan_dir, hash);
   logger().info("finished plan {}: {} files in {}", hash, report.outputs.size(), out.string());
   return report;
 }

@@ -9,6 +9,7 @@
 #include "core/file_hash.hpp"
 #include "core/file_io.hpp"
 #include "geo/heightfield_source.hpp"
+#include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "synth/placements_io.hpp"
 
@@ -21,7 +22,7 @@ using nlohmann::json;
 
 namespace {
 
-// Objects are written once under their hash; `written` collects their names for the clean-up.
+// Objects are written once under their hash.
 class ObjectStore {
  public:
   explicit ObjectStore(fs::path dir) : dir_(std::move(dir)) {}
@@ -35,28 +36,15 @@ class ObjectStore {
         content_hash(read_file_bytes(dir_ / name)) != hash) {
       write_file_atomic(dir_ / name, bytes);
     }
-    written_.insert(hash + extension);
     return {{"file", name}, {"xxh3_128", hash}, {"bytes", bytes.size()}};
   }
   json put_cbor(const json& value) {
     const std::vector<std::uint8_t> cbor = json::to_cbor(value);
     return put(std::string(cbor.begin(), cbor.end()), ".cbor");
   }
-  // Deletes the objects of earlier plans.
-  void delete_unused() const {
-    std::error_code ec;
-    for (auto it = fs::directory_iterator(dir_ / "objects", ec);
-         !ec && it != fs::directory_iterator(); it.increment(ec)) {
-      if (!written_.contains(it->path().filename().string())) {
-        std::error_code ignored;
-        fs::remove(it->path(), ignored);
-      }
-    }
-  }
 
  private:
   fs::path dir_;
-  std::set<std::string> written_;
 };
 
 // Reads an object named in plan.json, refusing one whose bytes do not match their hash.
@@ -182,7 +170,9 @@ nlohmann::json read_plan_file(const fs::path& path, const char* format) {
   return j;
 }
 
-std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
+namespace detail {
+
+StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
   ObjectStore store(dir);
   json files;
   // Numbers that may be NaN or infinite stay out of the text of plan.json.
@@ -261,11 +251,52 @@ std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
   // The plan's hash covers every value above; objects enter through their hashes.
   const std::string hash = content_hash(doc.dump() + tasks_json(plan, "").dump());
   doc["plan"] = hash;
+  StagedPlan staged;
+  staged.hash = hash;
+  staged.tasks_json = tasks_json(plan, hash).dump(1) + "\n";
+  // tasks.json is checked against this when loaded; like the timings, outside the plan's hash
+  // (which covers tasks.json's values already).
+  doc["tasks_xxh3_128"] = content_hash(staged.tasks_json);
   doc["timings"] = timings;
-  write_file_atomic(dir / "tasks.json", tasks_json(plan, hash).dump(1) + "\n");
-  write_file_atomic(dir / "plan.json", doc.dump(1) + "\n");
-  store.delete_unused();
-  return hash;
+  staged.plan_json = doc.dump(1) + "\n";
+  return staged;
+}
+
+std::set<std::string> plan_objects(const json& doc) {
+  std::set<std::string> names;
+  const auto visit = [&names](const auto& self, const json& j) -> void {
+    if (j.is_object()) {
+      if (j.contains("file") && j["file"].is_string() &&
+          j["file"].get<std::string>().starts_with("objects/"))
+        names.insert(j["file"].get<std::string>().substr(8));
+      for (const auto& [key, value] : j.items()) self(self, value);
+    } else if (j.is_array()) {
+      for (const json& item : j) self(self, item);
+    }
+  };
+  visit(visit, doc);
+  return names;
+}
+
+void delete_unused_objects(const fs::path& dir, const std::set<std::string>& used) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(dir / "objects", ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    if (!used.contains(it->path().filename().string())) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+}  // namespace detail
+
+std::string save_plan(const WorldPlan& plan, const fs::path& dir) {
+  const detail::StagedPlan staged = detail::stage_plan(plan, dir);
+  write_file_atomic(dir / "tasks.json", staged.tasks_json);
+  write_file_atomic(dir / "plan.json", staged.plan_json);
+  detail::delete_unused_objects(dir, detail::plan_objects(json::parse(staged.plan_json)));
+  return staged.hash;
 }
 
 std::string plan_hash(const fs::path& dir) {
@@ -274,11 +305,33 @@ std::string plan_hash(const fs::path& dir) {
 
 WorldPlan load_plan(const fs::path& dir) {
   const json doc = read_plan_file(dir / "plan.json", kPlanFormat);
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "tasks.json", ec))
+    fail("{}: missing; plan again ({})", (dir / "tasks.json").string(), detail::plan_again(dir));
   const json tasks = read_plan_file(dir / "tasks.json", kTasksFormat);
   const std::string where = "plan " + (dir / "plan.json").string();
   if (tasks.value("plan", "") != doc.value("plan", ""))
-    fail("{}: tasks.json belongs to plan {}, plan.json is {}", where, tasks.value("plan", ""),
-         doc.value("plan", ""));
+    fail("{}: tasks.json belongs to plan {}, plan.json is {}; plan again ({})", where,
+         tasks.value("plan", ""), doc.value("plan", ""), detail::plan_again(dir));
+  // Like the objects, the plan's own files are checked against their hashes (issue #24: an
+  // edited tile window committed wrong rasters): tasks.json's bytes against plan.json's record,
+  // then plan.json's fields and tasks.json's values against the plan's hash.
+  if (content_hash(read_file_bytes(dir / "tasks.json")) != doc.value("tasks_xxh3_128", ""))
+    fail(
+        "{}: does not match its hash in plan.json (edited or corrupt after planning); plan "
+        "again ({})",
+        (dir / "tasks.json").string(), detail::plan_again(dir));
+  {
+    json fields = doc;
+    for (const char* outside : {"plan", "timings", "tasks_xxh3_128"}) fields.erase(outside);
+    json values = tasks;
+    values["plan"] = "";
+    if (content_hash(fields.dump() + values.dump()) != doc.value("plan", ""))
+      fail(
+          "{}: its fields do not match the plan's hash {} (edited or corrupt after planning); "
+          "plan again ({})",
+          (dir / "plan.json").string(), doc.value("plan", ""), detail::plan_again(dir));
+  }
   WorldPlan plan;
   try {
     detail::JsonReader reader(doc, where);

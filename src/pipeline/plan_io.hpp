@@ -25,8 +25,9 @@ namespace tw {
 inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // 3: the grown classes (files.grown); 4: their short_lines and synthesis counts; 5:
-// synthesis_junctions (choose: mix).
-inline constexpr int kPlanVersion = 5;
+// synthesis_junctions (choose: mix); 6: tasks.json's hash in plan.json, syntheses.json's in
+// job.json, a mix's report fields (issue #24).
+inline constexpr int kPlanVersion = 6;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's
@@ -34,7 +35,9 @@ inline constexpr int kPlanVersion = 5;
 std::string save_plan(const WorldPlan& plan, const std::filesystem::path& dir);
 
 // Reads a plan written by save_plan. Throws tw::Error naming the file and the key when a file
-// is missing, malformed, of another format version, or does not match its content hash.
+// is missing, malformed, of another format version, or does not match its content hash: the
+// objects, tasks.json (its hash in plan.json) and plan.json's own fields (the plan's hash,
+// recomputed), with the command that plans again.
 WorldPlan load_plan(const std::filesystem::path& dir);
 
 // The plan's hash as plan.json records it (without reading the objects).

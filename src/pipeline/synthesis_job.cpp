@@ -6,6 +6,7 @@
 #include <optional>
 #include <system_error>
 
+#include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/log.hpp"
@@ -49,6 +50,84 @@ detail::PatternRun synthesize(const PipelineConfig& config, const WorldPlan& pla
 }  // namespace
 
 namespace detail {
+
+std::string syntheses_hash(json list) {
+  list.erase("plan");
+  list.erase("completed");
+  return content_hash(list.dump());
+}
+
+void check_synthesis_graph(const json& features, const fs::path& file,
+                           const std::string& what_to_do) {
+  const std::string where = file.string();
+  if (!features.is_array()) fail("{}: `features` is not a list; {}", where, what_to_do);
+  const std::size_t n = features.size();
+  std::vector<std::vector<std::size_t>> after(n);
+  const auto name = [&](std::size_t i) { return features[i].value("name", std::string("?")); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const json& entry = features[i];
+    if (!entry.is_object() || !entry.contains("index") || entry["index"] != i)
+      fail("{}: features[{}]: `index` is not {}; {}", where, i, i, what_to_do);
+    if (!entry.contains("after") || !entry["after"].is_array())
+      fail("{}: feature {} ({}): `after` is not a list; {}", where, i, name(i), what_to_do);
+    for (const json& a : entry["after"]) {
+      if (!a.is_number_integer() || a.get<std::int64_t>() < 0 ||
+          a.get<std::int64_t>() >= std::int64_t(n))
+        fail("{}: feature {} ({}) depends on {}, which is not in the list (features 0 to {}); {}",
+             where, i, name(i), a.dump(), int(n) - 1, what_to_do);
+      const std::size_t d = a.get<std::size_t>();
+      if (d == i) fail("{}: feature {} ({}) depends on itself; {}", where, i, name(i), what_to_do);
+      after[i].push_back(d);
+    }
+  }
+  // A cycle, named by its features (depth-first, without recursion: lists may be long).
+  std::vector<int> state(n, 0);  // 0 unseen, 1 on the path, 2 done
+  std::vector<std::size_t> parent(n, n);
+  for (std::size_t root = 0; root < n; ++root) {
+    if (state[root] != 0) continue;
+    std::vector<std::pair<std::size_t, std::size_t>> stack{{root, 0}};
+    state[root] = 1;
+    while (!stack.empty()) {
+      auto& [node, next] = stack.back();
+      if (next == after[node].size()) {
+        state[node] = 2;
+        stack.pop_back();
+        continue;
+      }
+      const std::size_t d = after[node][next++];
+      if (state[d] == 1) {
+        std::string cycle = std::to_string(d);
+        for (std::size_t at = node; at != d; at = parent[at])
+          cycle = std::to_string(at) + " -> " + cycle;
+        fail("{}: a dependency cycle: feature {} -> {} ({} depends on {}); {}", where, d, cycle,
+             name(node), name(d), what_to_do);
+      }
+      if (state[d] == 0) {
+        state[d] = 1;
+        parent[d] = node;
+        stack.push_back({d, 0});
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (const std::size_t d : after[i])
+      if (d > i)
+        fail(
+            "{}: feature {} ({}) depends on {}, which is synthesized after it (a feature avoids "
+            "only earlier ones); {}",
+            where, i, name(i), d, what_to_do);
+}
+
+json read_syntheses(const fs::path& plan_dir, const json& job) {
+  const fs::path file = syntheses_path(plan_dir);
+  const json list = read_plan_file(file, kSynthesesFormat);
+  const std::string what_to_do = "plan again (" + plan_again(plan_dir) + ")";
+  check_synthesis_graph(list.contains("features") ? list["features"] : json(), file, what_to_do);
+  if (syntheses_hash(list) != job.value("syntheses_xxh3_128", ""))
+    fail("{}: does not match its hash in job.json (edited or corrupt after planning); {}",
+         file.string(), what_to_do);
+  return list;
+}
 
 json plan_synthesis_tasks(const PipelineConfig& config, const WorldPlan& plan,
                           const std::optional<std::string>& backend,
@@ -114,10 +193,11 @@ void require_syntheses_file(const fs::path& plan_dir, const json& job) {
 }
 
 void require_complete_plan(const fs::path& plan_dir, const std::string& plan) {
-  require_syntheses_file(plan_dir, read_job(plan_dir));
+  const json job = read_job(plan_dir);
+  require_syntheses_file(plan_dir, job);
   std::error_code ec;
   if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return;
-  const json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  const json list = read_syntheses(plan_dir, job);
   if (list.value("plan", "") == plan)
     fail(
         "plan {}: its syntheses are not in the plan yet (terraweave synth-feature {} --feature I "
@@ -132,7 +212,7 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   const auto started = std::chrono::steady_clock::now();
   const json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
-  const json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  const json list = detail::read_syntheses(plan_dir, job);
   if (list.value("plan", "") != hash)
     fail("{}: belongs to plan {}, plan.json is {} (complete already, or planned again)",
          syntheses_path(plan_dir).string(), list.value("plan", ""), hash);
@@ -170,22 +250,78 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   return result;
 }
 
+namespace {
+
+constexpr const char* kCompletingFormat = "terraweave.completing";
+fs::path journal_path(const fs::path& plan_dir) {
+  return plan_dir / "completing.json";
+}
+
+// Writes `text` to `path` unless it holds it already (a rerun rewrites only what is missing).
+void write_if_changed(const fs::path& path, const std::string& text) {
+  std::error_code ec;
+  if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) == text.size() && !ec &&
+      read_file_bytes(path) == text)
+    return;
+  write_file_atomic(path, text);
+}
+
+}  // namespace
+
+namespace detail {
+
+bool resume_completion(const fs::path& plan_dir, std::string* plan, std::size_t* warnings) {
+  std::error_code ec;
+  if (!fs::is_regular_file(journal_path(plan_dir), ec)) return false;
+  const json journal = read_plan_file(journal_path(plan_dir), kCompletingFormat);
+  const json& files = journal.at("files");
+  // The order of a first completion: tasks.json and plan.json (the plan), then job.json (which
+  // names it), then syntheses.json (`completed`). Every step is a whole file renamed into place.
+  for (const char* name : {"tasks.json", "plan.json", "job.json", "syntheses.json"})
+    write_if_changed(plan_dir / name, files.at(name).get<std::string>());
+  const std::string complete = journal.at("to").get<std::string>();
+  delete_unused_objects(plan_dir,
+                        plan_objects(json::parse(files.at("plan.json").get<std::string>())));
+  delete_other_plans(plan_dir, complete);
+  fs::remove(journal_path(plan_dir), ec);
+  if (ec) fail("cannot delete {}: {}", journal_path(plan_dir).string(), ec.message());
+  if (plan) *plan = complete;
+  if (warnings) *warnings = journal.value("warnings", std::size_t(0));
+  return true;
+}
+
+}  // namespace detail
+
 PlannedJob complete_job_plan(const fs::path& plan_dir) {
   const fs::path out =
       read_plan_file(plan_dir / "job.json", detail::kJobFormat).at("output_dir").get<std::string>();
   const OutputFolder lock(out);  // as plan: not while a run or a finish writes there
+  // Crash safety (issue #24): a completion killed after its journal was written is finished
+  // from the journal; one killed before it changed nothing but new objects and temporaries.
+  detail::delete_temporaries(plan_dir);
+  const auto tile_count = [&plan_dir] {
+    return read_plan_file(plan_dir / "tasks.json", kTasksFormat).at("tiles").size();
+  };
+  {
+    std::string complete;
+    std::size_t warnings = 0;
+    if (detail::resume_completion(plan_dir, &complete, &warnings)) {
+      logger().info("plan {}: an interrupted completion finished", complete);
+      return {plan_dir, complete, tile_count(), warnings, 0};
+    }
+  }
   json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
-  const std::size_t tiles =
-      read_plan_file(plan_dir / "tasks.json", kTasksFormat).at("tiles").size();
+  const std::size_t tiles = tile_count();
   std::error_code ec;
   detail::require_syntheses_file(plan_dir, job);
   if (!fs::is_regular_file(syntheses_path(plan_dir), ec)) return {plan_dir, hash, tiles, 0, 0};
-  json list = read_plan_file(syntheses_path(plan_dir), kSynthesesFormat);
+  json list = detail::read_syntheses(plan_dir, job);
   if (list.value("plan", "") != hash) {
     if (list.value("completed", "") == hash) return {plan_dir, hash, tiles, 0, 0};
-    fail("{}: belongs to plan {}, plan.json is {} (plan again)", syntheses_path(plan_dir).string(),
-         list.value("plan", ""), hash);
+    fail("{}: belongs to plan {}, plan.json is {}; plan again ({})",
+         syntheses_path(plan_dir).string(), list.value("plan", ""), hash,
+         detail::plan_again(plan_dir));
   }
   const PipelineConfig config = detail::job_config(job);
   WorldPlan plan = load_plan(plan_dir);
@@ -249,15 +385,27 @@ PlannedJob complete_job_plan(const fs::path& plan_dir) {
         kept.push_back(w);
   }
   index_plan(plan);
-  const std::string complete = save_plan(plan, plan_dir);
-  job["plan"] = complete;
+  // The complete plan's objects first (beside the incomplete plan's, which stays whole), then
+  // the journal: from its rename on, the completion is decided, and resume_completion replaces
+  // the four files and deletes what the incomplete plan alone used.
+  const detail::StagedPlan staged = detail::stage_plan(plan, plan_dir);
+  job["plan"] = staged.hash;
   job["syntheses_complete"] = true;
-  write_file_atomic(plan_dir / "job.json", job.dump(1) + "\n");
-  list["completed"] = complete;
-  write_file_atomic(syntheses_path(plan_dir), list.dump(1) + "\n");
-  detail::delete_other_plans(plan_dir, complete);
-  logger().info("plan {}: {} syntheses in, now plan {}", hash, features.size(), complete);
-  return {plan_dir, complete, tiles, plan.report.warnings.size(), 0};
+  list["completed"] = staged.hash;
+  const json journal = {{"format", kCompletingFormat},
+                        {"version", kPlanVersion},
+                        {"from", hash},
+                        {"to", staged.hash},
+                        {"warnings", plan.report.warnings.size()},
+                        {"files",
+                         {{"tasks.json", staged.tasks_json},
+                          {"plan.json", staged.plan_json},
+                          {"job.json", job.dump(1) + "\n"},
+                          {"syntheses.json", list.dump(1) + "\n"}}}};
+  write_file_atomic(journal_path(plan_dir), journal.dump() + "\n");
+  detail::resume_completion(plan_dir);
+  logger().info("plan {}: {} syntheses in, now plan {}", hash, features.size(), staged.hash);
+  return {plan_dir, staged.hash, tiles, plan.report.warnings.size(), 0};
 }
 
 }  // namespace tw

@@ -154,6 +154,7 @@ fs::path write_view(const ViewOptions& options) {
     fail(
         "view: this terraweave was built without three.js (npm was missing): build it with npm "
         "installed");
+  if (options.verify) verify_run_files(options.run_dir, "view");
   // "</" never appears in the JSON as written (a string holding it is escaped), so the script
   // element cannot end early.
   std::string data = view_data(options.run_dir, options).dump();

@@ -11,12 +11,14 @@ struct ViewOptions {
   std::filesystem::path out;  // "" = <run_dir>/view.html
   int mesh_size = 256;        // most vertices along the longer side
   int texture_size = 1024;    // most texels along the longer side
+  bool verify = true;         // check the run's files against report.json (--no-verify: false)
 };
 
 // Reads the height, splat and avoidance layers (GeoTIFFs, or a tiled run's VRT mosaics: see
 // pipeline/run_layers.hpp), features.geojson and report.json (only what the page shows,
 // downsampled by GDAL on reading) and writes the page atomically; returns its path.
-// Throws tw::Error naming a missing file.
+// Throws tw::Error naming a missing file, or (verify) one that no longer matches report.json
+// (pipeline/run_layers.hpp, verify_run_files).
 std::filesystem::path write_view(const ViewOptions& options);
 
 }  // namespace tw

@@ -15,6 +15,7 @@
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "pipeline/detail/job_files.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -317,6 +318,108 @@ TEST_F(PlanFolder, AMissingSynthesesFileIsAnErrorUntilThePlanIsComplete) {
   EXPECT_EQ(complete_job_plan(job.plan_dir).plan, complete.plan);
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
   EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
+}
+
+// Issue #24 item 3: the plan folder's own files are checked like its objects. An edited tile
+// window (tasks.json), an edited field of plan.json, an edited syntheses.json are errors naming
+// the file and the command that plans again; nothing is rendered from them.
+TEST_F(PlanFolder, EditedPlanFilesAreRefusedByName) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "out";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config_, options);
+  ASSERT_EQ(job.syntheses, 3u);
+  const auto edited = [&](const std::string& file, const std::function<void(nlohmann::json&)>& edit,
+                          const std::function<void()>& step, const std::string& message) {
+    const fs::path path = job.plan_dir / file;
+    const std::string kept = read_file_bytes(path);
+    nlohmann::json j = nlohmann::json::parse(kept);
+    edit(j);
+    write_file_atomic(path, j.dump(1) + "\n");
+    try {
+      step();
+      ADD_FAILURE() << "an edited " << file << " was used";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(path.string() + ": " + message)) << file;
+      EXPECT_THAT(e.what(), HasSubstr("terraweave plan " + (dir_ / "small.yaml").string() +
+                                      " --out " + (dir_ / "out").string()))
+          << file;  // what to do
+      EXPECT_THAT(e.what(), HasSubstr("--synthesis tasks")) << file;
+    }
+    write_file_atomic(path, kept);
+  };
+  const auto load = [&] { load_plan(job.plan_dir); };
+  const auto synthesize = [&] { synthesize_job_feature(job.plan_dir, 0); };
+  edited(
+      "tasks.json", [](auto& j) { j["tiles"][4]["window"]["col0"] = 9; }, load,
+      "does not match its hash in plan.json");
+  edited(
+      "plan.json", [](auto& j) { j["tiles"]["overlap"] = 3; }, load,
+      "its fields do not match the plan's hash");
+  edited(
+      "plan.json", [](auto& j) { j["output_window"]["width"] = 10; }, synthesize,
+      "its fields do not match the plan's hash");
+  edited(
+      "syntheses.json", [](auto& j) { j["features"][1]["key"] = std::string(32, '0'); }, synthesize,
+      "does not match its hash in job.json");
+  edited(
+      "syntheses.json", [](auto& j) { j["features"][0]["task"] = false; },
+      [&] { complete_job_plan(job.plan_dir); }, "does not match its hash in job.json");
+  // A dependency graph that cannot be: named before the hash is compared.
+  edited(
+      "syntheses.json",
+      [](auto& j) {
+        j["features"][2]["after"] = {0, 999};
+      },
+      synthesize, "feature 2 (roads_3) depends on 999, which is not in the list (features 0 to 2)");
+  edited(
+      "syntheses.json", [](auto& j) { j["features"][1]["after"] = {1}; }, synthesize,
+      "feature 1 (roads_2) depends on itself");
+  edited(
+      "syntheses.json", [](auto& j) { j["features"][0]["after"] = {2}; }, synthesize,
+      "a dependency cycle: feature 0 -> 2 -> 0");
+  {  // a missing tasks.json is named too
+    const std::string kept = read_file_bytes(job.plan_dir / "tasks.json");
+    fs::remove(job.plan_dir / "tasks.json");
+    try {
+      load_plan(job.plan_dir);
+      ADD_FAILURE() << "a plan without tasks.json loaded";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("tasks.json: missing; plan again (terraweave plan "));
+    }
+    write_file_atomic(job.plan_dir / "tasks.json", kept);
+  }
+  // Put back, every file is whole again: the plan loads and the tasks run.
+  EXPECT_EQ(load_plan(job.plan_dir).tiles.size(), 9u);
+  EXPECT_TRUE(synthesize_job_feature(job.plan_dir, 0).synthesized);
+}
+
+TEST(SynthesisGraph, UnknownSelfCyclesAndLaterDependenciesAreNamed) {
+  const auto graph = [](std::vector<std::vector<int>> after) {
+    nlohmann::json features = nlohmann::json::array();
+    for (std::size_t i = 0; i < after.size(); ++i)
+      features.push_back({{"index", i}, {"name", "r" + std::to_string(i)}, {"after", after[i]}});
+    return features;
+  };
+  const auto error = [](const nlohmann::json& features) -> std::string {
+    try {
+      detail::check_synthesis_graph(features, "s.json", "plan again");
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error(graph({{}, {0}, {0, 1}})), "");
+  EXPECT_THAT(error(graph({{}, {-1}})), HasSubstr("feature 1 (r1) depends on -1, which is not"));
+  EXPECT_THAT(error(graph({{}, {5}})), HasSubstr("depends on 5, which is not in the list"));
+  EXPECT_THAT(error(graph({{0}})), HasSubstr("feature 0 (r0) depends on itself; plan again"));
+  EXPECT_THAT(error(graph({{}, {2}, {3}, {1}})),
+              HasSubstr("a dependency cycle: feature 1 -> 2 -> 3 -> 1"));
+  EXPECT_THAT(error(graph({{1}, {}})),
+              HasSubstr("feature 0 (r0) depends on 1, which is synthesized after it"));
+  nlohmann::json wrong_index = graph({{}, {0}});
+  wrong_index[1]["index"] = 7;
+  EXPECT_THAT(error(wrong_index), HasSubstr("features[1]: `index` is not 1"));
 }
 
 }  // namespace

@@ -57,7 +57,8 @@ TW_FIELDS(FeatureSynthesisReport,
                       F(placements) F(objective) F(min_coverage) F(min_coverage_from_exemplar)
                           F(coverage_ratio) F(mean_coverage) F(natural_coverage)
                               F(parametric_seam_cost) F(width_m) F(delta_m) F(width_from)
-                                  F(delta_from))
+                                  F(delta_from) F(mix_exemplars) F(pieces_per_exemplar)
+                                      F(exemplar_switches) F(switch_cost))
 TW_FIELDS(CacheStatus, F(reused) F(why) F(key))
 TW_FIELDS(FeatureReport,
           F(fid) F(length_m) F(width_m) F(pieces) F(synthesis) F(structure) F(layer) F(deck_m)

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/polygons_hash.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/version.hpp"
@@ -19,8 +20,10 @@ using nlohmann::json;
 
 namespace {
 
-// Bumped whenever an entry's layout or meaning changes: old entries then miss.
-constexpr std::uint64_t kSynthesisCacheFormat = 1;
+// Bumped whenever an entry's layout or meaning changes: old entries then miss. 2: the whole
+// report (coverage, objective, ...) in a section of its own (issue #24: a reused synthesis
+// reported zeros).
+constexpr std::uint64_t kSynthesisCacheFormat = 2;
 
 std::string encode_opaque(const SparseRaster<std::uint8_t>& opaque) {
   std::string out;
@@ -223,18 +226,15 @@ std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, 
       }
       const GridSpec canvas{meta.at("canvas").at(0), meta.at("canvas").at(1), 0, 0, 1, 1};
       cached.opaque = decode_opaque(read.sections.at("opaque"), canvas);
+      // Every value the report had when the entry was built (report.json is the same for a
+      // cached and a clean run, timings aside).
+      const std::string& report = read.sections.at("report");
+      decode(json::from_cbor(report.begin(), report.end()), cached.report, path.string());
       FeatureSynthesisReport& r = cached.report;
-      r.exemplar = meta.at("exemplar").get<std::string>();
-      r.seed = meta.at("seed").get<std::uint64_t>();
-      r.backend = cached.synthesis.backend;
-      r.mean_valid_positions = meta.at("mean_valid_positions").get<double>();
-      r.omega = cached.synthesis.total_cost;
-      r.mean_seam_cost = cached.synthesis.mean_seam_cost;
-      r.mean_seam_cost_stitched = cached.synthesis.mean_seam_cost_stitched;
-      r.violations = meta.at("violations").get<std::int64_t>();
-      r.empty_pieces = meta.at("empty_pieces").get<int>();
-      r.canvas_width = canvas.width;
-      r.canvas_height = canvas.height;
+      r.avoidance_seconds = r.synthesis_seconds = r.render_seconds = 0.0;
+      r.placements.clear();
+      if (r.canvas_width != canvas.width || r.canvas_height != canvas.height)
+        fail("report canvas {}x{}", r.canvas_width, r.canvas_height);
       touch_cache_entry(path);
       status.reused = true;
       status.why = "unchanged";
@@ -273,12 +273,11 @@ void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
                {"feature", name},
                {"backend", synthesis.backend},
                {"exemplar_slot", exemplar_slot},
-               {"canvas", {opaque.width(), opaque.height()}},
-               {"exemplar", report.exemplar},
-               {"seed", report.seed},
-               {"mean_valid_positions", report.mean_valid_positions},
-               {"violations", report.violations},
-               {"empty_pieces", report.empty_pieces}};
+               {"canvas", {opaque.width(), opaque.height()}}};
+  FeatureSynthesisReport kept = report;  // without what belongs to one run
+  kept.avoidance_seconds = kept.synthesis_seconds = kept.render_seconds = 0.0;
+  kept.placements.clear();
+  const std::vector<std::uint8_t> report_cbor = json::to_cbor(encode(kept));
   if (start) {
     json points = json::array();
     for (const Vec2 p : start->points) points.push_back({p.x, p.y});
@@ -287,7 +286,8 @@ void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
   write_cache_entry(entry_path(combined),
                     {{"meta", meta.dump()},
                      {"placements", placements_to_json(synthesis, report.exemplar)},
-                     {"opaque", encode_opaque(opaque)}});
+                     {"opaque", encode_opaque(opaque)},
+                     {"report", std::string(report_cbor.begin(), report_cbor.end())}});
   write_cache_entry(last_path(name), {{"name", name}, {"parts", encode_parts(key)}});
 }
 

@@ -20,7 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::uint64_t kTileCacheFormat = 2;  // 2: the instance heights fact
+// 2: the instance heights fact; 3: every writer option in the key (the GeoTIFFs' metadata
+// carries the seed: issue #24).
+constexpr std::uint64_t kTileCacheFormat = 3;
 constexpr const char* kFilePrefix = "file:";
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
@@ -108,7 +110,14 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   c.u64(plan.terrain_params.precedence.size());
   for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
   c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
-  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level);
+  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level).boolean(output.exr_half);
+  // Everything the GeoTIFF writer puts in a file: its encoding and the dataset metadata
+  // (TERRAWEAVE_SEED, _PIPELINE, _HEIGHTFIELD, _VERSION).
+  const GeoTiffOptions& tiff = output.geotiff_options;
+  c.u64(std::uint64_t(tiff.compression)).u64(std::uint64_t(tiff.predictor));
+  c.boolean(tiff.cog).boolean(tiff.overviews).u64(tiff.metadata.size());
+  for (const auto& [name, value] : tiff.metadata) c.text(name).text(value);
+  c.i64(output.preview_max_size);
   config_ = c.digest();
 
   std::vector<std::vector<const std::vector<float>*>> profiles(plan.terrain_features.size());
