@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::uint64_t kTileCacheFormat = 2;  // 2: the instance heights fact
+// 2: the instance heights fact; 3: EXR codecs and pixel types chosen per layer.
+constexpr std::uint64_t kTileCacheFormat = 3;
 constexpr const char* kFilePrefix = "file:";
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
@@ -109,6 +110,7 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
   c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
   c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level);
+  c.u64(std::uint64_t(output.exr_pixels));
   config_ = c.digest();
 
   std::vector<std::vector<const std::vector<float>*>> profiles(plan.terrain_features.size());
