@@ -1,4 +1,5 @@
-// A layer's GeoTIFF twin read back (terraweave export reads finished runs this way).
+// A layer's GeoTIFF twin (or its EXR, through LayerRaster) read back (terraweave export reads
+// finished runs this way).
 #include <gdal_priv.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "layers/detail/gdal_cache.hpp"
 #include "layers/detail/gdal_init.hpp"
 #include "layers/export.hpp"
+#include "layers/layer_raster.hpp"
 
 namespace tw {
 
@@ -16,12 +18,8 @@ Layer read_geotiff_layer(const std::filesystem::path& path, const std::string& n
   detail::ensure_gdal_registered();
   // The layer is read whole into memory once: blocks cached on top of it would double it.
   const detail::ScopedGdalCacheMax cache(detail::kExportGdalCacheBytes);
-  struct Closer {
-    void operator()(GDALDataset* d) const { GDALClose(d); }
-  };
-  std::unique_ptr<GDALDataset, Closer> ds(
-      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!ds) fail("cannot open {}: {}", path.string(), CPLGetLastErrorMsg());
+  const LayerRaster raster(path);
+  GDALDataset* ds = &raster.dataset();
   std::array<double, 6> gt{};
   if (ds->GetGeoTransform(gt.data()) != CE_None || gt[2] != 0.0 || gt[4] != 0.0 || gt[5] >= 0.0)
     fail("{}: not a north-up georeferenced raster", path.string());

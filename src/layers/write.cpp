@@ -13,7 +13,7 @@ std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
     if (options.exr) {
       const auto final_path = dir / (layer.name + ".exr");
       write_exr(set, layer, tx.stage(final_path), options.exr_compression, options.exr_zip_level,
-                options.exr_half);
+                options.exr_pixels);
       written.push_back(final_path);
     }
     if (options.geotiff) {

@@ -1,5 +1,5 @@
 #pragma once
-// Writers of a LayerSet: EXR (float32, ZIP, named channels, georeferencing attributes),
+// Writers of a LayerSet: EXR (codec and pixel type per layer, named channels, georeferencing),
 // GeoTIFF twins through GDAL, and a PNG preview. Every file is staged (an OutputTransaction
 // or an OutputFolder), so a failed run leaves previous outputs untouched.
 #include <array>
@@ -27,12 +27,23 @@ inline constexpr const char* kExrPixelSizeAttribute = "terraweave:pixel_size";  
 inline constexpr const char* kExrLayerAttribute = "terraweave:layer";        // string
 inline constexpr const char* kExrChannelsAttribute = "terraweave:channels";  // string vector
 
-// How EXR pixels are compressed. Heights and distances are noisy floats: ZIP (zlib) saves only
-// about a fifth of their bytes at ~20x the cost of RLE, and RLE saves nothing on them; splat
-// weights and masks are runs, which RLE packs to a few percent. `automatic` picks per layer:
-// rle when at least a quarter of sampled pixels repeat their left neighbour, else none.
-// docs/performance.md has the measurements.
-enum class ExrCompression { automatic, none, rle, zip };
+// How EXR pixels are compressed (OpenEXR's codecs). Lossless: rle, zips (zlib, one row per
+// chunk), zip (zlib, 16 rows), piz (wavelet + Huffman). Lossy on float32: pxr24 (24-bit
+// floats), b44 and dwaa/dwab (half-float codecs: 32-bit channels go in raw / are quantized).
+// `automatic` picks per layer from the measurements of docs/performance.md
+// (exr_compression_for): zip for layers of runs (splat weights, masks, capped distances): at
+// zlib level 1 it costs about what rle does and packs them 3-6x smaller; none for noisy floats
+// (heights), where every lossless codec saves under a tenth for 10-20x a raw write.
+enum class ExrCompression { automatic, none, rle, zips, zip, piz, pxr24, b44, dwaa, dwab };
+// "automatic", "none", "rle", "zips", "zip", ... (the enumerator's name).
+const char* to_string(ExrCompression compression);
+
+// The EXR channels' pixel type. `automatic`: half floats for splat weights (in [0, 1]: steps
+// of 2^-11 at most, 0 and 1 exact), float32 for every other layer (heights and distances need
+// more than half's 3 significant digits).
+enum class ExrPixels { automatic, float32, half };
+// True when `pixels` stores this layer as half floats.
+bool exr_half_for(const Layer& layer, ExrPixels pixels);
 
 // GeoTIFF encoding (docs/layers.md). The predictor helps deflate/lzw/zstd on smooth data:
 // floating_point (GDAL PREDICTOR=3) on heights, horizontal (2) on integer-like bands.
@@ -56,8 +67,8 @@ struct WriteOptions {
   bool geotiff = true;
   bool preview = true;
   ExrCompression exr_compression = ExrCompression::automatic;
-  int exr_zip_level = 1;  // zlib level when exr_compression is zip (1-9)
-  bool exr_half = false;  // 16-bit half floats instead of 32-bit
+  int exr_zip_level = 1;  // zlib level when exr_compression is zip or zips (1-9)
+  ExrPixels exr_pixels = ExrPixels::automatic;
   GeoTiffOptions geotiff_options;
   int preview_max_size = 2048;                   // longest side of preview.png in pixels
   std::vector<std::vector<Vec2>> preview_lines;  // world metres, drawn on the preview
@@ -75,10 +86,11 @@ std::vector<std::filesystem::path> write_layer_set(const LayerSet& set,
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
                int zip_level = 1);
 // The same with any compression; all use every core (OpenEXR's global thread pool).
-// automatic resolves through exr_compression_for(layer). half: pixels stored as 16-bit half
-// floats (3 significant digits: 0.25 m steps at 500 m; NaN stays NaN).
+// automatic resolves through exr_compression_for(layer), pixels through exr_half_for. Half
+// floats keep 3 significant digits (0.25 m steps at 500 m; NaN stays NaN).
 void write_exr(const LayerSet& set, const Layer& layer, const std::filesystem::path& path,
-               ExrCompression compression, int zip_level = 1, bool half = false);
+               ExrCompression compression, int zip_level = 1,
+               ExrPixels pixels = ExrPixels::float32);
 // The EXR channel of each band, following OpenEXR's layer conventions so that RGBA readers
 // (Imf::RgbaInputFile, Nuke, Houdini, Unreal) find them: a one-band layer is "Y" (luminance);
 // the splat layer's materials go four by four into layers splat0, splat1, ... as R, G, B, A
@@ -99,7 +111,8 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
 using Rgb8 = std::array<std::uint8_t, 3>;
 Rgb8 preview_material_colour(const std::string& channel);
 
-// What `automatic` picks for this layer: rle or none (never automatic).
+// What `automatic` picks for this layer: zip when at least a quarter of sampled pixels (every
+// 64th row) repeat their left neighbour bit for bit, else none.
 ExrCompression exr_compression_for(const Layer& layer);
 
 // What an EXR holds, read back (for tests and tools).

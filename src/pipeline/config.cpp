@@ -548,9 +548,34 @@ TilesConfig read_tiles(const MapReader& m) {
   return t;
 }
 
-// output.exr_half, .compress, .predictor, .cog, .overviews, .crs.
+// output.formats: [exr, geotiff], either or both, each once.
+void read_formats(const YamlSource& src, const YAML::Node& node, OutputConfig& output) {
+  const std::vector<std::string> formats = {"exr", "geotiff"};
+  if (!node.IsSequence() || node.size() == 0)
+    src.fail(node, "output.formats", "expected a list of exr and/or geotiff");
+  output.exr = output.geotiff = false;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string path = "output.formats." + std::to_string(i);
+    const std::string name = detail::read_string(src, node[i], path);
+    bool* wanted = name == "exr" ? &output.exr : name == "geotiff" ? &output.geotiff : nullptr;
+    if (wanted == nullptr) {
+      const std::string hint = detail::closest_match(name, formats);
+      src.fail(node[i], path,
+               fmt::format("unknown format '{}', expected exr or geotiff{}", name,
+                           hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+    }
+    if (*wanted) src.fail(node[i], path, fmt::format("'{}' given twice", name));
+    *wanted = true;
+  }
+}
+
+// output.exr_half, .exr_compression, .compress, .predictor, .cog, .overviews, .crs.
 void read_output_encoding(const MapReader& out, OutputConfig& output) {
-  output.exr_half = out.bool_or("exr_half", output.exr_half);
+  if (out.has("exr_half"))
+    output.exr_pixels = out.bool_or("exr_half", false) ? ExrPixels::half : ExrPixels::float32;
+  output.exr_compression = ExrCompression(read_one_of(
+      out, "exr_compression", "EXR compression",
+      {"automatic", "none", "rle", "zips", "zip", "piz", "pxr24", "b44", "dwaa", "dwab"}));
   output.tiff.compression = TiffCompression(
       read_one_of(out, "compress", "compression", {"zstd", "deflate", "lzw", "none"}));
   output.tiff.predictor =
@@ -664,9 +689,13 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                      : Resampling::bilinear;
   if (root.has("output")) {
     const MapReader out(src, root.get("output"), "output",
-                        {"dir", "exr", "geotiff", "preview", "tiles", "exr_half", "compress",
-                         "predictor", "cog", "overviews", "crs"});
+                        {"dir", "formats", "exr", "geotiff", "preview", "tiles", "exr_half",
+                         "exr_compression", "compress", "predictor", "cog", "overviews", "crs"});
     if (out.has("dir")) c.output.dir = out.file("dir");
+    if (out.has("formats") && (out.has("exr") || out.has("geotiff")))
+      src.fail(out.get("formats"), "output.formats",
+               "give either formats or the exr / geotiff booleans, not both");
+    if (out.has("formats")) read_formats(src, out.get("formats"), c.output);
     c.output.exr = out.bool_or("exr", c.output.exr);
     c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
     c.output.preview = out.bool_or("preview", c.output.preview);
@@ -678,7 +707,8 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
   }
   if (!c.output.exr && !c.output.geotiff) {
-    src.fail(root.get("output"), "output", "at least one of exr and geotiff must be true");
+    src.fail(root.get("output"), "output",
+             "no layer format left: output.formats needs exr or geotiff (or exr / geotiff true)");
   }
   if (root.has("avoidance")) {
     const MapReader avoidance(src, root.get("avoidance"), "avoidance", {"max_distance"});

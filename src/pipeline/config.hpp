@@ -150,10 +150,16 @@ inline constexpr int kMaxTileOverlap = 4096;
 
 struct OutputConfig {
   std::filesystem::path dir = "out";
+  // `formats` (or the older `exr` / `geotiff` booleans): which encodings of every layer to
+  // write; at least one.
   bool exr = true;
   bool geotiff = true;
   bool preview = true;
-  bool exr_half = false;  // `exr_half`: 16-bit half float EXR channels
+  // `exr_half`: true = every EXR channel half, false = every one float32, absent = automatic
+  // (splat weights half, the rest float32).
+  ExrPixels exr_pixels = ExrPixels::automatic;
+  // `exr_compression`: automatic (per layer, docs/performance.md) or one OpenEXR codec.
+  ExrCompression exr_compression = ExrCompression::automatic;
   // `compress`, `predictor`, `cog`, `overviews` (docs/pipeline.md); metadata is the run's.
   GeoTiffOptions tiff;
   // `crs`: the CRS of every output ("" = a projected heightfield's own, a geographic one's UTM

@@ -112,8 +112,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     // Tiled runs and tiled exports read the layers back by windows from the GeoTIFFs.
     if ((plan.tile_size > 0 || export_tile_size(engine, 0) > 0) && !config.output.geotiff)
       fail(
-          "export.{}: a tiled run or tiled export reads the run's GeoTIFFs; output.geotiff is "
-          "false",
+          "export.{}: a tiled run or tiled export reads the run's GeoTIFFs; output.formats "
+          "needs geotiff",
           to_string(engine.engine));
     if (engine.layers && plan.tile_size > 0)
       fail("export.{}.layers: written by untiled runs (the run is tiled: output.tiles)",

@@ -1,7 +1,9 @@
 #pragma once
 // The layer rasters of a finished run folder, as the commands that read a run (`export`,
-// `view`) find them: an untiled run writes `<layer>.tif`, a tiled one (output.tiles,
-// docs/tiles.md) the VRT mosaic `<layer>.vrt` of its tiles, which GDAL reads as one raster.
+// `view`) find them: an untiled run writes `<layer>.tif` and/or `<layer>.exr`
+// (output.formats), a tiled one (output.tiles, docs/tiles.md) the VRT mosaic `<layer>.vrt` of
+// its GeoTIFF tiles, which GDAL reads as one raster. Open them with LayerRaster
+// (layers/layer_raster.hpp), which reads an EXR too.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,8 +17,9 @@ namespace tw {
 // True when `run` was run tiled: it holds the height mosaic `height.vrt`.
 bool is_tiled_run(const std::filesystem::path& run);
 
-// `run/<layer>.vrt` of a tiled run, `run/<layer>.tif` of an untiled one; nullopt when the run
-// wrote no such layer (output.geotiff: false, no splat).
+// `run/<layer>.vrt` of a tiled run; `run/<layer>.tif` of an untiled one, else its
+// `run/<layer>.exr`; nullopt when the run wrote no such layer (no splat; a tiled run without
+// GeoTIFF twins).
 std::optional<std::filesystem::path> run_layer_raster(const std::filesystem::path& run,
                                                       std::string_view layer);
 

@@ -13,6 +13,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/output_guard.hpp"
+#include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/three_js.hpp"
 #include "pipeline/detail/view_page.hpp"
@@ -41,13 +42,13 @@ std::string base64(std::string_view bytes) {
   return out;
 }
 
-// Every band of a layer raster (GeoTIFF or a tiled run's VRT mosaic) read at w x h (GDAL resamples
-// on reading: memory follows the page, not the world); nodata as NaN. Band descriptions in `names`.
+// Every band of a layer raster (GeoTIFF, EXR or a tiled run's VRT mosaic) read at w x h (GDAL
+// resamples on reading: memory follows the page, not the world); nodata as NaN. Band descriptions
+// in `names`.
 std::vector<std::vector<float>> read_bands(const fs::path& path, int w, int h,
                                            std::vector<std::string>* names = nullptr) {
-  GDALAllRegister();
-  const std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
-  if (!ds) fail("{}: cannot be opened (is this the output folder of a run?)", path.string());
+  const LayerRaster raster(path);
+  GDALDataset* ds = &raster.dataset();
   std::vector<std::vector<float>> bands;
   for (int b = 1; b <= ds->GetRasterCount(); ++b) {
     GDALRasterBand* band = ds->GetRasterBand(b);

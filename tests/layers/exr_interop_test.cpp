@@ -148,7 +148,7 @@ TEST(ExrInterop, HalfFloatsAreAnOptionAndKeepThreeDigits) {
   WriteOptions options;
   options.geotiff = false;
   options.preview = false;
-  options.exr_half = true;
+  options.exr_pixels = ExrPixels::half;
   write_layer_set(set, dir.path(), tx, options);
   tx.commit();
   Imf::InputFile file((dir / "height.exr").c_str());

@@ -1,12 +1,15 @@
 #include "layers/write.hpp"
 
+#include <ImfChannelList.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -78,7 +81,9 @@ TEST(WriteLayers, ExrRoundTripsPixelsAndGeoreferencing) {
   test::TempDir dir;
   const LayerSet set = sample_set();
   OutputTransaction tx;
-  const auto written = write_layer_set(set, dir.path(), tx, only(true, false, false));
+  WriteOptions options = only(true, false, false);
+  options.exr_pixels = ExrPixels::float32;  // exact (automatic stores splat weights as half)
+  const auto written = write_layer_set(set, dir.path(), tx, options);
   tx.commit();
   ASSERT_EQ(written.size(), 2u);
   const ExrContents exr = read_exr(dir / "splat.exr");
@@ -113,7 +118,9 @@ TEST(WriteLayers, EveryExrCompressionKeepsTheExactFloatsAndIsRecordedInTheHeader
     Imf::Compression expected;
   } cases[] = {{ExrCompression::none, Imf::NO_COMPRESSION},
                {ExrCompression::rle, Imf::RLE_COMPRESSION},
-               {ExrCompression::zip, Imf::ZIP_COMPRESSION}};
+               {ExrCompression::zip, Imf::ZIP_COMPRESSION},
+               {ExrCompression::zips, Imf::ZIPS_COMPRESSION},
+               {ExrCompression::piz, Imf::PIZ_COMPRESSION}};
   std::vector<std::uintmax_t> splat_sizes;
   for (const auto& c : cases) {
     for (const Layer& layer : set.layers) {
@@ -133,21 +140,81 @@ TEST(WriteLayers, EveryExrCompressionKeepsTheExactFloatsAndIsRecordedInTheHeader
       if (layer.name == "splat") splat_sizes.push_back(fs::file_size(path));
     }
   }
-  // Splat weights are runs of 0 and 1: RLE and ZIP both pack them well below raw floats.
-  ASSERT_EQ(splat_sizes.size(), 3u);
-  EXPECT_LT(splat_sizes[1], splat_sizes[0] / 2);
-  EXPECT_LT(splat_sizes[2], splat_sizes[0] / 2);
+  // Splat weights are runs of 0 and 1: every codec packs them well below raw floats, and
+  // ZIP (automatic's choice for runs) below RLE.
+  ASSERT_EQ(splat_sizes.size(), 5u);
+  for (std::size_t i = 1; i < splat_sizes.size(); ++i)
+    EXPECT_LT(splat_sizes[i], splat_sizes[0] / 2) << i;
+  EXPECT_LT(splat_sizes[2], splat_sizes[1]);
 }
 
-TEST(WriteLayers, AutomaticExrCompressionPacksRunsAndLeavesNoiseRaw) {
+TEST(WriteLayers, AutomaticPixelsStoreSplatWeightsAsHalfFloatsAndTheRestAsFloat32) {
+  test::TempDir dir;
+  LayerSet set = sample_set();
+  Layer avoidance{"avoidance", {"forbidden", "distance"}, {}};
+  avoidance.bands.emplace_back(set.grid.width, set.grid.height, 0.0f);
+  avoidance.bands.emplace_back(set.grid.width, set.grid.height, 0.0f);
+  for (int r = 0; r < set.grid.height; ++r)
+    for (int c = 0; c < set.grid.width; ++c) avoidance.bands[1].at(c, r) = 0.37f * float(c + r);
+  set.layers.push_back(avoidance);
+  EXPECT_FALSE(exr_half_for(set.layers[0], ExrPixels::automatic));
+  EXPECT_TRUE(exr_half_for(set.layers[1], ExrPixels::automatic));
+  EXPECT_FALSE(exr_half_for(set.layers[2], ExrPixels::automatic));
+  // A tile's layers are named splat_x<i>_y<j>: the channels decide.
+  Layer tile = set.layers[1];
+  tile.name = "splat_x1_y0";
+  EXPECT_TRUE(exr_half_for(tile, ExrPixels::automatic));
+  EXPECT_FALSE(exr_half_for(tile, ExrPixels::float32));
+  EXPECT_TRUE(exr_half_for(set.layers[0], ExrPixels::half));
+
+  OutputTransaction tx;
+  write_layer_set(set, dir.path(), tx, only(true, false, false));  // automatic by default
+  tx.commit();
+  const auto pixel_type = [&](const std::string& file) {
+    const Imf::InputFile in((dir / file).c_str());
+    return in.header().channels().begin().channel().type;
+  };
+  EXPECT_EQ(pixel_type("height.exr"), Imf::FLOAT);
+  EXPECT_EQ(pixel_type("splat.exr"), Imf::HALF);
+  EXPECT_EQ(pixel_type("avoidance.exr"), Imf::FLOAT);
+  // Heights and distances exact; weights within half's rounding (2^-12 below 1), 0 and 1
+  // exact, NaN (nodata) still NaN.
+  for (const std::string name : {"height", "avoidance"}) {
+    const ExrContents exr = read_exr(dir / (name + ".exr"));
+    const Layer& layer = *find_layer(set, name);
+    for (std::size_t b = 0; b < layer.bands.size(); ++b)
+      EXPECT_EQ(0, std::memcmp(exr.bands[b].pixels.data(), layer.bands[b].pixels.data(),
+                               layer.bands[b].pixels.size() * 4))
+          << name << " " << b;
+  }
+  const ExrContents splat = read_exr(dir / "splat.exr");
+  std::size_t fractional = 0;
+  for (std::size_t b = 0; b < set.layers[1].bands.size(); ++b)
+    for (std::size_t i = 0; i < splat.bands[b].pixels.size(); ++i) {
+      const float written = set.layers[1].bands[b].pixels[i], read = splat.bands[b].pixels[i];
+      if (std::isnan(written)) {
+        EXPECT_TRUE(std::isnan(read)) << b << " " << i;
+        continue;
+      }
+      if (written == 0.0f || written == 1.0f) {
+        ASSERT_EQ(read, written) << b << " " << i;
+        continue;
+      }
+      ++fractional;
+      ASSERT_NEAR(read, written, 1.0f / 4096.0f) << b << " " << i;
+    }
+  EXPECT_GT(fractional, 100u);  // the sample's feature edges blend materials
+}
+
+TEST(WriteLayers, AutomaticExrCompressionZipsRunsAndLeavesNoiseRaw) {
   const LayerSet set = sample_set();
   // Smooth heights never repeat exactly: RLE would only cost time.
   EXPECT_EQ(exr_compression_for(set.layers[0]), ExrCompression::none);
   // Splat weights are mostly exact 0 and 1 away from the features.
-  EXPECT_EQ(exr_compression_for(set.layers[1]), ExrCompression::rle);
+  EXPECT_EQ(exr_compression_for(set.layers[1]), ExrCompression::zip);
   Layer mask{"mask", {"forbidden"}, {Raster<float>(set.grid.width, set.grid.height, 0.0f)}};
   for (int c = 40; c < 60; ++c) mask.bands[0].at(c, 7) = 1.0f;
-  EXPECT_EQ(exr_compression_for(mask), ExrCompression::rle);
+  EXPECT_EQ(exr_compression_for(mask), ExrCompression::zip);
 
   test::TempDir dir;
   OutputTransaction tx;
@@ -156,7 +223,7 @@ TEST(WriteLayers, AutomaticExrCompressionPacksRunsAndLeavesNoiseRaw) {
   EXPECT_EQ(Imf::InputFile((dir / "height.exr").c_str()).header().compression(),
             Imf::NO_COMPRESSION);
   EXPECT_EQ(Imf::InputFile((dir / "splat.exr").c_str()).header().compression(),
-            Imf::RLE_COMPRESSION);
+            Imf::ZIP_COMPRESSION);
   EXPECT_EQ(read_exr(dir / "height.exr").bands[0].at(100, 60), set.layers[0].bands[0].at(100, 60));
 }
 

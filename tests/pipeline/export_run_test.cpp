@@ -117,7 +117,7 @@ TEST_F(ExportRun, BadExportAndOutputKeysNameTheKey) {
   ASSERT_EQ(ok.exports.size(), 2u);
   EXPECT_EQ(ok.exports[0].engine, Engine::godot);
   EXPECT_EQ(ok.output.tiff.predictor, TiffPredictor::floating_point);
-  EXPECT_TRUE(ok.output.exr_half);
+  EXPECT_EQ(ok.output.exr_pixels, ExrPixels::half);
 }
 
 // Terrain3D and the non-destructive layers from a run: the `export:` key (the run's own input

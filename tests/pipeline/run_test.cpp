@@ -150,7 +150,9 @@ TEST_F(DemoRun, SplatWeightsSumToOneAndShowTheFeatures) {
     for (const auto& band : splat.bands) sum += band.pixels[i];
     worst = std::max(worst, std::abs(sum - 1.0));
   }
-  EXPECT_LT(worst, 1e-5);
+  // The EXR holds the weights as half floats: each within 2^-11 of itself (relative), so
+  // their sum within 2^-11 of the float32 sum (which is 1 within 1e-6).
+  EXPECT_LT(worst, std::ldexp(1.0, -11) + 1e-5);
   for (const char* material : {"splat.road", "splat.riverbed", "splat.ridge_rock"}) {
     const auto it = std::find(splat.channels.begin(), splat.channels.end(), material);
     ASSERT_NE(it, splat.channels.end()) << material;

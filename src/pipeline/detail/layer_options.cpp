@@ -11,7 +11,8 @@ WriteOptions layer_write_options(const PipelineConfig& config, const std::string
   options.exr = config.output.exr;
   options.geotiff = config.output.geotiff;
   options.preview = false;  // the run draws it, with the centerlines on top
-  options.exr_half = config.output.exr_half;
+  options.exr_pixels = config.output.exr_pixels;
+  options.exr_compression = config.output.exr_compression;
   options.geotiff_options = config.output.tiff;
   options.geotiff_options.metadata = {
       {"TERRAWEAVE_VERSION", kTerraweaveVersion},

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // 2: the instance heights fact; 3: every writer option in the key (the GeoTIFFs' metadata
-// carries the seed: issue #24).
-constexpr std::uint64_t kTileCacheFormat = 3;
+// carries the seed: issue #24); 4: EXR codecs and pixel types chosen per layer.
+constexpr std::uint64_t kTileCacheFormat = 4;
 constexpr const char* kFilePrefix = "file:";
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
@@ -110,7 +110,7 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   c.u64(plan.terrain_params.precedence.size());
   for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
   c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
-  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level).boolean(output.exr_half);
+  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level).u64(std::uint64_t(output.exr_pixels));
   // Everything the GeoTIFF writer puts in a file: its encoding and the dataset metadata
   // (TERRAWEAVE_SEED, _PIPELINE, _HEIGHTFIELD, _VERSION).
   const GeoTiffOptions& tiff = output.geotiff_options;
