@@ -1,0 +1,829 @@
+#include "network/growth.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <numbers>
+
+#include "core/boost_geometry.hpp"
+#include "core/error.hpp"
+#include "core/segment_distance.hpp"
+#include "core/split_mix.hpp"
+
+namespace tw {
+
+namespace {
+
+using namespace geometry;
+using SegValue = std::pair<BgSegment, int>;  // a segment of an edge (its index)
+using NodeValue = std::pair<BgPoint, int>;
+using BgMultiPolygon = bg::model::multi_polygon<BgPolygon>;
+constexpr double kPi = std::numbers::pi;
+
+Vec2 vec(const BgPoint& p) { return {p.x(), p.y()}; }
+Vec2 rotate(Vec2 v, double a) {
+  const double c = std::cos(a), s = std::sin(a);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+double heading(Vec2 v) { return std::atan2(v.y, v.x); }
+double wrap(double a) {  // (-pi, pi]
+  a = std::fmod(a + kPi, 2 * kPi);
+  if (a <= 0) a += 2 * kPi;
+  return a - kPi;
+}
+// Bearing bin (15°, 0..11) of a chord, from north, modulo 180°.
+int bearing_bin(Vec2 chord) {
+  double b = std::atan2(chord.x, chord.y) * 180.0 / kPi;
+  b = std::fmod(b + 360.0, 180.0);
+  return std::min(11, int(b / 15.0));
+}
+
+// First distinct-point heading leaving an end of a polyline.
+double leaving(const std::vector<Vec2>& pts, bool from_start) {
+  const std::size_t n = pts.size();
+  const Vec2 a = from_start ? pts[0] : pts[n - 1];
+  for (std::size_t k = 1; k < n; ++k) {
+    const Vec2 b = from_start ? pts[k] : pts[n - 1 - k];
+    if (!(b == a)) return heading(b - a);
+  }
+  return 0.0;
+}
+
+// A whole exemplar edge, walked from one end: start at the origin heading +x.
+struct Piece {
+  std::vector<Vec2> points;
+  double length = 0.0;
+  double arrival = 0.0;              // heading at the end, relative to the start heading
+  int end_degree = 1;                // the exemplar junction at its end
+  std::vector<double> end_turns;     // its other edges' headings relative to the arrival
+  int length_bin = 0;
+};
+
+struct Stub {
+  int node = 0;
+  double heading = 0.0;
+};
+
+// Where a candidate ends.
+struct Ending {
+  enum class Kind { free, node, edge, boundary } kind = Kind::free;
+  int node = -1;            // Kind::node
+  int edge = -1, seg = -1;  // Kind::edge: the segment hit
+};
+
+struct Hit {
+  std::size_t k = 0;  // segment of the candidate
+  double t = 2.0;     // along it
+  Vec2 point;
+  int edge = -1, seg = -1;
+};
+
+// Intersection parameters of segments pq and ab (proper or touching), or false when parallel.
+bool segment_hit(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t, double& u) {
+  const Vec2 r = q - p, s = b - a;
+  const double denom = cross(r, s);
+  if (std::abs(denom) <= 1e-12 * (dot(r, r) + dot(s, s))) return false;
+  t = cross(a - p, s) / denom;
+  u = cross(a - p, r) / denom;
+  return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
+}
+
+class Grower {
+ public:
+  Grower(const Network& exemplar, const std::vector<Polygon>& region,
+         const ForbiddenMask* forbidden, const NetworkGrowthOptions& options,
+         NetworkGrowthReport& report)
+      : forbidden_(forbidden), options_(options), report_(report), rng_(options.seed) {
+    learn(exemplar);
+    set_region(region);
+    if (forbidden_) dilate_forbidden();
+  }
+
+  void add_partial(const Network& partial) {
+    std::vector<int> id(partial.nodes.size());
+    for (std::size_t n = 0; n < partial.nodes.size(); ++n) id[n] = add_node(partial.nodes[n]);
+    for (const NetworkEdge& e : partial.edges) {
+      NetworkEdge copy = e;
+      copy.from = id[std::size_t(e.from)];
+      copy.to = id[std::size_t(e.to)];
+      copy.kept = true;
+      add_edge(std::move(copy));
+    }
+    const std::vector<int> degree = out_.degrees();
+    for (const NetworkEdge& e : partial.edges) {
+      for (int end = 0; end < 2; ++end) {
+        const int n = id[std::size_t(end == 0 ? e.from : e.to)];
+        if (degree[std::size_t(n)] != 1) continue;
+        if (near_boundary(out_.nodes[std::size_t(n)])) {
+          out_.on_boundary[std::size_t(n)] = 1;
+          continue;
+        }
+        // A dangling end of the drawing goes on straight.
+        queue_.push_back({n, leaving(e.points, end == 0) + kPi});
+      }
+    }
+  }
+
+  Network run() {
+    drain();
+    seed_lattice();
+    close_dangling_ends();
+    return finish();
+  }
+
+ private:
+  // ---- the exemplar --------------------------------------------------------------------------
+  void learn(const Network& ex) {
+    const std::vector<int> degree = ex.degrees();
+    std::vector<std::vector<std::pair<double, int>>> leaving_at(ex.nodes.size());
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      const NetworkEdge& e = ex.edges[i];
+      leaving_at[std::size_t(e.from)].push_back({leaving(e.points, true), int(i)});
+      leaving_at[std::size_t(e.to)].push_back({leaving(e.points, false), int(i)});
+    }
+    const auto boundary = [&](int n) { return !ex.on_boundary.empty() && ex.on_boundary[std::size_t(n)]; };
+    std::vector<double> lengths;
+    for (const NetworkEdge& e : ex.edges)
+      if (!boundary(e.from) && !boundary(e.to)) lengths.push_back(polyline_length(e.points));
+    if (lengths.empty())
+      for (const NetworkEdge& e : ex.edges) lengths.push_back(polyline_length(e.points));
+    if (lengths.empty()) fail("exemplar: no edges to learn from");
+    std::sort(lengths.begin(), lengths.end());
+    median_ = lengths[lengths.size() / 2];
+    if (!(median_ > 0.0)) fail("exemplar: its edges have no length");
+    for (int b = 1; b < 8; ++b) length_edges_.push_back(lengths[lengths.size() * std::size_t(b) / 8]);
+    clearance_ = options_.clearance > 0.0 ? options_.clearance : 0.06 * median_;
+    snap_ = options_.snap > 0.0 ? options_.snap : std::max(0.35 * median_, 2.0 * clearance_);
+    min_piece_ = std::max(2.5 * clearance_, 0.12 * median_);
+
+    // The turn of the whole exemplar to the lead: its main bearing (length-weighted mode).
+    if (options_.lead_bearing) {
+      std::array<double, 18> weight{};
+      for (const NetworkEdge& e : ex.edges) {
+        const Vec2 c = e.points.back() - e.points.front();
+        double b = std::fmod(std::atan2(c.x, c.y) * 180.0 / kPi + 360.0, 180.0);
+        weight[std::size_t(std::min(17, int(b / 10.0)))] += polyline_length(e.points);
+      }
+      const int main = int(std::max_element(weight.begin(), weight.end()) - weight.begin());
+      turn_ = -(*options_.lead_bearing - (main * 10.0 + 5.0)) * kPi / 180.0;
+    }
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      const NetworkEdge& e = ex.edges[i];
+      for (int dir = 0; dir < 2; ++dir) {
+        const int start = dir == 0 ? e.from : e.to, end = dir == 0 ? e.to : e.from;
+        if (boundary(end) || boundary(start)) continue;
+        std::vector<Vec2> pts = e.points;
+        if (dir == 1) std::reverse(pts.begin(), pts.end());
+        Piece p;
+        const double h0 = leaving(pts, true);
+        const Vec2 origin = pts.front();
+        for (Vec2 v : pts) p.points.push_back(rotate(v - origin, -h0));
+        p.length = polyline_length(p.points);
+        if (p.length <= 0.0) continue;
+        const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
+        p.arrival = wrap(arrive - h0);
+        p.end_degree = degree[std::size_t(end)];
+        for (const auto& [h, edge] : leaving_at[std::size_t(end)])
+          if (edge != int(i) || e.from == e.to) p.end_turns.push_back(wrap(h - arrive));
+        if (e.from == e.to && !p.end_turns.empty()) p.end_turns.pop_back();
+        p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
+                           length_edges_.begin());
+        pieces_.push_back(std::move(p));
+      }
+    }
+    if (pieces_.empty()) fail("exemplar: every edge is cut by its region (no whole piece)");
+    // Target histograms.
+    for (std::size_t n = 0; n < ex.nodes.size(); ++n) {
+      if (boundary(int(n)) || degree[n] == 0) continue;
+      const int d = std::min(degree[n], 6);
+      target_degree_[std::size_t(d)] += 1.0;
+      if (degree[n] >= 3) junctions_.push_back(int(n));
+      ++exemplar_nodes_;
+    }
+    if (junctions_.empty())
+      for (std::size_t n = 0; n < ex.nodes.size(); ++n)
+        if (degree[n] >= 2) junctions_.push_back(int(n));
+    if (junctions_.empty()) fail("exemplar: no junction (every line ends alone)");
+    for (double& v : target_degree_) v /= std::max(1, exemplar_nodes_);
+    double total = 0.0;
+    for (const NetworkEdge& e : ex.edges) {
+      const Vec2 c = rotate(e.points.back() - e.points.front(), turn_);
+      target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
+    }
+    for (double& v : target_bearing_) v /= std::max(1.0, total);
+    for (const Piece& p : pieces_) target_length_[std::size_t(p.length_bin)] += 1.0;
+    for (double& v : target_length_) v /= double(pieces_.size());
+    dangling_target_ = 0.0;
+    {
+      int dangling = 0;
+      double length = 0.0;
+      for (std::size_t n = 0; n < ex.nodes.size(); ++n)
+        if (degree[n] == 1 && !boundary(int(n))) ++dangling;
+      for (const NetworkEdge& e : ex.edges) length += polyline_length(e.points);
+      dangling_target_ = dangling / std::max(length, 1e-9);
+    }
+    for (int j : junctions_) {
+      std::vector<double> h;
+      for (const auto& [a, edge] : leaving_at[std::size_t(j)]) h.push_back(a + turn_);
+      junction_headings_.push_back(std::move(h));
+    }
+  }
+
+  // ---- the region ----------------------------------------------------------------------------
+  void set_region(const std::vector<Polygon>& region) {
+    double area = 0.0;
+    for (const Polygon& polygon : region) {
+      BgPolygon p;
+      for (std::size_t r = 0; r < polygon.size(); ++r) {
+        auto& ring = r == 0 ? p.outer() : (p.inners().emplace_back(), p.inners().back());
+        for (Vec2 v : polygon[r]) ring.push_back(to_bg(v));
+        if (!polygon[r].empty()) ring.push_back(to_bg(polygon[r].front()));
+        for (std::size_t k = 0; k < polygon[r].size(); ++k) {
+          const Vec2 a = polygon[r][k], b = polygon[r][(k + 1) % polygon[r].size()];
+          if (!(a == b)) boundary_.insert(BgSegment(to_bg(a), to_bg(b)));
+        }
+      }
+      bg::correct(p);
+      area += bg::area(p);
+      region_.push_back(std::move(p));
+    }
+    if (!(area > 0.0)) fail("region: degenerate (zero area)");
+    if (area / (median_ * median_) > kMaxNetworkCells)
+      fail("region: {:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
+           "most {:.0f} km²: about 10⁷ junctions)",
+           area / 1e6, median_, kMaxNetworkCells * median_ * median_ / 1e6);
+    bg::envelope(region_, extent_);
+    out_.on_boundary.clear();
+  }
+
+  bool inside_region(Vec2 p) const { return bg::covered_by(to_bg(p), region_); }
+  bool near_boundary(Vec2 p) const {
+    std::vector<BgSegment> near;
+    const double eps = 1e-6 * std::max(1.0, median_);
+    boundary_.query(bgi::intersects(BgBox({p.x - eps, p.y - eps}, {p.x + eps, p.y + eps})),
+                    std::back_inserter(near));
+    return !near.empty();
+  }
+
+  void dilate_forbidden() {
+    const ForbiddenMask& f = *forbidden_;
+    const int r = int(std::ceil(clearance_ / std::min(f.grid.pixel_width, f.grid.pixel_height)));
+    Raster<std::uint8_t> rows(f.cells.width, f.cells.height, 0);
+    for (int y = 0; y < f.cells.height; ++y)
+      for (int x = 0; x < f.cells.width; ++x)
+        if (f.cells.at(x, y))
+          for (int dx = std::max(0, x - r); dx <= std::min(f.cells.width - 1, x + r); ++dx)
+            rows.at(dx, y) = 1;
+    dilated_ = Raster<std::uint8_t>(f.cells.width, f.cells.height, 0);
+    for (int y = 0; y < f.cells.height; ++y)
+      for (int x = 0; x < f.cells.width; ++x)
+        if (rows.at(x, y))
+          for (int dy = std::max(0, y - r); dy <= std::min(f.cells.height - 1, y + r); ++dy)
+            dilated_.at(x, dy) = 1;
+  }
+  bool forbidden_at(Vec2 p, bool dilated) const {
+    if (!forbidden_) return false;
+    const Vec2 px = forbidden_->grid.world_to_pixel(p);
+    const int c = int(std::floor(px.x)), r = int(std::floor(px.y));
+    const Raster<std::uint8_t>& m = dilated ? dilated_ : forbidden_->cells;
+    return m.inside(c, r) && m.at(c, r) != 0;
+  }
+  bool enters_forbidden(const std::vector<Vec2>& pts) const {
+    if (!forbidden_) return false;
+    const double step = 0.5 * std::min(forbidden_->grid.pixel_width, forbidden_->grid.pixel_height);
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const double len = distance(pts[k], pts[k + 1]);
+      const int n = std::max(1, int(std::ceil(len / step)));
+      for (int i = 0; i <= n; ++i)
+        if (forbidden_at(lerp(pts[k], pts[k + 1], double(i) / n), false)) return true;
+    }
+    return false;
+  }
+
+  // ---- the network so far ----------------------------------------------------------------------
+  int add_node(Vec2 p) {
+    const int id = int(out_.nodes.size());
+    out_.nodes.push_back(p);
+    out_.on_boundary.push_back(0);
+    degree_.push_back(0);
+    planned_.push_back(0);
+    nodes_.insert({to_bg(p), id});
+    return id;
+  }
+  void index_edge(int id, bool insert) {
+    const auto& pts = out_.edges[std::size_t(id)].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const SegValue v{BgSegment(to_bg(pts[k]), to_bg(pts[k + 1])), id};
+      if (insert) segments_.insert(v);
+      else segments_.remove(v);
+    }
+  }
+  int add_edge(NetworkEdge e) {
+    ++degree_[std::size_t(e.from)];
+    ++degree_[std::size_t(e.to)];
+    out_.edges.push_back(std::move(e));
+    alive_.push_back(1);
+    const int id = int(out_.edges.size()) - 1;
+    index_edge(id, true);
+    return id;
+  }
+  // Splits edge `id` at `p` on its segment `seg`: the new node.
+  int split_edge(int id, int seg, Vec2 p) {
+    index_edge(id, false);
+    NetworkEdge& e = out_.edges[std::size_t(id)];
+    const int node = add_node(p);
+    NetworkEdge second;
+    second.from = node;
+    second.to = e.to;
+    second.kept = e.kept;
+    second.fid = e.fid;
+    second.points.push_back(p);
+    for (std::size_t k = std::size_t(seg) + 1; k < e.points.size(); ++k)
+      if (!(e.points[k] == p)) second.points.push_back(e.points[k]);
+    e.points.resize(std::size_t(seg) + 1);
+    if (!(e.points.back() == p)) e.points.push_back(p);
+    e.to = node;
+    index_edge(id, true);
+    if (second.points.size() < 2) second.points.push_back(p);
+    --degree_[std::size_t(second.to)];  // add_edge counts both of its ends
+    add_edge(std::move(second));
+    degree_[std::size_t(node)] = 2;
+    return node;
+  }
+
+  // The first place where `pts` meets the network, past its start.
+  std::optional<Hit> first_edge_hit(const std::vector<Vec2>& pts) const {
+    std::vector<SegValue> near;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const BgSegment s(to_bg(pts[k]), to_bg(pts[k + 1]));
+      near.clear();
+      BgBox box;
+      bg::envelope(s, box);
+      segments_.query(bgi::intersects(box), std::back_inserter(near));
+      std::optional<Hit> best;
+      for (const SegValue& v : near) {
+        const Vec2 a = vec(v.first.first), b = vec(v.first.second);
+        double t, u;
+        if (!segment_hit(pts[k], pts[k + 1], a, b, t, u)) continue;
+        if (k == 0 && t * distance(pts[0], pts[1]) < 1e-9 * median_) continue;  // the start
+        if (!best || t < best->t) {
+          const auto& e = out_.edges[std::size_t(v.second)].points;
+          int seg = 0;
+          for (std::size_t j = 0; j + 1 < e.size(); ++j)
+            if (e[j] == a && e[j + 1] == b) seg = int(j);
+          best = Hit{k, t, lerp(pts[k], pts[k + 1], t), v.second, seg};
+        }
+      }
+      if (best) return best;
+    }
+    return std::nullopt;
+  }
+  std::optional<Hit> first_boundary_hit(const std::vector<Vec2>& pts) const {
+    std::vector<BgSegment> near;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const BgSegment s(to_bg(pts[k]), to_bg(pts[k + 1]));
+      BgBox box;
+      bg::envelope(s, box);
+      near.clear();
+      boundary_.query(bgi::intersects(box), std::back_inserter(near));
+      std::optional<Hit> best;
+      for (const BgSegment& b : near) {
+        double t, u;
+        if (!segment_hit(pts[k], pts[k + 1], vec(b.first), vec(b.second), t, u)) continue;
+        if (k == 0 && t * distance(pts[0], pts[1]) < 1e-9 * median_) continue;
+        if (!best || t < best->t) best = Hit{k, t, lerp(pts[k], pts[k + 1], t), -1, -1};
+      }
+      if (best) return best;
+    }
+    return std::nullopt;
+  }
+
+  // Whether the candidate may be placed: no crossing but at its joints (its start, and its end
+  // when that is on the network), the clearance elsewhere, inside the region, off forbidden
+  // cells.
+  bool valid(const std::vector<Vec2>& pts, bool end_joint) {
+    const Vec2 start = pts.front(), end = pts.back();
+    const double eps = 1e-7 * median_;
+    std::vector<SegValue> near;
+    std::vector<BgPoint> common;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Vec2 a = pts[k], b = pts[k + 1];
+      const bool near_joint = distance(a, start) < clearance_ || distance(b, start) < clearance_ ||
+                              (end_joint && (distance(a, end) < clearance_ || distance(b, end) < clearance_));
+      const double reach = near_joint ? 0.0 : clearance_;
+      const BgSegment s(to_bg(a), to_bg(b));
+      const BgBox box({std::min(a.x, b.x) - reach - eps, std::min(a.y, b.y) - reach - eps},
+                      {std::max(a.x, b.x) + reach + eps, std::max(a.y, b.y) + reach + eps});
+      near.clear();
+      segments_.query(bgi::intersects(box), std::back_inserter(near));
+      for (const SegValue& v : near) {
+        common.clear();
+        bg::intersection(s, v.first, common);
+        if (!common.empty()) {
+          if (common.size() > 1 && bg::distance(common[0], common[1]) > eps) return false;
+          const Vec2 x = vec(common[0]);
+          const bool at_start = k == 0 && distance(x, start) <= eps;
+          const bool at_end = end_joint && k + 2 == pts.size() && distance(x, end) <= eps;
+          if (!at_start && !at_end) return false;
+          continue;
+        }
+        if (reach > 0.0 && bg::distance(s, v.first) < clearance_) return false;
+      }
+      // Joint-near segments still keep clear of what does not meet at that joint.
+      if (near_joint && k > 0 && k + 2 < pts.size()) {
+        for (const SegValue& v : near)
+          if (bg::distance(s, v.first) < 0.25 * clearance_) {
+            const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
+            if (distance_to_segment(start, ea, eb) > clearance_ &&
+                (!end_joint || distance_to_segment(end, ea, eb) > clearance_))
+              return false;
+          }
+      }
+    }
+    for (std::size_t k = 1; k < pts.size(); ++k)
+      if (!inside_region(pts[k])) {
+        ++report_.rejected_region;
+        return false;
+      }
+    if (auto wall = first_boundary_hit(pts); wall && distance(wall->point, end) > 1e-6 * median_) {
+      ++report_.rejected_region;
+      return false;
+    }
+    if (enters_forbidden(pts)) {
+      ++report_.rejected_forbidden;
+      return false;
+    }
+    return true;
+  }
+
+  // ---- growth ----------------------------------------------------------------------------------
+  double histogram_cost(const Piece& p, double h) const {
+    const Vec2 chord = rotate(p.points.back(), h);
+    const auto over = [](const std::array<double, 12>& have, double total,
+                         const std::array<double, 12>& want, std::size_t bin) {
+      return (have[bin] + 1.0) / (total + 1.0) - want[bin];
+    };
+    double cost = over(have_bearing_, placed_, target_bearing_, std::size_t(bearing_bin(chord)));
+    cost += over(have_length_, placed_, target_length_, std::size_t(p.length_bin));
+    const std::size_t d = std::size_t(std::min(p.end_degree, 6));
+    cost += 1.5 * ((have_degree_[d] + 1.0) / (junction_count_ + 1.0) - target_degree_[d]);
+    return cost;
+  }
+
+  void count(const Piece& p, double h, bool new_junction) {
+    have_bearing_[std::size_t(bearing_bin(rotate(p.points.back(), h)))] += 1.0;
+    have_length_[std::size_t(p.length_bin)] += 1.0;
+    placed_ += 1.0;
+    if (new_junction) {
+      have_degree_[std::size_t(std::min(p.end_degree, 6))] += 1.0;
+      junction_count_ += 1.0;
+    }
+  }
+
+  void grow_stub(const Stub& stub) {
+    ++report_.stubs;
+    const Vec2 origin = out_.nodes[std::size_t(stub.node)];
+    struct Choice {
+      double cost;
+      int order;
+      int piece;
+    };
+    std::vector<Choice> choices;
+    for (int c = 0; c < options_.candidates; ++c) {
+      const int piece = int(rng_.below(pieces_.size()));
+      choices.push_back({histogram_cost(pieces_[std::size_t(piece)], stub.heading) +
+                             0.15 * rng_.uniform(), c, piece});
+    }
+    std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) {
+      return a.cost != b.cost ? a.cost < b.cost : a.order < b.order;
+    });
+    for (const Choice& choice : choices) {
+      const Piece& piece = pieces_[std::size_t(choice.piece)];
+      std::vector<Vec2> pts;
+      for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+      if (try_place(stub, piece, std::move(pts))) return;
+    }
+  }
+
+  static void truncate(std::vector<Vec2>& pts, const Hit& hit) {
+    pts.resize(hit.k + 1);
+    if (!(pts.back() == hit.point)) pts.push_back(hit.point);
+  }
+  static void bend_end(std::vector<Vec2>& pts, Vec2 target) {
+    const Vec2 d = target - pts.back();
+    const double total = polyline_length(pts);
+    double s = 0.0;
+    for (std::size_t k = 1; k < pts.size(); ++k) {
+      s += distance(pts[k - 1], pts[k]);
+      pts[k] += d * (total > 0.0 ? s / total : 1.0);
+    }
+    pts.back() = target;
+  }
+  bool connected(int a, int b) const {
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i] && ((out_.edges[i].from == a && out_.edges[i].to == b) ||
+                        (out_.edges[i].from == b && out_.edges[i].to == a)))
+        return true;
+    return false;
+  }
+
+  bool try_place(const Stub& stub, const Piece& piece, std::vector<Vec2> pts) {
+    Ending ending;
+    std::optional<Hit> edge_hit = first_edge_hit(pts);
+    std::optional<Hit> wall = first_boundary_hit(pts);
+    if (wall && (!edge_hit || wall->k < edge_hit->k || (wall->k == edge_hit->k && wall->t < edge_hit->t))) {
+      truncate(pts, *wall);
+      // Just inside: the end lies on the boundary within rounding.
+      ending.kind = Ending::Kind::boundary;
+    } else if (edge_hit) {
+      truncate(pts, *edge_hit);
+      ending.kind = Ending::Kind::edge;
+      ending.edge = edge_hit->edge;
+      ending.seg = edge_hit->seg;
+    }
+    if (polyline_length(pts) < min_piece_) {
+      ++report_.rejected_crossing;
+      return false;
+    }
+    std::vector<std::pair<Ending, std::vector<Vec2>>> variants;
+    const Vec2 end = pts.back();
+    // An end close to a node goes to the node (no sliver edges beside a junction).
+    std::vector<NodeValue> close;
+    nodes_.query(bgi::nearest(to_bg(end), 4), std::back_inserter(close));
+    std::sort(close.begin(), close.end(), [&](const NodeValue& a, const NodeValue& b) {
+      const double da = distance(vec(a.first), end), db = distance(vec(b.first), end);
+      return da != db ? da < db : a.second < b.second;
+    });
+    const double reach = ending.kind == Ending::Kind::free ? snap_ : 2.0 * clearance_;
+    for (const NodeValue& n : close) {
+      if (n.second == stub.node || distance(vec(n.first), end) > reach) continue;
+      if (connected(n.second, stub.node) || out_.on_boundary[std::size_t(n.second)]) continue;
+      std::vector<Vec2> bent = pts;
+      bend_end(bent, vec(n.first));
+      variants.push_back({Ending{Ending::Kind::node, n.second, -1, -1}, std::move(bent)});
+      break;
+    }
+    if (ending.kind == Ending::Kind::free) {
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(end), 1), std::back_inserter(near));
+      if (!near.empty() && bg::distance(near[0].first, to_bg(end)) < snap_) {
+        const Vec2 a = vec(near[0].first.first), b = vec(near[0].first.second);
+        const Vec2 ab = b - a;
+        const double t = std::clamp(dot(end - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        const Vec2 foot = a + ab * t;
+        const auto& e = out_.edges[std::size_t(near[0].second)];
+        if (t > 0.0 && t < 1.0 && e.from != stub.node && e.to != stub.node) {
+          int seg = 0;
+          for (std::size_t j = 0; j + 1 < e.points.size(); ++j)
+            if (e.points[j] == a && e.points[j + 1] == b) seg = int(j);
+          std::vector<Vec2> bent = pts;
+          bend_end(bent, foot);
+          variants.push_back({Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent)});
+        }
+      }
+    }
+    variants.push_back({ending, pts});
+    for (auto& [how, line] : variants) {
+      if (polyline_length(line) < min_piece_) continue;
+      if (how.kind == Ending::Kind::edge) {  // not onto an edge beside its own end nodes
+        const NetworkEdge& e = out_.edges[std::size_t(how.edge)];
+        if (distance(line.back(), out_.nodes[std::size_t(e.from)]) < clearance_ ||
+            distance(line.back(), out_.nodes[std::size_t(e.to)]) < clearance_)
+          continue;
+      }
+      const bool joint = how.kind == Ending::Kind::node || how.kind == Ending::Kind::edge;
+      if (how.kind == Ending::Kind::boundary) {
+        // Pulled a hair inside, so that the end is in the region for every reader.
+        const Vec2 back = line[line.size() - 2];
+        line.back() = line.back() + (back - line.back()) * std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
+      }
+      if (!valid(line, joint)) continue;
+      commit(stub, piece, how, std::move(line));
+      return true;
+    }
+    ++report_.rejected_crossing;
+    return false;
+  }
+
+  void commit(const Stub& stub, const Piece& piece, const Ending& how, std::vector<Vec2> pts) {
+    ++report_.placed;
+    const double arrive = leaving(pts, false) + kPi;
+    int end = -1;
+    bool new_junction = false;
+    switch (how.kind) {
+      case Ending::Kind::node:
+        end = how.node;
+        ++report_.snapped;
+        break;
+      case Ending::Kind::edge:
+        end = split_edge(how.edge, how.seg, pts.back());
+        pts.back() = out_.nodes[std::size_t(end)];
+        ++report_.t_junctions;
+        break;
+      case Ending::Kind::boundary:
+        end = add_node(pts.back());
+        out_.on_boundary[std::size_t(end)] = 1;
+        ++report_.boundary_ends;
+        break;
+      case Ending::Kind::free:
+        end = add_node(pts.back());
+        new_junction = true;
+        break;
+    }
+    NetworkEdge e;
+    e.from = stub.node;
+    e.to = end;
+    e.points = std::move(pts);
+    add_edge(std::move(e));
+    count(piece, stub.heading, new_junction);
+    if (new_junction)
+      for (double turn : piece.end_turns) queue_.push_back({end, wrap(arrive + turn)});
+  }
+
+  void drain() {
+    while (!queue_.empty()) {
+      const Stub s = queue_.front();
+      queue_.pop_front();
+      grow_stub(s);
+    }
+  }
+
+  // Seeds on a lattice over the region, in a seeded order, wherever the network has not reached.
+  void seed_lattice() {
+    const double spacing = median_;
+    const BgPoint lo = extent_.min_corner(), hi = extent_.max_corner();
+    const int nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / spacing)));
+    const int ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / spacing)));
+    std::vector<std::int64_t> order(std::size_t(nx) * std::size_t(ny));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::int64_t(i);
+    // Centre first (the network grows outward from one seed), the rest shuffled.
+    const std::int64_t centre = std::int64_t(ny / 2) * nx + nx / 2;
+    std::swap(order[0], order[std::size_t(centre)]);
+    for (std::size_t i = order.size() - 1; i > 1; --i)
+      std::swap(order[i], order[1 + rng_.below(i)]);
+    for (std::int64_t cell : order) {
+      const Vec2 p{lo.x() + (double(cell % nx) + 0.5) * spacing,
+                   lo.y() + (double(cell / nx) + 0.5) * spacing};
+      if (!inside_region(p) || forbidden_at(p, true)) continue;
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < 0.75 * spacing) continue;
+      if (near_boundary(p)) continue;
+      const std::size_t j = std::size_t(rng_.below(junctions_.size()));
+      const int node = add_node(p);
+      ++report_.seeds;
+      have_degree_[std::size_t(std::min<std::size_t>(junction_headings_[j].size(), 6))] += 1.0;
+      junction_count_ += 1.0;
+      for (double h : junction_headings_[j]) queue_.push_back({node, h});
+      drain();
+    }
+  }
+
+  // Dangling ends beyond the exemplar's rate: joined onto the network straight ahead when a
+  // short, valid link exists, else short dead ends are pruned.
+  void close_dangling_ends() {
+    double length = 0.0;
+    for (std::size_t i = 0; i < out_.edges.size(); ++i) length += polyline_length(out_.edges[i].points);
+    std::vector<int> ends;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n)
+      if (degree_[n] == 1 && !out_.on_boundary[n]) ends.push_back(int(n));
+    int dangling = int(ends.size());
+    for (int n : ends) {
+      if (dangling <= dangling_target_ * length) break;
+      if (degree_[std::size_t(n)] != 1) continue;
+      int edge = -1;
+      for (std::size_t i = 0; i < out_.edges.size(); ++i)
+        if (alive_[i] && (out_.edges[i].from == n || out_.edges[i].to == n)) edge = int(i);
+      if (edge < 0 || out_.edges[std::size_t(edge)].kept) continue;
+      const NetworkEdge& e = out_.edges[std::size_t(edge)];
+      const double ahead = leaving(e.points, e.from == n) + kPi;
+      const Vec2 p = out_.nodes[std::size_t(n)];
+      std::vector<Vec2> ray{p, p + Vec2{std::cos(ahead), std::sin(ahead)} * (0.6 * median_)};
+      if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
+        truncate(ray, *hit);
+        if (valid(ray, true)) {
+          const int t = split_edge(hit->edge, hit->seg, ray.back());
+          ray.back() = out_.nodes[std::size_t(t)];
+          NetworkEdge link;
+          link.from = n;
+          link.to = t;
+          link.points = std::move(ray);
+          add_edge(std::move(link));
+          --dangling;
+          continue;
+        }
+      }
+      const int other = e.from == n ? e.to : e.from;
+      if (polyline_length(e.points) < 0.5 * median_ && degree_[std::size_t(other)] >= 3) {
+        index_edge(edge, false);
+        alive_[std::size_t(edge)] = 0;
+        --degree_[std::size_t(n)];
+        --degree_[std::size_t(other)];
+        ++report_.pruned;
+        --dangling;
+      }
+    }
+  }
+
+  // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
+  Network finish() {
+    const std::size_t nn = out_.nodes.size();
+    std::vector<std::vector<int>> incident(nn);
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i]) {
+        incident[std::size_t(out_.edges[i].from)].push_back(int(i));
+        incident[std::size_t(out_.edges[i].to)].push_back(int(i));
+      }
+    const auto mergeable = [&](int n) {
+      const auto& inc = incident[std::size_t(n)];
+      return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
+             !out_.edges[std::size_t(inc[1])].kept;
+    };
+    Network net;
+    std::vector<int> id(nn, -1);
+    const auto keep = [&](int n) {
+      if (id[std::size_t(n)] < 0) {
+        id[std::size_t(n)] = int(net.nodes.size());
+        net.nodes.push_back(out_.nodes[std::size_t(n)]);
+        net.on_boundary.push_back(out_.on_boundary[std::size_t(n)]);
+      }
+      return id[std::size_t(n)];
+    };
+    std::vector<char> used(out_.edges.size(), 0);
+    const auto walk = [&](int start, int first) {
+      NetworkEdge merged = out_.edges[std::size_t(first)];
+      merged.points.clear();
+      merged.points.push_back(out_.nodes[std::size_t(start)]);
+      int at = start, edge = first;
+      while (true) {
+        used[std::size_t(edge)] = 1;
+        const NetworkEdge& e = out_.edges[std::size_t(edge)];
+        std::vector<Vec2> pts = e.points;
+        int next = e.to;
+        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
+        merged.points.insert(merged.points.end(), pts.begin() + 1, pts.end());
+        at = next;
+        if (at == start || !mergeable(at) || e.kept) break;
+        const auto& inc = incident[std::size_t(at)];
+        const int other = inc[0] == edge ? inc[1] : inc[0];
+        if (used[std::size_t(other)]) break;
+        edge = other;
+      }
+      if (merged.kept) merged.points = out_.edges[std::size_t(first)].points;
+      merged.from = keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
+      merged.to = keep(merged.kept ? out_.edges[std::size_t(first)].to : at);
+      net.edges.push_back(std::move(merged));
+    };
+    for (std::size_t n = 0; n < nn; ++n)
+      if (!mergeable(int(n)))
+        for (int e : incident[n])
+          if (!used[std::size_t(e)]) walk(int(n), e);
+    for (std::size_t e = 0; e < out_.edges.size(); ++e)
+      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
+    return net;
+  }
+
+  const ForbiddenMask* forbidden_;
+  Raster<std::uint8_t> dilated_;
+  NetworkGrowthOptions options_;
+  NetworkGrowthReport& report_;
+  SplitMix64 rng_;
+
+  std::vector<Piece> pieces_;
+  std::vector<int> junctions_;
+  std::vector<std::vector<double>> junction_headings_;
+  double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
+  std::vector<double> length_edges_;
+  std::array<double, 7> target_degree_{}, have_degree_{};
+  std::array<double, 12> target_bearing_{}, have_bearing_{};
+  std::array<double, 12> target_length_{}, have_length_{};
+  double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
+  int exemplar_nodes_ = 0;
+
+  BgMultiPolygon region_;
+  BgBox extent_;
+  bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
+  bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
+  bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
+
+  Network out_;
+  std::vector<int> degree_, planned_;
+  std::vector<char> alive_;
+  std::deque<Stub> queue_;
+};
+
+}  // namespace
+
+Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
+                     const ForbiddenMask* forbidden, const Network* partial,
+                     const NetworkGrowthOptions& options, NetworkGrowthReport* report) {
+  NetworkGrowthReport local;
+  Grower grower(exemplar, region, forbidden, options, report ? *report : local);
+  if (partial) grower.add_partial(*partial);
+  return grower.run();
+}
+
+}  // namespace tw
