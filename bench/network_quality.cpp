@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     const std::vector<Polygon> region = box_of(ex, 1.0);
     const auto t0 = std::chrono::steady_clock::now();
     NetworkGrowthReport report;
-    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed, .lead_bearing = {}}, &report);
+    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Network base = baseline_network(ex, region, seed);
     const NetworkCheck check = check_network(out, region, nullptr);

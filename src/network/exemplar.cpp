@@ -224,7 +224,7 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
   }
   if (out.lines.empty())
     fail("{} {}: no lines{}", s.subject, s.source, s.region.empty() ? "" : " inside the region");
-  if (out.lines.size() == 1)
+  if (out.lines.size() == 1 && s.min_lines > 1)
     fail("{} {}: FID {}: a single line is no network (it needs junctions to learn from)",
          s.subject, s.source, out.fids.front());
   (void)warnings;

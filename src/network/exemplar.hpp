@@ -13,11 +13,12 @@
 namespace tw {
 
 struct NetworkSource {
-  std::string source;  // "path[:layer]": any OGR source, or an .svg file
-  std::string where;   // OGR SQL attribute filter
-  std::string region;  // optional polygons "path[:layer]" cutting the lines (a real map)
+  std::string source{};  // "path[:layer]": any OGR source, or an .svg file
+  std::string where{};   // OGR SQL attribute filter
+  std::string region{};  // optional polygons "path[:layer]" cutting the lines (a real map)
   double scale = 1.0;  // SVG: metres per SVG unit (y is flipped: north up)
   std::string subject = "exemplar";  // the option or key named in messages
+  int min_lines = 2;  // an exemplar needs junctions; a partial drawing may be one line
 };
 
 struct NetworkLines {

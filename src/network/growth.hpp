@@ -19,7 +19,7 @@ namespace tw {
 struct NetworkGrowthOptions {
   std::uint64_t seed = 1;
   // Compass degrees: the exemplar's main bearing is turned to it (absent: kept as drawn).
-  std::optional<double> lead_bearing;
+  std::optional<double> lead_bearing{};
   double clearance = 0.0;  // metres between unrelated curves; 0: 6 % of the median edge length
   double snap = 0.0;       // metres an end is pulled onto the network; 0: 35 % of the median
   int candidates = 12;     // pieces tried per stub

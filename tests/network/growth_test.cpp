@@ -26,16 +26,16 @@ TEST(NetworkGrowth, GridNeverCrossesStaysInsideAndIsDeterministic) {
   const Network ex = exemplar("grid");
   const auto region = box(0, 0, 1200, 900);
   NetworkGrowthReport report;
-  const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 5, .lead_bearing = {}}, &report);
+  const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 5}, &report);
   EXPECT_GT(out.edges.size(), 40u);
   const NetworkCheck check = check_network(out, region, nullptr);
   EXPECT_EQ(check.crossings, 0) << check.first;
   EXPECT_EQ(check.outside, 0) << check.first;
-  const Network again = grow_network(ex, region, nullptr, nullptr, {.seed = 5, .lead_bearing = {}});
+  const Network again = grow_network(ex, region, nullptr, nullptr, {.seed = 5});
   ASSERT_EQ(again.edges.size(), out.edges.size());
   for (std::size_t i = 0; i < out.edges.size(); ++i)
     ASSERT_EQ(again.edges[i].points, out.edges[i].points);
-  const Network other = grow_network(ex, region, nullptr, nullptr, {.seed = 6, .lead_bearing = {}});
+  const Network other = grow_network(ex, region, nullptr, nullptr, {.seed = 6});
   EXPECT_NE(other.edges.size() == out.edges.size() && other.edges[0].points == out.edges[0].points,
             true);
 }
