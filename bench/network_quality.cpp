@@ -6,6 +6,7 @@
 //   build/bench/bench_network_quality [--images docs/images] [--seed N]
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -50,9 +51,8 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   for (const char* kind : kExampleNetworks) cases.push_back({kind, example_network(kind, 800.0, 3)});
   Warnings warnings;
-  const std::string nc = "/usr/lib/R/site-library/sf/shape/nc.shp";
-  if (std::filesystem::exists(nc))
-    cases.push_back({"nc_counties", read_network_lines({.source = nc}, warnings)});
+  const std::string nc = std::string(TERRAWEAVE_SOURCE_DIR) + "/tests/data/nc_counties.geojson";
+  cases.push_back({"nc_counties", read_network_lines({.source = nc}, warnings)});
   cases.push_back({"drawn_svg", read_network_lines(
                                     {.source = std::string(TERRAWEAVE_SOURCE_DIR) + "/tests/data/network_drawn.svg"},
                                     warnings)});
@@ -70,6 +70,21 @@ int main(int argc, char** argv) {
     const NetworkStats se = network_stats(ex), so = network_stats(out), sb = network_stats(base);
     const auto [ha, hb] = halves(ex);
     const NetworkStats s1 = network_stats(ex, ha), s2 = network_stats(ex, hb);
+    if (std::getenv("NETWORK_VERBOSE")) {
+      for (const auto* st : {&se, &so, &sb}) {
+        int h[8] = {};
+        for (double d : st->degree) h[std::min(7, int(d))]++;
+        double ml = 0;
+        for (double l : st->edge_length) ml += l / st->edge_length.size();
+        double fa = 0;
+        for (double a : st->face_area) fa += a / st->face_area.size();
+        std::fprintf(stderr, "  deg 1:%d 2:%d 3:%d 4:%d 5+:%d  mean len %.1f  faces %zu mean %.0f\n", h[1], h[2], h[3], h[4],
+                     h[5] + h[6] + h[7], ml, st->face_area.size(), fa);
+      }
+      std::fprintf(stderr, "  placed %d stubs %d seeds %d T %d snapped %d boundary %d rej cross %d region %d pruned %d\n",
+                   report.placed, report.stubs, report.seeds, report.t_junctions, report.snapped,
+                   report.boundary_ends, report.rejected_crossing, report.rejected_region, report.pruned);
+    }
     for (int p = 0; p < 6; ++p) {
       const double d_out = normalized_w1(property(se, p), property(so, p));
       const double d_half = normalized_w1(property(s1, p), property(s2, p));

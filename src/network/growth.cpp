@@ -65,7 +65,11 @@ struct Piece {
 struct Stub {
   int node = 0;
   double heading = 0.0;
+  int id = 0;
 };
+
+// Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
+constexpr double kMinMeetingAngle = 0.35;
 
 // Where a candidate ends.
 struct Ending {
@@ -122,7 +126,8 @@ class Grower {
           continue;
         }
         // A dangling end of the drawing goes on straight.
-        queue_.push_back({n, leaving(e.points, end == 0) + kPi});
+        planned_[std::size_t(n)] = 2;
+        push_stub(n, leaving(e.points, end == 0) + kPi);
       }
     }
   }
@@ -157,7 +162,9 @@ class Grower {
     for (int b = 1; b < 8; ++b) length_edges_.push_back(lengths[lengths.size() * std::size_t(b) / 8]);
     clearance_ = options_.clearance > 0.0 ? options_.clearance : 0.06 * median_;
     snap_ = options_.snap > 0.0 ? options_.snap : std::max(0.35 * median_, 2.0 * clearance_);
-    min_piece_ = std::max(2.5 * clearance_, 0.12 * median_);
+    // No edge shorter than most of the exemplar's (its 10th percentile): truncated pieces that
+    // would make slivers are refused.
+    min_piece_ = std::max({2.5 * clearance_, 0.12 * median_, 0.8 * lengths[lengths.size() / 10]});
 
     // The turn of the whole exemplar to the lead: its main bearing (length-weighted mode).
     if (options_.lead_bearing) {
@@ -310,6 +317,8 @@ class Grower {
     out_.on_boundary.push_back(0);
     degree_.push_back(0);
     planned_.push_back(0);
+    incident_.emplace_back();
+    stubs_of_.emplace_back();
     nodes_.insert({to_bg(p), id});
     return id;
   }
@@ -324,9 +333,11 @@ class Grower {
   int add_edge(NetworkEdge e) {
     ++degree_[std::size_t(e.from)];
     ++degree_[std::size_t(e.to)];
+    const int id = int(out_.edges.size());
+    incident_[std::size_t(e.from)].push_back(id);
+    if (e.to != e.from) incident_[std::size_t(e.to)].push_back(id);
     out_.edges.push_back(std::move(e));
     alive_.push_back(1);
-    const int id = int(out_.edges.size()) - 1;
     index_edge(id, true);
     return id;
   }
@@ -345,7 +356,10 @@ class Grower {
       if (!(e.points[k] == p)) second.points.push_back(e.points[k]);
     e.points.resize(std::size_t(seg) + 1);
     if (!(e.points.back() == p)) e.points.push_back(p);
+    auto& at_end = incident_[std::size_t(e.to)];
+    at_end.erase(std::remove(at_end.begin(), at_end.end(), id), at_end.end());
     e.to = node;
+    incident_[std::size_t(node)].push_back(id);
     index_edge(id, true);
     if (second.points.size() < 2) second.points.push_back(p);
     --degree_[std::size_t(second.to)];  // add_edge counts both of its ends
@@ -460,52 +474,67 @@ class Grower {
   }
 
   // ---- growth ----------------------------------------------------------------------------------
-  double histogram_cost(const Piece& p, double h) const {
-    const Vec2 chord = rotate(p.points.back(), h);
-    const auto over = [](const std::array<double, 12>& have, double total,
-                         const std::array<double, 12>& want, std::size_t bin) {
-      return (have[bin] + 1.0) / (total + 1.0) - want[bin];
-    };
-    double cost = over(have_bearing_, placed_, target_bearing_, std::size_t(bearing_bin(chord)));
-    cost += over(have_length_, placed_, target_length_, std::size_t(p.length_bin));
-    const std::size_t d = std::size_t(std::min(p.end_degree, 6));
-    cost += 1.5 * ((have_degree_[d] + 1.0) / (junction_count_ + 1.0) - target_degree_[d]);
+  // How far a histogram would move from its target when `bin` gains one (> 0: over-represented).
+  template <std::size_t N>
+  static double excess(const std::array<double, N>& have, double total,
+                       const std::array<double, N>& want, std::size_t bin) {
+    return (have[bin] + 1.0) / (total + 1.0) - want[bin];
+  }
+  int length_bin(double length) const {
+    return int(std::upper_bound(length_edges_.begin(), length_edges_.end(), length) -
+               length_edges_.begin());
+  }
+
+  // A candidate's outcome, evaluated before anything is committed.
+  struct Outcome {
+    Ending how;
+    std::vector<Vec2> line;
+    int degree = 0;      // the junction its end makes (0: none counted, a boundary cut)
+    int stub_taken = -1;  // Kind::node: the pending stub of that node it fills
+    double cost = 0.0;
+  };
+
+  double outcome_cost(const Outcome& o) const {
+    const Vec2 chord = o.line.back() - o.line.front();
+    double cost = excess(have_bearing_, placed_, target_bearing_, std::size_t(bearing_bin(chord)));
+    cost += excess(have_length_, placed_, target_length_,
+                   std::size_t(length_bin(polyline_length(o.line))));
+    if (o.degree > 0)
+      cost += 1.5 * excess(have_degree_, junction_count_, target_degree_,
+                           std::size_t(std::min(o.degree, 6)));
     return cost;
   }
 
-  void count(const Piece& p, double h, bool new_junction) {
-    have_bearing_[std::size_t(bearing_bin(rotate(p.points.back(), h)))] += 1.0;
-    have_length_[std::size_t(p.length_bin)] += 1.0;
-    placed_ += 1.0;
-    if (new_junction) {
-      have_degree_[std::size_t(std::min(p.end_degree, 6))] += 1.0;
-      junction_count_ += 1.0;
-    }
-  }
-
   void grow_stub(const Stub& stub) {
+    if (cancelled_[std::size_t(stub.id)]) return;
+    cancelled_[std::size_t(stub.id)] = 1;
     ++report_.stubs;
     const Vec2 origin = out_.nodes[std::size_t(stub.node)];
-    struct Choice {
-      double cost;
-      int order;
-      int piece;
-    };
-    std::vector<Choice> choices;
+    std::optional<Outcome> best;
+    const Piece* best_piece = nullptr;
     for (int c = 0; c < options_.candidates; ++c) {
-      const int piece = int(rng_.below(pieces_.size()));
-      choices.push_back({histogram_cost(pieces_[std::size_t(piece)], stub.heading) +
-                             0.15 * rng_.uniform(), c, piece});
-    }
-    std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) {
-      return a.cost != b.cost ? a.cost < b.cost : a.order < b.order;
-    });
-    for (const Choice& choice : choices) {
-      const Piece& piece = pieces_[std::size_t(choice.piece)];
+      const Piece& piece = pieces_[std::size_t(rng_.below(pieces_.size()))];
+      const double noise = 0.15 * rng_.uniform();
       std::vector<Vec2> pts;
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
-      if (try_place(stub, piece, std::move(pts))) return;
+      std::optional<Outcome> o = evaluate(stub, piece, std::move(pts));
+      if (!o) continue;
+      o->cost = outcome_cost(*o) + noise;
+      if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
     }
+    if (!best) {
+      // The node stays short of the junction it was meant to be.
+      ++report_.rejected_crossing;
+      const std::size_t n = std::size_t(stub.node);
+      if (!out_.on_boundary[n] && planned_[n] > 0) {
+        have_degree_[std::size_t(std::min(planned_[n], 6))] -= 1.0;
+        --planned_[n];
+        if (planned_[n] > 0) have_degree_[std::size_t(std::min(planned_[n], 6))] += 1.0;
+        else junction_count_ -= 1.0;
+      }
+      return;
+    }
+    commit(stub, *best_piece, std::move(*best));
   }
 
   static void truncate(std::vector<Vec2>& pts, const Hit& hit) {
@@ -523,20 +552,35 @@ class Grower {
     pts.back() = target;
   }
   bool connected(int a, int b) const {
-    for (std::size_t i = 0; i < out_.edges.size(); ++i)
-      if (alive_[i] && ((out_.edges[i].from == a && out_.edges[i].to == b) ||
-                        (out_.edges[i].from == b && out_.edges[i].to == a)))
+    for (int e : incident_[std::size_t(a)])
+      if (alive_[std::size_t(e)] &&
+          (out_.edges[std::size_t(e)].from == b || out_.edges[std::size_t(e)].to == b))
         return true;
     return false;
   }
+  // The angle (radians, 0..pi/2) between the arriving line's last segment and an edge segment.
+  static double meeting_angle(const std::vector<Vec2>& line, Vec2 a, Vec2 b) {
+    const Vec2 u = normalized(line.back() - line[line.size() - 2]), v = normalized(b - a);
+    return std::asin(std::min(1.0, std::abs(cross(u, v))));
+  }
+  // The pending stub of node n pointing closest to `towards` (radians), within 60°.
+  int pending_stub(int n, double towards) const {
+    int best = -1;
+    double best_diff = kPi / 3;
+    for (int id : stubs_of_[std::size_t(n)]) {
+      if (cancelled_[std::size_t(id)]) continue;
+      const double diff = std::abs(wrap(stubs_[std::size_t(id)].heading - towards));
+      if (diff < best_diff) best_diff = diff, best = id;
+    }
+    return best;
+  }
 
-  bool try_place(const Stub& stub, const Piece& piece, std::vector<Vec2> pts) {
+  std::optional<Outcome> evaluate(const Stub& stub, const Piece& piece, std::vector<Vec2> pts) {
     Ending ending;
     std::optional<Hit> edge_hit = first_edge_hit(pts);
     std::optional<Hit> wall = first_boundary_hit(pts);
     if (wall && (!edge_hit || wall->k < edge_hit->k || (wall->k == edge_hit->k && wall->t < edge_hit->t))) {
       truncate(pts, *wall);
-      // Just inside: the end lies on the boundary within rounding.
       ending.kind = Ending::Kind::boundary;
     } else if (edge_hit) {
       truncate(pts, *edge_hit);
@@ -544,13 +588,10 @@ class Grower {
       ending.edge = edge_hit->edge;
       ending.seg = edge_hit->seg;
     }
-    if (polyline_length(pts) < min_piece_) {
-      ++report_.rejected_crossing;
-      return false;
-    }
-    std::vector<std::pair<Ending, std::vector<Vec2>>> variants;
+    if (polyline_length(pts) < min_piece_) return std::nullopt;
+    std::vector<Outcome> variants;
     const Vec2 end = pts.back();
-    // An end close to a node goes to the node (no sliver edges beside a junction).
+    // An end close to a node with an open stub facing it fills that stub (closing a cell).
     std::vector<NodeValue> close;
     nodes_.query(bgi::nearest(to_bg(end), 4), std::back_inserter(close));
     std::sort(close.begin(), close.end(), [&](const NodeValue& a, const NodeValue& b) {
@@ -560,10 +601,12 @@ class Grower {
     const double reach = ending.kind == Ending::Kind::free ? snap_ : 2.0 * clearance_;
     for (const NodeValue& n : close) {
       if (n.second == stub.node || distance(vec(n.first), end) > reach) continue;
-      if (connected(n.second, stub.node) || out_.on_boundary[std::size_t(n.second)]) continue;
+      if (out_.on_boundary[std::size_t(n.second)] || connected(n.second, stub.node)) continue;
       std::vector<Vec2> bent = pts;
       bend_end(bent, vec(n.first));
-      variants.push_back({Ending{Ending::Kind::node, n.second, -1, -1}, std::move(bent)});
+      const int taken = pending_stub(n.second, leaving(bent, false));
+      if (taken < 0) continue;
+      variants.push_back({Ending{Ending::Kind::node, n.second, -1, -1}, std::move(bent), 0, taken});
       break;
     }
     if (ending.kind == Ending::Kind::free) {
@@ -581,46 +624,54 @@ class Grower {
             if (e.points[j] == a && e.points[j + 1] == b) seg = int(j);
           std::vector<Vec2> bent = pts;
           bend_end(bent, foot);
-          variants.push_back({Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent)});
+          variants.push_back({Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent), 3, -1});
         }
       }
     }
-    variants.push_back({ending, pts});
-    for (auto& [how, line] : variants) {
+    const int plain_degree = ending.kind == Ending::Kind::free     ? piece.end_degree
+                             : ending.kind == Ending::Kind::edge   ? 3
+                                                                   : 0;
+    variants.push_back({ending, pts, plain_degree, -1});
+    for (Outcome& o : variants) {
+      auto& line = o.line;
       if (polyline_length(line) < min_piece_) continue;
-      if (how.kind == Ending::Kind::edge) {  // not onto an edge beside its own end nodes
-        const NetworkEdge& e = out_.edges[std::size_t(how.edge)];
+      if (o.how.kind == Ending::Kind::edge) {
+        // Not onto an edge beside its own end nodes, nor at a glancing angle (a sliver cell).
+        const NetworkEdge& e = out_.edges[std::size_t(o.how.edge)];
         if (distance(line.back(), out_.nodes[std::size_t(e.from)]) < clearance_ ||
             distance(line.back(), out_.nodes[std::size_t(e.to)]) < clearance_)
           continue;
+        if (meeting_angle(line, e.points[std::size_t(o.how.seg)],
+                          e.points[std::size_t(o.how.seg) + 1]) < kMinMeetingAngle)
+          continue;
       }
-      const bool joint = how.kind == Ending::Kind::node || how.kind == Ending::Kind::edge;
-      if (how.kind == Ending::Kind::boundary) {
+      const bool joint = o.how.kind == Ending::Kind::node || o.how.kind == Ending::Kind::edge;
+      if (o.how.kind == Ending::Kind::boundary) {
         // Pulled a hair inside, so that the end is in the region for every reader.
         const Vec2 back = line[line.size() - 2];
         line.back() = line.back() + (back - line.back()) * std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
       }
       if (!valid(line, joint)) continue;
-      commit(stub, piece, how, std::move(line));
-      return true;
+      return std::move(o);
     }
-    ++report_.rejected_crossing;
-    return false;
+    return std::nullopt;
   }
 
-  void commit(const Stub& stub, const Piece& piece, const Ending& how, std::vector<Vec2> pts) {
+  void commit(const Stub& stub, const Piece& piece, Outcome o) {
     ++report_.placed;
+    std::vector<Vec2> pts = std::move(o.line);
     const double arrive = leaving(pts, false) + kPi;
     int end = -1;
-    bool new_junction = false;
-    switch (how.kind) {
+    switch (o.how.kind) {
       case Ending::Kind::node:
-        end = how.node;
+        end = o.how.node;
+        cancelled_[std::size_t(o.stub_taken)] = 1;
         ++report_.snapped;
         break;
       case Ending::Kind::edge:
-        end = split_edge(how.edge, how.seg, pts.back());
+        end = split_edge(o.how.edge, o.how.seg, pts.back());
         pts.back() = out_.nodes[std::size_t(end)];
+        planned_[std::size_t(end)] = 3;
         ++report_.t_junctions;
         break;
       case Ending::Kind::boundary:
@@ -630,17 +681,31 @@ class Grower {
         break;
       case Ending::Kind::free:
         end = add_node(pts.back());
-        new_junction = true;
+        planned_[std::size_t(end)] = piece.end_degree;
         break;
     }
+    if (o.degree > 0) {
+      have_degree_[std::size_t(std::min(o.degree, 6))] += 1.0;
+      junction_count_ += 1.0;
+    }
+    have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
+    have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
+    placed_ += 1.0;
     NetworkEdge e;
     e.from = stub.node;
     e.to = end;
     e.points = std::move(pts);
     add_edge(std::move(e));
-    count(piece, stub.heading, new_junction);
-    if (new_junction)
-      for (double turn : piece.end_turns) queue_.push_back({end, wrap(arrive + turn)});
+    if (o.how.kind == Ending::Kind::free)
+      for (double turn : piece.end_turns) push_stub(end, wrap(arrive + turn));
+  }
+
+  void push_stub(int node, double heading) {
+    const int id = int(stubs_.size());
+    stubs_.push_back({node, heading, id});
+    cancelled_.push_back(0);
+    stubs_of_[std::size_t(node)].push_back(id);
+    queue_.push_back(stubs_.back());
   }
 
   void drain() {
@@ -675,9 +740,10 @@ class Grower {
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
       const int node = add_node(p);
       ++report_.seeds;
-      have_degree_[std::size_t(std::min<std::size_t>(junction_headings_[j].size(), 6))] += 1.0;
+      planned_[std::size_t(node)] = int(junction_headings_[j].size());
+      have_degree_[std::size_t(std::min(planned_[std::size_t(node)], 6))] += 1.0;
       junction_count_ += 1.0;
-      for (double h : junction_headings_[j]) queue_.push_back({node, h});
+      for (double h : junction_headings_[j]) push_stub(node, h);
       drain();
     }
   }
@@ -811,6 +877,9 @@ class Grower {
 
   Network out_;
   std::vector<int> degree_, planned_;
+  std::vector<std::vector<int>> incident_, stubs_of_;
+  std::vector<Stub> stubs_;
+  std::vector<char> cancelled_;
   std::vector<char> alive_;
   std::deque<Stub> queue_;
 };

@@ -107,7 +107,7 @@ TEST(NetworkExemplar, SvgPathsAreScaledNorthUp) {
 }
 
 TEST(NetworkExemplar, RealCountyBoundariesCutByARegion) {
-  const std::string nc = "/usr/lib/R/site-library/sf/shape/nc.shp";
+  const std::string nc = (test::source_dir() / "tests/data/nc_counties.geojson").string();
   test::TempDir dir;
   // A box in the local metric frame the geographic shapefile is read in (centre of its extent).
   Warnings w;
