@@ -60,7 +60,14 @@ struct Piece {
   int end_degree = 1;                // the exemplar junction at its end
   std::vector<double> end_turns;     // its other edges' headings relative to the arrival
   int length_bin = 0;
+  // Junctions passed through (a stroke goes on across a junction where an edge continues
+  // nearly straight): the vertex and the other edges' headings relative to the arrival there.
+  std::vector<std::pair<std::size_t, double>> sides;
 };
+
+// A stroke continues across a junction onto the edge that deflects least, below this (radians).
+constexpr double kStrokeDeflection = 0.45;
+constexpr int kStrokeEdges = 8;
 
 struct Stub {
   int node = 0;
@@ -182,20 +189,49 @@ class Grower {
       for (int dir = 0; dir < 2; ++dir) {
         const int start = dir == 0 ? e.from : e.to, end = dir == 0 ? e.to : e.from;
         if (boundary(end) || boundary(start)) continue;
+        Piece p;
+        // The stroke from this edge: across junctions where an edge goes on nearly straight.
         std::vector<Vec2> pts = e.points;
         if (dir == 1) std::reverse(pts.begin(), pts.end());
-        Piece p;
+        int at = end, current = int(i);
+        std::vector<int> used{int(i)};
+        while (options_.strokes && int(used.size()) < kStrokeEdges && !boundary(at) &&
+               degree[std::size_t(at)] >= 3) {
+          const double arrive = leaving(pts, false) + kPi;
+          int next = -1;
+          double best = kStrokeDeflection;
+          for (const auto& [h, edge] : leaving_at[std::size_t(at)]) {
+            if (edge == current || std::find(used.begin(), used.end(), edge) != used.end()) continue;
+            const double deflection = std::abs(wrap(h - arrive));
+            if (deflection < best) best = deflection, next = edge;
+          }
+          if (next < 0) break;
+          const NetworkEdge& n = ex.edges[std::size_t(next)];
+          const int far = n.from == at ? n.to : n.from;
+          if (far == start || std::find(used.begin(), used.end(), next) != used.end()) break;
+          for (const auto& [h, edge] : leaving_at[std::size_t(at)])
+            if (edge != current && edge != next) p.sides.push_back({pts.size() - 1, wrap(h - arrive)});
+          std::vector<Vec2> more = n.points;
+          if (n.from != at) std::reverse(more.begin(), more.end());
+          pts.insert(pts.end(), more.begin() + 1, more.end());
+          used.push_back(next);
+          current = next;
+          at = far;
+        }
+        const int stroke_end = at;
         const double h0 = leaving(pts, true);
         const Vec2 origin = pts.front();
         for (Vec2 v : pts) p.points.push_back(rotate(v - origin, -h0));
         p.length = polyline_length(p.points);
-        if (p.length <= 0.0) continue;
+        if (p.length <= 0.0 || boundary(stroke_end)) continue;
         const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
         p.arrival = wrap(arrive - h0);
-        p.end_degree = degree[std::size_t(end)];
-        for (const auto& [h, edge] : leaving_at[std::size_t(end)])
-          if (edge != int(i) || e.from == e.to) p.end_turns.push_back(wrap(h - arrive));
-        if (e.from == e.to && !p.end_turns.empty()) p.end_turns.pop_back();
+        p.end_degree = degree[std::size_t(stroke_end)];
+        for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
+          if (edge != current || ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
+            p.end_turns.push_back(wrap(h - arrive));
+        if (ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to && !p.end_turns.empty())
+          p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
         pieces_.push_back(std::move(p));
@@ -214,6 +250,7 @@ class Grower {
       for (std::size_t n = 0; n < ex.nodes.size(); ++n)
         if (degree[n] >= 2) junctions_.push_back(int(n));
     if (junctions_.empty()) fail("exemplar: no junction (every line ends alone)");
+    length_per_junction_ = ex.total_length() / double(std::max<std::size_t>(1, junctions_.size()));
     for (double& v : target_degree_) v /= std::max(1, exemplar_nodes_);
     double total = 0.0;
     for (const NetworkEdge& e : ex.edges) {
@@ -691,10 +728,41 @@ class Grower {
     have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
     have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
     placed_ += 1.0;
+    grown_length_ += polyline_length(pts);
+    // The stroke's junctions passed through become nodes with stubs of their own.
+    int from = stub.node;
+    std::size_t first = 0;
+    const double total = polyline_length(pts);
+    double along = 0.0;
+    std::size_t measured = 0;
+    for (std::size_t k = 0; k < piece.sides.size();) {
+      const std::size_t at = piece.sides[k].first;
+      std::vector<double> turns;
+      for (; k < piece.sides.size() && piece.sides[k].first == at; ++k) turns.push_back(piece.sides[k].second);
+      if (at == 0 || at + 1 >= pts.size()) continue;
+      for (; measured < at; ++measured) along += distance(pts[measured], pts[measured + 1]);
+      if (along < min_piece_ || total - along < min_piece_) continue;
+      // A junction passed through only while the network has fewer junctions per metre than
+      // the exemplar (other lines also end on this one: both would double the density).
+      if (grown_length_ < length_per_junction_ * (junctions() + 1.0)) continue;
+      const int node = add_node(pts[at]);
+      NetworkEdge part;
+      part.from = from;
+      part.to = node;
+      part.points.assign(pts.begin() + long(first), pts.begin() + long(at) + 1);
+      add_edge(std::move(part));
+      planned_[std::size_t(node)] = 2 + int(turns.size());
+      have_degree_[std::size_t(std::min(planned_[std::size_t(node)], 6))] += 1.0;
+      junction_count_ += 1.0;
+      const double arrive_here = heading(pts[at] - pts[at - 1]);
+      for (double turn : turns) push_stub(node, wrap(arrive_here + turn));
+      from = node;
+      first = at;
+    }
     NetworkEdge e;
-    e.from = stub.node;
+    e.from = from;
     e.to = end;
-    e.points = std::move(pts);
+    e.points.assign(pts.begin() + long(first), pts.end());
     add_edge(std::move(e));
     if (o.how.kind == Ending::Kind::free)
       for (double turn : piece.end_turns) push_stub(end, wrap(arrive + turn));
@@ -866,6 +934,12 @@ class Grower {
   std::array<double, 7> target_degree_{}, have_degree_{};
   std::array<double, 12> target_bearing_{}, have_bearing_{};
   std::array<double, 12> target_length_{}, have_length_{};
+  double grown_length_ = 0.0, length_per_junction_ = 1.0;
+  double junctions() const {
+    double n = 0.0;
+    for (std::size_t d = 3; d < have_degree_.size(); ++d) n += have_degree_[d];
+    return n;
+  }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
   int exemplar_nodes_ = 0;
 

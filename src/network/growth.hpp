@@ -23,6 +23,9 @@ struct NetworkGrowthOptions {
   double clearance = 0.0;  // metres between unrelated curves; 0: 6 % of the median edge length
   double snap = 0.0;       // metres an end is pulled onto the network; 0: 35 % of the median
   int candidates = 12;     // pieces tried per stub
+  // Pieces are strokes (edges chained across junctions where a line goes on nearly straight,
+  // their side junctions kept) rather than single edges.
+  bool strokes = true;
 };
 
 // Cells no curve may enter (non-zero), on any grid in the region's frame.
