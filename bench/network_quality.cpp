@@ -36,7 +36,10 @@ std::vector<Polygon> box_of(const Network& n, double factor) {
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   }
   const Vec2 c = 0.5 * (lo + hi), h = 0.5 * factor * (hi - lo);
-  return {{{{c.x - h.x, c.y - h.y}, {c.x + h.x, c.y - h.y}, {c.x + h.x, c.y + h.y}, {c.x - h.x, c.y + h.y}}}};
+  return {{{{c.x - h.x, c.y - h.y},
+            {c.x + h.x, c.y - h.y},
+            {c.x + h.x, c.y + h.y},
+            {c.x - h.x, c.y + h.y}}}};
 }
 
 }  // namespace
@@ -49,14 +52,16 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--seed")) seed = std::stoull(argv[i + 1]);
   }
   std::vector<Case> cases;
-  for (const char* kind : kExampleNetworks) cases.push_back({kind, example_network(kind, 800.0, 3)});
+  for (const char* kind : kExampleNetworks)
+    cases.push_back({kind, example_network(kind, 800.0, 3)});
   Warnings warnings;
   const std::string nc = std::string(TERRAWEAVE_SOURCE_DIR) + "/tests/data/nc_counties.geojson";
   cases.push_back({"nc_counties", read_network_lines({.source = nc}, warnings)});
-  cases.push_back({"drawn_svg", read_network_lines(
-                                    {.source = std::string(TERRAWEAVE_SOURCE_DIR) + "/tests/data/network_drawn.svg"},
-                                    warnings)});
-  std::printf("| exemplar | property | output | halves | baseline | ok |\n|---|---|---|---|---|---|\n");
+  cases.push_back({"drawn_svg", read_network_lines({.source = std::string(TERRAWEAVE_SOURCE_DIR) +
+                                                              "/tests/data/network_drawn.svg"},
+                                                   warnings)});
+  std::printf(
+      "| exemplar | property | output | halves | baseline | ok |\n|---|---|---|---|---|---|\n");
   int passed = 0, total = 0;
   for (Case& c : cases) {
     const Network ex = build_planar_network(c.lines, 1e-3, c.name, warnings);
@@ -64,7 +69,8 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     NetworkGrowthReport report;
     const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Network base = baseline_network(ex, region, seed);
     const NetworkCheck check = check_network(out, region, nullptr);
     const NetworkStats se = network_stats(ex), so = network_stats(out), sb = network_stats(base);
@@ -78,12 +84,16 @@ int main(int argc, char** argv) {
         for (double l : st->edge_length) ml += l / st->edge_length.size();
         double fa = 0;
         for (double a : st->face_area) fa += a / st->face_area.size();
-        std::fprintf(stderr, "  deg 1:%d 2:%d 3:%d 4:%d 5+:%d  mean len %.1f  faces %zu mean %.0f\n", h[1], h[2], h[3], h[4],
-                     h[5] + h[6] + h[7], ml, st->face_area.size(), fa);
+        std::fprintf(stderr,
+                     "  deg 1:%d 2:%d 3:%d 4:%d 5+:%d  mean len %.1f  faces %zu mean %.0f\n", h[1],
+                     h[2], h[3], h[4], h[5] + h[6] + h[7], ml, st->face_area.size(), fa);
       }
-      std::fprintf(stderr, "  placed %d stubs %d seeds %d T %d snapped %d boundary %d rej cross %d region %d pruned %d\n",
+      std::fprintf(stderr,
+                   "  placed %d stubs %d seeds %d T %d snapped %d boundary %d rej cross %d region "
+                   "%d pruned %d\n",
                    report.placed, report.stubs, report.seeds, report.t_junctions, report.snapped,
-                   report.boundary_ends, report.rejected_crossing, report.rejected_region, report.pruned);
+                   report.boundary_ends, report.rejected_crossing, report.rejected_region,
+                   report.pruned);
     }
     for (int p = 0; p < 6; ++p) {
       const double d_out = normalized_w1(property(se, p), property(so, p));
@@ -96,11 +106,14 @@ int main(int argc, char** argv) {
     }
     const bool ok = so.dangling_per_km() <= 1.5 * se.dangling_per_km() + 1e-9;
     passed += ok, ++total;
-    std::printf("| %s | dangling ends per km | %.2f | %.2f (exemplar) | %.2f | %s |\n", c.name.c_str(),
-                so.dangling_per_km(), se.dangling_per_km(), sb.dangling_per_km(), ok ? "yes" : "no");
-    std::fprintf(stderr, "%s: %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
-                 c.name.c_str(), ex.edges.size(), out.edges.size(), ms,
-                 (long long)check.crossings, (long long)check.outside);
+    std::printf("| %s | dangling ends per km | %.2f | %.2f (exemplar) | %.2f | %s |\n",
+                c.name.c_str(), so.dangling_per_km(), se.dangling_per_km(), sb.dangling_per_km(),
+                ok ? "yes" : "no");
+    std::fprintf(
+        stderr,
+        "%s: %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
+        c.name.c_str(), ex.edges.size(), out.edges.size(), ms, (long long)check.crossings,
+        (long long)check.outside);
     if (!images.empty()) {
       OutputTransaction t;
       const auto ex_region = box_of(ex, 1.0);

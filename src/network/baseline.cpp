@@ -24,7 +24,8 @@ Network baseline_network(const Network& exemplar, const std::vector<Polygon>& re
       rhi = {std::max(rhi.x, p.x), std::max(rhi.y, p.y)};
     }
   const double side = std::max(1e-9, 0.4 * std::min(hi.x - lo.x, hi.y - lo.y));
-  const int patches = std::max(1, int(std::ceil((rhi.x - rlo.x) * (rhi.y - rlo.y) / (side * side))));
+  const int patches =
+      std::max(1, int(std::ceil((rhi.x - rlo.x) * (rhi.y - rlo.y) / (side * side))));
   NetworkLines lines;
   lines.region = region;
   for (int k = 0; k < patches; ++k) {
@@ -50,7 +51,9 @@ Network baseline_network(const Network& exemplar, const std::vector<Polygon>& re
       part.clear();
     };
     const auto& pts = lines.lines[i];
-    const auto in = [&](Vec2 p) { return p.x >= rlo.x && p.x <= rhi.x && p.y >= rlo.y && p.y <= rhi.y; };
+    const auto in = [&](Vec2 p) {
+      return p.x >= rlo.x && p.x <= rhi.x && p.y >= rlo.y && p.y <= rhi.y;
+    };
     for (std::size_t k = 0; k < pts.size(); ++k) {
       if (in(pts[k])) {
         if (part.empty() && k > 0) {  // entering: from the boundary
@@ -58,7 +61,8 @@ Network baseline_network(const Network& exemplar, const std::vector<Polygon>& re
           double t = 0.0;
           for (double tt : {(rlo.x - a.x) / (b.x - a.x), (rhi.x - a.x) / (b.x - a.x),
                             (rlo.y - a.y) / (b.y - a.y), (rhi.y - a.y) / (b.y - a.y)})
-            if (std::isfinite(tt) && tt >= 0 && tt <= 1 && in(lerp(a, b, tt + 1e-12))) t = std::max(t, tt);
+            if (std::isfinite(tt) && tt >= 0 && tt <= 1 && in(lerp(a, b, tt + 1e-12)))
+              t = std::max(t, tt);
           part.push_back(lerp(a, b, t));
         }
         part.push_back(pts[k]);

@@ -41,7 +41,8 @@ NetworkCheck check_network(const Network& net, const std::vector<Polygon>& regio
     near.clear();
     OGREnvelope e;
     lines[i].getEnvelope(&e);
-    boxes.query(bgi::intersects(BgBox({e.MinX, e.MinY}, {e.MaxX, e.MaxY})), std::back_inserter(near));
+    boxes.query(bgi::intersects(BgBox({e.MinX, e.MinY}, {e.MaxX, e.MaxY})),
+                std::back_inserter(near));
     const NetworkEdge& a = net.edges[i];
     for (const auto& [box, j] : near) {
       if (j <= int(i)) continue;
@@ -59,9 +60,11 @@ NetworkCheck check_network(const Network& net, const std::vector<Polygon>& regio
       };
       if (!common || common->IsEmpty()) continue;
       const auto type = wkbFlatten(common->getGeometryType());
-      if (type == wkbPoint) bad = !allowed(common->toPoint()->getX(), common->toPoint()->getY());
+      if (type == wkbPoint)
+        bad = !allowed(common->toPoint()->getX(), common->toPoint()->getY());
       else if (type == wkbMultiPoint) {
-        for (const OGRPoint* p : *common->toMultiPoint()) bad = bad || !allowed(p->getX(), p->getY());
+        for (const OGRPoint* p : *common->toMultiPoint())
+          bad = bad || !allowed(p->getX(), p->getY());
       } else {
         bad = true;  // an overlap along a line
       }

@@ -21,7 +21,9 @@ std::vector<Vec2> wavy(Vec2 a, Vec2 b, double amplitude, SplitMix64& rng, int n 
   std::vector<Vec2> pts;
   for (int i = 0; i <= n; ++i) {
     const double t = double(i) / n;
-    const double off = (i == 0 || i == n) ? 0.0 : amplitude * std::sin(phase + waves * 2 * kPi * t) * std::sin(kPi * t);
+    const double off = (i == 0 || i == n)
+                           ? 0.0
+                           : amplitude * std::sin(phase + waves * 2 * kPi * t) * std::sin(kPi * t);
     pts.push_back(lerp(a, b, t) + across * off);
   }
   return pts;
@@ -36,7 +38,8 @@ void grid(NetworkLines& out, double size, SplitMix64& rng) {
   const double dx = 110.0, dy = 80.0;
   const int nx = int(size / dx), ny = int(size / dy);
   std::vector<double> xs;
-  for (int i = 0; i <= nx; ++i) xs.push_back(i * dx + (i == 0 || i == nx ? 0.0 : rng.uniform(-15, 15)));
+  for (int i = 0; i <= nx; ++i)
+    xs.push_back(i * dx + (i == 0 || i == nx ? 0.0 : rng.uniform(-15, 15)));
   for (double x : xs) add(out, {{x, 0.0}, {x, ny * dy}});
   for (int j = 0; j <= ny; ++j) {
     if (j == 0 || j == ny) {
@@ -158,9 +161,11 @@ void radial(NetworkLines& out, double size, SplitMix64& rng) {
   for (int s = 0; s < 12; ++s) {
     const double a = 2 * kPi * s / 12 + rng.uniform(-0.05, 0.05);
     const double from = (s % 2 == 0) ? 0.0 : step;  // every other spoke starts at the first ring
-    if (from == 0.0) add(out, {c, c + Vec2{std::cos(a), std::sin(a)} * (rings * step)});
-    else add(out, {c + Vec2{std::cos(a), std::sin(a)} * from,
-                   c + Vec2{std::cos(a), std::sin(a)} * (rings * step)});
+    if (from == 0.0)
+      add(out, {c, c + Vec2{std::cos(a), std::sin(a)} * (rings * step)});
+    else
+      add(out, {c + Vec2{std::cos(a), std::sin(a)} * from,
+                c + Vec2{std::cos(a), std::sin(a)} * (rings * step)});
   }
 }
 
@@ -173,7 +178,8 @@ void crocodile(NetworkLines& out, double size, SplitMix64& rng) {
   const auto v = [&](double x, double y) {
     const auto key = std::pair{std::lround(x * 10), std::lround(y * 10)};
     auto it = vertex.find(key);
-    if (it == vertex.end()) it = vertex.emplace(key, Vec2{x + rng.uniform(-4, 4), y + rng.uniform(-4, 4)}).first;
+    if (it == vertex.end())
+      it = vertex.emplace(key, Vec2{x + rng.uniform(-4, 4), y + rng.uniform(-4, 4)}).first;
     return it->second;
   };
   for (int j = 0; j < ny; ++j)
@@ -193,13 +199,20 @@ void crocodile(NetworkLines& out, double size, SplitMix64& rng) {
 NetworkLines example_network(const std::string& kind, double size_m, std::uint64_t seed) {
   SplitMix64 rng(seed);
   NetworkLines out;
-  if (kind == "grid") grid(out, size_m, rng);
-  else if (kind == "bocage") split_cells(out, size_m, rng, 9000.0, 0.0);
-  else if (kind == "drainage") drainage(out, size_m, rng);
-  else if (kind == "terraces") terraces(out, size_m, rng);
-  else if (kind == "radial") radial(out, size_m, rng);
-  else if (kind == "crocodile") crocodile(out, size_m, rng);
-  else fail("example network '{}': unknown kind", kind);
+  if (kind == "grid")
+    grid(out, size_m, rng);
+  else if (kind == "bocage")
+    split_cells(out, size_m, rng, 9000.0, 0.0);
+  else if (kind == "drainage")
+    drainage(out, size_m, rng);
+  else if (kind == "terraces")
+    terraces(out, size_m, rng);
+  else if (kind == "radial")
+    radial(out, size_m, rng);
+  else if (kind == "crocodile")
+    crocodile(out, size_m, rng);
+  else
+    fail("example network '{}': unknown kind", kind);
   return out;
 }
 

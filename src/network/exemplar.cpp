@@ -130,8 +130,7 @@ std::vector<Polygon> read_region_polygons(const std::string& source, const std::
     target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     OGRSpatialReference own = *layer->GetSpatialRef();
     own.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    if (!own.IsSame(&target))
-      transform.reset(OGRCreateCoordinateTransformation(&own, &target));
+    if (!own.IsSame(&target)) transform.reset(OGRCreateCoordinateTransformation(&own, &target));
   }
   std::vector<Polygon> out;
   layer->ResetReading();
@@ -140,8 +139,7 @@ std::vector<Polygon> read_region_polygons(const std::string& source, const std::
     if (!g) continue;
     std::unique_ptr<OGRGeometry> copy(g->clone());
     if (transform && copy->transform(transform.get()) != OGRERR_NONE)
-      fail("{} {}: FID {}: cannot transform into the network's frame", subject, path,
-           f->GetFID());
+      fail("{} {}: FID {}: cannot transform into the network's frame", subject, path, f->GetFID());
     const auto add_polygon = [&](const OGRPolygon* p) {
       Polygon polygon;
       for (const OGRLinearRing* ring : *p) {
@@ -155,7 +153,8 @@ std::vector<Polygon> read_region_polygons(const std::string& source, const std::
       out.push_back(std::move(polygon));
     };
     const auto type = wkbFlatten(copy->getGeometryType());
-    if (type == wkbPolygon) add_polygon(copy->toPolygon());
+    if (type == wkbPolygon)
+      add_polygon(copy->toPolygon());
     else if (type == wkbMultiPolygon)
       for (const OGRPolygon* p : *copy->toMultiPolygon()) add_polygon(p);
     else
@@ -225,8 +224,8 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
   if (out.lines.empty())
     fail("{} {}: no lines{}", s.subject, s.source, s.region.empty() ? "" : " inside the region");
   if (out.lines.size() == 1 && s.min_lines > 1)
-    fail("{} {}: FID {}: a single line is no network (it needs junctions to learn from)",
-         s.subject, s.source, out.fids.front());
+    fail("{} {}: FID {}: a single line is no network (it needs junctions to learn from)", s.subject,
+         s.source, out.fids.front());
   (void)warnings;
   return out;
 }
@@ -284,9 +283,11 @@ Network build_planar_network(const NetworkLines& in, double snap_m, const std::s
         for (const SegmentValue& h : hits) {
           const auto [line, k] = h.second;
           const std::size_t last = lines[std::size_t(line)].size() - 2;
-          if (std::size_t(line) == i && ((end == 0 && k == 0) || (end == 1 && std::size_t(k) == last)))
+          if (std::size_t(line) == i &&
+              ((end == 0 && k == 0) || (end == 1 && std::size_t(k) == last)))
             continue;  // its own end segment
-          const Vec2 a{h.first.first.x(), h.first.first.y()}, b{h.first.second.x(), h.first.second.y()};
+          const Vec2 a{h.first.first.x(), h.first.first.y()},
+              b{h.first.second.x(), h.first.second.y()};
           const double d = distance_to_segment(p, a, b);
           if (d == 0.0) touching = true;
           if (d < best) {
@@ -301,7 +302,7 @@ Network build_planar_network(const NetworkLines& in, double snap_m, const std::s
         if (!touching && best < snap_m) {
           if (best > 1e-3)  // closer than a millimetre: rounding, not a drawing mistake
             warnings.add("snapped_end", subject, fids[i],
-                       fmt::format("an end {:.2f} m from another line, snapped onto it", best));
+                         fmt::format("an end {:.2f} m from another line, snapped onto it", best));
           p = target;
           ++snapped;
         }

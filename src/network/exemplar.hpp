@@ -16,7 +16,7 @@ struct NetworkSource {
   std::string source{};  // "path[:layer]": any OGR source, or an .svg file
   std::string where{};   // OGR SQL attribute filter
   std::string region{};  // optional polygons "path[:layer]" cutting the lines (a real map)
-  double scale = 1.0;  // SVG: metres per SVG unit (y is flipped: north up)
+  double scale = 1.0;    // SVG: metres per SVG unit (y is flipped: north up)
   std::string subject = "exemplar";  // the option or key named in messages
   int min_lines = 2;  // an exemplar needs junctions; a partial drawing may be one line
 };
@@ -42,8 +42,8 @@ std::vector<Polygon> read_region_polygons(const std::string& source, const std::
 // moved onto it (a warning naming the FID), exact duplicate features dropped (a warning), the
 // rest noded by GEOS (crossings become X-junctions, overlaps are dissolved) and chains through
 // nodes of degree 2 merged into one edge. Nodes of degree 1 on the region's boundary are marked.
-Network build_planar_network(const NetworkLines& lines, double snap_m,
-                             const std::string& subject, Warnings& warnings);
+Network build_planar_network(const NetworkLines& lines, double snap_m, const std::string& subject,
+                             Warnings& warnings);
 
 // "path[:layer]" split (a colon after the last slash, when the whole text is not a file).
 std::pair<std::string, std::string> split_source(const std::string& text);

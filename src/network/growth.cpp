@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <optional>
 #include <cmath>
 #include <deque>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "core/boost_geometry.hpp"
 #include "core/error.hpp"
@@ -23,12 +23,16 @@ using NodeValue = std::pair<BgPoint, int>;
 using BgMultiPolygon = bg::model::multi_polygon<BgPolygon>;
 constexpr double kPi = std::numbers::pi;
 
-Vec2 vec(const BgPoint& p) { return {p.x(), p.y()}; }
+Vec2 vec(const BgPoint& p) {
+  return {p.x(), p.y()};
+}
 Vec2 rotate(Vec2 v, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {c * v.x - s * v.y, s * v.x + c * v.y};
 }
-double heading(Vec2 v) { return std::atan2(v.y, v.x); }
+double heading(Vec2 v) {
+  return std::atan2(v.y, v.x);
+}
 double wrap(double a) {  // (-pi, pi]
   a = std::fmod(a + kPi, 2 * kPi);
   if (a <= 0) a += 2 * kPi;
@@ -56,18 +60,21 @@ double leaving(const std::vector<Vec2>& pts, bool from_start) {
 struct Piece {
   std::vector<Vec2> points;
   double length = 0.0;
-  double arrival = 0.0;              // heading at the end, relative to the start heading
-  int end_degree = 1;                // the exemplar junction at its end
-  std::vector<double> end_turns;     // its other edges' headings relative to the arrival
+  double arrival = 0.0;           // heading at the end, relative to the start heading
+  int end_degree = 1;             // the exemplar junction at its end
+  std::vector<double> end_turns;  // its other edges' headings relative to the arrival
   int length_bin = 0;
   // Junctions passed through (a stroke goes on across a junction where an edge continues
   // nearly straight): the vertex and the other edges' headings relative to the arrival there.
   std::vector<std::pair<std::size_t, double>> sides;
+  double heading = 0.0;  // its start heading in the exemplar (radians)
 };
 
 // A stroke continues across a junction onto the edge that deflects least, below this (radians).
-constexpr double kStrokeDeflection = 0.45;
+constexpr double kStrokeDeflection = 0.12;
 constexpr int kStrokeEdges = 8;
+// The weight of a piece's turn from its exemplar heading (0..1) in a candidate's cost.
+constexpr double kTurnWeight = 0.6;
 
 struct Stub {
   int node = 0;
@@ -156,7 +163,9 @@ class Grower {
       leaving_at[std::size_t(e.from)].push_back({leaving(e.points, true), int(i)});
       leaving_at[std::size_t(e.to)].push_back({leaving(e.points, false), int(i)});
     }
-    const auto boundary = [&](int n) { return !ex.on_boundary.empty() && ex.on_boundary[std::size_t(n)]; };
+    const auto boundary = [&](int n) {
+      return !ex.on_boundary.empty() && ex.on_boundary[std::size_t(n)];
+    };
     std::vector<double> lengths;
     for (const NetworkEdge& e : ex.edges)
       if (!boundary(e.from) && !boundary(e.to)) lengths.push_back(polyline_length(e.points));
@@ -166,7 +175,8 @@ class Grower {
     std::sort(lengths.begin(), lengths.end());
     median_ = lengths[lengths.size() / 2];
     if (!(median_ > 0.0)) fail("exemplar: its edges have no length");
-    for (int b = 1; b < 8; ++b) length_edges_.push_back(lengths[lengths.size() * std::size_t(b) / 8]);
+    for (int b = 1; b < 8; ++b)
+      length_edges_.push_back(lengths[lengths.size() * std::size_t(b) / 8]);
     clearance_ = options_.clearance > 0.0 ? options_.clearance : 0.06 * median_;
     snap_ = options_.snap > 0.0 ? options_.snap : std::max(0.35 * median_, 2.0 * clearance_);
     // No edge shorter than most of the exemplar's (its 10th percentile): truncated pieces that
@@ -201,7 +211,8 @@ class Grower {
           int next = -1;
           double best = kStrokeDeflection;
           for (const auto& [h, edge] : leaving_at[std::size_t(at)]) {
-            if (edge == current || std::find(used.begin(), used.end(), edge) != used.end()) continue;
+            if (edge == current || std::find(used.begin(), used.end(), edge) != used.end())
+              continue;
             const double deflection = std::abs(wrap(h - arrive));
             if (deflection < best) best = deflection, next = edge;
           }
@@ -210,7 +221,8 @@ class Grower {
           const int far = n.from == at ? n.to : n.from;
           if (far == start || std::find(used.begin(), used.end(), next) != used.end()) break;
           for (const auto& [h, edge] : leaving_at[std::size_t(at)])
-            if (edge != current && edge != next) p.sides.push_back({pts.size() - 1, wrap(h - arrive)});
+            if (edge != current && edge != next)
+              p.sides.push_back({pts.size() - 1, wrap(h - arrive)});
           std::vector<Vec2> more = n.points;
           if (n.from != at) std::reverse(more.begin(), more.end());
           pts.insert(pts.end(), more.begin() + 1, more.end());
@@ -220,6 +232,7 @@ class Grower {
         }
         const int stroke_end = at;
         const double h0 = leaving(pts, true);
+        p.heading = h0;
         const Vec2 origin = pts.front();
         for (Vec2 v : pts) p.points.push_back(rotate(v - origin, -h0));
         p.length = polyline_length(p.points);
@@ -228,9 +241,11 @@ class Grower {
         p.arrival = wrap(arrive - h0);
         p.end_degree = degree[std::size_t(stroke_end)];
         for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
-          if (edge != current || ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
+          if (edge != current ||
+              ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
             p.end_turns.push_back(wrap(h - arrive));
-        if (ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to && !p.end_turns.empty())
+        if (ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to &&
+            !p.end_turns.empty())
           p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
@@ -296,9 +311,10 @@ class Grower {
     }
     if (!(area > 0.0)) fail("region: degenerate (zero area)");
     if (area / (median_ * median_) > kMaxNetworkCells)
-      fail("region: {:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
-           "most {:.0f} km²: about 10⁷ junctions)",
-           area / 1e6, median_, kMaxNetworkCells * median_ * median_ / 1e6);
+      fail(
+          "region: {:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
+          "most {:.0f} km²: about 10⁷ junctions)",
+          area / 1e6, median_, kMaxNetworkCells * median_ * median_ / 1e6);
     bg::envelope(region_, extent_);
     out_.on_boundary.clear();
   }
@@ -342,7 +358,7 @@ class Grower {
       const double len = distance(pts[k], pts[k + 1]);
       const int n = std::max(1, int(std::ceil(len / step)));
       for (int i = 0; i <= n; ++i)
-        if (forbidden_at(lerp(pts[k], pts[k + 1], double(i) / n), false)) return true;
+        if (forbidden_at(lerp(pts[k], pts[k + 1], double(i) / n), true)) return true;
     }
     return false;
   }
@@ -363,8 +379,10 @@ class Grower {
     const auto& pts = out_.edges[std::size_t(id)].points;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       const SegValue v{BgSegment(to_bg(pts[k]), to_bg(pts[k + 1])), id};
-      if (insert) segments_.insert(v);
-      else segments_.remove(v);
+      if (insert)
+        segments_.insert(v);
+      else
+        segments_.remove(v);
     }
   }
   int add_edge(NetworkEdge e) {
@@ -460,16 +478,22 @@ class Grower {
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
     std::vector<BgPoint> common;
+    std::vector<Vec2> joints{start};
+    if (end_joint) joints.push_back(end);
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       const Vec2 a = pts[k], b = pts[k + 1];
-      const bool near_joint = distance(a, start) < clearance_ || distance(b, start) < clearance_ ||
-                              (end_joint && (distance(a, end) < clearance_ || distance(b, end) < clearance_));
-      const double reach = near_joint ? 0.0 : clearance_;
       const BgSegment s(to_bg(a), to_bg(b));
-      const BgBox box({std::min(a.x, b.x) - reach - eps, std::min(a.y, b.y) - reach - eps},
-                      {std::max(a.x, b.x) + reach + eps, std::max(a.y, b.y) + reach + eps});
+      const BgBox box(
+          {std::min(a.x, b.x) - clearance_ - eps, std::min(a.y, b.y) - clearance_ - eps},
+          {std::max(a.x, b.x) + clearance_ + eps, std::max(a.y, b.y) + clearance_ + eps});
       near.clear();
       segments_.query(bgi::intersects(box), std::back_inserter(near));
+      // The part of the segment outside the clearance discs of the joints: lines meeting at a
+      // junction are necessarily close to each other there.
+      Vec2 ta = a, tb = b;
+      bool kept = true;
+      for (Vec2 j : joints) kept = kept && outside_disc(ta, tb, j, clearance_);
+      const BgSegment trimmed(to_bg(ta), to_bg(tb));
       for (const SegValue& v : near) {
         common.clear();
         bg::intersection(s, v.first, common);
@@ -481,17 +505,12 @@ class Grower {
           if (!at_start && !at_end) return false;
           continue;
         }
-        if (reach > 0.0 && bg::distance(s, v.first) < clearance_) return false;
-      }
-      // Joint-near segments still keep clear of what does not meet at that joint.
-      if (near_joint && k > 0 && k + 2 < pts.size()) {
-        for (const SegValue& v : near)
-          if (bg::distance(s, v.first) < 0.25 * clearance_) {
-            const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
-            if (distance_to_segment(start, ea, eb) > clearance_ &&
-                (!end_joint || distance_to_segment(end, ea, eb) > clearance_))
-              return false;
-          }
+        if (!kept) continue;
+        // Segments meeting at a joint (its edges, the edge a T-junction splits) are exempt.
+        const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
+        bool at_joint = false;
+        for (Vec2 j : joints) at_joint = at_joint || distance_to_segment(j, ea, eb) <= eps;
+        if (!at_joint && bg::distance(trimmed, v.first) < clearance_) return false;
       }
     }
     for (std::size_t k = 1; k < pts.size(); ++k)
@@ -507,6 +526,25 @@ class Grower {
       ++report_.rejected_forbidden;
       return false;
     }
+    return true;
+  }
+
+  // Trims ab to its part outside the disc (j, r); false when nothing is left.
+  static bool outside_disc(Vec2& a, Vec2& b, Vec2 j, double r) {
+    const Vec2 d = b - a, f = a - j;
+    const double A = dot(d, d), B = 2.0 * dot(f, d), C = dot(f, f) - r * r;
+    if (A <= 0.0) return C >= 0.0;
+    const double disc = B * B - 4.0 * A * C;
+    if (disc <= 0.0) return true;
+    const double t1 = (-B - std::sqrt(disc)) / (2.0 * A), t2 = (-B + std::sqrt(disc)) / (2.0 * A);
+    if (t1 <= 0.0 && t2 >= 1.0) return false;
+    const Vec2 p1 = a + d * t1, p2 = a + d * t2;
+    if (t1 <= 0.0) return a = p2, t2 < 1.0;
+    if (t2 >= 1.0) return b = p1, t1 > 0.0;
+    if (t1 > 1.0 - t2)
+      b = p1;
+    else
+      a = p2;
     return true;
   }
 
@@ -526,7 +564,7 @@ class Grower {
   struct Outcome {
     Ending how;
     std::vector<Vec2> line;
-    int degree = 0;      // the junction its end makes (0: none counted, a boundary cut)
+    int degree = 0;       // the junction its end makes (0: none counted, a boundary cut)
     int stub_taken = -1;  // Kind::node: the pending stub of that node it fills
     double cost = 0.0;
   };
@@ -556,7 +594,10 @@ class Grower {
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
       std::optional<Outcome> o = evaluate(stub, piece, std::move(pts));
       if (!o) continue;
-      o->cost = outcome_cost(*o) + noise;
+      // Turned as little as possible from how it lies in the exemplar: the exemplar's
+      // anisotropy (rows of fields, walls along contours) carries over.
+      const double turned = std::abs(wrap(stub.heading - (piece.heading + turn_))) / kPi;
+      o->cost = outcome_cost(*o) + kTurnWeight * turned + noise;
       if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
     }
     if (!best) {
@@ -566,8 +607,10 @@ class Grower {
       if (!out_.on_boundary[n] && planned_[n] > 0) {
         have_degree_[std::size_t(std::min(planned_[n], 6))] -= 1.0;
         --planned_[n];
-        if (planned_[n] > 0) have_degree_[std::size_t(std::min(planned_[n], 6))] += 1.0;
-        else junction_count_ -= 1.0;
+        if (planned_[n] > 0)
+          have_degree_[std::size_t(std::min(planned_[n], 6))] += 1.0;
+        else
+          junction_count_ -= 1.0;
       }
       return;
     }
@@ -616,7 +659,8 @@ class Grower {
     Ending ending;
     std::optional<Hit> edge_hit = first_edge_hit(pts);
     std::optional<Hit> wall = first_boundary_hit(pts);
-    if (wall && (!edge_hit || wall->k < edge_hit->k || (wall->k == edge_hit->k && wall->t < edge_hit->t))) {
+    if (wall &&
+        (!edge_hit || wall->k < edge_hit->k || (wall->k == edge_hit->k && wall->t < edge_hit->t))) {
       truncate(pts, *wall);
       ending.kind = Ending::Kind::boundary;
     } else if (edge_hit) {
@@ -661,13 +705,14 @@ class Grower {
             if (e.points[j] == a && e.points[j + 1] == b) seg = int(j);
           std::vector<Vec2> bent = pts;
           bend_end(bent, foot);
-          variants.push_back({Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent), 3, -1});
+          variants.push_back(
+              {Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent), 3, -1});
         }
       }
     }
-    const int plain_degree = ending.kind == Ending::Kind::free     ? piece.end_degree
-                             : ending.kind == Ending::Kind::edge   ? 3
-                                                                   : 0;
+    const int plain_degree = ending.kind == Ending::Kind::free   ? piece.end_degree
+                             : ending.kind == Ending::Kind::edge ? 3
+                                                                 : 0;
     variants.push_back({ending, pts, plain_degree, -1});
     for (Outcome& o : variants) {
       auto& line = o.line;
@@ -686,7 +731,10 @@ class Grower {
       if (o.how.kind == Ending::Kind::boundary) {
         // Pulled a hair inside, so that the end is in the region for every reader.
         const Vec2 back = line[line.size() - 2];
-        line.back() = line.back() + (back - line.back()) * std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
+        line.back() =
+            line.back() +
+            (back - line.back()) *
+                std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
       }
       if (!valid(line, joint)) continue;
       return std::move(o);
@@ -738,7 +786,8 @@ class Grower {
     for (std::size_t k = 0; k < piece.sides.size();) {
       const std::size_t at = piece.sides[k].first;
       std::vector<double> turns;
-      for (; k < piece.sides.size() && piece.sides[k].first == at; ++k) turns.push_back(piece.sides[k].second);
+      for (; k < piece.sides.size() && piece.sides[k].first == at; ++k)
+        turns.push_back(piece.sides[k].second);
       if (at == 0 || at + 1 >= pts.size()) continue;
       for (; measured < at; ++measured) along += distance(pts[measured], pts[measured + 1]);
       if (along < min_piece_ || total - along < min_piece_) continue;
@@ -820,7 +869,8 @@ class Grower {
   // short, valid link exists, else short dead ends are pruned.
   void close_dangling_ends() {
     double length = 0.0;
-    for (std::size_t i = 0; i < out_.edges.size(); ++i) length += polyline_length(out_.edges[i].points);
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      length += polyline_length(out_.edges[i].points);
     std::vector<int> ends;
     for (std::size_t n = 0; n < out_.nodes.size(); ++n)
       if (degree_[n] == 1 && !out_.on_boundary[n]) ends.push_back(int(n));
@@ -907,7 +957,8 @@ class Grower {
         edge = other;
       }
       if (merged.kept) merged.points = out_.edges[std::size_t(first)].points;
-      merged.from = keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
+      merged.from =
+          keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
       merged.to = keep(merged.kept ? out_.edges[std::size_t(first)].to : at);
       net.edges.push_back(std::move(merged));
     };

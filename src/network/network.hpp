@@ -10,10 +10,10 @@
 namespace tw {
 
 struct NetworkEdge {
-  int from = 0, to = 0;       // node indices; points.front() is nodes[from], back() nodes[to]
-  std::vector<Vec2> points;   // metres, at least two
-  bool kept = false;          // drawn by the user (autocomplete): written exactly as read
-  std::int64_t fid = -1;      // the source feature, when read
+  int from = 0, to = 0;      // node indices; points.front() is nodes[from], back() nodes[to]
+  std::vector<Vec2> points;  // metres, at least two
+  bool kept = false;         // drawn by the user (autocomplete): written exactly as read
+  std::int64_t fid = -1;     // the source feature, when read
 };
 
 struct Network {

@@ -52,8 +52,8 @@ void write_network_png(const std::filesystem::path& path, const std::vector<Prev
         for (int col = 0; col < mask.width; ++col)
           if (mask.at(col, r))
             for (int k = 0; k < 3; ++k)
-              rgb[(std::size_t(r) * std::size_t(total_w) + std::size_t(x0 + col)) * 3 + std::size_t(k)] =
-                  c[std::size_t(k)];
+              rgb[(std::size_t(r) * std::size_t(total_w) + std::size_t(x0 + col)) * 3 +
+                  std::size_t(k)] = c[std::size_t(k)];
     };
     if (!panels[p].region.empty()) {
       Raster<std::uint8_t> inside;
@@ -77,7 +77,8 @@ void write_network_png(const std::filesystem::path& path, const std::vector<Prev
   GDALDataset* ds = mem->Create("", total_w, max_h, 3, GDT_Byte, nullptr);
   for (int b = 0; b < 3; ++b)
     if (ds->GetRasterBand(b + 1)->RasterIO(GF_Write, 0, 0, total_w, max_h, rgb.data() + b, total_w,
-                                           max_h, GDT_Byte, 3, std::int64_t(total_w) * 3) != CE_None)
+                                           max_h, GDT_Byte, 3,
+                                           std::int64_t(total_w) * 3) != CE_None)
       fail("{}: cannot draw the preview", path.string());
   GDALDataset* out = png->CreateCopy(path.string().c_str(), ds, FALSE, nullptr, nullptr, nullptr);
   GDALClose(ds);

@@ -19,7 +19,7 @@ struct PreviewLayer {
 };
 
 struct PreviewPanel {
-  std::vector<Polygon> region;      // tinted; its extent (or the layers') frames the panel
+  std::vector<Polygon> region;  // tinted; its extent (or the layers') frames the panel
   std::vector<PreviewLayer> layers;
 };
 

@@ -115,12 +115,18 @@ double normalized_w1(std::vector<double> a, std::vector<double> b) {
 
 const std::vector<double>& property(const NetworkStats& s, int index) {
   switch (index) {
-    case 0: return s.degree;
-    case 1: return s.edge_length;
-    case 2: return s.curvature;
-    case 3: return s.junction_angle;
-    case 4: return s.face_area;
-    default: return s.bearing;
+    case 0:
+      return s.degree;
+    case 1:
+      return s.edge_length;
+    case 2:
+      return s.curvature;
+    case 3:
+      return s.junction_angle;
+    case 4:
+      return s.face_area;
+    default:
+      return s.bearing;
   }
 }
 
@@ -136,8 +142,10 @@ std::pair<StatsWindow, StatsWindow> halves(const Network& net) {
   std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
   const double cut = v[v.size() / 2];
   StatsWindow a{lo, hi}, b{lo, hi};
-  if (along_x) a.hi.x = cut, b.lo.x = std::nextafter(cut, INFINITY);
-  else a.hi.y = cut, b.lo.y = std::nextafter(cut, INFINITY);
+  if (along_x)
+    a.hi.x = cut, b.lo.x = std::nextafter(cut, INFINITY);
+  else
+    a.hi.y = cut, b.lo.y = std::nextafter(cut, INFINITY);
   return {a, b};
 }
 

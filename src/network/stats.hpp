@@ -18,7 +18,7 @@ struct NetworkStats {
   std::vector<double> face_area;       // m², per closed cell (GEOS polygonize)
   std::vector<double> bearing;         // degrees [0, 180) of each edge's chord, from north
   double length_m = 0.0;
-  int dangling = 0;                    // nodes of degree 1 not on the boundary
+  int dangling = 0;  // nodes of degree 1 not on the boundary
   double dangling_per_km() const { return length_m > 0.0 ? dangling / (length_m / 1000.0) : 0.0; }
 };
 
@@ -34,8 +34,8 @@ NetworkStats network_stats(const Network& network, std::optional<StatsWindow> wi
 double normalized_w1(std::vector<double> reference, std::vector<double> other);
 
 // The property names in the order of the comparison table, and their samples.
-inline constexpr const char* kNetworkProperties[] = {"degree",    "edge_length", "curvature",
-                                                     "junction_angle", "face_area", "bearing"};
+inline constexpr const char* kNetworkProperties[] = {"degree",         "edge_length", "curvature",
+                                                     "junction_angle", "face_area",   "bearing"};
 const std::vector<double>& property(const NetworkStats& stats, int index);
 
 // The exemplar's two halves (split across its longer side at the median node).

@@ -62,7 +62,8 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
   if (outside.outside > 0)
     for (const NetworkEdge& e : drawn.edges)
       if (check_network({{e.points.front(), e.points.back()}, {{0, 1, e.points, false, e.fid}}, {}},
-                        region, nullptr).outside > 0)
+                        region, nullptr)
+              .outside > 0)
         fail("{} {}: FID {}: outside the region", key, source, e.fid);
   // Crossings: two lines meeting where neither ends.
   for (std::size_t i = 0; i < drawn.edges.size(); ++i)
@@ -82,13 +83,18 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
         return false;
       };
       const auto type = wkbFlatten(common->getGeometryType());
-      if (type == wkbPoint) bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
+      if (type == wkbPoint)
+        bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
       else if (type == wkbMultiPoint)
-        for (const OGRPoint* p : *common->toMultiPoint()) bad = bad || !at_an_end(p->getX(), p->getY());
-      else bad = !common->IsEmpty();
+        for (const OGRPoint* p : *common->toMultiPoint())
+          bad = bad || !at_an_end(p->getX(), p->getY());
+      else
+        bad = !common->IsEmpty();
       if (bad)
-        fail("{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
-             "ends)", key, source, drawn.edges[i].fid, drawn.edges[j].fid);
+        fail(
+            "{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
+            "ends)",
+            key, source, drawn.edges[i].fid, drawn.edges[j].fid);
     }
   NetworkLines in = lines;
   in.region = region;
@@ -135,14 +141,16 @@ void write_geopackage(const std::filesystem::path& path, const std::string& crs_
   CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");  // same bytes
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
   if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
-  std::unique_ptr<GDALDataset> ds(driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  std::unique_ptr<GDALDataset> ds(
+      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
   if (!ds) fail("{}: cannot create the GeoPackage", path.string());
   OGRSpatialReference srs;
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const bool has_crs = !crs_wkt.empty() && srs.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE;
   const std::vector<int> degree = grown.degrees();
   {
-    OGRLayer* layer = ds->CreateLayer("suggestions", has_crs ? &srs : nullptr, wkbLineString, nullptr);
+    OGRLayer* layer =
+        ds->CreateLayer("suggestions", has_crs ? &srs : nullptr, wkbLineString, nullptr);
     if (!layer) fail("{}: cannot create layer 'suggestions'", path.string());
     create_field(*layer, "from_node", OFTInteger, path.string());
     create_field(*layer, "to_node", OFTInteger, path.string());
@@ -218,24 +226,31 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
     if (c.map.empty()) fail("{}: --map is required", cmd);
     if (c.source_region.empty()) fail("{}: --source-region is required", cmd);
     if (c.target_region.empty()) fail("{}: --target-region is required", cmd);
-    exemplar_lines = read_network_lines({.source = c.map, .where = c.exemplar_where,
-                                         .region = c.source_region, .scale = c.scale,
+    exemplar_lines = read_network_lines({.source = c.map,
+                                         .where = c.exemplar_where,
+                                         .region = c.source_region,
+                                         .scale = c.scale,
                                          .subject = "--map (in --source-region)"},
                                         warnings);
     region = region_of(c.target_region, "--target-region", exemplar_lines.crs_wkt);
     // What is already in the target is kept: the map's lines inside it, if any.
     try {
-      kept_lines = read_network_lines({.source = c.map, .where = c.exemplar_where,
-                                       .region = c.target_region, .scale = c.scale,
-                                       .subject = "--map (in --target-region)", .min_lines = 1},
+      kept_lines = read_network_lines({.source = c.map,
+                                       .where = c.exemplar_where,
+                                       .region = c.target_region,
+                                       .scale = c.scale,
+                                       .subject = "--map (in --target-region)",
+                                       .min_lines = 1},
                                       warnings);
     } catch (const Error&) {
       kept_lines.reset();  // nothing (or one line) there: the target is grown from scratch
     }
   } else {
     if (c.exemplar.empty()) fail("{}: --exemplar is required", cmd);
-    exemplar_lines = read_network_lines({.source = c.exemplar, .where = c.exemplar_where,
-                                         .region = c.exemplar_region, .scale = c.scale,
+    exemplar_lines = read_network_lines({.source = c.exemplar,
+                                         .where = c.exemplar_where,
+                                         .region = c.exemplar_region,
+                                         .scale = c.scale,
                                          .subject = "--exemplar"},
                                         warnings);
     region = region_of(c.region, "--region", exemplar_lines.crs_wkt);
@@ -251,7 +266,9 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   {
     Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
     for (const auto& l : exemplar_lines.lines)
-      for (Vec2 p : l) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      for (Vec2 p : l)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
     extent = std::max(hi.x - lo.x, hi.y - lo.y);
   }
   const double snap = c.snap > 0.0 ? c.snap : 1e-3 * extent;
@@ -290,9 +307,9 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   Network kept_view, suggested_view;
   for (const NetworkEdge& e : grown.edges) (e.kept ? kept_view : suggested_view).edges.push_back(e);
   kept_view.nodes = suggested_view.nodes = grown.nodes;
-  write_network_png(transaction.stage(c.out / "preview.png"),
-                    {{region, {{&suggested_view, {30, 110, 40}, 2.0}, {&kept_view, {40, 40, 40}, 2.5}}}},
-                    1024);
+  write_network_png(
+      transaction.stage(c.out / "preview.png"),
+      {{region, {{&suggested_view, {30, 110, 40}, 2.0}, {&kept_view, {40, 40, 40}, 2.5}}}}, 1024);
   transaction.commit();
   logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms", cmd,
                 result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms);

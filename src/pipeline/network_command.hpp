@@ -19,10 +19,10 @@ struct NetworkCommand {
   double scale = 1.0;               // SVG: metres per unit
   // "minx,miny,maxx,maxy" in the network's CRS, or OGR polygons "path[:layer]"
   std::string region;
-  std::string partial;        // complete: the user's lines "path[:layer]", kept as drawn
-  std::string map;            // clone: the map lines "path[:layer]"
-  std::string source_region;  // clone: polygons whose lines are the exemplar
-  std::string target_region;  // clone: polygons grown into (what is there is kept)
+  std::string partial;             // complete: the user's lines "path[:layer]", kept as drawn
+  std::string map;                 // clone: the map lines "path[:layer]"
+  std::string source_region;       // clone: polygons whose lines are the exemplar
+  std::string target_region;       // clone: polygons grown into (what is there is kept)
   std::vector<std::string> avoid;  // OGR sources no curve may enter (lines buffered)
   double avoid_width = 10.0;
   double snap = 0.0;  // exemplar repair: ends within it are joined; 0 = 1e-3 of its extent

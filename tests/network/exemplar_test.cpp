@@ -21,8 +21,7 @@ std::string write(const test::TempDir& dir, const std::string& name, const std::
 std::string geojson(const std::vector<std::string>& coordinates) {
   std::string features;
   for (std::size_t i = 0; i < coordinates.size(); ++i)
-    features += std::string(i ? "," : "") +
-                R"({"type":"Feature","id":)" + std::to_string(i + 1) +
+    features += std::string(i ? "," : "") + R"({"type":"Feature","id":)" + std::to_string(i + 1) +
                 R"(,"properties":{},"geometry":{"type":"LineString","coordinates":)" +
                 coordinates[i] + "}}";
   return R"({"type":"FeatureCollection","crs":{"type":"name","properties":{"name":"EPSG:32631"}},"features":[)" +
@@ -65,7 +64,8 @@ TEST(NetworkExemplar, CrossingsBecomeJunctionsNearMissesSnapDuplicatesDrop) {
 TEST(NetworkExemplar, ChainsThroughBendsAreOneEdge) {
   test::TempDir dir;
   const std::string path =
-      write(dir, "chain.geojson", geojson({"[[0,0],[10,0]]", "[[10,0],[20,5]]", "[[20,5],[30,0],[40,0]]"}));
+      write(dir, "chain.geojson",
+            geojson({"[[0,0],[10,0]]", "[[10,0],[20,5]]", "[[20,5],[30,0],[40,0]]"}));
   Warnings warnings;
   const Network net = build_planar_network(read_network_lines({.source = path}, warnings), 0.1,
                                            "exemplar", warnings);
@@ -78,13 +78,14 @@ TEST(NetworkExemplar, BadInputIsOneLineNamingFileAndFid) {
   test::TempDir dir;
   const std::string empty = write(dir, "empty.geojson", geojson({}));
   Warnings w;
-  EXPECT_NE(error_of([&] { read_network_lines({.source = empty}, w); }).find("empty.geojson: no lines"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of([&] { read_network_lines({.source = empty}, w); }).find("empty.geojson: no lines"),
+      std::string::npos);
   const std::string single = write(dir, "single.geojson", geojson({"[[0,0],[5,5]]"}));
   const std::string e = error_of([&] { read_network_lines({.source = single}, w); });
   EXPECT_NE(e.find("single.geojson: FID 1: a single line"), std::string::npos) << e;
-  const std::string svg = write(dir, "bad.svg",
-                                R"(<svg><path d="M 0 0 L 10 0"/><circle cx="1" cy="1" r="2"/></svg>)");
+  const std::string svg =
+      write(dir, "bad.svg", R"(<svg><path d="M 0 0 L 10 0"/><circle cx="1" cy="1" r="2"/></svg>)");
   const std::string s = error_of([&] { read_network_lines({.source = svg}, w); });
   EXPECT_NE(s.find("bad.svg: element 1 <circle>: not supported"), std::string::npos) << s;
   const std::string arc = write(dir, "arc.svg", R"(<svg><path d="M 0 0 A 5 5 0 0 1 10 0"/></svg>)");

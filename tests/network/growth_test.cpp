@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include "core/error.hpp"
+#include "core/segment_distance.hpp"
+#include "network/baseline.hpp"
 #include "network/check.hpp"
 #include "network/example_networks.hpp"
 #include "network/exemplar.hpp"
@@ -38,6 +41,167 @@ TEST(NetworkGrowth, GridNeverCrossesStaysInsideAndIsDeterministic) {
   const Network other = grow_network(ex, region, nullptr, nullptr, {.seed = 6});
   EXPECT_NE(other.edges.size() == out.edges.size() && other.edges[0].points == out.edges[0].points,
             true);
+}
+
+}  // namespace
+}  // namespace tw
+
+namespace tw {
+namespace {
+
+double min_distance_between_unrelated(const Network& net, double near_node) {
+  // Pairs of edges sharing no node, away from every node by near_node: the smallest distance.
+  double best = INFINITY;
+  for (std::size_t i = 0; i < net.edges.size(); ++i)
+    for (std::size_t j = i + 1; j < net.edges.size(); ++j) {
+      const NetworkEdge& a = net.edges[i];
+      const NetworkEdge& b = net.edges[j];
+      if (a.from == b.from || a.from == b.to || a.to == b.from || a.to == b.to) continue;
+      for (std::size_t k = 0; k + 1 < a.points.size(); ++k)
+        for (std::size_t m = 0; m + 1 < b.points.size(); ++m) {
+          // Sample a's segment; skip samples near any of the four end nodes.
+          for (int s = 0; s <= 8; ++s) {
+            const Vec2 p = lerp(a.points[k], a.points[k + 1], s / 8.0);
+            bool near = false;
+            for (int n : {a.from, a.to, b.from, b.to})
+              near = near || distance(p, net.nodes[std::size_t(n)]) < near_node;
+            if (near) continue;
+            best = std::min(best, distance_to_segment(p, b.points[m], b.points[m + 1]));
+          }
+        }
+    }
+  return best;
+}
+
+TEST(NetworkGrowth, PolygonWithAHoleAvoidsForbiddenCellsAndKeepsClearance) {
+  const Network ex = exemplar("bocage", 600.0);
+  // An L-shaped field with a pond (a hole), and a forbidden road across it.
+  const std::vector<Polygon> region{
+      {{{0, 0}, {900, 0}, {900, 400}, {400, 400}, {400, 800}, {0, 800}},
+       {{100, 100}, {250, 100}, {250, 250}, {100, 250}}}};
+  ForbiddenMask forbidden;
+  forbidden.grid = {.width = 180,
+                    .height = 160,
+                    .origin_x = 0,
+                    .origin_y = 800,
+                    .pixel_width = 5,
+                    .pixel_height = 5};
+  forbidden.cells = Raster<std::uint8_t>(180, 160, 0);
+  for (int r = 0; r < 160; ++r)
+    for (int c = 0; c < 180; ++c) {
+      const Vec2 p = forbidden.grid.pixel_centre_world(c, r);
+      if (std::abs(p.x - 0.5 * p.y - 300) < 8) forbidden.cells.at(c, r) = 1;  // a diagonal road
+    }
+  NetworkGrowthOptions options;
+  options.seed = 11;
+  options.clearance = 6.0;
+  NetworkGrowthReport report;
+  const Network out = grow_network(ex, region, &forbidden, nullptr, options, &report);
+  EXPECT_GT(out.edges.size(), 30u);
+  const NetworkCheck check = check_network(out, region, &forbidden);
+  EXPECT_EQ(check.crossings, 0) << check.first;
+  EXPECT_EQ(check.outside, 0) << check.first;  // the pond included
+  EXPECT_EQ(check.forbidden, 0) << check.first;
+  EXPECT_GT(report.rejected_forbidden, 0);  // the road was in the way
+  // Lines on both sides of the road.
+  int left = 0, right = 0;
+  for (Vec2 p : out.nodes) (p.x - 0.5 * p.y - 300 < 0 ? left : right)++;
+  EXPECT_GT(left, 5);
+  EXPECT_GT(right, 5);
+  EXPECT_GE(min_distance_between_unrelated(out, options.clearance), options.clearance - 1e-6);
+}
+
+TEST(NetworkGrowth, CompleteKeepsThePartialNetworkExactly) {
+  const Network ex = exemplar("grid");
+  const auto region = box(0, 0, 700, 600);
+  // The user's drawing: an L of two lanes and a spur, drawn exactly.
+  NetworkLines drawn;
+  drawn.lines = {{{50.125, 300.5}, {350.25, 302.75}, {650.5, 301.0}},
+                 {{350.25, 302.75}, {349.0, 580.0}},
+                 {{200.0, 301.6275}, {201.0, 120.0}}};
+  drawn.fids = {7, 8, 9};
+  Warnings w;
+  Network partial = build_planar_network(drawn, 0.0, "partial", w);
+  for (NetworkEdge& e : partial.edges) e.kept = true;
+  NetworkGrowthReport report;
+  const Network out = grow_network(ex, region, nullptr, &partial, {.seed = 2}, &report);
+  const NetworkCheck check = check_network(out, region, nullptr);
+  EXPECT_EQ(check.crossings, 0) << check.first;
+  EXPECT_EQ(check.outside, 0) << check.first;
+  // Every drawn vertex is in a kept edge, in the drawn order, and the kept length is the drawn.
+  double kept_length = 0.0, drawn_length = 0.0;
+  std::vector<Vec2> kept_points;
+  for (const NetworkEdge& e : out.edges)
+    if (e.kept) {
+      kept_length += polyline_length(e.points);
+      kept_points.insert(kept_points.end(), e.points.begin(), e.points.end());
+    }
+  for (const auto& line : drawn.lines) {
+    drawn_length += polyline_length(line);
+    for (Vec2 p : line)
+      EXPECT_NE(std::find(kept_points.begin(), kept_points.end(), p), kept_points.end())
+          << p.x << "," << p.y;
+  }
+  EXPECT_NEAR(kept_length, drawn_length, 1e-9);
+  EXPECT_GT(report.placed, 20);
+  // The drawing's dangling ends were continued: the spur's end at (201, 120) is not an end.
+  const std::vector<int> degree = out.degrees();
+  for (std::size_t n = 0; n < out.nodes.size(); ++n)
+    if (out.nodes[n] == Vec2{201.0, 120.0}) EXPECT_GE(degree[n], 2);
+}
+
+TEST(NetworkGrowth, DegenerateOrHugeRegionsAreRefused) {
+  const Network ex = exemplar("grid");
+  std::string message;
+  try {
+    grow_network(ex, {{{{0, 0}, {100, 0}, {200, 0}}}}, nullptr, nullptr, {});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("degenerate"), std::string::npos) << message;
+  message.clear();
+  try {  // 10^6 km²
+    grow_network(ex, box(0, 0, 1e6, 1e6), nullptr, nullptr, {});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("1000000 km² is too large"), std::string::npos) << message;
+}
+
+// One test per style property (docs/networks.md, "Quality"): the grown grid of fields is closer
+// to its exemplar than the naive baseline of random exemplar patches.
+class NetworkProperty : public ::testing::TestWithParam<int> {};
+
+TEST_P(NetworkProperty, GrownIsCloserToTheExemplarThanTheBaseline) {
+  const Network ex = exemplar("grid");
+  const auto region = box(0, 0, 770, 720);
+  const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 1});
+  const Network base = baseline_network(ex, region, 1);
+  const NetworkStats se = network_stats(ex), so = network_stats(out), sb = network_stats(base);
+  const int p = GetParam();
+  const double d_out = normalized_w1(property(se, p), property(so, p));
+  if (std::string(kNetworkProperties[p]) == "bearing") {
+    // Patches copied without turning keep bearings exactly; the grown network must still keep
+    // the exemplar's orientation far better than an isotropic network would.
+    std::vector<double> isotropic;
+    for (int k = 0; k < 180; ++k) isotropic.push_back(k + 0.5);
+    EXPECT_LT(d_out, 0.5 * normalized_w1(property(se, p), isotropic));
+  } else {
+    EXPECT_LT(d_out, normalized_w1(property(se, p), property(sb, p))) << kNetworkProperties[p];
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Properties, NetworkProperty, ::testing::Range(0, 6), [](const auto& info) {
+  return std::string(kNetworkProperties[info.param]);
+});
+
+TEST(NetworkGrowth, DanglingEndsAtTheExemplarsRate) {
+  for (const char* kind : {"grid", "drainage"}) {
+    const Network ex = exemplar(kind);
+    const Network out = grow_network(ex, box(0, 0, 800, 800), nullptr, nullptr, {.seed = 3});
+    EXPECT_LE(network_stats(out).dangling_per_km(), 1.5 * network_stats(ex).dangling_per_km())
+        << kind;
+  }
 }
 
 }  // namespace

@@ -79,8 +79,10 @@ std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::strin
     if (!scan.number(v)) fail("{}: path data: a number expected after '{}'", where, cmd);
   };
   while (!scan.done()) {
-    if (scan.at_command()) cmd = scan.command();
-    else if (cmd == 0) fail("{}: path data does not start with a command", where);
+    if (scan.at_command())
+      cmd = scan.command();
+    else if (cmd == 0)
+      fail("{}: path data does not start with a command", where);
     const bool rel = std::islower(static_cast<unsigned char>(cmd));
     const Vec2 base = rel ? pen : Vec2{};
     double x = 0, y = 0;
@@ -106,7 +108,8 @@ std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::strin
         pen = {pen.x, (rel ? pen.y : 0.0) + y};
         out.back().push_back(pen);
         break;
-      case 'C': case 'S': {
+      case 'C':
+      case 'S': {
         Vec2 c1;
         if (std::toupper(static_cast<unsigned char>(cmd)) == 'C') {
           need(x), need(y);
@@ -123,7 +126,8 @@ std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::strin
         pen = end;
         break;
       }
-      case 'Q': case 'T': {
+      case 'Q':
+      case 'T': {
         Vec2 q;
         if (std::toupper(static_cast<unsigned char>(cmd)) == 'Q') {
           need(x), need(y);
@@ -190,14 +194,16 @@ std::vector<SvgLine> read_svg_lines(const std::string& path, const std::string& 
            tag[name_end] != '/')
       ++name_end;
     const std::string name = tag.substr(0, name_end);
-    static const char* const ignored[] = {"svg",  "g",     "defs",     "title", "desc",
-                                          "metadata", "style", "sodipodi:namedview",
+    static const char* const ignored[] = {"svg",          "g",        "defs",  "title",
+                                          "desc",         "metadata", "style", "sodipodi:namedview",
                                           "inkscape:grid"};
     bool skip = false;
     for (const char* i : ignored) skip = skip || name == i;
     if (!attribute(tag, "transform").empty())
-      fail("{} {}: element {} <{}>: transform attributes are not supported (apply them first, "
-           "e.g. Inkscape's 'Apply Transform')", subject, path, element, name);
+      fail(
+          "{} {}: element {} <{}>: transform attributes are not supported (apply them first, "
+          "e.g. Inkscape's 'Apply Transform')",
+          subject, path, element, name);
     if (skip) continue;
     const std::string where = fmt::format("{} {}: element {} <{}>", subject, path, element, name);
     if (name == "path") {
