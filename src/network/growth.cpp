@@ -309,10 +309,10 @@ class Grower {
       area += bg::area(p);
       region_.push_back(std::move(p));
     }
-    if (!(area > 0.0)) fail("region: degenerate (zero area)");
+    if (!(area > 0.0)) fail("a degenerate (zero-area) region");
     if (area / (median_ * median_) > kMaxNetworkCells)
       fail(
-          "region: {:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
+          "{:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
           "most {:.0f} km²: about 10⁷ junctions)",
           area / 1e6, median_, kMaxNetworkCells * median_ * median_ / 1e6);
     bg::envelope(region_, extent_);
