@@ -879,8 +879,8 @@ class Grower {
       if (dangling <= dangling_target_ * length) break;
       if (degree_[std::size_t(n)] != 1) continue;
       int edge = -1;
-      for (std::size_t i = 0; i < out_.edges.size(); ++i)
-        if (alive_[i] && (out_.edges[i].from == n || out_.edges[i].to == n)) edge = int(i);
+      for (int i : incident_[std::size_t(n)])
+        if (alive_[std::size_t(i)]) edge = i;
       if (edge < 0 || out_.edges[std::size_t(edge)].kept) continue;
       const NetworkEdge& e = out_.edges[std::size_t(edge)];
       const double ahead = leaving(e.points, e.from == n) + kPi;
