@@ -19,13 +19,15 @@
 using namespace tw;
 
 int main() {
-  std::printf("| region | nodes | edges | growth s | check s | peak RSS MB |\n|---|---|---|---|---|---|\n");
+  std::printf(
+      "| region | nodes | edges | growth s | check s | peak RSS MB |\n|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   for (double km2 : {1.25, 2.5, 5.0, 10.0, 40.0}) {
     const pid_t pid = fork();
     if (pid == 0) {
       Warnings warnings;
-      const Network ex = build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", warnings);
+      const Network ex =
+          build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", warnings);
       const double side = std::sqrt(km2) * 1000.0;
       const std::vector<Polygon> region{{{{0, 0}, {side, 0}, {side, side}, {0, side}}}};
       const auto t0 = std::chrono::steady_clock::now();

@@ -149,6 +149,7 @@ class Grower {
   Network run() {
     drain();
     seed_lattice();
+    retry_failed();
     close_dangling_ends();
     return finish();
   }
@@ -580,14 +581,33 @@ class Grower {
     return cost;
   }
 
-  void grow_stub(const Stub& stub) {
-    if (cancelled_[std::size_t(stub.id)]) return;
-    cancelled_[std::size_t(stub.id)] = 1;
-    ++report_.stubs;
+  // `retry`: a stub that found nothing the first time, tried again once the region is covered
+  // with more candidates and a straight link onto the network ahead (a junction left short of
+  // its degree would become a bend or a dangling end).
+  void grow_stub(const Stub& stub, bool retry = false) {
+    if (!retry) {
+      if (cancelled_[std::size_t(stub.id)]) return;
+      cancelled_[std::size_t(stub.id)] = 1;
+      ++report_.stubs;
+    }
     const Vec2 origin = out_.nodes[std::size_t(stub.node)];
     std::optional<Outcome> best;
     const Piece* best_piece = nullptr;
-    for (int c = 0; c < options_.candidates; ++c) {
+    Piece link;
+    if (retry) {
+      link.points = {{0.0, 0.0}, {1.5 * median_, 0.0}};
+      link.length = 1.5 * median_;
+      link.heading = stub.heading - turn_;
+      if (auto o = evaluate(stub, link,
+                            {origin, origin + Vec2{std::cos(stub.heading), std::sin(stub.heading)} *
+                                                  link.length});
+          o && (o->how.kind == Ending::Kind::node || o->how.kind == Ending::Kind::edge)) {
+        o->cost = outcome_cost(*o);
+        best = std::move(o), best_piece = &link;
+      }
+    }
+    const int candidates = retry ? 4 * options_.candidates : options_.candidates;
+    for (int c = 0; c < candidates; ++c) {
       const Piece& piece = pieces_[std::size_t(rng_.below(pieces_.size()))];
       const double noise = 0.15 * rng_.uniform();
       std::vector<Vec2> pts;
@@ -599,6 +619,10 @@ class Grower {
       const double turned = std::abs(wrap(stub.heading - (piece.heading + turn_))) / kPi;
       o->cost = outcome_cost(*o) + kTurnWeight * turned + noise;
       if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
+    }
+    if (!best && !retry) {
+      failed_.push_back(stub);
+      return;
     }
     if (!best) {
       // The node stays short of the junction it was meant to be.
@@ -825,6 +849,18 @@ class Grower {
     queue_.push_back(stubs_.back());
   }
 
+  void retry_failed() {
+    std::vector<Stub> failed;
+    failed.swap(failed_);
+    for (const Stub& stub : failed) {
+      if (degree_[std::size_t(stub.node)] >= planned_[std::size_t(stub.node)]) continue;
+      grow_stub(stub, true);
+      drain();  // what the retried piece opened
+      for (const Stub& again : failed_) grow_stub(again, true);
+      failed_.clear();
+    }
+  }
+
   void drain() {
     while (!queue_.empty()) {
       const Stub s = queue_.front();
@@ -1003,7 +1039,7 @@ class Grower {
   Network out_;
   std::vector<int> degree_, planned_;
   std::vector<std::vector<int>> incident_, stubs_of_;
-  std::vector<Stub> stubs_;
+  std::vector<Stub> stubs_, failed_;
   std::vector<char> cancelled_;
   std::vector<char> alive_;
   std::deque<Stub> queue_;
