@@ -201,8 +201,10 @@ void refuse_non_finite_numbers(CLI::App& app) {
         return std::isfinite(x) ? std::string() : "'" + value + "' is not a finite number";
       },
       "");
-  std::vector<CLI::App*> apps = app.get_subcommands({});
-  apps.push_back(&app);
+  // Nested subcommands too (`network synthesize`).
+  std::vector<CLI::App*> apps{&app};
+  for (std::size_t i = 0; i < apps.size(); ++i)
+    for (CLI::App* sub : apps[i]->get_subcommands({})) apps.push_back(sub);
   for (CLI::App* a : apps)
     for (CLI::Option* option : a->get_options())
       if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);

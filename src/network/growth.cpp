@@ -84,6 +84,8 @@ struct Stub {
 
 // Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
 constexpr double kMinMeetingAngle = 0.35;
+// A node of degree 2 turning more than this (radians) is a corner (close_corners).
+constexpr double kCornerTurn = 0.5;
 
 // Where a candidate ends.
 struct Ending {
@@ -150,6 +152,7 @@ class Grower {
     drain();
     seed_lattice();
     retry_failed();
+    close_corners();
     close_dangling_ends();
     return finish();
   }
@@ -883,8 +886,10 @@ class Grower {
     for (std::size_t i = order.size() - 1; i > 1; --i)
       std::swap(order[i], order[1 + rng_.below(i)]);
     for (std::int64_t cell : order) {
-      const Vec2 p{lo.x() + (double(cell % nx) + 0.5) * spacing,
-                   lo.y() + (double(cell / nx) + 0.5) * spacing};
+      // Cells of the region's extent divided evenly (a region smaller than one spacing still
+      // gets its centre).
+      const Vec2 p{lo.x() + (double(cell % nx) + 0.5) * (hi.x() - lo.x()) / nx,
+                   lo.y() + (double(cell / nx) + 0.5) * (hi.y() - lo.y()) / ny};
       if (!inside_region(p) || forbidden_at(p, true)) continue;
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
@@ -898,6 +903,56 @@ class Grower {
       junction_count_ += 1.0;
       for (double h : junction_headings_[j]) push_stub(node, h);
       drain();
+    }
+  }
+
+  // A straight link from node n along `heading` onto the first line ahead within `reach`, when
+  // valid: the node becomes a junction.
+  bool link_ahead(int n, double heading, double reach, int own_edge) {
+    const Vec2 p = out_.nodes[std::size_t(n)];
+    std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+    const auto hit = first_edge_hit(ray);
+    if (!hit || hit->edge == own_edge) return false;
+    truncate(ray, *hit);
+    const NetworkEdge& e = out_.edges[std::size_t(hit->edge)];
+    if (polyline_length(ray) < min_piece_ ||
+        distance(ray.back(), out_.nodes[std::size_t(e.from)]) < clearance_ ||
+        distance(ray.back(), out_.nodes[std::size_t(e.to)]) < clearance_ ||
+        meeting_angle(ray, e.points[std::size_t(hit->seg)], e.points[std::size_t(hit->seg) + 1]) <
+            kMinMeetingAngle ||
+        !valid(ray, true))
+      return false;
+    const int t = split_edge(hit->edge, hit->seg, ray.back());
+    ray.back() = out_.nodes[std::size_t(t)];
+    NetworkEdge link;
+    link.from = n;
+    link.to = t;
+    link.points = std::move(ray);
+    add_edge(std::move(link));
+    return true;
+  }
+
+  // Nodes left with two edges at a corner (a junction whose other stubs found nothing) would be
+  // merged into a bent edge the exemplar does not have: one of the edges is continued straight
+  // through the node onto the line ahead, making the corner a T-junction, when that is valid.
+  void close_corners() {
+    const std::size_t nodes = out_.nodes.size();
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (degree_[n] != 2 || out_.on_boundary[n]) continue;
+      std::vector<int> edges;
+      for (int e : incident_[n])
+        if (alive_[std::size_t(e)]) edges.push_back(e);
+      if (edges.size() != 2 || out_.edges[std::size_t(edges[0])].kept ||
+          out_.edges[std::size_t(edges[1])].kept)
+        continue;
+      double h[2];
+      for (int k = 0; k < 2; ++k) {
+        const NetworkEdge& e = out_.edges[std::size_t(edges[std::size_t(k)])];
+        h[k] = leaving(e.points, e.from == int(n));
+      }
+      if (std::abs(wrap(h[0] - h[1] - kPi)) < kCornerTurn) continue;  // nearly straight
+      for (int k = 0; k < 2; ++k)
+        if (link_ahead(int(n), h[k] + kPi, 1.5 * median_, edges[std::size_t(1 - k)])) break;
     }
   }
 
