@@ -208,7 +208,7 @@ class Grower {
         std::vector<Vec2> pts = e.points;
         if (dir == 1) std::reverse(pts.begin(), pts.end());
         int at = end, current = int(i);
-        std::vector<int> used{int(i)};
+        std::vector<int> used{int(i)}, visited{start, end};
         while (options_.strokes && int(used.size()) < kStrokeEdges && !boundary(at) &&
                degree[std::size_t(at)] >= 3) {
           const double arrive = leaving(pts, false) + kPi;
@@ -223,7 +223,9 @@ class Grower {
           if (next < 0) break;
           const NetworkEdge& n = ex.edges[std::size_t(next)];
           const int far = n.from == at ? n.to : n.from;
-          if (far == start || std::find(used.begin(), used.end(), next) != used.end()) break;
+          // A stroke never comes back to a node it passed (it would touch itself there).
+          if (std::find(visited.begin(), visited.end(), far) != visited.end()) break;
+          visited.push_back(far);
           for (const auto& [h, edge] : leaving_at[std::size_t(at)])
             if (edge != current && edge != next)
               p.sides.push_back({pts.size() - 1, wrap(h - arrive)});
@@ -482,6 +484,18 @@ class Grower {
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
     std::vector<BgPoint> common;
+    // The candidate itself is simple (a bent or truncated piece could touch itself), and its
+    // ends keep the clearance from its own other segments (an end on itself is a crossing that
+    // no other edge would show).
+    if (pts.size() > 3) {
+      BgLine line;
+      for (Vec2 p : pts) bg::append(line, to_bg(p));
+      if (!bg::is_simple(line)) return false;
+    }
+    for (std::size_t k = 0; k + 2 < pts.size(); ++k)
+      if (distance_to_segment(end, pts[k], pts[k + 1]) < clearance_) return false;
+    for (std::size_t k = 1; k + 1 < pts.size(); ++k)
+      if (distance_to_segment(start, pts[k], pts[k + 1]) < clearance_) return false;
     std::vector<Vec2> joints{start};
     if (end_joint) joints.push_back(end);
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
