@@ -60,6 +60,16 @@ void write_network_png(const std::filesystem::path& path, const std::vector<Prev
       burn_polygons(panels[p].region, g, whole, inside, 1);
       paint(inside, {240, 238, 226});
     }
+    if (const ForbiddenMask* f = panels[p].forbidden) {
+      Raster<std::uint8_t> mask(g.width, g.height, 0);
+      for (int r = 0; r < g.height; ++r)
+        for (int col = 0; col < g.width; ++col) {
+          const Vec2 px = f->grid.world_to_pixel(g.pixel_centre_world(col, r));
+          const int fc = int(std::floor(px.x)), fr = int(std::floor(px.y));
+          mask.at(col, r) = f->cells.inside(fc, fr) && f->cells.at(fc, fr) != 0;
+        }
+      paint(mask, {244, 196, 190});
+    }
     for (const PreviewLayer& layer : panels[p].layers) {
       std::vector<std::vector<Vec2>> lines;
       for (const NetworkEdge& e : layer.network->edges) lines.push_back(e.points);

@@ -1,5 +1,6 @@
 #pragma once
-// A PNG picture of networks (docs/networks.md): the region tinted, then each layer's lines in
+// A PNG picture of networks (docs/networks.md): the region tinted, forbidden cells pale red,
+// then each layer's lines in
 // its colour; several panels side by side (exemplar beside output). Written through GDAL's PNG
 // driver to the path given (stage it: core/atomic_output.hpp).
 #include <array>
@@ -7,6 +8,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "network/growth.hpp"
 #include "network/network.hpp"
 #include "raster/polygon.hpp"
 
@@ -21,6 +23,7 @@ struct PreviewLayer {
 struct PreviewPanel {
   std::vector<Polygon> region;  // tinted; its extent (or the layers') frames the panel
   std::vector<PreviewLayer> layers;
+  const ForbiddenMask* forbidden = nullptr;  // drawn pale red under the lines
 };
 
 // `size_px`: the longest side of each panel.

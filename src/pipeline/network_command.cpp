@@ -307,9 +307,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   Network kept_view, suggested_view;
   for (const NetworkEdge& e : grown.edges) (e.kept ? kept_view : suggested_view).edges.push_back(e);
   kept_view.nodes = suggested_view.nodes = grown.nodes;
-  write_network_png(
-      transaction.stage(c.out / "preview.png"),
-      {{region, {{&suggested_view, {30, 110, 40}, 2.0}, {&kept_view, {40, 40, 40}, 2.5}}}}, 1024);
+  write_network_png(transaction.stage(c.out / "preview.png"),
+                    {{region,
+                      {{&suggested_view, {30, 110, 40}, 2.0}, {&kept_view, {40, 40, 40}, 2.5}},
+                      forbidden ? &*forbidden : nullptr}},
+                    1024);
   transaction.commit();
   logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms", cmd,
                 result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms);
