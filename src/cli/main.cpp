@@ -458,7 +458,8 @@ int main(int argc, char** argv) {
       "region, complete a partial drawing, or clone one region's structure into another");
   network->require_subcommand(1);
   CLI::App* network_modes[3] = {
-      network->add_subcommand("synthesize", "grow a network with the exemplar's style over --region"),
+      network->add_subcommand("synthesize",
+                              "grow a network with the exemplar's style over --region"),
       network->add_subcommand("complete",
                               "complete --partial (kept exactly as drawn) over --region in the "
                               "exemplar's style"),
