@@ -78,6 +78,7 @@ void add_parts(const OGRGeometry* g, std::int64_t fid, NetworkLines& out) {
       break;
     }
     case wkbPolygon: {  // a polygon's rings are lines of the network (county boundaries)
+      out.from_polygons = true;
       for (const OGRLinearRing* ring : *g->toPolygon()) add_parts(ring, fid, out);
       break;
     }
@@ -327,7 +328,8 @@ Network build_planar_network(const NetworkLines& in, double snap_m, const std::s
   add_parts(noded.get(), -1, pieces);
   double length_out = 0.0;
   for (const auto& p : pieces.lines) length_out += polyline_length(p);
-  if (length_in - length_out > 1e-6 * std::max(1.0, length_in))
+  // Adjacent polygons share their borders: dissolving those is no repair worth a warning.
+  if (!in.from_polygons && length_in - length_out > 1e-6 * std::max(1.0, length_in))
     warnings.add("duplicate_segments", subject, std::nullopt,
                  fmt::format("{:.1f} m of overlapping segments dissolved", length_in - length_out));
   // The graph: nodes at the pieces' ends, then chains through degree-2 nodes merged.

@@ -26,6 +26,7 @@ struct NetworkLines {
   std::vector<std::int64_t> fids;        // per line: the feature (SVG: the element's index)
   std::string crs_wkt;                   // of the metres (a geographic source: a local frame)
   std::vector<Polygon> region;           // the cutting polygons, in the same frame
+  bool from_polygons = false;            // rings of polygons: shared borders are expected
 };
 
 // Throws tw::Error naming the file, the key and the FID at fault (no lines at all, a line with

@@ -187,16 +187,21 @@ class Grower {
     // would make slivers are refused.
     min_piece_ = std::max({2.5 * clearance_, 0.12 * median_, 0.8 * lengths[lengths.size() / 10]});
 
-    // The turn of the whole exemplar to the lead: its main bearing (length-weighted mode).
+    // The turn of the whole exemplar to the lead: its main bearing (the length-weighted mode of
+    // its chords' bearings in 10° bins, then their length-weighted mean within that bin).
     if (options_.lead_bearing) {
-      std::array<double, 18> weight{};
+      std::array<double, 18> weight{}, sum{};
       for (const NetworkEdge& e : ex.edges) {
         const Vec2 c = e.points.back() - e.points.front();
-        double b = std::fmod(std::atan2(c.x, c.y) * 180.0 / kPi + 360.0, 180.0);
-        weight[std::size_t(std::min(17, int(b / 10.0)))] += polyline_length(e.points);
+        const double b = std::fmod(std::atan2(c.x, c.y) * 180.0 / kPi + 360.0, 180.0);
+        const std::size_t bin = std::size_t(std::min(17, int(b / 10.0)));
+        weight[bin] += polyline_length(e.points);
+        sum[bin] += b * polyline_length(e.points);
       }
-      const int main = int(std::max_element(weight.begin(), weight.end()) - weight.begin());
-      turn_ = -(*options_.lead_bearing - (main * 10.0 + 5.0)) * kPi / 180.0;
+      const std::size_t main =
+          std::size_t(std::max_element(weight.begin(), weight.end()) - weight.begin());
+      const double main_bearing = weight[main] > 0.0 ? sum[main] / weight[main] : 0.0;
+      turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
     }
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
       const NetworkEdge& e = ex.edges[i];

@@ -157,6 +157,25 @@ TEST(NetworkGrowth, CompleteKeepsThePartialNetworkExactly) {
   EXPECT_TRUE(found);
 }
 
+TEST(NetworkGrowth, TheLeadBearingTurnsTheExemplar) {
+  // The grid's main bearing (its tracks run north-south) turned to 30°: most of the grown
+  // length runs at 30° or 120°.
+  const Network ex = exemplar("grid");
+  NetworkGrowthOptions options;
+  options.lead_bearing = 30.0;
+  const Network out = grow_network(ex, box(0, 0, 900, 900), nullptr, nullptr, options);
+  double aligned = 0.0, total = 0.0;
+  for (const NetworkEdge& e : out.edges) {
+    const Vec2 c = e.points.back() - e.points.front();
+    const double b = std::fmod(std::atan2(c.x, c.y) * 180.0 / M_PI + 360.0, 90.0);
+    const double l = polyline_length(e.points);
+    total += l;
+    if (std::abs(b - 30.0) < 3.0) aligned += l;
+  }
+  EXPECT_GT(aligned, 0.7 * total);
+  EXPECT_EQ(check_network(out, box(0, 0, 900, 900), nullptr).total(), 0);
+}
+
 TEST(NetworkGrowth, DegenerateOrHugeRegionsAreRefused) {
   const Network ex = exemplar("grid");
   std::string message;
