@@ -4,7 +4,7 @@
 #                                               then the whole suite in build/ (CI); the last
 #                                               line is the summary of both
 #   bash scripts/test.sh --sanitize [MODULE...] the suite (or only the tests of these modules:
-#                                               core geo ribbon raster synth terrain ornament layers
+#                                               core geo ribbon raster synth terrain ornament network layers
 #                                               pipeline) built with ASan + UBSan in build-asan/;
 #                                               any sanitizer report fails its test
 set -uo pipefail

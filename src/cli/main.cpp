@@ -23,6 +23,7 @@
 #include "core/log.hpp"
 #include "pipeline/area_command.hpp"
 #include "pipeline/grow_command.hpp"
+#include "pipeline/network_command.hpp"
 
 #include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
@@ -200,8 +201,10 @@ void refuse_non_finite_numbers(CLI::App& app) {
         return std::isfinite(x) ? std::string() : "'" + value + "' is not a finite number";
       },
       "");
-  std::vector<CLI::App*> apps = app.get_subcommands({});
-  apps.push_back(&app);
+  // Nested subcommands too (`network synthesize`).
+  std::vector<CLI::App*> apps{&app};
+  for (std::size_t i = 0; i < apps.size(); ++i)
+    for (CLI::App* sub : apps[i]->get_subcommands({})) apps.push_back(sub);
   for (CLI::App* a : apps)
     for (CLI::Option* option : a->get_options())
       if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);
@@ -455,6 +458,72 @@ int main(int argc, char** argv) {
       ->required()
       ->check(non_empty);
 
+  tw::NetworkCommand network_args;
+  CLI::App* network = app.add_subcommand(
+      "network",
+      "curve networks by example (hedges, field edges, drainage, terraces): synthesize over a "
+      "region, complete a partial drawing, or clone one region's structure into another");
+  network->require_subcommand(1);
+  CLI::App* network_modes[3] = {
+      network->add_subcommand("synthesize",
+                              "grow a network with the exemplar's style over --region"),
+      network->add_subcommand("complete",
+                              "complete --partial (kept exactly as drawn) over --region in the "
+                              "exemplar's style"),
+      network->add_subcommand("clone",
+                              "grow --map's structure inside --source-region into --target-region, "
+                              "keeping what is there")};
+  for (CLI::App* mode : network_modes) {
+    if (std::string(mode->get_name()) != "clone") {
+      mode->add_option("--exemplar", network_args.exemplar,
+                       "exemplar lines: OGR path[:layer] (GeoPackage, GeoJSON, Shapefile, OSM) or "
+                       "an .svg")
+          ->required();
+      mode->add_option("--exemplar-region", network_args.exemplar_region,
+                       "polygons cutting the exemplar out of a real map: OGR path[:layer]");
+      mode->add_option("--region", network_args.region,
+                       "minx,miny,maxx,maxy in the exemplar's CRS, or OGR polygons path[:layer]")
+          ->required();
+    } else {
+      mode->add_option("--map", network_args.map, "the map's lines: OGR path[:layer]")->required();
+      mode->add_option("--source-region", network_args.source_region,
+                       "polygons whose lines are the exemplar (path[:layer] or a box)")
+          ->required();
+      mode->add_option("--target-region", network_args.target_region,
+                       "polygons (path[:layer]) or minx,miny,maxx,maxy to grow into")
+          ->required();
+    }
+    if (std::string(mode->get_name()) == "complete")
+      mode->add_option("--partial", network_args.partial,
+                       "the lines drawn so far: OGR path[:layer] or .svg, kept exactly")
+          ->required();
+    mode->add_option("--where", network_args.exemplar_where,
+                     "OGR SQL attribute filter on the exemplar's (or map's) layer");
+    mode->add_option("--scale", network_args.scale, "SVG: metres per SVG unit")
+        ->check(number_above(0.0, false));
+    mode->add_option("--avoid", network_args.avoid,
+                     "features no curve may enter: OGR path[:layer] (lines or polygons; "
+                     "repeatable)");
+    mode->add_option("--avoid-width", network_args.avoid_width,
+                     "metres, the width of avoided lines without a width or OSM tags")
+        ->check(number_above(0.0, false));
+    mode->add_option("--seed", network_args.growth.seed, "same seed, same network");
+    mode->add_option("--lead-bearing", network_args.growth.lead_bearing,
+                     "compass degrees the exemplar's main bearing is turned to");
+    mode->add_option("--clearance", network_args.growth.clearance,
+                     "metres between unrelated curves; default: 6 % of the median edge length")
+        ->check(number_above(0.0, true));
+    mode->add_option("--snap", network_args.snap,
+                     "metres: exemplar ends this close to a line are joined to it (repair); "
+                     "default: 1e-3 of its extent")
+        ->check(number_above(0.0, true));
+    mode->add_option("--candidates", network_args.growth.candidates, "pieces tried per stub")
+        ->check(CLI::Range(1, 1000));
+    mode->add_option("--out", network_args.out, "folder for network.gpkg, preview.png")
+        ->required()
+        ->check(non_empty);
+  }
+
   // Hidden (no group): the generated world of bench/bigworld.sh.
   tw::BigWorldOptions world;
   CLI::App* make_world =
@@ -561,6 +630,17 @@ int main(int argc, char** argv) {
           r.ornaments, r.elements, r.lines, r.coverage_radius, r.coverage, r.rejected_crossing,
           r.rejected_forbidden, r.rejected_footprint, r.rejected_untraceable,
           static_cast<long long>(r.crossings.total()));
+      return 0;
+    }
+    if (network->parsed()) {
+      for (CLI::App* mode : network_modes)
+        if (mode->parsed()) network_args.mode = mode->get_name();
+      const tw::NetworkCommandResult r = tw::run_network_command(network_args);
+      std::printf(
+          "%d suggested edges, %d kept, %d nodes (exemplar: %d edges) in %.0f ms; %d seeds, %d "
+          "T-junctions, %d snapped onto nodes; 0 crossings\n",
+          r.suggested_edges, r.kept_edges, r.nodes, r.exemplar_edges, r.growth_ms, r.growth.seeds,
+          r.growth.t_junctions, r.growth.snapped);
       return 0;
     }
     if (make_world->parsed()) {

@@ -446,10 +446,15 @@ TEST_F(Cli, SubcommandHelpListsTheGlobalOptions) {
 
 // Issue #24: NaN and infinities are refused by every number option before anything runs.
 TEST_F(Cli, NonFiniteNumbersAreRefusedByEveryNumberOption) {
-  for (const char* args : {"area sketch.geojson --polygons map.gpkg:existing --bearing nan",
-                           "grow --dem dem.tif --region 0,0,1,1 --resolution nan",
-                           "grow --dem dem.tif --region 0,0,1,1 --resolution inf",
-                           "synth --exemplar e.png --scale 1e400 -o o.png"}) {
+  for (const char* args :
+       {"area sketch.geojson --polygons map.gpkg:existing --bearing nan",
+        "grow --dem dem.tif --region 0,0,1,1 --resolution nan",
+        "grow --dem dem.tif --region 0,0,1,1 --resolution inf",
+        "synth --exemplar e.png --scale 1e400 -o o.png",
+        "network synthesize --exemplar e.gpkg --region 0,0,1,1 --lead-bearing nan "
+        "--out o",
+        "network clone --map m.gpkg --source-region s.gpkg --target-region t.gpkg "
+        "--clearance inf --out o"}) {
     const CommandResult r = terraweave(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
     EXPECT_THAT(r.output, HasSubstr("is not a finite number")) << args;

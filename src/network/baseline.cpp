@@ -1,0 +1,122 @@
+#include "network/baseline.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/split_mix.hpp"
+#include "core/warnings.hpp"
+#include "network/exemplar.hpp"
+
+namespace tw {
+
+namespace {
+
+// The parts of `pts` inside the box [lo, hi], each cut exactly at the box's sides.
+void cut_to_box(const std::vector<Vec2>& pts, Vec2 lo, Vec2 hi,
+                std::vector<std::vector<Vec2>>& out) {
+  const auto in = [&](Vec2 p) { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; };
+  // Parameters where ab crosses the box's sides.
+  const auto crossings = [&](Vec2 a, Vec2 b) {
+    std::vector<double> ts;
+    for (double t : {(lo.x - a.x) / (b.x - a.x), (hi.x - a.x) / (b.x - a.x),
+                     (lo.y - a.y) / (b.y - a.y), (hi.y - a.y) / (b.y - a.y)})
+      if (std::isfinite(t) && t > 0.0 && t < 1.0) ts.push_back(t);
+    std::sort(ts.begin(), ts.end());
+    return ts;
+  };
+  std::vector<Vec2> part;
+  const auto flush = [&]() {
+    if (part.size() >= 2) out.push_back(part);
+    part.clear();
+  };
+  if (in(pts[0])) part.push_back(pts[0]);
+  for (std::size_t k = 1; k < pts.size(); ++k) {
+    const Vec2 a = pts[k - 1], b = pts[k];
+    double previous = 0.0;
+    for (double t : crossings(a, b)) {
+      const Vec2 p = lerp(a, b, t);
+      const bool was_in = in(lerp(a, b, 0.5 * (previous + t)));
+      if (was_in) {
+        part.push_back(p);
+        flush();
+      } else {
+        part.push_back(p);
+      }
+      previous = t;
+    }
+    if (in(b))
+      part.push_back(b);
+    else
+      flush();
+  }
+  flush();
+}
+
+}  // namespace
+
+Network baseline_network(const Network& exemplar, const std::vector<Polygon>& region,
+                         std::uint64_t seed, BaselineKind kind) {
+  SplitMix64 rng(seed);
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : exemplar.nodes) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  Vec2 rlo{INFINITY, INFINITY}, rhi{-INFINITY, -INFINITY};
+  for (const Polygon& polygon : region)
+    for (Vec2 p : polygon.front()) {
+      rlo = {std::min(rlo.x, p.x), std::min(rlo.y, p.y)};
+      rhi = {std::max(rhi.x, p.x), std::max(rhi.y, p.y)};
+    }
+  const double side = std::max(1e-9, 0.4 * std::min(hi.x - lo.x, hi.y - lo.y));
+  NetworkLines lines;
+  lines.region = region;
+  std::vector<std::vector<Vec2>> parts;
+  if (kind == BaselineKind::placement) {
+    // Squares of the exemplar dropped at random places, as many as cover the region once on
+    // average (overlapping in places, leaving gaps in others), then cut by the region's box.
+    const int patches =
+        std::max(1, int(std::ceil((rhi.x - rlo.x) * (rhi.y - rlo.y) / (side * side))));
+    for (int k = 0; k < patches; ++k) {
+      const Vec2 from{rng.uniform(lo.x, hi.x - side), rng.uniform(lo.y, hi.y - side)};
+      const Vec2 to{rng.uniform(rlo.x - side / 2, rhi.x - side / 2),
+                    rng.uniform(rlo.y - side / 2, rhi.y - side / 2)};
+      for (const NetworkEdge& e : exemplar.edges) {
+        parts.clear();
+        cut_to_box(e.points, from, from + Vec2{side, side}, parts);
+        for (auto& part : parts) {
+          std::vector<Vec2> moved;
+          for (Vec2 p : part) moved.push_back(p - from + to);
+          std::vector<std::vector<Vec2>> inside;
+          cut_to_box(moved, rlo, rhi, inside);
+          for (auto& piece : inside) {
+            lines.lines.push_back(std::move(piece));
+            lines.fids.push_back(e.fid);
+          }
+        }
+      }
+    }
+  }
+  // Tiling: the region tiled by squares, each filled with an exemplar square from a random
+  // place: no matching across the seams.
+  for (double y = rlo.y; kind == BaselineKind::tiling && y < rhi.y; y += side)
+    for (double x = rlo.x; x < rhi.x; x += side) {
+      const Vec2 from{rng.uniform(lo.x, hi.x - side), rng.uniform(lo.y, hi.y - side)};
+      const Vec2 to{x, y};
+      const Vec2 cell_hi{std::min(x + side, rhi.x), std::min(y + side, rhi.y)};
+      for (const NetworkEdge& e : exemplar.edges) {
+        parts.clear();
+        cut_to_box(e.points, from, from + (cell_hi - to), parts);
+        for (auto& part : parts) {
+          for (Vec2& p : part) p = p - from + to;
+          lines.lines.push_back(std::move(part));
+          lines.fids.push_back(e.fid);
+        }
+      }
+    }
+  Warnings ignored;
+  if (lines.lines.size() < 2) return {};
+  return build_planar_network(lines, 0.0, "baseline", ignored);
+}
+
+}  // namespace tw

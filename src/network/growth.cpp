@@ -1,0 +1,1133 @@
+#include "network/growth.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <numbers>
+#include <optional>
+
+#include "core/boost_geometry.hpp"
+#include "core/error.hpp"
+#include "core/segment_distance.hpp"
+#include "core/split_mix.hpp"
+
+namespace tw {
+
+namespace {
+
+using namespace geometry;
+using SegValue = std::pair<BgSegment, int>;  // a segment of an edge (its index)
+using NodeValue = std::pair<BgPoint, int>;
+using BgMultiPolygon = bg::model::multi_polygon<BgPolygon>;
+constexpr double kPi = std::numbers::pi;
+
+Vec2 vec(const BgPoint& p) {
+  return {p.x(), p.y()};
+}
+Vec2 rotate(Vec2 v, double a) {
+  const double c = std::cos(a), s = std::sin(a);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+double heading(Vec2 v) {
+  return std::atan2(v.y, v.x);
+}
+double wrap(double a) {  // (-pi, pi]
+  a = std::fmod(a + kPi, 2 * kPi);
+  if (a <= 0) a += 2 * kPi;
+  return a - kPi;
+}
+// Bearing bin (15°, 0..11) of a chord, from north, modulo 180°.
+int bearing_bin(Vec2 chord) {
+  double b = std::atan2(chord.x, chord.y) * 180.0 / kPi;
+  b = std::fmod(b + 360.0, 180.0);
+  return std::min(11, int(b / 15.0));
+}
+
+// First distinct-point heading leaving an end of a polyline.
+double leaving(const std::vector<Vec2>& pts, bool from_start) {
+  const std::size_t n = pts.size();
+  const Vec2 a = from_start ? pts[0] : pts[n - 1];
+  for (std::size_t k = 1; k < n; ++k) {
+    const Vec2 b = from_start ? pts[k] : pts[n - 1 - k];
+    if (!(b == a)) return heading(b - a);
+  }
+  return 0.0;
+}
+
+// A whole exemplar edge, walked from one end: start at the origin heading +x.
+struct Piece {
+  std::vector<Vec2> points;
+  double length = 0.0;
+  double arrival = 0.0;           // heading at the end, relative to the start heading
+  int end_degree = 1;             // the exemplar junction at its end
+  std::vector<double> end_turns;  // its other edges' headings relative to the arrival
+  int length_bin = 0;
+  // Junctions passed through (a stroke goes on across a junction where an edge continues
+  // nearly straight): the vertex and the other edges' headings relative to the arrival there.
+  std::vector<std::pair<std::size_t, double>> sides;
+  double heading = 0.0;  // its start heading in the exemplar (radians)
+};
+
+// A stroke continues across a junction onto the edge that deflects least, below this (radians).
+constexpr double kStrokeDeflection = 0.12;
+constexpr int kStrokeEdges = 8;
+// The weight of a piece's turn from its exemplar heading (0..1) in a candidate's cost.
+constexpr double kTurnWeight = 0.6;
+
+struct Stub {
+  int node = 0;
+  double heading = 0.0;
+  int id = 0;
+};
+
+// Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
+constexpr double kMinMeetingAngle = 0.35;
+// A node of degree 2 turning more than this (radians) is a corner (close_corners).
+constexpr double kCornerTurn = 0.5;
+
+// Where a candidate ends.
+struct Ending {
+  enum class Kind { free, node, edge, boundary } kind = Kind::free;
+  int node = -1;            // Kind::node
+  int edge = -1, seg = -1;  // Kind::edge: the segment hit
+};
+
+struct Hit {
+  std::size_t k = 0;  // segment of the candidate
+  double t = 2.0;     // along it
+  Vec2 point;
+  int edge = -1, seg = -1;
+};
+
+// Intersection parameters of segments pq and ab (proper or touching), or false when parallel.
+bool segment_hit(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t, double& u) {
+  const Vec2 r = q - p, s = b - a;
+  const double denom = cross(r, s);
+  if (std::abs(denom) <= 1e-12 * (dot(r, r) + dot(s, s))) return false;
+  t = cross(a - p, s) / denom;
+  u = cross(a - p, r) / denom;
+  return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
+}
+
+class Grower {
+ public:
+  Grower(const Network& exemplar, const std::vector<Polygon>& region,
+         const ForbiddenMask* forbidden, const NetworkGrowthOptions& options,
+         NetworkGrowthReport& report)
+      : forbidden_(forbidden), options_(options), report_(report), rng_(options.seed) {
+    learn(exemplar);
+    set_region(region);
+    if (forbidden_) dilate_forbidden();
+  }
+
+  void add_partial(const Network& partial) {
+    std::vector<int> id(partial.nodes.size());
+    for (std::size_t n = 0; n < partial.nodes.size(); ++n) id[n] = add_node(partial.nodes[n]);
+    for (const NetworkEdge& e : partial.edges) {
+      NetworkEdge copy = e;
+      copy.from = id[std::size_t(e.from)];
+      copy.to = id[std::size_t(e.to)];
+      copy.kept = true;
+      add_edge(std::move(copy));
+    }
+    const std::vector<int> degree = out_.degrees();
+    for (const NetworkEdge& e : partial.edges) {
+      for (int end = 0; end < 2; ++end) {
+        const int n = id[std::size_t(end == 0 ? e.from : e.to)];
+        if (degree[std::size_t(n)] != 1) continue;
+        if (near_boundary(out_.nodes[std::size_t(n)])) {
+          out_.on_boundary[std::size_t(n)] = 1;
+          continue;
+        }
+        // A dangling end of the drawing goes on straight.
+        planned_[std::size_t(n)] = 2;
+        push_stub(n, leaving(e.points, end == 0) + kPi);
+      }
+    }
+  }
+
+  Network run() {
+    drain();
+    seed_lattice();
+    retry_failed();
+    close_corners();
+    close_dangling_ends();
+    return finish();
+  }
+
+ private:
+  // ---- the exemplar --------------------------------------------------------------------------
+  void learn(const Network& ex) {
+    const std::vector<int> degree = ex.degrees();
+    std::vector<std::vector<std::pair<double, int>>> leaving_at(ex.nodes.size());
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      const NetworkEdge& e = ex.edges[i];
+      leaving_at[std::size_t(e.from)].push_back({leaving(e.points, true), int(i)});
+      leaving_at[std::size_t(e.to)].push_back({leaving(e.points, false), int(i)});
+    }
+    const auto boundary = [&](int n) {
+      return !ex.on_boundary.empty() && ex.on_boundary[std::size_t(n)];
+    };
+    std::vector<double> lengths;
+    for (const NetworkEdge& e : ex.edges)
+      if (!boundary(e.from) && !boundary(e.to)) lengths.push_back(polyline_length(e.points));
+    if (lengths.empty())
+      for (const NetworkEdge& e : ex.edges) lengths.push_back(polyline_length(e.points));
+    if (lengths.empty()) fail("exemplar: no edges to learn from");
+    std::sort(lengths.begin(), lengths.end());
+    median_ = lengths[lengths.size() / 2];
+    if (!(median_ > 0.0)) fail("exemplar: its edges have no length");
+    for (int b = 1; b < 8; ++b)
+      length_edges_.push_back(lengths[lengths.size() * std::size_t(b) / 8]);
+    clearance_ = options_.clearance > 0.0 ? options_.clearance : 0.06 * median_;
+    snap_ = options_.snap > 0.0 ? options_.snap : std::max(0.35 * median_, 2.0 * clearance_);
+    // No edge shorter than most of the exemplar's (its 10th percentile): truncated pieces that
+    // would make slivers are refused.
+    min_piece_ = std::max({2.5 * clearance_, 0.12 * median_, 0.8 * lengths[lengths.size() / 10]});
+
+    // The turn of the whole exemplar to the lead: its main bearing (the length-weighted mode of
+    // its chords' bearings in 10° bins, then their length-weighted mean within that bin).
+    if (options_.lead_bearing) {
+      std::array<double, 18> weight{}, sum{};
+      for (const NetworkEdge& e : ex.edges) {
+        const Vec2 c = e.points.back() - e.points.front();
+        const double b = std::fmod(std::atan2(c.x, c.y) * 180.0 / kPi + 360.0, 180.0);
+        const std::size_t bin = std::size_t(std::min(17, int(b / 10.0)));
+        weight[bin] += polyline_length(e.points);
+        sum[bin] += b * polyline_length(e.points);
+      }
+      const std::size_t main =
+          std::size_t(std::max_element(weight.begin(), weight.end()) - weight.begin());
+      const double main_bearing = weight[main] > 0.0 ? sum[main] / weight[main] : 0.0;
+      turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
+    }
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      const NetworkEdge& e = ex.edges[i];
+      for (int dir = 0; dir < 2; ++dir) {
+        const int start = dir == 0 ? e.from : e.to, end = dir == 0 ? e.to : e.from;
+        if (boundary(end) || boundary(start)) continue;
+        Piece p;
+        // The stroke from this edge: across junctions where an edge goes on nearly straight.
+        std::vector<Vec2> pts = e.points;
+        if (dir == 1) std::reverse(pts.begin(), pts.end());
+        int at = end, current = int(i);
+        std::vector<int> used{int(i)}, visited{start, end};
+        while (options_.strokes && int(used.size()) < kStrokeEdges && !boundary(at) &&
+               degree[std::size_t(at)] >= 3) {
+          const double arrive = leaving(pts, false) + kPi;
+          int next = -1;
+          double best = kStrokeDeflection;
+          for (const auto& [h, edge] : leaving_at[std::size_t(at)]) {
+            if (edge == current || std::find(used.begin(), used.end(), edge) != used.end())
+              continue;
+            const double deflection = std::abs(wrap(h - arrive));
+            if (deflection < best) best = deflection, next = edge;
+          }
+          if (next < 0) break;
+          const NetworkEdge& n = ex.edges[std::size_t(next)];
+          const int far = n.from == at ? n.to : n.from;
+          // A stroke never comes back to a node it passed (it would touch itself there).
+          if (std::find(visited.begin(), visited.end(), far) != visited.end()) break;
+          visited.push_back(far);
+          for (const auto& [h, edge] : leaving_at[std::size_t(at)])
+            if (edge != current && edge != next)
+              p.sides.push_back({pts.size() - 1, wrap(h - arrive)});
+          std::vector<Vec2> more = n.points;
+          if (n.from != at) std::reverse(more.begin(), more.end());
+          pts.insert(pts.end(), more.begin() + 1, more.end());
+          used.push_back(next);
+          current = next;
+          at = far;
+        }
+        const int stroke_end = at;
+        const double h0 = leaving(pts, true);
+        p.heading = h0;
+        const Vec2 origin = pts.front();
+        for (Vec2 v : pts) p.points.push_back(rotate(v - origin, -h0));
+        p.length = polyline_length(p.points);
+        if (p.length <= 0.0 || boundary(stroke_end)) continue;
+        const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
+        p.arrival = wrap(arrive - h0);
+        p.end_degree = degree[std::size_t(stroke_end)];
+        for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
+          if (edge != current ||
+              ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
+            p.end_turns.push_back(wrap(h - arrive));
+        if (ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to &&
+            !p.end_turns.empty())
+          p.end_turns.pop_back();
+        p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
+                           length_edges_.begin());
+        pieces_.push_back(std::move(p));
+      }
+    }
+    if (pieces_.empty()) fail("exemplar: every edge is cut by its region (no whole piece)");
+    // Target histograms.
+    for (std::size_t n = 0; n < ex.nodes.size(); ++n) {
+      if (boundary(int(n)) || degree[n] == 0) continue;
+      const int d = std::min(degree[n], 6);
+      target_degree_[std::size_t(d)] += 1.0;
+      if (degree[n] >= 3) junctions_.push_back(int(n));
+      ++exemplar_nodes_;
+    }
+    if (junctions_.empty())
+      for (std::size_t n = 0; n < ex.nodes.size(); ++n)
+        if (degree[n] >= 2) junctions_.push_back(int(n));
+    if (junctions_.empty()) fail("exemplar: no junction (every line ends alone)");
+    length_per_junction_ = ex.total_length() / double(std::max<std::size_t>(1, junctions_.size()));
+    for (double& v : target_degree_) v /= std::max(1, exemplar_nodes_);
+    double total = 0.0;
+    for (const NetworkEdge& e : ex.edges) {
+      const Vec2 c = rotate(e.points.back() - e.points.front(), turn_);
+      target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
+    }
+    for (double& v : target_bearing_) v /= std::max(1.0, total);
+    for (const Piece& p : pieces_) target_length_[std::size_t(p.length_bin)] += 1.0;
+    for (double& v : target_length_) v /= double(pieces_.size());
+    dangling_target_ = 0.0;
+    {
+      int dangling = 0;
+      double length = 0.0;
+      for (std::size_t n = 0; n < ex.nodes.size(); ++n)
+        if (degree[n] == 1 && !boundary(int(n))) ++dangling;
+      for (const NetworkEdge& e : ex.edges) length += polyline_length(e.points);
+      dangling_target_ = dangling / std::max(length, 1e-9);
+    }
+    for (int j : junctions_) {
+      std::vector<double> h;
+      for (const auto& [a, edge] : leaving_at[std::size_t(j)]) h.push_back(a + turn_);
+      junction_headings_.push_back(std::move(h));
+    }
+  }
+
+  // ---- the region ----------------------------------------------------------------------------
+  void set_region(const std::vector<Polygon>& region) {
+    double area = 0.0;
+    for (const Polygon& polygon : region) {
+      BgPolygon p;
+      for (std::size_t r = 0; r < polygon.size(); ++r) {
+        auto& ring = r == 0 ? p.outer() : (p.inners().emplace_back(), p.inners().back());
+        for (Vec2 v : polygon[r]) ring.push_back(to_bg(v));
+        if (!polygon[r].empty()) ring.push_back(to_bg(polygon[r].front()));
+        for (std::size_t k = 0; k < polygon[r].size(); ++k) {
+          const Vec2 a = polygon[r][k], b = polygon[r][(k + 1) % polygon[r].size()];
+          if (!(a == b)) boundary_.insert(BgSegment(to_bg(a), to_bg(b)));
+        }
+      }
+      bg::correct(p);
+      area += bg::area(p);
+      region_.push_back(std::move(p));
+    }
+    if (!(area > 0.0)) fail("a degenerate (zero-area) region");
+    if (area / (median_ * median_) > kMaxNetworkCells)
+      fail(
+          "{:.0f} km² is too large for an exemplar whose edges are {:.0f} m long (at "
+          "most {:.0f} km²: about 10⁷ junctions)",
+          area / 1e6, median_, kMaxNetworkCells * median_ * median_ / 1e6);
+    bg::envelope(region_, extent_);
+    out_.on_boundary.clear();
+  }
+
+  bool inside_region(Vec2 p) const { return bg::covered_by(to_bg(p), region_); }
+  bool near_boundary(Vec2 p) const {
+    std::vector<BgSegment> near;
+    const double eps = 1e-6 * std::max(1.0, median_);
+    boundary_.query(bgi::intersects(BgBox({p.x - eps, p.y - eps}, {p.x + eps, p.y + eps})),
+                    std::back_inserter(near));
+    return !near.empty();
+  }
+
+  void dilate_forbidden() {
+    const ForbiddenMask& f = *forbidden_;
+    const int r = int(std::ceil(clearance_ / std::min(f.grid.pixel_width, f.grid.pixel_height)));
+    Raster<std::uint8_t> rows(f.cells.width, f.cells.height, 0);
+    for (int y = 0; y < f.cells.height; ++y)
+      for (int x = 0; x < f.cells.width; ++x)
+        if (f.cells.at(x, y))
+          for (int dx = std::max(0, x - r); dx <= std::min(f.cells.width - 1, x + r); ++dx)
+            rows.at(dx, y) = 1;
+    dilated_ = Raster<std::uint8_t>(f.cells.width, f.cells.height, 0);
+    for (int y = 0; y < f.cells.height; ++y)
+      for (int x = 0; x < f.cells.width; ++x)
+        if (rows.at(x, y))
+          for (int dy = std::max(0, y - r); dy <= std::min(f.cells.height - 1, y + r); ++dy)
+            dilated_.at(x, dy) = 1;
+  }
+  bool forbidden_at(Vec2 p, bool dilated) const {
+    if (!forbidden_) return false;
+    const Vec2 px = forbidden_->grid.world_to_pixel(p);
+    const int c = int(std::floor(px.x)), r = int(std::floor(px.y));
+    const Raster<std::uint8_t>& m = dilated ? dilated_ : forbidden_->cells;
+    return m.inside(c, r) && m.at(c, r) != 0;
+  }
+  bool enters_forbidden(const std::vector<Vec2>& pts) const {
+    if (!forbidden_) return false;
+    const double step = 0.5 * std::min(forbidden_->grid.pixel_width, forbidden_->grid.pixel_height);
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const double len = distance(pts[k], pts[k + 1]);
+      const int n = std::max(1, int(std::ceil(len / step)));
+      for (int i = 0; i <= n; ++i)
+        if (forbidden_at(lerp(pts[k], pts[k + 1], double(i) / n), true)) return true;
+    }
+    return false;
+  }
+
+  // ---- the network so far ----------------------------------------------------------------------
+  int add_node(Vec2 p) {
+    const int id = int(out_.nodes.size());
+    out_.nodes.push_back(p);
+    out_.on_boundary.push_back(0);
+    degree_.push_back(0);
+    planned_.push_back(0);
+    incident_.emplace_back();
+    stubs_of_.emplace_back();
+    nodes_.insert({to_bg(p), id});
+    return id;
+  }
+  void index_edge(int id, bool insert) {
+    const auto& pts = out_.edges[std::size_t(id)].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const SegValue v{BgSegment(to_bg(pts[k]), to_bg(pts[k + 1])), id};
+      if (insert)
+        segments_.insert(v);
+      else
+        segments_.remove(v);
+    }
+  }
+  int add_edge(NetworkEdge e) {
+    ++degree_[std::size_t(e.from)];
+    ++degree_[std::size_t(e.to)];
+    const int id = int(out_.edges.size());
+    incident_[std::size_t(e.from)].push_back(id);
+    if (e.to != e.from) incident_[std::size_t(e.to)].push_back(id);
+    out_.edges.push_back(std::move(e));
+    alive_.push_back(1);
+    index_edge(id, true);
+    return id;
+  }
+  // Splits edge `id` at `p` on its segment `seg`: the new node.
+  int split_edge(int id, int seg, Vec2 p) {
+    index_edge(id, false);
+    NetworkEdge& e = out_.edges[std::size_t(id)];
+    const int node = add_node(p);
+    NetworkEdge second;
+    second.from = node;
+    second.to = e.to;
+    second.kept = e.kept;
+    second.fid = e.fid;
+    second.points.push_back(p);
+    for (std::size_t k = std::size_t(seg) + 1; k < e.points.size(); ++k)
+      if (!(e.points[k] == p)) second.points.push_back(e.points[k]);
+    e.points.resize(std::size_t(seg) + 1);
+    if (!(e.points.back() == p)) e.points.push_back(p);
+    auto& at_end = incident_[std::size_t(e.to)];
+    at_end.erase(std::remove(at_end.begin(), at_end.end(), id), at_end.end());
+    e.to = node;
+    incident_[std::size_t(node)].push_back(id);
+    index_edge(id, true);
+    if (second.points.size() < 2) second.points.push_back(p);
+    --degree_[std::size_t(second.to)];  // add_edge counts both of its ends
+    add_edge(std::move(second));
+    degree_[std::size_t(node)] = 2;
+    return node;
+  }
+
+  // The first place where `pts` meets the network, past its start.
+  std::optional<Hit> first_edge_hit(const std::vector<Vec2>& pts) const {
+    std::vector<SegValue> near;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const BgSegment s(to_bg(pts[k]), to_bg(pts[k + 1]));
+      near.clear();
+      BgBox box;
+      bg::envelope(s, box);
+      segments_.query(bgi::intersects(box), std::back_inserter(near));
+      std::optional<Hit> best;
+      for (const SegValue& v : near) {
+        const Vec2 a = vec(v.first.first), b = vec(v.first.second);
+        double t, u;
+        if (!segment_hit(pts[k], pts[k + 1], a, b, t, u)) continue;
+        if (k == 0 && t * distance(pts[0], pts[1]) < 1e-9 * median_) continue;  // the start
+        if (!best || t < best->t) {
+          const auto& e = out_.edges[std::size_t(v.second)].points;
+          int seg = 0;
+          for (std::size_t j = 0; j + 1 < e.size(); ++j)
+            if (e[j] == a && e[j + 1] == b) seg = int(j);
+          best = Hit{k, t, lerp(pts[k], pts[k + 1], t), v.second, seg};
+        }
+      }
+      if (best) return best;
+    }
+    return std::nullopt;
+  }
+  std::optional<Hit> first_boundary_hit(const std::vector<Vec2>& pts) const {
+    std::vector<BgSegment> near;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const BgSegment s(to_bg(pts[k]), to_bg(pts[k + 1]));
+      BgBox box;
+      bg::envelope(s, box);
+      near.clear();
+      boundary_.query(bgi::intersects(box), std::back_inserter(near));
+      std::optional<Hit> best;
+      for (const BgSegment& b : near) {
+        double t, u;
+        if (!segment_hit(pts[k], pts[k + 1], vec(b.first), vec(b.second), t, u)) continue;
+        if (k == 0 && t * distance(pts[0], pts[1]) < 1e-9 * median_) continue;
+        if (!best || t < best->t) best = Hit{k, t, lerp(pts[k], pts[k + 1], t), -1, -1};
+      }
+      if (best) return best;
+    }
+    return std::nullopt;
+  }
+
+  // Whether the candidate may be placed: no crossing but at its joints (its start, and its end
+  // when that is on the network), the clearance elsewhere, inside the region, off forbidden
+  // cells.
+  bool valid(const std::vector<Vec2>& pts, bool end_joint) {
+    const Vec2 start = pts.front(), end = pts.back();
+    const double eps = 1e-7 * median_;
+    std::vector<SegValue> near;
+    std::vector<BgPoint> common;
+    // The candidate itself is simple (a bent or truncated piece could touch itself), and its
+    // ends keep the clearance from its own other segments (an end on itself is a crossing that
+    // no other edge would show).
+    if (pts.size() > 3) {
+      BgLine line;
+      for (Vec2 p : pts) bg::append(line, to_bg(p));
+      if (!bg::is_simple(line)) return false;
+    }
+    for (std::size_t k = 0; k + 2 < pts.size(); ++k)
+      if (distance_to_segment(end, pts[k], pts[k + 1]) < clearance_) return false;
+    for (std::size_t k = 1; k + 1 < pts.size(); ++k)
+      if (distance_to_segment(start, pts[k], pts[k + 1]) < clearance_) return false;
+    std::vector<Vec2> joints{start};
+    if (end_joint) joints.push_back(end);
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Vec2 a = pts[k], b = pts[k + 1];
+      const BgSegment s(to_bg(a), to_bg(b));
+      const BgBox box(
+          {std::min(a.x, b.x) - clearance_ - eps, std::min(a.y, b.y) - clearance_ - eps},
+          {std::max(a.x, b.x) + clearance_ + eps, std::max(a.y, b.y) + clearance_ + eps});
+      near.clear();
+      segments_.query(bgi::intersects(box), std::back_inserter(near));
+      // The part of the segment outside the clearance discs of the joints: lines meeting at a
+      // junction are necessarily close to each other there.
+      Vec2 ta = a, tb = b;
+      bool kept = true;
+      for (Vec2 j : joints) kept = kept && outside_disc(ta, tb, j, clearance_);
+      const BgSegment trimmed(to_bg(ta), to_bg(tb));
+      for (const SegValue& v : near) {
+        common.clear();
+        bg::intersection(s, v.first, common);
+        if (!common.empty()) {
+          if (common.size() > 1 && bg::distance(common[0], common[1]) > eps) return false;
+          const Vec2 x = vec(common[0]);
+          const bool at_start = k == 0 && distance(x, start) <= eps;
+          const bool at_end = end_joint && k + 2 == pts.size() && distance(x, end) <= eps;
+          if (!at_start && !at_end) return false;
+          continue;
+        }
+        if (!kept) continue;
+        // Segments meeting at a joint (its edges, the edge a T-junction splits) are exempt.
+        const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
+        bool at_joint = false;
+        for (Vec2 j : joints) at_joint = at_joint || distance_to_segment(j, ea, eb) <= eps;
+        if (!at_joint && bg::distance(trimmed, v.first) < clearance_) return false;
+      }
+    }
+    for (std::size_t k = 1; k < pts.size(); ++k)
+      if (!inside_region(pts[k])) {
+        ++report_.rejected_region;
+        return false;
+      }
+    if (auto wall = first_boundary_hit(pts); wall && distance(wall->point, end) > 1e-6 * median_) {
+      ++report_.rejected_region;
+      return false;
+    }
+    if (enters_forbidden(pts)) {
+      ++report_.rejected_forbidden;
+      return false;
+    }
+    return true;
+  }
+
+  // Trims ab to its part outside the disc (j, r); false when nothing is left.
+  static bool outside_disc(Vec2& a, Vec2& b, Vec2 j, double r) {
+    const Vec2 d = b - a, f = a - j;
+    const double A = dot(d, d), B = 2.0 * dot(f, d), C = dot(f, f) - r * r;
+    if (A <= 0.0) return C >= 0.0;
+    const double disc = B * B - 4.0 * A * C;
+    if (disc <= 0.0) return true;
+    const double t1 = (-B - std::sqrt(disc)) / (2.0 * A), t2 = (-B + std::sqrt(disc)) / (2.0 * A);
+    if (t1 <= 0.0 && t2 >= 1.0) return false;
+    const Vec2 p1 = a + d * t1, p2 = a + d * t2;
+    if (t1 <= 0.0) return a = p2, t2 < 1.0;
+    if (t2 >= 1.0) return b = p1, t1 > 0.0;
+    if (t1 > 1.0 - t2)
+      b = p1;
+    else
+      a = p2;
+    return true;
+  }
+
+  // ---- growth ----------------------------------------------------------------------------------
+  // How far a histogram would move from its target when `bin` gains one (> 0: over-represented).
+  template <std::size_t N>
+  static double excess(const std::array<double, N>& have, double total,
+                       const std::array<double, N>& want, std::size_t bin) {
+    return (have[bin] + 1.0) / (total + 1.0) - want[bin];
+  }
+  int length_bin(double length) const {
+    return int(std::upper_bound(length_edges_.begin(), length_edges_.end(), length) -
+               length_edges_.begin());
+  }
+
+  // A candidate's outcome, evaluated before anything is committed.
+  struct Outcome {
+    Ending how;
+    std::vector<Vec2> line;
+    int degree = 0;       // the junction its end makes (0: none counted, a boundary cut)
+    int stub_taken = -1;  // Kind::node: the pending stub of that node it fills
+    double cost = 0.0;
+  };
+
+  double outcome_cost(const Outcome& o) const {
+    const Vec2 chord = o.line.back() - o.line.front();
+    double cost = excess(have_bearing_, placed_, target_bearing_, std::size_t(bearing_bin(chord)));
+    cost += excess(have_length_, placed_, target_length_,
+                   std::size_t(length_bin(polyline_length(o.line))));
+    if (o.degree > 0)
+      cost += 1.5 * excess(have_degree_, junction_count_, target_degree_,
+                           std::size_t(std::min(o.degree, 6)));
+    return cost;
+  }
+
+  // `retry`: a stub that found nothing the first time, tried again once the region is covered
+  // with more candidates and a straight link onto the network ahead (a junction left short of
+  // its degree would become a bend or a dangling end).
+  void grow_stub(const Stub& stub, bool retry = false) {
+    if (!retry) {
+      if (cancelled_[std::size_t(stub.id)]) return;
+      cancelled_[std::size_t(stub.id)] = 1;
+      ++report_.stubs;
+    }
+    const Vec2 origin = out_.nodes[std::size_t(stub.node)];
+    std::optional<Outcome> best;
+    const Piece* best_piece = nullptr;
+    Piece link;
+    if (retry) {
+      link.points = {{0.0, 0.0}, {1.5 * median_, 0.0}};
+      link.length = 1.5 * median_;
+      link.heading = stub.heading - turn_;
+      if (auto o = evaluate(stub, link,
+                            {origin, origin + Vec2{std::cos(stub.heading), std::sin(stub.heading)} *
+                                                  link.length});
+          o && (o->how.kind == Ending::Kind::node || o->how.kind == Ending::Kind::edge)) {
+        o->cost = outcome_cost(*o);
+        best = std::move(o), best_piece = &link;
+      }
+    }
+    const int candidates = retry ? 4 * options_.candidates : options_.candidates;
+    for (int c = 0; c < candidates; ++c) {
+      const Piece& piece = pieces_[std::size_t(rng_.below(pieces_.size()))];
+      const double noise = 0.15 * rng_.uniform();
+      std::vector<Vec2> pts;
+      for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+      std::optional<Outcome> o = evaluate(stub, piece, std::move(pts));
+      if (!o) continue;
+      // Turned as little as possible from how it lies in the exemplar: the exemplar's
+      // anisotropy (rows of fields, walls along contours) carries over.
+      const double turned = std::abs(wrap(stub.heading - (piece.heading + turn_))) / kPi;
+      o->cost = outcome_cost(*o) + kTurnWeight * turned + noise;
+      if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
+    }
+    if (!best && !retry) {
+      failed_.push_back(stub);
+      return;
+    }
+    if (!best) {
+      // The node stays short of the junction it was meant to be.
+      ++report_.rejected_crossing;
+      const std::size_t n = std::size_t(stub.node);
+      if (!out_.on_boundary[n] && planned_[n] > 0) {
+        have_degree_[std::size_t(std::min(planned_[n], 6))] -= 1.0;
+        --planned_[n];
+        if (planned_[n] > 0)
+          have_degree_[std::size_t(std::min(planned_[n], 6))] += 1.0;
+        else
+          junction_count_ -= 1.0;
+      }
+      return;
+    }
+    commit(stub, *best_piece, std::move(*best));
+  }
+
+  static void truncate(std::vector<Vec2>& pts, const Hit& hit) {
+    pts.resize(hit.k + 1);
+    if (!(pts.back() == hit.point)) pts.push_back(hit.point);
+  }
+  static void bend_end(std::vector<Vec2>& pts, Vec2 target) {
+    const Vec2 d = target - pts.back();
+    const double total = polyline_length(pts);
+    double s = 0.0;
+    for (std::size_t k = 1; k < pts.size(); ++k) {
+      s += distance(pts[k - 1], pts[k]);
+      pts[k] += d * (total > 0.0 ? s / total : 1.0);
+    }
+    pts.back() = target;
+  }
+  bool connected(int a, int b) const {
+    for (int e : incident_[std::size_t(a)])
+      if (alive_[std::size_t(e)] &&
+          (out_.edges[std::size_t(e)].from == b || out_.edges[std::size_t(e)].to == b))
+        return true;
+    return false;
+  }
+  // The angle (radians, 0..pi/2) between the arriving line's last segment and an edge segment.
+  static double meeting_angle(const std::vector<Vec2>& line, Vec2 a, Vec2 b) {
+    const Vec2 u = normalized(line.back() - line[line.size() - 2]), v = normalized(b - a);
+    return std::asin(std::min(1.0, std::abs(cross(u, v))));
+  }
+  // The pending stub of node n pointing closest to `towards` (radians), within 60°.
+  int pending_stub(int n, double towards) const {
+    int best = -1;
+    double best_diff = kPi / 3;
+    for (int id : stubs_of_[std::size_t(n)]) {
+      if (cancelled_[std::size_t(id)]) continue;
+      const double diff = std::abs(wrap(stubs_[std::size_t(id)].heading - towards));
+      if (diff < best_diff) best_diff = diff, best = id;
+    }
+    return best;
+  }
+
+  std::optional<Outcome> evaluate(const Stub& stub, const Piece& piece, std::vector<Vec2> pts) {
+    Ending ending;
+    std::optional<Hit> edge_hit = first_edge_hit(pts);
+    std::optional<Hit> wall = first_boundary_hit(pts);
+    if (wall &&
+        (!edge_hit || wall->k < edge_hit->k || (wall->k == edge_hit->k && wall->t < edge_hit->t))) {
+      truncate(pts, *wall);
+      ending.kind = Ending::Kind::boundary;
+    } else if (edge_hit) {
+      truncate(pts, *edge_hit);
+      ending.kind = Ending::Kind::edge;
+      ending.edge = edge_hit->edge;
+      ending.seg = edge_hit->seg;
+    }
+    if (polyline_length(pts) < min_piece_) return std::nullopt;
+    std::vector<Outcome> variants;
+    const Vec2 end = pts.back();
+    // An end close to a node with an open stub facing it fills that stub (closing a cell).
+    std::vector<NodeValue> close;
+    nodes_.query(bgi::nearest(to_bg(end), 4), std::back_inserter(close));
+    std::sort(close.begin(), close.end(), [&](const NodeValue& a, const NodeValue& b) {
+      const double da = distance(vec(a.first), end), db = distance(vec(b.first), end);
+      return da != db ? da < db : a.second < b.second;
+    });
+    const double reach = ending.kind == Ending::Kind::free ? snap_ : 2.0 * clearance_;
+    for (const NodeValue& n : close) {
+      if (n.second == stub.node || distance(vec(n.first), end) > reach) continue;
+      if (out_.on_boundary[std::size_t(n.second)] || connected(n.second, stub.node)) continue;
+      std::vector<Vec2> bent = pts;
+      bend_end(bent, vec(n.first));
+      const int taken = pending_stub(n.second, leaving(bent, false));
+      if (taken < 0) continue;
+      variants.push_back({Ending{Ending::Kind::node, n.second, -1, -1}, std::move(bent), 0, taken});
+      break;
+    }
+    if (ending.kind == Ending::Kind::free) {
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(end), 1), std::back_inserter(near));
+      if (!near.empty() && bg::distance(near[0].first, to_bg(end)) < snap_) {
+        const Vec2 a = vec(near[0].first.first), b = vec(near[0].first.second);
+        const Vec2 ab = b - a;
+        const double t = std::clamp(dot(end - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        const Vec2 foot = a + ab * t;
+        const auto& e = out_.edges[std::size_t(near[0].second)];
+        if (t > 0.0 && t < 1.0 && e.from != stub.node && e.to != stub.node) {
+          int seg = 0;
+          for (std::size_t j = 0; j + 1 < e.points.size(); ++j)
+            if (e.points[j] == a && e.points[j + 1] == b) seg = int(j);
+          std::vector<Vec2> bent = pts;
+          bend_end(bent, foot);
+          variants.push_back(
+              {Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent), 3, -1});
+        }
+      }
+    }
+    const int plain_degree = ending.kind == Ending::Kind::free   ? piece.end_degree
+                             : ending.kind == Ending::Kind::edge ? 3
+                                                                 : 0;
+    variants.push_back({ending, pts, plain_degree, -1});
+    for (Outcome& o : variants) {
+      auto& line = o.line;
+      if (polyline_length(line) < min_piece_) continue;
+      if (o.how.kind == Ending::Kind::edge) {
+        // Not onto an edge beside its own end nodes, nor at a glancing angle (a sliver cell).
+        const NetworkEdge& e = out_.edges[std::size_t(o.how.edge)];
+        if (distance(line.back(), out_.nodes[std::size_t(e.from)]) < clearance_ ||
+            distance(line.back(), out_.nodes[std::size_t(e.to)]) < clearance_)
+          continue;
+        if (meeting_angle(line, e.points[std::size_t(o.how.seg)],
+                          e.points[std::size_t(o.how.seg) + 1]) < kMinMeetingAngle)
+          continue;
+      }
+      const bool joint = o.how.kind == Ending::Kind::node || o.how.kind == Ending::Kind::edge;
+      if (o.how.kind == Ending::Kind::boundary) {
+        // Pulled a hair inside, so that the end is in the region for every reader.
+        const Vec2 back = line[line.size() - 2];
+        line.back() =
+            line.back() +
+            (back - line.back()) *
+                std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
+      }
+      if (!valid(line, joint)) continue;
+      return std::move(o);
+    }
+    return std::nullopt;
+  }
+
+  void commit(const Stub& stub, const Piece& piece, Outcome o) {
+    ++report_.placed;
+    std::vector<Vec2> pts = std::move(o.line);
+    const double arrive = leaving(pts, false) + kPi;
+    int end = -1;
+    switch (o.how.kind) {
+      case Ending::Kind::node:
+        end = o.how.node;
+        cancelled_[std::size_t(o.stub_taken)] = 1;
+        ++report_.snapped;
+        break;
+      case Ending::Kind::edge:
+        end = split_edge(o.how.edge, o.how.seg, pts.back());
+        pts.back() = out_.nodes[std::size_t(end)];
+        planned_[std::size_t(end)] = 3;
+        ++report_.t_junctions;
+        break;
+      case Ending::Kind::boundary:
+        end = add_node(pts.back());
+        out_.on_boundary[std::size_t(end)] = 1;
+        ++report_.boundary_ends;
+        break;
+      case Ending::Kind::free:
+        end = add_node(pts.back());
+        planned_[std::size_t(end)] = piece.end_degree;
+        break;
+    }
+    if (o.degree > 0) {
+      have_degree_[std::size_t(std::min(o.degree, 6))] += 1.0;
+      junction_count_ += 1.0;
+    }
+    have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
+    have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
+    placed_ += 1.0;
+    grown_length_ += polyline_length(pts);
+    // The stroke's junctions passed through become nodes with stubs of their own.
+    int from = stub.node;
+    std::size_t first = 0;
+    const double total = polyline_length(pts);
+    double along = 0.0;
+    std::size_t measured = 0;
+    for (std::size_t k = 0; k < piece.sides.size();) {
+      const std::size_t at = piece.sides[k].first;
+      std::vector<double> turns;
+      for (; k < piece.sides.size() && piece.sides[k].first == at; ++k)
+        turns.push_back(piece.sides[k].second);
+      if (at == 0 || at + 1 >= pts.size()) continue;
+      for (; measured < at; ++measured) along += distance(pts[measured], pts[measured + 1]);
+      if (along < min_piece_ || total - along < min_piece_) continue;
+      // A junction passed through only while the network has fewer junctions per metre than
+      // the exemplar (other lines also end on this one: both would double the density).
+      if (grown_length_ < length_per_junction_ * (junctions() + 1.0)) continue;
+      const int node = add_node(pts[at]);
+      NetworkEdge part;
+      part.from = from;
+      part.to = node;
+      part.points.assign(pts.begin() + long(first), pts.begin() + long(at) + 1);
+      add_edge(std::move(part));
+      planned_[std::size_t(node)] = 2 + int(turns.size());
+      have_degree_[std::size_t(std::min(planned_[std::size_t(node)], 6))] += 1.0;
+      junction_count_ += 1.0;
+      const double arrive_here = heading(pts[at] - pts[at - 1]);
+      for (double turn : turns) push_stub(node, wrap(arrive_here + turn));
+      from = node;
+      first = at;
+    }
+    NetworkEdge e;
+    e.from = from;
+    e.to = end;
+    e.points.assign(pts.begin() + long(first), pts.end());
+    add_edge(std::move(e));
+    if (o.how.kind == Ending::Kind::free)
+      for (double turn : piece.end_turns) push_stub(end, wrap(arrive + turn));
+  }
+
+  void push_stub(int node, double heading) {
+    const int id = int(stubs_.size());
+    stubs_.push_back({node, heading, id});
+    cancelled_.push_back(0);
+    stubs_of_[std::size_t(node)].push_back(id);
+    queue_.push_back(stubs_.back());
+  }
+
+  void retry_failed() {
+    std::vector<Stub> failed;
+    failed.swap(failed_);
+    for (const Stub& stub : failed) {
+      if (degree_[std::size_t(stub.node)] >= planned_[std::size_t(stub.node)]) continue;
+      grow_stub(stub, true);
+      drain();  // what the retried piece opened
+      for (const Stub& again : failed_) grow_stub(again, true);
+      failed_.clear();
+    }
+  }
+
+  void drain() {
+    while (!queue_.empty()) {
+      const Stub s = queue_.front();
+      queue_.pop_front();
+      grow_stub(s);
+    }
+  }
+
+  // Seeds on a lattice over the region, in a seeded order, wherever the network has not reached.
+  void seed_lattice() {
+    const double spacing = median_;
+    const BgPoint lo = extent_.min_corner(), hi = extent_.max_corner();
+    const int nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / spacing)));
+    const int ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / spacing)));
+    std::vector<std::int64_t> order(std::size_t(nx) * std::size_t(ny));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::int64_t(i);
+    // Centre first (the network grows outward from one seed), the rest shuffled.
+    const std::int64_t centre = std::int64_t(ny / 2) * nx + nx / 2;
+    std::swap(order[0], order[std::size_t(centre)]);
+    for (std::size_t i = order.size() - 1; i > 1; --i)
+      std::swap(order[i], order[1 + rng_.below(i)]);
+    for (std::int64_t cell : order) {
+      // Cells of the region's extent divided evenly (a region smaller than one spacing still
+      // gets its centre).
+      const Vec2 p{lo.x() + (double(cell % nx) + 0.5) * (hi.x() - lo.x()) / nx,
+                   lo.y() + (double(cell / nx) + 0.5) * (hi.y() - lo.y()) / ny};
+      if (!inside_region(p) || forbidden_at(p, true)) continue;
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < 0.75 * spacing) continue;
+      if (near_boundary(p)) continue;
+      const std::size_t j = std::size_t(rng_.below(junctions_.size()));
+      const int node = add_node(p);
+      ++report_.seeds;
+      planned_[std::size_t(node)] = int(junction_headings_[j].size());
+      have_degree_[std::size_t(std::min(planned_[std::size_t(node)], 6))] += 1.0;
+      junction_count_ += 1.0;
+      for (double h : junction_headings_[j]) push_stub(node, h);
+      drain();
+    }
+  }
+
+  // A straight link from node n along `heading` onto the first line ahead within `reach`, when
+  // valid: the node becomes a junction.
+  bool link_ahead(int n, double heading, double reach, int own_edge) {
+    const Vec2 p = out_.nodes[std::size_t(n)];
+    std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+    const auto hit = first_edge_hit(ray);
+    if (!hit || hit->edge == own_edge) return false;
+    truncate(ray, *hit);
+    const NetworkEdge& e = out_.edges[std::size_t(hit->edge)];
+    if (polyline_length(ray) < min_piece_ ||
+        distance(ray.back(), out_.nodes[std::size_t(e.from)]) < clearance_ ||
+        distance(ray.back(), out_.nodes[std::size_t(e.to)]) < clearance_ ||
+        meeting_angle(ray, e.points[std::size_t(hit->seg)], e.points[std::size_t(hit->seg) + 1]) <
+            kMinMeetingAngle ||
+        !valid(ray, true))
+      return false;
+    const int t = split_edge(hit->edge, hit->seg, ray.back());
+    ray.back() = out_.nodes[std::size_t(t)];
+    NetworkEdge link;
+    link.from = n;
+    link.to = t;
+    link.points = std::move(ray);
+    add_edge(std::move(link));
+    return true;
+  }
+
+  // Nodes left with two edges at a corner (a junction whose other stubs found nothing) would be
+  // merged into a bent edge the exemplar does not have: one of the edges is continued straight
+  // through the node onto the line ahead, making the corner a T-junction, when that is valid.
+  void close_corners() {
+    const std::size_t nodes = out_.nodes.size();
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (degree_[n] != 2 || out_.on_boundary[n]) continue;
+      std::vector<int> edges;
+      for (int e : incident_[n])
+        if (alive_[std::size_t(e)]) edges.push_back(e);
+      if (edges.size() != 2 || out_.edges[std::size_t(edges[0])].kept ||
+          out_.edges[std::size_t(edges[1])].kept)
+        continue;
+      double h[2];
+      for (int k = 0; k < 2; ++k) {
+        const NetworkEdge& e = out_.edges[std::size_t(edges[std::size_t(k)])];
+        h[k] = leaving(e.points, e.from == int(n));
+      }
+      if (std::abs(wrap(h[0] - h[1] - kPi)) < kCornerTurn) continue;  // nearly straight
+      for (int k = 0; k < 2; ++k)
+        if (link_ahead(int(n), h[k] + kPi, 1.5 * median_, edges[std::size_t(1 - k)])) break;
+    }
+  }
+
+  // Dangling ends beyond the exemplar's rate: joined onto the network straight ahead when a
+  // short, valid link exists, else short dead ends are pruned.
+  void close_dangling_ends() {
+    double length = 0.0;
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      length += polyline_length(out_.edges[i].points);
+    std::vector<int> ends;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n)
+      if (degree_[n] == 1 && !out_.on_boundary[n]) ends.push_back(int(n));
+    int dangling = int(ends.size());
+    for (int n : ends) {
+      if (dangling <= dangling_target_ * length) break;
+      if (degree_[std::size_t(n)] != 1) continue;
+      int edge = -1;
+      for (int i : incident_[std::size_t(n)])
+        if (alive_[std::size_t(i)]) edge = i;
+      if (edge < 0 || out_.edges[std::size_t(edge)].kept) continue;
+      const NetworkEdge& e = out_.edges[std::size_t(edge)];
+      const double ahead = leaving(e.points, e.from == n) + kPi;
+      const Vec2 p = out_.nodes[std::size_t(n)];
+      std::vector<Vec2> ray{p, p + Vec2{std::cos(ahead), std::sin(ahead)} * (0.6 * median_)};
+      if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
+        truncate(ray, *hit);
+        if (valid(ray, true)) {
+          const int t = split_edge(hit->edge, hit->seg, ray.back());
+          ray.back() = out_.nodes[std::size_t(t)];
+          NetworkEdge link;
+          link.from = n;
+          link.to = t;
+          link.points = std::move(ray);
+          add_edge(std::move(link));
+          --dangling;
+          continue;
+        }
+      }
+      const int other = e.from == n ? e.to : e.from;
+      if (polyline_length(e.points) < 0.5 * median_ && degree_[std::size_t(other)] >= 3) {
+        index_edge(edge, false);
+        alive_[std::size_t(edge)] = 0;
+        --degree_[std::size_t(n)];
+        --degree_[std::size_t(other)];
+        ++report_.pruned;
+        --dangling;
+      }
+    }
+  }
+
+  // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
+  Network finish() {
+    const std::size_t nn = out_.nodes.size();
+    std::vector<std::vector<int>> incident(nn);
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i]) {
+        incident[std::size_t(out_.edges[i].from)].push_back(int(i));
+        incident[std::size_t(out_.edges[i].to)].push_back(int(i));
+      }
+    const auto mergeable = [&](int n) {
+      const auto& inc = incident[std::size_t(n)];
+      return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
+             !out_.edges[std::size_t(inc[1])].kept;
+    };
+    Network net;
+    std::vector<int> id(nn, -1);
+    const auto keep = [&](int n) {
+      if (id[std::size_t(n)] < 0) {
+        id[std::size_t(n)] = int(net.nodes.size());
+        net.nodes.push_back(out_.nodes[std::size_t(n)]);
+        net.on_boundary.push_back(out_.on_boundary[std::size_t(n)]);
+      }
+      return id[std::size_t(n)];
+    };
+    std::vector<char> used(out_.edges.size(), 0);
+    const auto walk = [&](int start, int first) {
+      NetworkEdge merged = out_.edges[std::size_t(first)];
+      merged.points.clear();
+      merged.points.push_back(out_.nodes[std::size_t(start)]);
+      int at = start, edge = first;
+      while (true) {
+        used[std::size_t(edge)] = 1;
+        const NetworkEdge& e = out_.edges[std::size_t(edge)];
+        std::vector<Vec2> pts = e.points;
+        int next = e.to;
+        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
+        merged.points.insert(merged.points.end(), pts.begin() + 1, pts.end());
+        at = next;
+        if (at == start || !mergeable(at) || e.kept) break;
+        const auto& inc = incident[std::size_t(at)];
+        const int other = inc[0] == edge ? inc[1] : inc[0];
+        if (used[std::size_t(other)]) break;
+        edge = other;
+      }
+      if (merged.kept) merged.points = out_.edges[std::size_t(first)].points;
+      merged.from =
+          keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
+      merged.to = keep(merged.kept ? out_.edges[std::size_t(first)].to : at);
+      net.edges.push_back(std::move(merged));
+    };
+    for (std::size_t n = 0; n < nn; ++n)
+      if (!mergeable(int(n)))
+        for (int e : incident[n])
+          if (!used[std::size_t(e)]) walk(int(n), e);
+    for (std::size_t e = 0; e < out_.edges.size(); ++e)
+      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
+    return net;
+  }
+
+  const ForbiddenMask* forbidden_;
+  Raster<std::uint8_t> dilated_;
+  NetworkGrowthOptions options_;
+  NetworkGrowthReport& report_;
+  SplitMix64 rng_;
+
+  std::vector<Piece> pieces_;
+  std::vector<int> junctions_;
+  std::vector<std::vector<double>> junction_headings_;
+  double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
+  std::vector<double> length_edges_;
+  std::array<double, 7> target_degree_{}, have_degree_{};
+  std::array<double, 12> target_bearing_{}, have_bearing_{};
+  std::array<double, 12> target_length_{}, have_length_{};
+  double grown_length_ = 0.0, length_per_junction_ = 1.0;
+  double junctions() const {
+    double n = 0.0;
+    for (std::size_t d = 3; d < have_degree_.size(); ++d) n += have_degree_[d];
+    return n;
+  }
+  double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
+  int exemplar_nodes_ = 0;
+
+  BgMultiPolygon region_;
+  BgBox extent_;
+  bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
+  bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
+  bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
+
+  Network out_;
+  std::vector<int> degree_, planned_;
+  std::vector<std::vector<int>> incident_, stubs_of_;
+  std::vector<Stub> stubs_, failed_;
+  std::vector<char> cancelled_;
+  std::vector<char> alive_;
+  std::deque<Stub> queue_;
+};
+
+}  // namespace
+
+Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
+                     const ForbiddenMask* forbidden, const Network* partial,
+                     const NetworkGrowthOptions& options, NetworkGrowthReport* report) {
+  NetworkGrowthReport local;
+  Grower grower(exemplar, region, forbidden, options, report ? *report : local);
+  if (partial) grower.add_partial(*partial);
+  return grower.run();
+}
+
+}  // namespace tw

@@ -1,0 +1,53 @@
+#pragma once
+// Curve networks grown by example (docs/networks.md, "Growth"): a deterministic frontier of open
+// stubs (a node and a heading); each stub takes a whole exemplar edge (a piece), turned rigidly
+// to its heading, whose end becomes a junction with the exemplar's degree and outgoing angles,
+// or is snapped onto the network (T-junctions, closed cells). Pieces that would cross anything,
+// leave the region, enter a forbidden cell or come closer than the clearance are rejected; the
+// order in which pieces are tried follows the statistics still missing (degree, length and
+// bearing histograms), with seeded ties.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "network/network.hpp"
+#include "raster/polygon.hpp"
+
+namespace tw {
+
+struct NetworkGrowthOptions {
+  std::uint64_t seed = 1;
+  // Compass degrees: the exemplar's main bearing is turned to it (absent: kept as drawn).
+  std::optional<double> lead_bearing{};
+  double clearance = 0.0;  // metres between unrelated curves; 0: 6 % of the median edge length
+  double snap = 0.0;       // metres an end is pulled onto the network; 0: 35 % of the median
+  int candidates = 12;     // pieces tried per stub
+  // Pieces are strokes (edges chained across junctions where a line goes on nearly straight,
+  // their side junctions kept) rather than single edges.
+  bool strokes = true;
+};
+
+// Cells no curve may enter (non-zero), on any grid in the region's frame.
+struct ForbiddenMask {
+  GridSpec grid;
+  Raster<std::uint8_t> cells;
+};
+
+struct NetworkGrowthReport {
+  int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
+  int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;
+};
+
+// The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as
+// drawn (its edges come out with kept = true and their points unchanged) and completed: growth
+// starts from its dangling ends. Throws tw::Error for an exemplar without junctions or pieces,
+// a degenerate region or one too large for the exemplar's scale. Same inputs, same bytes.
+Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
+                     const ForbiddenMask* forbidden, const Network* partial,
+                     const NetworkGrowthOptions& options, NetworkGrowthReport* report = nullptr);
+
+// The most cells (region area / median edge length²) a growth takes on: about 10⁷ junctions.
+inline constexpr double kMaxNetworkCells = 2.0e7;
+
+}  // namespace tw

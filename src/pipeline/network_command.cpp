@@ -1,0 +1,321 @@
+#include "pipeline/network_command.hpp"
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "core/atomic_output.hpp"
+#include "core/error.hpp"
+#include "core/log.hpp"
+#include "core/output_guard.hpp"
+#include "core/warnings.hpp"
+#include "geo/heightfield.hpp"
+#include "network/check.hpp"
+#include "network/exemplar.hpp"
+#include "network/preview.hpp"
+#include "pipeline/detail/vector_inputs.hpp"
+#include "raster/rasterize.hpp"
+
+namespace tw {
+
+namespace {
+
+std::optional<std::vector<Polygon>> box_region(const std::string& text, const std::string& key) {
+  std::array<double, 4> v{};
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4)
+    return std::nullopt;
+  if (!(v[0] < v[2] && v[1] < v[3]))
+    fail("{} {}: a degenerate (zero-area) box: expected minx,miny,maxx,maxy with min < max", key,
+         text);
+  return std::vector<Polygon>{{{{v[0], v[1]}, {v[2], v[1]}, {v[2], v[3]}, {v[0], v[3]}}}};
+}
+
+std::vector<Polygon> region_of(const std::string& text, const std::string& key,
+                               const std::string& crs_wkt) {
+  if (text.empty()) fail("{} is required", key);
+  if (auto box = box_region(text, key)) return *box;
+  return read_region_polygons(text, "", crs_wkt, key);
+}
+
+// The user's lines as a planar graph (T-junctions noded), refused when they cross themselves or
+// leave the region.
+Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& region,
+                        const std::string& key, const std::string& source, Warnings& warnings) {
+  Network drawn;  // each line one edge, as drawn
+  for (std::size_t i = 0; i < lines.lines.size(); ++i) {
+    NetworkEdge e;
+    e.from = int(drawn.nodes.size());
+    drawn.nodes.push_back(lines.lines[i].front());
+    e.to = int(drawn.nodes.size());
+    drawn.nodes.push_back(lines.lines[i].back());
+    e.points = lines.lines[i];
+    e.fid = lines.fids[i];
+    drawn.edges.push_back(std::move(e));
+  }
+  const NetworkCheck outside = check_network(drawn, region, nullptr);
+  if (outside.outside > 0)
+    for (const NetworkEdge& e : drawn.edges)
+      if (check_network({{e.points.front(), e.points.back()}, {{0, 1, e.points, false, e.fid}}, {}},
+                        region, nullptr)
+              .outside > 0)
+        fail("{} {}: FID {}: outside the region", key, source, e.fid);
+  // Crossings: two lines meeting where neither ends.
+  for (std::size_t i = 0; i < drawn.edges.size(); ++i)
+    for (std::size_t j = i + 1; j < drawn.edges.size(); ++j) {
+      const auto& a = drawn.edges[i].points;
+      const auto& b = drawn.edges[j].points;
+      OGRLineString la, lb;
+      for (Vec2 p : a) la.addPoint(p.x, p.y);
+      for (Vec2 p : b) lb.addPoint(p.x, p.y);
+      if (!la.Intersects(&lb)) continue;
+      std::unique_ptr<OGRGeometry> common(la.Intersection(&lb));
+      bool bad = false;
+      const auto at_an_end = [&](double x, double y) {
+        const Vec2 p{x, y};
+        for (Vec2 q : {a.front(), a.back(), b.front(), b.back()})
+          if (distance(p, q) < 1e-9 * (1.0 + length(p))) return true;
+        return false;
+      };
+      const auto type = wkbFlatten(common->getGeometryType());
+      if (type == wkbPoint)
+        bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
+      else if (type == wkbMultiPoint)
+        for (const OGRPoint* p : *common->toMultiPoint())
+          bad = bad || !at_an_end(p->getX(), p->getY());
+      else
+        bad = !common->IsEmpty();
+      if (bad)
+        fail(
+            "{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
+            "ends)",
+            key, source, drawn.edges[i].fid, drawn.edges[j].fid);
+    }
+  NetworkLines in = lines;
+  in.region = region;
+  Network net = build_planar_network(in, 0.0, key, warnings);
+  for (NetworkEdge& e : net.edges) e.kept = true;
+  return net;
+}
+
+ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>& region,
+                             const std::string& crs_wkt, Warnings& warnings) {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (const Polygon& polygon : region)
+    for (Vec2 p : polygon.front()) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+  ForbiddenMask mask;
+  const double pixel = std::max({1.0, (hi.x - lo.x) / 4096.0, (hi.y - lo.y) / 4096.0});
+  mask.grid.width = int(std::ceil((hi.x - lo.x) / pixel)) + 2;
+  mask.grid.height = int(std::ceil((hi.y - lo.y) / pixel)) + 2;
+  mask.grid.origin_x = lo.x - pixel;
+  mask.grid.origin_y = hi.y + pixel;
+  mask.grid.pixel_width = mask.grid.pixel_height = pixel;
+  Heightfield frame;
+  frame.grid = mask.grid;
+  frame.crs_wkt = crs_wkt;
+  frame.source = "network region";
+  const AvoidanceInputs avoided =
+      detail::avoided_features(frame, c.avoid, c.avoid_width, "network.avoid", warnings);
+  const Window whole = Window::whole(mask.grid);
+  burn_polygons(avoided.polygons, mask.grid, whole, mask.cells, 1);
+  burn_buffered_lines(avoided.lines, avoided.line_widths, mask.grid, whole, mask.cells, 1);
+  return mask;
+}
+
+void create_field(OGRLayer& layer, const char* name, OGRFieldType type, const std::string& path) {
+  OGRFieldDefn field(name, type);
+  if (layer.CreateField(&field) != OGRERR_NONE) fail("{}: cannot add field {}", path, name);
+}
+
+void write_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
+                      const Network& grown, const NetworkLines* kept) {
+  GDALAllRegister();
+  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");  // same bytes
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
+  std::unique_ptr<GDALDataset> ds(
+      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!ds) fail("{}: cannot create the GeoPackage", path.string());
+  OGRSpatialReference srs;
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  const bool has_crs = !crs_wkt.empty() && srs.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE;
+  const std::vector<int> degree = grown.degrees();
+  {
+    OGRLayer* layer =
+        ds->CreateLayer("suggestions", has_crs ? &srs : nullptr, wkbLineString, nullptr);
+    if (!layer) fail("{}: cannot create layer 'suggestions'", path.string());
+    create_field(*layer, "from_node", OFTInteger, path.string());
+    create_field(*layer, "to_node", OFTInteger, path.string());
+    create_field(*layer, "length_m", OFTReal, path.string());
+    if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+    GIntBig fid = 1;
+    for (const NetworkEdge& e : grown.edges) {
+      if (e.kept) continue;
+      OGRFeature f(layer->GetLayerDefn());
+      f.SetFID(fid++);
+      f.SetField("from_node", e.from);
+      f.SetField("to_node", e.to);
+      f.SetField("length_m", polyline_length(e.points));
+      OGRLineString ls;
+      for (Vec2 p : e.points) ls.addPoint(p.x, p.y);
+      f.SetGeometry(&ls);
+      if (layer->CreateFeature(&f) != OGRERR_NONE) fail("{}: cannot write", path.string());
+    }
+    if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+  }
+  {
+    OGRLayer* layer = ds->CreateLayer("nodes", has_crs ? &srs : nullptr, wkbPoint, nullptr);
+    if (!layer) fail("{}: cannot create layer 'nodes'", path.string());
+    create_field(*layer, "degree", OFTInteger, path.string());
+    create_field(*layer, "on_boundary", OFTInteger, path.string());
+    if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+    for (std::size_t n = 0; n < grown.nodes.size(); ++n) {
+      OGRFeature f(layer->GetLayerDefn());
+      f.SetFID(GIntBig(n));
+      f.SetField("degree", degree[n]);
+      f.SetField("on_boundary", grown.on_boundary.empty() ? 0 : int(grown.on_boundary[n]));
+      OGRPoint p(grown.nodes[n].x, grown.nodes[n].y);
+      f.SetGeometry(&p);
+      if (layer->CreateFeature(&f) != OGRERR_NONE) fail("{}: cannot write", path.string());
+    }
+    if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+  }
+  if (kept) {
+    OGRLayer* layer = ds->CreateLayer("kept", has_crs ? &srs : nullptr, wkbLineString, nullptr);
+    if (!layer) fail("{}: cannot create layer 'kept'", path.string());
+    create_field(*layer, "source_fid", OFTInteger64, path.string());
+    if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+    for (std::size_t i = 0; i < kept->lines.size(); ++i) {
+      OGRFeature f(layer->GetLayerDefn());
+      f.SetFID(GIntBig(i + 1));
+      f.SetField("source_fid", GIntBig(kept->fids[i]));
+      OGRLineString ls;
+      for (Vec2 p : kept->lines[i]) ls.addPoint(p.x, p.y);
+      f.SetGeometry(&ls);
+      if (layer->CreateFeature(&f) != OGRERR_NONE) fail("{}: cannot write", path.string());
+    }
+    if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+  }
+}
+
+}  // namespace
+
+NetworkCommandResult run_network_command(const NetworkCommand& c) {
+  const std::string cmd = "network " + c.mode;
+  if (c.mode != "synthesize" && c.mode != "complete" && c.mode != "clone")
+    fail("network: unknown mode '{}' (synthesize, complete, clone)", c.mode);
+  if (c.out.empty()) fail("{}: --out is required", cmd);
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& s : {c.exemplar, c.partial, c.map})
+    if (!s.empty()) inputs.push_back(split_source(s).first);
+  require_safe_output(c.out, true, {.command = "network", .option = "--out", .inputs = inputs});
+  Warnings warnings;
+  NetworkSource exemplar_source;
+  std::optional<NetworkLines> kept_lines;
+  std::vector<Polygon> region;
+  NetworkLines exemplar_lines;
+  if (c.mode == "clone") {
+    if (c.map.empty()) fail("{}: --map is required", cmd);
+    if (c.source_region.empty()) fail("{}: --source-region is required", cmd);
+    if (c.target_region.empty()) fail("{}: --target-region is required", cmd);
+    exemplar_lines = read_network_lines({.source = c.map,
+                                         .where = c.exemplar_where,
+                                         .region = c.source_region,
+                                         .scale = c.scale,
+                                         .subject = "--map (in --source-region)"},
+                                        warnings);
+    region = region_of(c.target_region, "--target-region", exemplar_lines.crs_wkt);
+    // What is already in the target is kept: the map's lines inside it, if any.
+    try {
+      kept_lines = read_network_lines({.source = c.map,
+                                       .where = c.exemplar_where,
+                                       .region = c.target_region,
+                                       .scale = c.scale,
+                                       .subject = "--map (in --target-region)",
+                                       .min_lines = 1},
+                                      warnings);
+    } catch (const Error&) {
+      kept_lines.reset();  // nothing (or one line) there: the target is grown from scratch
+    }
+  } else {
+    if (c.exemplar.empty()) fail("{}: --exemplar is required", cmd);
+    exemplar_lines = read_network_lines({.source = c.exemplar,
+                                         .where = c.exemplar_where,
+                                         .region = c.exemplar_region,
+                                         .scale = c.scale,
+                                         .subject = "--exemplar"},
+                                        warnings);
+    region = region_of(c.region, "--region", exemplar_lines.crs_wkt);
+    if (c.mode == "complete") {
+      if (c.partial.empty()) fail("{}: --partial is required", cmd);
+      NetworkLines partial = read_network_lines(
+          {.source = c.partial, .scale = c.scale, .subject = "--partial", .min_lines = 1},
+          warnings);
+      kept_lines = std::move(partial);
+    }
+  }
+  double extent = 0.0;
+  {
+    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    for (const auto& l : exemplar_lines.lines)
+      for (Vec2 p : l)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    extent = std::max(hi.x - lo.x, hi.y - lo.y);
+  }
+  const double snap = c.snap > 0.0 ? c.snap : 1e-3 * extent;
+  const Network exemplar = build_planar_network(exemplar_lines, snap, "--exemplar", warnings);
+  std::optional<Network> partial;
+  if (kept_lines)
+    partial = partial_network(*kept_lines, region, c.mode == "clone" ? "--map" : "--partial",
+                              c.mode == "clone" ? c.map : c.partial, warnings);
+  std::optional<ForbiddenMask> forbidden;
+  if (!c.avoid.empty()) forbidden = forbidden_mask(c, region, exemplar_lines.crs_wkt, warnings);
+
+  NetworkCommandResult result;
+  const auto t0 = std::chrono::steady_clock::now();
+  Network grown;
+  try {
+    grown = grow_network(exemplar, region, forbidden ? &*forbidden : nullptr,
+                         partial ? &*partial : nullptr, c.growth, &result.growth);
+  } catch (const Error& e) {
+    fail("{} {}: {}", c.mode == "clone" ? "--target-region" : "--region",
+         c.mode == "clone" ? c.target_region : c.region, e.what());
+  }
+  result.growth_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  // The safety net: GEOS checks what is about to be written; any problem is a growth bug.
+  const NetworkCheck check = check_network(grown, region, forbidden ? &*forbidden : nullptr);
+  if (check.total() != 0)
+    fail("{}: {} crossings, {} outside the region, {} through avoided cells (a growth bug): {}",
+         cmd, check.crossings, check.outside, check.forbidden, check.first);
+  result.exemplar_edges = int(exemplar.edges.size());
+  result.nodes = int(grown.nodes.size());
+  for (const NetworkEdge& e : grown.edges) (e.kept ? result.kept_edges : result.suggested_edges)++;
+
+  OutputTransaction transaction;
+  write_geopackage(transaction.stage(c.out / "network.gpkg"), exemplar_lines.crs_wkt, grown,
+                   kept_lines ? &*kept_lines : nullptr);
+  Network kept_view, suggested_view;
+  for (const NetworkEdge& e : grown.edges) (e.kept ? kept_view : suggested_view).edges.push_back(e);
+  kept_view.nodes = suggested_view.nodes = grown.nodes;
+  write_network_png(transaction.stage(c.out / "preview.png"),
+                    {{region,
+                      {{&suggested_view, {30, 110, 40}, 2.0}, {&kept_view, {40, 40, 40}, 2.5}},
+                      forbidden ? &*forbidden : nullptr}},
+                    1024);
+  transaction.commit();
+  logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms", cmd,
+                result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms);
+  return result;
+}
+
+}  // namespace tw

@@ -1,0 +1,202 @@
+// `terraweave network synthesize|complete|clone` through the CLI (issue #20, docs/networks.md):
+// the GeoPackage holds suggestions that GEOS finds crossing nothing and inside the region, the
+// partial drawing comes back exactly, the same seed gives the same bytes, and every bad input is
+// one line naming the file, key or FID with nothing written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <fstream>
+#include <memory>
+
+#include "test_support.hpp"
+
+namespace tw::test {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kCrs = R"("crs":{"type":"name","properties":{"name":"EPSG:32631"}})";
+
+std::string lines_geojson(const std::vector<std::string>& coordinates) {
+  std::string features;
+  for (std::size_t i = 0; i < coordinates.size(); ++i)
+    features += std::string(i ? "," : "") + R"({"type":"Feature","id":)" + std::to_string(i + 1) +
+                R"(,"properties":{},"geometry":{"type":"LineString","coordinates":)" +
+                coordinates[i] + "}}";
+  return R"({"type":"FeatureCollection",)" + kCrs + R"(,"features":[)" + features + "]}";
+}
+
+// A small grid of fields in UTM 31N metres.
+std::string grid_exemplar() {
+  std::vector<std::string> lines;
+  for (int i = 0; i <= 6; ++i) {
+    const int x = 500000 + i * 100;
+    lines.push_back("[[" + std::to_string(x) + ",4000000],[" + std::to_string(x) + ",4000480]]");
+  }
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i < 6; ++i) {
+      if ((i + j) % 3 == 1 && j > 0 && j < 6) continue;
+      const int y = 4000000 + j * 80 + ((i * 7 + j) % 3) * 6 * (j > 0 && j < 6);
+      lines.push_back("[[" + std::to_string(500000 + i * 100) + "," + std::to_string(y) + "],[" +
+                      std::to_string(500000 + (i + 1) * 100) + "," + std::to_string(y) + "]]");
+    }
+  return lines_geojson(lines);
+}
+
+struct Layer {
+  std::vector<std::vector<std::pair<double, double>>> lines;
+};
+Layer read_layer(const fs::path& gpkg, const char* name) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
+                                                    nullptr, nullptr, nullptr));
+  Layer out;
+  if (!ds) return out;
+  OGRLayer* layer = ds->GetLayerByName(name);
+  if (!layer) return out;
+  for (auto& f : *layer) {
+    const OGRLineString* ls = f->GetGeometryRef()->toLineString();
+    auto& line = out.lines.emplace_back();
+    for (int i = 0; i < ls->getNumPoints(); ++i) line.push_back({ls->getX(i), ls->getY(i)});
+  }
+  return out;
+}
+
+// GEOS: pairs of suggested lines meeting where neither ends.
+int crossings(const Layer& layer) {
+  int count = 0;
+  for (std::size_t i = 0; i < layer.lines.size(); ++i)
+    for (std::size_t j = i + 1; j < layer.lines.size(); ++j) {
+      OGRLineString a, b;
+      for (auto [x, y] : layer.lines[i]) a.addPoint(x, y);
+      for (auto [x, y] : layer.lines[j]) b.addPoint(x, y);
+      if (!a.Intersects(&b)) continue;
+      std::unique_ptr<OGRGeometry> common(a.Intersection(&b));
+      const auto end = [&](double x, double y) {
+        for (const auto* l : {&layer.lines[i], &layer.lines[j]})
+          for (auto p : {l->front(), l->back()})
+            if (std::hypot(p.first - x, p.second - y) < 1e-6) return true;
+        return false;
+      };
+      if (wkbFlatten(common->getGeometryType()) == wkbPoint) {
+        if (!end(common->toPoint()->getX(), common->toPoint()->getY())) ++count;
+      } else if (wkbFlatten(common->getGeometryType()) == wkbMultiPoint) {
+        for (const OGRPoint* p : *common->toMultiPoint())
+          if (!end(p->getX(), p->getY())) ++count;
+      } else {
+        ++count;
+      }
+    }
+  return count;
+}
+
+class NetworkCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::ofstream(dir / "fields.geojson") << grid_exemplar();
+    exemplar = (dir / "fields.geojson").string();
+  }
+  CommandResult network(const std::string& args) {
+    return run_command(terraweave_binary().string() + " network " + args + " 2>&1");
+  }
+  TempDir dir;
+  std::string exemplar;
+  const std::string region = "500000,4000000,500900,4000700";
+};
+
+TEST_F(NetworkCommandTest, SynthesizeWritesLinesThatNeverCrossInsideTheRegionSameBytes) {
+  const CommandResult r = network("synthesize --exemplar " + exemplar + " --region " + region +
+                                  " --seed 4 --out " + (dir / "a").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("0 crossings"));
+  const Layer s = read_layer(dir / "a/network.gpkg", "suggestions");
+  ASSERT_GT(s.lines.size(), 20u);
+  EXPECT_EQ(crossings(s), 0);
+  for (const auto& line : s.lines)
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 500000 - 1e-6);
+      EXPECT_LE(x, 500900 + 1e-6);
+      EXPECT_GE(y, 4000000 - 1e-6);
+      EXPECT_LE(y, 4000700 + 1e-6);
+    }
+  EXPECT_TRUE(fs::exists(dir / "a/preview.png"));
+  ASSERT_EQ(network("synthesize --exemplar " + exemplar + " --region " + region +
+                    " --seed 4 --out " + (dir / "b").string())
+                .exit_code,
+            0);
+  EXPECT_EQ(read_file(dir / "a/network.gpkg"), read_file(dir / "b/network.gpkg"));
+  EXPECT_EQ(read_file(dir / "a/preview.png"), read_file(dir / "b/preview.png"));
+}
+
+TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget) {
+  std::ofstream(dir / "drawn.geojson")
+      << lines_geojson({"[[500050.125,4000300.5],[500450.25,4000302.75]]",
+                        "[[500450.25,4000302.75],[500449.5,4000650.0]]"});
+  const CommandResult r =
+      network("complete --exemplar " + exemplar + " --partial " + (dir / "drawn.geojson").string() +
+              " --region " + region + " --out " + (dir / "c").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Layer kept = read_layer(dir / "c/network.gpkg", "kept");
+  ASSERT_EQ(kept.lines.size(), 2u);
+  EXPECT_EQ(kept.lines[0].front(), (std::pair{500050.125, 4000300.5}));
+  EXPECT_EQ(kept.lines[1].back(), (std::pair{500449.5, 4000650.0}));
+  Layer all = read_layer(dir / "c/network.gpkg", "suggestions");
+  EXPECT_GT(all.lines.size(), 10u);
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), 0);
+
+  // Clone: the exemplar's western half into an empty box east of it.
+  std::ofstream(dir / "source.geojson")
+      << R"({"type":"FeatureCollection",)" + kCrs +
+             R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
+  const CommandResult c =
+      network("clone --map " + exemplar + " --source-region " + (dir / "source.geojson").string() +
+              " --target-region 500700,4000000,501300,4000480 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer cloned = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(cloned.lines.size(), 10u);
+  EXPECT_EQ(crossings(cloned), 0);
+}
+
+TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
+  std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
+  std::ofstream(dir / "bad.svg")
+      << R"(<svg><path d="M 0 0 L 10 0"/><rect x="1" y="1" width="2" height="2"/></svg>)";
+  std::ofstream(dir / "crossing.geojson") << lines_geojson(
+      {"[[500100,4000100],[500300,4000300]]", "[[500100,4000300],[500300,4000100]]"});
+  std::ofstream(dir / "outside.geojson") << lines_geojson(
+      {"[[500100,4000100],[500300,4000100]]", "[[500300,4000100],[509000,4000100]]"});
+  const std::string out = (dir / "never").string();
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"synthesize --exemplar " + (dir / "one.geojson").string() + " --region " + region,
+       "one.geojson: FID 1: a single line"},
+      {"synthesize --exemplar " + (dir / "bad.svg").string() + " --region 0,0,10,10",
+       "bad.svg: element 1 <rect>: not supported"},
+      {"synthesize --exemplar " + exemplar + " --region 500000,4000000,500000,4000700",
+       "--region 500000,4000000,500000,4000700: a degenerate (zero-area) box"},
+      {"synthesize --exemplar " + exemplar + " --region 0,0,1000000,1000000",
+       "1000000 km² is too large"},
+      {"complete --exemplar " + exemplar + " --partial " + (dir / "crossing.geojson").string() +
+           " --region " + region,
+       "crossing.geojson: FID 1 crosses FID 2"},
+      {"complete --exemplar " + exemplar + " --partial " + (dir / "outside.geojson").string() +
+           " --region " + region,
+       "outside.geojson: FID 2: outside the region"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = network(c.args + " --out " + out);
+    EXPECT_EQ(r.exit_code, 1) << c.args;
+    EXPECT_THAT(r.output, HasSubstr(c.message)) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("terraweave: error:"));
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace tw::test
