@@ -31,6 +31,7 @@
 #include "pipeline/export_command.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/schema.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/synthesis_job.hpp"
 #include "pipeline/version.hpp"
@@ -251,6 +252,9 @@ int main(int argc, char** argv) {
   CLI::App* validate =
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
+
+  CLI::App* schema = app.add_subcommand(
+      "schema", "print the JSON Schema of pipeline files (docs/pipeline.schema.json; for editors)");
 
   std::string diff_a, diff_b;
   CLI::App* diff = app.add_subcommand(
@@ -521,6 +525,10 @@ int main(int argc, char** argv) {
       return run_command(run_args, run_options);
     }
     if (validate->parsed()) return validate_command(validate_args, run_options);
+    if (schema->parsed()) {
+      std::fputs(tw::pipeline_schema_json().c_str(), stdout);
+      return 0;
+    }
     if (diff->parsed()) {
       try {
         return diff_command(diff_a, diff_b);
