@@ -16,6 +16,7 @@
 #include "pipeline/detail/grow_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/tag_config.hpp"
+#include "pipeline/detail/yaml_file.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -763,29 +764,7 @@ void check_input_paths(const PipelineConfig& config, bool allow_network) {
 
 PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides,
                              const Variables& variables) {
-  // Only a regular file of bounded size: a folder, a device (/dev/zero) or a FIFO would read
-  // nothing useful, or forever.
-  std::error_code error;
-  const fs::file_status status = fs::status(file, error);
-  if (!fs::exists(status)) fail("{}: cannot read the pipeline file: no such file", file.string());
-  if (fs::is_directory(status))
-    fail("{}: is a folder; give the pipeline file (YAML) itself", file.string());
-  if (!fs::is_regular_file(status))
-    fail("{}: not a regular file; a pipeline is a YAML file", file.string());
-  const auto too_large = [&] {
-    fail("{}: over {} MiB; a pipeline file is a few KiB of YAML", file.string(),
-         kMaxPipelineFileBytes >> 20);
-  };
-  if (fs::file_size(file, error) > kMaxPipelineFileBytes) too_large();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("{}: cannot read the pipeline file", file.string());
-  std::string text;
-  std::array<char, 65536> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {  // bounded, should it grow
-    text.append(chunk.data(), std::size_t(in.gcount()));
-    if (text.size() > kMaxPipelineFileBytes) too_large();
-  }
-  if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
+  const std::string text = detail::read_small_yaml_file(file, "pipeline");
   const fs::path folder = fs::absolute(file).parent_path();
   PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides, variables);
   config.file = file;
