@@ -140,8 +140,8 @@ int synth_feature_command(const std::string& plan, int feature) {
   return 0;
 }
 
-int complete_plan_command(const std::string& plan) {
-  const tw::PlannedJob job = tw::complete_job_plan(tw::find_plan_dir(plan));
+int complete_plan_command(const std::string& plan, bool strict) {
+  const tw::PlannedJob job = tw::complete_job_plan(tw::find_plan_dir(plan), strict);
   std::printf("plan %s: %zu tiles, %zu warnings, in %s\n", job.plan.c_str(), job.tiles,
               job.warnings, tw::single_line(job.plan_dir.string()).c_str());
   return 0;
@@ -541,6 +541,7 @@ int main(int argc, char** argv) {
     if (view->parsed())
       return view_command(view_options, view->count("--serve") > 0, serve_port.value_or(8000));
     if (area->parsed()) {
+      area_args.strict = run_options.strict;  // the global flag
       const tw::AreaCommandResult r = tw::run_area_command(area_args);
       std::printf(
           "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
@@ -549,6 +550,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (grow->parsed()) {
+      grow_args.strict = run_options.strict;  // the global flag
       const tw::GrowCommandResult r = tw::run_grow_command(grow_args);
       std::printf(
           "%d ornaments, %d elements, %d lines; coverage within %.1f m: %.3f (rejected: %d "
@@ -587,7 +589,7 @@ int main(int argc, char** argv) {
     }
     if (synth_feature->parsed())
       return synth_feature_command(synth_feature_plan, synth_feature_index);
-    if (complete->parsed()) return complete_plan_command(complete_plan);
+    if (complete->parsed()) return complete_plan_command(complete_plan, run_options.strict);
     if (render_tile->parsed()) return render_tile_command(render_plan, render_tile_index);
     if (finish->parsed()) return finish_command(finish_plan);
     if (synth->parsed()) {
