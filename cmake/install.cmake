@@ -5,6 +5,8 @@
 #   lib/pkgconfig/terraweave.pc                  pkg-config --cflags --libs terraweave
 #   share/terraweave/{kernels,samples,pipelines} OpenCL kernels (found relative to the program),
 #                                                the sample data and the pipelines that read it
+#   share/terraweave/docs/pipeline.schema.json   the pipelines' JSON Schema (they name it as
+#                                                ../docs/pipeline.schema.json, as in the source tree)
 #   share/man/man1/terraweave.1, share/bash-completion/completions/terraweave
 # Nothing installed names the build or the source tree: the kernels are found relative to the
 # program (core/resources.hpp) and three.js is compiled in (src/CMakeLists.txt).
@@ -48,6 +50,8 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/kernels/ DESTINATION ${CMAKE_INSTALL_DATAD
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/samples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/terraweave/samples)
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/pipelines/
   DESTINATION ${CMAKE_INSTALL_DATADIR}/terraweave/pipelines)
+install(FILES ${CMAKE_SOURCE_DIR}/docs/pipeline.schema.json
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/terraweave/docs)
 install(FILES ${CMAKE_SOURCE_DIR}/docs/man/terraweave.1 DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
 install(FILES ${CMAKE_SOURCE_DIR}/scripts/completion/terraweave
   DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions)

@@ -20,7 +20,7 @@ packages=(
   libgeographiclib-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
   libopenimageio-dev libopenexr-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
   libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev libcgal-dev
   nodejs

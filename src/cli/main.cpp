@@ -32,6 +32,7 @@
 #include "pipeline/export_command.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/schema.hpp"
 #include "pipeline/synth_command.hpp"
 #include "pipeline/synthesis_job.hpp"
 #include "pipeline/version.hpp"
@@ -140,8 +141,8 @@ int synth_feature_command(const std::string& plan, int feature) {
   return 0;
 }
 
-int complete_plan_command(const std::string& plan) {
-  const tw::PlannedJob job = tw::complete_job_plan(tw::find_plan_dir(plan));
+int complete_plan_command(const std::string& plan, bool strict) {
+  const tw::PlannedJob job = tw::complete_job_plan(tw::find_plan_dir(plan), strict);
   std::printf("plan %s: %zu tiles, %zu warnings, in %s\n", job.plan.c_str(), job.tiles,
               job.warnings, tw::single_line(job.plan_dir.string()).c_str());
   return 0;
@@ -254,6 +255,9 @@ int main(int argc, char** argv) {
   CLI::App* validate =
       app.add_subcommand("validate", "parse a pipeline and check its inputs; writes nothing");
   add_pipeline_args(*validate, validate_args);
+
+  CLI::App* schema = app.add_subcommand(
+      "schema", "print the JSON Schema of pipeline files (docs/pipeline.schema.json; for editors)");
 
   std::string diff_a, diff_b;
   CLI::App* diff = app.add_subcommand(
@@ -603,6 +607,10 @@ int main(int argc, char** argv) {
       return run_command(run_args, run_options);
     }
     if (validate->parsed()) return validate_command(validate_args, run_options);
+    if (schema->parsed()) {
+      std::fputs(tw::pipeline_schema_json().c_str(), stdout);
+      return 0;
+    }
     if (diff->parsed()) {
       try {
         return diff_command(diff_a, diff_b, !diff_no_verify);
@@ -615,6 +623,7 @@ int main(int argc, char** argv) {
     if (view->parsed())
       return view_command(view_options, view->count("--serve") > 0, serve_port.value_or(8000));
     if (area->parsed()) {
+      area_args.strict = run_options.strict;  // the global flag
       const tw::AreaCommandResult r = tw::run_area_command(area_args);
       std::printf(
           "%d instances, %d strokes in %d polygons (left out: %d outside, %d forbidden, "
@@ -623,6 +632,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (grow->parsed()) {
+      grow_args.strict = run_options.strict;  // the global flag
       const tw::GrowCommandResult r = tw::run_grow_command(grow_args);
       std::printf(
           "%d ornaments, %d elements, %d lines; coverage within %.1f m: %.3f (rejected: %d "
@@ -673,7 +683,7 @@ int main(int argc, char** argv) {
     }
     if (synth_feature->parsed())
       return synth_feature_command(synth_feature_plan, synth_feature_index);
-    if (complete->parsed()) return complete_plan_command(complete_plan);
+    if (complete->parsed()) return complete_plan_command(complete_plan, run_options.strict);
     if (render_tile->parsed()) return render_tile_command(render_plan, render_tile_index);
     if (finish->parsed()) return finish_command(finish_plan);
     if (synth->parsed()) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/error.hpp"
 #include "core/log.hpp"
 
 namespace tw {
@@ -24,6 +25,12 @@ std::string to_string(const Warning& warning) {
   // One line whatever the message holds: a newline in a value (a key, a path) must not let a
   // warning forge another line.
   return single_line(out);
+}
+
+void fail_if_strict(const std::vector<Warning>& warnings, bool strict) {
+  if (!strict || warnings.empty()) return;
+  fail("strict: {} warning{} (first: {}); nothing written", warnings.size(),
+       warnings.size() == 1 ? "" : "s", to_string(warnings.front()));
 }
 
 Warnings::Warnings(const Warnings& other) : list_(other.list()) {}

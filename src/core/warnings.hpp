@@ -44,4 +44,9 @@ class Warnings {
   std::vector<Warning> list_;
 };
 
+// Under strict (--strict, `strict: true`), any warning is an error, raised before anything is
+// written: "strict: N warnings (first: <warning>); nothing written". Every command calls it
+// before it stages its outputs.
+void fail_if_strict(const std::vector<Warning>& warnings, bool strict);
+
 }  // namespace tw

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "layers/detail/gdal_init.hpp"
+#include "layers/detail/hillshade.hpp"
 #include "layers/write.hpp"
 
 namespace tw {
@@ -137,16 +138,12 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
     }
   }
 
-  // Hillshade (sun from the north-west, 45 degrees up), slopes exaggerated 2x for legibility.
-  const double cell_x = g.pixel_width * factor, cell_y = g.pixel_height * factor;
-  const double azimuth = 315.0 * M_PI / 180.0, altitude = 45.0 * M_PI / 180.0;
-  const Vec2 sun{std::sin(azimuth) * std::cos(altitude), std::cos(azimuth) * std::cos(altitude)};
+  // Hillshade (sun from the north-west, 45 degrees up), slopes exaggerated 2x for legibility:
+  // GDAL's (detail/hillshade.hpp).
+  const Raster<float> light_of =
+      detail::hillshade(z, g.pixel_width * factor, g.pixel_height * factor);
   std::array<std::vector<std::uint8_t>, 3> rgb;
   for (auto& channel : rgb) channel.assign(std::size_t(w) * h, 0);
-  auto at = [&](int c, int r, double fallback) {
-    const float v = z.at(std::clamp(c, 0, w - 1), std::clamp(r, 0, h - 1));
-    return std::isfinite(v) ? double(v) : fallback;
-  };
   tbb::parallel_for(0, h, [&](int r) {
     for (int c = 0; c < w; ++c) {
       const std::size_t k = std::size_t(r) * w + c;
@@ -155,12 +152,7 @@ void write_preview_png(const LayerSet& set, const std::filesystem::path& path,
         for (auto& channel : rgb) channel[k] = 40;
         continue;
       }
-      const double dzdx = 2.0 * (at(c + 1, r, v) - at(c - 1, r, v)) / (2.0 * cell_x);
-      const double dzdy = 2.0 * (at(c, r - 1, v) - at(c, r + 1, v)) / (2.0 * cell_y);  // north up
-      const double norm = std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
-      // Slopes of extreme heights overflow to infinity: their shade (NaN) is full light.
-      const double lit = (-dzdx * sun.x - dzdy * sun.y + std::sin(altitude)) / norm;
-      const double shade = std::isnan(lit) ? 1.0 : std::clamp(lit, 0.0, 1.0);
+      const double shade = light_of.at(c, r);
       // The weighted mean of the material colours, the base (and whatever weight is missing)
       // in the elevation tint: weights sum to 1, so a pattern's share shows as its share.
       const Rgb tint = elevation_tint((v - lo) / range);

@@ -134,6 +134,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
   result.polygons = int(features.size());
   result.synthesis_ms = elapsed_ms(synthesis_started);
 
+  fail_if_strict(warnings.list(), c.strict);
   OutputTransaction transaction;
   detail::write_area_geopackage(transaction.stage(c.out / "shapes.gpkg"), frame.crs_wkt, results);
   detail::write_instances_csv(transaction.stage(c.out / "instances.csv"), results);

@@ -35,6 +35,7 @@ struct AreaCommand {
   AnalysisParams analysis;
   // A picture of the sketch's analysis levels (strokes -> shapes -> fibres -> medians -> leads).
   std::optional<std::filesystem::path> analysis_png;
+  bool strict = false;  // --strict: any warning fails the command, writing nothing
 };
 
 struct AreaCommandResult {

@@ -16,6 +16,7 @@
 #include "pipeline/detail/grow_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/tag_config.hpp"
+#include "pipeline/detail/yaml_file.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw {
@@ -74,16 +75,17 @@ LineRepair read_repair(const MapReader& m, LineRepair base) {
 }
 
 MapReader repair_reader(const MapReader& parent) {
-  return MapReader(parent.source(), parent.get("repair"), parent.path("repair"),
-                   {"merge_distance", "min_loop", "spike_angle"});
+  return MapReader(parent.source(), parent.get("repair"), parent.path("repair"), "repair");
 }
 
-// A width in metres: positive and at most kMaxFeatureWidth (geo/features.hpp).
+// A width in metres: positive and at most the key table's maximum (kMaxFeatureWidth,
+// geo/features.hpp).
 double read_width(const MapReader& m, const std::string& key) {
   const double width = m.positive(key);
-  if (width > kMaxFeatureWidth) {
+  const double limit = detail::numeric_form(m.spec(key)).maximum;
+  if (width > limit) {
     m.source().fail(m.get(key), m.path(key),
-                    fmt::format("must be at most {:g} m, got {:g}", kMaxFeatureWidth, width));
+                    fmt::format("must be at most {:g} m, got {:g}", limit, width));
   }
   return width;
 }
@@ -117,8 +119,11 @@ GenerateConfig read_generate(const MapReader& m) {
   g.height = m.int_or("height", g.height);
   for (const char* key : {"width", "height"}) {
     const int cells = key[0] == 'w' ? g.width : g.height;
-    if (cells < 2 || cells > 65536) {
-      m.source().fail(m.get(key), m.path(key), fmt::format("must be in [2, 65536], got {}", cells));
+    const detail::ValueForm& range = detail::numeric_form(m.spec(key));
+    if (cells < range.minimum || cells > range.maximum) {
+      m.source().fail(
+          m.get(key), m.path(key),
+          fmt::format("must be in [{:g}, {:g}], got {}", range.minimum, range.maximum, cells));
     }
   }
   g.pixel_size = m.positive_or("pixel_size", g.pixel_size);
@@ -140,9 +145,10 @@ GenerateConfig read_generate(const MapReader& m) {
 }
 
 // The `profile` keys are those of the feature's kind (terrain/features.hpp).
-// A length in metres >= 0 and at most `limit` (heights and depths: kMaxAbsHeight; widths:
-// kMaxFeatureWidth), so the terrain's heights stay finite floats.
-double metres_or(const MapReader& m, const std::string& key, double fallback, double limit) {
+// A length in metres >= 0 and at most the key table's maximum (heights and depths:
+// kMaxAbsHeight; widths: kMaxFeatureWidth), so the terrain's heights stay finite floats.
+double metres_or(const MapReader& m, const std::string& key, double fallback) {
+  const double limit = detail::numeric_form(m.spec(key)).maximum;
   const double value = m.non_negative_or(key, fallback);
   if (value > limit) {
     m.source().fail(m.get(key), m.path(key),
@@ -155,32 +161,28 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
                   FeatureClassConfig& f) {
   switch (f.kind) {
     case FeatureKind::road: {
-      const MapReader m(
-          src, node, path,
-          {"max_grade", "shoulder_width", "falloff", "smoothing", "max_cut", "max_fill"});
+      const MapReader m(src, node, path, "road_profile");
       f.road.max_grade = m.positive_or("max_grade", f.road.max_grade);
-      f.road.shoulder_width =
-          metres_or(m, "shoulder_width", f.road.shoulder_width, kMaxFeatureWidth);
-      f.road.falloff = metres_or(m, "falloff", f.road.falloff, kMaxFeatureWidth);
-      f.road.smoothing = metres_or(m, "smoothing", f.road.smoothing, kMaxFeatureWidth);
-      if (m.has("max_cut")) f.road.max_cut = metres_or(m, "max_cut", 0.0, kMaxAbsHeight);
-      if (m.has("max_fill")) f.road.max_fill = metres_or(m, "max_fill", 0.0, kMaxAbsHeight);
+      f.road.shoulder_width = metres_or(m, "shoulder_width", f.road.shoulder_width);
+      f.road.falloff = metres_or(m, "falloff", f.road.falloff);
+      f.road.smoothing = metres_or(m, "smoothing", f.road.smoothing);
+      if (m.has("max_cut")) f.road.max_cut = metres_or(m, "max_cut", 0.0);
+      if (m.has("max_fill")) f.road.max_fill = metres_or(m, "max_fill", 0.0);
       break;
     }
     case FeatureKind::river: {
-      const MapReader m(src, node, path,
-                        {"depth", "bank_width", "falloff", "min_slope", "max_carve"});
-      f.river.depth = metres_or(m, "depth", f.river.depth, kMaxAbsHeight);
-      f.river.bank_width = metres_or(m, "bank_width", f.river.bank_width, kMaxFeatureWidth);
-      f.river.falloff = metres_or(m, "falloff", f.river.falloff, kMaxFeatureWidth);
+      const MapReader m(src, node, path, "river_profile");
+      f.river.depth = metres_or(m, "depth", f.river.depth);
+      f.river.bank_width = metres_or(m, "bank_width", f.river.bank_width);
+      f.river.falloff = metres_or(m, "falloff", f.river.falloff);
       f.river.min_slope = m.non_negative_or("min_slope", f.river.min_slope);
       if (m.has("max_carve")) f.river.max_carve = m.non_negative_or("max_carve", 0.0);
       break;
     }
     case FeatureKind::ridge: {
-      const MapReader m(src, node, path, {"height", "falloff", "sharpness"});
-      f.ridge.height = metres_or(m, "height", f.ridge.height, kMaxAbsHeight);
-      f.ridge.falloff = metres_or(m, "falloff", f.ridge.falloff, kMaxFeatureWidth);
+      const MapReader m(src, node, path, "ridge_profile");
+      f.ridge.height = metres_or(m, "height", f.ridge.height);
+      f.ridge.falloff = metres_or(m, "falloff", f.ridge.falloff);
       f.ridge.sharpness = m.positive_or("sharpness", f.ridge.sharpness);
       break;
     }
@@ -201,7 +203,7 @@ std::vector<ExemplarBinding> read_bindings(const MapReader& m,
   std::vector<ExemplarBinding> out;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string key = list_key + "." + std::to_string(i);
-    const MapReader r(m.source(), list[i], key, {"exemplar", "where", "tags", "near_junction"});
+    const MapReader r(m.source(), list[i], key, "binding");
     ExemplarBinding& b = out.emplace_back();
     b.key = key;
     const YAML::Node e = r.get("exemplar");
@@ -357,11 +359,8 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
                                 kind_name));
   }
   if (m.has("grow")) {
-    f.grow = detail::read_grow(
-        MapReader(m.source(), m.get("grow"), m.path("grow"),
-                  {"element", "region", "resolution", "seed", "alignment", "first_fit", "trials",
-                   "max_ornaments", "max_elements", "coverage_radius", "clearance"}),
-        kind_name.empty() ? "road" : kind_name, seed, inputs);
+    f.grow = detail::read_grow(MapReader(m.source(), m.get("grow"), m.path("grow"), "grow"),
+                               kind_name.empty() ? "road" : kind_name, seed, inputs);
     if (m.has("tags") || m.has("width_attribute")) {
       const std::string key = m.has("tags") ? "tags" : "width_attribute";
       m.source().fail(m.get(key), m.path(key),
@@ -402,17 +401,13 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
                       "roads keep their line (bound their earthwork with profile.max_cut and "
                       "profile.max_fill); conform applies to rivers and ridges");
     }
-    const MapReader conform(m.source(), m.get("conform"), m.path("conform"), {"corridor"});
+    const MapReader conform(m.source(), m.get("conform"), m.path("conform"), "conform");
     f.conform_corridor = conform.positive("corridor");
   }
   f.repair = m.has("repair") ? read_repair(repair_reader(m), repair) : repair;
   if (m.has("synthesis")) {
     f.synthesis = read_synthesis(
-        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"),
-                  {"exemplar", "choose", "switch_cost", "bind", "width", "delta", "scale", "stitch",
-                   "empty_pieces", "min_coverage", "objective", "coverage_weight", "alpha",
-                   "feather", "seed", "backend", "height_detail", "channels"}),
-        seed, inputs);
+        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"), "synthesis"), seed, inputs);
   }
   return f;
 }
@@ -620,8 +615,7 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
       const std::string path = "export." + name;
       EngineExportOptions* e = add(name, entry.first, path);
       if (entry.second.IsNull()) continue;
-      const MapReader m(src, entry.second, path,
-                        {"size", "nodata_height", "height", "tile_size", "layers"});
+      const MapReader m(src, entry.second, path, "export_options");
       if (m.has("size")) {
         e->size = m.int_or("size", 0);
         if (!engine_takes_size(e->engine, e->size))
@@ -662,11 +656,7 @@ std::vector<EngineExportOptions> read_exports(const YamlSource& src, const YAML:
 }
 
 PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
-  const MapReader root(
-      src, tree, "",
-      {"version", "seed", "heightfield", "generate", "resolution", "output", "backend",
-       "precedence", "features", "existing", "synthesis_resolution", "synthesis_order", "region",
-       "resampling", "strict", "repair", "avoidance", "cache", "export"});
+  const MapReader root(src, tree, "", "root");
   PipelineConfig c;
   c.version = read_int(src, root.get("version"), "version");
   if (c.version != 1) src.fail(root.get("version"), "version", "only version 1 is supported");
@@ -678,9 +668,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.heightfield = input_file(root, "heightfield", InputFile::Kind::raster, c.inputs);
   }
   if (root.has("generate")) {
-    c.generate =
-        read_generate(MapReader(src, root.get("generate"), "generate",
-                                {"width", "height", "pixel_size", "relief", "crs", "origin"}));
+    c.generate = read_generate(MapReader(src, root.get("generate"), "generate", "generate"));
   }
   if (root.has("resolution")) c.resolution = root.positive("resolution");
   if (root.has("region")) c.region = read_region(src, root.get("region"));
@@ -688,9 +676,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                      ? Resampling::cubic
                      : Resampling::bilinear;
   if (root.has("output")) {
-    const MapReader out(src, root.get("output"), "output",
-                        {"dir", "formats", "exr", "geotiff", "preview", "tiles", "exr_half",
-                         "exr_compression", "compress", "predictor", "cog", "overviews", "crs"});
+    const MapReader out(src, root.get("output"), "output", "output");
     if (out.has("dir")) c.output.dir = out.file("dir");
     if (out.has("formats") && (out.has("exr") || out.has("geotiff")))
       src.fail(out.get("formats"), "output.formats",
@@ -700,8 +686,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     c.output.geotiff = out.bool_or("geotiff", c.output.geotiff);
     c.output.preview = out.bool_or("preview", c.output.preview);
     if (out.has("tiles"))
-      c.output.tiles =
-          read_tiles(MapReader(src, out.get("tiles"), "output.tiles", {"size", "overlap"}));
+      c.output.tiles = read_tiles(MapReader(src, out.get("tiles"), "output.tiles", "tiles"));
     read_output_encoding(out, c.output);
   } else {
     c.output.dir = src.resolve(c.output.dir.string(), "output.dir");
@@ -711,7 +696,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
              "no layer format left: output.formats needs exr or geotiff (or exr / geotiff true)");
   }
   if (root.has("avoidance")) {
-    const MapReader avoidance(src, root.get("avoidance"), "avoidance", {"max_distance"});
+    const MapReader avoidance(src, root.get("avoidance"), "avoidance", "avoidance");
     c.avoidance.max_distance = avoidance.positive_or("max_distance", c.avoidance.max_distance);
   }
   if (root.has("cache")) c.cache_dir = root.file("cache");
@@ -736,11 +721,8 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                                                 name, c.seed, c.inputs));
       continue;
     }
-    c.features.push_back(read_feature_class(
-        MapReader(src, entry.second, path,
-                  {"source", "layer", "where", "tags", "kind", "width_attribute", "width",
-                   "profile", "conform", "synthesis", "repair", "grow"}),
-        name, c.seed, c.repair, c.inputs));
+    c.features.push_back(read_feature_class(MapReader(src, entry.second, path, "line_class"), name,
+                                            c.seed, c.repair, c.inputs));
   }
   if (c.features.empty() && c.areas.empty())
     src.fail(root.get("features"), "features", "no feature classes");
@@ -754,8 +736,7 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
     if (!list.IsSequence()) src.fail(list, "existing", "expected a list of {source, layer}");
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string key = "existing." + std::to_string(i);
-      c.existing.push_back(read_existing(
-          MapReader(src, list[i], key, {"source", "layer", "where", "tags", "width"}), c.inputs));
+      c.existing.push_back(read_existing(MapReader(src, list[i], key, "existing"), c.inputs));
     }
   }
   return c;
@@ -816,29 +797,7 @@ void check_input_paths(const PipelineConfig& config, bool allow_network) {
 
 PipelineConfig load_pipeline(const fs::path& file, const std::vector<Override>& overrides,
                              const Variables& variables) {
-  // Only a regular file of bounded size: a folder, a device (/dev/zero) or a FIFO would read
-  // nothing useful, or forever.
-  std::error_code error;
-  const fs::file_status status = fs::status(file, error);
-  if (!fs::exists(status)) fail("{}: cannot read the pipeline file: no such file", file.string());
-  if (fs::is_directory(status))
-    fail("{}: is a folder; give the pipeline file (YAML) itself", file.string());
-  if (!fs::is_regular_file(status))
-    fail("{}: not a regular file; a pipeline is a YAML file", file.string());
-  const auto too_large = [&] {
-    fail("{}: over {} MiB; a pipeline file is a few KiB of YAML", file.string(),
-         kMaxPipelineFileBytes >> 20);
-  };
-  if (fs::file_size(file, error) > kMaxPipelineFileBytes) too_large();
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("{}: cannot read the pipeline file", file.string());
-  std::string text;
-  std::array<char, 65536> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {  // bounded, should it grow
-    text.append(chunk.data(), std::size_t(in.gcount()));
-    if (text.size() > kMaxPipelineFileBytes) too_large();
-  }
-  if (in.bad()) fail("{}: cannot read the pipeline file", file.string());
+  const std::string text = detail::read_small_yaml_file(file, "pipeline");
   const fs::path folder = fs::absolute(file).parent_path();
   PipelineConfig config = parse_pipeline(text, file.string(), folder, overrides, variables);
   config.file = file;

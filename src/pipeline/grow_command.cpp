@@ -127,6 +127,7 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
   std::vector<std::vector<Vec2>> drawn;
   for (const GrownLine& line : grown.lines) drawn.push_back(line.points);
 
+  fail_if_strict(warnings.list(), c.strict);
   OutputTransaction transaction;
   detail::write_ornament_geopackage(transaction.stage(c.out / "ornaments.gpkg"), frame.crs_wkt,
                                     {{"ornaments", set.kind, 0.0, &grown.lines, {}}});

@@ -24,6 +24,7 @@ struct GrowCommand : GrowSettings {
   std::vector<std::string> avoid;  // OGR sources no ornament may enter (lines buffered)
   double avoid_width = 10.0;
   std::filesystem::path out;     // folder: ornaments.gpkg, preview.png
+  bool strict = false;           // --strict: any warning fails the command, writing nothing
 };
 
 struct GrowCommandResult {

@@ -251,10 +251,7 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
     index_plan(plan);
   }
   plan.report.warnings = warnings.list();
-  if ((options.strict || config.strict) && !plan.report.warnings.empty()) {
-    fail("strict: {} warning{} (first: {}); nothing written", plan.report.warnings.size(),
-         plan.report.warnings.size() == 1 ? "" : "s", to_string(plan.report.warnings.front()));
-  }
+  fail_if_strict(plan.report.warnings, options.strict || config.strict);
   // job.json is written last, so the old plan.json is deleted first: a plan.json beside an
   // older job.json would be a mixed plan. An earlier plan's completion journal and finish
   // record go too (they would name this plan's hash when the inputs did not change).

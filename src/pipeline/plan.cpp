@@ -126,7 +126,8 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
   return {plan.existing.polygons, plan.existing.lines, plan.existing.line_widths};
 }
 
-void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan) {
+void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
+                  Warnings& warnings) {
   for (std::size_t c = 0; c < config.features.size(); ++c)
     if (config.features[c].synthesis && plan.report.classes[c].grow)
       plan.report.classes[c].grow->synthesis.emplace();
@@ -142,6 +143,17 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
       const bool bare = std::size_t(p.report.empty_pieces) == p.synthesis.placements.size();
       ++(bare ? feature_class.grow->synthesis->no_room : feature_class.grow->synthesis->dressed);
     }
+  }
+  // Bare lines are no error (short lines between joints), but a class none of whose lines
+  // took its pattern is a setting that does not fit (too wide, too long pieces).
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    const auto& grow = plan.report.classes[c].grow;
+    if (!grow || !grow->synthesis || grow->synthesis->dressed > 0 || grow->synthesis->no_room == 0)
+      continue;
+    warnings.add("grown_undressed", "features." + config.features[c].name, std::nullopt,
+                 fmt::format("synthesis dressed 0 of {} grown lines: every piece had no room "
+                             "(a narrower synthesis.width or a shorter delta may fit)",
+                             grow->synthesis->no_room));
   }
   plan_patterns(config, std::move(patterns), plan);
 }
@@ -340,7 +352,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // Collecting the plan: patterns and areas into its indexes, the tiles.
   clock.start("plan");
   if (patterns) {
-    detail::add_patterns(config, std::move(*patterns), plan);
+    detail::add_patterns(config, std::move(*patterns), plan, warnings);
   } else {
     plan.splat_materials = splat_materials();
   }

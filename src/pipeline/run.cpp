@@ -50,10 +50,7 @@ std::string layer_of_tile_file(const fs::path& name) {
 // Under strict, any warning is an error: raised before anything is staged for writing.
 void finish_warnings(const Warnings& warnings, bool strict, RunReport& report) {
   report.warnings = warnings.list();
-  if (strict && !report.warnings.empty()) {
-    fail("strict: {} warning{} (first: {}); nothing written", report.warnings.size(),
-         report.warnings.size() == 1 ? "" : "s", to_string(report.warnings.front()));
-  }
+  fail_if_strict(report.warnings, strict);
 }
 
 void write_report(const fs::path& path, const nlohmann::json& json) {

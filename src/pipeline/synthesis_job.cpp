@@ -292,7 +292,7 @@ bool resume_completion(const fs::path& plan_dir, std::string* plan, std::size_t*
 
 }  // namespace detail
 
-PlannedJob complete_job_plan(const fs::path& plan_dir) {
+PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
   const fs::path out =
       read_plan_file(plan_dir / "job.json", detail::kJobFormat).at("output_dir").get<std::string>();
   const OutputFolder lock(out);  // as plan: not while a run or a finish writes there
@@ -367,23 +367,22 @@ PlannedJob complete_job_plan(const fs::path& plan_dir) {
   if (!config.areas.empty())
     areas = detail::synthesize_plan_areas(config, plan, &run, area_warnings);
   const double area_seconds = seconds_since(areas_started);
-  detail::add_patterns(config, std::move(run), plan);
+  detail::add_patterns(config, std::move(run), plan, area_warnings);
   plan.report.stages.push_back({"synthesis", seconds});
+  if ((strict || config.strict) && !area_warnings.list().empty())
+    fail("strict: {} (the synthesis); nothing completed", to_string(area_warnings.list().front()));
   if (areas) {
-    if (config.strict && !area_warnings.list().empty())
-      fail("strict: {} (the areas' synthesis); nothing completed",
-           to_string(area_warnings.list().front()));
     detail::add_areas(config, std::move(*areas), plan);
     plan.report.stages.push_back({"areas", area_seconds});
-    // Appended as plan_world's Warnings would keep them: each once.
-    std::vector<Warning>& kept = plan.report.warnings;
-    for (const Warning& w : area_warnings.list())
-      if (std::none_of(kept.begin(), kept.end(), [&](const Warning& k) {
-            return k.code == w.code && k.subject == w.subject && k.fid == w.fid &&
-                   k.message == w.message;
-          }))
-        kept.push_back(w);
   }
+  // Appended as plan_world's Warnings would keep them: each once.
+  std::vector<Warning>& kept = plan.report.warnings;
+  for (const Warning& w : area_warnings.list())
+    if (std::none_of(kept.begin(), kept.end(), [&](const Warning& k) {
+          return k.code == w.code && k.subject == w.subject && k.fid == w.fid &&
+                 k.message == w.message;
+        }))
+      kept.push_back(w);
   index_plan(plan);
   // The complete plan's objects first (beside the incomplete plan's, which stays whole), then
   // the journal: from its rename on, the completion is decided, and resume_completion replaces

@@ -42,6 +42,7 @@ SynthesisJobResult synthesize_job_feature(const std::filesystem::path& plan_dir,
 // Completes a plan made with --synthesis tasks once every task has run: the plan's syntheses,
 // report and pattern index, written as plan_job would (a new plan hash; job.json follows).
 // A complete plan is left alone. Throws tw::Error naming the first feature not synthesized.
-PlannedJob complete_job_plan(const std::filesystem::path& plan_dir);
+// `strict` (--strict) or the pipeline's `strict`: a warning of the synthesis fails it.
+PlannedJob complete_job_plan(const std::filesystem::path& plan_dir, bool strict = false);
 
 }  // namespace tw

@@ -1,11 +1,14 @@
 // The preview shows every splat material, the ones a synthesized pattern adds included.
 #include <gdal_priv.h>
+#include <gdal_utils.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <set>
 
+#include "layers/detail/hillshade.hpp"
 #include "layers/write.hpp"
 #include "test_support.hpp"
 
@@ -109,6 +112,114 @@ TEST(Preview, ExtremeHeightsTintFromLowToHighAndInfinitiesAreNodata) {
   expect_near(pixel(dir / "extreme.png", 5, 10), lit_flat({96, 140, 80}));     // lowest stop
   expect_near(pixel(dir / "extreme.png", 30, 10), lit_flat({225, 215, 200}));  // highest stop
   EXPECT_EQ(pixel(dir / "extreme.png", 39, 0), (Rgb8{40, 40, 40}));
+}
+
+// samples/dem.tif (80 x 80 cells of 90 m, the Olinda DEM, samples/README.md) as read by GDAL.
+struct Dem {
+  Raster<float> heights;
+  double cell = 0.0;
+};
+Dem read_sample_dem() {
+  GDALAllRegister();
+  const std::string path = (test::source_dir() / "samples/dem.tif").string();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  EXPECT_TRUE(ds);
+  Dem dem{Raster<float>(ds->GetRasterXSize(), ds->GetRasterYSize(), 0.0f), 0.0};
+  double t[6];
+  ds->GetGeoTransform(t);
+  dem.cell = t[1];
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, dem.heights.width, dem.heights.height,
+                                           dem.heights.pixels.data(), dem.heights.width,
+                                           dem.heights.height, GDT_Float32, 0, 0),
+            CE_None);
+  return dem;
+}
+
+// The preview's light is GDAL's hillshade: every pixel of a preview of the sample DEM, all of it
+// under one material, is that material's colour times 0.35 + 0.75 x the light GDALDEMProcessing
+// ("hillshade", Zevenbergen-Thorne, z 2, edges computed) gives the DEM file itself.
+TEST(Preview, ShadesEveryPixelAsGdalDemProcessingDoes) {
+  const Dem dem = read_sample_dem();
+  const int w = dem.heights.width, h = dem.heights.height;
+  LayerSet set;
+  set.grid = GridSpec{w, h, 0.0, 0.0, dem.cell, dem.cell};
+  set.layers.push_back(height_layer(dem.heights));
+  SplatLayers splat;
+  splat.materials = {"road"};
+  splat.weights = {Raster<float>(w, h, 1.0f)};
+  set.layers.push_back(splat_layer(std::move(splat)));
+  test::TempDir dir;
+  write_preview_png(set, dir / "preview.png");
+
+  const std::string path = (test::source_dir() / "samples/dem.tif").string();
+  std::unique_ptr<GDALDataset> src(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+  const char* const args[] = {"-of", "MEM", "-alg", "ZevenbergenThorne", "-z", "2",
+                              "-compute_edges", nullptr};
+  GDALDEMProcessingOptions* options = GDALDEMProcessingOptionsNew(const_cast<char**>(args), nullptr);
+  std::unique_ptr<GDALDataset> shaded(GDALDataset::FromHandle(GDALDEMProcessing(
+      "", GDALDataset::ToHandle(src.get()), "hillshade", nullptr, options, nullptr)));
+  GDALDEMProcessingOptionsFree(options);
+  ASSERT_TRUE(shaded);
+  std::vector<std::uint8_t> gdal(std::size_t(w) * h);
+  ASSERT_EQ(shaded->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, gdal.data(), w, h, GDT_Byte,
+                                               0, 0),
+            CE_None);
+
+  std::unique_ptr<GDALDataset> png(GDALDataset::Open((dir / "preview.png").c_str(), GDAL_OF_RASTER));
+  ASSERT_TRUE(png);
+  std::vector<std::uint8_t> red(std::size_t(w) * h);
+  ASSERT_EQ(png->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, red.data(), w, h, GDT_Byte, 0, 0),
+            CE_None);
+  const Rgb8 road = preview_material_colour("splat.road");
+  int mismatched = 0;
+  std::set<int> levels;
+  for (std::size_t k = 0; k < gdal.size(); ++k) {
+    ASSERT_GE(gdal[k], 1) << "pixel " << k;  // no nodata in the sample
+    levels.insert(gdal[k]);
+    const double light = 0.35 + 0.75 * (float(gdal[k] - 1) / 254.0f);
+    const auto expected = std::uint8_t(std::clamp(float(road[0]) * light, 0.0, 255.0));
+    mismatched += red[k] != expected;
+  }
+  EXPECT_EQ(mismatched, 0);
+  EXPECT_GT(levels.size(), 100u);  // real relief: many shades, not a flat test
+}
+
+// GDAL's hillshade is the closed form the preview used to compute itself (central differences),
+// to GDAL's 254 steps. On the edges GDAL extrapolates the missing neighbour linearly (a one-sided
+// difference), where the old code repeated the edge cell (half the slope): edges now shade as
+// the interior does.
+TEST(Preview, GdalsHillshadeIsTheClosedFormWithinItsSteps) {
+  const Dem dem = read_sample_dem();
+  const Raster<float>& z = dem.heights;
+  const Raster<float> light = detail::hillshade(z, dem.cell, dem.cell);
+  const double azimuth = 315.0 * M_PI / 180.0, altitude = 45.0 * M_PI / 180.0;
+  double worst = 0.0, worst_corner = 0.0;
+  for (int r = 0; r < z.height; ++r)
+    for (int c = 0; c < z.width; ++c) {
+      const auto at = [&](int cc, int rr) {
+        if (cc >= 0 && rr >= 0 && cc < z.width && rr < z.height) return double(z.at(cc, rr));
+        return 2.0 * z.at(c, r) - z.at(2 * c - cc, 2 * r - rr);  // extrapolated
+      };
+      const double dzdx = 2.0 * (at(c + 1, r) - at(c - 1, r)) / (2.0 * dem.cell);
+      const double dzdy = 2.0 * (at(c, r - 1) - at(c, r + 1)) / (2.0 * dem.cell);
+      const double lit = (-dzdx * std::sin(azimuth) * std::cos(altitude) -
+                          dzdy * std::cos(azimuth) * std::cos(altitude) + std::sin(altitude)) /
+                         std::sqrt(dzdx * dzdx + dzdy * dzdy + 1.0);
+      const bool corner = (c == 0 || c == z.width - 1) && (r == 0 || r == z.height - 1);
+      const double d = std::abs(double(light.at(c, r)) - std::clamp(lit, 0.0, 1.0));
+      (corner ? worst_corner : worst) = std::max(corner ? worst_corner : worst, d);
+    }
+  EXPECT_LE(worst, 0.5 / 254.0 + 1e-6);
+  EXPECT_LE(worst_corner, 0.05);  // GDAL extrapolates a corner's two missing sides its own way
+  // Nodata (and infinities) stay nodata; their neighbours take the cell's own height.
+  Raster<float> holes = z;
+  holes.at(10, 10) = std::numeric_limits<float>::quiet_NaN();
+  holes.at(20, 20) = std::numeric_limits<float>::infinity();
+  const Raster<float> with_holes = detail::hillshade(holes, dem.cell, dem.cell);
+  EXPECT_TRUE(std::isnan(with_holes.at(10, 10)));
+  EXPECT_TRUE(std::isnan(with_holes.at(20, 20)));
+  EXPECT_TRUE(std::isfinite(with_holes.at(11, 10)));
+  EXPECT_TRUE(std::isfinite(with_holes.at(21, 20)));
 }
 
 TEST(Preview, UnknownMaterialsGetDistinctStableColours) {

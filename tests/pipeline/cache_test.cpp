@@ -2,8 +2,11 @@
 // changed road rebuilds exactly the syntheses whose inputs changed (worked out from the geometry
 // in cache_world.cpp, independently of the cache), a corrupt entry is detected and rebuilt, and
 // every output equals a clean run's, byte for byte.
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <map>
@@ -11,6 +14,7 @@
 #include <set>
 
 #include "cache_world.hpp"
+#include "core/error.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
 
@@ -199,6 +203,74 @@ TEST_F(CacheRun, CorruptEntriesAreDetectedAndRebuilt) {
   run("third");  // the rebuilt entries are whole again
   EXPECT_EQ(rebuilt("third"), std::set<int>{});
   expect_same_outputs("first", "third");
+}
+
+// Issue #24 item 8: a cache that cannot be written is a warning, and the run goes on without
+// it, its outputs those of a run without a cache.
+TEST_F(CacheRun, ACacheThatCannotBeCreatedIsAWarningAndTheRunGoesOnWithoutIt) {
+  run("plain", false);
+  std::ofstream(dir_ / "blocker") << "a file where the cache's parent folder should be\n";
+  const PipelineConfig config = parse_pipeline(kCachePipeline, "cache.yaml", dir_.path(),
+                                               {{"output.dir", (dir_ / "blocked").string()}});
+  RunOptions options;
+  options.cache_dir = dir_ / "blocker/cache";
+  const RunReport report = run_pipeline(config, options);
+  int unwritable = 0;
+  for (const Warning& w : report.warnings) {
+    if (w.code != "cache_unwritable") continue;
+    ++unwritable;
+    EXPECT_EQ(w.subject, "cache");
+    EXPECT_THAT(w.message, HasSubstr("blocker/cache: cannot create the folder: Not a directory"));
+    EXPECT_THAT(w.message, HasSubstr("the run goes on without storing in the cache"));
+  }
+  EXPECT_EQ(unwritable, 1);
+  expect_same_outputs("plain", "blocked");
+  // --strict makes the warning fail the run, as any other.
+  options.strict = true;
+  EXPECT_THROW(run_pipeline(config, options), Error);
+}
+
+TEST_F(CacheRun, AWriteThatFailsIsOneWarningWithTheReasonAndNothingStored) {
+  run("plain", false);
+  fs::create_directories(dir_ / "cache");
+  std::ofstream(dir_ / "cache/synthesis") << "a file where the entries' folder should be\n";
+  const RunReport report = run("failing");
+  std::vector<std::string> messages;
+  for (const Warning& w : report.warnings)
+    if (w.code == "cache_unwritable") messages.push_back(w.message);
+  ASSERT_EQ(messages.size(), 1u);  // the first failure; no store is tried after it
+  EXPECT_THAT(messages[0],
+              HasSubstr("cache: cannot create " + (dir_ / "cache/synthesis").string()));
+  EXPECT_THAT(messages[0], HasSubstr("Not a directory"));  // the OS's reason, kept
+  expect_same_outputs("plain", "failing");
+  EXPECT_EQ(rebuilt("failing").size(), 5u);
+}
+
+// A killed run leaves its temporaries (.<entry>.twc.tmp<pid>-<n>): the next run that finds no
+// other using the cache (its lock free) removes them; one beside a run in progress keeps them.
+TEST_F(CacheRun, TemporariesOfAKilledRunAreRemovedByTheNextRunAlone) {
+  run("first");
+  const std::vector<fs::path> stale = {dir_ / "cache/synthesis/.0123abcd.twc.tmp4242-17",
+                                       dir_ / "cache/synthesis/last/.roads_1.twc.tmp4242-18",
+                                       dir_ / "cache/tiles/.89ef.twc.tmp77-1"};
+  for (const fs::path& p : stale) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "half an entry";
+  }
+  std::ofstream(dir_ / "cache/synthesis/notes.txt") << "not a temporary";
+  {
+    // Another run holds the cache: nothing is swept under it.
+    const int fd = ::open((dir_ / "cache/.lock").c_str(), O_RDWR | O_CREAT, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_SH), 0);
+    run("second");
+    for (const fs::path& p : stale) EXPECT_TRUE(fs::exists(p)) << p;
+    ::close(fd);
+  }
+  run("third");
+  for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
+  EXPECT_TRUE(fs::exists(dir_ / "cache/synthesis/notes.txt"));
+  EXPECT_EQ(rebuilt("third"), std::set<int>{});  // the entries themselves kept
 }
 
 TEST_F(CacheRun, PipelineKeyNamesTheCacheRelativeToTheFile) {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "pipeline/config.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -77,6 +78,29 @@ TEST_F(CliOptions, AnUnknownOrMissingVariableNamesFileKeyAndVariable) {
                           "number or a string)"));
   r = terraweave("-q validate pipeline.yaml --vars none.yaml");
   EXPECT_THAT(r.output, HasSubstr("none.yaml: cannot read the variables file"));
+}
+
+// The variables file is bounded as the pipeline file is, before anything is read (issue #24
+// item 5: `--vars /dev/zero` was a bad_alloc after 28 s).
+TEST_F(CliOptions, AVariablesFileIsARegularFileOfBoundedSize) {
+  CommandResult r = terraweave("-q validate pipeline.yaml --vars /dev/zero");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(lines_of(r.output),
+              ElementsAre("terraweave: error: /dev/zero: not a regular file; a variables file is "
+                          "a YAML file"));
+  fs::create_directory(dir / "folder");
+  r = terraweave("-q validate pipeline.yaml --vars folder");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(lines_of(r.output),
+              ElementsAre("terraweave: error: folder: is a folder; give the variables file (YAML) "
+                          "itself"));
+  std::ofstream(dir / "big.yaml") << "seed: 5\n";
+  fs::resize_file(dir / "big.yaml", kMaxPipelineFileBytes + 1);  // sparse: nothing written
+  r = terraweave("-q validate pipeline.yaml --vars big.yaml");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(lines_of(r.output),
+              ElementsAre("terraweave: error: big.yaml: over 16 MiB; a variables file is a few KiB "
+                          "of YAML"));
 }
 
 TEST_F(CliOptions, GlobalFlagsWorkBeforeAndAfterTheSubcommand) {

@@ -99,7 +99,7 @@ TEST(PipelineConfigHardening, OnlyARegularFileOfBoundedSizeIsLoaded) {
   EXPECT_EQ(error_of([&] { load_pipeline(dir.path()); }),
             dir.path().string() + ": is a folder; give the pipeline file (YAML) itself");
   EXPECT_EQ(error_of([] { load_pipeline("/dev/zero"); }),
-            "/dev/zero: not a regular file; a pipeline is a YAML file");
+            "/dev/zero: not a regular file; a pipeline file is a YAML file");
   const fs::path big = dir / "big.yaml";
   {
     std::ofstream out(big);

@@ -129,6 +129,35 @@ TEST(GrowCommand, ABadElementFileIsOneErrorAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// A self-crossing (bowtie) field on the demo's hillside, EPSG:31985: read, it is repaired with a
+// `repaired` warning naming FID 0.
+void write_bowtie(const fs::path& path) {
+  std::ofstream(path) << R"({"type": "FeatureCollection",
+    "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::31985"}},
+    "features": [{"type": "Feature", "properties": {}, "geometry": {"type": "Polygon",
+     "coordinates": [[[291200, 9115250], [291400, 9115400], [291400, 9115250],
+                      [291200, 9115400], [291200, 9115250]]]}}]})";
+}
+
+// Issue #24 item 8: --strict applies to grow as to run: a warning fails it, writing nothing.
+TEST(GrowCommand, StrictFailsOnAWarningAndWritesNothing) {
+  TempDir dir;
+  write_bowtie(dir / "bowtie.geojson");
+  const std::string args = " grow --dem " + (source_dir() / "samples/dem.tif").string() +
+                           " --region " + (dir / "bowtie.geojson").string() + " --element " +
+                           (source_dir() / "samples/ornaments/hedge.json").string() + " --out ";
+  const auto strict = run_command(terraweave_binary().string() + " -q" + args +
+                                  (dir / "strict").string() + " --strict 2>&1");
+  EXPECT_EQ(strict.exit_code, 1);
+  EXPECT_THAT(strict.output, HasSubstr("strict: 1 warning (first: grow.region: FID 0: "));
+  EXPECT_THAT(strict.output, HasSubstr("nothing written"));
+  EXPECT_FALSE(fs::exists(dir / "strict"));
+  const auto plain =
+      run_command(terraweave_binary().string() + " -q" + args + (dir / "plain").string() + " 2>&1");
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_TRUE(fs::exists(dir / "plain/ornaments.gpkg"));
+}
+
 // What a `terraweave grow` run printed and wrote: its summary line and every line of
 // ornaments.gpkg with its attributes, as text (two runs compare equal when these are equal).
 struct GrowOutput {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "core/warnings.hpp"
 #include "layers/write.hpp"
 #include "pipeline/plan.hpp"
@@ -173,6 +174,36 @@ TEST_F(GrownSynthesis, ShortLinesAndLinesWithoutRoomAreCountedNotErrors) {
             w.synthesis->no_room);
   // A read line class without room still fails (patterns_test); a grown one only counts it.
   EXPECT_EQ(too_wide.pattern_violations, 0);
+}
+
+// Issue #24 item 8: a grown class none of whose lines took its pattern is a warning
+// (grown_undressed, naming the class and the count), so --strict fails the run, writing nothing.
+TEST_F(GrownSynthesis, AClassWithNoLineDressedWarnsAndFailsUnderStrict) {
+  // Every piece must be 99 % opaque: the hedge exemplar's fringes leave no position valid.
+  const std::vector<Override> none_fit = {{"features.hedges.synthesis.min_coverage", "0.99"}};
+  const RunReport report = run("bare", none_fit);
+  const GrowthReport& g = *report.classes.at(1).grow;
+  EXPECT_EQ(g.synthesis->dressed, 0);
+  ASSERT_GT(g.synthesis->no_room, 0);
+  const auto warning = std::find_if(report.warnings.begin(), report.warnings.end(),
+                                    [](const Warning& w) { return w.code == "grown_undressed"; });
+  ASSERT_NE(warning, report.warnings.end());
+  EXPECT_EQ(warning->subject, "features.hedges");
+  EXPECT_THAT(warning->message, ::testing::HasSubstr(fmt::format("dressed 0 of {} grown lines",
+                                                                 g.synthesis->no_room)));
+  RunOptions strict;
+  strict.strict = true;
+  try {
+    run("strict", none_fit, strict);
+    FAIL() << "--strict passed";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("strict: "));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("nothing written"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "strict"));
+  // A dressed class warns about nothing of the kind.
+  const RunReport dressed = run("dressed");
+  for (const Warning& w : dressed.warnings) EXPECT_NE(w.code, "grown_undressed");
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ for f in bin/terraweave lib/libtw_pipeline.a lib/libtw_core.a include/terraweave
   lib/cmake/terraweave/terraweaveConfig.cmake lib/cmake/terraweave/terraweaveTargets.cmake \
   lib/pkgconfig/terraweave.pc share/terraweave/kernels/row_update.cl \
   share/terraweave/pipelines/demo.yaml share/terraweave/samples/dem.tif \
+  share/terraweave/docs/pipeline.schema.json \
   share/man/man1/terraweave.1 share/bash-completion/completions/terraweave; do
   [ -f "$p/$f" ] || fail "not installed: $f"
 done
@@ -30,6 +31,9 @@ if readelf -d "$p/bin/terraweave" | grep -E "RPATH|RUNPATH"; then fail "the prog
 cflags=$(PKG_CONFIG_PATH="$p/lib/pkgconfig" pkg-config --cflags terraweave)
 [[ "$cflags" == *"-I$p/lib/pkgconfig/../../include/terraweave"* ]] || fail "pkg-config: $cflags"
 bash -n "$p/share/bash-completion/completions/terraweave" || fail "bash completion"
+# The pipelines name their schema as ../docs/pipeline.schema.json: the program's own.
+cmp <("$p/bin/terraweave" schema) "$p/share/terraweave/docs/pipeline.schema.json" ||
+  fail "the installed schema is not the program's"
 
 # The commands, from the moved prefix only. `hide` runs them with both trees hidden.
 cat >"$work/commands.sh" <<'COMMANDS'

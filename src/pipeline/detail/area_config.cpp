@@ -26,7 +26,7 @@ void read_lead(const MapReader& m, AreaClassConfig& a) {
   const YAML::Node node = m.get("lead");
   const std::string key = m.path("lead");
   if (node.IsMap()) {
-    const MapReader lead(m.source(), node, key, {"bearing"});
+    const MapReader lead(m.source(), node, key, "lead");
     a.lead = AreaLead::bearing;
     a.bearing_deg = read_double(m.source(), lead.get("bearing"), lead.path("bearing"));
     if (!std::isfinite(a.bearing_deg))
@@ -83,9 +83,7 @@ void read_materials(const MapReader& m, AreaClassConfig& a) {
 
 MapReader area_class_reader(const YamlSource& src, const YAML::Node& node,
                             const std::string& path) {
-  return MapReader(src, node, path,
-                   {"kind", "source", "layer", "where", "tags", "sketch", "shapes_from", "scale",
-                    "lead", "jitter", "materials", "height", "seed"});
+  return MapReader(src, node, path, "area_class");
 }
 
 bool is_area_class(const YAML::Node& node) {

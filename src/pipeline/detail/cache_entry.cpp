@@ -1,5 +1,7 @@
 #include "pipeline/detail/cache_entry.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -62,12 +64,15 @@ void write_cache_entry(const fs::path& path, const CacheSections& sections) {
   const fs::path temporary =
       path.parent_path() / ("." + path.filename().string() + ".tmp" + unique_suffix());
   {
+    errno = 0;
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(file.data(), std::streamsize(file.size()));
     out.close();
     if (!out) {
+      // The reason (a full disk, no permission) is errno's: kept before remove() can change it.
+      const std::string reason = errno ? std::strerror(errno) : "write failed";
       fs::remove(temporary, ec);
-      fail("cache: cannot write {}", temporary.string());
+      fail("cache: cannot write {}: {}", temporary.string(), reason);
     }
   }
   fs::rename(temporary, path, ec);
@@ -144,6 +149,64 @@ void prepare_cache_dir(const fs::path& dir) {
   out << "Signature: 8a477f597d28d172789f06886806bc55\n"
          "# This file is a cache directory tag created by terraweave (docs/cache.md).\n";
   if (!out) fail("--cache {}: cannot write {}", dir.string(), tag.string());
+}
+
+namespace {
+
+// A temporary of write_cache_entry: ".<name>.twc.tmp<pid>-<n>".
+bool is_cache_temporary(const fs::path& file) {
+  const std::string name = file.filename().string();
+  return name.starts_with(".") && name.find(".twc.tmp") != std::string::npos;
+}
+
+}  // namespace
+
+CacheFolder::CacheFolder(const fs::path& dir, Warnings& warnings) : warnings_(warnings) {
+  try {
+    prepare_cache_dir(dir);
+  } catch (const Error& e) {
+    give_up(e.what());
+    return;
+  }
+  const fs::path lock = dir / ".lock";
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) {
+    give_up(fmt::format("--cache {}: cannot open {}: {}", dir.string(), lock.string(),
+                        std::strerror(errno)));
+    return;
+  }
+  // Alone (an exclusive lock granted at once): no other run writes here, so every temporary is
+  // a killed run's. Then shared, as every run holds it.
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) == 0) {
+    std::error_code ec;
+    for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last"}) {
+      for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code removed;
+        if (is_cache_temporary(it->path()) && fs::remove(it->path(), removed)) ++swept_;
+      }
+      ec.clear();
+    }
+  }
+  ::flock(lock_fd_, LOCK_SH);
+}
+
+CacheFolder::~CacheFolder() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+}
+
+void CacheFolder::give_up(const std::string& problem) {
+  if (writable_.exchange(false))
+    warnings_.add("cache_unwritable", "cache", std::nullopt,
+                  problem + "; the run goes on without storing in the cache");
+}
+
+void CacheFolder::write(const fs::path& path, const CacheSections& sections) {
+  if (!writable_) return;
+  try {
+    write_cache_entry(path, sections);
+  } catch (const Error& e) {
+    give_up(e.what());
+  }
 }
 
 }  // namespace tw::detail

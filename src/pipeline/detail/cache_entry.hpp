@@ -7,10 +7,13 @@
 // Layout: "TWCACHE1" (8 bytes), payload size (u64 LE), checksum of the payload (16 bytes:
 // high, low, u64 LE each), payload = sections, each: name size (u64), name, data size (u64),
 // data.
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
+
+#include "core/warnings.hpp"
 
 namespace tw::detail {
 
@@ -37,5 +40,31 @@ void touch_cache_entry(const std::filesystem::path& path);
 // Creates `dir` with a CACHEDIR.TAG (the Cache Directory Tagging Specification: backup tools
 // skip the folder). Throws tw::Error naming it when it cannot be created.
 void prepare_cache_dir(const std::filesystem::path& dir);
+
+// The cache folder as one run uses it: prepared (prepare_cache_dir) and share-locked
+// (<dir>/.lock, flock) while the run lasts. The first run to find no other holding it sweeps the
+// temporaries (.<entry>.tmp*) a killed run left behind: no run is writing them. A folder that
+// cannot be prepared, locked or written (no permission, a full disk) is no error: a warning
+// `cache_unwritable` says why, once, and the run goes on without storing in the cache (reading
+// what is there still serves).
+class CacheFolder {
+ public:
+  CacheFolder(const std::filesystem::path& dir, Warnings& warnings);
+  ~CacheFolder();
+  CacheFolder(const CacheFolder&) = delete;
+  CacheFolder& operator=(const CacheFolder&) = delete;
+
+  // write_cache_entry, unless an earlier write failed; a failure is the warning. Any thread.
+  void write(const std::filesystem::path& path, const CacheSections& sections);
+  int swept() const { return swept_; }  // temporaries removed
+
+ private:
+  void give_up(const std::string& problem);
+
+  Warnings& warnings_;
+  int lock_fd_ = -1;
+  std::atomic<bool> writable_{true};
+  int swept_ = 0;
+};
 
 }  // namespace tw::detail

@@ -32,7 +32,7 @@ void read_region(const MapReader& m, GrowConfig& g, std::vector<InputFile>& inpu
   }
   if (!node.IsMap())
     m.source().fail(node, key, "expected [minx, miny, maxx, maxy] or {source, layer, where}");
-  const MapReader r(m.source(), node, key, {"source", "layer", "where"});
+  const MapReader r(m.source(), node, key, "grow_region");
   g.region_source = r.file("source");
   inputs.push_back({g.region_source, InputFile::Kind::vector,
                     r.source().named_at(r.get("source"), r.path("source"))});
@@ -40,7 +40,11 @@ void read_region(const MapReader& m, GrowConfig& g, std::vector<InputFile>& inpu
   g.region_where = r.string_or("where", "");
 }
 
-int int_in(const MapReader& m, const std::string& key, int fallback, int lo, int hi) {
+// An integer within the key table's range of `key`.
+int int_in(const MapReader& m, const std::string& key, int fallback) {
+  const ValueForm& range = numeric_form(m.spec(key));
+  const int lo = int(range.minimum);
+  const int hi = int(range.maximum);
   const int value = m.int_or(key, fallback);
   if (value < lo || value > hi)
     m.source().fail(m.get(key), m.path(key),
@@ -106,9 +110,9 @@ GrowConfig read_grow(const MapReader& m, const std::string& kind, std::uint64_t 
     s.contour = value == "contour";
   }
   s.first_fit = m.bool_or("first_fit", s.first_fit);
-  s.trials = int_in(m, "trials", s.trials, 1, 1000);
-  s.max_ornaments = int_in(m, "max_ornaments", s.max_ornaments, 1, 100000);
-  s.max_elements = int_in(m, "max_elements", s.max_elements, 1, 10000000);
+  s.trials = int_in(m, "trials", s.trials);
+  s.max_ornaments = int_in(m, "max_ornaments", s.max_ornaments);
+  s.max_elements = int_in(m, "max_elements", s.max_elements);
   if (m.has("coverage_radius")) s.coverage_radius = m.positive("coverage_radius");
   if (m.has("clearance")) s.clearance = m.non_negative_or("clearance", 0.0);
   return g;

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/grid_limits.hpp"
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
 #include "ornament/crossings.hpp"
@@ -34,13 +35,21 @@ std::vector<Polygon> region_of(const FeatureClassConfig& c, const Heightfield& h
 }
 
 // The mesh's grid: the heightfield's origin at `resolution` metres (the heightfield's own by
-// default), so that the growth does not depend on the output grid unless asked to.
-GridSpec mesh_grid(const GridSpec& grid, double resolution) {
+// default), so that the growth does not depend on the output grid unless asked to. Bounded
+// before anything is allocated by the check `terraweave grow --resolution` meets when it
+// resamples the DEM (core/grid_limits.hpp): the heightfield's extent at that resolution.
+GridSpec mesh_grid(const GridSpec& grid, double resolution, const std::string& key) {
   if (resolution <= 0.0) return grid;
+  const double columns = std::ceil(grid.width * grid.pixel_width / resolution);
+  const double rows = std::ceil(grid.height * grid.pixel_height / resolution);
+  require_grid_size(columns, rows,
+                    fmt::format("{}.grow.resolution: {} m over the {:.0f} x {:.0f} m heightfield",
+                                key, resolution, grid.width * grid.pixel_width,
+                                grid.height * grid.pixel_height));
   GridSpec mesh = grid;
   mesh.pixel_width = mesh.pixel_height = resolution;
-  mesh.width = std::max(2, int(std::ceil(grid.width * grid.pixel_width / resolution)));
-  mesh.height = std::max(2, int(std::ceil(grid.height * grid.pixel_height / resolution)));
+  mesh.width = std::max(2, int(columns));
+  mesh.height = std::max(2, int(rows));
   return mesh;
 }
 
@@ -144,6 +153,10 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
   std::vector<GrownClass> out;
   HeightSampler sampler(source);
   std::map<std::size_t, std::optional<ForbiddenCells>> forbidden_cells;  // by class
+  // Every class's mesh is bounded before any class grows: a later class's resolution fails
+  // the run at once, not after the classes before it.
+  for (const FeatureClassConfig& fc : config.features)
+    if (fc.grow) mesh_grid(heightfield.grid, fc.grow->settings.resolution, "features." + fc.name);
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& fc = config.features[c];
     if (!fc.grow) continue;
@@ -165,7 +178,7 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
     grown.class_index = c;
     grown.kind = g.kind;
     grown.height_m = profile_height(fc);
-    const GridSpec mesh = mesh_grid(heightfield.grid, g.settings.resolution);
+    const GridSpec mesh = mesh_grid(heightfield.grid, g.settings.resolution, key);
     const Window window = window_around(region, mesh);
     if (region.empty() || window.width < 2 || window.height < 2) {
       warnings.add("empty_class", key, std::nullopt,

@@ -18,7 +18,10 @@ ExistingFeatures existing_features(const WorldPlan& plan);
 // The syntheses' reports and cache statuses into plan.report, the patterns as the renderer needs
 // them into plan.patterns, their exemplars and splat materials (plan_world does the same).
 // Throws tw::Error naming the class and the channel when an exemplar lacks a mapped channel.
-void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan);
+// A grown class whose synthesis dressed none of its lines warns (`grown_undressed`), so that
+// --strict fails it.
+void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
+                  Warnings& warnings);
 
 // The areas as the renderer needs them, replacing those the plan held: their splat materials
 // after the patterns' (call add_patterns first), the output pixels their strokes can touch,

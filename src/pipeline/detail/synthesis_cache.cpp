@@ -109,7 +109,7 @@ ContentHash SynthesisKey::combined() const {
 
 SynthesisCache::SynthesisCache(std::optional<fs::path> dir, Warnings& warnings)
     : dir_(std::move(dir)), warnings_(warnings) {
-  if (dir_) prepare_cache_dir(*dir_);
+  if (dir_) folder_ = std::make_unique<CacheFolder>(*dir_, warnings_);
 }
 
 ContentHash SynthesisCache::exemplar_hash(const fs::path& path) {
@@ -283,12 +283,12 @@ void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
     for (const Vec2 p : start->points) points.push_back({p.x, p.y});
     meta["start"] = std::move(points);
   }
-  write_cache_entry(entry_path(combined),
-                    {{"meta", meta.dump()},
-                     {"placements", placements_to_json(synthesis, report.exemplar)},
-                     {"opaque", encode_opaque(opaque)},
-                     {"report", std::string(report_cbor.begin(), report_cbor.end())}});
-  write_cache_entry(last_path(name), {{"name", name}, {"parts", encode_parts(key)}});
+  folder_->write(entry_path(combined),
+                 {{"meta", meta.dump()},
+                  {"placements", placements_to_json(synthesis, report.exemplar)},
+                  {"opaque", encode_opaque(opaque)},
+                  {"report", std::string(report_cbor.begin(), report_cbor.end())}});
+  folder_->write(last_path(name), {{"name", name}, {"parts", encode_parts(key)}});
 }
 
 }  // namespace tw::detail

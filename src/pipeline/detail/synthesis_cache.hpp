@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "geo/features.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/run.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/sparse_raster.hpp"
@@ -78,6 +80,7 @@ class SynthesisCache {
 
   std::optional<std::filesystem::path> dir_;
   Warnings& warnings_;
+  std::unique_ptr<CacheFolder> folder_;  // with dir_: locked and written through
   std::map<std::filesystem::path, ContentHash> exemplars_;
 };
 

@@ -97,7 +97,7 @@ ContentHash TileKey::combined() const {
 TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::optional<fs::path> dir,
                      Warnings& warnings)
     : plan_(plan), dir_(std::move(dir)), warnings_(warnings) {
-  if (dir_) prepare_cache_dir(*dir_);
+  if (dir_) folder_ = std::make_unique<CacheFolder>(*dir_, warnings_);
   Hasher c;
   c.u64(kTileCacheFormat).text(version_line());
   const GridSpec& g = plan.grid;
@@ -256,11 +256,11 @@ void TileCache::store(const std::string& name, const TileKey& key, const CacheSe
   const ContentHash combined = key.combined();
   CacheSections sections = files;
   sections["key"] = combined.hex();
-  write_cache_entry(*dir_ / "tiles" / (combined.hex() + ".twc"), sections);
-  write_cache_entry(*dir_ / "tiles" / "last" / (name + ".twc"),
-                    {{"heightfield", key.heightfield.hex()},
-                     {"features", key.features.hex()},
-                     {"config", key.config.hex()}});
+  folder_->write(*dir_ / "tiles" / (combined.hex() + ".twc"), sections);
+  folder_->write(*dir_ / "tiles" / "last" / (name + ".twc"),
+                 {{"heightfield", key.heightfield.hex()},
+                  {"features", key.features.hex()},
+                  {"config", key.config.hex()}});
 }
 
 TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager& output,

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -63,6 +64,7 @@ class TileCache {
   const WorldPlan& plan_;
   std::optional<std::filesystem::path> dir_;
   Warnings& warnings_;
+  std::unique_ptr<CacheFolder> folder_;                    // with dir_: locked and written through
   ContentHash config_;                                     // what every tile shares
   std::vector<ContentHash> terrain_, ribbons_, patterns_, areas_;  // by plan index
 };

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "pipeline/detail/yaml_file.hpp"
 
 namespace tw::detail {
 namespace {
@@ -91,17 +92,11 @@ void substitute_variables(YAML::Node root, const Variables& variables,
 namespace tw {
 
 Variables load_variables(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in || std::filesystem::is_directory(file))
-    fail("{}: cannot read the variables file", file.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (text.str().size() > kMaxPipelineFileBytes)
-    fail("{}: over {} MiB; a variables file is a few lines of YAML", file.string(),
-         kMaxPipelineFileBytes >> 20);
+  // Bounded before anything is read: `--vars /dev/zero` was a bad_alloc after 28 s.
+  const std::string text = detail::read_small_yaml_file(file, "variables");
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     fail("{}:{}:{}: invalid YAML: {}", file.string(), e.mark.line + 1, e.mark.column + 1, e.msg);
   }

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <yaml-cpp/eventhandler.h>
 
@@ -302,11 +303,16 @@ std::string read_string(const YamlSource& src, const YAML::Node& node,
 }
 
 MapReader::MapReader(const YamlSource& src, const YAML::Node& node, std::string key_path,
-                     std::initializer_list<std::string_view> allowed_keys)
-    : src_(src), node_(node), key_path_(std::move(key_path)) {
+                     std::string_view block_name)
+    : MapReader(src, node, std::move(key_path), pipeline_block(block_name)) {}
+
+MapReader::MapReader(const YamlSource& src, const YAML::Node& node, std::string key_path,
+                     const KeyBlock& block)
+    : src_(src), block_(&block), node_(node), key_path_(std::move(key_path)) {
   if (node_.IsNull()) node_ = YAML::Node(YAML::NodeType::Map);
   if (!node_.IsMap()) src_.fail(node, key_path_, "expected a mapping of keys to values");
-  const std::vector<std::string> allowed(allowed_keys.begin(), allowed_keys.end());
+  std::vector<std::string> allowed;
+  for (const KeySpec& k : block.keys) allowed.emplace_back(k.name);
   for (const auto& entry : node_) {
     const YAML::Node& key = entry.first;
     const std::string name = key.IsScalar() ? key.Scalar() : std::string("?");
@@ -316,6 +322,13 @@ MapReader::MapReader(const YamlSource& src, const YAML::Node& node, std::string 
               suggestion.empty() ? "unknown key"
                                  : fmt::format("unknown key (did you mean '{}'?)", suggestion));
   }
+}
+
+const KeySpec& MapReader::spec(const std::string& key) const {
+  const KeySpec* k = block_->find(key);
+  if (!k)
+    throw std::logic_error(fmt::format("key table: block {} has no key {}", block_->name, key));
+  return *k;
 }
 
 bool MapReader::has(const std::string& key) const {

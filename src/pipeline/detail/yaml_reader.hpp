@@ -5,12 +5,12 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "pipeline/config.hpp"
+#include "pipeline/detail/pipeline_keys.hpp"
 
 namespace tw::detail {
 
@@ -55,12 +55,16 @@ std::uint64_t read_uint64(const YamlSource& src, const YAML::Node& node,
 bool read_bool(const YamlSource& src, const YAML::Node& node, const std::string& key_path);
 std::string read_string(const YamlSource& src, const YAML::Node& node, const std::string& key_path);
 
-// One YAML mapping with a fixed set of allowed keys; an unknown key fails at once, with a
-// "did you mean" suggestion when a known key is close.
+// One YAML mapping whose allowed keys are those of `block` in the key table
+// (detail/pipeline_keys.hpp, which the JSON Schema is written from); an unknown key fails at
+// once, with a "did you mean" suggestion when a known key is close.
 class MapReader {
  public:
   MapReader(const YamlSource& src, const YAML::Node& node, std::string key_path,
-            std::initializer_list<std::string_view> allowed_keys);
+            const KeyBlock& block);
+  // The same, naming the block of the key table.
+  MapReader(const YamlSource& src, const YAML::Node& node, std::string key_path,
+            std::string_view block_name);
 
   bool has(const std::string& key) const;
   YAML::Node get(const std::string& key) const;  // fails when missing
@@ -68,6 +72,8 @@ class MapReader {
   const YAML::Node& node() const { return node_; }
   const std::string& key_path() const { return key_path_; }
   const YamlSource& source() const { return src_; }
+  // The key's entry in the table (a programming error when the block has no such key).
+  const KeySpec& spec(const std::string& key) const;
 
   double positive(const std::string& key) const { return read_positive(src_, get(key), path(key)); }
   double positive_or(const std::string& key, double fallback) const;
@@ -80,6 +86,7 @@ class MapReader {
 
  private:
   const YamlSource& src_;
+  const KeyBlock* block_;
   YAML::Node node_;
   std::string key_path_;
 };
