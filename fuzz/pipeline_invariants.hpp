@@ -39,10 +39,12 @@ inline void check_pipeline(const PipelineConfig& config) {
     if (c.synthesis) {
       const SynthesisConfig& s = *c.synthesis;
       if (s.exemplars.empty()) broken_promise("synthesis: no exemplar");
-      expect_positive(s.delta, "synthesis.delta");
+      // delta and min_coverage are optional: absent, the exemplar's defaults apply later
+      // (synthesis_defaults); given, they must be usable as they are.
+      if (s.delta) expect_positive(*s.delta, "synthesis.delta");
       expect_positive(s.scale, "synthesis.scale");
       if (s.width) expect_positive(*s.width, "synthesis.width");
-      if (!(s.min_coverage >= 0.0 && s.min_coverage <= 1.0))
+      if (s.min_coverage && !(*s.min_coverage >= 0.0 && *s.min_coverage <= 1.0))
         broken_promise("synthesis.min_coverage outside [0, 1]");
       if (!(std::isfinite(s.feather) && s.feather >= 0.0)) broken_promise("synthesis.feather");
       expect_finite(s.height_detail, "synthesis.height_detail");

@@ -9,7 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
-all_targets=(pipeline_parser set_override placements_loader vector_ingest)
+all_targets=(pipeline_parser set_override placements_loader vector_ingest element_set sketch_loader
+  plan_object cache_entry)
 [ $# -gt 0 ] && targets=("$@") || targets=("${all_targets[@]}")
 
 # clang and its runtime (libFuzzer, ASan, UBSan): needed only here, so not in setup.sh's list.
@@ -35,7 +36,7 @@ dictionary_of() {
   case "$1" in
     pipeline_parser | set_override) echo fuzz/dict/pipeline.dict ;;
     placements_loader) echo fuzz/dict/placements.dict ;;
-    vector_ingest) echo fuzz/dict/geojson.dict ;;
+    vector_ingest | sketch_loader) echo fuzz/dict/geojson.dict ;;
   esac
 }
 
@@ -51,8 +52,10 @@ for t in "${targets[@]}"; do
   mkdir -p "build-fuzz/corpus/$t" "build-fuzz/findings/$t"
   log="build-fuzz/$t.log"
   rc=0
+  dictionary=()
+  [ -n "$(dictionary_of "$t")" ] && dictionary=(-dict="$(dictionary_of "$t")")
   "build-fuzz/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -print_final_stats=1 -dict="$(dictionary_of "$t")" \
+    -print_final_stats=1 "${dictionary[@]}" \
     -artifact_prefix="build-fuzz/findings/$t/" "build-fuzz/corpus/$t" "fuzz/corpus/$t" \
     >"$log" 2>&1 || rc=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)

@@ -67,6 +67,28 @@ TEST(PipelineConfigHardening, ASecondYamlDocumentIsAnError) {
   EXPECT_EQ(parse_pipeline(std::string("---\n") + kMinimal, "p.yaml", "/base", {}).seed, 7u);
 }
 
+// Issue #24 item 7: a Latin-1 byte ended as nlohmann's "invalid UTF-8 byte" with no file, line
+// or key (found by fuzz/pipeline_parser); 1e400 must be a located error too.
+TEST(PipelineConfigHardening, NonUtf8TextAndOutOfRangeNumbersAreLocatedErrors) {
+  const std::string latin1 = std::string(kMinimal) +
+                             "  hedges: { source: map.gpkg, kind: road, width: 3, where: \"name = "
+                             "'S\xe3o Jo\xe3o'\" }\n";
+  EXPECT_EQ(parse_error(latin1),
+            "p.yaml:6: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
+            "LATIN1 -t UTF-8)");
+  EXPECT_THAT(parse_error(kMinimal, {parse_override("features.roads.where=name = 'S\xe3o'")}),
+              HasSubstr("--set:1: not UTF-8 text"));
+  // The same text in UTF-8 is read.
+  const std::string utf8 = std::string(kMinimal) +
+                           "  hedges: { source: map.gpkg, kind: road, width: 3, where: \"name = "
+                           "'S\xc3\xa3o Jo\xc3\xa3o'\" }\n";
+  EXPECT_EQ(parse_pipeline(utf8, "p.yaml", "/base", {}).features.size(), 2u);
+  EXPECT_THAT(parse_error(kMinimal, {parse_override("features.roads.width=1e400")}),
+              HasSubstr("--set features.roads.width=1e400: features.roads.width:"));
+  EXPECT_THAT(parse_error(std::string(kMinimal) + "resolution: 1e400\n"),
+              HasSubstr("p.yaml:6:13: resolution:"));
+}
+
 TEST(PipelineConfigHardening, AnEmptySetValueIsAnError) {
   EXPECT_EQ(error_of([] { parse_override("seed="); }),
             "--set seed=: empty value (for an empty string write seed=\"\")");

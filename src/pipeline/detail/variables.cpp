@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/detail/yaml_file.hpp"
+#include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw::detail {
 namespace {
@@ -94,6 +95,7 @@ namespace tw {
 Variables load_variables(const std::filesystem::path& file) {
   // Bounded before anything is read: `--vars /dev/zero` was a bad_alloc after 28 s.
   const std::string text = detail::read_small_yaml_file(file, "variables");
+  detail::require_utf8(text, file.string());
   YAML::Node root;
   try {
     root = YAML::Load(text);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <cpl_string.h>
 #include <yaml-cpp/eventhandler.h>
 
 #include "core/error.hpp"
@@ -154,7 +155,29 @@ YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Ov
       overrides_(std::move(overrides)),
       variables_(std::move(variables)) {}
 
+// YAML is UTF-8 text, and every value ends up in report.json (JSON, UTF-8 only): a Latin-1
+// byte must stop here with its line, not later as nlohmann's "invalid UTF-8 byte" with no file.
+// GDAL's CPLIsUTF8 decides; the line is found by checking line by line.
+void require_utf8(std::string_view text, const std::string& label) {
+  if (CPLIsUTF8(text.data(), int(std::min<std::size_t>(text.size(), INT32_MAX)))) return;
+  std::size_t line_start = 0;
+  for (int line = 1;; ++line) {
+    const std::size_t end = std::min(text.find('\n', line_start), text.size());
+    if (!CPLIsUTF8(text.data() + line_start, int(end - line_start)))
+      tw::fail("{}:{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
+               "LATIN1 -t UTF-8)",
+               label, line);
+    if (end == text.size()) break;
+    line_start = end + 1;
+  }
+  tw::fail("{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f LATIN1 -t "
+           "UTF-8)",
+           label);
+}
+
 YAML::Node YamlSource::load(std::string_view text) const {
+  require_utf8(text, file_label_);
+  for (const Override& o : overrides_) require_utf8(o.key_path + "=" + o.value, "--set");
   YAML::Node root;
   std::vector<YAML::Mark> documents;
   try {

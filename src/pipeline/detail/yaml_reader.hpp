@@ -45,6 +45,9 @@ class YamlSource {
 };
 
 // Typed scalars. Each fails with the node's location when the value has the wrong type.
+// Fails with "<label>:<line>: not UTF-8 text ..." unless `text` is UTF-8.
+void require_utf8(std::string_view text, const std::string& label);
+
 double read_double(const YamlSource& src, const YAML::Node& node, const std::string& key_path);
 double read_positive(const YamlSource& src, const YAML::Node& node, const std::string& key_path);
 double read_non_negative(const YamlSource& src, const YAML::Node& node,
