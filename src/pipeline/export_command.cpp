@@ -8,6 +8,7 @@
 #include "core/output_folder.hpp"
 #include "core/output_guard.hpp"
 #include "geo/heightfield.hpp"
+#include "pipeline/detail/json_file.hpp"
 #include "pipeline/run_layers.hpp"
 
 namespace tw {
@@ -73,8 +74,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   ExportFiles files{required_run_layer_raster(run, "height"), run_layer_raster(run, "splat"), {}};
   int run_tile_size = 0;
   if (is_tiled_run(run)) {
-    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
-                                                        /*allow_exceptions=*/false);
+    const nlohmann::json report = detail::parse_json_file(run / "report.json", "run it again");
     if (report.is_object() && report.contains("tiles") && report["tiles"].contains("size") &&
         report["tiles"]["size"].is_number_integer())
       run_tile_size = report["tiles"]["size"].get<int>();
@@ -86,8 +86,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   // The DEM read again as the run read it: its `resampling` (report.json's config).
   Resampling input_resampling = Resampling::bilinear;
   if (command.input_height) {
-    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
-                                                        /*allow_exceptions=*/false);
+    const nlohmann::json report = detail::parse_json_file(run / "report.json", "run it again");
     if (report.is_object() && report.contains("config") && report["config"].is_object() &&
         report["config"].value("resampling", "") == "cubic")
       input_resampling = Resampling::cubic;
