@@ -71,6 +71,8 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const fs::path& run = command.run_dir;
   if (!fs::exists(run / "report.json"))
     fail("{}: not a finished run (no report.json)", run.string());
+  // Read even where nothing below needs it: a corrupt report.json is not a run to export.
+  detail::parse_json_file(run / "report.json", "run it again");
   ExportFiles files{required_run_layer_raster(run, "height"), run_layer_raster(run, "splat"), {}};
   int run_tile_size = 0;
   if (is_tiled_run(run)) {

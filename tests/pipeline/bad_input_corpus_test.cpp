@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "test_support.hpp"
@@ -99,7 +100,8 @@ class BadInputCorpus : public ::testing::Test {
     const CommandResult tiled = run_command(
         bin + " -q run pipeline.yaml --out tiled1 --set 'output.tiles={size: 24, overlap: 2}'");
     ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
-    const CommandResult plan = run_command(bin + " -q plan pipeline.yaml --out plan1");
+    const CommandResult plan = run_command(
+        bin + " -q plan pipeline.yaml --out plan1 --set 'output.tiles={size: 24, overlap: 2}'");
     ASSERT_EQ(plan.exit_code, 0) << plan.output;
   }
   static void TearDownTestSuite() {
@@ -119,24 +121,24 @@ std::vector<Case> BadInputCorpus::corpus() {
   const std::string exemplar = samples + "/exemplars/chain_199x82.png";
   const std::string synth = "synth --exemplar " + exemplar +
                             " --curve line --length 12 --width 4 --delta 3 --scale 4 "
-                            "--backend cpu -o o/s.png";
+                            "--backend cpu -o @o/s.png";
   const std::string area = "area " + samples + "/sketches/vineyard.geojson --polygons " + samples +
-                           "/map.gpkg:existing --scale 40 --out o";
+                           "/map.gpkg:existing --scale 40 --out @o";
   const std::string grow = "grow --dem " + samples +
                            "/dem.tif --region 291200,9115100,291500,"
                            "9115400 --element " +
                            samples +
                            "/ornaments/hedge.json --resolution "
-                           "10 --max-ornaments 4 --out o";
+                           "10 --max-ornaments 4 --out @o";
   const std::string network = "network synthesize --exemplar " + samples +
                               "/map.gpkg:roads "
-                              "--region 290000,9112000,296000,9118000 --out o";
+                              "--region 290000,9112000,296000,9118000 --out @o";
   std::vector<Case> cases;
 
   // 1. Numeric options: the value replaces a valid one given earlier on the line (CLI11 keeps
   //    the last) or is added.
   const std::vector<NumericOption> numeric = {
-      {"run pipeline.yaml --out o", "--threads", NumericOption::count},
+      {"run pipeline.yaml --out @o", "--threads", NumericOption::count},
       {synth, "--length", NumericOption::positive},
       {synth, "--width", NumericOption::positive},
       {synth, "--delta", NumericOption::positive},
@@ -166,8 +168,8 @@ std::vector<Case> BadInputCorpus::corpus() {
       {network, "--candidates", NumericOption::count},
       {"synth-feature plan1", "--feature", NumericOption::count},
       {"render-tile plan1", "--tile", NumericOption::count},
-      {"export run1 --to godot --out o", "--tile-size", NumericOption::count},
-      {"export run1 --to godot --out o", "--nodata-height", NumericOption::any_real},
+      {"export run1 --to godot --out @o", "--tile-size", NumericOption::count},
+      {"export run1 --to godot --out @o", "--nodata-height", NumericOption::any_real},
   };
   for (const NumericOption& o : numeric)
     for (const std::string& v : bad_values(o.kind))
@@ -178,22 +180,24 @@ std::vector<Case> BadInputCorpus::corpus() {
   const std::vector<std::pair<std::string, std::string>> file_options = {
       {"run {}", ""},
       {"validate {}", ""},
-      {"plan {} --out o", ""},
-      {"synth --curve line --length 12 --width 4 --delta 3 --scale 4 -o o/s.png --exemplar {}", ""},
-      {"synth --exemplar " + exemplar + " --width 4 --delta 3 --scale 4 -o o/s.png --curve {}", ""},
-      {"area {} --polygons " + samples + "/map.gpkg:existing --scale 40 --out o", ""},
-      {"area " + samples + "/sketches/vineyard.geojson --scale 40 --out o --polygons {}", ""},
+      {"plan {} --out @o", ""},
+      {"synth --curve line --length 12 --width 4 --delta 3 --scale 4 -o @o/s.png --exemplar {}",
+       ""},
+      {"synth --exemplar " + exemplar + " --width 4 --delta 3 --scale 4 -o @o/s.png --curve {}",
+       ""},
+      {"area {} --polygons " + samples + "/map.gpkg:existing --scale 40 --out @o", ""},
+      {"area " + samples + "/sketches/vineyard.geojson --scale 40 --out @o --polygons {}", ""},
       {"grow --region 291200,9115100,291500,9115400 --element " + samples +
-           "/ornaments/hedge.json --out o --dem {}",
+           "/ornaments/hedge.json --out @o --dem {}",
        ""},
       {"grow --dem " + samples +
-           "/dem.tif --region 291200,9115100,291500,9115400 --out o "
+           "/dem.tif --region 291200,9115100,291500,9115400 --out @o "
            "--element {}",
        ""},
-      {"network synthesize --region 290000,9112000,296000,9118000 --out o --exemplar {}", ""},
+      {"network synthesize --region 290000,9112000,296000,9118000 --out @o --exemplar {}", ""},
       {"exemplar inspect {}", ""},
-      {"export --to godot --out o {}", ""},
-      {"view --out o/v.html {}", ""},
+      {"export --to godot --out @o {}", ""},
+      {"view --out @o/v.html {}", ""},
       {"diff run1 {}", ""},
       {"diff {} run1", ""},
       {"synth-feature --feature 0 {}", ""},
@@ -212,15 +216,14 @@ std::vector<Case> BadInputCorpus::corpus() {
 
   // 3. Pipeline keys through --set on validate: wrong type, out of range, unknown.
   const std::vector<std::pair<std::string, std::vector<std::string>>> keys = {
-      {"seed", {"abc", "1.5", "[1,2]", "{a: 1}"}},
+      {"seed", {"abc", "1.5", "[1,2]", "'{a: 1}'"}},
       {"version", {"2", "abc", "-1"}},
       {"resolution", {"-1", "0", "nan", "inf", "abc", "[1]"}},
       {"resampling", {"sideways", "1", "[a]"}},
       {"output.preview", {"maybe", "2", "[1]"}},
       {"output.exr", {"maybe", "[1]"}},
-      {"output.formats", {"[bmp]", "7", "{a: 1}"}},
+      {"output.formats", {"[bmp]", "7", "'{a: 1}'"}},
       {"output.tiles.size", {"-1", "0", "abc", "nan", "1e400"}},
-      {"output.tiles.overlap", {"-1", "abc", "nan"}},
       {"output.compress", {"zip7", "[1]"}},
       {"output.crs", {"EPSG:0", "nonsense", "[1]"}},
       {"avoidance.max_distance", {"-1", "nan", "abc"}},
@@ -231,93 +234,144 @@ std::vector<Case> BadInputCorpus::corpus() {
       {"features.roads.width", {"-1", "0", "nan", "inf", "abc", "[6]"}},
       {"features.roads.kind", {"spaceship", "[road]", "1"}},
       {"features.roads.source", {"missing.gpkg", "adir", "/dev/null", "latin1.txt", "[1]"}},
-      {"features.roads.layer", {"nolayer", "[1]"}},
-      {"features.roads.where", {"\"width >< 3\""}},
-      {"features.roads.width_attribute", {"nofield"}},
       {"heightfield", {"missing.tif", "adir", "/dev/null", "latin1.txt", "[1]"}},
       {"backend", {"gpu9", "[1]"}},
       {"precedence", {"7", "[nothing]"}},
       {"synthesis_order", {"sideways", "[1]"}},
   };
+  for (const std::string v : {"-1", "abc", "nan", "1e400"})
+    cases.push_back(
+        {"validate pipeline.yaml --set output.tiles.size=24 --set output.tiles.overlap=" + v,
+         "output.tiles.overlap", ""});
+  // A layer, filter or attribute the source lacks: named with the class and the source.
+  for (const std::string set :
+       {"features.roads.layer=nolayer", "features.roads.layer=[1]",
+        "'features.roads.where=width >< 3'", "features.roads.width_attribute=nofield"})
+    cases.push_back({"validate pipeline.yaml --set " + set, "features.roads", ""});
   for (const auto& [key, values] : keys)
     for (const std::string& v : values)
       cases.push_back({"validate pipeline.yaml --set " + key + "=" + v, key, ""});
-  for (const std::string& unknown :
+  for (const char* unknown :
        {"sede", "output.bogus", "features.roads.widht", "repair.bogus", "output.tiles.bogus",
         "generate.bogus", "avoidance.bogus", "features.roads.synthesis.bogus"})
-    cases.push_back({"validate pipeline.yaml --set " + unknown + "=1", unknown, ""});
+    cases.push_back({"validate pipeline.yaml --set " + std::string(unknown) + "=1", unknown, ""});
   cases.push_back({"validate pipeline.yaml --set seed", "--set seed", ""});
   cases.push_back({"validate pipeline.yaml --set =1", "--set =1", ""});
 
   // 4. Run and plan files corrupted: each case works on its own copy (c).
-  const std::string plan = "c/.terraweave/plan";
+  const std::string plan = "@c/.terraweave/plan";
   const std::vector<std::pair<std::string, std::string>> plan_files = {
-      {"job.json", "render-tile c --tile 0"},   {"plan.json", "render-tile c --tile 0"},
-      {"tasks.json", "render-tile c --tile 0"}, {"job.json", "finish c"},
-      {"job.json", "complete-plan c"},
+      {"job.json", "render-tile @c --tile 0"},   {"plan.json", "render-tile @c --tile 0"},
+      {"tasks.json", "render-tile @c --tile 0"}, {"job.json", "finish @c"},
+      {"job.json", "complete-plan @c"},
   };
   for (const auto& [file, command] : plan_files) {
-    for (const std::string& bytes : {"{\\\"format\\\": ", "[1,2]", "\\xff\\xfe", ""}) {
+    for (const std::string bytes : {"{\\\"format\\\": ", "[1,2]", "\\377\\376", ""}) {
       cases.push_back(
-          {command, file,
-           "rm -rf c && cp -r plan1 c && printf \"" + bytes + "\" > " + plan + "/" + file});
+          {command, file, "cp -r plan1 @c && printf \"" + bytes + "\" > " + plan + "/" + file});
     }
   }
   const std::vector<std::pair<std::string, std::string>> run_files = {
-      {"report.json", "view c --no-verify --out o/v.html"},
-      {"report.json", "export c --to godot --no-verify --out o"},
-      {"report.json", "diff c run1 --no-verify"},
-      {"report.json", "diff run1 c --no-verify"},
-      {"features.geojson", "view c --no-verify --out o/v.html"},
-      {"features.geojson", "export c --to godot --no-verify --out o"},
+      {"report.json", "view @c --no-verify --out @o/v.html"},
+      {"report.json", "export @c --to godot --no-verify --out @o"},
+      {"report.json", "diff @c run1 --no-verify"},
+      {"report.json", "diff run1 @c --no-verify"},
+      {"features.geojson", "view @c --no-verify --out @o/v.html"},
+      {"features.geojson", "export @c --to godot --no-verify --out @o"},
   };
   for (const auto& [file, command] : run_files)
-    for (const std::string& bytes :
-         {"{\\\"format\\\": ", "\\xff\\xfe", "", "{\\\"features\\\": 3}"}) {
+    for (const std::string bytes :
+         {"{\\\"format\\\": ", "\\377\\376", "", "{\\\"features\\\": 3}"}) {
       if (file == "report.json" && bytes == "{\\\"features\\\": 3}") continue;
-      cases.push_back(
-          {command, file, "rm -rf c && cp -r run1 c && printf \"" + bytes + "\" > c/" + file});
+      cases.push_back({command, file, "cp -r run1 @c && printf \"" + bytes + "\" > @c/" + file});
     }
   // A tiled run's mosaic with a tile gone.
-  cases.push_back({"view c --no-verify --out o/v.html", "tile",
-                   "rm -rf c && cp -r tiled1 c && rm c/$(sed -n 's:.*<SourceFilename[^>]*>"
-                   "\\(.*\\)</SourceFilename>.*:\\1:p' c/height.vrt | head -1)"});
+  cases.push_back({"view @c --no-verify --out @o/v.html", "tile",
+                   "cp -r tiled1 @c && rm @c/$(sed -n 's:.*<SourceFilename[^>]*>"
+                   "\\(.*\\)</SourceFilename>.*:\\1:p' @c/height.vrt | head -1)"});
   return cases;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at))
+    text.replace(at, from.size(), to), at += to.size();
+  return text;
 }
 
 TEST_F(BadInputCorpus, EveryBadInputEndsInOneCleanErrorNamingIt) {
   const fs::path& d = dir_->path();
-  const std::vector<Case> cases = corpus();
+  const TempDir logs;
+  std::vector<Case> cases = corpus();
   EXPECT_GE(cases.size(), 400u);
-  std::map<std::string, int> outcomes;
+  // Case i writes to o_i and works on its copy c_i, so what it leaves behind is its own.
+  std::string prepare = "set -e\ncd " + quoted(d.string()) + "\n";
+  std::string batch = "cd " + quoted(d.string()) + "\n";
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    Case& c = cases[i];
+    const std::string n = std::to_string(i);
+    c.args = replaced(replaced(c.args, "@o", "o_" + n), "@c", "c_" + n);
+    c.prepare = replaced(c.prepare, "@c", "c_" + n);
+    if (!c.prepare.empty()) prepare += c.prepare + "\n";
+    // The shell splits the arguments (quotes as typed); each field ends with a tab.
+    batch += "printf '%s\\t' " + quoted(d.string()) + " " +
+             quoted((logs.path() / (n + ".out")).string()) + " " +
+             quoted((logs.path() / (n + ".err")).string()) + " -q " + c.args + "; echo\n";
+  }
+  std::ofstream(logs.path() / "prepare.sh") << prepare;
+  std::ofstream(logs.path() / "batch.sh") << batch;
+  ASSERT_EQ(std::system(("sh " + quoted((logs.path() / "prepare.sh").string())).c_str()), 0);
+  const fs::path list = logs.path() / "batch.txt";
+  ASSERT_EQ(std::system(("sh " + quoted((logs.path() / "batch.sh").string()) + " > " +
+                         quoted(list.string()))
+                            .c_str()),
+            0);
+  const auto before = snapshot(d);
   const auto started = std::chrono::steady_clock::now();
-  for (const Case& c : cases) {
-    const std::string in = "cd " + quoted(d.string()) + " && ";
-    if (!c.prepare.empty()) ASSERT_EQ(std::system((in + c.prepare).c_str()), 0) << c.prepare;
-    const auto before = snapshot(d);
-    // exec: the shell's status is the binary's own (a signal shows as one).
-    const std::string line = in + "exec timeout -s KILL 60 " + terraweave_binary().string() +
-                             " -q " + c.args + " >stdout.txt 2>stderr.txt </dev/null";
-    fs::remove(d / "stdout.txt");
-    fs::remove(d / "stderr.txt");
-    const int status = std::system(line.c_str());
-    const std::string err = read_file(d / "stderr.txt");
-    fs::remove(d / "stdout.txt");
-    fs::remove(d / "stderr.txt");
-    auto after = snapshot(d);
-    for (auto* files : {&after})
-      for (const char* scratch : {"stdout.txt", "stderr.txt"}) files->erase(scratch);
-    auto before_clean = before;
-    for (const char* scratch : {"stdout.txt", "stderr.txt"}) before_clean.erase(scratch);
+  // One process loads the program; every case runs in a child forked from it (src/cli/main.cpp,
+  // TERRAWEAVE_FORK_BATCH): the same program, its own exit code and signals.
+  ASSERT_EQ(std::system(("TERRAWEAVE_FORK_BATCH=" + quoted(list.string()) + " " +
+                         quoted(terraweave_binary().string()))
+                            .c_str()),
+            0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const auto after = snapshot(d);
+  std::vector<int> statuses;
+  std::istringstream status_text(read_file(fs::path(list.string() + ".status")));
+  for (int st; status_text >> st;) statuses.push_back(st);
+  ASSERT_EQ(statuses.size(), cases.size());
 
+  // What changed, by case (o_i, c_i); anything else belongs to no case and is an error too.
+  std::map<std::size_t, std::vector<std::string>> written;
+  std::vector<std::string> stray;
+  std::set<std::string> names;
+  for (const auto& [name, stamp] : before) names.insert(name);
+  for (const auto& [name, stamp] : after) names.insert(name);
+  for (const std::string& name : names) {
+    const auto b = before.find(name), a = after.find(name);
+    if (b != before.end() && a != after.end() && b->second == a->second) continue;
+    const std::string top = name.substr(0, name.find('/'));
+    if ((top.starts_with("o_") || top.starts_with("c_")) &&
+        top.find_first_not_of("0123456789", 2) == std::string::npos)
+      written[std::stoul(top.substr(2))].push_back(name);
+    else
+      stray.push_back(name);
+  }
+  EXPECT_TRUE(stray.empty()) << "written by some case: " << ::testing::PrintToString(stray);
+
+  std::map<std::string, int> outcomes;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    const int status = statuses[i];
+    const std::string err = read_file(logs.path() / (std::to_string(i) + ".err"));
     const std::vector<std::string> lines = lines_of(err);
     int error_lines = 0;
     for (const std::string& l : lines)
       if (l.starts_with("terraweave: error:") || l.starts_with("terraweave: usage error:"))
         ++error_lines;
-    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const int code = status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::string outcome;
-    if (!WIFEXITED(status) || WIFSIGNALED(status) || code >= 124)
+    if (status < 0 || !WIFEXITED(status) || code >= 124)
       outcome = "crash or signal";
     else if (code == 0)
       outcome = "wrong exit (0)";
@@ -331,20 +385,16 @@ TEST_F(BadInputCorpus, EveryBadInputEndsInOneCleanErrorNamingIt) {
       outcome = "missing name";
     else if (lines.back().find("[json.exception") != std::string::npos)
       outcome = "raw library text";
-    else if (after != before_clean)
+    else if (written.count(i))
       outcome = "wrote files";
     else
       outcome = "clean error";
     ++outcomes[outcome];
     EXPECT_EQ(outcome, "clean error")
-        << "terraweave -q " << c.args << "\n  (prepared by: " << c.prepare << ")\n  exit " << code
-        << ", stderr:\n"
-        << err;
-    if (fs::exists(d / "o")) fs::remove_all(d / "o");
-    if (fs::exists(d / "c")) fs::remove_all(d / "c");
+        << "terraweave -q " << c.args << "\n  (prepared by: " << c.prepare << ")\n  status "
+        << status << ", exit " << code << ", expected to name: " << c.expect << "\n  stderr:\n"
+        << err << (written.count(i) ? "  wrote: " + ::testing::PrintToString(written[i]) : "");
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::printf("bad-input corpus: %zu cases in %.1f s\n", cases.size(), seconds);
   for (const auto& [outcome, count] : outcomes) std::printf("  %-20s %d\n", outcome.c_str(), count);
 }
