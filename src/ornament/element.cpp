@@ -161,8 +161,8 @@ ElementSet parse_element_set(const std::string& text, const std::string& origin)
     if (const std::size_t colon = reason.find(": "); reason.starts_with("parse error"))
       reason.erase(0, colon + 2);
     const auto* parse = dynamic_cast<const Json::parse_error*>(&e);
-    fail("{}: not valid JSON at byte {}: {}; give an element set (samples/ornaments/*.json)",
-         origin, parse ? parse->byte : 0, reason);
+    fail("{}: not valid JSON{}: {}; give an element set (samples/ornaments/*.json)", origin,
+         parse ? fmt::format(" at byte {}", parse->byte) : std::string(), reason);
   }
   const Where top{origin, ""};
   if (!root.is_object()) fail("{}: expected a JSON object", origin);

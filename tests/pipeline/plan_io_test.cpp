@@ -316,8 +316,8 @@ TEST_F(PlanFolder, SynthesisTasksNameAChangedExemplarAndACorruptStoreEntry) {
     EXPECT_THAT(e.what(), Not(HasSubstr("not done yet")));
   }
   // The exemplar replaced by another image: feature 0's task names it.
-  test::crop_raster(test::source_dir() / "samples/exemplars/cobble_edging_200x56.png",
-                    dir_ / "cobble.png", "PNG", 50, 56);
+  test::crop_raster(test::source_dir() / "samples/exemplars/cobble_bed_260x80.png",
+                    dir_ / "cobble.png", "PNG", 60, 56);
   try {
     synthesize_job_feature(job.plan_dir, 0);
     ADD_FAILURE() << "a changed exemplar was not reported";
