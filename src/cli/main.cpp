@@ -5,13 +5,15 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <sys/wait.h>
 #include <unistd.h>
 #include <cstdint>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -206,14 +208,89 @@ void refuse_non_finite_numbers(CLI::App& app) {
   std::vector<CLI::App*> apps{&app};
   for (std::size_t i = 0; i < apps.size(); ++i)
     for (CLI::App* sub : apps[i]->get_subcommands({})) apps.push_back(sub);
+  // An empty value ('') was the option's default, silently; 99999999999999999999 became
+  // 2^64 - 1 for an unsigned option (CLI11 does not check strtoull's range).
+  const CLI::Validator non_empty_value(
+      [](std::string& value) { return value.empty() ? std::string("an empty value") : ""; }, "");
+  const CLI::Validator unsigned_range(
+      [](std::string& value) {
+        std::uint64_t x = 0;
+        const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), x);
+        return error == std::errc::result_out_of_range
+                   ? "'" + value + "' is out of range (at most 18446744073709551615)"
+                   : std::string();
+      },
+      "");
   for (CLI::App* a : apps)
-    for (CLI::Option* option : a->get_options())
+    for (CLI::Option* option : a->get_options()) {
       if (option->get_type_name().find("FLOAT") != std::string::npos) option->check(finite);
+      if (option->get_type_name().find("UINT") != std::string::npos) option->check(unsigned_range);
+      if (option->get_items_expected_max() > 0 && !option->get_positional())
+        option->check(non_empty_value);
+    }
 }
+
+// TERRAWEAVE_FORK_BATCH=FILE (for tests/pipeline/bad_input_corpus_test.cpp): each line of FILE,
+// "DIR<tab>STDOUT<tab>STDERR<tab>ARG<tab>ARG...", runs as `terraweave ARG...` in DIR, in a child
+// forked from this process (loading the program's 265 libraries costs 0.2 s of CPU; a fork a
+// millisecond), and its wait status is written to FILE.status, one a line. Each child is the
+// program on its own: its exit code and signals are its own; one running past 60 s gets SIGALRM.
+int run_fork_batch(const char* file, int (*cli)(int, char**)) {
+  std::FILE* in = std::fopen(file, "r");
+  std::FILE* status = std::fopen((std::string(file) + ".status").c_str(), "w");
+  if (in == nullptr || status == nullptr) return 2;
+  std::string line;
+  for (int ch = std::fgetc(in); ch != EOF; ch = std::fgetc(in)) {
+    if (ch != '\n') {
+      line += char(ch);
+      continue;
+    }
+    std::vector<std::string> fields(1);
+    for (const char c : line) {
+      if (c == '\t')
+        fields.emplace_back();
+      else
+        fields.back().push_back(c);
+    }
+    fields.pop_back();  // every field ends with a tab
+    line.clear();
+    int wait_status = -1;
+    std::fflush(nullptr);
+    const pid_t pid = fields.size() >= 3 ? fork() : -1;
+    if (pid == 0) {
+      if (chdir(fields[0].c_str()) != 0 || !std::freopen(fields[1].c_str(), "w", stdout) ||
+          !std::freopen(fields[2].c_str(), "w", stderr) || !std::freopen("/dev/null", "r", stdin))
+        _exit(125);
+      alarm(60);
+      std::vector<char*> args{const_cast<char*>("terraweave")};
+      for (std::size_t i = 3; i < fields.size(); ++i) args.push_back(fields[i].data());
+      args.push_back(nullptr);
+      const int code = cli(int(args.size()) - 1, args.data());
+      // _exit: a library's exit handler (log4cplus, through GDAL) waits for a thread that only
+      // the parent has.
+      std::fflush(nullptr);
+      _exit(code);
+    }
+    if (pid > 0 && waitpid(pid, &wait_status, 0) != pid) wait_status = -1;
+    std::fprintf(status, "%d\n", wait_status);
+  }
+  std::fclose(in);
+  return std::fclose(status) == 0 ? 0 : 2;
+}
+
+int cli_main(int argc, char** argv);
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (const char* batch = std::getenv("TERRAWEAVE_FORK_BATCH"))
+    return run_fork_batch(batch, cli_main);
+  return cli_main(argc, argv);
+}
+
+namespace {
+
+int cli_main(int argc, char** argv) {
   CPLSetErrorHandler(log_gdal_message);
   CLI::App app{"terraweave: terrain features for procedural worlds"};
   app.require_subcommand(1);
@@ -360,9 +437,11 @@ int main(int argc, char** argv) {
   synth->add_option("-o,--output", synth_args.output, "PNG to write")->required();
   synth->add_option("--placements", synth_args.placements,
                     "also write the placements (JSON, docs/synthesis.md) to this file");
-  synth->add_option("--min-coverage", synth_args.min_coverage,
-                    "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule; "
-                    "default: a tenth of the exemplar's natural coverage)");
+  synth
+      ->add_option("--min-coverage", synth_args.min_coverage,
+                   "fraction of each piece that must be opaque, in [0, 1) (0: the paper's rule; "
+                   "default: a tenth of the exemplar's natural coverage)")
+      ->check(number_above(0.0, true) & CLI::Range(0.0, 1.0));
   synth
       ->add_option_function<std::string>(
           "--objective",
@@ -569,9 +648,11 @@ int main(int argc, char** argv) {
                          "grid): also write the non-destructive layers (height delta, weights)");
   export_run->add_flag_function(
       "--no-verify", [&export_args](std::int64_t) { export_args.verify = false; }, no_verify_help);
-  export_run->add_option("--tile-size", export_args.options.tile_size,
-                         "samples per tile (Unreal World Partition, Unity; 0: one heightmap; "
-                         "default: tiles when the run is tiled)");
+  export_run
+      ->add_option("--tile-size", export_args.options.tile_size,
+                   "samples per tile (Unreal World Partition, Unity; 0: one heightmap; "
+                   "default: tiles when the run is tiled)")
+      ->check(number_above(0.0, true));
   export_run->add_option("--nodata-height", export_args.options.nodata_height,
                          "metres written on nodata (default: the nearest valid heights)");
   export_run
@@ -701,3 +782,5 @@ int main(int argc, char** argv) {
   }
   return 2;
 }
+
+}  // namespace

@@ -16,11 +16,18 @@ namespace tw {
 namespace fs = std::filesystem;
 
 std::string read_file_bytes(const fs::path& path) {
+  std::error_code ec;
+  // A folder opens as a stream on Linux and then throws libstdc++'s "basic_filebuf::underflow".
+  if (fs::is_directory(path, ec)) fail("{}: a folder, not a file", path.string());
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("cannot read {}", path.string());
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail("cannot read {}", path.string());
-  return bytes;
+  try {
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) fail("cannot read {}", path.string());
+    return bytes;
+  } catch (const std::ios_base::failure& e) {
+    fail("cannot read {}: {}", path.string(), e.what());
+  }
 }
 
 fs::path temporary_beside(const fs::path& path) {

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "core/log.hpp"
 #include "geo/input_guard.hpp"
 #include "layers/detail/gdal_init.hpp"
 #include "layers/export.hpp"
@@ -58,7 +59,12 @@ std::vector<ExportCurve> read_curves_geojson(const std::filesystem::path& path) 
   detail::ensure_gdal_registered();
   std::unique_ptr<GDALDataset, DatasetCloser> ds(
       GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
-  if (!ds || ds->GetLayerCount() != 1) fail("cannot read the centerlines {}", path.string());
+  if (!ds)
+    fail("{}: not valid GeoJSON ({}); run it again", path.string(),
+         single_line(CPLGetLastErrorMsg()));
+  if (ds->GetLayerCount() != 1)
+    fail("{}: {} layers, the centerlines are one; run it again", path.string(),
+         ds->GetLayerCount());
   std::vector<ExportCurve> curves;
   OGRLayer* layer = ds->GetLayer(0);
   for (auto& feature : *layer) {

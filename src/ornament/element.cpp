@@ -154,7 +154,15 @@ ElementSet parse_element_set(const std::string& text, const std::string& origin)
   try {
     root = Json::parse(text);
   } catch (const Json::exception& e) {  // parse_error, and out_of_range for 1e400
-    fail("{}: not JSON: {}", origin, e.what());
+    // nlohmann's text without its "[json.exception.parse_error.101] parse error at ..." prefix.
+    std::string reason = e.what();
+    if (const std::size_t end = reason.find("] "); reason.starts_with("[json.exception."))
+      reason.erase(0, end + 2);
+    if (const std::size_t colon = reason.find(": "); reason.starts_with("parse error"))
+      reason.erase(0, colon + 2);
+    const auto* parse = dynamic_cast<const Json::parse_error*>(&e);
+    fail("{}: not valid JSON{}: {}; give an element set (samples/ornaments/*.json)", origin,
+         parse ? fmt::format(" at byte {}", parse->byte) : std::string(), reason);
   }
   const Where top{origin, ""};
   if (!root.is_object()) fail("{}: expected a JSON object", origin);

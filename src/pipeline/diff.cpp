@@ -1,10 +1,13 @@
 #include "pipeline/diff.hpp"
 
+#include <ogr_spatialref.h>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/error.hpp"
+#include "pipeline/detail/json_file.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/run_layers.hpp"
 
@@ -19,12 +22,8 @@ json read_manifest(const fs::path& run) {
   const fs::path path = run / "report.json";
   std::ifstream in(path);
   if (!in) fail("{}: no report.json: not the output folder of a terraweave run", run.string());
-  json report;
-  try {
-    report = json::parse(in);
-  } catch (const json::exception& e) {
-    fail("{}: not JSON: {}", path.string(), e.what());
-  }
+  in.close();
+  const json report = detail::parse_json_file(path, "run it again");
   if (!report.is_object() || report.value("format", "") != detail::kReportFormat ||
       !report.contains("version") || report["version"].value("schema", 0) < 2) {
     fail("{}: not a terraweave report of schema 2 or later (run it again with this version)",
@@ -50,6 +49,33 @@ std::string value_text(const json& value) {
   return text.size() <= 80 ? text : text.substr(0, 77) + "...";
 }
 
+// "WGS 84 / UTM zone 33N (EPSG:32633)": a CRS as a person names it ("none" without one).
+std::string crs_name(const json& report) {
+  if (!report.contains("grid") || !report["grid"].is_object()) return "none";
+  const std::string wkt = report["grid"].value("crs_wkt", std::string());
+  if (wkt.empty()) return "none";
+  OGRSpatialReference srs;
+  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return "unreadable WKT";
+  std::string name = srs.GetName() ? srs.GetName() : "unnamed";
+  srs.AutoIdentifyEPSG();
+  if (const char* code = srs.GetAuthorityCode(nullptr); code && srs.GetAuthorityName(nullptr))
+    name += fmt::format(" ({}:{})", srs.GetAuthorityName(nullptr), code);
+  return name;
+}
+
+// A tiled run's mosaic (LAYER.vrt) and an untiled run's GeoTIFF (LAYER.tif) are the same layer:
+// the name of the other run's file for `name` when only that run has it.
+std::optional<std::string> layer_twin(const std::string& name,
+                                      const std::map<std::string, std::string>& mine,
+                                      const std::map<std::string, std::string>& other) {
+  const fs::path path(name);
+  if (path.has_parent_path() || (path.extension() != ".vrt" && path.extension() != ".tif"))
+    return std::nullopt;
+  const std::string twin = path.stem().string() + (path.extension() == ".vrt" ? ".tif" : ".vrt");
+  if (mine.count(twin) || !other.count(twin)) return std::nullopt;
+  return twin;
+}
+
 }  // namespace
 
 RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b, bool verify) {
@@ -65,7 +91,18 @@ RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b, bool verif
   for (const auto& [name, hash] : hashes_a) {
     const auto other = hashes_b.find(name);
     if (other == hashes_b.end()) {
-      result.files.push_back(name + ": only in A");
+      const std::optional<std::string> twin = layer_twin(name, hashes_a, hashes_b);
+      if (!twin) {
+        result.files.push_back(name + ": only in A");
+        continue;
+      }
+      const std::string both = name + " / " + *twin;  // a tiled run's mosaic, an untiled TIFF
+      try {
+        RasterDifference raster = compare_rasters(run_a / name, run_b / *twin);
+        if (!raster.identical()) result.layers.push_back({both, std::move(raster)});
+      } catch (const Error& e) {
+        result.files.push_back(both + ": contents differ (" + e.what() + ")");
+      }
     } else if (other->second != hash || hash.empty()) {
       if (!is_raster(name)) {
         result.files.push_back(name + ": contents differ");
@@ -90,7 +127,16 @@ RunDifference diff_runs(const fs::path& run_a, const fs::path& run_b, bool verif
     }
   }
   for (const auto& [name, hash] : hashes_b)
-    if (!hashes_a.count(name)) result.files.push_back(name + ": only in B");
+    if (!hashes_a.count(name) && !layer_twin(name, hashes_b, hashes_a))
+      result.files.push_back(name + ": only in B");
+  // Pixels of two CRSs are compared cell by cell: said first, with both CRSs named.
+  if (const std::string crs_a = crs_name(a), crs_b = crs_name(b);
+      a.contains("grid") && b.contains("grid") && a["grid"].is_object() && b["grid"].is_object() &&
+      a["grid"].value("crs_wkt", std::string()) != b["grid"].value("crs_wkt", std::string()))
+    result.files.insert(result.files.begin(),
+                        fmt::format("the runs' CRSs differ: A is {}, B is {} (pixels are compared "
+                                    "cell by cell, not place by place)",
+                                    crs_a, crs_b));
   for (json* report : {&a, &b}) {
     report->erase("timings");
     report->erase("outputs");

@@ -8,6 +8,7 @@
 #include "core/output_folder.hpp"
 #include "core/output_guard.hpp"
 #include "geo/heightfield.hpp"
+#include "pipeline/detail/json_file.hpp"
 #include "pipeline/run_layers.hpp"
 
 namespace tw {
@@ -70,11 +71,12 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   const fs::path& run = command.run_dir;
   if (!fs::exists(run / "report.json"))
     fail("{}: not a finished run (no report.json)", run.string());
+  // Read even where nothing below needs it: a corrupt report.json is not a run to export.
+  detail::parse_json_file(run / "report.json", "run it again");
   ExportFiles files{required_run_layer_raster(run, "height"), run_layer_raster(run, "splat"), {}};
   int run_tile_size = 0;
   if (is_tiled_run(run)) {
-    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
-                                                        /*allow_exceptions=*/false);
+    const nlohmann::json report = detail::parse_json_file(run / "report.json", "run it again");
     if (report.is_object() && report.contains("tiles") && report["tiles"].contains("size") &&
         report["tiles"]["size"].is_number_integer())
       run_tile_size = report["tiles"]["size"].get<int>();
@@ -86,8 +88,7 @@ EngineExportResult run_export_command(const ExportCommand& command) {
   // The DEM read again as the run read it: its `resampling` (report.json's config).
   Resampling input_resampling = Resampling::bilinear;
   if (command.input_height) {
-    const nlohmann::json report = nlohmann::json::parse(std::ifstream(run / "report.json"), nullptr,
-                                                        /*allow_exceptions=*/false);
+    const nlohmann::json report = detail::parse_json_file(run / "report.json", "run it again");
     if (report.is_object() && report.contains("config") && report["config"].is_object() &&
         report["config"].value("resampling", "") == "cubic")
       input_resampling = Resampling::cubic;

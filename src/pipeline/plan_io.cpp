@@ -10,6 +10,7 @@
 #include "core/file_io.hpp"
 #include "geo/heightfield_source.hpp"
 #include "pipeline/detail/job_files.hpp"
+#include "pipeline/detail/json_file.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "synth/placements_io.hpp"
 
@@ -156,12 +157,7 @@ json tasks_json(const WorldPlan& plan, const std::string& hash) {
 
 nlohmann::json read_plan_file(const fs::path& path, const char* format) {
   using nlohmann::json;
-  json j;
-  try {
-    j = json::parse(read_file_bytes(path));
-  } catch (const json::exception& e) {
-    fail("{}: not JSON ({})", path.string(), e.what());
-  }
+  const json j = detail::parse_json_file(path, "plan again (terraweave plan PIPELINE --out DIR)");
   if (!j.is_object() || j.value("format", "") != format)
     fail("{}: not a {} file", path.string(), format);
   if (j.value("version", 0) != kPlanVersion)

@@ -207,6 +207,59 @@ void require_complete_plan(const fs::path& plan_dir, const std::string& plan) {
 
 }  // namespace detail
 
+namespace {
+
+// A synthesis whose key is not the plan's: what it reads changed after planning. An exemplar is
+// named by its file (the most common case: an exemplar image edited or replaced).
+[[noreturn]] void key_changed(const fs::path& plan_dir, const PipelineConfig& config,
+                              const detail::FeaturePattern& pattern, std::size_t index) {
+  const FeatureClassConfig& c = config.features.at(pattern.class_index);
+  std::string changed;
+  for (const fs::path& path : c.synthesis->exemplars) {
+    std::error_code ec;
+    const auto written = fs::last_write_time(path, ec);
+    const auto planned = fs::last_write_time(plan_dir / "plan.json", ec);
+    if (!ec && written > planned) changed += (changed.empty() ? "" : ", ") + path.string();
+  }
+  const std::string what_to_do = "plan again (" + detail::plan_again(plan_dir) + ")";
+  if (!changed.empty())
+    fail("{}: feature {} ({}): features.{}.synthesis.exemplars {} changed after planning; {}",
+         syntheses_path(plan_dir).string(), index, pattern.name, c.name, changed, what_to_do);
+  fail(
+      "{}: feature {} ({}): what its synthesis reads (its line, features.{}.synthesis keys, "
+      "exemplars, the earlier features it avoids) is not what was planned; {}",
+      syntheses_path(plan_dir).string(), index, pattern.name, c.name, what_to_do);
+}
+
+// The store's entries read back: one found corrupt fails the job (a run rebuilds it; a job must
+// not), naming the entry's file, the feature and the command that makes it again.
+detail::PatternRun synthesize_from_store(const PipelineConfig& config, const WorldPlan& plan,
+                                         const detail::PatternOptions& options,
+                                         const Warnings& warnings, const json& list,
+                                         const fs::path& plan_dir) {
+  try {
+    return synthesize(config, plan, options);
+  } catch (const Error&) {
+    for (const Warning& w : warnings.list()) {
+      if (w.code != "cache_corrupt") continue;
+      std::string index = "N";
+      for (const json& f : list.at("features"))
+        if (w.fid && f.value("fid", std::int64_t(-1)) == *w.fid &&
+            "features." + f.value("class", std::string()) == w.subject)
+          index = f.at("index").dump();
+      std::string message = w.message;
+      if (message.ends_with(": rebuilt")) message.resize(message.size() - 9);
+      fail(
+          "{}: FID {}: synthesis store {}; delete that file and synthesize the feature again "
+          "(terraweave synth-feature {} --feature {})",
+          w.subject, w.fid.value_or(-1), message, plan_dir.string(), index);
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
 SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature) {
   test_pause_point("synth-feature");
   const auto started = std::chrono::steady_clock::now();
@@ -236,10 +289,12 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   options.scope = Scope::one;
   options.feature = std::size_t(feature);
   options.after = entry.at("after").get<std::vector<std::size_t>>();
-  detail::PatternRun run = synthesize(config, plan, options);
-  if (run.patterns.empty() || run.patterns.back().key.hex() != entry.at("key").get<std::string>())
-    fail("{}: feature {} ({}) has another key here than in the plan (another program version?)",
-         syntheses_path(plan_dir).string(), feature, result.name);
+  detail::PatternRun run = synthesize_from_store(config, plan, options, warnings, list, plan_dir);
+  if (run.patterns.empty())
+    fail("{}: feature {} ({}) is not in the plan's features any more; plan again ({})",
+         syntheses_path(plan_dir).string(), feature, result.name, detail::plan_again(plan_dir));
+  if (run.patterns.back().key.hex() != entry.at("key").get<std::string>())
+    key_changed(plan_dir, config, run.patterns.back(), std::size_t(feature));
   const std::vector<std::uint8_t> report =
       json::to_cbor(detail::encode(run.patterns.back().report));
   // Last: a report names a stored synthesis.
@@ -331,7 +386,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
   options.backend = job_backend(job);
   options.cache = &store;
   options.scope = Scope::cached;
-  detail::PatternRun run = synthesize(config, plan, options);
+  detail::PatternRun run = synthesize_from_store(config, plan, options, warnings, list, plan_dir);
   const json& features = list.at("features");
   if (run.patterns.size() != features.size())
     fail("{}: {} syntheses, the plan has {}", syntheses_path(plan_dir).string(), features.size(),
@@ -341,9 +396,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
     detail::FeaturePattern& p = run.patterns[i];
     const json& entry = features[i];
     const std::string key = entry.at("key").get<std::string>();
-    if (p.key.hex() != key)
-      fail("{}: feature {} ({}) has another key here than in the plan",
-           syntheses_path(plan_dir).string(), i, p.name);
+    if (p.key.hex() != key) key_changed(plan_dir, config, p, i);
     // As the plan found the cache; a task's synthesis reports what it did.
     p.cache = {entry.at("cache").at("reused").get<bool>(),
                entry.at("cache").at("why").get<std::string>(), key};

@@ -1,11 +1,13 @@
 #include "pipeline/view.hpp"
 
+#include <cpl_minixml.h>
 #include <cpl_string.h>
 #include <gdal_priv.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string_view>
@@ -15,6 +17,7 @@
 #include "core/output_guard.hpp"
 #include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/json_file.hpp"
 #include "pipeline/detail/three_js.hpp"
 #include "pipeline/detail/view_page.hpp"
 #include "pipeline/run_layers.hpp"
@@ -25,14 +28,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("{}: cannot be read (is this the output folder of a run?)", path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // GDAL's encoder (cpl_string.h), which the project links already.
 std::string base64(std::string_view bytes) {
@@ -45,8 +40,38 @@ std::string base64(std::string_view bytes) {
 // Every band of a layer raster (GeoTIFF, EXR or a tiled run's VRT mosaic) read at w x h (GDAL
 // resamples on reading: memory follows the page, not the world); nodata as NaN. Band descriptions
 // in `names`.
+// A tiled run's mosaic opens its tiles only when read: a missing one is named here, with what
+// to do, rather than as GDAL's read failure.
+void require_mosaic_tiles(const fs::path& vrt) {
+  if (vrt.extension() != ".vrt") return;
+  CPLXMLNode* root = CPLParseXMLFile(vrt.c_str());
+  if (root == nullptr) fail("{}: not a readable VRT mosaic; run it again", vrt.string());
+  std::string missing;
+  const std::function<void(const CPLXMLNode*)> walk = [&](const CPLXMLNode* node) {
+    for (; node != nullptr && missing.empty(); node = node->psNext) {
+      if (node->eType != CXT_Element) continue;
+      if (std::string_view(node->pszValue) == "SourceFilename") {
+        const char* name = CPLGetXMLValue(node, nullptr, "");
+        const bool relative = CPLTestBool(CPLGetXMLValue(node, "relativeToVRT", "0"));
+        const fs::path tile = relative ? vrt.parent_path() / name : fs::path(name);
+        std::error_code ec;
+        if (!fs::is_regular_file(tile, ec)) missing = tile.string();
+      }
+      walk(node->psChild);
+    }
+  };
+  walk(root);
+  CPLDestroyXMLNode(root);
+  if (!missing.empty())
+    fail(
+        "{}: its tile {} is missing; render that tile again (terraweave run, or render-tile "
+        "and finish for a plan)",
+        vrt.string(), missing);
+}
+
 std::vector<std::vector<float>> read_bands(const fs::path& path, int w, int h,
                                            std::vector<std::string>* names = nullptr) {
+  require_mosaic_tiles(path);
   const LayerRaster raster(path);
   GDALDataset* ds = &raster.dataset();
   std::vector<std::vector<float>> bands;
@@ -112,7 +137,7 @@ std::string forbidden_mask(const fs::path& run, int w, int h) {
 }
 
 json view_data(const fs::path& run, const ViewOptions& options) {
-  const json report = json::parse(read_text(run / "report.json"));
+  const json report = detail::parse_json_file(run / "report.json", "run it again");
   const json& grid = report.at("grid");
   const int width = grid.at("width"), height = grid.at("height");
   json data;
@@ -132,10 +157,25 @@ json view_data(const fs::path& run, const ViewOptions& options) {
   data["avoidance"] = {{"mask", base64(forbidden_mask(run, tw, th))}};
   json features = json::array();
   if (fs::exists(run / "features.geojson")) {
-    const json lines = json::parse(read_text(run / "features.geojson"));
-    for (const json& f : lines.at("features"))
-      features.push_back(
-          {{"kind", f["properties"]["kind"]}, {"points", f["geometry"]["coordinates"]}});
+    const fs::path path = run / "features.geojson";
+    const json lines = detail::parse_json_file(path, "run it again");
+    if (!lines.is_object() || !lines.contains("features") || !lines["features"].is_array())
+      fail("{}: key features: expected a list of GeoJSON features; run it again", path.string());
+    for (const json& f : lines["features"]) {
+      const std::string fid = f.is_object() && f.contains("properties") &&
+                                      f["properties"].is_object() && f["properties"].contains("fid")
+                                  ? f["properties"]["fid"].dump()
+                                  : "?";
+      if (!f.is_object() || !f.contains("properties") || !f["properties"].is_object() ||
+          !f.contains("geometry") || !f["geometry"].is_object() ||
+          !f["geometry"].contains("coordinates") || !f["geometry"]["coordinates"].is_array())
+        fail(
+            "{}: feature {} (FID {}): expected properties and a geometry with coordinates; run "
+            "it again",
+            path.string(), features.size(), fid);
+      features.push_back({{"kind", f["properties"].value("kind", json(nullptr))},
+                          {"points", f["geometry"]["coordinates"]}});
+    }
   }
   data["features"] = features;
   return data;

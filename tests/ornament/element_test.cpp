@@ -61,7 +61,7 @@ TEST(Element, MinimalSetParses) {
 }
 
 TEST(Element, ErrorsNameTheFileAndTheKey) {
-  EXPECT_THAT(error_of("{"), HasSubstr("bad.json: not JSON"));
+  EXPECT_THAT(error_of("{"), HasSubstr("bad.json: not valid JSON"));
   EXPECT_THAT(error_of(R"({"name": "n", "kind": "fence", "seed_tag": "a", "elements": []})"),
               HasSubstr("bad.json: key 'kind': 'fence' is not one of"));
   EXPECT_THAT(error_of(R"({"name": "n", "kind": "wall", "seed_tag": "a", "elements": [
@@ -92,7 +92,7 @@ TEST(Element, ErrorsNameTheFileAndTheKey) {
       {"name": "e", "tag": "a", "splines": [{"points": [[0,0],[0,0],[0,0],[0,0]]}]}]})"),
               HasSubstr("key 'elements[0].splines[0].points': all control points are at (0, 0)"));
   EXPECT_THAT(error_of(R"({"name": "n", "kind": "hedge", "scale_m": 1e400, "seed_tag": "a"})"),
-              HasSubstr("bad.json: not JSON"));
+              HasSubstr("bad.json: not valid JSON"));
   EXPECT_THAT(error_of(R"({"kind": "wall"})"), HasSubstr("key '': missing 'name'"));
 }
 

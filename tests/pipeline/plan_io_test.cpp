@@ -28,6 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr const char* kPipeline = R"(
 version: 1
@@ -285,6 +286,49 @@ TEST_F(PlanFolder, SynthesesAsTasksInTheirDependencyOrderGiveTheSamePlan) {
   expect_error([&] { synthesize_job_feature(job.plan_dir, 0); }, "complete already");
   EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
+}
+
+// Issue #24 item 10: a synthesis task whose exemplar was replaced after planning names the
+// exemplar file and says to plan again; a truncated store entry of a feature it depends on is
+// named as corrupt, with its path and the task that makes it again (never "not done yet").
+TEST_F(PlanFolder, SynthesisTasksNameAChangedExemplarAndACorruptStoreEntry) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "out";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config_, options);
+  ASSERT_EQ(job.syntheses, 3u);
+  const auto syntheses = nlohmann::json::parse(read_file_bytes(job.plan_dir / "syntheses.json"));
+  ASSERT_TRUE(synthesize_job_feature(job.plan_dir, 0).synthesized);
+  const fs::path entry = fs::path(syntheses["store"].get<std::string>()) / "synthesis" /
+                         (syntheses["features"][0]["key"].get<std::string>() + ".twc");
+  ASSERT_TRUE(fs::is_regular_file(entry));
+  fs::resize_file(entry, fs::file_size(entry) / 2);
+  try {
+    synthesize_job_feature(job.plan_dir, 1);
+    ADD_FAILURE() << "a truncated entry of feature 0 was not reported";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(),
+                HasSubstr("features.roads: FID " + syntheses["features"][0]["fid"].dump() +
+                          ": synthesis store cache entry " + entry.string() + " is corrupt ("));
+    EXPECT_THAT(e.what(), HasSubstr("delete that file and synthesize the feature again "
+                                    "(terraweave synth-feature " +
+                                    job.plan_dir.string() + " --feature 0)"));
+    EXPECT_THAT(e.what(), Not(HasSubstr("not done yet")));
+  }
+  // The exemplar replaced by another image: feature 0's task names it.
+  test::crop_raster(test::source_dir() / "samples/exemplars/cobble_bed_260x80.png",
+                    dir_ / "cobble.png", "PNG", 60, 56);
+  try {
+    synthesize_job_feature(job.plan_dir, 0);
+    ADD_FAILURE() << "a changed exemplar was not reported";
+  } catch (const Error& e) {
+    EXPECT_THAT(
+        e.what(),
+        HasSubstr("feature 0 (" + syntheses["features"][0]["name"].get<std::string>() +
+                  "): features.roads.synthesis.exemplars " + (dir_ / "cobble.png").string() +
+                  " changed after planning; plan again (terraweave plan"));
+    EXPECT_THAT(e.what(), Not(HasSubstr("program version")));
+  }
 }
 
 // Issue #24: a deleted syntheses.json is an error naming it, never "no syntheses" (which

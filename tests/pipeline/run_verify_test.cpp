@@ -75,6 +75,42 @@ TEST_F(RunVerify, DiffFindsATruncatedLayer) {
   EXPECT_THAT(compared.output, Not(HasSubstr("identical")));
 }
 
+// Issue #24 item 10: runs in two CRSs are compared cell by cell; diff says so first, naming
+// both CRSs.
+TEST_F(RunVerify, DiffNamesBothCrssWhenTheyDiffer) {
+  ASSERT_EQ(terraweave("-q run " + (runs->path() / "pipeline.yaml").string() +
+                       " --out zone32 --set generate.crs=EPSG:32632")
+                .exit_code,
+            0);
+  const CommandResult r = terraweave("diff run zone32");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("the runs' CRSs differ: A is WGS 84 / UTM zone 31N (EPSG:32631), "
+                                  "B is WGS 84 / UTM zone 32N (EPSG:32632)"))
+      << r.output;
+  EXPECT_THAT(terraweave("diff run other").output, Not(HasSubstr("CRSs differ")));
+}
+
+// A tiled run's mosaic (height.vrt) is compared with an untiled run's GeoTIFF (height.tif):
+// the same pixels are no difference, other pixels are counted (never "only in A / only in B").
+TEST_F(RunVerify, DiffComparesATiledRunsMosaicWithAnUntiledTiff) {
+  const std::string pipeline = (runs->path() / "pipeline.yaml").string();
+  const std::string tiles = " --set 'output.tiles={size: 24, overlap: 2}'";
+  ASSERT_EQ(terraweave("-q run " + pipeline + " --out tiled" + tiles).exit_code, 0);
+  ASSERT_TRUE(fs::exists(dir / "tiled/height.vrt"));
+  const CommandResult same = terraweave("diff tiled run");
+  EXPECT_THAT(same.output, Not(HasSubstr("height.vrt: only in A"))) << same.output;
+  EXPECT_THAT(same.output, Not(HasSubstr("height.tif: only in B"))) << same.output;
+  EXPECT_THAT(same.output, Not(HasSubstr("height.vrt / height.tif"))) << same.output;
+  ASSERT_EQ(terraweave("-q run " + pipeline + " --out relief" + tiles + " --set generate.relief=80")
+                .exit_code,
+            0);
+  const CommandResult other = terraweave("diff relief run");
+  EXPECT_EQ(other.exit_code, 1) << other.output;
+  EXPECT_THAT(other.output, HasSubstr("height.vrt / height.tif")) << other.output;
+  EXPECT_THAT(other.output, HasSubstr("pixels differ")) << other.output;
+  EXPECT_THAT(other.output, Not(HasSubstr("height.vrt: only in A"))) << other.output;
+}
+
 TEST_F(RunVerify, ExportAndViewRefuseFlippedBytes) {
   // 64 bytes of height.tif's pixels flipped: the file still reads, with wrong heights.
   const fs::path tif = dir / "run/height.tif";

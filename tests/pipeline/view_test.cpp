@@ -142,6 +142,27 @@ TEST_F(View, ATiledRunIsViewedThroughItsMosaicsAsTheUntiledRun) {
   expect_terrain_on_screen(dir / "tiled.html");
 }
 
+// Issue #24 item 10: a tiled run with a tile gone names the tile (read without the check of
+// report.json, which names it too) and says what to do; nothing is written.
+TEST_F(View, ATiledRunWithATileMissingNamesTheTile) {
+  ASSERT_EQ(terraweave("-q run pipeline.yaml --set output.dir=tiled/out --set "
+                       "'output.tiles={size: 24, overlap: 2}'")
+                .exit_code,
+            0);
+  const std::string vrt = read_file(dir / "tiled/out/height.vrt");
+  const std::size_t at = vrt.find("<SourceFilename");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t start = vrt.find('>', at) + 1;
+  const std::string tile = vrt.substr(start, vrt.find('<', start) - start);
+  ASSERT_TRUE(fs::remove(dir / "tiled/out" / tile)) << tile;
+  const CommandResult view = terraweave("view tiled/out --no-verify --out page.html 2>&1");
+  EXPECT_EQ(view.exit_code, 1) << view.output;
+  EXPECT_THAT(view.output, HasSubstr(".vrt: its tile ")) << view.output;
+  EXPECT_THAT(view.output, HasSubstr(tile + " is missing")) << view.output;
+  EXPECT_THAT(view.output, HasSubstr("render that tile again"));
+  EXPECT_FALSE(fs::exists(dir / "page.html"));
+}
+
 TEST_F(View, ARunWithoutItsLayersIsNamedInTheError) {
   ASSERT_EQ(terraweave("-q run pipeline.yaml --set output.dir=tiled/out --set "
                        "'output.tiles={size: 24, overlap: 2}'")
