@@ -1,0 +1,220 @@
+// A line class grown as a curve network inside a run (docs/networks.md, "In pipelines";
+// pipelines/demo_network.yaml on the sample DEM): its lines are the class's features in
+// features.geojson, never cross (GEOS), lie in the region and off the roads read before them,
+// are painted in the class's splat material and forbidden in the avoidance layer, are the same
+// bytes for the same seed, and a tiled run equals the untiled one; config errors name the key.
+#include <gdal_priv.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <cstring>
+#include <fstream>
+#include <memory>
+
+#include "core/error.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const fs::path kDemo = test::source_dir() / "pipelines/demo_network.yaml";
+constexpr double kRegion[4] = {291000, 9114000, 291600, 9114400};
+
+PipelineConfig demo(const fs::path& out, std::vector<Override> overrides = {}) {
+  overrides.push_back({"output.dir", out.string()});
+  overrides.push_back({"output.preview", "false"});
+  return load_pipeline(kDemo, overrides);
+}
+
+struct ClassLine {
+  std::unique_ptr<OGRLineString> line;
+  double width = 0.0;
+};
+
+std::vector<ClassLine> class_lines(const fs::path& out, const std::string& name) {
+  GDALAllRegister();
+  std::vector<ClassLine> lines;
+  GDALDatasetUniquePtr ds(
+      GDALDataset::Open((out / "features.geojson").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  EXPECT_NE(ds, nullptr);
+  if (!ds) return lines;
+  for (const auto& feature : ds->GetLayer(0)) {
+    if (std::string(feature->GetFieldAsString("class")) != name) continue;
+    lines.push_back(
+        {std::unique_ptr<OGRLineString>(feature->GetGeometryRef()->toLineString()->clone()),
+         feature->GetFieldAsDouble("width")});
+  }
+  return lines;
+}
+
+// Every band of a raster as floats, band after band, with its geotransform.
+std::vector<float> pixels(const fs::path& path, int* width = nullptr, int* height = nullptr,
+                          double* transform = nullptr) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  EXPECT_NE(ds, nullptr) << path;
+  if (!ds) return {};
+  const int w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
+  if (width) *width = w;
+  if (height) *height = h;
+  if (transform) ds->GetGeoTransform(transform);
+  std::vector<float> out(std::size_t(w) * h * ds->GetRasterCount());
+  for (int b = 0; b < ds->GetRasterCount(); ++b)
+    EXPECT_EQ(
+        ds->GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, w, h, out.data() + std::size_t(w) * h * b,
+                                           w, h, GDT_Float32, 0, 0),
+        CE_None);
+  return out;
+}
+
+int band_named(const fs::path& path, const std::string& name) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) return -1;
+  for (int b = 1; b <= ds->GetRasterCount(); ++b)
+    if (name == ds->GetRasterBand(b)->GetDescription()) return b - 1;
+  return -1;
+}
+
+std::int64_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size()) return std::int64_t(std::max(a.size(), b.size()));
+  std::int64_t n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+  return n;
+}
+
+TEST(NetworkRun, LanesAreTheClassLinesInTheRegionOffTheRoadsAndInTheLayers) {
+  test::TempDir dir;
+  const RunReport report = run_pipeline(demo(dir / "a"));
+  const std::vector<ClassLine> lanes = class_lines(dir / "a", "lanes");
+  ASSERT_GE(lanes.size(), 8u);
+  const auto c = std::find_if(report.classes.begin(), report.classes.end(),
+                              [](const FeatureClassReport& r) { return r.name == "lanes"; });
+  ASSERT_NE(c, report.classes.end());
+  EXPECT_EQ(c->features.size(), lanes.size());
+  OGRPolygon region;
+  {
+    OGRLinearRing ring;
+    ring.addPoint(kRegion[0], kRegion[1]);
+    ring.addPoint(kRegion[2], kRegion[1]);
+    ring.addPoint(kRegion[2], kRegion[3]);
+    ring.addPoint(kRegion[0], kRegion[3]);
+    ring.closeRings();
+    region.addRing(&ring);
+  }
+  std::unique_ptr<OGRGeometry> inside(region.Buffer(1e-6));
+  const auto is_end = [](const OGRLineString& l, const OGRPoint& p) {
+    OGRPoint a, b;
+    l.StartPoint(&a);
+    l.EndPoint(&b);
+    return a.Distance(&p) < 1e-6 || b.Distance(&p) < 1e-6;
+  };
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    const OGRLineString& a = *lanes[i].line;
+    EXPECT_DOUBLE_EQ(lanes[i].width, 4.0);
+    EXPECT_TRUE(inside->Contains(&a)) << "lane " << i;
+    // Two lanes meet only where both end (a junction), never elsewhere.
+    for (std::size_t j = i + 1; j < lanes.size(); ++j) {
+      const OGRLineString& b = *lanes[j].line;
+      if (!a.Intersects(&b)) continue;
+      std::unique_ptr<OGRGeometry> common(a.Intersection(&b));
+      const auto check = [&](const OGRPoint& p) {
+        EXPECT_TRUE(is_end(a, p) && is_end(b, p))
+            << "lanes " << i << " and " << j << " cross at " << p.getX() << " " << p.getY();
+      };
+      const auto type = wkbFlatten(common->getGeometryType());
+      ASSERT_TRUE(type == wkbPoint || type == wkbMultiPoint) << "lanes " << i << " and " << j;
+      if (type == wkbPoint)
+        check(*common->toPoint());
+      else
+        for (const OGRPoint* p : *common->toMultiPoint()) check(*p);
+    }
+    // Off the roads read before them: their footprints (half widths) do not overlap, up to the
+    // forbidden cells' resolution (1 m cells over this region: half a diagonal).
+    for (const ClassLine& road : class_lines(dir / "a", "roads"))
+      EXPECT_GT(a.Distance(road.line.get()), 0.5 * (road.width + 4.0) - 0.75) << "lane " << i;
+  }
+  // Under the lanes: their material (road) in the splat and the forbidden mask in avoidance.
+  int width = 0, height = 0;
+  double gt[6];
+  const std::vector<float> splat = pixels(dir / "a/splat.tif", &width, &height, gt);
+  const std::vector<float> avoidance = pixels(dir / "a/avoidance.tif");
+  const int road = band_named(dir / "a/splat.tif", "splat.road");
+  const int forbidden = band_named(dir / "a/avoidance.tif", "forbidden");
+  ASSERT_GE(road, 0);
+  ASSERT_GE(forbidden, 0);
+  int samples = 0, painted = 0, masked = 0;
+  for (const ClassLine& lane : lanes) {
+    const OGRLineString& l = *lane.line;
+    const double length = l.get_Length();
+    for (double s = 0.5 * 4.0; s < length; s += 4.0) {
+      OGRPoint p;
+      l.Value(s, &p);
+      const int col = int((p.getX() - gt[0]) / gt[1]), row = int((p.getY() - gt[3]) / gt[5]);
+      ASSERT_TRUE(col >= 0 && col < width && row >= 0 && row < height);
+      const std::size_t at = std::size_t(row) * width + col, band = std::size_t(width) * height;
+      ++samples;
+      painted += splat[road * band + at] > 0.0f;
+      masked += avoidance[forbidden * band + at] > 0.0f;
+    }
+  }
+  std::printf("%zu lanes, %d samples: %d with splat.road > 0, %d forbidden\n", lanes.size(),
+              samples, painted, masked);
+  ASSERT_GT(samples, 50);
+  EXPECT_GE(painted, samples * 95 / 100);
+  EXPECT_GE(masked, samples * 95 / 100);
+}
+
+TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
+  test::TempDir dir;
+  run_pipeline(demo(dir / "a"));
+  run_pipeline(demo(dir / "b"));
+  for (const char* file : {"features.geojson", "height.tif", "splat.tif", "avoidance.tif"})
+    EXPECT_EQ(test::read_file(dir / "a" / file), test::read_file(dir / "b" / file)) << file;
+  run_pipeline(demo(dir / "c", {{"features.lanes.network.seed", "8"}}));
+  EXPECT_NE(test::read_file(dir / "a/features.geojson"),
+            test::read_file(dir / "c/features.geojson"));
+  // Tiles of 64 pixels: the network is grown once, in the plan, so every tile sees it.
+  run_pipeline(demo(dir / "t", {{"output.tiles.size", "64"}}));
+  for (const std::string layer : {"height", "splat", "avoidance"})
+    EXPECT_EQ(differing(pixels(dir / "t" / (layer + ".vrt")), pixels(dir / "a" / (layer + ".tif"))),
+              0)
+        << layer;
+  EXPECT_EQ(test::read_file(dir / "a/features.geojson"),
+            test::read_file(dir / "t/features.geojson"));
+}
+
+TEST(NetworkRun, ErrorsNameTheKey) {
+  test::TempDir dir;
+  std::ofstream(dir / "empty.svg")
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>\n";
+  const auto message = [&](std::vector<Override> overrides) {
+    try {
+      Warnings warnings;
+      plan_world(demo(dir / "x", std::move(overrides)), {}, warnings);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message({{"features.lanes.network.exemplar", (dir / "empty.svg").string()}}),
+              HasSubstr("features.lanes.network.exemplar"));
+  EXPECT_THAT(message({{"features.lanes.network.exemplar", (dir / "none.gpkg").string()}}),
+              HasSubstr("features.lanes.network.exemplar"));
+  EXPECT_THAT(message({{"features.lanes.network.region", "[291000, 9114000, 291000, 9114400]"}}),
+              HasSubstr("features.lanes.network.region"));
+  // A region far too large for fields of 100 m.
+  EXPECT_THAT(message({{"features.lanes.network.region", "[0, 0, 9000000, 9000000]"}}),
+              HasSubstr("features.lanes.network.region"));
+  EXPECT_THAT(message({{"features.lanes.network.candidates", "0"}}),
+              HasSubstr("features.lanes.network.candidates"));
+  EXPECT_THAT(message({{"features.lanes.network.colour", "red"}}),
+              HasSubstr("features.lanes.network.colour"));
+}
+
+}  // namespace
+}  // namespace tw
