@@ -357,8 +357,10 @@ void read_network_block(const MapReader& m, const std::string& kind_name, std::u
     m.source().fail(m.node(), m.key_path(),
                     "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
   f.network = detail::read_network(
-      MapReader(m.source(), m.get("network"), m.path("network"), detail::network_keys()), seed,
-      inputs);
+      MapReader(m.source(), m.get("network"), m.path("network"),
+                {"exemplar", "exemplar_where", "exemplar_region", "scale", "region", "partial",
+                 "seed", "lead_bearing", "clearance", "snap", "candidates", "avoid"}),
+      seed, inputs);
 }
 
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,

@@ -23,13 +23,6 @@ std::string source_value(const MapReader& m, const std::string& key,
 
 }  // namespace
 
-const std::vector<std::string>& network_keys() {
-  static const std::vector<std::string> keys{
-      "exemplar", "exemplar_where", "exemplar_region", "scale", "region",     "partial",
-      "seed",     "lead_bearing",   "clearance",       "snap",  "candidates", "avoid"};
-  return keys;
-}
-
 NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
                                 std::vector<InputFile>& inputs) {
   NetworkClassConfig n;

@@ -9,9 +9,6 @@
 
 namespace tw::detail {
 
-// The keys a `network:` block may hold.
-const std::vector<std::string>& network_keys();
-
 // The `network:` block `m`. Throws tw::Error naming the file, line and key of the first bad
 // value; the exemplar, region and partial files go to `inputs`.
 NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
