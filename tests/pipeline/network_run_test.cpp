@@ -14,6 +14,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
 
@@ -186,6 +187,19 @@ TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
         << layer;
   EXPECT_EQ(test::read_file(dir / "a/features.geojson"),
             test::read_file(dir / "t/features.geojson"));
+  // A saved plan (what distributed workers load) carries the grown lanes point for point.
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p"), {}, warnings);
+  save_plan(plan, dir / "plan");
+  const WorldPlan loaded = load_plan(dir / "plan");
+  const std::size_t lanes = 2;  // precedence: rivers, roads, lanes
+  ASSERT_EQ(plan.class_names.at(lanes), "lanes");
+  ASSERT_GE(plan.lines.at(lanes).size(), 8u);
+  ASSERT_EQ(loaded.lines.at(lanes).size(), plan.lines.at(lanes).size());
+  for (std::size_t i = 0; i < plan.lines[lanes].size(); ++i) {
+    EXPECT_EQ(loaded.lines[lanes][i].points, plan.lines[lanes][i].points);
+    EXPECT_EQ(loaded.lines[lanes][i].fid, std::int64_t(i + 1));
+  }
 }
 
 TEST(NetworkRun, ErrorsNameTheKey) {
