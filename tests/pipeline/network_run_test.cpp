@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "pipeline/plan.hpp"
@@ -200,6 +201,35 @@ TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
     EXPECT_EQ(loaded.lines[lanes][i].points, plan.lines[lanes][i].points);
     EXPECT_EQ(loaded.lines[lanes][i].fid, std::int64_t(i + 1));
   }
+}
+
+TEST(NetworkRun, SynthesisAlongTheLanes) {
+  test::TempDir dir;
+  run_pipeline(
+      demo(dir / "s", {{"features.lanes.synthesis.exemplar",
+                        (test::source_dir() / "samples/exemplars/hedge_192x48.png").string()},
+                       {"features.lanes.synthesis.delta", "8"}}));
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / "s/report.json"));
+  EXPECT_EQ(report["pattern_violations"].get<int>(), 0);
+  const auto& classes = report["classes"];
+  const auto lanes = std::find_if(classes.begin(), classes.end(),
+                                  [](const auto& c) { return c["name"] == "lanes"; });
+  ASSERT_NE(lanes, classes.end());
+  int synthesized = 0, long_enough = 0;
+  for (const auto& f : (*lanes)["features"]) {
+    if (f["length_m"].get<double>() < 8.0) continue;
+    ++long_enough;
+    synthesized += f.contains("synthesis") && f["pieces"].get<int>() > 0;
+  }
+  EXPECT_GE(long_enough, 8);
+  EXPECT_EQ(synthesized, long_enough);
+  // The pattern's coverage is a splat material of its own.
+  int width = 0, height = 0;
+  const std::vector<float> splat = pixels(dir / "s/splat.tif", &width, &height);
+  const int band = band_named(dir / "s/splat.tif", "splat.lanes_pattern");
+  ASSERT_GE(band, 0);
+  const std::size_t n = std::size_t(width) * height;
+  EXPECT_GT(*std::max_element(splat.begin() + band * n, splat.begin() + (band + 1) * n), 0.5f);
 }
 
 TEST(NetworkRun, ErrorsNameTheKey) {
