@@ -277,7 +277,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   if (std::any_of(config.features.begin(), config.features.end(),
                   [](const FeatureClassConfig& c) { return bool(c.network); })) {
     clock.start("network");
-    detail::grow_network_classes(config, *source, heightfield, existing, lines, warnings);
+    detail::grow_network_classes(config, *source, heightfield, existing, lines, report.classes,
+                                 warnings);
     clock.stop();
   }
 

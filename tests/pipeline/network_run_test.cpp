@@ -167,6 +167,14 @@ TEST(NetworkRun, LanesAreTheClassLinesInTheRegionOffTheRoadsAndInTheLayers) {
   std::printf("%zu lanes, %d samples: %d with splat.road > 0, %d forbidden\n", lanes.size(),
               samples, painted, masked);
   ASSERT_GT(samples, 50);
+  // report.json: the growth's counts; the roads and existing features rejected some pieces.
+  const nlohmann::json json = nlohmann::json::parse(test::read_file(dir / "a/report.json"));
+  const auto& network = json["classes"][2]["network"];
+  EXPECT_EQ(json["classes"][2]["name"], "lanes");
+  EXPECT_EQ(network["lines"].get<std::size_t>(), lanes.size());
+  EXPECT_GE(network["exemplar_edges"].get<int>(), 5);
+  EXPECT_GT(network["placed"].get<int>(), 0);
+  EXPECT_EQ(network["kept"].get<int>(), 0);
   EXPECT_GE(painted, samples * 95 / 100);
   EXPECT_GE(masked, samples * 95 / 100);
 }

@@ -104,7 +104,8 @@ Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>&
 
 void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
                           const Heightfield& heightfield, const ExistingFeatures& existing,
-                          std::vector<std::vector<LineFeature>>& lines, Warnings& warnings) {
+                          std::vector<std::vector<LineFeature>>& lines,
+                          std::vector<FeatureClassReport>& reports, Warnings& warnings) {
   HeightSampler sampler(source);
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& fc = config.features[c];
@@ -171,6 +172,20 @@ void grow_network_classes(const PipelineConfig& config, const HeightfieldSource&
       feature.width = fc.width;
       feature.source = n.exemplar;
     }
+    NetworkClassReport& r = reports[c].network.emplace();
+    r.exemplar = n.exemplar;
+    r.exemplar_edges = int(exemplar.edges.size());
+    r.lines = int(lines[c].size());
+    r.kept = int(std::count_if(grown.edges.begin(), grown.edges.end(),
+                               [](const NetworkEdge& e) { return e.kept; }));
+    r.placed = report.placed;
+    r.snapped = report.snapped;
+    r.t_junctions = report.t_junctions;
+    r.boundary_ends = report.boundary_ends;
+    r.pruned = report.pruned;
+    r.rejected_crossing = report.rejected_crossing;
+    r.rejected_region = report.rejected_region;
+    r.rejected_forbidden = report.rejected_forbidden;
     if (lines[c].empty())
       warnings.add("empty_class", "features." + fc.name, std::nullopt,
                    "the network grew no line in its region");

@@ -10,14 +10,17 @@
 #include "geo/heightfield_source.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/run.hpp"
 
 namespace tw::detail {
 
-// Fills lines[c] of every network class c (FID n: the n-th edge, from 1). Deterministic with
+// Fills lines[c] of every network class c (FID n: the n-th edge, from 1) and its report's
+// `network`. Deterministic with
 // each class's network.seed. Throws tw::Error naming features.<class>.network.<key> on a bad
 // exemplar, region or partial network, and on any crossing the GEOS check finds.
 void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
                           const Heightfield& heightfield, const ExistingFeatures& existing,
-                          std::vector<std::vector<LineFeature>>& lines, Warnings& warnings);
+                          std::vector<std::vector<LineFeature>>& lines,
+                          std::vector<FeatureClassReport>& reports, Warnings& warnings);
 
 }  // namespace tw::detail
