@@ -18,6 +18,7 @@
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
+#include "test_world.hpp"
 
 namespace tw {
 namespace {
@@ -238,6 +239,32 @@ TEST(NetworkRun, SynthesisAlongTheLanes) {
   ASSERT_GE(band, 0);
   const std::size_t n = std::size_t(width) * height;
   EXPECT_GT(*std::max_element(splat.begin() + band * n, splat.begin() + (band + 1) * n), 0.5f);
+}
+
+TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
+  test::TempDir dir;
+  // Two lanes drawn by the user, meeting in a T, inside the region.
+  test::write_layer(dir / "drawn.gpkg", "drawn",
+                    {{"LINESTRING (291100 9114200, 291300 9114210, 291500 9114200)"},
+                     {"LINESTRING (291300 9114210, 291310 9114350)"}},
+                    "EPSG:31985");
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p", {{"features.lanes.network.partial",
+                                                      (dir / "drawn.gpkg").string() + ":drawn"}}),
+                                    {}, warnings);
+  const auto& lanes = plan.lines.at(2);
+  const auto& report = *plan.report.classes.at(2).network;
+  // The T splits the first line (3 edges), and lanes grown onto them split them further.
+  EXPECT_GE(report.kept, 3);
+  EXPECT_GT(int(lanes.size()), report.kept);
+  // The drawn vertices come out exactly as drawn, in lines of the class.
+  for (const Vec2 p : {Vec2{291100, 9114200}, Vec2{291300, 9114210}, Vec2{291500, 9114200},
+                       Vec2{291310, 9114350}}) {
+    bool found = false;
+    for (const LineFeature& l : lanes)
+      found = found || std::find(l.points.begin(), l.points.end(), p) != l.points.end();
+    EXPECT_TRUE(found) << p.x << " " << p.y;
+  }
 }
 
 TEST(NetworkRun, ErrorsNameTheKey) {

@@ -88,7 +88,9 @@ Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>&
     lines = read_network_lines(
         {.source = n.partial, .scale = n.scale, .subject = key, .min_lines = 1}, warnings);
   } catch (const Error& error) {
-    fail("{}: {}", key, error.what());
+    const std::string what = error.what();
+    if (what.starts_with(key)) throw;
+    fail("{}: {}", key, what);
   }
   lines.region = region;
   Network net = build_planar_network(lines, 0.0, key, warnings);
