@@ -10,6 +10,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -239,6 +240,32 @@ TEST(NetworkRun, SynthesisAlongTheLanes) {
   ASSERT_GE(band, 0);
   const std::size_t n = std::size_t(width) * height;
   EXPECT_GT(*std::max_element(splat.begin() + band * n, splat.begin() + (band + 1) * n), 0.5f);
+}
+
+// The synthesis cache keys the lines' geometry: a rerun reuses every lane's synthesis, a network
+// grown with another seed rebuilds them.
+TEST(NetworkRun, CacheReusesTheSameLanesRebuildsOtherOnes) {
+  test::TempDir dir;
+  const std::string exemplar = (test::source_dir() / "samples/exemplars/hedge_192x48.png").string();
+  const auto run = [&](const std::string& out, const std::string& seed) {
+    run_pipeline(demo(dir / out, {{"features.lanes.synthesis.exemplar", exemplar},
+                                  {"features.lanes.synthesis.delta", "8"},
+                                  {"features.lanes.network.seed", seed},
+                                  {"cache", (dir / "cache").string()}}));
+    const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / out / "report.json"));
+    std::map<std::string, int> statuses;
+    for (const auto& f : report["classes"][2]["features"])
+      if (f.contains("synthesis")) ++statuses[f["cache"]["status"].get<std::string>()];
+    return statuses;
+  };
+  const auto first = run("a", "7");
+  EXPECT_GT(first.at("rebuilt"), 8);
+  const auto second = run("b", "7");
+  EXPECT_EQ(second.at("reused"), first.at("rebuilt"));
+  EXPECT_EQ(second.count("rebuilt"), 0u);
+  EXPECT_EQ(test::read_file(dir / "a/splat.tif"), test::read_file(dir / "b/splat.tif"));
+  const auto other = run("c", "8");
+  EXPECT_GT(other.at("rebuilt"), 8);
 }
 
 TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
