@@ -14,6 +14,7 @@
 #include "geo/osm_tags.hpp"
 #include "pipeline/detail/area_config.hpp"
 #include "pipeline/detail/grow_config.hpp"
+#include "pipeline/detail/network_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/tag_config.hpp"
 #include "pipeline/detail/yaml_file.hpp"
@@ -346,13 +347,30 @@ FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& 
                   "no tag key implies a kind (highway, waterway or natural); give kind");
 }
 
+// A `network:` block (docs/networks.md, "In pipelines"): the class's lines are grown, so it
+// reads no features (no tags, widths or grow: block).
+void read_network_block(const MapReader& m, const std::string& kind_name, std::uint64_t seed,
+                        FeatureClassConfig& f, std::vector<InputFile>& inputs) {
+  for (const char* key : {"grow", "source", "tags", "width_attribute"})
+    if (m.has(key))
+      m.source().fail(m.get(key), m.path(key),
+                      fmt::format("a network class grows its lines: it takes no {} key", key));
+  if (kind_name.empty())
+    m.source().fail(m.node(), m.key_path(),
+                    "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
+  f.network = detail::read_network(
+      MapReader(m.source(), m.get("network"), m.path("network"), "network"),
+      seed, inputs);
+}
+
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,
                                       std::uint64_t seed, const LineRepair& repair,
                                       std::vector<InputFile>& inputs) {
   FeatureClassConfig f;
   f.name = name;
   const std::string kind_name = m.has("kind") ? read_kind_name(m) : "";
-  if (detail::is_grown_kind(kind_name) && !m.has("grow")) {
+  if (m.has("network")) read_network_block(m, kind_name, seed, f, inputs);
+  if (detail::is_grown_kind(kind_name) && !m.has("grow") && !f.network) {
     m.source().fail(m.get("kind"), m.path("kind"),
                     fmt::format("a {} class grows its lines: give a grow: block with at least "
                                 "an element set (grow: {{ element: ... }})",
@@ -368,7 +386,8 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     }
   }
   // A grown class reads its source as the region's polygons, and needs none with grow.region.
-  if (!f.grow || m.has("source") || (!f.grow->region_box && f.grow->region_source.empty()))
+  if ((!f.grow && !f.network) || m.has("source") ||
+      (f.grow && !f.grow->region_box && f.grow->region_source.empty()))
     f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
@@ -378,8 +397,8 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   } else {
     f.kind = f.tags.empty() ? kind_of(read_kind_name(m)) : kind_from_tags(m, f.tags);
   }
-  if (f.grow) {
-    f.grow->kind = kind_name;  // never empty: without tags, `kind` is required
+  if (f.grow || f.network) {
+    if (f.grow) f.grow->kind = kind_name;  // never empty: without tags, `kind` is required
     detail::apply_grown_defaults(kind_name, f);
     if (m.has("width")) f.width = read_width(m, "width");
     if (f.width <= 0.0) f.width = read_width(m, "width");  // road, river, ridge + grow: required
@@ -391,7 +410,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("conform")) {
-    if (f.grow) {
+    if (f.grow || f.network) {
       m.source().fail(m.get("conform"), m.path("conform"),
                       "grown lines are drawn on the surface already; conform applies to lines "
                       "read from a source");

@@ -17,6 +17,7 @@
 #include "layers/write.hpp"
 #include "pipeline/area_config.hpp"
 #include "pipeline/grow_config.hpp"
+#include "pipeline/network_config.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "terrain/features.hpp"
 
@@ -126,6 +127,9 @@ struct FeatureClassConfig {
   // `kind: hedge | wall | trail | ditch` or a `grow:` block: the lines are grown (FloralSurf,
   // docs/ornaments.md) after ingest instead of read from `source`.
   std::optional<GrowConfig> grow;
+  // A `network:` block: the lines are a curve network grown by example over a region
+  // (docs/networks.md, "In pipelines") after the grown classes, instead of read from `source`.
+  std::optional<NetworkClassConfig> network;
 };
 
 // Avoidance input: polygons are burnt as they are, lines are buffered by `width`.

@@ -11,6 +11,7 @@
 #include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
+#include "pipeline/detail/network_classes.hpp"
 #include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
@@ -239,13 +240,15 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
     // A grown class's lines come from the growth stage, below.
-    lines.push_back(feature_class.grow
+    lines.push_back(feature_class.grow || feature_class.network
                         ? std::vector<LineFeature>{}
                         : detail::load_feature_class(feature_class, heightfield, warnings));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
-    class_report.source = feature_class.source.string() + ":" + feature_class.layer;
+    class_report.source = feature_class.network
+                              ? feature_class.network->exemplar
+                              : feature_class.source.string() + ":" + feature_class.layer;
     class_report.ingest_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     plan.class_names.push_back(feature_class.name);
@@ -278,6 +281,16 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
       if (c.grow)
         report.grown_crossings +=
             c.grow->crossings.grown + c.grow->crossings.feature + c.grow->crossings.forbidden;
+    clock.stop();
+  }
+
+  // Networks grow after the grown classes, off everything before them; once, in the plan, so
+  // that every tile and worker sees the same lines.
+  if (std::any_of(config.features.begin(), config.features.end(),
+                  [](const FeatureClassConfig& c) { return bool(c.network); })) {
+    clock.start("network");
+    detail::grow_network_classes(config, *source, heightfield, existing, lines, report.classes,
+                                 warnings);
     clock.stop();
   }
 

@@ -26,8 +26,8 @@ inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // 3: the grown classes (files.grown); 4: their short_lines and synthesis counts; 5:
 // synthesis_junctions (choose: mix); 6: tasks.json's hash in plan.json, syntheses.json's in
-// job.json, a mix's report fields (issue #24).
-inline constexpr int kPlanVersion = 6;
+// job.json, a mix's report fields (issue #24); 7: a network class's report (`network`).
+inline constexpr int kPlanVersion = 7;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

@@ -260,7 +260,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       feature_options.canvas_tile = options.canvas_tile;
       // A grown class is many short lines between joints (junction discs) and the patterns
       // of its own earlier lines: one without room is left bare and counted (grow.synthesis).
-      feature_options.no_room_is_error = !feature_class.grow;
+      // So is a network class's line between two junctions.
+      feature_options.no_room_is_error = !feature_class.grow && !feature_class.network;
       if (plan.mix) {
         feature_options.mix = &*plan.mix;
         feature_options.bindings = std::move(bindings);

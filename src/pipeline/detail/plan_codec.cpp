@@ -69,8 +69,11 @@ TW_FIELDS(GrowthReport, F(kind) F(element) F(ornaments) F(elements) F(lines) F(r
                             F(rejected_forbidden) F(rejected_untraceable) F(rejected_footprint)
                                 F(crossings) F(coverage) F(coverage_radius_m) F(mesh_width)
                                     F(mesh_height) F(short_lines) F(synthesis))
+TW_FIELDS(NetworkClassReport, F(exemplar) F(exemplar_edges) F(lines) F(kept) F(placed) F(snapped)
+                                  F(t_junctions) F(boundary_ends) F(pruned) F(rejected_crossing)
+                                      F(rejected_region) F(rejected_forbidden))
 TW_FIELDS(FeatureClassReport,
-          F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow))
+          F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow) F(network))
 TW_FIELDS(GrownLine, F(ornament) F(element) F(name) F(material) F(points) F(heights))
 TW_FIELDS(GrownClass, F(class_index) F(kind) F(height_m) F(lines))
 TW_FIELDS(ShapeInstance, F(shape) F(lead) F(position) F(rotation) F(scale) F(material) F(unbounded))

@@ -34,6 +34,7 @@ TW_PLAN_FIELDS(FeatureSynthesisReport);
 TW_PLAN_FIELDS(FeatureReport);
 TW_PLAN_FIELDS(GrownSynthesisReport);
 TW_PLAN_FIELDS(GrowthReport);
+TW_PLAN_FIELDS(NetworkClassReport);
 TW_PLAN_FIELDS(FeatureClassReport);
 TW_PLAN_FIELDS(GrownLine);
 TW_PLAN_FIELDS(GrownClass);

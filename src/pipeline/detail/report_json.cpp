@@ -200,6 +200,22 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
         entry["grow"]["synthesis"] = {{"dressed", g.synthesis->dressed},
                                       {"no_room", g.synthesis->no_room}};
     }
+    if (c.network) {
+      const NetworkClassReport& n = *c.network;
+      entry["network"] = {{"exemplar", n.exemplar},
+                          {"exemplar_edges", n.exemplar_edges},
+                          {"lines", n.lines},
+                          {"kept", n.kept},
+                          {"placed", n.placed},
+                          {"snapped", n.snapped},
+                          {"t_junctions", n.t_junctions},
+                          {"boundary_ends", n.boundary_ends},
+                          {"pruned", n.pruned},
+                          {"rejected",
+                           {{"crossing", n.rejected_crossing},
+                            {"region", n.rejected_region},
+                            {"forbidden", n.rejected_forbidden}}}};
+    }
     classes.push_back(std::move(entry));
   }
   json warnings = json::array();

@@ -1,0 +1,326 @@
+// A line class grown as a curve network inside a run (docs/networks.md, "In pipelines";
+// pipelines/demo_network.yaml on the sample DEM): its lines are the class's features in
+// features.geojson, never cross (GEOS), lie in the region and off the roads read before them,
+// are painted in the class's splat material and forbidden in the avoidance layer, are the same
+// bytes for the same seed, and a tiled run equals the untiled one; config errors name the key.
+#include <gdal_priv.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+#include "pipeline/run.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const fs::path kDemo = test::source_dir() / "pipelines/demo_network.yaml";
+constexpr double kRegion[4] = {291000, 9114000, 291600, 9114400};
+
+PipelineConfig demo(const fs::path& out, std::vector<Override> overrides = {}) {
+  overrides.push_back({"output.dir", out.string()});
+  overrides.push_back({"output.preview", "false"});
+  return load_pipeline(kDemo, overrides);
+}
+
+struct ClassLine {
+  std::unique_ptr<OGRLineString> line;
+  double width = 0.0;
+};
+
+std::vector<ClassLine> class_lines(const fs::path& out, const std::string& name) {
+  GDALAllRegister();
+  std::vector<ClassLine> lines;
+  GDALDatasetUniquePtr ds(
+      GDALDataset::Open((out / "features.geojson").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  EXPECT_NE(ds, nullptr);
+  if (!ds) return lines;
+  for (const auto& feature : ds->GetLayer(0)) {
+    if (std::string(feature->GetFieldAsString("class")) != name) continue;
+    lines.push_back(
+        {std::unique_ptr<OGRLineString>(feature->GetGeometryRef()->toLineString()->clone()),
+         feature->GetFieldAsDouble("width")});
+  }
+  return lines;
+}
+
+// Every band of a raster as floats, band after band, with its geotransform.
+std::vector<float> pixels(const fs::path& path, int* width = nullptr, int* height = nullptr,
+                          double* transform = nullptr) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  EXPECT_NE(ds, nullptr) << path;
+  if (!ds) return {};
+  const int w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
+  if (width) *width = w;
+  if (height) *height = h;
+  if (transform) ds->GetGeoTransform(transform);
+  std::vector<float> out(std::size_t(w) * h * ds->GetRasterCount());
+  for (int b = 0; b < ds->GetRasterCount(); ++b)
+    EXPECT_EQ(
+        ds->GetRasterBand(b + 1)->RasterIO(GF_Read, 0, 0, w, h, out.data() + std::size_t(w) * h * b,
+                                           w, h, GDT_Float32, 0, 0),
+        CE_None);
+  return out;
+}
+
+int band_named(const fs::path& path, const std::string& name) {
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) return -1;
+  for (int b = 1; b <= ds->GetRasterCount(); ++b)
+    if (name == ds->GetRasterBand(b)->GetDescription()) return b - 1;
+  return -1;
+}
+
+std::int64_t differing(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size()) return std::int64_t(std::max(a.size(), b.size()));
+  std::int64_t n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(float)) != 0;
+  return n;
+}
+
+TEST(NetworkRun, LanesAreTheClassLinesInTheRegionOffTheRoadsAndInTheLayers) {
+  test::TempDir dir;
+  const RunReport report = run_pipeline(demo(dir / "a"));
+  const std::vector<ClassLine> lanes = class_lines(dir / "a", "lanes");
+  ASSERT_GE(lanes.size(), 8u);
+  const auto c = std::find_if(report.classes.begin(), report.classes.end(),
+                              [](const FeatureClassReport& r) { return r.name == "lanes"; });
+  ASSERT_NE(c, report.classes.end());
+  EXPECT_EQ(c->features.size(), lanes.size());
+  OGRPolygon region;
+  {
+    OGRLinearRing ring;
+    ring.addPoint(kRegion[0], kRegion[1]);
+    ring.addPoint(kRegion[2], kRegion[1]);
+    ring.addPoint(kRegion[2], kRegion[3]);
+    ring.addPoint(kRegion[0], kRegion[3]);
+    ring.closeRings();
+    region.addRing(&ring);
+  }
+  std::unique_ptr<OGRGeometry> inside(region.Buffer(1e-6));
+  const auto is_end = [](const OGRLineString& l, const OGRPoint& p) {
+    OGRPoint a, b;
+    l.StartPoint(&a);
+    l.EndPoint(&b);
+    return a.Distance(&p) < 1e-6 || b.Distance(&p) < 1e-6;
+  };
+  for (std::size_t i = 0; i < lanes.size(); ++i) {
+    const OGRLineString& a = *lanes[i].line;
+    EXPECT_DOUBLE_EQ(lanes[i].width, 4.0);
+    EXPECT_TRUE(inside->Contains(&a)) << "lane " << i;
+    // Two lanes meet only where both end (a junction), never elsewhere.
+    for (std::size_t j = i + 1; j < lanes.size(); ++j) {
+      const OGRLineString& b = *lanes[j].line;
+      if (!a.Intersects(&b)) continue;
+      std::unique_ptr<OGRGeometry> common(a.Intersection(&b));
+      const auto check = [&](const OGRPoint& p) {
+        EXPECT_TRUE(is_end(a, p) && is_end(b, p))
+            << "lanes " << i << " and " << j << " cross at " << p.getX() << " " << p.getY();
+      };
+      const auto type = wkbFlatten(common->getGeometryType());
+      ASSERT_TRUE(type == wkbPoint || type == wkbMultiPoint) << "lanes " << i << " and " << j;
+      if (type == wkbPoint)
+        check(*common->toPoint());
+      else
+        for (const OGRPoint* p : *common->toMultiPoint()) check(*p);
+    }
+    // Off the roads read before them: their footprints (half widths) do not overlap, up to the
+    // forbidden cells' resolution (1 m cells over this region: half a diagonal).
+    for (const ClassLine& road : class_lines(dir / "a", "roads"))
+      EXPECT_GT(a.Distance(road.line.get()), 0.5 * (road.width + 4.0) - 0.75) << "lane " << i;
+  }
+  // Under the lanes: their material (road) in the splat and the forbidden mask in avoidance.
+  int width = 0, height = 0;
+  double gt[6];
+  const std::vector<float> splat = pixels(dir / "a/splat.tif", &width, &height, gt);
+  const std::vector<float> avoidance = pixels(dir / "a/avoidance.tif");
+  const int road = band_named(dir / "a/splat.tif", "splat.road");
+  const int forbidden = band_named(dir / "a/avoidance.tif", "forbidden");
+  ASSERT_GE(road, 0);
+  ASSERT_GE(forbidden, 0);
+  int samples = 0, painted = 0, masked = 0;
+  for (const ClassLine& lane : lanes) {
+    const OGRLineString& l = *lane.line;
+    const double length = l.get_Length();
+    for (double s = 0.5 * 4.0; s < length; s += 4.0) {
+      OGRPoint p;
+      l.Value(s, &p);
+      const int col = int((p.getX() - gt[0]) / gt[1]), row = int((p.getY() - gt[3]) / gt[5]);
+      ASSERT_TRUE(col >= 0 && col < width && row >= 0 && row < height);
+      const std::size_t at = std::size_t(row) * width + col, band = std::size_t(width) * height;
+      ++samples;
+      painted += splat[road * band + at] > 0.0f;
+      masked += avoidance[forbidden * band + at] > 0.0f;
+    }
+  }
+  std::printf("%zu lanes, %d samples: %d with splat.road > 0, %d forbidden\n", lanes.size(),
+              samples, painted, masked);
+  ASSERT_GT(samples, 50);
+  // report.json: the growth's counts; the roads and existing features rejected some pieces.
+  const nlohmann::json json = nlohmann::json::parse(test::read_file(dir / "a/report.json"));
+  const auto& network = json["classes"][2]["network"];
+  EXPECT_EQ(json["classes"][2]["name"], "lanes");
+  EXPECT_EQ(network["lines"].get<std::size_t>(), lanes.size());
+  EXPECT_GE(network["exemplar_edges"].get<int>(), 5);
+  EXPECT_GT(network["placed"].get<int>(), 0);
+  EXPECT_EQ(network["kept"].get<int>(), 0);
+  EXPECT_GE(painted, samples * 95 / 100);
+  EXPECT_GE(masked, samples * 95 / 100);
+}
+
+TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
+  test::TempDir dir;
+  run_pipeline(demo(dir / "a"));
+  run_pipeline(demo(dir / "b"));
+  for (const char* file : {"features.geojson", "height.tif", "splat.tif", "avoidance.tif"})
+    EXPECT_EQ(test::read_file(dir / "a" / file), test::read_file(dir / "b" / file)) << file;
+  run_pipeline(demo(dir / "c", {{"features.lanes.network.seed", "8"}}));
+  EXPECT_NE(test::read_file(dir / "a/features.geojson"),
+            test::read_file(dir / "c/features.geojson"));
+  // Tiles of 64 pixels: the network is grown once, in the plan, so every tile sees it.
+  run_pipeline(demo(dir / "t", {{"output.tiles.size", "64"}}));
+  for (const std::string layer : {"height", "splat", "avoidance"})
+    EXPECT_EQ(differing(pixels(dir / "t" / (layer + ".vrt")), pixels(dir / "a" / (layer + ".tif"))),
+              0)
+        << layer;
+  EXPECT_EQ(test::read_file(dir / "a/features.geojson"),
+            test::read_file(dir / "t/features.geojson"));
+  // A saved plan (what distributed workers load) carries the grown lanes point for point.
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p"), {}, warnings);
+  save_plan(plan, dir / "plan");
+  const WorldPlan loaded = load_plan(dir / "plan");
+  const std::size_t lanes = 2;  // precedence: rivers, roads, lanes
+  ASSERT_EQ(plan.class_names.at(lanes), "lanes");
+  ASSERT_GE(plan.lines.at(lanes).size(), 8u);
+  ASSERT_EQ(loaded.lines.at(lanes).size(), plan.lines.at(lanes).size());
+  for (std::size_t i = 0; i < plan.lines[lanes].size(); ++i) {
+    EXPECT_EQ(loaded.lines[lanes][i].points, plan.lines[lanes][i].points);
+    EXPECT_EQ(loaded.lines[lanes][i].fid, std::int64_t(i + 1));
+  }
+}
+
+TEST(NetworkRun, SynthesisAlongTheLanes) {
+  test::TempDir dir;
+  run_pipeline(
+      demo(dir / "s", {{"features.lanes.synthesis.exemplar",
+                        (test::source_dir() / "samples/exemplars/hedge_192x48.png").string()},
+                       {"features.lanes.synthesis.delta", "8"}}));
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / "s/report.json"));
+  EXPECT_EQ(report["pattern_violations"].get<int>(), 0);
+  const auto& classes = report["classes"];
+  const auto lanes = std::find_if(classes.begin(), classes.end(),
+                                  [](const auto& c) { return c["name"] == "lanes"; });
+  ASSERT_NE(lanes, classes.end());
+  int synthesized = 0, long_enough = 0;
+  for (const auto& f : (*lanes)["features"]) {
+    if (f["length_m"].get<double>() < 8.0) continue;
+    ++long_enough;
+    synthesized += f.contains("synthesis") && f["pieces"].get<int>() > 0;
+  }
+  EXPECT_GE(long_enough, 8);
+  EXPECT_EQ(synthesized, long_enough);
+  // The pattern's coverage is a splat material of its own.
+  int width = 0, height = 0;
+  const std::vector<float> splat = pixels(dir / "s/splat.tif", &width, &height);
+  const int band = band_named(dir / "s/splat.tif", "splat.lanes_pattern");
+  ASSERT_GE(band, 0);
+  const std::size_t n = std::size_t(width) * height;
+  EXPECT_GT(*std::max_element(splat.begin() + band * n, splat.begin() + (band + 1) * n), 0.5f);
+}
+
+// The synthesis cache keys the lines' geometry: a rerun reuses every lane's synthesis, a network
+// grown with another seed rebuilds them.
+TEST(NetworkRun, CacheReusesTheSameLanesRebuildsOtherOnes) {
+  test::TempDir dir;
+  const std::string exemplar = (test::source_dir() / "samples/exemplars/hedge_192x48.png").string();
+  const auto run = [&](const std::string& out, const std::string& seed) {
+    run_pipeline(demo(dir / out, {{"features.lanes.synthesis.exemplar", exemplar},
+                                  {"features.lanes.synthesis.delta", "8"},
+                                  {"features.lanes.network.seed", seed},
+                                  {"cache", (dir / "cache").string()}}));
+    const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / out / "report.json"));
+    std::map<std::string, int> statuses;
+    for (const auto& f : report["classes"][2]["features"])
+      if (f.contains("synthesis")) ++statuses[f["cache"]["status"].get<std::string>()];
+    return statuses;
+  };
+  const auto first = run("a", "7");
+  EXPECT_GT(first.at("rebuilt"), 8);
+  const auto second = run("b", "7");
+  EXPECT_EQ(second.at("reused"), first.at("rebuilt"));
+  EXPECT_EQ(second.count("rebuilt"), 0u);
+  EXPECT_EQ(test::read_file(dir / "a/splat.tif"), test::read_file(dir / "b/splat.tif"));
+  const auto other = run("c", "8");
+  EXPECT_GT(other.at("rebuilt"), 8);
+}
+
+TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
+  test::TempDir dir;
+  // Two lanes drawn by the user, meeting in a T, inside the region.
+  test::write_layer(dir / "drawn.gpkg", "drawn",
+                    {{"LINESTRING (291100 9114200, 291300 9114210, 291500 9114200)"},
+                     {"LINESTRING (291300 9114210, 291310 9114350)"}},
+                    "EPSG:31985");
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p", {{"features.lanes.network.partial",
+                                                      (dir / "drawn.gpkg").string() + ":drawn"}}),
+                                    {}, warnings);
+  const auto& lanes = plan.lines.at(2);
+  const auto& report = *plan.report.classes.at(2).network;
+  // The T splits the first line (3 edges), and lanes grown onto them split them further.
+  EXPECT_GE(report.kept, 3);
+  EXPECT_GT(int(lanes.size()), report.kept);
+  // The drawn vertices come out exactly as drawn, in lines of the class.
+  for (const Vec2 p : {Vec2{291100, 9114200}, Vec2{291300, 9114210}, Vec2{291500, 9114200},
+                       Vec2{291310, 9114350}}) {
+    bool found = false;
+    for (const LineFeature& l : lanes)
+      found = found || std::find(l.points.begin(), l.points.end(), p) != l.points.end();
+    EXPECT_TRUE(found) << p.x << " " << p.y;
+  }
+}
+
+TEST(NetworkRun, ErrorsNameTheKey) {
+  test::TempDir dir;
+  std::ofstream(dir / "empty.svg")
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>\n";
+  const auto message = [&](std::vector<Override> overrides) {
+    try {
+      Warnings warnings;
+      plan_world(demo(dir / "x", std::move(overrides)), {}, warnings);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message({{"features.lanes.network.exemplar", (dir / "empty.svg").string()}}),
+              HasSubstr("features.lanes.network.exemplar"));
+  EXPECT_THAT(message({{"features.lanes.network.exemplar", (dir / "none.gpkg").string()}}),
+              HasSubstr("features.lanes.network.exemplar"));
+  EXPECT_THAT(message({{"features.lanes.network.region", "[291000, 9114000, 291000, 9114400]"}}),
+              HasSubstr("features.lanes.network.region"));
+  // A region far too large for fields of 100 m.
+  EXPECT_THAT(message({{"features.lanes.network.region", "[0, 0, 9000000, 9000000]"}}),
+              HasSubstr("features.lanes.network.region"));
+  EXPECT_THAT(message({{"features.lanes.network.candidates", "0"}}),
+              HasSubstr("features.lanes.network.candidates"));
+  EXPECT_THAT(message({{"features.lanes.network.colour", "red"}}),
+              HasSubstr("features.lanes.network.colour"));
+}
+
+}  // namespace
+}  // namespace tw
