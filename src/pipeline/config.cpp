@@ -351,6 +351,8 @@ FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& 
 // reads no features (no tags, widths or grow: block).
 void read_network_block(const MapReader& m, const std::string& kind_name, std::uint64_t seed,
                         FeatureClassConfig& f, std::vector<InputFile>& inputs) {
+  // The block itself first: a network: that is not a mapping is named as such.
+  const MapReader block(m.source(), m.get("network"), m.path("network"), "network");
   for (const char* key : {"grow", "source", "tags", "width_attribute"})
     if (m.has(key))
       m.source().fail(m.get(key), m.path(key),
@@ -358,9 +360,7 @@ void read_network_block(const MapReader& m, const std::string& kind_name, std::u
   if (kind_name.empty())
     m.source().fail(m.node(), m.key_path(),
                     "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
-  f.network = detail::read_network(
-      MapReader(m.source(), m.get("network"), m.path("network"), "network"),
-      seed, inputs);
+  f.network = detail::read_network(block, seed, inputs);
 }
 
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,

@@ -52,6 +52,7 @@ features:
   rivers: { source: lines.geojson, kind: river, width: 4, profile: { depth: 1 }, conform: { corridor: 20 } }
   ridges: { source: lines.geojson, kind: ridge, width: 4, profile: { height: 2 } }
   hedges: { kind: hedge, grow: { element: hedge.json, region: { source: fields.geojson } } }
+  lanes: { kind: trail, width: 3, network: { exemplar: lanes.gpkg, region: [0, 0, 200, 200] } }
   vines: { kind: area, source: fields.geojson, sketch: rows.geojson, lead: { bearing: 30 } }
 existing:
   - { source: lines.geojson, width: 3 }
@@ -77,6 +78,7 @@ const std::map<std::string, std::string>& block_paths() {
       {"binding", "features.roads.synthesis.bind.0"},
       {"grow", "features.hedges.grow"},
       {"grow_region", "features.hedges.grow.region"},
+      {"network", "features.lanes.network"},
       {"area_class", "features.vines"},
       {"lead", "features.vines.lead"},
       {"existing", "existing.0"},
@@ -166,7 +168,7 @@ TEST_F(PipelineSchema, EveryShippedPipelineValidatesAndNamesTheSchema) {
     EXPECT_EQ(schema_errors(tree_of(text, {})), "");
     EXPECT_NO_THROW(parse_pipeline(text, entry.path().string(), entry.path().parent_path()));
   }
-  EXPECT_EQ(files, 8);
+  EXPECT_EQ(files, 9);  // pipelines/*.yaml: a new one is counted here
 }
 
 TEST_F(PipelineSchema, EveryBlockIsReachedAndValid) {

@@ -44,7 +44,7 @@ NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
                       "expected [minx, miny, maxx, maxy] with minx < maxx, miny < maxy");
     n.region_box = box;
   } else if (region.IsMap()) {
-    const MapReader r(m.source(), region, key, {"source", "layer", "where"});
+    const MapReader r(m.source(), region, key, "grow_region");
     n.region_source = r.file("source").string();
     inputs.push_back({n.region_source, InputFile::Kind::vector,
                       r.source().named_at(r.get("source"), r.path("source"))});
