@@ -17,7 +17,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   tw::ElementSet set;
   try {
-    set = tw::parse_element_set(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
+    set =
+        tw::parse_element_set(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json");
   } catch (const tw::Error&) {
     return 0;
   }

@@ -1,6 +1,6 @@
 // Fuzz target: a plan object's bytes (CBOR, docs/distributed.md) decoded as the plan's report,
-// its terrain parameters and its lines, the way load_plan decodes verified objects. A bad object is a
-// tw::Error or a json::exception (which load_plan turns into an error naming the plan and key);
+// its terrain parameters and its lines, the way load_plan decodes verified objects. A bad object is
+// a tw::Error or a json::exception (which load_plan turns into an error naming the plan and key);
 // anything else that escapes, a crash or a sanitizer report is a finding.
 #include <nlohmann/json.hpp>
 

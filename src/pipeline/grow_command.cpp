@@ -34,9 +34,10 @@ std::optional<Polygon> bbox_polygon(const std::string& text) {
   if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4) {
     // Four comma-separated words that name no file were meant as a box, not a file name.
     if (std::count(text.begin(), text.end(), ',') == 3 && !std::filesystem::exists(text))
-      fail("--region {}: neither a polygon file nor a box of four numbers minx,miny,maxx,maxy "
-           "(in the DEM's CRS)",
-           text);
+      fail(
+          "--region {}: neither a polygon file nor a box of four numbers minx,miny,maxx,maxy "
+          "(in the DEM's CRS)",
+          text);
     return std::nullopt;
   }
   if (!(v[0] < v[2] && v[1] < v[3])) fail("--region {}: expected minx,miny,maxx,maxy", text);

@@ -87,7 +87,7 @@ struct GrowthReport {
 
 // A network class's growth (docs/networks.md, "In pipelines"; network/growth.hpp's counts).
 struct NetworkClassReport {
-  std::string exemplar;  // "path[:layer]" or the .svg
+  std::string exemplar;                         // "path[:layer]" or the .svg
   int exemplar_edges = 0, lines = 0, kept = 0;  // kept: the partial drawing's edges
   int placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0, pruned = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0;

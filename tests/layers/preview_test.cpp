@@ -153,19 +153,21 @@ TEST(Preview, ShadesEveryPixelAsGdalDemProcessingDoes) {
 
   const std::string path = (test::source_dir() / "samples/dem.tif").string();
   std::unique_ptr<GDALDataset> src(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
-  const char* const args[] = {"-of", "MEM", "-alg", "ZevenbergenThorne", "-z", "2",
-                              "-compute_edges", nullptr};
-  GDALDEMProcessingOptions* options = GDALDEMProcessingOptionsNew(const_cast<char**>(args), nullptr);
+  const char* const args[] = {"-of", "MEM", "-alg",           "ZevenbergenThorne",
+                              "-z",  "2",   "-compute_edges", nullptr};
+  GDALDEMProcessingOptions* options =
+      GDALDEMProcessingOptionsNew(const_cast<char**>(args), nullptr);
   std::unique_ptr<GDALDataset> shaded(GDALDataset::FromHandle(GDALDEMProcessing(
       "", GDALDataset::ToHandle(src.get()), "hillshade", nullptr, options, nullptr)));
   GDALDEMProcessingOptionsFree(options);
   ASSERT_TRUE(shaded);
   std::vector<std::uint8_t> gdal(std::size_t(w) * h);
-  ASSERT_EQ(shaded->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, gdal.data(), w, h, GDT_Byte,
-                                               0, 0),
-            CE_None);
+  ASSERT_EQ(
+      shaded->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, gdal.data(), w, h, GDT_Byte, 0, 0),
+      CE_None);
 
-  std::unique_ptr<GDALDataset> png(GDALDataset::Open((dir / "preview.png").c_str(), GDAL_OF_RASTER));
+  std::unique_ptr<GDALDataset> png(
+      GDALDataset::Open((dir / "preview.png").c_str(), GDAL_OF_RASTER));
   ASSERT_TRUE(png);
   std::vector<std::uint8_t> red(std::size_t(w) * h);
   ASSERT_EQ(png->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, red.data(), w, h, GDT_Byte, 0, 0),

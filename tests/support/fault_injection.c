@@ -66,43 +66,45 @@ static void step(const char* call, int dirfd, const char* path) {
 }
 
 /* The next definition of `name` (glibc's), looked up once. */
-#define REAL(name)                        \
-  static __typeof__(&name) real_##name;   \
+#define REAL(name)                      \
+  static __typeof__(&name) real_##name; \
   if (!real_##name) real_##name = (__typeof__(&name))dlsym(RTLD_NEXT, #name)
 
-static int writes(int flags) { return (flags & (O_WRONLY | O_RDWR | O_CREAT | O_TRUNC)) != 0; }
+static int writes(int flags) {
+  return (flags & (O_WRONLY | O_RDWR | O_CREAT | O_TRUNC)) != 0;
+}
 static int writes_mode(const char* mode) {
   return mode && (strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'));
 }
 
-#define OPEN_LIKE(name)                                             \
-  int name(const char* path, int flags, ...) {                      \
-    REAL(name);                     \
-    mode_t mode = 0;                                                \
-    if (flags & (O_CREAT | O_TMPFILE)) {                            \
-      va_list args;                                                 \
-      va_start(args, flags);                                        \
-      mode = va_arg(args, mode_t);                                  \
-      va_end(args);                                                 \
-    }                                                               \
-    if (writes(flags)) step(#name, AT_FDCWD, path);                 \
-    return real_##name(path, flags, mode);                          \
+#define OPEN_LIKE(name)                             \
+  int name(const char* path, int flags, ...) {      \
+    REAL(name);                                     \
+    mode_t mode = 0;                                \
+    if (flags & (O_CREAT | O_TMPFILE)) {            \
+      va_list args;                                 \
+      va_start(args, flags);                        \
+      mode = va_arg(args, mode_t);                  \
+      va_end(args);                                 \
+    }                                               \
+    if (writes(flags)) step(#name, AT_FDCWD, path); \
+    return real_##name(path, flags, mode);          \
   }
 OPEN_LIKE(open)
 OPEN_LIKE(open64)
 
-#define OPENAT_LIKE(name)                                           \
-  int name(int dirfd, const char* path, int flags, ...) {           \
-    REAL(name);                \
-    mode_t mode = 0;                                                \
-    if (flags & (O_CREAT | O_TMPFILE)) {                            \
-      va_list args;                                                 \
-      va_start(args, flags);                                        \
-      mode = va_arg(args, mode_t);                                  \
-      va_end(args);                                                 \
-    }                                                               \
-    if (writes(flags)) step(#name, dirfd, path);                    \
-    return real_##name(dirfd, path, flags, mode);                   \
+#define OPENAT_LIKE(name)                                 \
+  int name(int dirfd, const char* path, int flags, ...) { \
+    REAL(name);                                           \
+    mode_t mode = 0;                                      \
+    if (flags & (O_CREAT | O_TMPFILE)) {                  \
+      va_list args;                                       \
+      va_start(args, flags);                              \
+      mode = va_arg(args, mode_t);                        \
+      va_end(args);                                       \
+    }                                                     \
+    if (writes(flags)) step(#name, dirfd, path);          \
+    return real_##name(dirfd, path, flags, mode);         \
   }
 OPENAT_LIKE(openat)
 OPENAT_LIKE(openat64)

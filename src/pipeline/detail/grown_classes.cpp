@@ -42,10 +42,10 @@ GridSpec mesh_grid(const GridSpec& grid, double resolution, const std::string& k
   if (resolution <= 0.0) return grid;
   const double columns = std::ceil(grid.width * grid.pixel_width / resolution);
   const double rows = std::ceil(grid.height * grid.pixel_height / resolution);
-  require_grid_size(columns, rows,
-                    fmt::format("{}.grow.resolution: {} m over the {:.0f} x {:.0f} m heightfield",
-                                key, resolution, grid.width * grid.pixel_width,
-                                grid.height * grid.pixel_height));
+  require_grid_size(
+      columns, rows,
+      fmt::format("{}.grow.resolution: {} m over the {:.0f} x {:.0f} m heightfield", key,
+                  resolution, grid.width * grid.pixel_width, grid.height * grid.pixel_height));
   GridSpec mesh = grid;
   mesh.pixel_width = mesh.pixel_height = resolution;
   mesh.width = std::max(2, int(columns));

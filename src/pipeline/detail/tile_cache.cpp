@@ -110,7 +110,9 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   c.u64(plan.terrain_params.precedence.size());
   for (const FeatureKind k : plan.terrain_params.precedence) c.u64(std::uint64_t(k));
   c.boolean(output.exr).boolean(output.geotiff).boolean(output.preview);
-  c.u64(std::uint64_t(output.exr_compression)).i64(output.exr_zip_level).u64(std::uint64_t(output.exr_pixels));
+  c.u64(std::uint64_t(output.exr_compression))
+      .i64(output.exr_zip_level)
+      .u64(std::uint64_t(output.exr_pixels));
   // Everything the GeoTIFF writer puts in a file: its encoding and the dataset metadata
   // (TERRAWEAVE_SEED, _PIPELINE, _HEIGHTFIELD, _VERSION).
   const GeoTiffOptions& tiff = output.geotiff_options;

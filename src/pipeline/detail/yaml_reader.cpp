@@ -164,15 +164,17 @@ void require_utf8(std::string_view text, const std::string& label) {
   for (int line = 1;; ++line) {
     const std::size_t end = std::min(text.find('\n', line_start), text.size());
     if (!CPLIsUTF8(text.data() + line_start, int(end - line_start)))
-      tw::fail("{}:{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
-               "LATIN1 -t UTF-8)",
-               label, line);
+      tw::fail(
+          "{}:{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
+          "LATIN1 -t UTF-8)",
+          label, line);
     if (end == text.size()) break;
     line_start = end + 1;
   }
-  tw::fail("{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f LATIN1 -t "
-           "UTF-8)",
-           label);
+  tw::fail(
+      "{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f LATIN1 -t "
+      "UTF-8)",
+      label);
 }
 
 YAML::Node YamlSource::load(std::string_view text) const {
