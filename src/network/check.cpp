@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/boost_geometry.hpp"
+#include "network/detail/ogr_polygons.hpp"
 
 namespace tw {
 
@@ -75,17 +76,7 @@ NetworkCheck check_network(const Network& net, const std::vector<Polygon>& regio
     }
   }
   if (!region.empty()) {
-    OGRMultiPolygon mp;
-    for (const Polygon& polygon : region) {
-      OGRPolygon p;
-      for (const Ring& ring : polygon) {
-        OGRLinearRing r;
-        for (Vec2 v : ring) r.addPoint(v.x, v.y);
-        r.closeRings();
-        p.addRing(&r);
-      }
-      mp.addGeometry(&p);
-    }
+    const OGRMultiPolygon mp = detail::to_ogr(region);
     OGREnvelope env;
     mp.getEnvelope(&env);
     const double tolerance = 1e-6 * std::max({1.0, env.MaxX - env.MinX, env.MaxY - env.MinY});

@@ -14,6 +14,7 @@
 #include "core/boost_geometry.hpp"
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
+#include "network/detail/ogr_polygons.hpp"
 #include "network/detail/svg_lines.hpp"
 
 namespace tw {
@@ -92,20 +93,6 @@ void add_parts(const OGRGeometry* g, std::int64_t fid, NetworkLines& out) {
   }
 }
 
-OGRMultiPolygon to_ogr(const std::vector<Polygon>& polygons) {
-  OGRMultiPolygon mp;
-  for (const Polygon& polygon : polygons) {
-    OGRPolygon p;
-    for (const Ring& ring : polygon) {
-      OGRLinearRing r;
-      for (Vec2 v : ring) r.addPoint(v.x, v.y);
-      r.closeRings();
-      p.addRing(&r);
-    }
-    mp.addGeometry(&p);
-  }
-  return mp;
-}
 
 }  // namespace
 
@@ -198,7 +185,7 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
     std::unique_ptr<OGRGeometry> cut;
     if (!s.region.empty()) {
       out.region = read_region_polygons(s.region, "", out.crs_wkt, s.subject + " region");
-      cut.reset(to_ogr(out.region).MakeValid());
+      cut.reset(detail::to_ogr(out.region).MakeValid());
     }
     layer->ResetReading();
     for (auto& f : *layer) {

@@ -1130,4 +1130,21 @@ Network grow_network(const Network& exemplar, const std::vector<Polygon>& region
   return grower.run();
 }
 
+GridSpec forbidden_mask_grid(const std::vector<Polygon>& region) {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (const Polygon& polygon : region)
+    for (Vec2 p : polygon.front()) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+  GridSpec grid;
+  const double pixel = std::max({1.0, (hi.x - lo.x) / 4096.0, (hi.y - lo.y) / 4096.0});
+  grid.width = int(std::ceil((hi.x - lo.x) / pixel)) + 2;
+  grid.height = int(std::ceil((hi.y - lo.y) / pixel)) + 2;
+  grid.origin_x = lo.x - pixel;
+  grid.origin_y = hi.y + pixel;
+  grid.pixel_width = grid.pixel_height = pixel;
+  return grid;
+}
+
 }  // namespace tw

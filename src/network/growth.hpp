@@ -34,6 +34,10 @@ struct ForbiddenMask {
   Raster<std::uint8_t> cells;
 };
 
+// The grid a forbidden mask of `region` is drawn on: its bounding box and a cell more on every
+// side, square cells no finer than a metre and at most 4096 a side (memory follows the region).
+GridSpec forbidden_mask_grid(const std::vector<Polygon>& region);
+
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;

@@ -105,19 +105,8 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
 
 ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>& region,
                              const std::string& crs_wkt, Warnings& warnings) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (const Polygon& polygon : region)
-    for (Vec2 p : polygon.front()) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
   ForbiddenMask mask;
-  const double pixel = std::max({1.0, (hi.x - lo.x) / 4096.0, (hi.y - lo.y) / 4096.0});
-  mask.grid.width = int(std::ceil((hi.x - lo.x) / pixel)) + 2;
-  mask.grid.height = int(std::ceil((hi.y - lo.y) / pixel)) + 2;
-  mask.grid.origin_x = lo.x - pixel;
-  mask.grid.origin_y = hi.y + pixel;
-  mask.grid.pixel_width = mask.grid.pixel_height = pixel;
+  mask.grid = forbidden_mask_grid(region);
   Heightfield frame;
   frame.grid = mask.grid;
   frame.crs_wkt = crs_wkt;

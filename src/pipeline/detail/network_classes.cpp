@@ -41,19 +41,8 @@ std::vector<Polygon> region_of(const NetworkClassConfig& n, const Heightfield& h
 ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
                              const std::vector<Polygon>& region, const ExistingFeatures& existing,
                              const std::vector<std::vector<LineFeature>>& lines) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (const Polygon& polygon : region)
-    for (Vec2 p : polygon.front()) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
   ForbiddenMask mask;
-  const double pixel = std::max({1.0, (hi.x - lo.x) / 4096.0, (hi.y - lo.y) / 4096.0});
-  mask.grid.width = int(std::ceil((hi.x - lo.x) / pixel)) + 2;
-  mask.grid.height = int(std::ceil((hi.y - lo.y) / pixel)) + 2;
-  mask.grid.origin_x = lo.x - pixel;
-  mask.grid.origin_y = hi.y + pixel;
-  mask.grid.pixel_width = mask.grid.pixel_height = pixel;
+  mask.grid = forbidden_mask_grid(region);
   const double own = config.features[c].width;
   std::vector<std::vector<Vec2>> avoided = existing.lines;
   std::vector<double> widths;
