@@ -941,14 +941,20 @@ class Grower {
             kMinMeetingAngle ||
         !valid(ray, true))
       return false;
-    const int t = split_edge(hit->edge, hit->seg, ray.back());
+    link_onto(n, std::move(ray), *hit);
+    return true;
+  }
+
+  // Node n joined by `ray` (truncated at `hit`) onto the line it hits: that line is split there
+  // and the link ends on the new junction.
+  void link_onto(int n, std::vector<Vec2> ray, const Hit& hit) {
+    const int t = split_edge(hit.edge, hit.seg, ray.back());
     ray.back() = out_.nodes[std::size_t(t)];
     NetworkEdge link;
     link.from = n;
     link.to = t;
     link.points = std::move(ray);
     add_edge(std::move(link));
-    return true;
   }
 
   // Nodes left with two edges at a corner (a junction whose other stubs found nothing) would be
@@ -999,13 +1005,7 @@ class Grower {
       if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
         truncate(ray, *hit);
         if (valid(ray, true)) {
-          const int t = split_edge(hit->edge, hit->seg, ray.back());
-          ray.back() = out_.nodes[std::size_t(t)];
-          NetworkEdge link;
-          link.from = n;
-          link.to = t;
-          link.points = std::move(ray);
-          add_edge(std::move(link));
+          link_onto(n, std::move(ray), *hit);
           --dangling;
           continue;
         }
