@@ -183,10 +183,11 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
       }
     }
     std::unique_ptr<OGRGeometry> cut;
-    if (!s.region.empty()) {
+    if (!s.region.empty())
       out.region = read_region_polygons(s.region, "", out.crs_wkt, s.subject + " region");
-      cut.reset(detail::to_ogr(out.region).MakeValid());
-    }
+    else
+      out.region = s.region_polygons;
+    if (!out.region.empty()) cut.reset(detail::to_ogr(out.region).MakeValid());
     layer->ResetReading();
     for (auto& f : *layer) {
       OGRGeometry* g = f->GetGeometryRef();
@@ -209,8 +210,8 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
       }
     }
   }
-  if (out.lines.empty())
-    fail("{} {}: no lines{}", s.subject, s.source, s.region.empty() ? "" : " inside the region");
+  if (out.lines.empty() && s.min_lines > 0)
+    fail("{} {}: no lines{}", s.subject, s.source, out.region.empty() ? "" : " inside the region");
   if (out.lines.size() == 1 && s.min_lines > 1)
     fail("{} {}: FID {}: a single line is no network (it needs junctions to learn from)", s.subject,
          s.source, out.fids.front());

@@ -16,9 +16,13 @@ struct NetworkSource {
   std::string source{};  // "path[:layer]": any OGR source, or an .svg file
   std::string where{};   // OGR SQL attribute filter
   std::string region{};  // optional polygons "path[:layer]" cutting the lines (a real map)
+  // Or the cutting polygons themselves, in the lines' frame (a box given as numbers).
+  std::vector<Polygon> region_polygons{};
   double scale = 1.0;    // SVG: metres per SVG unit (y is flipped: north up)
   std::string subject = "exemplar";  // the option or key named in messages
-  int min_lines = 2;  // an exemplar needs junctions; a partial drawing may be one line
+  // An exemplar needs junctions (2); a partial drawing may be one line (1); the map's lines
+  // already in a clone's target may be none (0).
+  int min_lines = 2;
 };
 
 struct NetworkLines {

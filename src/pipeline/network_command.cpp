@@ -223,17 +223,14 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
                                         warnings);
     region = region_of(c.target_region, "--target-region", exemplar_lines.crs_wkt);
     // What is already in the target is kept: the map's lines inside it, if any.
-    try {
-      kept_lines = read_network_lines({.source = c.map,
-                                       .where = c.exemplar_where,
-                                       .region = c.target_region,
-                                       .scale = c.scale,
-                                       .subject = "--map (in --target-region)",
-                                       .min_lines = 1},
-                                      warnings);
-    } catch (const Error&) {
-      kept_lines.reset();  // nothing (or one line) there: the target is grown from scratch
-    }
+    kept_lines = read_network_lines({.source = c.map,
+                                     .where = c.exemplar_where,
+                                     .region_polygons = region,
+                                     .scale = c.scale,
+                                     .subject = "--map (in --target-region)",
+                                     .min_lines = 0},
+                                    warnings);
+    if (kept_lines->lines.empty()) kept_lines.reset();  // the target is grown from scratch
   } else {
     if (c.exemplar.empty()) fail("{}: --exemplar is required", cmd);
     exemplar_lines = read_network_lines({.source = c.exemplar,

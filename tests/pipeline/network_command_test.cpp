@@ -162,6 +162,37 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
   EXPECT_EQ(crossings(cloned), 0);
 }
 
+// A box --target-region over part of the map keeps the map's lines there exactly (cut by the
+// box) and grows around them without crossing them (it used to read the box as a file name and
+// silently keep nothing).
+TEST_F(NetworkCommandTest, CloneIntoABoxKeepsTheMapsLinesAlreadyThere) {
+  std::ofstream(dir / "source.geojson")
+      << R"({"type":"FeatureCollection",)" + kCrs +
+             R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
+  const CommandResult c =
+      network("clone --map " + exemplar + " --source-region " + (dir / "source.geojson").string() +
+              " --target-region 500350,4000000,500950,4000480 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer kept = read_layer(dir / "d/network.gpkg", "kept");
+  // The map's lines east of x = 350: 3 whole verticals (400, 500, 600), the one at 300 outside,
+  // and the horizontal pieces there.
+  ASSERT_GE(kept.lines.size(), 10u);
+  int verticals = 0;
+  for (const auto& line : kept.lines) {
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 500350 - 1e-6);
+      EXPECT_LE(x, 500600 + 1e-6);
+    }
+    verticals += line.front().first == line.back().first &&
+                 std::abs(line.front().second - line.back().second) == 480.0;
+  }
+  EXPECT_EQ(verticals, 3);
+  Layer all = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(all.lines.size(), 3u);  // the strip east of the map is grown
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), 0);
+}
+
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
   std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
   std::ofstream(dir / "bad.svg")
