@@ -38,6 +38,10 @@ struct NetworkLines {
 // lines inside).
 NetworkLines read_network_lines(const NetworkSource& source, Warnings& warnings);
 
+// The parts of `lines` inside `region` (GEOS intersection, in the lines' frame), each with its
+// line's FID; `region` is kept with them (ends on its boundary are cuts).
+NetworkLines cut_network_lines(const NetworkLines& lines, const std::vector<Polygon>& region);
+
 // Polygons of an OGR source in the frame of `target_wkt` (the lines' frame).
 std::vector<Polygon> read_region_polygons(const std::string& source, const std::string& where,
                                           const std::string& target_wkt,
