@@ -71,6 +71,7 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
   std::string landing = o.page.filename().string();
   std::optional<Network> exemplar;
   std::string crs_wkt, page;
+  ForbiddenMask forbidden;
   std::mutex one_at_a_time;  // growth and the GeoPackage writer: one request at a time
   if (!o.exemplar.empty()) {
     require_safe_output(o.save, false,
@@ -85,6 +86,7 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
     exemplar = read_network_exemplar(
         {.source = o.exemplar, .where = o.where, .scale = o.scale, .subject = "--exemplar"}, 0.0,
         warnings);
+    forbidden = run_forbidden_mask(view.run_dir);
     ViewOptions page_options = view;
     page_options.verify = false;  // write_view checked the run already
     page = network_page(page_options, std::filesystem::absolute(o.save).string());
@@ -108,7 +110,7 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
         growth.seed = body.value("seed", o.seed);
         std::lock_guard lock(one_at_a_time);
         return json{
-            {"suggestions", to_json(complete_drawing(*exemplar, drawn, {{ring}}, growth))}};
+            {"suggestions", to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};
       });
     });
     // {lines: [...], origins: ["drawn" | "suggested", ...]} -> {path, lines}

@@ -315,6 +315,7 @@ Network read_network_exemplar(const NetworkSource& source, double snap, Warnings
 
 std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const NetworkLines& drawn,
                                                 const std::vector<Polygon>& region,
+                                                const ForbiddenMask* forbidden,
                                                 const NetworkGrowthOptions& options,
                                                 NetworkGrowthReport* report) {
   Warnings warnings;
@@ -325,14 +326,20 @@ std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const N
   if (!inside.lines.empty())
     partial = partial_network(inside, region, "drawing", "(lines numbered from 1)", warnings);
   const Network grown =
-      grow_network(exemplar, region, nullptr, partial ? &*partial : nullptr, options, report);
-  const NetworkCheck check = check_network(grown, region, nullptr);
-  if (check.total() != 0)
-    fail("completion: {} crossings, {} outside the region (a growth bug): {}", check.crossings,
-         check.outside, check.first);
-  std::vector<std::vector<Vec2>> suggestions;
+      grow_network(exemplar, region, forbidden, partial ? &*partial : nullptr, options, report);
+  // The drawing may cross what is forbidden (the user drew it); the suggestions may not.
+  Network suggested;
+  suggested.nodes = grown.nodes;
   for (const NetworkEdge& e : grown.edges)
-    if (!e.kept) suggestions.push_back(e.points);
+    if (!e.kept) suggested.edges.push_back(e);
+  const NetworkCheck check = check_network(grown, region, nullptr);
+  const int entered = forbidden ? check_network(suggested, region, forbidden).forbidden : 0;
+  if (check.total() + entered != 0)
+    fail("completion: {} crossings, {} outside the region, {} through avoided cells (a growth "
+         "bug): {}",
+         check.crossings, check.outside, entered, check.first);
+  std::vector<std::vector<Vec2>> suggestions;
+  for (NetworkEdge& e : suggested.edges) suggestions.push_back(std::move(e.points));
   return suggestions;
 }
 

@@ -218,6 +218,25 @@ std::string network_page(const ViewOptions& options, const std::string& save_pat
   return page;
 }
 
+ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
+  const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
+  const json& grid = report.at("grid");
+  ForbiddenMask mask;
+  mask.grid.width = grid.at("width");
+  mask.grid.height = grid.at("height");
+  mask.grid.origin_x = grid.at("origin").at(0);
+  mask.grid.origin_y = grid.at("origin").at(1);
+  mask.grid.pixel_width = grid.at("pixel_size").at(0);
+  mask.grid.pixel_height = grid.at("pixel_size").at(1);
+  const std::vector<float> avoidance =
+      read_bands(required_run_layer_raster(run_dir, "avoidance"), mask.grid.width,
+                 mask.grid.height)
+          .at(0);
+  mask.cells = Raster<std::uint8_t>(mask.grid.width, mask.grid.height);
+  for (std::size_t k = 0; k < avoidance.size(); ++k) mask.cells.pixels[k] = avoidance[k] > 0.5f;
+  return mask;
+}
+
 std::string run_crs_wkt(const fs::path& run_dir) {
   const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
   const json& grid = report.at("grid");

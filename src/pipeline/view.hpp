@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "network/growth.hpp"
+
 namespace tw {
 
 struct ViewOptions {
@@ -26,6 +28,10 @@ std::filesystem::path write_view(const ViewOptions& options);
 // colours as a 2D map in its grid's coordinates, its feature lines, and `save_path` named in the
 // page. Throws like write_view.
 std::string network_page(const ViewOptions& options, const std::string& save_path);
+
+// The cells the run's avoidance layer forbids (> 0.5), on the run's grid: what the drawing page's
+// suggestions stay off (its roads, rivers, fold-overs...).
+ForbiddenMask run_forbidden_mask(const std::filesystem::path& run_dir);
 
 // The run's CRS as WKT (report.json's grid), "" when it has none.
 std::string run_crs_wkt(const std::filesystem::path& run_dir);

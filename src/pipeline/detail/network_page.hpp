@@ -34,21 +34,27 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 const D = JSON.parse(document.getElementById('data').textContent);
 const canvas = document.getElementById('map'), ctx = canvas.getContext('2d');
 const W = D.image.width, H = D.image.height;
-canvas.width = W; canvas.height = H;
-// Image pixel (column, row from the top) <-> map coordinates: the run's grid scaled to the image.
-const sx = D.grid.pixel_size[0] * D.grid.width / W, sy = D.grid.pixel_size[1] * D.grid.height / H;
+// The image enlarged by a whole factor to fill the window (at least 1).
+const k = Math.max(1, Math.floor(Math.min(innerWidth / W, (innerHeight - 34) / H)));
+canvas.width = W * k; canvas.height = H * k;
+// Canvas pixel (column, row from the top) <-> map coordinates: the run's grid on the canvas.
+const sx = D.grid.pixel_size[0] * D.grid.width / (W * k);
+const sy = D.grid.pixel_size[1] * D.grid.height / (H * k);
 const toMap = (px, py) => [D.grid.origin[0] + px * sx, D.grid.origin[1] - py * sy];
 const toPixel = ([x, y]) => [(x - D.grid.origin[0]) / sx, (D.grid.origin[1] - y) / sy];
 const rgb = Uint8Array.from(atob(D.image.rgb), c => c.charCodeAt(0));
-const base = ctx.createImageData(W, H);
+const image = document.createElement('canvas');
+image.width = W; image.height = H;
+const pixels = image.getContext('2d').createImageData(W, H);
 for (let r = 0; r < H; ++r)
   for (let c = 0; c < W; ++c) {
     const i = (r * W + c) * 3, o = (r * W + c) * 4;
-    base.data[o] = rgb[i]; base.data[o + 1] = rgb[i + 1]; base.data[o + 2] = rgb[i + 2];
-    base.data[o + 3] = 255;
+    pixels.data[o] = rgb[i]; pixels.data[o + 1] = rgb[i + 1]; pixels.data[o + 2] = rgb[i + 2];
+    pixels.data[o + 3] = 255;
   }
+image.getContext('2d').putImageData(pixels, 0, 0);
 const S = {lines: [], origins: [], suggestions: [], region: null, mode: 'draw', saved: null,
-           transform: {origin: D.grid.origin, pixel: [sx, sy], canvas: [0, 34]}};
+           transform: {origin: D.grid.origin, pixel: [sx, sy]}};
 window.__network = S;
 const status = t => { document.getElementById('status').textContent = t; };
 const path = (pts, close) => {
@@ -58,9 +64,10 @@ const path = (pts, close) => {
 };
 let live = null;  // the stroke, box or lasso being drawn (map coordinates)
 const redraw = () => {
-  ctx.putImageData(base, 0, 0);
+  ctx.imageSmoothingEnabled = true;
+  ctx.drawImage(image, 0, 0, W * k, H * k);
   ctx.lineCap = ctx.lineJoin = 'round';
-  ctx.strokeStyle = '#555'; ctx.lineWidth = 1;
+  ctx.strokeStyle = '#444'; ctx.lineWidth = 2;  // the run's features
   for (const f of D.features) if (f.length > 1) { path(f); ctx.stroke(); }
   if (S.region) {
     path(S.region, true); ctx.fillStyle = '#fff3'; ctx.fill();
@@ -93,10 +100,11 @@ const setMode = m => {
 };
 for (const id of ['draw', 'region', 'pick', 'lasso'])
   document.getElementById(id).onclick = () => setMode(id);
-const at = e => {
+const canvasPixel = e => {
   const r = canvas.getBoundingClientRect();
-  return toMap((e.clientX - r.left) * W / r.width, (e.clientY - r.top) * H / r.height);
+  return [(e.clientX - r.left) * canvas.width / r.width, (e.clientY - r.top) * canvas.height / r.height];
 };
+const at = e => toMap(...canvasPixel(e));
 const inside = (p, ring) => {  // even-odd rule
   let c = false;
   for (let i = 0, j = ring.length - 1; i < ring.length; j = i++)
@@ -118,8 +126,7 @@ const accept = keep => {  // suggestions for which keep(s) holds join the lines
 canvas.addEventListener('pointerdown', e => {
   canvas.setPointerCapture(e.pointerId);
   if (S.mode === 'pick') {
-    const [u, v] = [e.clientX - canvas.getBoundingClientRect().left,
-                    e.clientY - canvas.getBoundingClientRect().top];
+    const [u, v] = canvasPixel(e);
     let best = null, bestD = 8;  // pixels
     for (const s of S.suggestions)
       for (let k = 0; k + 1 < s.length; ++k) {
