@@ -65,6 +65,15 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
                         region, nullptr)
               .outside > 0)
         fail("{} {}: FID {}: outside the region", key, source, e.fid);
+  // A line crossing itself (a loop closed at its own end is no crossing).
+  for (const NetworkEdge& e : drawn.edges) {
+    OGRLineString line;
+    for (Vec2 p : e.points) line.addPoint(p.x, p.y);
+    if (!line.IsSimple())
+      fail("{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
+           "ends)",
+           key, source, e.fid);
+  }
   // Crossings: two lines meeting where neither ends.
   for (std::size_t i = 0; i < drawn.edges.size(); ++i)
     for (std::size_t j = i + 1; j < drawn.edges.size(); ++j) {

@@ -201,6 +201,12 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"[[500100,4000100],[500300,4000300]]", "[[500100,4000300],[500300,4000100]]"});
   std::ofstream(dir / "outside.geojson") << lines_geojson(
       {"[[500100,4000100],[500300,4000100]]", "[[500300,4000100],[509000,4000100]]"});
+  std::ofstream(dir / "loop.geojson") << lines_geojson(
+      {"[[500100,4000100],[500300,4000300],[500300,4000100],[500100,4000300]]"});
+  std::ofstream(dir / "empty.geojson") << lines_geojson({});
+  std::ofstream(dir / "flat.geojson")
+      << R"({"type":"FeatureCollection",)" + kCrs +
+             R"(,"features":[{"type":"Feature","id":3,"properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500500,4000000],[500900,4000000],[500000,4000000]]]}}]})";
   const std::string out = (dir / "never").string();
   const struct {
     std::string args, message;
@@ -219,6 +225,16 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"complete --exemplar " + exemplar + " --partial " + (dir / "outside.geojson").string() +
            " --region " + region,
        "outside.geojson: FID 2: outside the region"},
+      {"complete --exemplar " + exemplar + " --partial " + (dir / "loop.geojson").string() +
+           " --region " + region,
+       "--partial " + (dir / "loop.geojson").string() + ": FID 1 crosses itself"},
+      {"synthesize --exemplar " + (dir / "empty.geojson").string() + " --region " + region,
+       "--exemplar " + (dir / "empty.geojson").string() + ": no lines"},
+      {"synthesize --exemplar " + exemplar + " --region " + (dir / "flat.geojson").string(),
+       "--region " + (dir / "flat.geojson").string() + ": FID 3: a degenerate (zero-area) polygon"},
+      {"clone --map " + exemplar + " --source-region " + (dir / "flat.geojson").string() +
+           " --target-region " + region,
+       "flat.geojson: FID 3: a degenerate (zero-area) polygon"},
   };
   for (const auto& c : cases) {
     const CommandResult r = network(c.args + " --out " + out);
