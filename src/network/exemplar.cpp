@@ -212,6 +212,11 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
     }
     if (!out.region.empty()) out = cut_network_lines(out, out.region);
   }
+  for (std::size_t i = 0; i < out.lines.size(); ++i)
+    for (Vec2 p : out.lines[i])
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        fail("{} {}: FID {}: a coordinate that is not a finite number", s.subject, s.source,
+             out.fids[i]);
   if (out.lines.empty() && s.min_lines > 0)
     fail("{} {}: no lines{}", s.subject, s.source, out.region.empty() ? "" : " inside the region");
   if (out.lines.size() == 1 && s.min_lines > 1)
