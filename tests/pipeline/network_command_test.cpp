@@ -11,6 +11,8 @@
 #include <fstream>
 #include <memory>
 
+#include "core/error.hpp"
+#include "pipeline/network_command.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -243,6 +245,83 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
     EXPECT_THAT(r.output, HasSubstr("terraweave: error:"));
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+}
+
+}  // namespace
+}  // namespace tw::test
+
+namespace tw::test {
+namespace {
+
+// The drawing page's completion (docs/networks.md, "Drawing"): the library call the server makes.
+class NetworkDrawing : public NetworkCommandTest {
+ protected:
+  Network exemplar_network() {
+    Warnings warnings;
+    return read_network_exemplar({.source = exemplar}, 0.0, warnings);
+  }
+  const std::vector<Polygon> box{{{{500000, 4000000}, {500900, 4000000}, {500900, 4000700},
+                                   {500000, 4000700}}}};
+};
+
+TEST_F(NetworkDrawing, CrossingStrokesAreRefusedNamingThem) {
+  NetworkLines drawn;
+  drawn.lines = {{{500100, 4000100}, {500300, 4000300}}, {{500100, 4000300}, {500300, 4000100}}};
+  drawn.fids = {1, 2};
+  std::string message;
+  try {
+    complete_drawing(exemplar_network(), drawn, box, nullptr, {});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_THAT(message, HasSubstr("drawing (lines numbered from 1): FID 1 crosses FID 2"));
+}
+
+// A stroke leaving the region is cut there and kept; suggestions cross neither it nor the
+// forbidden band, and stay in the region.
+TEST_F(NetworkDrawing, SuggestionsKeepOffTheStrokeAndTheForbiddenCells) {
+  NetworkLines drawn;
+  drawn.lines = {{{499800, 4000350}, {500400, 4000350}}};
+  drawn.fids = {1};
+  ForbiddenMask forbidden;
+  forbidden.grid = {.width = 100, .height = 80, .origin_x = 500000, .origin_y = 4000800,
+                    .pixel_width = 10, .pixel_height = 10};
+  forbidden.cells = Raster<std::uint8_t>(100, 80);
+  for (int r = 0; r < 80; ++r)
+    for (int c = 65; c < 68; ++c) forbidden.cells.at(c, r) = 1;  // x 500650..500680
+  const auto suggestions = complete_drawing(exemplar_network(), drawn, box, &forbidden, {});
+  ASSERT_GT(suggestions.size(), 10u);
+  OGRLinearRing ring;
+  for (auto [x, y] : {std::pair{500650.5, 3999000.0}, {500679.5, 3999000.0},
+                      {500679.5, 4001000.0}, {500650.5, 4001000.0}, {500650.5, 3999000.0}})
+    ring.addPoint(x, y);
+  OGRPolygon band;
+  band.addRing(&ring);
+  Layer all;
+  for (const auto& s : suggestions) {
+    auto& line = all.lines.emplace_back();
+    OGRLineString ls;
+    for (Vec2 p : s) {
+      line.push_back({p.x, p.y});
+      ls.addPoint(p.x, p.y);
+      EXPECT_GE(p.x, 500000 - 1e-6);
+      EXPECT_LE(p.x, 500900 + 1e-6);
+    }
+    EXPECT_FALSE(ls.Intersects(&band));
+  }
+  all.lines.push_back({{500000, 4000350}, {500400, 4000350}});  // the stroke as cut
+  EXPECT_EQ(crossings(all), 0);
+}
+
+TEST_F(NetworkDrawing, ViewOptionsOfTheDrawingPageNeedServe) {
+  const CommandResult r =
+      run_command(terraweave_binary().string() + " view nowhere --exemplar x.svg 2>&1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("view: --exemplar needs --serve"));
+  const CommandResult s =
+      run_command(terraweave_binary().string() + " view nowhere --serve 0 --save a.gpkg 2>&1");
+  EXPECT_EQ(s.exit_code, 1);
+  EXPECT_THAT(s.output, HasSubstr("view: --save needs --exemplar"));
 }
 
 }  // namespace
