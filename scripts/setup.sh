@@ -26,11 +26,12 @@ packages=(
   nodejs
   "$@"
 )
-# What only the tests, benchmarks and scripts use: the viewer's screenshot test (chromium), the
-# Dask driver, GDAL's and OIIO's tools, clinfo, and dpkg-shlibdeps for the .deb (CPack).
+# What only the tests, benchmarks and scripts use: the viewer's screenshot tests (chromium; the
+# drawing page's driver talks to it with python3-websocket), the Dask driver, GDAL's and OIIO's
+# tools, clinfo, and dpkg-shlibdeps for the .deb (CPack).
 if ! $build_only; then
-  packages+=(gdal-bin python3-gdal clinfo openimageio-tools chromium python3-websocket python3-distributed
-    dpkg-dev)
+  packages+=(gdal-bin python3-gdal clinfo openimageio-tools chromium python3-websocket
+    python3-distributed dpkg-dev)
 fi
 
 # npm vendors three.js for `terraweave view` at build time. Debian's npm package conflicts with

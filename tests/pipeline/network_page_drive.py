@@ -105,6 +105,10 @@ def main():
     try:
         url = wait_for_line(server.stdout, r"serving (http://127\.0\.0\.1:\d+/\S+)", 60,
                             "terraweave view --serve").group(1)
+        # The run's 3D page is served from the same folder.
+        page_url = url.rsplit("/", 1)[0] + "/page.html"
+        with urllib.request.urlopen(page_url) as answer:
+            view_page = answer.status == 200 and b"terraweave view" in answer.read()
         browser = subprocess.Popen(
             ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--remote-debugging-port=0", "--remote-allow-origins=*",
@@ -179,6 +183,7 @@ def main():
             "second_suggestions": second,
             "second_status": second_status,
             "server_pid": server.pid,
+            "view_page": view_page,
             **state,
         }
         with open(args.report, "w") as f:

@@ -61,6 +61,7 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   const auto& lines = r["lines"];
   ASSERT_EQ(lines.size(), r["after_lasso"].get<std::size_t>() + r["second_suggestions"].get<int>());
   EXPECT_TRUE(fs::equivalent(r["saved"].get<std::string>(), dir / "drawn_network.gpkg"));
+  EXPECT_EQ(r["view_page"], true);  // the 3D page, served from the run's page folder
   // The server was stopped with the test's driver.
   EXPECT_EQ(kill(r["server_pid"].get<int>(), 0), -1);
   EXPECT_EQ(errno, ESRCH);
