@@ -35,9 +35,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   while (first < size && std::isspace(data[first])) ++first;
   const bool svg = first < size && data[first] == '<';
   const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / ("terraweave-fuzz-network-" +
-                                                std::to_string(::getpid()) +
-                                                (svg ? ".svg" : ".geojson"));
+      std::filesystem::temp_directory_path() /
+      ("terraweave-fuzz-network-" + std::to_string(::getpid()) + (svg ? ".svg" : ".geojson"));
   {
     std::ofstream file(path, std::ios::binary | std::ios::trunc);
     file.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));

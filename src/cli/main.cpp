@@ -27,6 +27,7 @@
 #include "pipeline/grow_command.hpp"
 #include "pipeline/network_command.hpp"
 
+#include "cli/view_server.hpp"
 #include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/diff.hpp"
@@ -39,7 +40,6 @@
 #include "pipeline/synthesis_job.hpp"
 #include "pipeline/version.hpp"
 #include "pipeline/view.hpp"
-#include "cli/view_server.hpp"
 
 namespace {
 

@@ -67,7 +67,8 @@ void answer(const httplib::Request& request, httplib::Response& response, Handle
 void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
   httplib::Server server;
   const std::filesystem::path folder = std::filesystem::absolute(o.page).parent_path();
-  if (!server.set_mount_point("/", folder.string())) fail("--serve: cannot serve {}", folder.string());
+  if (!server.set_mount_point("/", folder.string()))
+    fail("--serve: cannot serve {}", folder.string());
   std::string landing = o.page.filename().string();
   std::optional<Network> exemplar;
   std::string crs_wkt, page;
@@ -75,7 +76,8 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
   std::mutex one_at_a_time;  // growth and the GeoPackage writer: one request at a time
   if (!o.exemplar.empty()) {
     require_safe_output(o.save, false,
-                        {.command = "view", .option = "--save",
+                        {.command = "view",
+                         .option = "--save",
                          .inputs = {view.run_dir, split_source(o.exemplar).first}});
     crs_wkt = run_crs_wkt(view.run_dir);
     OGRSpatialReference srs;
@@ -109,8 +111,8 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
         NetworkGrowthOptions growth;
         growth.seed = body.value("seed", o.seed);
         std::lock_guard lock(one_at_a_time);
-        return json{
-            {"suggestions", to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};
+        return json{{"suggestions",
+                     to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};
       });
     });
     // {lines: [...], origins: ["drawn" | "suggested", ...]} -> {path, lines}
@@ -129,9 +131,8 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
   server.Get("/", [&](const httplib::Request&, httplib::Response& response) {
     response.set_redirect("/" + landing);
   });
-  const int port =
-      o.port == 0 ? server.bind_to_any_port("127.0.0.1")
-                  : (server.bind_to_port("127.0.0.1", o.port) ? o.port : -1);
+  const int port = o.port == 0 ? server.bind_to_any_port("127.0.0.1")
+                               : (server.bind_to_port("127.0.0.1", o.port) ? o.port : -1);
   if (port <= 0) fail("--serve: cannot listen on 127.0.0.1:{} (in use?)", o.port);
   std::printf("serving http://127.0.0.1:%d/%s (Ctrl-C stops)\n", port, landing.c_str());
   std::fflush(stdout);

@@ -12,11 +12,11 @@
 namespace tw {
 
 struct ViewServeOptions {
-  int port = 8000;  // 0: any free port (printed)
+  int port = 8000;             // 0: any free port (printed)
   std::filesystem::path page;  // the written view page; its folder is served
   // The drawing page, when `exemplar` is set.
   std::string exemplar, where;
-  double scale = 1.0;                  // SVG: metres per unit
+  double scale = 1.0;  // SVG: metres per unit
   std::uint64_t seed = 1;
   std::filesystem::path save = "drawn_network.gpkg";
 };

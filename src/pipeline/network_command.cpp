@@ -70,9 +70,10 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
     OGRLineString line;
     for (Vec2 p : e.points) line.addPoint(p.x, p.y);
     if (!line.IsSimple())
-      fail("{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
-           "ends)",
-           key, source, e.fid);
+      fail(
+          "{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
+          "ends)",
+          key, source, e.fid);
   }
   // Crossings: two lines meeting where neither ends.
   for (std::size_t i = 0; i < drawn.edges.size(); ++i)
@@ -344,9 +345,10 @@ std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const N
   const NetworkCheck check = check_network(grown, region, nullptr);
   const int entered = forbidden ? check_network(suggested, region, forbidden).forbidden : 0;
   if (check.total() + entered != 0)
-    fail("completion: {} crossings, {} outside the region, {} through avoided cells (a growth "
-         "bug): {}",
-         check.crossings, check.outside, entered, check.first);
+    fail(
+        "completion: {} crossings, {} outside the region, {} through avoided cells (a growth "
+        "bug): {}",
+        check.crossings, check.outside, entered, check.first);
   std::vector<std::vector<Vec2>> suggestions;
   for (NetworkEdge& e : suggested.edges) suggestions.push_back(std::move(e.points));
   return suggestions;

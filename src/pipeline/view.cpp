@@ -229,8 +229,7 @@ ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
   mask.grid.pixel_width = grid.at("pixel_size").at(0);
   mask.grid.pixel_height = grid.at("pixel_size").at(1);
   const std::vector<float> avoidance =
-      read_bands(required_run_layer_raster(run_dir, "avoidance"), mask.grid.width,
-                 mask.grid.height)
+      read_bands(required_run_layer_raster(run_dir, "avoidance"), mask.grid.width, mask.grid.height)
           .at(0);
   mask.cells = Raster<std::uint8_t>(mask.grid.width, mask.grid.height);
   for (std::size_t k = 0; k < avoidance.size(); ++k) mask.cells.pixels[k] = avoidance[k] > 0.5f;
@@ -240,8 +239,9 @@ ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
 std::string run_crs_wkt(const fs::path& run_dir) {
   const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
   const json& grid = report.at("grid");
-  return grid.contains("crs_wkt") && grid["crs_wkt"].is_string() ? grid["crs_wkt"].get<std::string>()
-                                                                  : std::string();
+  return grid.contains("crs_wkt") && grid["crs_wkt"].is_string()
+             ? grid["crs_wkt"].get<std::string>()
+             : std::string();
 }
 
 fs::path write_view(const ViewOptions& options) {

@@ -203,8 +203,8 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"[[500100,4000100],[500300,4000300]]", "[[500100,4000300],[500300,4000100]]"});
   std::ofstream(dir / "outside.geojson") << lines_geojson(
       {"[[500100,4000100],[500300,4000100]]", "[[500300,4000100],[509000,4000100]]"});
-  std::ofstream(dir / "loop.geojson") << lines_geojson(
-      {"[[500100,4000100],[500300,4000300],[500300,4000100],[500100,4000300]]"});
+  std::ofstream(dir / "loop.geojson")
+      << lines_geojson({"[[500100,4000100],[500300,4000300],[500300,4000100],[500100,4000300]]"});
   std::ofstream(dir / "empty.geojson") << lines_geojson({});
   std::ofstream(dir / "flat.geojson")
       << R"({"type":"FeatureCollection",)" + kCrs +
@@ -260,8 +260,8 @@ class NetworkDrawing : public NetworkCommandTest {
     Warnings warnings;
     return read_network_exemplar({.source = exemplar}, 0.0, warnings);
   }
-  const std::vector<Polygon> box{{{{500000, 4000000}, {500900, 4000000}, {500900, 4000700},
-                                   {500000, 4000700}}}};
+  const std::vector<Polygon> box{
+      {{{500000, 4000000}, {500900, 4000000}, {500900, 4000700}, {500000, 4000700}}}};
 };
 
 TEST_F(NetworkDrawing, CrossingStrokesAreRefusedNamingThem) {
@@ -284,16 +284,23 @@ TEST_F(NetworkDrawing, SuggestionsKeepOffTheStrokeAndTheForbiddenCells) {
   drawn.lines = {{{499800, 4000350}, {500400, 4000350}}};
   drawn.fids = {1};
   ForbiddenMask forbidden;
-  forbidden.grid = {.width = 100, .height = 80, .origin_x = 500000, .origin_y = 4000800,
-                    .pixel_width = 10, .pixel_height = 10};
+  forbidden.grid = {.width = 100,
+                    .height = 80,
+                    .origin_x = 500000,
+                    .origin_y = 4000800,
+                    .pixel_width = 10,
+                    .pixel_height = 10};
   forbidden.cells = Raster<std::uint8_t>(100, 80);
   for (int r = 0; r < 80; ++r)
     for (int c = 65; c < 68; ++c) forbidden.cells.at(c, r) = 1;  // x 500650..500680
   const auto suggestions = complete_drawing(exemplar_network(), drawn, box, &forbidden, {});
   ASSERT_GT(suggestions.size(), 10u);
   OGRLinearRing ring;
-  for (auto [x, y] : {std::pair{500650.5, 3999000.0}, {500679.5, 3999000.0},
-                      {500679.5, 4001000.0}, {500650.5, 4001000.0}, {500650.5, 3999000.0}})
+  for (auto [x, y] : {std::pair{500650.5, 3999000.0},
+                      {500679.5, 3999000.0},
+                      {500679.5, 4001000.0},
+                      {500650.5, 4001000.0},
+                      {500650.5, 3999000.0}})
     ring.addPoint(x, y);
   OGRPolygon band;
   band.addRing(&ring);

@@ -43,11 +43,11 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
   ASSERT_EQ(run.exit_code, 0) << run.output;
 
-  const CommandResult drive = run_command(
-      cd + "timeout 120 /usr/bin/python3 '" +
-      (source_dir() / "tests/pipeline/network_page_drive.py").string() + "' " + binary +
-      " out . --exemplar '" + (source_dir() / "tests/data/network_drawn.svg").string() +
-      "' --scale 0.5 --report report.json --screenshot shot.png 2>&1");
+  const CommandResult drive =
+      run_command(cd + "timeout 120 /usr/bin/python3 '" +
+                  (source_dir() / "tests/pipeline/network_page_drive.py").string() + "' " + binary +
+                  " out . --exemplar '" + (source_dir() / "tests/data/network_drawn.svg").string() +
+                  "' --scale 0.5 --report report.json --screenshot shot.png 2>&1");
   ASSERT_EQ(drive.exit_code, 0) << drive.output;
   const nlohmann::json r = nlohmann::json::parse(read_file(dir / "report.json"));
 
@@ -77,8 +77,8 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
 
   // The GeoPackage: every line as the page held it, bit for bit, in the run's CRS.
   GDALAllRegister();
-  std::unique_ptr<GDALDataset> ds(GDALDataset::Open((dir / "drawn_network.gpkg").c_str(),
-                                                    GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open((dir / "drawn_network.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
   ASSERT_TRUE(ds);
   OGRLayer* layer = ds->GetLayerByName("lines");
   ASSERT_TRUE(layer);
@@ -102,7 +102,9 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
       EXPECT_EQ(ls->getX(k), lines[i][k][0].get<double>()) << "line " << i + 1;
       EXPECT_EQ(ls->getY(k), lines[i][k][1].get<double>()) << "line " << i + 1;
     }
-    if (i > 0) EXPECT_FALSE(ls->Intersects(road.get())) << "suggestion " << i + 1;
+    if (i > 0) {
+      EXPECT_FALSE(ls->Intersects(road.get())) << "suggestion " << i + 1;
+    }
     ++i;
   }
 

@@ -55,7 +55,8 @@ class Scanner {
     v = std::strtod(begin, &end);
     if (end == begin) return false;
     // strtod reads "inf", "nan" and 1e999 too: no coordinate of a drawing.
-    if (!std::isfinite(v)) fail("{}: a number out of range: {}", where_, std::string(begin, std::size_t(end - begin)));
+    if (!std::isfinite(v))
+      fail("{}: a number out of range: {}", where_, std::string(begin, std::size_t(end - begin)));
     i_ += std::size_t(end - begin);
     return true;
   }
