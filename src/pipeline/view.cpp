@@ -221,13 +221,16 @@ std::string network_page(const ViewOptions& options, const std::string& save_pat
 ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
   const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
   const json& grid = report.at("grid");
+  // At most 4096 cells a side (GDAL resamples on reading): memory follows the page, not the world.
+  const int width = grid.at("width"), height = grid.at("height");
+  const auto [w, h] = fit(width, height, 4096);
   ForbiddenMask mask;
-  mask.grid.width = grid.at("width");
-  mask.grid.height = grid.at("height");
+  mask.grid.width = w;
+  mask.grid.height = h;
   mask.grid.origin_x = grid.at("origin").at(0);
   mask.grid.origin_y = grid.at("origin").at(1);
-  mask.grid.pixel_width = grid.at("pixel_size").at(0);
-  mask.grid.pixel_height = grid.at("pixel_size").at(1);
+  mask.grid.pixel_width = grid.at("pixel_size").at(0).get<double>() * width / w;
+  mask.grid.pixel_height = grid.at("pixel_size").at(1).get<double>() * height / h;
   const std::vector<float> avoidance =
       read_bands(required_run_layer_raster(run_dir, "avoidance"), mask.grid.width, mask.grid.height)
           .at(0);

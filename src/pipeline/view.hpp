@@ -29,8 +29,9 @@ std::filesystem::path write_view(const ViewOptions& options);
 // page. Throws like write_view.
 std::string network_page(const ViewOptions& options, const std::string& save_path);
 
-// The cells the run's avoidance layer forbids (> 0.5), on the run's grid: what the drawing page's
-// suggestions stay off (its roads, rivers, fold-overs...).
+// The cells the run's avoidance layer forbids (> 0.5), on the run's grid (at most 4096 cells a
+// side, coarser for a larger run): what the drawing page's suggestions stay off (its roads,
+// rivers, fold-overs...).
 ForbiddenMask run_forbidden_mask(const std::filesystem::path& run_dir);
 
 // The run's CRS as WKT (report.json's grid), "" when it has none.

@@ -11,8 +11,10 @@ screenshot (--screenshot); stops the server and the browser whatever happens.
 import argparse
 import base64
 import json
+import math
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -84,7 +86,15 @@ class Page:
         self.drag([r])
 
 
+def die_with_parent():
+    """The server and the browser end when the driver does, however it ends (Linux)."""
+    import ctypes
+    ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+
+
 def main():
+    # A SIGTERM (ctest's or timeout's) unwinds through the finally below.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("terminated"))
     parser = argparse.ArgumentParser()
     parser.add_argument("terraweave")
     parser.add_argument("run")
@@ -99,7 +109,8 @@ def main():
         [args.terraweave, "view", args.run, "--out", os.path.join(args.work, "page.html"),
          "--serve", "0", "--exemplar", args.exemplar, "--scale", args.scale, "--save",
          os.path.join(args.work, "drawn_network.gpkg")],
-        cwd=args.work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        cwd=args.work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        preexec_fn=die_with_parent)
     browser = None
     profile = tempfile.TemporaryDirectory()
     try:
@@ -113,7 +124,8 @@ def main():
             ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--remote-debugging-port=0", "--remote-allow-origins=*",
              f"--user-data-dir={profile.name}", "--window-size=900,700", "about:blank"],
-            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+            preexec_fn=die_with_parent)
         devtools = wait_for_line(browser.stderr, r"DevTools listening on ws://([^/]+)/", 60,
                                  "chromium").group(1)
         targets = json.load(urllib.request.urlopen(f"http://{devtools}/json/list"))
@@ -161,7 +173,13 @@ def main():
                 f.write(base64.b64decode(shot))
         page.click("reject")
         rejected = page.eval("window.__network.suggestions.length")
-        # Complete again: the accepted lines go back as part of the drawing. Accept all, save.
+        # Complete again over a region drawn as a loop (an octagon around the centre, crossing
+        # accepted lines, which it cuts): the accepted lines go back as part of the drawing.
+        # Accept all, save.
+        page.click("area")
+        page.drag([to_screen(0.5 + 0.3 * math.cos(a * math.pi / 4),
+                             0.5 + 0.3 * math.sin(a * math.pi / 4)) for a in range(8)])
+        region = page.eval("window.__network.region.length")
         page.click("complete")
         page.wait("+document.body.dataset.completed === 2")
         second = page.eval("window.__network.suggestions.length")
@@ -181,6 +199,7 @@ def main():
             "left_after_lasso": left_over,
             "after_reject": rejected,
             "second_suggestions": second,
+            "second_region_points": region,
             "second_status": second_status,
             "server_pid": server.pid,
             "view_page": view_page,

@@ -57,6 +57,7 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   EXPECT_GT(r["after_lasso"].get<int>(), 2);
   EXPECT_GT(r["left_after_lasso"].get<int>(), 0);  // the lasso took only some
   EXPECT_EQ(r["after_reject"], 0);
+  EXPECT_EQ(r["second_region_points"], 8);  // the second region: a loop, not a box
   EXPECT_GT(r["second_suggestions"].get<int>(), 0) << r["second_status"];
   const auto& lines = r["lines"];
   ASSERT_EQ(lines.size(), r["after_lasso"].get<std::size_t>() + r["second_suggestions"].get<int>());

@@ -20,6 +20,7 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 <div id="bar">
 <button id="draw" class="on" title="draw strokes with the pointer">draw</button>
 <button id="region" title="drag a box: the region to complete">region</button>
+<button id="area" title="draw a loop: the region to complete">region by lasso</button>
 <button id="complete" title="ask for suggestions in the region">complete</button>
 <button id="pick" title="click a suggestion to accept it">accept one</button>
 <button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>
@@ -80,7 +81,8 @@ const redraw = () => {
     path(l); ctx.stroke();
   });
   if (live && live.points.length > 1) {
-    ctx.strokeStyle = live.kind === 'lasso' ? '#e80' : '#111'; ctx.lineWidth = 2;
+    ctx.strokeStyle = live.kind === 'lasso' ? '#e80' : live.kind === 'area' ? '#fff' : '#111';
+    ctx.lineWidth = 2;
     path(live.kind === 'region' ? box(live.points) : live.points, live.kind !== 'draw');
     ctx.stroke();
   }
@@ -95,10 +97,10 @@ const box = pts => {
 };
 const setMode = m => {
   S.mode = m;
-  for (const id of ['draw', 'region', 'pick', 'lasso'])
+  for (const id of ['draw', 'region', 'area', 'pick', 'lasso'])
     document.getElementById(id).classList.toggle('on', id === m);
 };
-for (const id of ['draw', 'region', 'pick', 'lasso'])
+for (const id of ['draw', 'region', 'area', 'pick', 'lasso'])
   document.getElementById(id).onclick = () => setMode(id);
 const canvasPixel = e => {
   const r = canvas.getBoundingClientRect();
@@ -153,6 +155,7 @@ canvas.addEventListener('pointerup', e => {
   if (done.points.length < 2) { redraw(); return; }
   if (done.kind === 'draw') { S.lines.push(done.points); S.origins.push('drawn'); }
   if (done.kind === 'region') S.region = box(done.points);
+  if (done.kind === 'area' && done.points.length > 2) S.region = done.points;
   if (done.kind === 'lasso') accept(s => s.every(p => inside(p, done.points)));
   redraw();
 });
