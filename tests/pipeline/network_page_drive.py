@@ -123,7 +123,7 @@ def main():
         browser = subprocess.Popen(
             ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--remote-debugging-port=0", "--remote-allow-origins=*",
-             f"--user-data-dir={profile.name}", "--window-size=900,700", "about:blank"],
+             f"--user-data-dir={profile.name}", "--window-size=1000,700", "about:blank"],
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
             preexec_fn=die_with_parent)
         devtools = wait_for_line(browser.stderr, r"DevTools listening on ws://([^/]+)/", 60,

@@ -13,9 +13,10 @@ inline constexpr const char* kNetworkPage = R"html(<!doctype html>
 html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 #bar{position:absolute;top:0;left:0;right:0;height:34px;background:#fff;padding:4px 8px;
   box-sizing:border-box;display:flex;gap:6px;align-items:center}
+#bar button{white-space:nowrap}
 #bar button.on{background:#246;color:#fff}
 #map{position:absolute;top:34px;left:0;cursor:crosshair;touch-action:none}
-#status{margin-left:8px;color:#333}
+#status{margin-left:8px;color:#333;white-space:nowrap;overflow:hidden}
 </style></head><body>
 <div id="bar">
 <button id="draw" class="on" title="draw strokes with the pointer">draw</button>
