@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 all_targets=(pipeline_parser set_override placements_loader vector_ingest element_set sketch_loader
-  plan_object cache_entry)
+  plan_object cache_entry network_exemplar)
 [ $# -gt 0 ] && targets=("$@") || targets=("${all_targets[@]}")
 
 # clang and its runtime (libFuzzer, ASan, UBSan): needed only here, so not in setup.sh's list.
@@ -37,6 +37,7 @@ dictionary_of() {
     pipeline_parser | set_override) echo fuzz/dict/pipeline.dict ;;
     placements_loader) echo fuzz/dict/placements.dict ;;
     vector_ingest | sketch_loader) echo fuzz/dict/geojson.dict ;;
+    network_exemplar) echo fuzz/dict/network.dict ;;
   esac
 }
 

@@ -22,14 +22,16 @@ packages=(
   libopenimageio-dev libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev libvalijson-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev libtbb-dev nlohmann-json3-dev
-  libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev libcgal-dev
+  libeigen3-dev libnanoflann-dev libboost-dev libxxhash-dev libcgal-dev libcpp-httplib-dev
   nodejs
   "$@"
 )
-# What only the tests, benchmarks and scripts use: the viewer's screenshot test (chromium), the
-# Dask driver, GDAL's and OIIO's tools, clinfo, and dpkg-shlibdeps for the .deb (CPack).
+# What only the tests, benchmarks and scripts use: the viewer's screenshot tests (chromium; the
+# drawing page's driver talks to it with python3-websocket), the Dask driver, GDAL's and OIIO's
+# tools, clinfo, and dpkg-shlibdeps for the .deb (CPack).
 if ! $build_only; then
-  packages+=(gdal-bin python3-gdal clinfo openimageio-tools chromium python3-distributed dpkg-dev)
+  packages+=(gdal-bin python3-gdal clinfo openimageio-tools chromium python3-websocket
+    python3-distributed dpkg-dev)
 fi
 
 # npm vendors three.js for `terraweave view` at build time. Debian's npm package conflicts with

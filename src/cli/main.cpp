@@ -27,6 +27,7 @@
 #include "pipeline/grow_command.hpp"
 #include "pipeline/network_command.hpp"
 
+#include "cli/view_server.hpp"
 #include "pipeline/big_world.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/diff.hpp"
@@ -107,20 +108,15 @@ int diff_command(const std::string& a, const std::string& b, bool verify) {
   return difference.identical() ? 0 : 1;
 }
 
-// Writes the page; with --serve, replaces this process by python3's http.server on the page's
-// folder (127.0.0.1 only; Ctrl-C stops it).
-int view_command(const tw::ViewOptions& options, bool serve, int port) {
+// Writes the page; with --serve, serves its folder (and, with --exemplar, the drawing page) on
+// 127.0.0.1 until stopped.
+int view_command(const tw::ViewOptions& options, bool serve, tw::ViewServeOptions serve_options) {
   const std::filesystem::path page = tw::write_view(options);
   std::printf("%s\n", tw::single_line(page.string()).c_str());
   if (!serve) return 0;
-  const std::string folder = std::filesystem::absolute(page).parent_path().string();
-  const std::string port_text = std::to_string(port);
-  std::printf("serving http://127.0.0.1:%d/%s (Ctrl-C stops)\n", port,
-              page.filename().string().c_str());
-  std::fflush(stdout);
-  execlp("python3", "python3", "-m", "http.server", port_text.c_str(), "--bind", "127.0.0.1",
-         "--directory", folder.c_str(), static_cast<char*>(nullptr));
-  tw::fail("--serve: cannot start python3 -m http.server: {}", std::strerror(errno));
+  serve_options.page = page;
+  tw::serve_view(options, serve_options);
+  return 0;
 }
 
 int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
@@ -356,10 +352,21 @@ int cli_main(int argc, char** argv) {
       "--no-verify", [&view_options](std::int64_t) { view_options.verify = false; },
       no_verify_help);
   view->add_option("--serve", serve_port,
-                   "then serve its folder on 127.0.0.1:PORT (python3 -m http.server)")
+                   "then serve its folder on 127.0.0.1:PORT until stopped (0: any free port)")
       ->expected(0, 1)
       ->default_str("8000")
-      ->check(CLI::Range(1, 65535));
+      ->check(CLI::Range(0, 65535));
+  tw::ViewServeOptions serve_options;
+  view->add_option("--exemplar", serve_options.exemplar,
+                   "with --serve: also serve network.html, drawing curve networks completed by "
+                   "this exemplar (OGR path[:layer] or .svg)");
+  view->add_option("--where", serve_options.where, "OGR SQL filter on the exemplar's layer");
+  view->add_option("--scale", serve_options.scale, "SVG exemplar: metres per SVG unit")
+      ->check(CLI::PositiveNumber);
+  view->add_option("--seed", serve_options.seed, "the drawing page's growth seed");
+  view->add_option("--save", serve_options.save,
+                   "where the drawing page saves its lines (GeoPackage, layer lines; default "
+                   "drawn_network.gpkg)");
 
   // A run in three steps for many processes or machines (docs/distributed.md).
   PipelineArgs plan_args;
@@ -701,8 +708,16 @@ int cli_main(int argc, char** argv) {
         return 2;
       }
     }
-    if (view->parsed())
-      return view_command(view_options, view->count("--serve") > 0, serve_port.value_or(8000));
+    if (view->parsed()) {
+      if (view->count("--serve") == 0)
+        for (const char* option : {"--exemplar", "--where", "--scale", "--seed", "--save"})
+          if (view->count(option) > 0) tw::fail("view: {} needs --serve", option);
+      if (serve_options.exemplar.empty())
+        for (const char* option : {"--where", "--scale", "--seed", "--save"})
+          if (view->count(option) > 0) tw::fail("view: {} needs --exemplar", option);
+      serve_options.port = serve_port.value_or(8000);
+      return view_command(view_options, view->count("--serve") > 0, serve_options);
+    }
     if (area->parsed()) {
       area_args.strict = run_options.strict;  // the global flag
       const tw::AreaCommandResult r = tw::run_area_command(area_args);

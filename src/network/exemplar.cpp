@@ -153,6 +153,21 @@ std::vector<Polygon> read_region_polygons(const std::string& source, const std::
   return out;
 }
 
+NetworkLines cut_network_lines(const NetworkLines& lines, const std::vector<Polygon>& region) {
+  NetworkLines out;
+  out.crs_wkt = lines.crs_wkt;
+  out.region = region;
+  out.from_polygons = lines.from_polygons;
+  const std::unique_ptr<OGRGeometry> cut(detail::to_ogr(region).MakeValid());
+  for (std::size_t i = 0; i < lines.lines.size(); ++i) {
+    OGRLineString ls;
+    for (Vec2 p : lines.lines[i]) ls.addPoint(p.x, p.y);
+    const std::unique_ptr<OGRGeometry> inside(ls.Intersection(cut.get()));
+    add_parts(inside.get(), lines.fids[i], out);
+  }
+  return out;
+}
+
 NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
   NetworkLines out;
   const auto [path, layer_name] = split_source(s.source);
@@ -182,11 +197,10 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
         transform.reset(OGRCreateCoordinateTransformation(&own, &frame));
       }
     }
-    std::unique_ptr<OGRGeometry> cut;
-    if (!s.region.empty()) {
+    if (!s.region.empty())
       out.region = read_region_polygons(s.region, "", out.crs_wkt, s.subject + " region");
-      cut.reset(detail::to_ogr(out.region).MakeValid());
-    }
+    else
+      out.region = s.region_polygons;
     layer->ResetReading();
     for (auto& f : *layer) {
       OGRGeometry* g = f->GetGeometryRef();
@@ -194,23 +208,17 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
       std::unique_ptr<OGRGeometry> copy(g->clone());
       if (transform && copy->transform(transform.get()) != OGRERR_NONE)
         fail("{} {}: FID {}: cannot transform into a metric frame", s.subject, path, f->GetFID());
-      if (cut) {
-        // The polygon's rings become lines first (county boundaries), then the cut.
-        NetworkLines parts;
-        add_parts(copy.get(), f->GetFID(), parts);
-        for (const auto& line : parts.lines) {
-          OGRLineString ls;
-          for (Vec2 p : line) ls.addPoint(p.x, p.y);
-          std::unique_ptr<OGRGeometry> inside(ls.Intersection(cut.get()));
-          add_parts(inside.get(), f->GetFID(), out);
-        }
-      } else {
-        add_parts(copy.get(), f->GetFID(), out);
-      }
+      add_parts(copy.get(), f->GetFID(), out);  // a polygon's rings become lines, then the cut
     }
+    if (!out.region.empty()) out = cut_network_lines(out, out.region);
   }
-  if (out.lines.empty())
-    fail("{} {}: no lines{}", s.subject, s.source, s.region.empty() ? "" : " inside the region");
+  for (std::size_t i = 0; i < out.lines.size(); ++i)
+    for (Vec2 p : out.lines[i])
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        fail("{} {}: FID {}: a coordinate that is not a finite number", s.subject, s.source,
+             out.fids[i]);
+  if (out.lines.empty() && s.min_lines > 0)
+    fail("{} {}: no lines{}", s.subject, s.source, out.region.empty() ? "" : " inside the region");
   if (out.lines.size() == 1 && s.min_lines > 1)
     fail("{} {}: FID {}: a single line is no network (it needs junctions to learn from)", s.subject,
          s.source, out.fids.front());

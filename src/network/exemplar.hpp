@@ -16,9 +16,13 @@ struct NetworkSource {
   std::string source{};  // "path[:layer]": any OGR source, or an .svg file
   std::string where{};   // OGR SQL attribute filter
   std::string region{};  // optional polygons "path[:layer]" cutting the lines (a real map)
+  // Or the cutting polygons themselves, in the lines' frame (a box given as numbers).
+  std::vector<Polygon> region_polygons{};
   double scale = 1.0;    // SVG: metres per SVG unit (y is flipped: north up)
   std::string subject = "exemplar";  // the option or key named in messages
-  int min_lines = 2;  // an exemplar needs junctions; a partial drawing may be one line
+  // An exemplar needs junctions (2); a partial drawing may be one line (1); the map's lines
+  // already in a clone's target may be none (0).
+  int min_lines = 2;
 };
 
 struct NetworkLines {
@@ -33,6 +37,10 @@ struct NetworkLines {
 // fewer than two points, SVG elements that are not lines or paths, a geographic region without
 // lines inside).
 NetworkLines read_network_lines(const NetworkSource& source, Warnings& warnings);
+
+// The parts of `lines` inside `region` (GEOS intersection, in the lines' frame), each with its
+// line's FID; `region` is kept with them (ends on its boundary are cuts).
+NetworkLines cut_network_lines(const NetworkLines& lines, const std::vector<Polygon>& region);
 
 // Polygons of an OGR source in the frame of `target_wkt` (the lines' frame).
 std::vector<Polygon> read_region_polygons(const std::string& source, const std::string& where,

@@ -65,6 +65,16 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
                         region, nullptr)
               .outside > 0)
         fail("{} {}: FID {}: outside the region", key, source, e.fid);
+  // A line crossing itself (a loop closed at its own end is no crossing).
+  for (const NetworkEdge& e : drawn.edges) {
+    OGRLineString line;
+    for (Vec2 p : e.points) line.addPoint(p.x, p.y);
+    if (!line.IsSimple())
+      fail(
+          "{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
+          "ends)",
+          key, source, e.fid);
+  }
   // Crossings: two lines meeting where neither ends.
   for (std::size_t i = 0; i < drawn.edges.size(); ++i)
     for (std::size_t j = i + 1; j < drawn.edges.size(); ++j) {
@@ -101,6 +111,17 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
   Network net = build_planar_network(in, 0.0, key, warnings);
   for (NetworkEdge& e : net.edges) e.kept = true;
   return net;
+}
+
+// Snapped (within `snap`, 0: 1/1000 of the lines' extent) and noded.
+Network exemplar_network(const NetworkLines& lines, double snap, Warnings& warnings) {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (const auto& l : lines.lines)
+    for (Vec2 p : l)
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
+  return build_planar_network(lines, snap > 0.0 ? snap : 1e-3 * extent, "--exemplar", warnings);
 }
 
 ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>& region,
@@ -223,17 +244,14 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
                                         warnings);
     region = region_of(c.target_region, "--target-region", exemplar_lines.crs_wkt);
     // What is already in the target is kept: the map's lines inside it, if any.
-    try {
-      kept_lines = read_network_lines({.source = c.map,
-                                       .where = c.exemplar_where,
-                                       .region = c.target_region,
-                                       .scale = c.scale,
-                                       .subject = "--map (in --target-region)",
-                                       .min_lines = 1},
-                                      warnings);
-    } catch (const Error&) {
-      kept_lines.reset();  // nothing (or one line) there: the target is grown from scratch
-    }
+    kept_lines = read_network_lines({.source = c.map,
+                                     .where = c.exemplar_where,
+                                     .region_polygons = region,
+                                     .scale = c.scale,
+                                     .subject = "--map (in --target-region)",
+                                     .min_lines = 0},
+                                    warnings);
+    if (kept_lines->lines.empty()) kept_lines.reset();  // the target is grown from scratch
   } else {
     if (c.exemplar.empty()) fail("{}: --exemplar is required", cmd);
     exemplar_lines = read_network_lines({.source = c.exemplar,
@@ -251,17 +269,7 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
       kept_lines = std::move(partial);
     }
   }
-  double extent = 0.0;
-  {
-    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-    for (const auto& l : exemplar_lines.lines)
-      for (Vec2 p : l)
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    extent = std::max(hi.x - lo.x, hi.y - lo.y);
-  }
-  const double snap = c.snap > 0.0 ? c.snap : 1e-3 * extent;
-  const Network exemplar = build_planar_network(exemplar_lines, snap, "--exemplar", warnings);
+  const Network exemplar = exemplar_network(exemplar_lines, c.snap, warnings);
   std::optional<Network> partial;
   if (kept_lines)
     partial = partial_network(*kept_lines, region, c.mode == "clone" ? "--map" : "--partial",
@@ -305,6 +313,82 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms", cmd,
                 result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms);
   return result;
+}
+
+}  // namespace tw
+
+namespace tw {
+
+Network read_network_exemplar(const NetworkSource& source, double snap, Warnings& warnings) {
+  return exemplar_network(read_network_lines(source, warnings), snap, warnings);
+}
+
+std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const NetworkLines& drawn,
+                                                const std::vector<Polygon>& region,
+                                                const ForbiddenMask* forbidden,
+                                                const NetworkGrowthOptions& options,
+                                                NetworkGrowthReport* report) {
+  Warnings warnings;
+  // The drawing's parts inside the region are kept and completed (a line crossing its boundary
+  // is cut there: the cut is no dangling end to grow from); what lies outside is not touched.
+  const NetworkLines inside = cut_network_lines(drawn, region);
+  std::optional<Network> partial;
+  if (!inside.lines.empty())
+    partial = partial_network(inside, region, "drawing", "(lines numbered from 1)", warnings);
+  const Network grown =
+      grow_network(exemplar, region, forbidden, partial ? &*partial : nullptr, options, report);
+  // The drawing may cross what is forbidden (the user drew it); the suggestions may not.
+  Network suggested;
+  suggested.nodes = grown.nodes;
+  for (const NetworkEdge& e : grown.edges)
+    if (!e.kept) suggested.edges.push_back(e);
+  const NetworkCheck check = check_network(grown, region, nullptr);
+  const int entered = forbidden ? check_network(suggested, region, forbidden).forbidden : 0;
+  if (check.total() + entered != 0)
+    fail(
+        "completion: {} crossings, {} outside the region, {} through avoided cells (a growth "
+        "bug): {}",
+        check.crossings, check.outside, entered, check.first);
+  std::vector<std::vector<Vec2>> suggestions;
+  for (NetworkEdge& e : suggested.edges) suggestions.push_back(std::move(e.points));
+  return suggestions;
+}
+
+void write_drawn_network(const std::filesystem::path& path, const std::string& crs_wkt,
+                         const std::vector<std::vector<Vec2>>& lines,
+                         const std::vector<std::string>& origins) {
+  if (lines.empty()) fail("{}: nothing to save (no lines drawn or accepted)", path.string());
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].size() < 2) fail("{}: line {} has fewer than two points", path.string(), i + 1);
+  GDALAllRegister();
+  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");  // same bytes
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
+  OutputTransaction transaction;
+  const std::filesystem::path staged = transaction.stage(path);
+  {
+    std::unique_ptr<GDALDataset> ds(
+        driver->Create(staged.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    if (!ds) fail("{}: cannot create the GeoPackage", path.string());
+    OGRSpatialReference srs;
+    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    const bool has_crs = !crs_wkt.empty() && srs.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE;
+    OGRLayer* layer = ds->CreateLayer("lines", has_crs ? &srs : nullptr, wkbLineString, nullptr);
+    if (!layer) fail("{}: cannot create layer 'lines'", path.string());
+    create_field(*layer, "origin", OFTString, path.string());
+    if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      OGRFeature f(layer->GetLayerDefn());
+      f.SetFID(GIntBig(i + 1));
+      f.SetField("origin", i < origins.size() ? origins[i].c_str() : "drawn");
+      OGRLineString ls;
+      for (Vec2 p : lines[i]) ls.addPoint(p.x, p.y);
+      f.SetGeometry(&ls);
+      if (layer->CreateFeature(&f) != OGRERR_NONE) fail("{}: cannot write", path.string());
+    }
+    if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
+  }
+  transaction.commit();
 }
 
 }  // namespace tw

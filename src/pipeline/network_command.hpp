@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "network/exemplar.hpp"
 #include "network/growth.hpp"
 
 namespace tw {
@@ -38,5 +39,28 @@ struct NetworkCommandResult {
 
 // Throws tw::Error naming the file, key or FID at fault; writes every file or none.
 NetworkCommandResult run_network_command(const NetworkCommand& command);
+
+// The interactive loop (`terraweave view RUN --serve --exemplar ...`, docs/networks.md,
+// "Drawing"): the same reading and growth as the command, called per request.
+
+// The exemplar as the command reads it: lines, snapped (0: 1/1000 of their extent), noded.
+Network read_network_exemplar(const NetworkSource& source, double snap, Warnings& warnings);
+
+// Suggestions completing `drawn` (lines in the map's metric CRS, FIDs numbering them in
+// messages) over `region`, off `forbidden` cells (the run's avoidance layer): the drawing's parts
+// inside the region are kept exactly and grown from, as `network complete` does; GEOS checks the
+// result. Throws tw::Error (lines crossing each
+// other, a degenerate or too large region) with nothing else done.
+std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const NetworkLines& drawn,
+                                                const std::vector<Polygon>& region,
+                                                const ForbiddenMask* forbidden,
+                                                const NetworkGrowthOptions& options,
+                                                NetworkGrowthReport* report = nullptr);
+
+// The drawn and accepted lines as the GeoPackage layer "lines" (field origin: "drawn" or
+// "suggested") in `crs_wkt`, written to a temporary file and renamed: whole or not at all.
+void write_drawn_network(const std::filesystem::path& path, const std::string& crs_wkt,
+                         const std::vector<std::vector<Vec2>>& lines,
+                         const std::vector<std::string>& origins);
 
 }  // namespace tw

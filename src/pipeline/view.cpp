@@ -18,6 +18,7 @@
 #include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/json_file.hpp"
+#include "pipeline/detail/network_page.hpp"
 #include "pipeline/detail/three_js.hpp"
 #include "pipeline/detail/view_page.hpp"
 #include "pipeline/run_layers.hpp"
@@ -136,25 +137,8 @@ std::string forbidden_mask(const fs::path& run, int w, int h) {
   return mask;
 }
 
-json view_data(const fs::path& run, const ViewOptions& options) {
-  const json report = detail::parse_json_file(run / "report.json", "run it again");
-  const json& grid = report.at("grid");
-  const int width = grid.at("width"), height = grid.at("height");
-  json data;
-  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
-  data["grid"] = grid;
-  data["grid"].erase("crs_wkt");
-  const auto [mw, mh] = fit(width, height, options.mesh_size);
-  json heights = json::array();
-  const std::vector<float> mesh =
-      read_bands(required_run_layer_raster(run, "height"), mw, mh).at(0);
-  for (const float v : mesh)
-    heights.push_back(std::isfinite(v) ? json(std::round(v * 100.0) / 100.0) : json(nullptr));
-  data["mesh"] = {{"width", mw}, {"height", mh}, {"heights", heights}};
-  data["exaggeration"] = 1.0;
-  const auto [tw, th] = fit(width, height, options.texture_size);
-  data["texture"] = {{"width", tw}, {"height", th}, {"rgb", base64(splat_rgb(run, tw, th))}};
-  data["avoidance"] = {{"mask", base64(forbidden_mask(run, tw, th))}};
+// The run's feature lines (features.geojson): kind and points, checked.
+json view_data_features(const fs::path& run) {
   json features = json::array();
   if (fs::exists(run / "features.geojson")) {
     const fs::path path = run / "features.geojson";
@@ -177,11 +161,91 @@ json view_data(const fs::path& run, const ViewOptions& options) {
                           {"points", f["geometry"]["coordinates"]}});
     }
   }
-  data["features"] = features;
+  return features;
+}
+
+json view_data(const fs::path& run, const ViewOptions& options) {
+  const json report = detail::parse_json_file(run / "report.json", "run it again");
+  const json& grid = report.at("grid");
+  const int width = grid.at("width"), height = grid.at("height");
+  json data;
+  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
+  data["grid"] = grid;
+  data["grid"].erase("crs_wkt");
+  const auto [mw, mh] = fit(width, height, options.mesh_size);
+  json heights = json::array();
+  const std::vector<float> mesh =
+      read_bands(required_run_layer_raster(run, "height"), mw, mh).at(0);
+  for (const float v : mesh)
+    heights.push_back(std::isfinite(v) ? json(std::round(v * 100.0) / 100.0) : json(nullptr));
+  data["mesh"] = {{"width", mw}, {"height", mh}, {"heights", heights}};
+  data["exaggeration"] = 1.0;
+  const auto [tw, th] = fit(width, height, options.texture_size);
+  data["texture"] = {{"width", tw}, {"height", th}, {"rgb", base64(splat_rgb(run, tw, th))}};
+  data["avoidance"] = {{"mask", base64(forbidden_mask(run, tw, th))}};
+  data["features"] = view_data_features(run);
   return data;
 }
 
 }  // namespace
+
+std::string network_page(const ViewOptions& options, const std::string& save_path) {
+  if (options.verify) verify_run_files(options.run_dir, "view");
+  const fs::path& run = options.run_dir;
+  const json report = detail::parse_json_file(run / "report.json", "run it again");
+  const json& grid = report.at("grid");
+  const int width = grid.at("width"), height = grid.at("height");
+  json data;
+  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
+  data["grid"] = grid;
+  data["grid"].erase("crs_wkt");
+  const auto [tw, th] = fit(width, height, options.texture_size);
+  std::string rgb = splat_rgb(run, tw, th);  // rows south first: the canvas wants north first
+  std::string north_first(rgb.size(), '\0');
+  const std::size_t row = std::size_t(tw) * 3;
+  for (int r = 0; r < th; ++r)
+    north_first.replace(std::size_t(r) * row, row, rgb, std::size_t(th - 1 - r) * row, row);
+  data["image"] = {{"width", tw}, {"height", th}, {"rgb", base64(north_first)}};
+  json features = json::array();
+  for (const json& f : view_data_features(run)) features.push_back(f["points"]);
+  data["features"] = features;
+  data["save_path"] = save_path;
+  std::string text = data.dump();
+  for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3)
+    text.replace(at, 2, "<\\/");
+  std::string page = detail::kNetworkPage;
+  page.replace(page.find("@DATA@"), 6, text);
+  return page;
+}
+
+ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
+  const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
+  const json& grid = report.at("grid");
+  // At most 4096 cells a side (GDAL resamples on reading): memory follows the page, not the world.
+  const int width = grid.at("width"), height = grid.at("height");
+  const auto [w, h] = fit(width, height, 4096);
+  ForbiddenMask mask;
+  mask.grid.width = w;
+  mask.grid.height = h;
+  mask.grid.origin_x = grid.at("origin").at(0);
+  mask.grid.origin_y = grid.at("origin").at(1);
+  mask.grid.pixel_width = grid.at("pixel_size").at(0).get<double>() * width / w;
+  mask.grid.pixel_height = grid.at("pixel_size").at(1).get<double>() * height / h;
+  const std::vector<float> avoidance =
+      read_bands(required_run_layer_raster(run_dir, "avoidance"), mask.grid.width, mask.grid.height)
+          .at(0);
+  mask.cells = Raster<std::uint8_t>(mask.grid.width, mask.grid.height);
+  for (std::size_t k = 0; k < avoidance.size(); ++k) mask.cells.pixels[k] = avoidance[k] > 0.5f;
+  return mask;
+}
+
+std::string run_crs_wkt(const fs::path& run_dir) {
+  const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
+  const json& grid = report.at("grid");
+  return grid.contains("crs_wkt") && grid["crs_wkt"].is_string()
+             ? grid["crs_wkt"].get<std::string>()
+             : std::string();
+}
 
 fs::path write_view(const ViewOptions& options) {
   // Checked first: the page is built from the whole run, which takes seconds.

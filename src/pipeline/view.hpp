@@ -3,6 +3,9 @@
 // (three.js, inlined at build time): a downsampled height mesh, the splat colours as its
 // texture, the avoidance map and the feature lines, each with a toggle. No network needed.
 #include <filesystem>
+#include <string>
+
+#include "network/growth.hpp"
 
 namespace tw {
 
@@ -20,5 +23,18 @@ struct ViewOptions {
 // Throws tw::Error naming a missing file, or (verify) one that no longer matches report.json
 // (pipeline/run_layers.hpp, verify_run_files).
 std::filesystem::path write_view(const ViewOptions& options);
+
+// The drawing page that `view --serve --exemplar` serves (docs/networks.md, "Drawing"): the run's
+// colours as a 2D map in its grid's coordinates, its feature lines, and `save_path` named in the
+// page. Throws like write_view.
+std::string network_page(const ViewOptions& options, const std::string& save_path);
+
+// The cells the run's avoidance layer forbids (> 0.5), on the run's grid (at most 4096 cells a
+// side, coarser for a larger run): what the drawing page's suggestions stay off (its roads,
+// rivers, fold-overs...).
+ForbiddenMask run_forbidden_mask(const std::filesystem::path& run_dir);
+
+// The run's CRS as WKT (report.json's grid), "" when it has none.
+std::string run_crs_wkt(const std::filesystem::path& run_dir);
 
 }  // namespace tw

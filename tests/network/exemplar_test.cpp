@@ -93,6 +93,32 @@ TEST(NetworkExemplar, BadInputIsOneLineNamingFileAndFid) {
             std::string::npos);
 }
 
+// What the exemplar reader's fuzz target (fuzz/network_exemplar.cpp) found: numbers that are no
+// coordinates, path data without a moveto, attributes without quotes.
+TEST(NetworkExemplar, NumbersOutOfRangeAndPathsWithoutMovetoAreRefused) {
+  test::TempDir dir;
+  Warnings w;
+  const auto message = [&](const char* name, const std::string& text) {
+    const std::string path = write(dir, name, text);
+    return error_of([&] { read_network_lines({.source = path}, w); });
+  };
+  EXPECT_NE(message("inf.svg", R"(<svg><path d="M 0 0 L 1e999 0"/><path d="M 0 1 L 5 1"/></svg>)")
+                .find("inf.svg: element 0 <path>: a number out of range: 1e999"),
+            std::string::npos);
+  EXPECT_NE(message("nan.svg", R"(<svg><line x1="nan" y1="0" x2="1" y2="1"/></svg>)")
+                .find("nan.svg: element 0 <line>: a number out of range: nan"),
+            std::string::npos);
+  EXPECT_NE(message("lineto.svg", R"(<svg><path d="L 5 5"/></svg>)")
+                .find("lineto.svg: element 0 <path>: path data must start with a moveto"),
+            std::string::npos);
+  EXPECT_NE(message("unquoted.svg", R"(<svg><path d=M 0 0 L 5 5/><path d/></svg>)")
+                .find("unquoted.svg: no lines"),
+            std::string::npos);
+  EXPECT_NE(message("big.geojson", geojson({"[[0,0],[5,5]]", "[[0,5],[1e999,0]]"}))
+                .find("big.geojson: FID 2: a coordinate that is not a finite number"),
+            std::string::npos);
+}
+
 TEST(NetworkExemplar, SvgPathsAreScaledNorthUp) {
   Warnings w;
   const NetworkLines lines = read_network_lines(

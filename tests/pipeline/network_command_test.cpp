@@ -11,6 +11,8 @@
 #include <fstream>
 #include <memory>
 
+#include "core/error.hpp"
+#include "pipeline/network_command.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -162,6 +164,37 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
   EXPECT_EQ(crossings(cloned), 0);
 }
 
+// A box --target-region over part of the map keeps the map's lines there exactly (cut by the
+// box) and grows around them without crossing them (it used to read the box as a file name and
+// silently keep nothing).
+TEST_F(NetworkCommandTest, CloneIntoABoxKeepsTheMapsLinesAlreadyThere) {
+  std::ofstream(dir / "source.geojson")
+      << R"({"type":"FeatureCollection",)" + kCrs +
+             R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
+  const CommandResult c =
+      network("clone --map " + exemplar + " --source-region " + (dir / "source.geojson").string() +
+              " --target-region 500350,4000000,500950,4000480 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer kept = read_layer(dir / "d/network.gpkg", "kept");
+  // The map's lines east of x = 350: 3 whole verticals (400, 500, 600), the one at 300 outside,
+  // and the horizontal pieces there.
+  ASSERT_GE(kept.lines.size(), 10u);
+  int verticals = 0;
+  for (const auto& line : kept.lines) {
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 500350 - 1e-6);
+      EXPECT_LE(x, 500600 + 1e-6);
+    }
+    verticals += line.front().first == line.back().first &&
+                 std::abs(line.front().second - line.back().second) == 480.0;
+  }
+  EXPECT_EQ(verticals, 3);
+  Layer all = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(all.lines.size(), 3u);  // the strip east of the map is grown
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), 0);
+}
+
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
   std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
   std::ofstream(dir / "bad.svg")
@@ -170,6 +203,12 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"[[500100,4000100],[500300,4000300]]", "[[500100,4000300],[500300,4000100]]"});
   std::ofstream(dir / "outside.geojson") << lines_geojson(
       {"[[500100,4000100],[500300,4000100]]", "[[500300,4000100],[509000,4000100]]"});
+  std::ofstream(dir / "loop.geojson")
+      << lines_geojson({"[[500100,4000100],[500300,4000300],[500300,4000100],[500100,4000300]]"});
+  std::ofstream(dir / "empty.geojson") << lines_geojson({});
+  std::ofstream(dir / "flat.geojson")
+      << R"({"type":"FeatureCollection",)" + kCrs +
+             R"(,"features":[{"type":"Feature","id":3,"properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500500,4000000],[500900,4000000],[500000,4000000]]]}}]})";
   const std::string out = (dir / "never").string();
   const struct {
     std::string args, message;
@@ -188,6 +227,16 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"complete --exemplar " + exemplar + " --partial " + (dir / "outside.geojson").string() +
            " --region " + region,
        "outside.geojson: FID 2: outside the region"},
+      {"complete --exemplar " + exemplar + " --partial " + (dir / "loop.geojson").string() +
+           " --region " + region,
+       "--partial " + (dir / "loop.geojson").string() + ": FID 1 crosses itself"},
+      {"synthesize --exemplar " + (dir / "empty.geojson").string() + " --region " + region,
+       "--exemplar " + (dir / "empty.geojson").string() + ": no lines"},
+      {"synthesize --exemplar " + exemplar + " --region " + (dir / "flat.geojson").string(),
+       "--region " + (dir / "flat.geojson").string() + ": FID 3: a degenerate (zero-area) polygon"},
+      {"clone --map " + exemplar + " --source-region " + (dir / "flat.geojson").string() +
+           " --target-region " + region,
+       "flat.geojson: FID 3: a degenerate (zero-area) polygon"},
   };
   for (const auto& c : cases) {
     const CommandResult r = network(c.args + " --out " + out);
@@ -196,6 +245,90 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
     EXPECT_THAT(r.output, HasSubstr("terraweave: error:"));
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+}
+
+}  // namespace
+}  // namespace tw::test
+
+namespace tw::test {
+namespace {
+
+// The drawing page's completion (docs/networks.md, "Drawing"): the library call the server makes.
+class NetworkDrawing : public NetworkCommandTest {
+ protected:
+  Network exemplar_network() {
+    Warnings warnings;
+    return read_network_exemplar({.source = exemplar}, 0.0, warnings);
+  }
+  const std::vector<Polygon> box{
+      {{{500000, 4000000}, {500900, 4000000}, {500900, 4000700}, {500000, 4000700}}}};
+};
+
+TEST_F(NetworkDrawing, CrossingStrokesAreRefusedNamingThem) {
+  NetworkLines drawn;
+  drawn.lines = {{{500100, 4000100}, {500300, 4000300}}, {{500100, 4000300}, {500300, 4000100}}};
+  drawn.fids = {1, 2};
+  std::string message;
+  try {
+    complete_drawing(exemplar_network(), drawn, box, nullptr, {});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_THAT(message, HasSubstr("drawing (lines numbered from 1): FID 1 crosses FID 2"));
+}
+
+// A stroke leaving the region is cut there and kept; suggestions cross neither it nor the
+// forbidden band, and stay in the region.
+TEST_F(NetworkDrawing, SuggestionsKeepOffTheStrokeAndTheForbiddenCells) {
+  NetworkLines drawn;
+  drawn.lines = {{{499800, 4000350}, {500400, 4000350}}};
+  drawn.fids = {1};
+  ForbiddenMask forbidden;
+  forbidden.grid = {.width = 100,
+                    .height = 80,
+                    .origin_x = 500000,
+                    .origin_y = 4000800,
+                    .pixel_width = 10,
+                    .pixel_height = 10};
+  forbidden.cells = Raster<std::uint8_t>(100, 80);
+  for (int r = 0; r < 80; ++r)
+    for (int c = 65; c < 68; ++c) forbidden.cells.at(c, r) = 1;  // x 500650..500680
+  const auto suggestions = complete_drawing(exemplar_network(), drawn, box, &forbidden, {});
+  ASSERT_GT(suggestions.size(), 10u);
+  OGRLinearRing ring;
+  for (auto [x, y] : {std::pair{500650.5, 3999000.0},
+                      {500679.5, 3999000.0},
+                      {500679.5, 4001000.0},
+                      {500650.5, 4001000.0},
+                      {500650.5, 3999000.0}})
+    ring.addPoint(x, y);
+  OGRPolygon band;
+  band.addRing(&ring);
+  Layer all;
+  for (const auto& s : suggestions) {
+    auto& line = all.lines.emplace_back();
+    OGRLineString ls;
+    for (Vec2 p : s) {
+      line.push_back({p.x, p.y});
+      ls.addPoint(p.x, p.y);
+      EXPECT_GE(p.x, 500000 - 1e-6);
+      EXPECT_LE(p.x, 500900 + 1e-6);
+    }
+    EXPECT_FALSE(ls.Intersects(&band));
+  }
+  all.lines.push_back({{500000, 4000350}, {500400, 4000350}});  // the stroke as cut
+  EXPECT_EQ(crossings(all), 0);
+}
+
+TEST_F(NetworkDrawing, ViewOptionsOfTheDrawingPageNeedServe) {
+  const CommandResult r =
+      run_command(terraweave_binary().string() + " view nowhere --exemplar x.svg 2>&1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("view: --exemplar needs --serve"));
+  const CommandResult s =
+      run_command(terraweave_binary().string() + " view nowhere --serve 0 --save a.gpkg 2>&1");
+  EXPECT_EQ(s.exit_code, 1);
+  EXPECT_THAT(s.output, HasSubstr("view: --save needs --exemplar"));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "network/detail/svg_lines.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -20,9 +21,9 @@ std::string attribute(const std::string& tag, const std::string& name) {
     if (word_start && eq < tag.size() && tag[eq] == '=') {
       std::size_t q = eq + 1;
       while (q < tag.size() && std::isspace(static_cast<unsigned char>(tag[q]))) ++q;
-      const char quote = tag[q];
-      const std::size_t end = tag.find(quote, q + 1);
-      return tag.substr(q + 1, end - q - 1);
+      if (q >= tag.size() || (tag[q] != '"' && tag[q] != '\'')) return {};  // not XML: no value
+      const std::size_t end = tag.find(tag[q], q + 1);
+      return tag.substr(q + 1, end == std::string::npos ? std::string::npos : end - q - 1);
     }
     at += name.size();
   }
@@ -32,7 +33,7 @@ std::string attribute(const std::string& tag, const std::string& name) {
 // Numbers of a points list or path data, with the commands as separate tokens.
 class Scanner {
  public:
-  explicit Scanner(const std::string& text) : s_(text) {}
+  Scanner(const std::string& text, const std::string& where) : s_(text), where_(where) {}
   void skip() {
     while (i_ < s_.size() && (std::isspace(static_cast<unsigned char>(s_[i_])) || s_[i_] == ','))
       ++i_;
@@ -53,12 +54,16 @@ class Scanner {
     char* end = nullptr;
     v = std::strtod(begin, &end);
     if (end == begin) return false;
+    // strtod reads "inf", "nan" and 1e999 too: no coordinate of a drawing.
+    if (!std::isfinite(v))
+      fail("{}: a number out of range: {}", where_, std::string(begin, std::size_t(end - begin)));
     i_ += std::size_t(end - begin);
     return true;
   }
 
  private:
   const std::string& s_;
+  const std::string& where_;
   std::size_t i_ = 0;
 };
 
@@ -72,7 +77,7 @@ void flatten_cubic(std::vector<Vec2>& out, Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
 
 std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::string& where) {
   std::vector<std::vector<Vec2>> out;
-  Scanner scan(d);
+  Scanner scan(d, where);
   Vec2 pen, start, control;
   char cmd = 0, previous = 0;
   const auto need = [&](double& v) {
@@ -83,6 +88,8 @@ std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::strin
       cmd = scan.command();
     else if (cmd == 0)
       fail("{}: path data does not start with a command", where);
+    if (out.empty() && std::toupper(static_cast<unsigned char>(cmd)) != 'M')
+      fail("{}: path data must start with a moveto (M or m), not '{}'", where, cmd);
     const bool rel = std::islower(static_cast<unsigned char>(cmd));
     const Vec2 base = rel ? pen : Vec2{};
     double x = 0, y = 0;
@@ -157,7 +164,7 @@ std::vector<std::vector<Vec2>> path_lines(const std::string& d, const std::strin
 }
 
 std::vector<Vec2> points_list(const std::string& text, const std::string& where) {
-  Scanner scan(text);
+  Scanner scan(text, where);
   std::vector<Vec2> pts;
   double x, y;
   while (!scan.done()) {
@@ -210,7 +217,13 @@ std::vector<SvgLine> read_svg_lines(const std::string& path, const std::string& 
       for (auto& line : path_lines(attribute(tag, "d"), where))
         if (line.size() >= 2) out.push_back({element, std::move(line)});
     } else if (name == "line") {
-      const auto num = [&](const char* a) { return std::atof(attribute(tag, a).c_str()); };
+      const auto num = [&](const char* a) {
+        const std::string text = attribute(tag, a);
+        Scanner scan(text, where);
+        double v = 0.0;
+        if (!text.empty() && !scan.number(v)) fail("{}: {}: a number expected", where, a);
+        return v;
+      };
       out.push_back({element, {{num("x1"), num("y1")}, {num("x2"), num("y2")}}});
     } else if (name == "polyline" || name == "polygon") {
       std::vector<Vec2> pts = points_list(attribute(tag, "points"), where);

@@ -1,0 +1,198 @@
+#pragma once
+// The drawing page of `terraweave view RUN --serve --exemplar ...` (docs/networks.md, "Drawing"):
+// @DATA@ becomes the run's map as JSON (its colours as RGB rows north first, its grid and CRS,
+// its feature lines, where the drawing is saved). The page draws strokes in map coordinates,
+// asks the server (POST /complete) to complete a region, lets the user accept the suggestions
+// (all, one by a click, or those inside a lasso) or reject them, and saves (POST /save).
+// window.__network exposes the state (lines, suggestions, the map's transform) for the tests.
+namespace tw::detail {
+
+inline constexpr const char* kNetworkPage = R"html(<!doctype html>
+<html><head><meta charset="utf-8"><title>terraweave network drawing</title>
+<style>
+html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
+#bar{position:absolute;top:0;left:0;right:0;height:34px;background:#fff;padding:4px 8px;
+  box-sizing:border-box;display:flex;gap:6px;align-items:center}
+#bar button{white-space:nowrap}
+#bar button.on{background:#246;color:#fff}
+#map{position:absolute;top:34px;left:0;cursor:crosshair;touch-action:none}
+#status{margin-left:8px;color:#333;white-space:nowrap;overflow:hidden}
+</style></head><body>
+<div id="bar">
+<button id="draw" class="on" title="draw strokes with the pointer">draw</button>
+<button id="region" title="drag a box: the region to complete">region</button>
+<button id="area" title="draw a loop: the region to complete">region by lasso</button>
+<button id="complete" title="ask for suggestions in the region">complete</button>
+<button id="pick" title="click a suggestion to accept it">accept one</button>
+<button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>
+<button id="all" title="accept every suggestion">accept all</button>
+<button id="reject" title="drop the suggestions not accepted">reject</button>
+<button id="save">save</button>
+<span id="status"></span>
+</div>
+<canvas id="map"></canvas>
+<script id="data" type="application/json">@DATA@</script>
+<script>
+const D = JSON.parse(document.getElementById('data').textContent);
+const canvas = document.getElementById('map'), ctx = canvas.getContext('2d');
+const W = D.image.width, H = D.image.height;
+// The image enlarged by a whole factor to fill the window (at least 1).
+const k = Math.max(1, Math.floor(Math.min(innerWidth / W, (innerHeight - 34) / H)));
+canvas.width = W * k; canvas.height = H * k;
+// Canvas pixel (column, row from the top) <-> map coordinates: the run's grid on the canvas.
+const sx = D.grid.pixel_size[0] * D.grid.width / (W * k);
+const sy = D.grid.pixel_size[1] * D.grid.height / (H * k);
+const toMap = (px, py) => [D.grid.origin[0] + px * sx, D.grid.origin[1] - py * sy];
+const toPixel = ([x, y]) => [(x - D.grid.origin[0]) / sx, (D.grid.origin[1] - y) / sy];
+const rgb = Uint8Array.from(atob(D.image.rgb), c => c.charCodeAt(0));
+const image = document.createElement('canvas');
+image.width = W; image.height = H;
+const pixels = image.getContext('2d').createImageData(W, H);
+for (let r = 0; r < H; ++r)
+  for (let c = 0; c < W; ++c) {
+    const i = (r * W + c) * 3, o = (r * W + c) * 4;
+    pixels.data[o] = rgb[i]; pixels.data[o + 1] = rgb[i + 1]; pixels.data[o + 2] = rgb[i + 2];
+    pixels.data[o + 3] = 255;
+  }
+image.getContext('2d').putImageData(pixels, 0, 0);
+const S = {lines: [], origins: [], suggestions: [], region: null, mode: 'draw', saved: null,
+           transform: {origin: D.grid.origin, pixel: [sx, sy]}};
+window.__network = S;
+const status = t => { document.getElementById('status').textContent = t; };
+const path = (pts, close) => {
+  ctx.beginPath();
+  pts.forEach((p, k) => { const [u, v] = toPixel(p); k ? ctx.lineTo(u, v) : ctx.moveTo(u, v); });
+  if (close) ctx.closePath();
+};
+let live = null;  // the stroke, box or lasso being drawn (map coordinates)
+const redraw = () => {
+  ctx.imageSmoothingEnabled = true;
+  ctx.drawImage(image, 0, 0, W * k, H * k);
+  ctx.lineCap = ctx.lineJoin = 'round';
+  ctx.strokeStyle = '#444'; ctx.lineWidth = 2;  // the run's features
+  for (const f of D.features) if (f.length > 1) { path(f); ctx.stroke(); }
+  if (S.region) {
+    path(S.region, true); ctx.fillStyle = '#fff3'; ctx.fill();
+    ctx.setLineDash([6, 4]); ctx.strokeStyle = '#fff'; ctx.stroke(); ctx.setLineDash([]);
+  }
+  ctx.strokeStyle = '#2c9a3c'; ctx.lineWidth = 2;
+  for (const s of S.suggestions) { path(s); ctx.stroke(); }
+  S.lines.forEach((l, k) => {
+    ctx.strokeStyle = S.origins[k] === 'drawn' ? '#111' : '#146'; ctx.lineWidth = 3;
+    path(l); ctx.stroke();
+  });
+  if (live && live.points.length > 1) {
+    ctx.strokeStyle = live.kind === 'lasso' ? '#e80' : live.kind === 'area' ? '#fff' : '#111';
+    ctx.lineWidth = 2;
+    path(live.kind === 'region' ? box(live.points) : live.points, live.kind !== 'draw');
+    ctx.stroke();
+  }
+  document.body.dataset.lines = S.lines.length;
+  document.body.dataset.suggestions = S.suggestions.length;
+};
+const box = pts => {
+  const [a, b] = [pts[0], pts[pts.length - 1]];
+  const x0 = Math.min(a[0], b[0]), x1 = Math.max(a[0], b[0]);
+  const y0 = Math.min(a[1], b[1]), y1 = Math.max(a[1], b[1]);
+  return [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+};
+const setMode = m => {
+  S.mode = m;
+  for (const id of ['draw', 'region', 'area', 'pick', 'lasso'])
+    document.getElementById(id).classList.toggle('on', id === m);
+};
+for (const id of ['draw', 'region', 'area', 'pick', 'lasso'])
+  document.getElementById(id).onclick = () => setMode(id);
+const canvasPixel = e => {
+  const r = canvas.getBoundingClientRect();
+  return [(e.clientX - r.left) * canvas.width / r.width, (e.clientY - r.top) * canvas.height / r.height];
+};
+const at = e => toMap(...canvasPixel(e));
+const inside = (p, ring) => {  // even-odd rule
+  let c = false;
+  for (let i = 0, j = ring.length - 1; i < ring.length; j = i++)
+    if ((ring[i][1] > p[1]) !== (ring[j][1] > p[1]) &&
+        p[0] < (ring[j][0] - ring[i][0]) * (p[1] - ring[i][1]) / (ring[j][1] - ring[i][1]) +
+               ring[i][0])
+      c = !c;
+  return c;
+};
+const accept = keep => {  // suggestions for which keep(s) holds join the lines
+  const rest = [];
+  for (const s of S.suggestions)
+    if (keep(s)) { S.lines.push(s); S.origins.push('suggested'); } else rest.push(s);
+  const n = S.suggestions.length - rest.length;
+  S.suggestions = rest;
+  status(`${n} accepted, ${rest.length} suggestions left`);
+  redraw();
+};
+canvas.addEventListener('pointerdown', e => {
+  canvas.setPointerCapture(e.pointerId);
+  if (S.mode === 'pick') {
+    const [u, v] = canvasPixel(e);
+    let best = null, bestD = 8;  // pixels
+    for (const s of S.suggestions)
+      for (let k = 0; k + 1 < s.length; ++k) {
+        const [a, b] = [toPixel(s[k]), toPixel(s[k + 1])];
+        const dx = b[0] - a[0], dy = b[1] - a[1];
+        const t = Math.max(0, Math.min(1, ((u - a[0]) * dx + (v - a[1]) * dy) /
+                                              Math.max(dx * dx + dy * dy, 1e-12)));
+        const d = Math.hypot(a[0] + t * dx - u, a[1] + t * dy - v);
+        if (d < bestD) { bestD = d; best = s; }
+      }
+    if (best) accept(s => s === best);
+    return;
+  }
+  live = {kind: S.mode, points: [at(e)]};
+});
+canvas.addEventListener('pointermove', e => {
+  if (!live) return;
+  live.points.push(at(e));
+  redraw();
+});
+canvas.addEventListener('pointerup', e => {
+  if (!live) return;
+  const done = live; live = null;
+  if (done.points.length < 2) { redraw(); return; }
+  if (done.kind === 'draw') { S.lines.push(done.points); S.origins.push('drawn'); }
+  if (done.kind === 'region') S.region = box(done.points);
+  if (done.kind === 'area' && done.points.length > 2) S.region = done.points;
+  if (done.kind === 'lasso') accept(s => s.every(p => inside(p, done.points)));
+  redraw();
+});
+const post = async (url, body) => {
+  const r = await fetch(url, {method: 'POST', headers: {'Content-Type': 'application/json'},
+                              body: JSON.stringify(body)});
+  const answer = await r.json();
+  if (!r.ok) throw new Error(answer.error);
+  return answer;
+};
+document.getElementById('complete').onclick = async () => {
+  if (!S.region) { status('drag a region first'); return; }
+  status('completing...');
+  try {
+    const a = await post('complete', {lines: S.lines, region: S.region});
+    S.suggestions = a.suggestions;
+    status(`${a.suggestions.length} suggestions`);
+  } catch (err) { status(err.message); }
+  document.body.dataset.completed = (+document.body.dataset.completed || 0) + 1;
+  redraw();
+};
+document.getElementById('all').onclick = () => accept(() => true);
+document.getElementById('reject').onclick = () => {
+  status(`${S.suggestions.length} rejected`); S.suggestions = []; redraw();
+};
+document.getElementById('save').onclick = async () => {
+  try {
+    const a = await post('save', {lines: S.lines, origins: S.origins});
+    S.saved = a.path;
+    status(`saved ${a.lines} lines to ${a.path}`);
+  } catch (err) { status(err.message); }
+  redraw();
+};
+status(`${D.name}: lines are saved to ${D.save_path}`);
+redraw();
+</script></body></html>
+)html";
+
+}  // namespace tw::detail

@@ -1,0 +1,130 @@
+// Issue #20 item 4 (docs/networks.md, "Drawing"): the drawing page of `terraweave view RUN
+// --serve 0 --exemplar ...` driven in headless Chromium by real pointer input
+// (network_page_drive.py, over the DevTools protocol): a stroke is drawn, a region dragged,
+// completed, suggestions accepted one by a click and others by a lasso, the rest rejected,
+// completed again, all accepted, saved. The GeoPackage holds the stroke exactly as the page drew
+// it (within a pixel of where the pointer went) and the accepted suggestions, in the run's CRS,
+// off the run's road; a pipeline reads it as a line class; the server is gone afterwards.
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kPipeline = R"(version: 1
+seed: 3
+generate: { width: 64, height: 48, pixel_size: 10, relief: 60, origin: [500000, 5000000] }
+output: { dir: out, preview: false, exr: false }
+features:
+  roads: { source: map.gpkg, layer: roads, kind: road, width: 12 }
+)";
+const char* const kRoad = "LINESTRING (500050 4999600, 500300 4999800, 500600 4999700)";
+
+TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
+  TempDir dir;
+  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
+  std::ofstream(dir / "pipeline.yaml") << kPipeline;
+  const std::string cd = "cd '" + dir.path().string() + "' && ";
+  const std::string binary = "'" + terraweave_binary().string() + "'";
+  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  const CommandResult drive =
+      run_command(cd + "timeout 120 /usr/bin/python3 '" +
+                  (source_dir() / "tests/pipeline/network_page_drive.py").string() + "' " + binary +
+                  " out . --exemplar '" + (source_dir() / "tests/data/network_drawn.svg").string() +
+                  "' --scale 0.5 --report report.json --screenshot shot.png 2>&1");
+  ASSERT_EQ(drive.exit_code, 0) << drive.output;
+  const nlohmann::json r = nlohmann::json::parse(read_file(dir / "report.json"));
+
+  // The loop as the user saw it.
+  EXPECT_GE(r["first_suggestions"].get<int>(), 3);
+  EXPECT_EQ(r["after_click"], 2);  // the stroke and the suggestion clicked
+  EXPECT_GT(r["after_lasso"].get<int>(), 2);
+  EXPECT_GT(r["left_after_lasso"].get<int>(), 0);  // the lasso took only some
+  EXPECT_EQ(r["after_reject"], 0);
+  EXPECT_EQ(r["second_region_points"], 8);  // the second region: a loop, not a box
+  EXPECT_GT(r["second_suggestions"].get<int>(), 0) << r["second_status"];
+  const auto& lines = r["lines"];
+  ASSERT_EQ(lines.size(), r["after_lasso"].get<std::size_t>() + r["second_suggestions"].get<int>());
+  EXPECT_TRUE(fs::equivalent(r["saved"].get<std::string>(), dir / "drawn_network.gpkg"));
+  EXPECT_EQ(r["view_page"], true);  // the 3D page, served from the run's page folder
+  // The server was stopped with the test's driver.
+  EXPECT_EQ(kill(r["server_pid"].get<int>(), 0), -1);
+  EXPECT_EQ(errno, ESRCH);
+
+  // The stroke is where the pointer went (within a pixel of the page's map).
+  const auto& stroke = lines[0];
+  const auto& dispatched = r["dispatched_map"];
+  ASSERT_EQ(stroke.size(), dispatched.size());
+  const double pixel = std::max(r["pixel"][0].get<double>(), r["pixel"][1].get<double>());
+  for (std::size_t i = 0; i < stroke.size(); ++i)
+    for (int c = 0; c < 2; ++c)
+      EXPECT_NEAR(stroke[i][c].get<double>(), dispatched[i][c].get<double>(), pixel);
+
+  // The GeoPackage: every line as the page held it, bit for bit, in the run's CRS.
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open((dir / "drawn_network.gpkg").c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY));
+  ASSERT_TRUE(ds);
+  OGRLayer* layer = ds->GetLayerByName("lines");
+  ASSERT_TRUE(layer);
+  ASSERT_TRUE(layer->GetSpatialRef());
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32631);
+  EXPECT_TRUE(layer->GetSpatialRef()->IsSame(&utm));
+  ASSERT_EQ(layer->GetFeatureCount(), GIntBig(lines.size()));
+  std::unique_ptr<OGRGeometry> road;
+  {
+    OGRGeometry* g = nullptr;
+    OGRGeometryFactory::createFromWkt(kRoad, nullptr, &g);
+    road.reset(g);
+  }
+  std::size_t i = 0;
+  for (auto& f : *layer) {
+    EXPECT_STREQ(f->GetFieldAsString("origin"), i == 0 ? "drawn" : "suggested");
+    const OGRLineString* ls = f->GetGeometryRef()->toLineString();
+    ASSERT_EQ(std::size_t(ls->getNumPoints()), lines[i].size()) << "line " << i + 1;
+    for (int k = 0; k < ls->getNumPoints(); ++k) {
+      EXPECT_EQ(ls->getX(k), lines[i][k][0].get<double>()) << "line " << i + 1;
+      EXPECT_EQ(ls->getY(k), lines[i][k][1].get<double>()) << "line " << i + 1;
+    }
+    if (i > 0) {
+      EXPECT_FALSE(ls->Intersects(road.get())) << "suggestion " << i + 1;
+    }
+    ++i;
+  }
+
+  // A pipeline reads it: the lines become a line class of the run.
+  std::ofstream(dir / "pipeline.yaml", std::ios::app)
+      << "  drawn: { source: drawn_network.gpkg, layer: lines, kind: road, width: 3 }\n";
+  const CommandResult again =
+      run_command(cd + binary + " -q run pipeline.yaml --set output.dir=again 2>&1");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const nlohmann::json features = nlohmann::json::parse(read_file(dir / "again/features.geojson"));
+  std::set<int> drawn;  // FIDs of the class's features
+  for (const auto& f : features["features"])
+    if (f["properties"]["class"] == "drawn") drawn.insert(f["properties"]["fid"].get<int>());
+  EXPECT_EQ(drawn.size(), lines.size());
+  EXPECT_TRUE(drawn.count(1));  // the stroke
+
+  // The screenshot (docs/images/network_draw.png is one) shows suggestions in green.
+  EXPECT_GT(fs::file_size(dir / "shot.png"), 10000u);
+}
+
+}  // namespace
+}  // namespace tw::test
