@@ -25,7 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kPipeline = R"(version: 1
+const char* const kNetworkPagePipeline = R"(version: 1
 seed: 3
 generate: { width: 64, height: 48, pixel_size: 10, relief: 60, origin: [500000, 5000000] }
 output: { dir: out, preview: false, exr: false }
@@ -37,7 +37,7 @@ const char* const kRoad = "LINESTRING (500050 4999600, 500300 4999800, 500600 49
 TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   TempDir dir;
   write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kPipeline;
+  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
   const std::string cd = "cd '" + dir.path().string() + "' && ";
   const std::string binary = "'" + terraweave_binary().string() + "'";
   const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
