@@ -131,7 +131,7 @@ bool consider(const struct Edges* e, const struct Left* left, int s, int m, long
 void pruned_minimum(const struct Edges* e, const struct Left* left, int neighbour,
                     int previous_count, global const int* slot_of, global const int* group_begin,
                     global const long* group_min, global const ulong* group_masks, int groups,
-                    int own, long* best, int* best_v) {
+                    int group_stride, int own, long* best, int* best_v) {
   // A good first guess makes the bounds prune from the start: consecutive current positions
   // are usually exemplar neighbours, and so are their optimal predecessors.
   if (neighbour >= 0) {
@@ -145,14 +145,26 @@ void pruned_minimum(const struct Edges* e, const struct Left* left, int neighbou
       if (!consider(e, left, s, 0, best, best_v)) break;
   }
   if (own >= 0 && *best - e->slot_cost[0] < e->mismatch) return;
-  for (int g = 0; g < groups; ++g) {
-    const long lowest = group_min[g];
-    if (lowest + e->mismatch > *best) break;  // groups ascend in lowest P; m >= 1 below
-    if (g == own) continue;
-    const int m = mismatched(group_masks + (long)g * e->words, left->mask, e->words);
-    const long gap = e->mismatch * m;
-    for (int s = group_begin[g]; s < group_begin[g + 1] && e->slot_cost[s] + gap <= *best; ++s)
-      if (!consider(e, left, s, m, best, best_v)) break;
+  // 8 groups at a time (vector popcounts over the word-major masks, group_stride apart; the
+  // host pads both arrays to a multiple of 8): a group may hold a winner only while
+  // min P + mismatch * m is not above the best, which only falls, so each test keeps a superset.
+  for (int g0 = 0; g0 < groups; g0 += 8) {
+    if (group_min[g0] + e->mismatch > *best) break;  // groups ascend in lowest P; m >= 1 below
+    ulong8 m8 = (ulong8)(0);
+    for (int w = 0; w < e->words; ++w)
+      m8 += popcount(vload8(0, group_masks + (long)w * group_stride + g0) ^ (ulong8)(left->mask[w]));
+    const long8 bound8 = vload8(0, group_min + g0) + as_long8(m8) * e->mismatch;
+    if (!any(bound8 <= (long8)(*best))) continue;
+    long bound[8], mismatches[8];
+    vstore8(bound8, 0, bound);
+    vstore8(as_long8(m8), 0, mismatches);
+    for (int i = 0; i < 8 && g0 + i < groups; ++i) {
+      const int g = g0 + i;
+      if (g == own || bound[i] > *best) continue;
+      const long gap = e->mismatch * mismatches[i];
+      for (int s = group_begin[g]; s < group_begin[g + 1] && e->slot_cost[s] + gap <= *best; ++s)
+        if (!consider(e, left, s, (int)mismatches[i], best, best_v)) break;
+    }
   }
 }
 
@@ -171,7 +183,7 @@ void full_minimum(const struct Edges* e, const struct Left* left, int previous_c
 kernel void update_table_row(global const long* slot_cost, global const int* slot_position,
                              global const int* slot_of, int previous_count,
                              global const int* group_begin, global const long* group_min,
-                             global const ulong* group_masks, int groups,
+                             global const ulong* group_masks, int groups, int group_stride,
                              global const uint* right_samples, global const ulong* right_masks,
                              global const int4* right_sums, global const float* right_blocks,
                              global const uint* left_samples, global const ulong* left_masks,
@@ -203,7 +215,7 @@ kernel void update_table_row(global const long* slot_cost, global const int* slo
     int best_v = INT_MAX;
     if (prune)
       pruned_minimum(&e, &left, neighbour, previous_count, slot_of, group_begin, group_min,
-                     group_masks, groups, left_group[j], &best, &best_v);
+                     group_masks, groups, group_stride, left_group[j], &best, &best_v);
     else
       full_minimum(&e, &left, previous_count, slot_of, &best, &best_v);
     cost[j] = best;

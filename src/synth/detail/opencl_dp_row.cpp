@@ -129,10 +129,16 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   const MaskGroups groups = group_by_mask(previous_cost, prepared.right.host_masks.data(), words);
   r.slot_position_host.assign(groups.position.begin(), groups.position.end());
   r.group_begin_host.assign(groups.group_begin.begin(), groups.group_begin.end());
-  r.group_masks_host.assign(groups.group_masks.begin(), groups.group_masks.end());
+  // Word-major masks and lowest P, padded to whole 8-group vectors (the kernel's group scan).
+  const int group_stride = (groups.groups() + 7) / 8 * 8;
+  r.group_masks_host.assign(std::size_t(group_stride) * words, 0);
+  for (int g = 0; g < groups.groups(); ++g)
+    for (int w = 0; w < words; ++w)
+      r.group_masks_host[std::size_t(w) * group_stride + g] =
+          groups.group_masks[std::size_t(g) * words + w];
   r.slot_of_host.resize(std::size_t(previous));
   for (int s = 0; s < previous; ++s) r.slot_of_host[std::size_t(groups.position[s])] = s;
-  r.group_min_host.resize(std::size_t(groups.groups()));
+  r.group_min_host.assign(std::size_t(group_stride), INT64_MAX / 4);
   for (int g = 0; g < groups.groups(); ++g)
     r.group_min_host[std::size_t(g)] =
         previous_cost[std::size_t(groups.position[groups.group_begin[g]])];
@@ -174,9 +180,9 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
            cl_int(previous), upload(context, queue, r.group_begin, r.group_begin_host),
            upload(context, queue, r.group_min, r.group_min_host),
            upload(context, queue, r.group_masks, r.group_masks_host), cl_int(groups.groups()),
-           prepared.right.samples.get(), prepared.right.masks.get(), prepared.right.sums.get(),
-           prepared.right.blocks.get(), prepared.left.samples.get(), prepared.left.masks.get(),
-           prepared.left.sums.get(), prepared.left.blocks.get(),
+           cl_int(group_stride), prepared.right.samples.get(), prepared.right.masks.get(),
+           prepared.right.sums.get(), prepared.right.blocks.get(), prepared.left.samples.get(),
+           prepared.left.masks.get(), prepared.left.sums.get(), prepared.left.blocks.get(),
            upload(context, queue, r.left_group, r.left_group_host), cl_int(current), cl_int(C),
            cl_int(prepared.binary_alpha ? 1 : 0), cl_int(kGamma),
            cl_long(mismatch_cost(prepared.binary_alpha)),
