@@ -313,6 +313,7 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
     if (!backend) continue;
     double update[2] = {1e300, 1e300}, whole[2] = {1e300, 1e300};
     std::vector<double> cpu[2];
+    SynthTimings stages[2];
     std::int64_t omega[2] = {0, 0};
     for (int k = 0; k < 2; ++k) {
       SynthParams params;
@@ -325,6 +326,7 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
             detail::synthesize_on(*backend, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
         const double rows = std::max(1, s.timings.rows);
         cpu[k].push_back((process_cpu_ms() - cpu0) / rows);
+        if (s.timings.update_ms / rows < update[k]) stages[k] = s.timings;
         update[k] = std::min(update[k], s.timings.update_ms / rows);
         whole[k] = std::min(whole[k], s.timings.total_ms / rows);
         omega[k] = s.total_cost;
@@ -343,6 +345,19 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
         "paper %7.1f / %7.1f  pattern %7.1f / %7.1f (ratio of bests %.2fx)\n",
         file.c_str(), backend->name().c_str(), pieces, repeats, paper.best, paper.median,
         pattern.best, pattern.median, pattern.best / paper.best);
+    for (int k = 0; k < 2; ++k) {
+      const SynthTimings& t = stages[k];
+      const double rows = std::max(1, t.rows);
+      std::printf(
+          "  %s stages, wall ms per row: footprints %.1f find valid %.1f compact %.1f extract %.1f "
+          "update %.1f backtrack %.1f stitch %.1f rest %.1f\n",
+          k == 0 ? "paper  " : "pattern", t.footprints_ms / rows, t.find_valid_ms / rows,
+          t.compact_ms / rows, t.extract_ms / rows, t.update_ms / rows, t.backtrack_ms / rows,
+          t.stitch_ms / rows,
+          (t.total_ms - t.footprints_ms - t.find_valid_ms - t.compact_ms - t.extract_ms -
+           t.update_ms - t.backtrack_ms - t.stitch_ms) /
+              rows);
+    }
   }
 }
 

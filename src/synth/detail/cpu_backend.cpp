@@ -10,11 +10,13 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "synth/detail/cost.hpp"
 #include "synth/detail/edge_bound.hpp"
 #include "synth/detail/group_scan.hpp"
 #include "synth/detail/mask_groups.hpp"
+#include "synth/detail/opaque_count.hpp"
 
 namespace tw::detail {
 namespace {
@@ -140,33 +142,13 @@ class CpuBackend final : public Backend {
       return out;
     };
     const auto clear = windows(piece.must_be_clear), interior = windows(piece.interior);
-    // min_opaque > 1: count the opaque interior texels of each remaining candidate from
-    // per-row prefix sums over runs of the interior (footprints list it row by row, so a run
-    // is a row's span; any order still counts every offset once).
-    std::vector<std::int32_t> prefix;
-    std::vector<std::array<int, 3>> runs;  // bit row, first and last bit column
+    // min_opaque > 1: count the opaque interior texels of each remaining candidate (the
+    // counter the unary term uses too).
+    std::optional<OpaqueCounter> counter;
     if (piece.min_opaque > 1) {
-      prefix.assign(std::size_t(rows) * (opaque.stride + 1), 0);
-      for (int y = 0; y < rows; ++y)
-        for (int x = 0; x < opaque.stride; ++x)
-          prefix[std::size_t(y) * (opaque.stride + 1) + x + 1] =
-              prefix[std::size_t(y) * (opaque.stride + 1) + x] +
-              opaque.values[std::size_t(y) * opaque.stride + x];
-      for (const auto& [row, col] : interior) {
-        if (!runs.empty() && runs.back()[0] == row && runs.back()[2] + 1 == col)
-          runs.back()[2] = col;
-        else
-          runs.push_back({row, col, col});
-      }
+      counter.emplace(texels);
+      counter->set_interior(piece.interior);
     }
-    auto enough_opaque = [&](int uy, int ux) {
-      std::int64_t count = 0;
-      for (const auto& [row, first, last] : runs) {
-        const std::int32_t* line = prefix.data() + std::size_t(uy + row) * (opaque.stride + 1);
-        count += line[ux + last + 1] - line[ux + first];
-      }
-      return count >= piece.min_opaque;
-    };
     const int rows_of_u = space.height + space.column, blocks = (space.width + 63) / 64;
     tbb::parallel_for(tbb::blocked_range<int>(0, rows_of_u, 4), [&](auto range) {
       for (int row = range.begin(); row < range.end(); ++row) {
@@ -191,7 +173,7 @@ class CpuBackend final : public Backend {
             if (((any |= window(w)) & open) == open) break;
           for (std::uint64_t valid = open & any; valid; valid &= valid - 1) {
             const int ux = 64 * b + std::countr_zero(valid);
-            if (piece.min_opaque > 1 && !enough_opaque(uy, ux)) continue;
+            if (counter && counter->count(ux, uy) < piece.min_opaque) continue;
             flags[std::size_t(row) * space.width + ux] = 1;
           }
         }
