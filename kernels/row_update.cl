@@ -44,6 +44,22 @@ int xi(uint p, uint q, int binary_alpha, int gamma) {
   return (int)((same * colour + diff * gamma) / (255 * 255));
 }
 
+// The sum of xi over 8 samples with binary alpha: xi of each lane as above (the same float
+// root and integer corrections), 8 lanes per vector instruction on CPU devices.
+int xi_sum8(uint8 p, uint8 q, int gamma) {
+  const int8 dr = convert_int8(p & 255u) - convert_int8(q & 255u);
+  const int8 dg = convert_int8((p >> 8) & 255u) - convert_int8((q >> 8) & 255u);
+  const int8 db = convert_int8((p >> 16) & 255u) - convert_int8((q >> 16) & 255u);
+  const int8 x = 256 * (dr * dr + dg * dg + db * db);
+  int8 r = convert_int8(sqrt(convert_float8(x)));
+  r += r * r > x;             // a true comparison is -1
+  r -= (r + 1) * (r + 1) <= x;
+  const int8 xi = select(r, (int8)(gamma), ((p ^ q) >> 31) != 0u);
+  const int4 sum4 = xi.lo + xi.hi;
+  const int2 sum2 = sum4.lo + sum4.hi;
+  return sum2.x + sum2.y;
+}
+
 struct Edges {
   global const uint* right_samples;  // by v
   global const ulong* right_masks;
@@ -97,8 +113,11 @@ long edge_cost(const struct Edges* e, int v, const struct Left* left, long limit
   long sum = 0;
   for (int k0 = 0; k0 < e->column; k0 += 16) {
     const int k1 = min(e->column, k0 + 16);
-    int block = 0;
-    for (int k = k0; k < k1; ++k) block += xi(right[k], left->samples[k], e->binary_alpha, e->gamma);
+    int block = 0, k = k0;
+    if (e->binary_alpha)
+      for (; k + 8 <= k1; k += 8)
+        block += xi_sum8(vload8(0, right + k), vload8(0, left->samples + k), e->gamma);
+    for (; k < k1; ++k) block += xi(right[k], left->samples[k], e->binary_alpha, e->gamma);
     sum += block;
     if (sum > limit) return sum;
   }
