@@ -71,8 +71,8 @@ Qualifying pick() {
 
 GroupScan::GroupScan(const std::vector<std::int64_t>& group_min,
                      const std::vector<std::uint64_t>& group_masks, int words,
-                     std::int64_t mismatch)
-    : groups_(int(group_min.size())), words_(words) {
+                     std::int64_t mismatch, bool vector)
+    : groups_(int(group_min.size())), words_(words), vector_(vector) {
   if (mismatch <= 0 || !std::has_single_bit(std::uint64_t(mismatch)))
     fail("group scan: the mismatch cost {} is not a power of two", mismatch);
   shift_ = std::countr_zero(std::uint64_t(mismatch));
@@ -90,7 +90,7 @@ std::uint64_t GroupScan::qualifying(const std::uint64_t* key, int g0, std::int64
   static const Qualifying run = pick();
   const Layout in{group_min_.data(), masks_.data(), std::min(kLanes, groups_ - g0), words_,
                   stride_,           shift_};
-  return run(in, key, g0, best);
+  return vector_ ? run(in, key, g0, best) : qualifying_scalar(in, key, g0, best);
 }
 
 }  // namespace tw::detail

@@ -16,9 +16,11 @@ namespace tw::detail {
 class GroupScan {
  public:
   // `group_min`: lowest P per group (ascending); `group_masks`: `words` per group, group-major;
-  // `mismatch`: the least cost of a mismatched sample (a power of two).
+  // `mismatch`: the least cost of a mismatched sample (a power of two). `vector` false: the
+  // scalar loop whatever the processor (tests compare the two).
   GroupScan(const std::vector<std::int64_t>& group_min,
-            const std::vector<std::uint64_t>& group_masks, int words, std::int64_t mismatch);
+            const std::vector<std::uint64_t>& group_masks, int words, std::int64_t mismatch,
+            bool vector = true);
 
   int groups() const { return groups_; }
   // Bit i: group g0 + i (i < min(64, groups - g0)) has group_min + mismatch * m <= best for
@@ -27,6 +29,7 @@ class GroupScan {
 
  private:
   int groups_ = 0, words_ = 0, stride_ = 0, shift_ = 0;
+  bool vector_ = true;
   std::vector<std::int64_t> group_min_;  // padded to stride_
   std::vector<std::uint64_t> masks_;     // word-major: masks_[w * stride_ + g]
 };
