@@ -336,7 +336,7 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
 
   const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
-  const GroupScan scan(prev.group_min, prev.groups.group_masks, left_stats.words, C, mismatch);
+  const GroupScan scan(prev.group_min, prev.groups.group_masks, left_stats.words, mismatch);
   const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
@@ -386,34 +386,24 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
         for (int s = prev.groups.group_begin[std::size_t(own)];
              s < prev.groups.group_begin[std::size_t(own) + 1]; ++s)
           if (!consider(s, 0)) break;
-      // Every other group has m >= max(1, |c - q|) mismatched samples (c, q: opaque samples of
-      // the group's and the left mask), so D >= mismatch * m: visit the buckets of c at growing
-      // |c - q| and each in increasing lowest P only while that can still win, testing 64
-      // groups at a time against the best so far (it only falls: each test keeps a superset).
+      // Every other group has m >= 1 mismatched samples, so D >= mismatch * m: visit groups
+      // (in increasing min P) only while min P + mismatch * m can still win, 64 groups tested
+      // at a time against the best so far (it only falls, so each test keeps a superset).
       if (own < 0 || best - min_cost >= mismatch) {
         const std::uint64_t* key = left_stats.masks.data() + std::size_t(j) * left_stats.words;
-        int q = 0;
-        for (int w = 0; w < left_stats.words; ++w) q += std::popcount(key[w]);
-        for (int d = 0; d <= C && min_cost + mismatch * std::max(d, 1) <= best; ++d) {
-          const std::int64_t least = mismatch * std::max(d, 1);
-          for (int side = 0; side < (d == 0 ? 1 : 2); ++side) {
-            const int c = side == 0 ? q - d : q + d;
-            if (c < 0 || c > C) continue;
-            const int end = scan.bucket_begin(c + 1);
-            for (int i0 = scan.bucket_begin(c); i0 < end && scan.lowest(i0) + least <= best;
-                 i0 += 64) {
-              for (std::uint64_t open = scan.qualifying(key, i0, end - i0, best); open;
-                   open &= open - 1) {
-                const int g = scan.group(i0 + std::countr_zero(open));
-                if (g < 0 || g == own) continue;
-                const int begin = prev.groups.group_begin[std::size_t(g)];
-                const int group_end = prev.groups.group_begin[std::size_t(g) + 1];
-                const int m = mismatched_samples(prev.stats, begin, left_stats, j);
-                const std::int64_t gap = mismatch * m;
-                for (int s = begin; s < group_end && prev.cost[std::size_t(s)] + gap <= best; ++s)
-                  if (!consider(s, m)) break;
-              }
-            }
+        for (int g0 = 0; g0 < scan.groups(); g0 += 64) {
+          if (prev.group_min[std::size_t(g0)] + mismatch > best) break;
+          std::uint64_t open = scan.qualifying(key, g0, best);
+          if (own >= g0 && own < g0 + 64) open &= ~(std::uint64_t(1) << (own - g0));
+          for (; open; open &= open - 1) {
+            const int g = g0 + std::countr_zero(open);
+            const int begin = prev.groups.group_begin[std::size_t(g)];
+            const int end = prev.groups.group_begin[std::size_t(g) + 1];
+            if (prev.cost[std::size_t(begin)] + mismatch > best) break;
+            const int m = mismatched_samples(prev.stats, begin, left_stats, j);
+            const std::int64_t gap = mismatch * m;
+            for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
+              if (!consider(s, m)) break;
           }
         }
       }

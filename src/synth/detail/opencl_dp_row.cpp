@@ -1,12 +1,13 @@
 // The resident row pipeline of the OpenCL backend (see opencl_backend.hpp): extraction of a
 // row's edges into reused device buffers on the extraction queue, their statistics, and the
 // pruned row update (kernels/row_update.cl) on the main queue.
+#include <algorithm>
+#include <bit>
 #include <chrono>
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
 #include "synth/detail/edge_bound.hpp"
-#include "synth/detail/group_scan.hpp"
 #include "synth/detail/mask_groups.hpp"
 #include "synth/detail/opencl_backend.hpp"
 #include "synth/detail/opencl_resident.hpp"
@@ -132,17 +133,39 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   r.group_begin_host.assign(groups.group_begin.begin(), groups.group_begin.end());
   r.slot_of_host.resize(std::size_t(previous));
   for (int s = 0; s < previous; ++s) r.slot_of_host[std::size_t(groups.position[s])] = s;
-  // The kernel's group scan reads the CPU's layout (synth/detail/group_scan.hpp).
-  std::vector<std::int64_t> group_min(std::size_t(groups.groups()));
-  for (int g = 0; g < groups.groups(); ++g)
-    group_min[std::size_t(g)] = previous_cost[std::size_t(groups.position[groups.group_begin[g]])];
-  const GroupScan scan(group_min, groups.group_masks, words, C,
-                       mismatch_cost(prepared.binary_alpha));
-  r.bucket_begin_host.assign(scan.bucket_begins().begin(), scan.bucket_begins().end());
-  r.scan_group_host.assign(scan.groups().begin(), scan.groups().end());
-  r.group_min_host.assign(scan.lowests().begin(), scan.lowests().end());
-  r.group_masks_host.assign(scan.masks().begin(), scan.masks().end());
-  const int scan_stride = scan.entries();
+  // The kernel's group scan: groups bucketed by their number of opaque samples (a group whose
+  // count differs by d from the left mask's has m >= d), each bucket in increasing lowest P and
+  // padded to whole 8-group vectors; masks word-major in that order.
+  std::vector<int> by_count(std::size_t(groups.groups())), count_of(by_count.size());
+  for (int g = 0; g < groups.groups(); ++g) {
+    by_count[std::size_t(g)] = g;
+    for (int w = 0; w < words; ++w)
+      count_of[std::size_t(g)] += std::popcount(groups.group_masks[std::size_t(g) * words + w]);
+  }
+  std::stable_sort(by_count.begin(), by_count.end(), [&](int a, int b) {
+    return count_of[std::size_t(a)] < count_of[std::size_t(b)];
+  });
+  r.bucket_begin_host.assign(std::size_t(C) + 2, 0);
+  r.scan_group_host.clear();
+  for (std::size_t i = 0, c = 0; c <= std::size_t(C); ++c) {
+    r.bucket_begin_host[c] = cl_int(r.scan_group_host.size());
+    for (; i < by_count.size() && count_of[std::size_t(by_count[i])] == int(c); ++i)
+      r.scan_group_host.push_back(by_count[i]);
+    while (r.scan_group_host.size() % 8) r.scan_group_host.push_back(-1);
+  }
+  r.bucket_begin_host[std::size_t(C) + 1] = cl_int(r.scan_group_host.size());
+  const int scan_stride = int(r.scan_group_host.size());
+  r.group_min_host.assign(std::size_t(scan_stride), INT64_MAX / 4);
+  r.group_masks_host.assign(std::size_t(scan_stride) * words, 0);
+  for (int i = 0; i < scan_stride; ++i) {
+    const int g = r.scan_group_host[std::size_t(i)];
+    if (g < 0) continue;
+    r.group_min_host[std::size_t(i)] =
+        previous_cost[std::size_t(groups.position[groups.group_begin[g]])];
+    for (int w = 0; w < words; ++w)
+      r.group_masks_host[std::size_t(w) * scan_stride + i] =
+          groups.group_masks[std::size_t(g) * words + w];
+  }
   r.left_group_host.resize(std::size_t(current));
   for (int j = 0; j < current; ++j)
     r.left_group_host[std::size_t(j)] =
