@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,6 +42,14 @@ using Clock = std::chrono::steady_clock;
 
 std::string sample(const std::string& name) {
   return std::string(TERRAWEAVE_SOURCE_DIR) + "/samples/exemplars/" + name;
+}
+
+// Process CPU time (every thread: TBB workers, PoCL's), in ms: the machine is shared, so CPU time
+// compares where wall time does not.
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
 double peak_rss_mb() {
@@ -195,50 +204,60 @@ Spread spread_of(std::vector<double> v) {
 // ms per row update, CPU (pruned) against OpenCL (when a device exists) on the same recorded
 // rows: best and median over `repeats` passes, pairs fully evaluated, identical results.
 void replay_rows(const std::string& file, double paper_ms, int pieces, int repeats,
-                 detail::Backend* opencl) {
+                 detail::Backend* opencl, Objective objective) {
   const Exemplar e = load_exemplar(sample(file));
   const Ribbon ribbon = arc_ribbon(pieces, 90.0, 12.0);
   RecordingBackend recorder;
   SynthParams params;
   params.scale = 1.0;
   params.allow_empty_pieces = true;
+  params.objective = objective;
   const Synthesis s =
       detail::synthesize_on(recorder, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
   const double per_row = 1.0 / std::max(1, s.timings.rows);
-  std::vector<double> cpu_ms, cl_ms;
+  std::vector<double> cpu_ms, cl_ms, cpu_cpu_ms, cl_cpu_ms;
   double pairs = 0, evaluated = 0;
   bool identical = true;
   for (int pass = 0; pass < repeats; ++pass) {
-    double cpu_total = 0, cl_total = 0;
+    double cpu_total = 0, cl_total = 0, cpu_cpu = 0, cl_cpu = 0;
     for (const RecordingBackend::Row& row : recorder.rows) {
       std::vector<std::int64_t> cost, cl_cost;
       std::vector<std::int32_t> argmin, cl_argmin;
       std::int64_t count = 0;
       auto t0 = Clock::now();
+      double c0 = process_cpu_ms();
       detail::update_table_row_pruned(row.previous, row.right, row.left, cost, argmin, &count);
       cpu_total += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      cpu_cpu += process_cpu_ms() - c0;
       if (pass == 0) {
         evaluated += double(count);
         pairs += double(row.previous.size()) * double(cost.size());
       }
       if (!opencl) continue;
       t0 = Clock::now();
+      c0 = process_cpu_ms();
       opencl->update_table_row(row.previous, row.right, row.left, cl_cost, cl_argmin);
       cl_total += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      cl_cpu += process_cpu_ms() - c0;
       identical = identical && cost == cl_cost && argmin == cl_argmin;
     }
     const double rows = std::max<std::size_t>(1, recorder.rows.size());
     cpu_ms.push_back(cpu_total / rows);
     cl_ms.push_back(cl_total / rows);
+    cpu_cpu_ms.push_back(cpu_cpu / rows);
+    cl_cpu_ms.push_back(cl_cpu / rows);
   }
   const Spread cpu = spread_of(cpu_ms), cl = spread_of(cl_ms);
+  const Spread cpu_cpu = spread_of(cpu_cpu_ms), cl_cpu = spread_of(cl_cpu_ms);
   std::printf(
-      "%-17s %dx%d C=%d rows=%zu valid/piece %6.0f  row update ms: cpu best %6.1f median %6.1f",
-      file.c_str(), e.width, e.height, s.column, recorder.rows.size(), mean(s.valid_counts),
-      cpu.best, cpu.median);
+      "%-17s %-7s %dx%d C=%d rows=%zu valid/piece %6.0f  row update ms: cpu best %6.1f median "
+      "%6.1f (CPU-ms %6.1f / %6.1f)",
+      file.c_str(), objective == Objective::paper ? "paper" : "pattern", e.width, e.height,
+      s.column, recorder.rows.size(), mean(s.valid_counts), cpu.best, cpu.median, cpu_cpu.best,
+      cpu_cpu.median);
   if (opencl)
-    std::printf(" | opencl best %6.1f median %6.1f (same results: %s)", cl.best, cl.median,
-                identical ? "yes" : "NO");
+    std::printf(" | opencl best %6.1f median %6.1f (CPU-ms %6.1f / %6.1f; same results: %s)",
+                cl.best, cl.median, cl_cpu.best, cl_cpu.median, identical ? "yes" : "NO");
   std::printf(
       " | paper %.0f | fully evaluated %.4f %% of pairs | per row: find valid %.1f, compact %.1f,"
       " extract %.1f ms (cpu)\n",
@@ -293,6 +312,8 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
   for (detail::Backend* backend : {cpu.get(), opencl}) {
     if (!backend) continue;
     double update[2] = {1e300, 1e300}, whole[2] = {1e300, 1e300};
+    std::vector<double> cpu[2];
+    SynthTimings stages[2];
     std::int64_t omega[2] = {0, 0};
     for (int k = 0; k < 2; ++k) {
       SynthParams params;
@@ -300,9 +321,12 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
       params.allow_empty_pieces = true;
       params.objective = k == 0 ? Objective::paper : Objective::pattern;
       for (int pass = 0; pass < repeats; ++pass) {
+        const double cpu0 = process_cpu_ms();
         const Synthesis s =
             detail::synthesize_on(*backend, e, ribbon, canvas_for(ribbon, 1.0), nullptr, params);
         const double rows = std::max(1, s.timings.rows);
+        cpu[k].push_back((process_cpu_ms() - cpu0) / rows);
+        if (s.timings.update_ms / rows < update[k]) stages[k] = s.timings;
         update[k] = std::min(update[k], s.timings.update_ms / rows);
         whole[k] = std::min(whole[k], s.timings.total_ms / rows);
         omega[k] = s.total_cost;
@@ -315,6 +339,25 @@ void objective_cost(const std::string& file, int pieces, int repeats, detail::Ba
         file.c_str(), backend->name().c_str(), pieces, repeats, update[0], update[1],
         update[1] / update[0], whole[0], whole[1], whole[1] / whole[0], (long long)omega[0],
         (long long)omega[1]);
+    const Spread paper = spread_of(cpu[0]), pattern = spread_of(cpu[1]);
+    std::printf(
+        "%-17s %-6s N=%d  CPU-ms per DP row (whole synthesis, all threads), best / median of %d: "
+        "paper %7.1f / %7.1f  pattern %7.1f / %7.1f (ratio of bests %.2fx)\n",
+        file.c_str(), backend->name().c_str(), pieces, repeats, paper.best, paper.median,
+        pattern.best, pattern.median, pattern.best / paper.best);
+    for (int k = 0; k < 2; ++k) {
+      const SynthTimings& t = stages[k];
+      const double rows = std::max(1, t.rows);
+      std::printf(
+          "  %s stages, wall ms per row: footprints %.1f find valid %.1f compact %.1f extract %.1f "
+          "update %.1f backtrack %.1f stitch %.1f rest %.1f\n",
+          k == 0 ? "paper  " : "pattern", t.footprints_ms / rows, t.find_valid_ms / rows,
+          t.compact_ms / rows, t.extract_ms / rows, t.update_ms / rows, t.backtrack_ms / rows,
+          t.stitch_ms / rows,
+          (t.total_ms - t.footprints_ms - t.find_valid_ms - t.compact_ms - t.extract_ms -
+           t.update_ms - t.backtrack_ms - t.stitch_ms) /
+              rows);
+    }
   }
 }
 
@@ -348,8 +391,10 @@ int main(int argc, char** argv) {
       objective_cost("braid_325x64.png", 5, objective, opencl.get());
       return 0;
     }
-    replay_rows("chain_199x82.png", 30.0, 9, rows, opencl.get());
-    replay_rows("braid_325x64.png", 650.0, 5, rows, opencl.get());
+    for (Objective objective : {Objective::paper, Objective::pattern}) {
+      replay_rows("chain_199x82.png", 30.0, 9, rows, opencl.get(), objective);
+      replay_rows("braid_325x64.png", 650.0, 5, rows, opencl.get(), objective);
+    }
     return 0;
   }
   if (!pictures.empty()) {

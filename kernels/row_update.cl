@@ -44,6 +44,22 @@ int xi(uint p, uint q, int binary_alpha, int gamma) {
   return (int)((same * colour + diff * gamma) / (255 * 255));
 }
 
+// The sum of xi over 8 samples with binary alpha: xi of each lane as above (the same float
+// root and integer corrections), 8 lanes per vector instruction on CPU devices.
+int xi_sum8(uint8 p, uint8 q, int gamma) {
+  const int8 dr = convert_int8(p & 255u) - convert_int8(q & 255u);
+  const int8 dg = convert_int8((p >> 8) & 255u) - convert_int8((q >> 8) & 255u);
+  const int8 db = convert_int8((p >> 16) & 255u) - convert_int8((q >> 16) & 255u);
+  const int8 x = 256 * (dr * dr + dg * dg + db * db);
+  int8 r = convert_int8(sqrt(convert_float8(x)));
+  r += r * r > x;             // a true comparison is -1
+  r -= (r + 1) * (r + 1) <= x;
+  const int8 xi = select(r, (int8)(gamma), ((p ^ q) >> 31) != 0u);
+  const int4 sum4 = xi.lo + xi.hi;
+  const int2 sum2 = sum4.lo + sum4.hi;
+  return sum2.x + sum2.y;
+}
+
 struct Edges {
   global const uint* right_samples;  // by v
   global const ulong* right_masks;
@@ -97,8 +113,11 @@ long edge_cost(const struct Edges* e, int v, const struct Left* left, long limit
   long sum = 0;
   for (int k0 = 0; k0 < e->column; k0 += 16) {
     const int k1 = min(e->column, k0 + 16);
-    int block = 0;
-    for (int k = k0; k < k1; ++k) block += xi(right[k], left->samples[k], e->binary_alpha, e->gamma);
+    int block = 0, k = k0;
+    if (e->binary_alpha)
+      for (; k + 8 <= k1; k += 8)
+        block += xi_sum8(vload8(0, right + k), vload8(0, left->samples + k), e->gamma);
+    for (; k < k1; ++k) block += xi(right[k], left->samples[k], e->binary_alpha, e->gamma);
     sum += block;
     if (sum > limit) return sum;
   }
@@ -130,7 +149,8 @@ bool consider(const struct Edges* e, const struct Left* left, int s, int m, long
 // The exact minimum for left position j, pruned.
 void pruned_minimum(const struct Edges* e, const struct Left* left, int neighbour,
                     int previous_count, global const int* slot_of, global const int* group_begin,
-                    global const long* group_min, global const ulong* group_masks, int groups,
+                    global const int* bucket_begin, global const int* scan_group,
+                    global const long* scan_min, global const ulong* scan_masks, int scan_stride,
                     int own, long* best, int* best_v) {
   // A good first guess makes the bounds prune from the start: consecutive current positions
   // are usually exemplar neighbours, and so are their optimal predecessors.
@@ -145,14 +165,42 @@ void pruned_minimum(const struct Edges* e, const struct Left* left, int neighbou
       if (!consider(e, left, s, 0, best, best_v)) break;
   }
   if (own >= 0 && *best - e->slot_cost[0] < e->mismatch) return;
-  for (int g = 0; g < groups; ++g) {
-    const long lowest = group_min[g];
-    if (lowest + e->mismatch > *best) break;  // groups ascend in lowest P; m >= 1 below
-    if (g == own) continue;
-    const int m = mismatched(group_masks + (long)g * e->words, left->mask, e->words);
-    const long gap = e->mismatch * m;
-    for (int s = group_begin[g]; s < group_begin[g + 1] && e->slot_cost[s] + gap <= *best; ++s)
-      if (!consider(e, left, s, m, best, best_v)) break;
+  // The other groups, bucketed by their number of opaque samples c (the host lists each bucket
+  // in increasing lowest P, padded to 8 entries, scan_group -1 for padding): a group of bucket
+  // c has m >= max(1, |c - q|) mismatched samples for a left mask of q opaque ones, so buckets
+  // are visited at growing distance d while the row's lowest P + mismatch * max(1, d) can still
+  // win, and inside a bucket while its lowest P + mismatch * max(1, d) can. 8 groups per test
+  // (vector popcounts over word-major masks, scan_stride apart); the best only falls, so each
+  // test keeps a superset of the groups that can win.
+  int q = 0;
+  for (int w = 0; w < e->words; ++w) q += (int)popcount(left->mask[w]);
+  for (int d = 0; d <= e->column; ++d) {
+    const long least = e->mismatch * max(d, 1);
+    if (e->slot_cost[0] + least > *best) break;
+    for (int side = 0; side < (d == 0 ? 1 : 2); ++side) {
+      const int c = side == 0 ? q - d : q + d;
+      if (c < 0 || c > e->column) continue;
+      for (int i0 = bucket_begin[c]; i0 < bucket_begin[c + 1]; i0 += 8) {
+        if (scan_min[i0] + least > *best) break;
+        ulong8 m8 = (ulong8)(0);
+        for (int w = 0; w < e->words; ++w)
+          m8 += popcount(vload8(0, scan_masks + (long)w * scan_stride + i0) ^
+                         (ulong8)(left->mask[w]));
+        const long8 bound8 = vload8(0, scan_min + i0) + as_long8(m8) * e->mismatch;
+        if (!any(bound8 <= (long8)(*best))) continue;
+        long bound[8], mismatches[8];
+        vstore8(bound8, 0, bound);
+        vstore8(as_long8(m8), 0, mismatches);
+        for (int i = 0; i < 8; ++i) {
+          const int g = scan_group[i0 + i];
+          if (g < 0 || g == own || bound[i] > *best) continue;
+          const long gap = e->mismatch * mismatches[i];
+          for (int s = group_begin[g]; s < group_begin[g + 1] && e->slot_cost[s] + gap <= *best;
+               ++s)
+            if (!consider(e, left, s, (int)mismatches[i], best, best_v)) break;
+        }
+      }
+    }
   }
 }
 
@@ -168,18 +216,16 @@ void full_minimum(const struct Edges* e, const struct Left* left, int previous_c
   }
 }
 
-kernel void update_table_row(global const long* slot_cost, global const int* slot_position,
-                             global const int* slot_of, int previous_count,
-                             global const int* group_begin, global const long* group_min,
-                             global const ulong* group_masks, int groups,
-                             global const uint* right_samples, global const ulong* right_masks,
-                             global const int4* right_sums, global const float* right_blocks,
-                             global const uint* left_samples, global const ulong* left_masks,
-                             global const int4* left_sums, global const float* left_blocks,
-                             global const int* left_group, int current_count, int column,
-                             int binary_alpha, int gamma, long mismatch, long mismatch_extra,
-                             int per_item, int prune, local uint* tile, global long* cost,
-                             global int* argmin) {
+kernel void update_table_row(
+    global const long* slot_cost, global const int* slot_position, global const int* slot_of,
+    int previous_count, global const int* group_begin, global const int* bucket_begin,
+    global const int* scan_group, global const long* scan_min, global const ulong* scan_masks,
+    int scan_stride, global const uint* right_samples, global const ulong* right_masks,
+    global const int4* right_sums, global const float* right_blocks,
+    global const uint* left_samples, global const ulong* left_masks, global const int4* left_sums,
+    global const float* left_blocks, global const int* left_group, int current_count, int column,
+    int binary_alpha, int gamma, long mismatch, long mismatch_extra, int per_item, int prune,
+    local uint* tile, global long* cost, global int* argmin) {
   const int local_id = (int)get_local_id(0), group_size = (int)get_local_size(0);
   const int tile_size = group_size * per_item;
   const int tile_begin = (int)get_group_id(0) * tile_size;
@@ -202,8 +248,8 @@ kernel void update_table_row(global const long* slot_cost, global const int* slo
     long best = LONG_MAX;
     int best_v = INT_MAX;
     if (prune)
-      pruned_minimum(&e, &left, neighbour, previous_count, slot_of, group_begin, group_min,
-                     group_masks, groups, left_group[j], &best, &best_v);
+      pruned_minimum(&e, &left, neighbour, previous_count, slot_of, group_begin, bucket_begin,
+                     scan_group, scan_min, scan_masks, scan_stride, left_group[j], &best, &best_v);
     else
       full_minimum(&e, &left, previous_count, slot_of, &best, &best_v);
     cost[j] = best;

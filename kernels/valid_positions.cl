@@ -23,15 +23,28 @@ ulong window(global const ulong* bits, int words_per_row, int height, int x, int
   return (low >> shift) | (word_at(bits, words_per_row, height, y, w + 1) << (64 - shift));
 }
 
-bool opaque_at(global const ulong* bits, int words_per_row, int width, int height, int x, int y) {
-  if (x < 0 || x >= width) return false;
-  return (word_at(bits, words_per_row, height, y, x / 64) >> (x % 64)) & 1ul;
+// Opaque interior texels at position (x, uy), at least up to `enough`: one popcount per 64
+// texels of each row run (dy, first dx, last dx) of the interior (synth/detail/opaque_count.hpp,
+// row_runs: every listed offset counted once).
+int opaque_count(global const ulong* bits, int words_per_row, int height, global const int4* runs,
+                 int run_count, int x, int uy, int enough) {
+  int count = 0;
+  for (int i = 0; i < run_count && count < enough; ++i) {
+    const int4 run = runs[i];
+    for (int first = run.y; first <= run.z; first += 64) {
+      const int n = min(64, run.z - first + 1);
+      const ulong w = window(bits, words_per_row, height, x + first, uy + run.x);
+      count += (int)popcount(n == 64 ? w : w & ((1ul << n) - 1ul));
+    }
+  }
+  return count;
 }
 
 kernel void find_valid_positions(global const ulong* bits, int words_per_row, int width,
                                  int height, int column, global const int2* must_be_clear,
                                  int clear_count, global const int2* interior, int interior_count,
-                                 int min_opaque, global uchar* flags) {
+                                 global const int4* interior_runs, int run_count, int min_opaque,
+                                 global uchar* flags) {
   const int blocks = (width + 63) / 64;
   const int id = (int)get_global_id(0);
   if (id >= blocks * (height + column)) return;
@@ -48,13 +61,9 @@ kernel void find_valid_positions(global const ulong* bits, int words_per_row, in
   const ulong valid = open & any;
   for (int lane = 0; lane < in_row; ++lane) {
     bool flag = (valid >> lane) & 1ul;
-    if (flag && min_opaque > 1) {
-      int count = 0;
-      for (int i = 0; i < interior_count && count < min_opaque; ++i)
-        count += opaque_at(bits, words_per_row, width, height, x0 + lane + interior[i].x,
-                           uy + interior[i].y);
-      flag = count >= min_opaque;
-    }
+    if (flag && min_opaque > 1)
+      flag = opaque_count(bits, words_per_row, height, interior_runs, run_count, x0 + lane, uy,
+                          min_opaque) >= min_opaque;
     flags[(long)row * width + x0 + lane] = flag;
   }
 }

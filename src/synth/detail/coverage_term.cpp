@@ -1,70 +1,27 @@
 #include "synth/detail/coverage_term.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include "synth/detail/cost.hpp"
+#include "synth/detail/opaque_count.hpp"
 
 namespace tw::detail {
 namespace {
-
-// Opaque counts of the exemplar's rows as prefix sums: prefix[y * (W + 1) + x] = opaque
-// texels of row y left of column x.
-struct OpaquePrefix {
-  int width = 0, height = 0;
-  std::vector<std::int32_t> prefix;
-
-  explicit OpaquePrefix(const CostTexels& t) : width(t.width), height(t.height) {
-    prefix.assign(std::size_t(height) * (width + 1), 0);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        prefix[std::size_t(y) * (width + 1) + x + 1] =
-            prefix[std::size_t(y) * (width + 1) + x] +
-            int(is_opaque(t.rgba[std::size_t(y) * width + x]));
-  }
-  // Opaque texels of row y in columns [x0, x1] (outside the exemplar: transparent).
-  std::int32_t run(int y, int x0, int x1) const {
-    if (y < 0 || y >= height) return 0;
-    x0 = std::max(x0, 0), x1 = std::min(x1, width - 1);
-    if (x0 > x1) return 0;
-    const std::int32_t* line = prefix.data() + std::size_t(y) * (width + 1);
-    return line[x1 + 1] - line[x0];
-  }
-};
-
-// The interior as row runs {dy, first dx, last dx}, in listing order (duplicates count twice).
-std::vector<std::array<int, 3>> interior_runs(const PieceFootprint& piece) {
-  std::vector<std::array<int, 3>> runs;
-  for (const TexelOffset& o : piece.interior) {
-    if (!runs.empty() && runs.back()[0] == o.dy && runs.back()[2] + 1 == o.dx)
-      runs.back()[2] = o.dx;
-    else
-      runs.push_back({o.dy, o.dx, o.dx});
-  }
-  return runs;
-}
-
-std::int32_t count_at(const OpaquePrefix& opaque, const std::vector<std::array<int, 3>>& runs,
-                      int ux, int uy) {
-  std::int32_t count = 0;
-  for (const auto& [dy, first, last] : runs) count += opaque.run(uy + dy, ux + first, ux + last);
-  return count;
-}
 
 // o_c(ux) for every column of `band`, and their sum.
 struct CentredCounts {
   std::vector<std::int32_t> counts;
   std::int64_t sum = 0;
 };
-CentredCounts centred_counts(const OpaquePrefix& opaque,
-                             const std::vector<std::array<int, 3>>& runs,
-                             const PieceFootprint& piece, const CoverageBand& band) {
+// `opaque` holds the piece's interior.
+CentredCounts centred_counts(const OpaqueCounter& opaque, const PieceFootprint& piece,
+                             const CoverageBand& band) {
   CentredCounts out;
   out.counts.resize(std::size_t(band.width));
   const int uy = centred_row(piece, band.band_centre_fixed);
   for (int k = 0; k < band.width; ++k) {
-    out.counts[std::size_t(k)] = count_at(opaque, runs, band.x0 + k, uy);
+    out.counts[std::size_t(k)] = opaque.count(band.x0 + k, uy);
     out.sum += out.counts[std::size_t(k)];
   }
   return out;
@@ -82,11 +39,11 @@ int band_of(const std::vector<CoverageBand>& bands, int ux) {
 void count_opaque_interior(const CostTexels& texels, const PositionSpace& space,
                            const PieceFootprint& piece, const std::vector<std::int32_t>& indices,
                            std::vector<std::int32_t>& counts) {
-  const OpaquePrefix opaque(texels);
-  const auto runs = interior_runs(piece);
+  OpaqueCounter opaque(texels);
+  opaque.set_interior(piece.interior);
   counts.resize(indices.size());
   for (std::size_t j = 0; j < indices.size(); ++j)
-    counts[j] = count_at(opaque, runs, space.ux(indices[j]), space.uy(indices[j]));
+    counts[j] = opaque.count(space.ux(indices[j]), space.uy(indices[j]));
 }
 
 std::vector<CoverageBand> coverage_bands(const CoverageTerm& term, int width) {
@@ -109,12 +66,11 @@ void coverage_costs(const CostTexels& texels, const PositionSpace& space,
   costs.assign(indices.size(), 0);
   const std::int64_t n = std::int64_t(piece.interior.size());
   if (term.weight_milli <= 0 || n == 0) return;
-  const OpaquePrefix opaque(texels);
-  const auto runs = interior_runs(piece);
+  OpaqueCounter opaque(texels);
+  opaque.set_interior(piece.interior);
   const std::vector<CoverageBand> bands = coverage_bands(term, space.width);
   std::vector<CentredCounts> centred;
-  for (const CoverageBand& band : bands)
-    centred.push_back(centred_counts(opaque, runs, piece, band));
+  for (const CoverageBand& band : bands) centred.push_back(centred_counts(opaque, piece, band));
   // Per band of W columns, in units of 1 / W texel: target(ux) = max(sum, W * o_c(ux)),
   // lost = target - W * o(u).
   const __int128 scale = __int128(term.weight_milli) * kGamma * piece.column;
@@ -126,7 +82,7 @@ void coverage_costs(const CostTexels& texels, const PositionSpace& space,
     const CentredCounts& c = centred[std::size_t(b)];
     const std::int64_t target =
         std::max(c.sum, W * c.counts[std::size_t(ux - bands[std::size_t(b)].x0)]);
-    const std::int64_t lost = target - W * count_at(opaque, runs, ux, uy);
+    const std::int64_t lost = target - W * opaque.count(ux, uy);
     if (lost > 0) costs[j] = std::int64_t(scale * lost / (__int128(1000) * W * n));
   }
 }
@@ -137,9 +93,9 @@ double natural_coverage(const CostTexels& texels, const PositionSpace& space,
   const std::vector<CoverageBand> bands = coverage_bands(term, space.width);
   const int b = band_of(bands, ux);
   if (b < 0) return 0.0;
-  const OpaquePrefix opaque(texels);
-  const CentredCounts centred =
-      centred_counts(opaque, interior_runs(piece), piece, bands[std::size_t(b)]);
+  OpaqueCounter opaque(texels);
+  opaque.set_interior(piece.interior);
+  const CentredCounts centred = centred_counts(opaque, piece, bands[std::size_t(b)]);
   return double(centred.sum) / double(bands[std::size_t(b)].width) / double(piece.interior.size());
 }
 

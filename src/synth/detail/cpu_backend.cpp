@@ -10,10 +10,13 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "synth/detail/cost.hpp"
 #include "synth/detail/edge_bound.hpp"
+#include "synth/detail/group_scan.hpp"
 #include "synth/detail/mask_groups.hpp"
+#include "synth/detail/opaque_count.hpp"
 
 namespace tw::detail {
 namespace {
@@ -139,33 +142,13 @@ class CpuBackend final : public Backend {
       return out;
     };
     const auto clear = windows(piece.must_be_clear), interior = windows(piece.interior);
-    // min_opaque > 1: count the opaque interior texels of each remaining candidate from
-    // per-row prefix sums over runs of the interior (footprints list it row by row, so a run
-    // is a row's span; any order still counts every offset once).
-    std::vector<std::int32_t> prefix;
-    std::vector<std::array<int, 3>> runs;  // bit row, first and last bit column
+    // min_opaque > 1: count the opaque interior texels of each remaining candidate (the
+    // counter the unary term uses too).
+    std::optional<OpaqueCounter> counter;
     if (piece.min_opaque > 1) {
-      prefix.assign(std::size_t(rows) * (opaque.stride + 1), 0);
-      for (int y = 0; y < rows; ++y)
-        for (int x = 0; x < opaque.stride; ++x)
-          prefix[std::size_t(y) * (opaque.stride + 1) + x + 1] =
-              prefix[std::size_t(y) * (opaque.stride + 1) + x] +
-              opaque.values[std::size_t(y) * opaque.stride + x];
-      for (const auto& [row, col] : interior) {
-        if (!runs.empty() && runs.back()[0] == row && runs.back()[2] + 1 == col)
-          runs.back()[2] = col;
-        else
-          runs.push_back({row, col, col});
-      }
+      counter.emplace(texels);
+      counter->set_interior(piece.interior);
     }
-    auto enough_opaque = [&](int uy, int ux) {
-      std::int64_t count = 0;
-      for (const auto& [row, first, last] : runs) {
-        const std::int32_t* line = prefix.data() + std::size_t(uy + row) * (opaque.stride + 1);
-        count += line[ux + last + 1] - line[ux + first];
-      }
-      return count >= piece.min_opaque;
-    };
     const int rows_of_u = space.height + space.column, blocks = (space.width + 63) / 64;
     tbb::parallel_for(tbb::blocked_range<int>(0, rows_of_u, 4), [&](auto range) {
       for (int row = range.begin(); row < range.end(); ++row) {
@@ -190,7 +173,7 @@ class CpuBackend final : public Backend {
             if (((any |= window(w)) & open) == open) break;
           for (std::uint64_t valid = open & any; valid; valid &= valid - 1) {
             const int ux = 64 * b + std::countr_zero(valid);
-            if (piece.min_opaque > 1 && !enough_opaque(uy, ux)) continue;
+            if (counter && counter->count(ux, uy) < piece.min_opaque) continue;
             flags[std::size_t(row) * space.width + ux] = 1;
           }
         }
@@ -336,60 +319,6 @@ PreviousByMask group_by_mask(const std::vector<std::int64_t>& previous_cost,
   return out;
 }
 
-// The groups (other than `own`, in increasing min P) that may hold a winner for a left mask:
-// min P + mismatch * m <= best with m = popcount(group mask ^ left mask) >= 1 and mismatch the
-// least xi of a mismatched sample. best only falls while the groups are walked, so this list
-// (made with the best at the time) is a superset.
-struct GroupScan {
-  const std::int64_t* group_min;
-  const std::uint64_t* group_masks;
-  int groups, words;
-  std::int64_t mismatch;
-};
-
-// Inlined into each caller so that its popcount uses the caller's instruction set.
-template <int Words>
-__attribute__((always_inline)) inline void scan_groups_for(const GroupScan& scan,
-                                                           const std::uint64_t* key, int own,
-                                                           std::int64_t best,
-                                                           std::vector<std::pair<int, int>>& out) {
-  const int words = Words > 0 ? Words : scan.words;
-  for (int g = 0; g < scan.groups; ++g) {
-    const std::int64_t gap_free = scan.group_min[g];
-    if (gap_free + scan.mismatch > best) break;
-    const std::uint64_t* mask = scan.group_masks + std::size_t(g) * words;
-    int m = 0;
-    for (int w = 0; w < words; ++w) m += __builtin_popcountll(mask[w] ^ key[w]);
-    if (g != own && gap_free + scan.mismatch * m <= best) out.emplace_back(g, m);
-  }
-}
-
-void scan_groups_generic(const GroupScan& scan, const std::uint64_t* key, int own,
-                         std::int64_t best, std::vector<std::pair<int, int>>& out) {
-  if (scan.words == 2) return scan_groups_for<2>(scan, key, own, best, out);
-  scan_groups_for<0>(scan, key, own, best, out);
-}
-
-#if defined(__x86_64__)
-__attribute__((target("popcnt"))) void scan_groups_popcnt(const GroupScan& scan,
-                                                          const std::uint64_t* key, int own,
-                                                          std::int64_t best,
-                                                          std::vector<std::pair<int, int>>& out) {
-  if (scan.words == 2) return scan_groups_for<2>(scan, key, own, best, out);
-  scan_groups_for<0>(scan, key, own, best, out);
-}
-#endif
-
-void scan_groups(const GroupScan& scan, const std::uint64_t* key, int own, std::int64_t best,
-                 std::vector<std::pair<int, int>>& out) {
-  out.clear();
-#if defined(__x86_64__)
-  static const bool popcnt = __builtin_cpu_supports("popcnt");
-  if (popcnt) return scan_groups_popcnt(scan, key, own, best, out);
-#endif
-  scan_groups_generic(scan, key, own, best, out);
-}
-
 }  // namespace
 
 void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, const ColumnSet& right,
@@ -407,15 +336,13 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
 
   const PreviousByMask prev = group_by_mask(previous_cost, right);
   const EdgeStats left_stats = make_edge_stats(left);
-  const GroupScan scan{prev.group_min.data(), prev.groups.group_masks.data(),
-                       int(prev.groups.group_begin.size()) - 1, left_stats.words, mismatch};
+  const GroupScan scan(prev.group_min, prev.groups.group_masks, left_stats.words, mismatch);
   const std::int64_t min_cost = prev.cost[0];
   std::atomic<std::int64_t> evaluated{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 32), [&](auto range) {
     std::int64_t local_evaluated = 0;
-    std::int32_t neighbour = -1;                  // argmin of the previous j in this task
-    std::vector<std::pair<int, int>> candidates;  // (group, mismatched samples)
+    std::int32_t neighbour = -1;  // argmin of the previous j in this task
     for (int j = range.begin(); j < range.end(); ++j) {
       const std::uint32_t* left_samples = left.samples.data() + std::size_t(j) * C;
       std::int64_t best = kNoCost;
@@ -460,17 +387,24 @@ void update_table_row_pruned(const std::vector<std::int64_t>& previous_cost, con
              s < prev.groups.group_begin[std::size_t(own) + 1]; ++s)
           if (!consider(s, 0)) break;
       // Every other group has m >= 1 mismatched samples, so D >= mismatch * m: visit groups
-      // (in increasing min P) only while min P + mismatch * m can still win.
+      // (in increasing min P) only while min P + mismatch * m can still win, 64 groups tested
+      // at a time against the best so far (it only falls, so each test keeps a superset).
       if (own < 0 || best - min_cost >= mismatch) {
-        scan_groups(scan, left_stats.masks.data() + std::size_t(j) * left_stats.words, own, best,
-                    candidates);
-        for (const auto& [g, m] : candidates) {
-          const int begin = prev.groups.group_begin[std::size_t(g)];
-          const int end = prev.groups.group_begin[std::size_t(g) + 1];
-          const std::int64_t gap = mismatch * m;
-          if (prev.cost[std::size_t(begin)] + mismatch > best) break;
-          for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
-            if (!consider(s, m)) break;
+        const std::uint64_t* key = left_stats.masks.data() + std::size_t(j) * left_stats.words;
+        for (int g0 = 0; g0 < scan.groups(); g0 += 64) {
+          if (prev.group_min[std::size_t(g0)] + mismatch > best) break;
+          std::uint64_t open = scan.qualifying(key, g0, best);
+          if (own >= g0 && own < g0 + 64) open &= ~(std::uint64_t(1) << (own - g0));
+          for (; open; open &= open - 1) {
+            const int g = g0 + std::countr_zero(open);
+            const int begin = prev.groups.group_begin[std::size_t(g)];
+            const int end = prev.groups.group_begin[std::size_t(g) + 1];
+            if (prev.cost[std::size_t(begin)] + mismatch > best) break;
+            const int m = mismatched_samples(prev.stats, begin, left_stats, j);
+            const std::int64_t gap = mismatch * m;
+            for (int s = begin; s < end && prev.cost[std::size_t(s)] + gap <= best; ++s)
+              if (!consider(s, m)) break;
+          }
         }
       }
       cost[std::size_t(j)] = best;

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "synth/detail/cost.hpp"
+#include "synth/detail/opaque_count.hpp"
 #include "synth/detail/opencl_resident.hpp"
 
 namespace tw::detail {
@@ -212,11 +213,18 @@ void OpenCLBackend::find_valid_positions(const CostTexels& texels, const Positio
   ResidentRows& r = *resident_;
   cl::Buffer clear = input_buffer(context, piece.must_be_clear);
   cl::Buffer interior = input_buffer(context, piece.interior);
+  // The coverage floor counts by row runs (dy, first dx, last dx, unused).
+  std::vector<cl_int4> runs;
+  for (const TexelRun& run : row_runs(piece.interior))
+    runs.push_back({{run.fixed, run.first, run.last, 0}});
+  const cl_int run_count = cl_int(runs.size());
+  if (runs.empty()) runs.push_back({{0, 0, -1, 0}});  // no zero-sized buffer
+  cl::Buffer interior_runs = input_buffer(context, runs);
   cl::Buffer out = output_buffer(context, count);
   cl::Kernel& k = kernel("valid_positions", "find_valid_positions");
   set_args(k, r.opacity.get(), cl_int(r.opacity_words), cl_int(space.width), cl_int(space.height),
            cl_int(space.column), clear, cl_int(piece.must_be_clear.size()), interior,
-           cl_int(piece.interior.size()), cl_int(piece.min_opaque), out);
+           cl_int(piece.interior.size()), interior_runs, run_count, cl_int(piece.min_opaque), out);
   const std::size_t blocks = (std::size_t(space.width) + 63) / 64;
   launch(k, "find_valid_positions", blocks * std::size_t(space.height + space.column),
          kColumnGroup);

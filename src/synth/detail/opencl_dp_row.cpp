@@ -1,6 +1,8 @@
 // The resident row pipeline of the OpenCL backend (see opencl_backend.hpp): extraction of a
 // row's edges into reused device buffers on the extraction queue, their statistics, and the
 // pruned row update (kernels/row_update.cl) on the main queue.
+#include <algorithm>
+#include <bit>
 #include <chrono>
 
 #include "core/error.hpp"
@@ -129,13 +131,41 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   const MaskGroups groups = group_by_mask(previous_cost, prepared.right.host_masks.data(), words);
   r.slot_position_host.assign(groups.position.begin(), groups.position.end());
   r.group_begin_host.assign(groups.group_begin.begin(), groups.group_begin.end());
-  r.group_masks_host.assign(groups.group_masks.begin(), groups.group_masks.end());
   r.slot_of_host.resize(std::size_t(previous));
   for (int s = 0; s < previous; ++s) r.slot_of_host[std::size_t(groups.position[s])] = s;
-  r.group_min_host.resize(std::size_t(groups.groups()));
-  for (int g = 0; g < groups.groups(); ++g)
-    r.group_min_host[std::size_t(g)] =
+  // The kernel's group scan: groups bucketed by their number of opaque samples (a group whose
+  // count differs by d from the left mask's has m >= d), each bucket in increasing lowest P and
+  // padded to whole 8-group vectors; masks word-major in that order.
+  std::vector<int> by_count(std::size_t(groups.groups())), count_of(by_count.size());
+  for (int g = 0; g < groups.groups(); ++g) {
+    by_count[std::size_t(g)] = g;
+    for (int w = 0; w < words; ++w)
+      count_of[std::size_t(g)] += std::popcount(groups.group_masks[std::size_t(g) * words + w]);
+  }
+  std::stable_sort(by_count.begin(), by_count.end(), [&](int a, int b) {
+    return count_of[std::size_t(a)] < count_of[std::size_t(b)];
+  });
+  r.bucket_begin_host.assign(std::size_t(C) + 2, 0);
+  r.scan_group_host.clear();
+  for (std::size_t i = 0, c = 0; c <= std::size_t(C); ++c) {
+    r.bucket_begin_host[c] = cl_int(r.scan_group_host.size());
+    for (; i < by_count.size() && count_of[std::size_t(by_count[i])] == int(c); ++i)
+      r.scan_group_host.push_back(by_count[i]);
+    while (r.scan_group_host.size() % 8) r.scan_group_host.push_back(-1);
+  }
+  r.bucket_begin_host[std::size_t(C) + 1] = cl_int(r.scan_group_host.size());
+  const int scan_stride = int(r.scan_group_host.size());
+  r.group_min_host.assign(std::size_t(scan_stride), INT64_MAX / 4);
+  r.group_masks_host.assign(std::size_t(scan_stride) * words, 0);
+  for (int i = 0; i < scan_stride; ++i) {
+    const int g = r.scan_group_host[std::size_t(i)];
+    if (g < 0) continue;
+    r.group_min_host[std::size_t(i)] =
         previous_cost[std::size_t(groups.position[groups.group_begin[g]])];
+    for (int w = 0; w < words; ++w)
+      r.group_masks_host[std::size_t(w) * scan_stride + i] =
+          groups.group_masks[std::size_t(g) * words + w];
+  }
   r.left_group_host.resize(std::size_t(current));
   for (int j = 0; j < current; ++j)
     r.left_group_host[std::size_t(j)] =
@@ -172,8 +202,10 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   cl::Kernel& row = kernel("row_update", "update_table_row");
   set_args(row, slot_cost, slot_position, upload(context, queue, r.slot_of, r.slot_of_host),
            cl_int(previous), upload(context, queue, r.group_begin, r.group_begin_host),
+           upload(context, queue, r.bucket_begin, r.bucket_begin_host),
+           upload(context, queue, r.scan_group, r.scan_group_host),
            upload(context, queue, r.group_min, r.group_min_host),
-           upload(context, queue, r.group_masks, r.group_masks_host), cl_int(groups.groups()),
+           upload(context, queue, r.group_masks, r.group_masks_host), cl_int(scan_stride),
            prepared.right.samples.get(), prepared.right.masks.get(), prepared.right.sums.get(),
            prepared.right.blocks.get(), prepared.left.samples.get(), prepared.left.masks.get(),
            prepared.left.sums.get(), prepared.left.blocks.get(),

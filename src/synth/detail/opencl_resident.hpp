@@ -103,12 +103,14 @@ struct ResidentRows {
 
   // The row update: the slot order from the host, the cost rows (ping-pong: cost[cost_in]
   // holds `last_cost`, the previous row's output, on the device), the argmins.
-  DeviceBuffer slot_position, slot_of, slot_cost, group_begin, group_min, group_masks, left_group;
+  DeviceBuffer slot_position, slot_of, slot_cost, group_begin, group_min, group_masks, left_group,
+      bucket_begin, scan_group;
   DeviceBuffer cost[2], argmin;
   int cost_in = 0;
   bool cost_resident = false;
   std::vector<std::int64_t> last_cost;
-  std::vector<cl_int> slot_of_host, left_group_host, group_begin_host, slot_position_host;
+  std::vector<cl_int> slot_of_host, left_group_host, group_begin_host, slot_position_host,
+      bucket_begin_host, scan_group_host;
   std::vector<cl_long> group_min_host;
   std::vector<cl_ulong> group_masks_host;
 
