@@ -102,7 +102,7 @@ TEST(PrunedDp, PatternObjectiveWithFloorEqualsExhaustiveRowsOnBothBackends) {
     const double width = uniform(rng, 10, 16), delta = uniform(rng, 3, 6);
     const Ribbon ribbon =
         make_ribbon(make_shape(shapes[seed % 2], (6.0 + seed % 3) * delta), {width, delta});
-    const GridSpec canvas = canvas_around(ribbon, 1.0, 4.0);
+    const GridSpec canvas = test::canvas_around(ribbon, 1.0, 4.0);
     SynthParams params;
     params.scale = 1.0;
     params.allow_empty_pieces = true;
