@@ -124,7 +124,11 @@ int view_command(const tw::ViewOptions& options, bool serve, int port) {
 }
 
 int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
+  // What the tasks read the pipeline with again (job.json): --seed and --vars were lost there,
+  // so render-tile drew another world or failed on ${name} (issue #24 item 2).
   options.overrides = args.overrides;
+  if (args.seed) options.overrides.push_back("seed=" + std::to_string(*args.seed));
+  options.variables = args.variables;
   const tw::PipelineConfig config = load(args);
   if (options.output_dir.empty()) options.output_dir = config.output.dir;
   const tw::PlannedJob job = tw::plan_job(config, options);
