@@ -281,9 +281,8 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
       {"overrides", options.overrides},
       {"variables",
        options.variables.empty() ? json() : json(fs::absolute(options.variables).string())},
-      {"variables_xxh3_128", options.variables.empty()
-                                 ? json()
-                                 : json(content_hash(read_file_bytes(options.variables)))},
+      {"variables_xxh3_128",
+       options.variables.empty() ? json() : json(content_hash(read_file_bytes(options.variables)))},
       {"cwd", fs::current_path().string()},
       {"output_dir", out.string()},
       {"exr", config.output.exr},

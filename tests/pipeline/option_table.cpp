@@ -31,7 +31,6 @@ std::vector<std::string> words(const std::string& text) {
   return out;
 }
 
-
 namespace {
 
 std::string quoted(const std::string& word) {
@@ -48,8 +47,8 @@ std::map<std::string, std::string> help_texts(const std::set<std::string>& comma
     std::ofstream batch(list);
     int k = 0;
     for (const std::string& command : commands) {
-      batch << logs.path().string() << '\t' << (logs / (std::to_string(k) + ".out")).string() << '\t'
-            << (logs / (std::to_string(k) + ".err")).string() << '\t';
+      batch << logs.path().string() << '\t' << (logs / (std::to_string(k) + ".out")).string()
+            << '\t' << (logs / (std::to_string(k) + ".err")).string() << '\t';
       for (const std::string& word : words(command)) batch << word << '\t';
       batch << "--help\t\n";
       ++k;
@@ -93,7 +92,8 @@ std::vector<std::string> section_entries(const std::string& help, const std::str
 
 std::string replace_all(std::string text, const std::string& from, const std::string& to) {
   if (from.empty()) return text;
-  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+  for (std::size_t at = text.find(from); at != std::string::npos;
+       at = text.find(from, at + to.size()))
     text.replace(at, from.size(), to);
   return text;
 }
@@ -112,7 +112,8 @@ std::string gpkg_text(const fs::path& path) {
   for (OGRLayer* layer : ds->GetLayers()) {
     text += std::string("layer ") + layer->GetName() + "\n";
     for (auto& f : *layer) {
-      for (int i = 0; i < f->GetFieldCount(); ++i) text += std::string(f->GetFieldAsString(i)) + ";";
+      for (int i = 0; i < f->GetFieldCount(); ++i)
+        text += std::string(f->GetFieldAsString(i)) + ";";
       if (const OGRGeometry* g = f->GetGeometryRef()) text += g->exportToWkt();
       text += "\n";
     }
@@ -234,8 +235,8 @@ void Batch::run(const std::vector<Invocation>& invocations) {
       line(i->args, "../" + work.filename().string() + ".run");
     }
   }
-  const std::string command = "TERRAWEAVE_FORK_BATCH=" + quoted(list.string()) + " " +
-                              quoted(terraweave_binary().string());
+  const std::string command =
+      "TERRAWEAVE_FORK_BATCH=" + quoted(list.string()) + " " + quoted(terraweave_binary().string());
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   std::vector<int> statuses;
   std::istringstream status_text(read_file(fs::path(list.string() + ".status")));
@@ -249,8 +250,8 @@ void Batch::run(const std::vector<Invocation>& invocations) {
       const int st = next_status < statuses.size() ? statuses[next_status] : -1;
       ++next_status;
       EXPECT_TRUE(WIFEXITED(st) && WEXITSTATUS(st) == 0)
-          << "setup " << s << " of " << work << " failed: "
-          << read_file(work.string() + ".setup" + std::to_string(s) + ".err");
+          << "setup " << s << " of " << work
+          << " failed: " << read_file(work.string() + ".setup" + std::to_string(s) + ".err");
     }
     const int st = next_status < statuses.size() ? statuses[next_status++] : -1;
     Outcome o;
@@ -335,7 +336,8 @@ void check_option_rows(const std::string& table, const std::set<std::string>& li
     if (!row.doc.empty()) {
       const std::size_t colon = row.doc.find(": ");
       if (colon != std::string::npos) {
-        const std::string text = collapse_spaces(read_file(source_dir() / row.doc.substr(0, colon)));
+        const std::string text =
+            collapse_spaces(read_file(source_dir() / row.doc.substr(0, colon)));
         EXPECT_NE(text.find(collapse_spaces(row.doc.substr(colon + 2))), std::string::npos)
             << where << ": " << row.doc.substr(0, colon) << " does not say '"
             << row.doc.substr(colon + 2) << "'";
@@ -343,9 +345,12 @@ void check_option_rows(const std::string& table, const std::set<std::string>& li
         ADD_FAILURE() << where << ": doc is FILE: SENTENCE";
       }
     } else {
-      EXPECT_EQ(row.expect, Expect::changes) << where << ": a row expecting no change names its doc";
+      EXPECT_EQ(row.expect, Expect::changes)
+          << where << ": a row expecting no change names its doc";
     }
-    const char* what = row.expect == Expect::changes ? "changes" : row.expect == Expect::same_bytes ? "same bytes" : "log only";
+    const char* what = row.expect == Expect::changes      ? "changes"
+                       : row.expect == Expect::same_bytes ? "same bytes"
+                                                          : "log only";
     std::printf("%-28s %-10s exit %d/%d%s%s%s%s\n", where.c_str(), what, a.exit_code, b.exit_code,
                 a.out != b.out ? " stdout" : "", a.err != b.err ? " stderr" : "",
                 files.empty() ? "" : " files:", files.substr(0, 120).c_str());

@@ -100,14 +100,15 @@ features:
     width: 4
     synthesis: {{ exemplar: {}, scale: 4, width: 4, delta: 3 }}
 )",
-                                              chain);
+                                                chain);
   }
 
   // Runs of p.yaml in the data folder for the tables that read a run: r1, r2 (other road
   // widths) and r1c, r1 with features.geojson edited after the run.
   void make_runs(Batch& batch) {
     const Invocation r1{words("-q run @d/p.yaml --vars @d/v1.yaml --out r")};
-    const Invocation r2{words("-q run @d/p.yaml --vars @d/v1.yaml --set features.roads.width=9 --out r")};
+    const Invocation r2{
+        words("-q run @d/p.yaml --vars @d/v1.yaml --set features.roads.width=9 --out r")};
     batch.run({r1, r2});
     ASSERT_EQ(batch[r1].exit_code, 0) << batch[r1].err;
     ASSERT_EQ(batch[r2].exit_code, 0) << batch[r2].err;
@@ -138,11 +139,24 @@ features:
 // Every command `terraweave --help` lists (and their subcommands) has a table here or in
 // grow_command_test.cpp.
 TEST_F(OptionTables, EveryCommandHasATable) {
-  const std::set<std::string> tabled = {
-      "run",    "validate",         "schema",          "diff",           "view",
-      "plan",   "synth-feature",    "complete-plan",   "render-tile",    "finish",
-      "synth",  "area",             "grow",            "network clone",  "network complete",
-      "network synthesize",         "exemplar inspect", "export"};
+  const std::set<std::string> tabled = {"run",
+                                        "validate",
+                                        "schema",
+                                        "diff",
+                                        "view",
+                                        "plan",
+                                        "synth-feature",
+                                        "complete-plan",
+                                        "render-tile",
+                                        "finish",
+                                        "synth",
+                                        "area",
+                                        "grow",
+                                        "network clone",
+                                        "network complete",
+                                        "network synthesize",
+                                        "exemplar inspect",
+                                        "export"};
   EXPECT_EQ(leaf_commands(), tabled);
   EXPECT_EQ(help_options("schema"), std::set<std::string>{});  // schema's table: no option
 }
@@ -150,21 +164,40 @@ TEST_F(OptionTables, EveryCommandHasATable) {
 TEST_F(OptionTables, Global) {
   const std::string run = "run @d/p.yaml --vars @d/v1.yaml --out out";
   const std::string ps = "run @d/ps.yaml --out out";
-  const std::string url = "validate @d/p.yaml --vars @d/v1.yaml --set "
-                          "heightfield=/vsicurl/http://127.0.0.1:9/dem.tif";
+  const std::string url =
+      "validate @d/p.yaml --vars @d/v1.yaml --set "
+      "heightfield=/vsicurl/http://127.0.0.1:9/dem.tif";
   std::vector<OptionRow> rows = {
       {"--version", {words("-q " + run)}, {words("--version")}},
-      {"--verbose", {words(run)}, {words("-v " + run)}, Expect::log_only,
+      {"--verbose",
+       {words(run)},
+       {words("-v " + run)},
+       Expect::log_only,
        "docs/cli.md: `-v` logs debug lines"},
-      {"--quiet", {words(run)}, {words("-q " + run)}, Expect::log_only,
+      {"--quiet",
+       {words(run)},
+       {words("-q " + run)},
+       Expect::log_only,
        "docs/cli.md: `-q` only warnings. Logs go to stderr."},
-      {"--threads", {words("-q --threads 1 " + ps)}, {words("-q --threads 2 " + ps)},
-       Expect::same_bytes, "docs/cli.md: outputs are identical for any count"},
-      {"--strict", {words("-q run @d/warn.yaml --vars @d/v1.yaml --out out")},
-       {words("-q --strict run @d/warn.yaml --vars @d/v1.yaml --out out")}, Expect::changes, "",
-       0, 1},
-      {"--allow-network", {words("-q " + url)}, {words("-q --allow-network " + url)},
-       Expect::changes, "", 1, 1},
+      {"--threads",
+       {words("-q --threads 1 " + ps)},
+       {words("-q --threads 2 " + ps)},
+       Expect::same_bytes,
+       "docs/cli.md: outputs are identical for any count"},
+      {"--strict",
+       {words("-q run @d/warn.yaml --vars @d/v1.yaml --out out")},
+       {words("-q --strict run @d/warn.yaml --vars @d/v1.yaml --out out")},
+       Expect::changes,
+       "",
+       0,
+       1},
+      {"--allow-network",
+       {words("-q " + url)},
+       {words("-q --allow-network " + url)},
+       Expect::changes,
+       "",
+       1,
+       1},
   };
   check_option_rows("terraweave", help_options(""), rows, batch);
 }
@@ -189,7 +222,9 @@ TEST_F(OptionTables, Run) {
       {"--cache",
        {words(base + " @d/ps.yaml --out out"), {}, {}, "out"},
        {words(base + " @d/ps.yaml --out out --cache c"),
-        {words(base + " @d/ps.yaml --out first --cache c")}, {}, "out"},
+        {words(base + " @d/ps.yaml --out first --cache c")},
+        {},
+        "out"},
        Expect::same_bytes,
        "docs/cli.md: Where the files go (`--out`, `-o`, `--cache`) does not change what they hold"},
   };
@@ -216,8 +251,9 @@ TEST_F(OptionTables, Plan) {
   // Plan A and plan B, render every tile and finish: the run folders compared.
   auto finished = [&](const std::string& option, const std::string& a, const std::string& b,
                       const std::string& b_out,
-                      const std::string& doc = "docs/cli.md: Where the files go (`--out`, `-o`, "
-                                               "`--cache`) does not change what they hold") {
+                      const std::string& doc =
+                          "docs/cli.md: Where the files go (`--out`, `-o`, "
+                          "`--cache`) does not change what they hold") {
     auto steps = [&](const std::string& plan, const std::string& out) {
       std::vector<std::vector<std::string>> s = {words(base + " " + plan)};
       for (const char* t : {"0", "1", "2", "3"})
@@ -227,7 +263,8 @@ TEST_F(OptionTables, Plan) {
     return OptionRow{option,
                      {words("-q finish out"), steps(a, "out"), {}, "out", ".terraweave/"},
                      {words("-q finish " + b_out), steps(b, b_out), {}, b_out, ".terraweave/"},
-                     Expect::same_bytes, doc};
+                     Expect::same_bytes,
+                     doc};
   };
   std::vector<OptionRow> rows = {
       row("PIPELINE", base, p, "@d/p2.yaml --vars @d/v1.yaml --out out"),
@@ -245,13 +282,37 @@ TEST_F(OptionTables, Plan) {
   check_option_rows("plan", help_options("plan"), rows, batch);
 }
 
+// `plan --seed` and `plan --vars` reach the tasks: they read the pipeline again (job.json) and
+// once did so without them (render-tile failed on ${res}; synth-feature drew with the file's
+// seed), so a distributed run of them is the plain run's bytes.
+TEST_F(OptionTables, PlanSeedAndVariablesReachTheTasks) {
+  std::ofstream(d / "psv.yaml") << read_file(d / "ps.yaml") + "resolution: ${res}\n";
+  const std::string pipeline = "@d/psv.yaml --vars @d/v1.yaml --seed 4";
+  std::vector<std::vector<std::string>> steps = {
+      words("-q plan " + pipeline + " --out out --synthesis tasks"),
+      words("-q synth-feature out --feature 0"), words("-q synth-feature out --feature 1"),
+      words("-q complete-plan out")};
+  for (const char* t : {"0", "1", "2", "3"})
+    steps.push_back(words(std::string("-q render-tile out --tile ") + t));
+  const Invocation distributed{words("-q finish out"), steps, {}, "out", ".terraweave/"};
+  const Invocation plain{words("-q run " + pipeline + " --out out"), {}, {}, "out", ".terraweave/"};
+  const Invocation other_seed{
+      words("-q run @d/psv.yaml --vars @d/v1.yaml --out out"), {}, {}, "out", ".terraweave/"};
+  batch.run({distributed, plain, other_seed});
+  ASSERT_EQ(batch[distributed].exit_code, 0) << batch[distributed].err;
+  ASSERT_EQ(batch[plain].exit_code, 0) << batch[plain].err;
+  EXPECT_FALSE(batch[plain].files.empty());
+  EXPECT_EQ(batch[distributed].files, batch[plain].files);
+  EXPECT_NE(batch[other_seed].files, batch[plain].files);  // the seed matters here
+}
+
 // The distributed steps: each measured step after the steps before it, over two plans of the
 // same pipeline with other seeds (out, out2).
 TEST_F(OptionTables, DistributedSteps) {
   const auto steps = [](const std::string& out, const std::string& seed, bool tasks) {
-    std::vector<std::vector<std::string>> s = {
-        words("-q plan @d/ps.yaml --out " + out + " --seed " + seed +
-              (tasks ? " --synthesis tasks" : ""))};
+    std::vector<std::vector<std::string>> s = {words("-q plan @d/ps.yaml --out " + out +
+                                                     " --seed " + seed +
+                                                     (tasks ? " --synthesis tasks" : ""))};
     return s;
   };
   auto both = [&](bool tasks) {
@@ -275,9 +336,11 @@ TEST_F(OptionTables, DistributedSteps) {
   };
   const auto tasks = both(true), plans = both(false), done = synthesized(), tiles = rendered();
   const std::vector<OptionRow> synth_feature = {
-      {"PLAN", {words("-q synth-feature out --feature 0"), tasks},
+      {"PLAN",
+       {words("-q synth-feature out --feature 0"), tasks},
        {words("-q synth-feature out2 --feature 0"), tasks}},
-      {"--feature", {words("-q synth-feature out --feature 0"), tasks},
+      {"--feature",
+       {words("-q synth-feature out --feature 0"), tasks},
        {words("-q synth-feature out --feature 1"), tasks}},
   };
   check_option_rows("synth-feature", help_options("synth-feature"), synth_feature, batch);
@@ -286,9 +349,11 @@ TEST_F(OptionTables, DistributedSteps) {
   };
   check_option_rows("complete-plan", help_options("complete-plan"), complete, batch);
   const std::vector<OptionRow> render = {
-      {"PLAN", {words("-q render-tile out --tile 0"), plans},
+      {"PLAN",
+       {words("-q render-tile out --tile 0"), plans},
        {words("-q render-tile out2 --tile 0"), plans}},
-      {"--tile", {words("-q render-tile out --tile 0"), plans},
+      {"--tile",
+       {words("-q render-tile out --tile 0"), plans},
        {words("-q render-tile out --tile 1"), plans}},
   };
   check_option_rows("render-tile", help_options("render-tile"), render, batch);
@@ -303,8 +368,8 @@ TEST_F(OptionTables, RunReaders) {
   const std::vector<OptionRow> diff = {
       row("RUN_A", "-q diff", "@d/r1 @d/r1", "@d/r2 @d/r1", Expect::changes, "", 0, 1),
       row("RUN_B", "-q diff", "@d/r1 @d/r1", "@d/r1 @d/r2", Expect::changes, "", 0, 1),
-      row("--no-verify", "-q diff", "@d/r1 @d/r1c", "@d/r1 @d/r1c --no-verify", Expect::changes,
-          "", 2, 1),
+      row("--no-verify", "-q diff", "@d/r1 @d/r1c", "@d/r1 @d/r1c --no-verify", Expect::changes, "",
+          2, 1),
   };
   check_option_rows("diff", help_options("diff"), diff, batch);
 
@@ -322,7 +387,9 @@ TEST_F(OptionTables, RunReaders) {
   const std::string port = std::to_string(ntohs(address.sin_port));
   const std::vector<OptionRow> view = {
       row("RUN_DIR", "-q view", "@d/r1 --out v.html", "@d/r2 --out v.html"),
-      {"--out", {words("-q view @d/r1 --out v.html")}, {words("-q view @d/r1 --out sub/v.html"), {}, {}, "sub"},
+      {"--out",
+       {words("-q view @d/r1 --out v.html")},
+       {words("-q view @d/r1 --out sub/v.html"), {}, {}, "sub"},
        Expect::same_bytes,
        "docs/cli.md: Where the files go (`--out`, `-o`, `--cache`) does not change what they hold"},
       row("--no-verify", "-q view", "@d/r1c --out v.html", "@d/r1c --out v.html --no-verify",
@@ -337,8 +404,10 @@ TEST_F(OptionTables, RunReaders) {
   const std::vector<OptionRow> exports = {
       row("RUN_DIR", e, "@d/r1 --to unity --out e", "@d/r2 --to unity --out e"),
       row("--to", e, "@d/r1 --to unity --out e", "@d/r1 --to godot --out e"),
-      {"--out", {words(e + " @d/r1 --to unity --out e"), {}, {}, "e"},
-       {words(e + " @d/r1 --to unity --out sub/e"), {}, {}, "sub/e"}, Expect::same_bytes,
+      {"--out",
+       {words(e + " @d/r1 --to unity --out e"), {}, {}, "e"},
+       {words(e + " @d/r1 --to unity --out sub/e"), {}, {}, "sub/e"},
+       Expect::same_bytes,
        "docs/cli.md: Where the files go (`--out`, `-o`, `--cache`) does not change what they hold"},
       // One heightmap: with tiles the tile size decides (and --size is a warning).
       row("--size", e, "@d/r1 --to unity --out e --tile-size 0 --size 65",
@@ -359,7 +428,7 @@ TEST_F(OptionTables, RunReaders) {
 
 TEST_F(OptionTables, Synth) {
   using Args = std::map<std::string, std::string>;  // option -> value ("" for a flag)
-  const Args base = {{"--exemplar", chain}, {"--scale", "4"},      {"--backend", "cpu"},
+  const Args base = {{"--exemplar", chain},  {"--scale", "4"},     {"--backend", "cpu"},
                      {"--curve", "s-curve"}, {"--length", "24"},   {"--width", "4"},
                      {"--delta", "3"},       {"--output", "s.png"}};
   const auto synth = [&](const Args& changed) {
@@ -443,9 +512,9 @@ TEST_F(OptionTables, Area) {
       row("--resolution", base, p + " --avoid @d/map.gpkg:roads --resolution 1",
           p + " --avoid @d/map.gpkg:roads --resolution 4"),
       row("--analysis-png", base, p, p + " --analysis-png a.png"),
-      {"--out", {words(base + p), {}, {}, "out"},
-       {words("-q area " + sketches + "orchard.geojson --out sub/out" + p), {}, {},
-        "sub/out"},
+      {"--out",
+       {words(base + p), {}, {}, "out"},
+       {words("-q area " + sketches + "orchard.geojson --out sub/out" + p), {}, {}, "sub/out"},
        Expect::same_bytes,
        "docs/cli.md: Where the files go (`--out`, `-o`, `--cache`) does not change what they hold"},
   };
@@ -474,7 +543,8 @@ void write_network_inputs(const fs::path& d) {
   features.clear();
   for (int i = 0; i <= 6; ++i) add(500000 + i * 100, 4000000, 500000 + i * 100, 4000480);
   for (int j = 1; j < 6; ++j)
-    for (int i = 0; i < 6; ++i) add(500000 + i * 100, 4000000 + j * 80, 500096 + i * 100, 4000000 + j * 80);
+    for (int i = 0; i < 6; ++i)
+      add(500000 + i * 100, 4000000 + j * 80, 500096 + i * 100, 4000000 + j * 80);
   std::ofstream(d / "gappy.geojson") << geojson(features);
   std::ofstream(d / "west.geojson") << geojson(polygon("w", 500000, 4000000, 500350, 4000480));
   std::ofstream(d / "south.geojson") << geojson(polygon("s", 500000, 4000000, 500600, 4000250));
@@ -498,8 +568,9 @@ void write_network_inputs(const fs::path& d) {
                  line("[[500000,4000200],[500110,4000210]]"));
   std::string svg = R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">)";
   for (int i = 0; i <= 4; ++i)
-    svg += fmt::format(R"(<line x1="{0}" y1="0" x2="{0}" y2="100"/><line x1="0" y1="{0}" x2="100" y2="{1}"/>)",
-                       i * 25, i * 25 + (i % 2) * 3);
+    svg += fmt::format(
+        R"(<line x1="{0}" y1="0" x2="{0}" y2="100"/><line x1="0" y1="{0}" x2="100" y2="{1}"/>)",
+        i * 25, i * 25 + (i % 2) * 3);
   std::ofstream(d / "grid.svg") << svg + "</svg>";
 }
 
@@ -540,35 +611,34 @@ TEST_F(OptionTables, Network) {
   const std::string synth = "-q network synthesize" + region + " --seed 4 --out out";
   check_option_rows(
       "network synthesize", help_options("network synthesize"),
-      shared_rows(synth + fields,
-                  row("--scale", synth + " --exemplar @d/grid.svg", "--scale 10", "--scale 14"),
-                  "@d/track.geojson",
-                  {row("--exemplar", synth, "--exemplar @d/fields.geojson",
-                       "--exemplar @d/south_lines.geojson"),
-                   row("--exemplar-region", synth + fields, "",
-                       "--exemplar-region @d/west.geojson"),
-                   row("--region", "-q network synthesize --seed 4 --out out" + fields, region,
-                       "--region 500000,4000000,500500,4000500"),
-                   row("--snap", synth + " --exemplar @d/gappy.geojson", "--snap 0.01",
-                       "--snap 6")}),
+      shared_rows(
+          synth + fields,
+          row("--scale", synth + " --exemplar @d/grid.svg", "--scale 10", "--scale 14"),
+          "@d/track.geojson",
+          {row("--exemplar", synth, "--exemplar @d/fields.geojson",
+               "--exemplar @d/south_lines.geojson"),
+           row("--exemplar-region", synth + fields, "", "--exemplar-region @d/west.geojson"),
+           row("--region", "-q network synthesize --seed 4 --out out" + fields, region,
+               "--region 500000,4000000,500500,4000500"),
+           row("--snap", synth + " --exemplar @d/gappy.geojson", "--snap 0.01", "--snap 6")}),
       batch);
   const std::string complete = "-q network complete" + region + " --seed 4 --out out";
   const std::string drawn = " --partial @d/drawn.geojson";
   check_option_rows(
       "network complete", help_options("network complete"),
-      shared_rows(complete + drawn + fields,
-                  row("--scale", complete + drawn + " --exemplar @d/grid.svg", "--scale 10",
-                      "--scale 14"),
-                  "@d/track_side.geojson",
-                  {row("--exemplar", complete + drawn, "--exemplar @d/fields.geojson",
-                       "--exemplar @d/south_lines.geojson"),
-                   row("--exemplar-region", complete + drawn + fields, "",
-                       "--exemplar-region @d/west.geojson"),
-                   row("--region", "-q network complete --seed 4 --out out" + drawn + fields,
-                       region, "--region 500000,4000000,500600,4000700"),
-                   row("--partial", complete + fields, drawn, "--partial @d/drawn2.geojson"),
-                   row("--snap", complete + drawn + " --exemplar @d/gappy.geojson",
-                       "--snap 0.01", "--snap 6")}),
+      shared_rows(
+          complete + drawn + fields,
+          row("--scale", complete + drawn + " --exemplar @d/grid.svg", "--scale 10", "--scale 14"),
+          "@d/track_side.geojson",
+          {row("--exemplar", complete + drawn, "--exemplar @d/fields.geojson",
+               "--exemplar @d/south_lines.geojson"),
+           row("--exemplar-region", complete + drawn + fields, "",
+               "--exemplar-region @d/west.geojson"),
+           row("--region", "-q network complete --seed 4 --out out" + drawn + fields, region,
+               "--region 500000,4000000,500600,4000700"),
+           row("--partial", complete + fields, drawn, "--partial @d/drawn2.geojson"),
+           row("--snap", complete + drawn + " --exemplar @d/gappy.geojson", "--snap 0.01",
+               "--snap 6")}),
       batch);
   const std::string target = " --target-region 500700,4000000,501300,4000480";
   const std::string source = " --source-region @d/west.geojson";
@@ -576,19 +646,19 @@ TEST_F(OptionTables, Network) {
   const std::string clone = "-q network clone --seed 4 --out out";
   check_option_rows(
       "network clone", help_options("network clone"),
-      shared_rows(clone + target + source + map,
-                  // An SVG map cannot be cloned (its lines in the target are kept and must not
-                  // cross), so --scale has nothing to scale.
-                  row("--scale", clone + target + source + map, "", "--scale 14",
-                      Expect::same_bytes, "docs/cli.md: `--scale` scales an SVG only"),
-                  "@d/track_east.geojson",
-                  {row("--map", clone + target + source, map, " --map @d/south_lines.geojson"),
-                   row("--source-region", clone + target + map, source,
-                       "--source-region @d/south.geojson"),
-                   row("--target-region", clone + source + map, target,
-                       "--target-region 500700,4000000,501100,4000480"),
-                   row("--snap", clone + target + source + " --map @d/gappy.geojson",
-                       "--snap 0.01", "--snap 6")}),
+      shared_rows(
+          clone + target + source + map,
+          // An SVG map cannot be cloned (its lines in the target are kept and must not
+          // cross), so --scale has nothing to scale.
+          row("--scale", clone + target + source + map, "", "--scale 14", Expect::same_bytes,
+              "docs/cli.md: `--scale` scales an SVG only"),
+          "@d/track_east.geojson",
+          {row("--map", clone + target + source, map, " --map @d/south_lines.geojson"),
+           row("--source-region", clone + target + map, source, "--source-region @d/south.geojson"),
+           row("--target-region", clone + source + map, target,
+               "--target-region 500700,4000000,501100,4000480"),
+           row("--snap", clone + target + source + " --map @d/gappy.geojson", "--snap 0.01",
+               "--snap 6")}),
       batch);
 }
 

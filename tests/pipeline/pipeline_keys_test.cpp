@@ -30,6 +30,15 @@ using detail::ValueType;
 
 constexpr const char* kAuto = "<auto>";
 
+// The blocks the tests below check (check_block refuses one not listed here, and
+// EveryBlockHasATable compares the list with the key table).
+const std::set<std::string> kBlocksTested = {
+    "root",          "generate",       "output",         "tiles",      "avoidance",
+    "repair",        "export_engines", "export_options", "line_class", "road_profile",
+    "river_profile", "ridge_profile",  "conform",        "synthesis",  "binding",
+    "grow",          "grow_region",    "network",        "area_class", "lead",
+    "existing"};
+
 // A second valid value of a key with a default: another choice, the other boolean, or a number
 // in range away from the default.
 std::optional<std::string> second_value(const KeySpec& key) {
@@ -87,7 +96,8 @@ class PipelineKeys : public ::testing::Test {
                 {{"LINESTRING (500020 5000300, 500600 5000250)", 6.0, {{"highway", "primary"}}},
                  {"LINESTRING (500300 5000020, 500320 5000600)", 8.0, {{"highway", "track"}}}});
     write_layer(map, "roads2", {{"LINESTRING (500020 5000400, 500600 5000350)", 6.0}});
-    write_layer(map, "rivers", {{"LINESTRING (500050 5000600, 500200 5000450, 500600 5000420)", 5.0}});
+    write_layer(map, "rivers",
+                {{"LINESTRING (500050 5000600, 500200 5000450, 500600 5000420)", 5.0}});
     write_layer(map, "ridges", {{"LINESTRING (500100 5000100, 500500 5000150)", 4.0}});
     write_layer(map, "paths",
                 {{"LINESTRING (500100 5000500, 500118 5000500)", 4.0, {{"surface", "a"}}},
@@ -101,10 +111,12 @@ class PipelineKeys : public ::testing::Test {
     write_layer(map, "houses",
                 {{"POLYGON ((500200 5000200, 500260 5000200, 500260 5000260, 500200 5000260, "
                   "500200 5000200))",
-                  1.0, {{"use", "house"}}},
+                  1.0,
+                  {{"use", "house"}}},
                  {"POLYGON ((500400 5000400, 500440 5000400, 500440 5000440, 500400 5000440, "
                   "500400 5000400))",
-                  1.0, {{"use", "barn"}}}});
+                  1.0,
+                  {{"use", "barn"}}}});
     // Over the west end of the first path: its pieces there have no room.
     write_layer(map, "block",
                 {{"POLYGON ((500095 5000490, 500107 5000490, 500107 5000510, 500095 5000510, "
@@ -127,10 +139,12 @@ class PipelineKeys : public ::testing::Test {
     write_layer(map, "fields",
                 {{"POLYGON ((500060 5000060, 500260 5000060, 500260 5000220, 500060 5000220, "
                   "500060 5000060))",
-                  1.0, {{"name", "a"}}},
+                  1.0,
+                  {{"name", "a"}}},
                  {"POLYGON ((500340 5000380, 500560 5000380, 500560 5000580, 500340 5000580, "
                   "500340 5000380))",
-                  1.0, {{"name", "b"}}}});
+                  1.0,
+                  {{"name", "b"}}}});
     write_layer(map, "fields2",
                 {{"POLYGON ((500100 5000100, 500300 5000100, 500300 5000300, 500100 5000300, "
                   "500100 5000100))",
@@ -139,7 +153,8 @@ class PipelineKeys : public ::testing::Test {
     std::vector<VectorFeature> grid, gappy;
     int k = 0;
     auto add = [&](std::vector<VectorFeature>& to, int x0, int y0, int x1, int y1) {
-      to.push_back({fmt::format("LINESTRING ({} {}, {} {})", x0, y0, x1, y1), 1.0,
+      to.push_back({fmt::format("LINESTRING ({} {}, {} {})", x0, y0, x1, y1),
+                    1.0,
                     {{"kind", k++ % 2 ? "a" : "b"}}});
     };
     for (int i = 0; i <= 6; ++i) add(grid, 500000 + i * 100, 4000000, 500000 + i * 100, 4000480);
@@ -199,8 +214,10 @@ features:
   // with the `context` overrides.
   void check_block(const std::string& block, const std::string& prefix,
                    const std::vector<std::string>& context, const std::vector<KeyRow>& rows) {
+    EXPECT_TRUE(kBlocksTested.count(block)) << block << ": add it to kBlocksTested";
     std::set<std::string> listed;
-    for (const KeySpec& key : detail::pipeline_block(block).keys) listed.insert(std::string(key.name));
+    for (const KeySpec& key : detail::pipeline_block(block).keys)
+      listed.insert(std::string(key.name));
     std::vector<OptionRow> option_rows;
     for (const KeyRow& r : rows) {
       std::vector<std::string> a = context, b = context;
@@ -240,11 +257,19 @@ const char* const kWhere =
     "docs/pipeline.md: The keys that say where files go (`output.dir`, `cache`) do not change "
     "what they hold";
 
+TEST(PipelineKeyTables, EveryBlockHasATable) {
+  std::set<std::string> blocks;
+  for (const detail::KeyBlock& block : detail::pipeline_blocks())
+    blocks.insert(std::string(block.name));
+  EXPECT_EQ(blocks, kBlocksTested);
+}
+
 TEST_F(PipelineKeys, Root) {
   const std::string block = "existing=[{source: " + map + ", layer: block}]";
-  const std::string across = "features.more={source: " + map +
-                             ", layer: across, kind: road, width: 4, synthesis: {exemplar: " +
-                             chain + ", scale: 4, width: 4, delta: 3, empty_pieces: true}}";
+  const std::string across =
+      "features.more={source: " + map +
+      ", layer: across, kind: road, width: 4, synthesis: {exemplar: " + chain +
+      ", scale: 4, width: 4, delta: 3, empty_pieces: true}}";
   const std::string generate =
       "generate={width: 32, height: 32, pixel_size: 10, origin: [500000, 5000640]}";
   check_block(
@@ -256,17 +281,22 @@ TEST_F(PipelineKeys, Root) {
           {"generate", {"heightfield=null", generate}},
           {"resolution", {"resolution=20"}},
           {"output", {"output={dir: out, preview: true}"}},
-          {"backend", {paths(), "backend=opencl"}, {paths(), "backend=cpu"}, Expect::same_bytes,
+          {"backend",
+           {paths(), "backend=opencl"},
+           {paths(), "backend=cpu"},
+           Expect::same_bytes,
            "docs/cli.md: outputs are the same bytes on either"},
           {"precedence",
            {"features.rivers={source: " + map + ", layer: rivers, kind: river, width: 5}",
             "precedence=[rivers, roads]"},
            {"features.rivers={source: " + map + ", layer: rivers, kind: river, width: 5}",
             "precedence=[roads, rivers]"}},
-          {"features", {"features.ridges={source: " + map + ", layer: ridges, kind: ridge, width: 4}"}},
+          {"features",
+           {"features.ridges={source: " + map + ", layer: ridges, kind: ridge, width: 4}"}},
           {"existing", {"existing=[{source: " + map + ", layer: houses}]"}},
           // The canvas where the paths' patterns meet the house over one of them.
-          {"synthesis_resolution", {paths(", empty_pieces: true"), block, "synthesis_resolution=3"},
+          {"synthesis_resolution",
+           {paths(", empty_pieces: true"), block, "synthesis_resolution=3"},
            {paths(", empty_pieces: true"), block}},
           // A class across the first path: the later one avoids the earlier one's pattern.
           {"synthesis_order",
@@ -274,9 +304,15 @@ TEST_F(PipelineKeys, Root) {
            {paths(", empty_pieces: true"), across, "synthesis_order=[paths, more]"}},
           {"region", {"region=[500100, 5000100, 500500, 5000500]"}},
           {"resampling", {"resolution=7", "resampling=cubic"}, {"resolution=7"}},
-          {"strict", {"features.roads.layer=messy", "strict=true"}, {"features.roads.layer=messy"},
-           Expect::changes, "", 0, 1},
-          {"repair", {"features.roads.layer=messy", "repair={merge_distance: 5}"},
+          {"strict",
+           {"features.roads.layer=messy", "strict=true"},
+           {"features.roads.layer=messy"},
+           Expect::changes,
+           "",
+           0,
+           1},
+          {"repair",
+           {"features.roads.layer=messy", "repair={merge_distance: 5}"},
            {"features.roads.layer=messy"}},
           {"avoidance", {"avoidance={max_distance: 5}"}},
           {"cache", {paths(), "cache=c"}, {paths()}, Expect::same_bytes, kWhere},
@@ -299,24 +335,24 @@ TEST_F(PipelineKeys, Generate) {
 }
 
 TEST_F(PipelineKeys, Output) {
-  check_block("output", "output.", {},
-              {
-                  {"dir", {"output.dir=elsewhere"}, {}, Expect::same_bytes, kWhere, 0, 0,
-                   "elsewhere"},
-                  {"formats", {"output.formats=[geotiff]"}},
-                  {"exr"},
-                  {"geotiff"},
-                  {"preview", {"output.preview=true"}},
-                  {"tiles", {"output.tiles={size: 32}"}},
-                  {"exr_half", {"output.exr_half=true"}},
-                  {"exr_compression", {"output.exr_compression=zip"}},
-                  {"compress"},
-                  {"predictor"},
-                  {"cog"},
-                  // Overviews need a raster larger than a block: 320 x 320 cells.
-                  {"overviews", {"resolution=2", "output.overviews=true"}, {"resolution=2"}},
-                  {"crs", {"output.crs=EPSG:32632"}},
-              });
+  check_block(
+      "output", "output.", {},
+      {
+          {"dir", {"output.dir=elsewhere"}, {}, Expect::same_bytes, kWhere, 0, 0, "elsewhere"},
+          {"formats", {"output.formats=[geotiff]"}},
+          {"exr"},
+          {"geotiff"},
+          {"preview", {"output.preview=true"}},
+          {"tiles", {"output.tiles={size: 32}"}},
+          {"exr_half", {"output.exr_half=true"}},
+          {"exr_compression", {"output.exr_compression=zip"}},
+          {"compress"},
+          {"predictor"},
+          {"cog"},
+          // Overviews need a raster larger than a block: 320 x 320 cells.
+          {"overviews", {"resolution=2", "output.overviews=true"}, {"resolution=2"}},
+          {"crs", {"output.crs=EPSG:32632"}},
+      });
 }
 
 TEST_F(PipelineKeys, TilesAvoidanceRepair) {
@@ -360,12 +396,14 @@ TEST_F(PipelineKeys, LineClass) {
            {"features.roads.kind=river", c + "conform={corridor: 40}"},
            {"features.roads.kind=river"}},
           {"synthesis",
-           {c + "synthesis={exemplar: " + chain + ", scale: 4, width: 4, delta: 3}", c + "layer=paths"},
+           {c + "synthesis={exemplar: " + chain + ", scale: 4, width: 4, delta: 3}",
+            c + "layer=paths"},
            {c + "layer=paths"}},
           {"repair", {c + "layer=messy", c + "repair={merge_distance: 5}"}, {c + "layer=messy"}},
           {"grow",
            {"features.hedges={kind: hedge, grow: {element: " + samples +
-            "/ornaments/hedge.json, region: [500060, 5000060, 500260, 5000220], max_ornaments: 2}}"}},
+            "/ornaments/hedge.json, region: [500060, 5000060, 500260, 5000220], max_ornaments: "
+            "2}}"}},
           {"network",
            {"features.hedges={kind: hedge, width: 2, network: {exemplar: " + net +
             ":grid, region: [500060, 5000060, 500360, 5000260]}}"}},
@@ -380,18 +418,21 @@ TEST_F(PipelineKeys, Profiles) {
                {"smoothing"},
                {"max_cut", {"features.roads.profile.max_cut=0.2"}},
                {"max_fill", {"features.roads.profile.max_fill=0.2"}}});
-  const std::string river = "features.rivers={source: " + map + ", layer: rivers, kind: river, width: 5}";
+  const std::string river =
+      "features.rivers={source: " + map + ", layer: rivers, kind: river, width: 5}";
   check_block("river_profile", "features.rivers.profile.", {river},
               {{"depth"},
                {"bank_width"},
                {"falloff"},
                {"min_slope", {"features.rivers.profile.min_slope=0.05"}},
                {"max_carve", {"features.rivers.profile.max_carve=0.3"}}});
-  const std::string ridge = "features.ridges={source: " + map + ", layer: ridges, kind: ridge, width: 4}";
+  const std::string ridge =
+      "features.ridges={source: " + map + ", layer: ridges, kind: ridge, width: 4}";
   check_block("ridge_profile", "features.ridges.profile.", {ridge},
               {{"height"}, {"falloff"}, {"sharpness"}});
   check_block("conform", "features.rivers.conform.",
-              {river, "features.rivers.conform={corridor: 20}"}, {{"corridor", {"features.rivers.conform.corridor=60"}}});
+              {river, "features.rivers.conform={corridor: 20}"},
+              {{"corridor", {"features.rivers.conform.corridor=60"}}});
 }
 
 TEST_F(PipelineKeys, Synthesis) {
@@ -406,7 +447,8 @@ TEST_F(PipelineKeys, Synthesis) {
           {"exemplar", {s + "exemplar=" + hedge}},
           {"choose", {two, s + "choose=mix"}, {two}},
           // 100 pieces, where mixing pays (6 never switch).
-          {"switch_cost", {two, s + "choose=mix", "features.paths.layer=long", s + "switch_cost=1000000"},
+          {"switch_cost",
+           {two, s + "choose=mix", "features.paths.layer=long", s + "switch_cost=1000000"},
            {two, s + "choose=mix", "features.paths.layer=long"}},
           {"bind",
            {two, s + "choose=mix", s + "bind=[{exemplar: 1, where: \"surface = 'a'\"}]"},
@@ -425,9 +467,14 @@ TEST_F(PipelineKeys, Synthesis) {
           // Feathering blends channels, not the coverage: the ridge band's height channel.
           {"feather", {s + "exemplar=" + ridge, s + "feather=2"}, {s + "exemplar=" + ridge}},
           {"seed", {s + "seed=9"}},
-          {"backend", {s + "backend=opencl"}, {s + "backend=cpu"}, Expect::same_bytes,
+          {"backend",
+           {s + "backend=opencl"},
+           {s + "backend=cpu"},
+           Expect::same_bytes,
            "docs/cli.md: outputs are the same bytes on either"},
-          {"height_detail", {s + "exemplar=" + ridge, s + "height_detail=3"}, {s + "exemplar=" + ridge}},
+          {"height_detail",
+           {s + "exemplar=" + ridge, s + "height_detail=3"},
+           {s + "exemplar=" + ridge}},
           {"channels", {s + "channels={A: splat.stones}"}},
       });
 }
@@ -461,7 +508,10 @@ TEST_F(PipelineKeys, Grow) {
           {"trials", {g + "trials=2"}},
           {"max_ornaments", {g + "max_ornaments=1"}},
           {"max_elements", {g + "max_elements=5"}},
-          {"coverage_radius", {g + "coverage_radius=25"}, {}, Expect::same_bytes,
+          {"coverage_radius",
+           {g + "coverage_radius=25"},
+           {},
+           Expect::same_bytes,
            "docs/pipeline.md: `coverage_radius` changes only the coverage report.json reports"},
           {"clearance", {g + "clearance=15"}},
       });
@@ -484,7 +534,8 @@ TEST_F(PipelineKeys, Network) {
           {"exemplar", {n + "exemplar=" + net + ":south"}},
           {"exemplar_where", {n + "exemplar_where=kind = 'b'"}},
           {"exemplar_region", {n + "exemplar_region=" + net + ":west"}},
-          {"scale", {n + "exemplar=" + d.string() + "/grid.svg", n + "scale=3"},
+          {"scale",
+           {n + "exemplar=" + d.string() + "/grid.svg", n + "scale=3"},
            {n + "exemplar=" + d.string() + "/grid.svg", n + "scale=2"}},
           {"region", {n + "region=[500060, 5000060, 500360, 5000360]"}},
           {"partial", {n + "partial=" + net + ":drawn"}},
@@ -493,7 +544,8 @@ TEST_F(PipelineKeys, Network) {
           {"clearance", {n + "clearance=30"}},
           // How far a grown end is pulled onto the network (35 % of the median edge, 35 m).
           // Snapping shows on 600 m (here 400 m: every end reaches the boundary first).
-          {"snap", {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false", n + "snap=80"},
+          {"snap",
+           {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false", n + "snap=80"},
            {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false"}},
           {"candidates", {n + "candidates=2"}},
           {"avoid"},
@@ -506,24 +558,28 @@ TEST_F(PipelineKeys, Areas) {
   const std::string orchard = "features.orchard={kind: area, source: " + map +
                               ", layer: fields, sketch: " + sketches +
                               "orchard.geojson, scale: 40}";
-  check_block(
-      "area_class", a, {orchard},
-      {
-          {"kind", {a + "kind=road", a + "sketch=null", a + "scale=null", a + "width=4"},
-           {}, Expect::changes, "", 0, 1},
-          {"source", {a + "source=" + d.string() + "/map2.gpkg"}},
-          {"layer", {a + "layer=fields2"}},
-          {"where", {a + "where=name = 'b'"}},
-          {"tags", {a + "tags={name: [b]}"}},
-          {"sketch", {a + "sketch=" + sketches + "vineyard.geojson"}},
-          {"shapes_from", {a + "shapes_from=" + sketches + "boulders.geojson"}},
-          {"scale", {a + "scale=30"}},
-          {"lead", {a + "lead=nearest_road"}},
-          {"jitter", {a + "jitter=1"}, {a + "jitter=0"}},
-          {"materials", {a + "materials={crown: tree}"}},
-          {"height", {a + "height={crown: 2}"}},
-          {"seed", {a + "seed=8"}},
-      });
+  check_block("area_class", a, {orchard},
+              {
+                  {"kind",
+                   {a + "kind=road", a + "sketch=null", a + "scale=null", a + "width=4"},
+                   {},
+                   Expect::changes,
+                   "",
+                   0,
+                   1},
+                  {"source", {a + "source=" + d.string() + "/map2.gpkg"}},
+                  {"layer", {a + "layer=fields2"}},
+                  {"where", {a + "where=name = 'b'"}},
+                  {"tags", {a + "tags={name: [b]}"}},
+                  {"sketch", {a + "sketch=" + sketches + "vineyard.geojson"}},
+                  {"shapes_from", {a + "shapes_from=" + sketches + "boulders.geojson"}},
+                  {"scale", {a + "scale=30"}},
+                  {"lead", {a + "lead=nearest_road"}},
+                  {"jitter", {a + "jitter=1"}, {a + "jitter=0"}},
+                  {"materials", {a + "materials={crown: tree}"}},
+                  {"height", {a + "height={crown: 2}"}},
+                  {"seed", {a + "seed=8"}},
+              });
   check_block("lead", a + "lead.", {orchard, a + "lead={bearing: 30}"},
               {{"bearing", {a + "lead.bearing=75"}}});
 }
