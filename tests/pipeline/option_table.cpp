@@ -121,11 +121,18 @@ std::string gpkg_text(const fs::path& path) {
   return text;
 }
 
-// Drops what changes from run to run of the same inputs (timings) from a JSON document.
+// Drops what changes from run to run of the same inputs (timings: "timings", "started_utc",
+// "seconds", "plan_seconds", "growth_ms", ...) from a JSON document.
 void drop_timings(json& j) {
   if (j.is_object()) {
-    for (const char* key : {"timings", "started_utc", "seconds", "total_seconds"}) j.erase(key);
-    for (auto& [key, value] : j.items()) drop_timings(value);
+    for (auto it = j.begin(); it != j.end();) {
+      const std::string& key = it.key();
+      if (key == "timings" || key == "started_utc" || key.ends_with("seconds") ||
+          key.ends_with("_ms"))
+        it = j.erase(it);
+      else
+        drop_timings(*it++);
+    }
   } else if (j.is_array()) {
     for (json& item : j) drop_timings(item);
   }
@@ -266,8 +273,9 @@ void Batch::run(const std::vector<Invocation>& invocations) {
         if (!i.ignore.empty() && relative.starts_with(i.ignore)) continue;
         // The output folder's lock and list of outputs name the writing process and its time.
         const std::string name = entry.path().filename().string();
-        if (entry.path().parent_path().filename() == ".terraweave" &&
-            (name == "lock" || name == "outputs"))
+        if ((entry.path().parent_path().filename() == ".terraweave" &&
+             (name == "lock" || name == "outputs")) ||
+            name == ".lock")
           continue;
         o.files[relative] = digest(entry.path(), relative, work, folder);
       }

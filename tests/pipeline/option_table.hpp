@@ -40,10 +40,10 @@ struct Outcome {
   int exit_code = -1;
   std::string out, err;
   // Relative path -> content hash of every file in the folder but `files` (and but the output
-  // folder's .terraweave/lock and .terraweave/outputs, which name the writing process and the
-  // time): a GeoPackage as the
-  // text of its features (its bytes carry a timestamp), report.json as its `outputs` and
-  // `warnings` (the rest names the inputs and the timings).
+  // folder's .terraweave/lock and .terraweave/outputs and a cache's .lock, which name the
+  // writing process and the time); a JSON file without its timings (plan_seconds, ...), a
+  // GeoPackage as the text of its features (its bytes carry a timestamp), report.json as its
+  // `outputs` and `warnings` (the rest echoes the configuration and names the inputs).
   std::map<std::string, std::string> files;
 };
 

@@ -306,13 +306,16 @@ TEST_F(OptionTables, PlanSeedAndVariablesReachTheTasks) {
   EXPECT_NE(batch[other_seed].files, batch[plain].files);  // the seed matters here
 }
 
-// The distributed steps: each measured step after the steps before it, over two plans of the
-// same pipeline with other seeds (out, out2).
+// The distributed steps: each measured step after the steps before it, over two plans (out,
+// out2: other seeds, or other road widths).
 TEST_F(OptionTables, DistributedSteps) {
   const auto steps = [](const std::string& out, const std::string& seed, bool tasks) {
-    std::vector<std::vector<std::string>> s = {words("-q plan @d/ps.yaml --out " + out +
-                                                     " --seed " + seed +
-                                                     (tasks ? " --synthesis tasks" : ""))};
+    // Syntheses of the paths' patterns with two seeds; tiles of the world without patterns
+    // (cheaper) with two road widths.
+    const std::string pipeline = seed == "3" ? "@d/p.yaml" : "@d/p2.yaml";
+    std::vector<std::vector<std::string>> s = {
+        words(tasks ? "-q plan @d/ps.yaml --synthesis tasks --out " + out + " --seed " + seed
+                    : "-q plan " + pipeline + " --vars @d/v1.yaml --out " + out)};
     return s;
   };
   auto both = [&](bool tasks) {
