@@ -2,6 +2,7 @@
 // Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
 // code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
+#include <gdal.h>
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -243,6 +244,8 @@ int run_fork_batch(const char* file, int (*cli)(int, char**)) {
   std::FILE* in = std::fopen(file, "r");
   std::FILE* status = std::fopen((std::string(file) + ".status").c_str(), "w");
   if (in == nullptr || status == nullptr) return 2;
+  // The drivers registered once here, not again in every child (no thread is started).
+  GDALAllRegister();
   std::string line;
   for (int ch = std::fgetc(in); ch != EOF; ch = std::fgetc(in)) {
     if (ch != '\n') {
