@@ -2,6 +2,7 @@
 // Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
 // code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
+#include <gdal.h>
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
@@ -120,7 +121,11 @@ int view_command(const tw::ViewOptions& options, bool serve, tw::ViewServeOption
 }
 
 int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
+  // What the tasks read the pipeline with again (job.json): --seed and --vars were lost there,
+  // so render-tile drew another world or failed on ${name} (issue #24 item 2).
   options.overrides = args.overrides;
+  if (args.seed) options.overrides.push_back("seed=" + std::to_string(*args.seed));
+  options.variables = args.variables;
   const tw::PipelineConfig config = load(args);
   if (options.output_dir.empty()) options.output_dir = config.output.dir;
   const tw::PlannedJob job = tw::plan_job(config, options);
@@ -235,6 +240,8 @@ int run_fork_batch(const char* file, int (*cli)(int, char**)) {
   std::FILE* in = std::fopen(file, "r");
   std::FILE* status = std::fopen((std::string(file) + ".status").c_str(), "w");
   if (in == nullptr || status == nullptr) return 2;
+  // The drivers registered once here, not again in every child (no thread is started).
+  GDALAllRegister();
   std::string line;
   for (int ch = std::fgetc(in); ch != EOF; ch = std::fgetc(in)) {
     if (ch != '\n') {

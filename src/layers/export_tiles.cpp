@@ -296,6 +296,13 @@ EngineExportResult export_tiles_for_engine(const ExportFiles& files,
                                                  ? detail::material_names(source.splat()->channels)
                                                  : std::vector<std::string>{};
   EngineExportResult result;
+  // The tiles' size decides the samples: a --size / size: given too changed nothing, silently
+  // (issue #24 item 2); it is said.
+  if (options.size != 0)
+    result.warnings.push_back(fmt::format(
+        "export {}: size {} is unused with tiles of {} (give tile_size 0, --tile-size 0, for one "
+        "heightmap of that size)",
+        engine, options.size, size));
   nlohmann::json tiles = nlohmann::json::array();
   // The writing pass: the range pass before it reads heights alone, a fraction of the time.
   Progress progress("export " + engine, std::int64_t(layout.nx) * layout.ny, "tile");

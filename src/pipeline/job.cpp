@@ -187,6 +187,8 @@ std::string plan_again(const fs::path& plan_dir) {
         fmt::format("terraweave plan {} --out {}", job.at("pipeline").get<std::string>(),
                     job.at("output_dir").get<std::string>());
     for (const json& o : job.at("overrides")) command += " --set " + o.get<std::string>();
+    if (job.contains("variables") && job["variables"].is_string())
+      command += " --vars " + job["variables"].get<std::string>();
     if (job.value("synthesis_tasks", std::size_t(0)) > 0) command += " --synthesis tasks";
     if (job.contains("cache") && job["cache"].is_string())
       command += " --cache " + job["cache"].get<std::string>();
@@ -205,8 +207,17 @@ PipelineConfig job_config(const json& job) {
   std::vector<Override> overrides;
   for (const json& o : job.at("overrides"))
     overrides.push_back(parse_override(o.get<std::string>()));
+  // The variables file of `plan --vars` (before, the tasks read the pipeline without it: a
+  // ${name} was an error, issue #24 item 2).
+  Variables variables;
+  if (job.contains("variables") && job["variables"].is_string()) {
+    const fs::path file = job["variables"].get<std::string>();
+    if (content_hash(read_file_bytes(file)) != job.value("variables_xxh3_128", ""))
+      fail("{}: changed since it was planned (plan again)", file.string());
+    variables = load_variables(file);
+  }
   const ScopedCurrentPath cwd(job.at("cwd").get<std::string>());
-  return load_pipeline(pipeline, overrides);
+  return load_pipeline(pipeline, overrides, variables);
 }
 
 std::optional<fs::path> job_cache(const json& job) {
@@ -268,6 +279,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
       {"pipeline", fs::absolute(config.file).string()},
       {"pipeline_xxh3_128", content_hash(read_file_bytes(config.file))},
       {"overrides", options.overrides},
+      {"variables",
+       options.variables.empty() ? json() : json(fs::absolute(options.variables).string())},
+      {"variables_xxh3_128",
+       options.variables.empty() ? json() : json(content_hash(read_file_bytes(options.variables)))},
       {"cwd", fs::current_path().string()},
       {"output_dir", out.string()},
       {"exr", config.output.exr},

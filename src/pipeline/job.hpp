@@ -30,7 +30,10 @@ namespace tw {
 struct PlanJobOptions {
   std::filesystem::path output_dir;    // the shared output folder
   std::optional<std::string> backend;  // replaces backend (cpu | opencl | auto)
-  std::vector<std::string> overrides;  // the --set assignments, as given
+  std::vector<std::string> overrides;  // the --set assignments, as given (--seed N as seed=N)
+  // --vars: the variables file the pipeline was read with ("" = none); every task reads the
+  // pipeline with it again (job.json), as with the overrides.
+  std::filesystem::path variables;
   bool strict = false;                 // any warning fails the plan
   bool allow_network = false;
   // --cache: syntheses and tiles reused from there and stored there (docs/cache.md); absent:

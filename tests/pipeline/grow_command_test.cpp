@@ -11,10 +11,10 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <regex>
 #include <set>
 
 #include "core/error.hpp"
+#include "option_table.hpp"
 #include "pipeline/grow_command.hpp"
 #include "test_support.hpp"
 
@@ -288,16 +288,9 @@ TEST_F(GrowOptions, EveryOptionChangesTheOutput) {
       // Where the files go, not what they hold: documented in docs/ornaments.md.
       {"--out", {}, {{"--out", "elsewhere"}}, false},
   };
-  // Every option the command lists has a row.
-  const CommandResult help = run_command("'" + terraweave_binary().string() + "' grow --help");
-  ASSERT_EQ(help.exit_code, 0) << help.output;
-  std::set<std::string> listed, tabled;
-  // grow's own options: the global ones (--threads, --strict, ...) follow in the footer.
-  const std::string own = help.output.substr(0, help.output.find("Global options"));
-  const std::regex option_re(R"((?:^|[\s,])(--[a-z][a-z-]*))");
-  for (auto it = std::sregex_iterator(own.begin(), own.end(), option_re);
-       it != std::sregex_iterator(); ++it)
-    if ((*it)[1] != "--help") listed.insert((*it)[1]);
+  // Every option the command lists has a row (its own options: not the global ones).
+  const std::set<std::string> listed = help_options("grow");
+  std::set<std::string> tabled;
   for (const Row& row : table) tabled.insert(row.option);
   EXPECT_EQ(listed, tabled) << "grow --help lists options the table does not, or the reverse";
   for (const Row& row : table) {
