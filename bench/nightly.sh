@@ -2,12 +2,14 @@
 # The nightly rerun (issue #10, "Benchmarks to report"; docs/cache.md): a generated world
 # (terraweave make-world: SIZE^2 cells of PIXEL m, roads and rivers at about 1 km per km^2),
 # tiled TILE, with every STRIDE-th road synthesized (lane markings), run clean with --cache,
-# then one road moved MOVE m north (ogrinfo SQL on the GeoPackage) and rerun with the same cache.
-# Prints clean and rerun wall time, their ratio, tiles rebuilt / total and features resynthesized
-# / total (from report.json's cache statuses), and whether the rerun's outputs equal a clean run
+# then road ROAD moved MOVE m north (ogrinfo SQL on the GeoPackage; MOVE=0: nothing changed)
+# and rerun with the same cache. Prints clean and rerun wall time and CPU seconds (user +
+# system, of the process), their ratios, tiles rebuilt / total and features resynthesized /
+# total (from report.json's cache statuses), and whether the rerun's outputs equal a clean run
 # of the moved world (bytes of every tile file). Never fails on time. Usage:
 #   bench/nightly.sh   (env SIZE=4096 PIXEL=4 TILE=512 STRIDE=8 ROAD=FID MOVE=12 CHECK=1,
 #                       TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-nightly)
+# ROAD defaults to STRIDE (a synthesized road); ROAD=1 moves a plain one.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -47,14 +49,18 @@ timed() {  # name -- command: wall seconds into $name.s
   shift 2
   local start end
   start=$(date +%s.%N)
-  "$@" >"$name.log" 2>&1 || { echo "nightly: $name failed (see $work/$name.log)" >&2; exit 1; }
+  /usr/bin/time -f "%U %S" -o "$name.cpu" "$@" >"$name.log" 2>&1 ||
+    { echo "nightly: $name failed (see $work/$name.log)" >&2; exit 1; }
   end=$(date +%s.%N)
   awk -v a="$start" -v b="$end" 'BEGIN { printf "%.3f\n", b - a }' >"$name.s"
+  awk '{ printf "%.3f\n", $1 + $2 }' "$name.cpu" >"$name.cpus"  # user + system CPU seconds
 }
 
 timed clean -- "$bin" -q run world.yaml --cache cache --out out_clean
-ogrinfo -q world.gpkg -sql \
-  "UPDATE roads SET geom = ST_Translate(geom, 0, $move, 0) WHERE fid = $road" >/dev/null || exit 1
+if [ "$move" != 0 ]; then  # MOVE=0: rerun with nothing changed
+  ogrinfo -q world.gpkg -sql \
+    "UPDATE roads SET geom = ST_Translate(geom, 0, $move, 0) WHERE fid = $road" >/dev/null || exit 1
+fi
 timed rerun -- "$bin" -q run world.yaml --cache cache --out out_rerun
 if [ "${CHECK:-1}" = 1 ]; then
   timed moved_clean -- "$bin" -q run world.yaml --out out_moved
@@ -76,6 +82,9 @@ for f in rebuilt:
 print(f"road {road} moved {move} m north")
 print(f"clean run (cache cold): {clean:.1f} s")
 print(f"rerun (cache warm):     {rerun:.1f} s   ratio {rerun / clean:.3f}")
+clean_cpu = float(open("clean.cpus").read())
+rerun_cpu = float(open("rerun.cpus").read())
+print(f"CPU seconds:            clean {clean_cpu:.1f}, rerun {rerun_cpu:.1f}   ratio {rerun_cpu / clean_cpu:.3f}")
 print(f"tiles rebuilt:          {len(rebuilt_tiles)} / {len(tiles)}")
 print(f"features resynthesized: {len(rebuilt)} / {len(features)} {whys}")
 if os.path.exists("moved_clean.s"):

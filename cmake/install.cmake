@@ -1,5 +1,6 @@
 # What `cmake --install build --prefix P` puts where (docs/install.md), and CPack's .deb:
 #   bin/terraweave                               the command-line program
+#   lib/terraweave/libterraweave_image.so        its OpenImageIO module (loaded on first image)
 #   lib/libtw_<module>.a, include/terraweave/    the library (static, one per module) and headers
 #   lib/cmake/terraweave/                        find_package(terraweave): terraweave::pipeline ...
 #   lib/pkgconfig/terraweave.pc                  pkg-config --cflags --libs terraweave
@@ -12,10 +13,12 @@
 # program (core/resources.hpp) and three.js is compiled in (src/CMakeLists.txt).
 include(CMakePackageConfigHelpers)
 
-set(TW_MODULES core geo ribbon raster synth terrain ornament sketch network layers pipeline)
+set(TW_MODULES core image geo ribbon raster synth terrain ornament sketch network layers pipeline)
 set(TW_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/terraweave)
 
 install(TARGETS terraweave RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# OpenImageIO's side, loaded by the program on its first image (src/cli/image_module_loader.cpp).
+install(TARGETS terraweave_image LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/terraweave)
 set(tw_libraries tw_warnings)
 foreach(m ${TW_MODULES})
   list(APPEND tw_libraries tw_${m})
@@ -39,7 +42,7 @@ install(FILES ${CMAKE_BINARY_DIR}/terraweaveConfig.cmake
 
 # pkg-config: the libraries in link order (downstream first), their Debian pkg-config packages.
 set(TW_PC_LIBS "")  # CGAL (header-only) needs GMP and MPFR
-foreach(m pipeline layers network ornament sketch terrain synth raster ribbon geo core)
+foreach(m pipeline layers network ornament sketch terrain synth raster ribbon geo image core)
   string(APPEND TW_PC_LIBS " -ltw_${m}")
 endforeach()
 file(RELATIVE_PATH TW_PC_PREFIX "/root/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/root")

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <mutex>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -8,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/grid_limits.hpp"
 #include "geo/detail/gdal_support.hpp"
+#include "geo/detail/generated_source.hpp"
 #include "geo/detail/gradient_noise.hpp"
 #include "geo/heightfield.hpp"
 #include "geo/heightfield_source.hpp"
@@ -93,12 +95,30 @@ class GeneratedSource final : public HeightfieldSource {
         params_(params) {}
 
  protected:
+  // The last window generated (up to kRememberedCells) is kept and copied out when the same
+  // window is asked again: a tile's render and its report facts (input height range) compute
+  // the noise once per pixel (issue #23 item 4). cells_read() counts only computed windows.
   Raster<float> read_window(const Window& w) const override {
-    return generate_cells(params_, w.col0, w.row0, w.width, w.height);
+    const bool remember = std::int64_t(w.width) * w.height <= kRememberedCells;
+    if (remember) {
+      const std::lock_guard lock(mutex_);
+      if (last_window_ == w && !last_.pixels.empty()) return last_;
+    }
+    Raster<float> cells = generate_cells(params_, w.col0, w.row0, w.width, w.height);
+    if (remember) {
+      const std::lock_guard lock(mutex_);
+      last_window_ = w;
+      last_ = cells;
+    }
+    return cells;
   }
 
  private:
+  static constexpr std::int64_t kRememberedCells = std::int64_t(4096) * 4096;  // 64 MiB
   GeneratedTerrain params_;
+  mutable std::mutex mutex_;  // guards last_window_ and last_
+  mutable Window last_window_{};
+  mutable Raster<float> last_;
 };
 
 }  // namespace
@@ -116,6 +136,10 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
 
 std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params) {
   return std::make_unique<GeneratedSource>(params);
+}
+
+bool detail::is_generated_source(const HeightfieldSource& source) {
+  return dynamic_cast<const GeneratedSource*>(&source) != nullptr;
 }
 
 }  // namespace tw

@@ -5,11 +5,15 @@
 
 #include "core/error.hpp"
 #include "geo/detail/cell_sampling.hpp"
+#include "geo/detail/generated_source.hpp"
 
 namespace tw {
 
 HeightSampler::HeightSampler(const HeightfieldSource& source, HeightSamplerOptions options)
     : source_(source), options_(options) {
+  // A generated world's cells are computed, not read: small blocks (see generated_source.hpp).
+  if (detail::is_generated_source(source))
+    options_.block = std::min(options_.block, detail::kGeneratedSampleBlock);
   if (options_.block < 1) fail("{}: height sampler block must be >= 1", source.name());
   blocks_across_ = (source.grid().width + options_.block - 1) / options_.block;
 }

@@ -14,7 +14,7 @@
 namespace tw {
 
 struct HeightSamplerOptions {
-  int block = 256;                                  // cells per block side
+  int block = 256;  // cells per block side; at most 16 on a generated world (computed cells)
   std::int64_t max_bytes = std::int64_t(64) << 20;  // cached heights; at least one block stays
 };
 

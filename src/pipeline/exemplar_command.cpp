@@ -1,6 +1,5 @@
 #include "pipeline/exemplar_command.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +7,7 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "geo/input_guard.hpp"
+#include "image/image_io.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/exemplar_stats.hpp"
 
@@ -17,12 +17,7 @@ namespace {
 void write_preview(const std::filesystem::path& path, const StatsPreview& preview) {
   OutputTransaction transaction;
   const std::string staged = transaction.stage(path).string();
-  auto out = OIIO::ImageOutput::create(staged);
-  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
-  const OIIO::ImageSpec spec(preview.width, preview.height, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(staged, spec) || !out->write_image(OIIO::TypeDesc::UINT8, preview.rgb.data()) ||
-      !out->close())
-    fail("{}: cannot write: {}", path.string(), out->geterror());
+  write_rgb8_image(staged, preview.width, preview.height, preview.rgb.data(), path.string());
   transaction.commit();
 }
 

@@ -351,12 +351,14 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   TileJobResult result;
   result.tile = tile;
   json files = json::array();
+  // The files were just written: hashed from the page cache in 1 MiB chunks (the same XXH3-128
+  // as content_hash of their bytes), not read into memory whole.
   for (const auto& [relative, staged] : outcome.staged) {
-    const std::string bytes = read_file_bytes(dir / relative);
+    const FileDigest digest = file_digest(dir / relative);
     result.files.push_back(relative);
     files.push_back({{"file", relative.generic_string()},
-                     {"bytes", bytes.size()},
-                     {"xxh3_128", content_hash(bytes)}});
+                     {"bytes", digest.bytes},
+                     {"xxh3_128", digest.xxh3_128}});
   }
   result.seconds = seconds_since(started);
   const CacheStatus& status = outcome.status;

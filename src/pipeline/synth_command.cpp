@@ -1,7 +1,5 @@
 #include "pipeline/synth_command.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -11,6 +9,7 @@
 #include "core/log.hpp"
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
+#include "image/image_io.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/exemplar_stats.hpp"
 #include "synth/placements_io.hpp"
@@ -68,13 +67,7 @@ GridSpec canvas_around(const Curve& curve, double width, double scale) {
 
 void write_png(const std::filesystem::path& path, int width, int height,
                const std::vector<std::uint8_t>& rgb) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
-  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-      !out->close()) {
-    fail("{}: cannot write: {}", path.string(), out->geterror());
-  }
+  write_rgb8_image(path.string(), width, height, rgb.data(), path.string());
 }
 
 }  // namespace

@@ -55,5 +55,18 @@ TEST(FractalNoiseRow, MatchesThePointwiseNoiseBitForBit) {
   }
 }
 
+// Rows narrower than the largest cell (a HeightSampler's 16-cell blocks of a generated world)
+// compute their offsets without the per-cell tables: the same values, across cell borders too.
+TEST(FractalNoiseRow, NarrowRowsMatchThePointwiseNoise) {
+  for (const std::int64_t col0 : {-37, 0, 50, 1000}) {
+    for (const std::size_t width : {std::size_t(1), std::size_t(7), std::size_t(16)}) {
+      std::vector<std::int64_t> out(width);
+      fractal_noise_row(9, col0, out, 256, 3);
+      for (std::size_t i = 0; i < width; ++i)
+        ASSERT_EQ(out[i], fractal_noise(col0 + std::int64_t(i), 9, 256, 3)) << col0 << " " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tw::detail

@@ -130,6 +130,46 @@ TEST(HeightfieldSource, GeneratedWindowsAreTheGeneratedWorld) {
   EXPECT_DOUBLE_EQ(window.grid.origin_y, params.origin_y - 20 * 7.5);
 }
 
+// A tile's render and its report facts ask a generated world for the same window: it is
+// computed once (the source keeps the last window) and each caller gets its own copy.
+TEST(HeightfieldSource, TheSameGeneratedWindowAgainIsTheSameCopy) {
+  GeneratedTerrain params;
+  params.width = 300;
+  params.height = 200;
+  params.seed = 5;
+  const auto source = open_generated_heightfield(params);
+  const Heightfield whole = generate_heightfield(params);
+  const Window tile{40, 30, 120, 90}, other{0, 0, 16, 16};
+  Raster<float> first = source->read(tile);
+  EXPECT_TRUE(same_bits(whole.height, tile, first));
+  first.pixels.assign(first.pixels.size(), -1.0f);  // the caller's copy, not the kept one
+  EXPECT_TRUE(same_bits(whole.height, tile, source->read(tile)));
+  EXPECT_TRUE(same_bits(whole.height, other, source->read(other)));
+  EXPECT_TRUE(same_bits(whole.height, tile, source->read(tile)));
+}
+
+// A HeightSampler over a generated world reads 16 x 16 blocks whatever block it is given: the
+// plan computes the cells along its features, not 256 x 256 blocks around them.
+TEST(HeightfieldSource, SamplersOfAGeneratedWorldReadSmallBlocks) {
+  GeneratedTerrain params;
+  params.width = 300;
+  params.height = 200;
+  params.seed = 5;
+  const auto source = open_generated_heightfield(params);
+  const Heightfield whole = generate_heightfield(params);
+  HeightSampler sampler(*source);
+  EXPECT_EQ(sampler.cell(250, 150), whole.height.at(250, 150));
+  EXPECT_EQ(sampler.cell(251, 159), whole.height.at(251, 159));  // the same block
+  EXPECT_EQ(source->cells_read(), 16 * 16);
+  // A file keeps the blocks it is given (a read has a fixed cost).
+  Warnings warnings;
+  const auto file = open_heightfield(sample("dem.tif"), {}, warnings);
+  HeightSampler file_sampler(*file);
+  file_sampler.cell(3, 4);
+  EXPECT_EQ(file->cells_read(),
+            std::int64_t(file->grid().width) * file->grid().height);  // 80^2 < 256^2
+}
+
 TEST(HeightfieldSource, WindowOutsideTheGridIsAnError) {
   GeneratedTerrain params;
   params.width = params.height = 64;

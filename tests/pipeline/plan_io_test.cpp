@@ -217,6 +217,17 @@ TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
   const TileJobResult four = render_job_tile(job.plan_dir, 4);
   const fs::path tiles = job.plan_dir / ("tiles-" + job.plan) / "tiles";
   const std::string exr = read_file_bytes(tiles / "height_x1_y1.exr");
+  // The result's hashes (streamed, in 1 MiB chunks) are those of the files' bytes read whole.
+  const nlohmann::json result = nlohmann::json::parse(
+      read_file_bytes(job.plan_dir / ("results-" + job.plan) / "tile-4.json"));
+  ASSERT_EQ(result["files"].size(), four.files.size());
+  ASSERT_FALSE(four.files.empty());
+  for (const nlohmann::json& file : result["files"]) {
+    const std::string bytes =
+        read_file_bytes(job.plan_dir / ("tiles-" + job.plan) / file["file"].get<std::string>());
+    EXPECT_EQ(file["bytes"], bytes.size()) << file["file"];
+    EXPECT_EQ(file["xxh3_128"], content_hash(bytes)) << file["file"];
+  }
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).files, four.files);  // a rerun: the same bytes
   EXPECT_EQ(read_file_bytes(tiles / "height_x1_y1.exr"), exr);
   write_file_atomic(tiles / "splat_x2_y0.tif", "changed");

@@ -148,11 +148,16 @@ void fractal_noise_row(std::int64_t row, std::int64_t col0, std::span<std::int64
   std::vector<std::int64_t> fades;    // fade(fx)
   for (const Octave& octave : all) {
     const std::int64_t cell = octave.cell;
-    offsets.resize(std::size_t(cell));
-    fades.resize(std::size_t(cell));
-    for (std::int64_t i = 0; i < cell; ++i) {
-      offsets[i] = lattice_offset(i, 0, cell);
-      fades[i] = fade(offsets[i]);
+    // A row narrower than the cell (a HeightSampler's small block) computes its few columns'
+    // offsets directly instead of tabulating the whole cell: the same values.
+    const bool tabulate = cell <= std::int64_t(out.size());
+    if (tabulate) {
+      offsets.resize(std::size_t(cell));
+      fades.resize(std::size_t(cell));
+      for (std::int64_t i = 0; i < cell; ++i) {
+        offsets[i] = lattice_offset(i, 0, cell);
+        fades[i] = fade(offsets[i]);
+      }
     }
     const std::int64_t iy = floor_div(row, cell);
     const std::int64_t fy = lattice_offset(row, iy, cell);
@@ -165,8 +170,9 @@ void fractal_noise_row(std::int64_t row, std::int64_t col0, std::span<std::int64
       const std::int64_t first = std::max(col0, ix * cell);
       const std::int64_t last = std::min(col_end, (ix + 1) * cell);
       for (std::int64_t col = first; col < last; ++col) {
-        const std::int64_t fx = offsets[std::size_t(col - ix * cell)];
-        const std::int64_t u = fades[std::size_t(col - ix * cell)];
+        const std::int64_t i = col - ix * cell;
+        const std::int64_t fx = tabulate ? offsets[std::size_t(i)] : lattice_offset(i, 0, cell);
+        const std::int64_t u = tabulate ? fades[std::size_t(i)] : fade(fx);
         const std::int64_t n00 = dot_q16(g00, fx, fy);
         const std::int64_t n10 = dot_q16(g10, fx - kNoiseOne, fy);
         const std::int64_t n01 = dot_q16(g01, fx, fy - kNoiseOne);

@@ -1,11 +1,10 @@
 #include "layers/detail/band_reader.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstring>
 #include <limits>
 
 #include "core/error.hpp"
+#include "image/image_io.hpp"
 #include "layers/detail/gdal_init.hpp"
 
 namespace tw::detail {
@@ -47,24 +46,18 @@ class GdalBandReader final : public BandReader {
   std::unique_ptr<GDALDataset> dataset_;
 };
 
-class OiioBandReader final : public BandReader {
+class ImageBandReader final : public BandReader {
  public:
-  explicit OiioBandReader(const std::filesystem::path& path) : path_(path) {
-    input_ = OIIO::ImageInput::open(path.string());
-    if (!input_) fail("{}: cannot be opened as an image: {}", path.string(), OIIO::geterror());
-    const OIIO::ImageSpec& spec = input_->spec();
-    width = spec.width;
-    height = spec.height;
-    bands = spec.channelnames;
+  explicit ImageBandReader(const std::filesystem::path& path)
+      : path_(path), image_(open_image_rows(path.string())) {
+    width = image_.width;
+    height = image_.height;
+    bands = image_.channel_names;
   }
 
   void read_rows(int row, int rows, std::vector<float>& out) override {
     const std::size_t n = bands.size();
-    interleaved_.resize(n * rows * width);
-    if (!input_->read_scanlines(0, 0, row, row + rows, 0, 0, int(n), OIIO::TypeFloat,
-                                interleaved_.data())) {
-      fail("{}: cannot read rows {}..{}: {}", path_.string(), row, row + rows, input_->geterror());
-    }
+    read_image_rows(image_, path_.string(), row, rows, interleaved_);
     out.resize(interleaved_.size());
     const std::size_t pixels = std::size_t(rows) * width;
     for (std::size_t p = 0; p < pixels; ++p)
@@ -73,14 +66,14 @@ class OiioBandReader final : public BandReader {
 
  private:
   std::filesystem::path path_;
-  std::unique_ptr<OIIO::ImageInput> input_;
+  ImageRows image_;
   std::vector<float> interleaved_;
 };
 
 }  // namespace
 
 std::unique_ptr<BandReader> open_band_reader(const std::filesystem::path& path) {
-  if (path.extension() == ".exr") return std::make_unique<OiioBandReader>(path);
+  if (path.extension() == ".exr") return std::make_unique<ImageBandReader>(path);
   return std::make_unique<GdalBandReader>(path);
 }
 

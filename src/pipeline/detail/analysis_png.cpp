@@ -1,13 +1,12 @@
 #include "pipeline/detail/analysis_png.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
 #include "core/error.hpp"
+#include "image/image_io.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
@@ -155,12 +154,7 @@ void write_analysis_png(const std::filesystem::path& path, const SupportHierarch
       std::copy_n(panels[std::size_t(k)].rgb().data() + std::size_t(row) * size * 3,
                   std::size_t(size) * 3,
                   rgb.data() + (std::size_t(row) * width + std::size_t(k) * (size + gap)) * 3);
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
-  const OIIO::ImageSpec spec(width, size, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-      !out->close())
-    fail("{}: cannot write: {}", path.string(), out->geterror());
+  write_rgb8_image(path.string(), width, size, rgb.data(), path.string());
 }
 
 }  // namespace tw::detail

@@ -3,8 +3,6 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -15,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/progress.hpp"
+#include "image/image_io.hpp"
 #include "pipeline/detail/area_lead.hpp"
 #include "raster/rasterize.hpp"
 
@@ -218,13 +217,7 @@ void write_area_preview(const std::filesystem::path& path, const std::vector<Pol
     burn_buffered_lines(lines.first, lines.second, grid, whole, mask, 1);
     paint(mask, palette[colour++ % palette.size()]);
   }
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) fail("{}: cannot write: {}", path.string(), OIIO::geterror());
-  const OIIO::ImageSpec spec(grid.width, grid.height, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-      !out->close()) {
-    fail("{}: cannot write: {}", path.string(), out->geterror());
-  }
+  write_rgb8_image(path.string(), grid.width, grid.height, rgb.data(), path.string());
 }
 
 }  // namespace tw::detail

@@ -4,6 +4,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -93,7 +94,16 @@ CacheRead read_cache_entry(const fs::path& path) {
     read.problem = "unreadable";
     return read;
   }
-  const std::string file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // One read of the whole entry (a character-by-character istreambuf_iterator copy was half
+  // of a nothing-changed rerun's CPU: docs/performance.md, "The nightly floor").
+  in.seekg(0, std::ios::end);
+  const std::streamoff length = in.tellg();
+  in.seekg(0, std::ios::beg);
+  std::string file(std::size_t(std::max<std::streamoff>(length, 0)), '\0');
+  if (!in || !in.read(file.data(), std::streamsize(file.size()))) {
+    read.problem = "unreadable";
+    return read;
+  }
   if (file.size() < kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof kMagic) != 0) {
     read.problem = "not a terraweave cache entry";
     return read;
