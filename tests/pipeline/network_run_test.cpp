@@ -414,6 +414,54 @@ TEST(NetworkRun, LanesStayOffTheHeightfieldsNodata) {
   EXPECT_GT(samples, 1000);
 }
 
+// `choose: mix` on a network class: near_junction binds the crossing exemplar around the grown
+// junctions (a small region: a few lanes); a where or tags rule has no layer to ask and is
+// refused naming the rule.
+TEST(NetworkRun, MixBindsNearJunctionsAndRefusesAttributeRules) {
+  test::TempDir dir;
+  const fs::path exemplars = test::source_dir() / "samples/exemplars";
+  const std::string list = "[" + (exemplars / "hedge_192x48.png").string() + ", " +
+                           (exemplars / "crossing_240x64.png").string() + "]";
+  const auto mix = [&](const fs::path& out, const std::string& rule) {
+    return demo(out, {{"region", "[290990, 9113990, 291310, 9114210]"},
+                      {"features.lanes.network.region", "[291000, 9114000, 291300, 9114200]"},
+                      {"features.lanes.synthesis.exemplar", list},
+                      {"features.lanes.synthesis.choose", "mix"},
+                      {"features.lanes.synthesis.delta", "8"},
+                      {"features.lanes.synthesis.bind", "[{exemplar: 1, " + rule + "}]"}});
+  };
+  run_pipeline(mix(dir / "m", "near_junction: 10"));
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / "m/report.json"));
+  EXPECT_EQ(report["pattern_violations"].get<int>(), 0);
+  const auto& classes = report["classes"];
+  const auto lanes = std::find_if(classes.begin(), classes.end(),
+                                  [](const auto& c) { return c["name"] == "lanes"; });
+  ASSERT_NE(lanes, classes.end());
+  std::map<std::string, int> pieces;
+  int mixed = 0;
+  for (const auto& f : (*lanes)["features"]) {
+    if (!f.contains("synthesis") || !f["synthesis"].contains("mix")) continue;
+    ++mixed;
+    const auto& m = f["synthesis"]["mix"];
+    for (std::size_t e = 0; e < m["exemplars"].size(); ++e)
+      pieces[fs::path(m["exemplars"][e].get<std::string>()).filename().string()] +=
+          m["pieces_per_exemplar"][e].get<int>();
+  }
+  EXPECT_GE(mixed, 3);
+  EXPECT_GT(pieces["hedge_192x48.png"], 0);
+  EXPECT_GT(pieces["crossing_240x64.png"], 0);
+  for (const std::string rule : {"where: \"1 = 1\"", "tags: {highway: [track]}"}) {
+    std::string message = "no error";
+    try {
+      mix(dir / "w", rule);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_THAT(message, HasSubstr("features.lanes.synthesis.bind.0")) << rule;
+    EXPECT_THAT(message, HasSubstr("bind them by near_junction")) << rule;
+  }
+}
+
 TEST(NetworkRun, ErrorsNameTheKey) {
   test::TempDir dir;
   std::ofstream(dir / "empty.svg")
