@@ -174,6 +174,11 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
   if (extension == ".svg") {
+    if (!s.target_crs_wkt.empty())
+      fail(
+          "{} {}: an SVG drawing has no CRS; cannot place its lines on the heightfield (save "
+          "them in a GeoPackage in a CRS)",
+          s.subject, s.source);
     for (detail::SvgLine& line : detail::read_svg_lines(path, s.subject)) {
       std::vector<Vec2> pts;
       for (Vec2 p : line.points) pts.push_back({p.x * s.scale, -p.y * s.scale});
@@ -183,18 +188,31 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
   } else {
     Dataset ds = open_vector(path, s.subject);
     OGRLayer* layer = layer_of(*ds, path, layer_name, s.where, s.subject);
-    OGRSpatialReference frame = metric_frame(*layer, path, s.subject);
+    const OGRSpatialReference* own_crs = layer->GetSpatialRef();
+    if (!s.target_crs_wkt.empty() && (!own_crs || own_crs->IsEmpty()))
+      fail("{} {}: layer has no CRS; cannot place its lines on the heightfield", s.subject, path);
+    OGRSpatialReference frame;
+    if (s.target_crs_wkt.empty())
+      frame = metric_frame(*layer, path, s.subject);
+    else if (frame.importFromWkt(s.target_crs_wkt.c_str()) != OGRERR_NONE)
+      fail("{} {}: the heightfield's CRS is not one PROJ reads", s.subject, path);
     std::unique_ptr<OGRCoordinateTransformation> transform;
     if (!frame.IsEmpty()) {
       char* wkt = nullptr;
       frame.exportToWkt(&wkt);
       out.crs_wkt = wkt;
       CPLFree(wkt);
-      if (layer->GetSpatialRef() && !layer->GetSpatialRef()->IsProjected()) {
-        OGRSpatialReference own = *layer->GetSpatialRef();
+      // A geographic layer goes to its metric frame, any layer to a given target CRS.
+      if (own_crs && (!own_crs->IsProjected() || !s.target_crs_wkt.empty())) {
+        OGRSpatialReference own = *own_crs;
         own.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
         frame.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-        transform.reset(OGRCreateCoordinateTransformation(&own, &frame));
+        if (!own.IsSame(&frame)) {
+          transform.reset(OGRCreateCoordinateTransformation(&own, &frame));
+          if (!transform)
+            fail("{} {}: no transformation from the layer's CRS into the lines' frame: {}",
+                 s.subject, path, CPLGetLastErrorMsg());
+        }
       }
     }
     if (!s.region.empty())
@@ -207,7 +225,8 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
       if (!g) continue;
       std::unique_ptr<OGRGeometry> copy(g->clone());
       if (transform && copy->transform(transform.get()) != OGRERR_NONE)
-        fail("{} {}: FID {}: cannot transform into a metric frame", s.subject, path, f->GetFID());
+        fail("{} {}: FID {}: cannot transform into the {} frame", s.subject, path, f->GetFID(),
+             s.target_crs_wkt.empty() ? "metric" : "heightfield's");
       add_parts(copy.get(), f->GetFID(), out);  // a polygon's rings become lines, then the cut
     }
     if (!out.region.empty()) out = cut_network_lines(out, out.region);

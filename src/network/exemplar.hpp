@@ -23,6 +23,9 @@ struct NetworkSource {
   // An exemplar needs junctions (2); a partial drawing may be one line (1); the map's lines
   // already in a clone's target may be none (0).
   int min_lines = 2;
+  // When set, the lines are moved into this CRS (a pipeline's heightfield) as map layers are:
+  // a layer without a CRS (or an SVG file) is refused, since it cannot be placed there.
+  std::string target_crs_wkt{};
 };
 
 struct NetworkLines {

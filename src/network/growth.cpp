@@ -1147,4 +1147,42 @@ GridSpec forbidden_mask_grid(const std::vector<Polygon>& region) {
   return grid;
 }
 
+void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<Polygon>& region,
+                         const GridSpec& heights_grid,
+                         const std::function<Raster<float>(const Window&)>& read_heights) {
+  const GridSpec grid = mask ? mask->grid : forbidden_mask_grid(region);
+  // The heightfield's cells under the mask (edges shared within 1e-9 of a cell excluded).
+  const Vec2 lo = heights_grid.world_to_pixel(grid.pixel_to_world({0.0, 0.0}));
+  const Vec2 hi =
+      heights_grid.world_to_pixel(grid.pixel_to_world({double(grid.width), double(grid.height)}));
+  Window window;
+  window.col0 = std::max(0, int(std::floor(lo.x + 1e-9)));
+  window.row0 = std::max(0, int(std::floor(lo.y + 1e-9)));
+  window.width = std::min(heights_grid.width, int(std::ceil(hi.x - 1e-9))) - window.col0;
+  window.height = std::min(heights_grid.height, int(std::ceil(hi.y - 1e-9))) - window.row0;
+  if (window.width <= 0 || window.height <= 0) return;
+  const Raster<float> heights = read_heights(window);
+  Raster<std::uint8_t> nodata(grid.width, grid.height);
+  bool any = false;
+  for (int row = 0; row < grid.height; ++row)
+    for (int col = 0; col < grid.width; ++col) {
+      const Vec2 a = heights_grid.world_to_pixel(grid.pixel_to_world({double(col), double(row)}));
+      const Vec2 b =
+          heights_grid.world_to_pixel(grid.pixel_to_world({double(col + 1), double(row + 1)}));
+      const int c0 = std::max(window.col0, int(std::floor(a.x + 1e-9)));
+      const int c1 = std::min(window.col0 + window.width, int(std::ceil(b.x - 1e-9))) - 1;
+      const int r0 = std::max(window.row0, int(std::floor(a.y + 1e-9)));
+      const int r1 = std::min(window.row0 + window.height, int(std::ceil(b.y - 1e-9))) - 1;
+      bool hole = false;
+      for (int r = r0; r <= r1 && !hole; ++r)
+        for (int c = c0; c <= c1 && !hole; ++c)
+          hole = std::isnan(heights.at(c - window.col0, r - window.row0));
+      if (hole) nodata.at(col, row) = 1, any = true;
+    }
+  if (!any) return;
+  if (!mask) mask = ForbiddenMask{grid, Raster<std::uint8_t>(grid.width, grid.height)};
+  for (std::size_t i = 0; i < nodata.pixels.size(); ++i)
+    if (nodata.pixels[i]) mask->cells.pixels[i] = 1;
+}
+
 }  // namespace tw

@@ -7,6 +7,7 @@
 // order in which pieces are tried follows the statistics still missing (degree, length and
 // bearing histograms), with seeded ties.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -37,6 +38,14 @@ struct ForbiddenMask {
 // The grid a forbidden mask of `region` is drawn on: its bounding box and a cell more on every
 // side, square cells no finer than a metre and at most 4096 a side (memory follows the region).
 GridSpec forbidden_mask_grid(const std::vector<Polygon>& region);
+
+// Forbids every cell of `mask` that overlaps a NaN cell of a heightfield (its nodata: no height
+// to build a line on) on `heights_grid`, in the region's frame; `read_heights` gives the heights
+// of a window of that grid (the part under the mask only is read). An absent mask is made over
+// `region` first, and left absent when no nodata cell lies under it.
+void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<Polygon>& region,
+                         const GridSpec& heights_grid,
+                         const std::function<Raster<float>(const Window&)>& read_heights);
 
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;

@@ -427,6 +427,12 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (m.has("synthesis")) {
     f.synthesis = read_synthesis(
         MapReader(m.source(), m.get("synthesis"), m.path("synthesis"), "synthesis"), seed, inputs);
+    // A network's lines are grown: there is no layer for a where or tags rule to ask.
+    for (std::size_t i = 0; f.network && i < f.synthesis->bind.size(); ++i)
+      if (!f.synthesis->bind[i].where.empty() || !f.synthesis->bind[i].tags.empty())
+        m.source().fail(m.get("synthesis")["bind"][i], f.synthesis->bind[i].key,
+                        "a network class's lines are grown and have no attributes for where or "
+                        "tags to select; bind them by near_junction");
   }
   return f;
 }

@@ -17,6 +17,7 @@
 #include "geo/heightfield.hpp"
 #include "network/check.hpp"
 #include "network/exemplar.hpp"
+#include "network/partial.hpp"
 #include "network/preview.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
 #include "raster/rasterize.hpp"
@@ -41,76 +42,6 @@ std::vector<Polygon> region_of(const std::string& text, const std::string& key,
   if (text.empty()) fail("{} is required", key);
   if (auto box = box_region(text, key)) return *box;
   return read_region_polygons(text, "", crs_wkt, key);
-}
-
-// The user's lines as a planar graph (T-junctions noded), refused when they cross themselves or
-// leave the region.
-Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& region,
-                        const std::string& key, const std::string& source, Warnings& warnings) {
-  Network drawn;  // each line one edge, as drawn
-  for (std::size_t i = 0; i < lines.lines.size(); ++i) {
-    NetworkEdge e;
-    e.from = int(drawn.nodes.size());
-    drawn.nodes.push_back(lines.lines[i].front());
-    e.to = int(drawn.nodes.size());
-    drawn.nodes.push_back(lines.lines[i].back());
-    e.points = lines.lines[i];
-    e.fid = lines.fids[i];
-    drawn.edges.push_back(std::move(e));
-  }
-  const NetworkCheck outside = check_network(drawn, region, nullptr);
-  if (outside.outside > 0)
-    for (const NetworkEdge& e : drawn.edges)
-      if (check_network({{e.points.front(), e.points.back()}, {{0, 1, e.points, false, e.fid}}, {}},
-                        region, nullptr)
-              .outside > 0)
-        fail("{} {}: FID {}: outside the region", key, source, e.fid);
-  // A line crossing itself (a loop closed at its own end is no crossing).
-  for (const NetworkEdge& e : drawn.edges) {
-    OGRLineString line;
-    for (Vec2 p : e.points) line.addPoint(p.x, p.y);
-    if (!line.IsSimple())
-      fail(
-          "{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
-          "ends)",
-          key, source, e.fid);
-  }
-  // Crossings: two lines meeting where neither ends.
-  for (std::size_t i = 0; i < drawn.edges.size(); ++i)
-    for (std::size_t j = i + 1; j < drawn.edges.size(); ++j) {
-      const auto& a = drawn.edges[i].points;
-      const auto& b = drawn.edges[j].points;
-      OGRLineString la, lb;
-      for (Vec2 p : a) la.addPoint(p.x, p.y);
-      for (Vec2 p : b) lb.addPoint(p.x, p.y);
-      if (!la.Intersects(&lb)) continue;
-      std::unique_ptr<OGRGeometry> common(la.Intersection(&lb));
-      bool bad = false;
-      const auto at_an_end = [&](double x, double y) {
-        const Vec2 p{x, y};
-        for (Vec2 q : {a.front(), a.back(), b.front(), b.back()})
-          if (distance(p, q) < 1e-9 * (1.0 + length(p))) return true;
-        return false;
-      };
-      const auto type = wkbFlatten(common->getGeometryType());
-      if (type == wkbPoint)
-        bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
-      else if (type == wkbMultiPoint)
-        for (const OGRPoint* p : *common->toMultiPoint())
-          bad = bad || !at_an_end(p->getX(), p->getY());
-      else
-        bad = !common->IsEmpty();
-      if (bad)
-        fail(
-            "{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
-            "ends)",
-            key, source, drawn.edges[i].fid, drawn.edges[j].fid);
-    }
-  NetworkLines in = lines;
-  in.region = region;
-  Network net = build_planar_network(in, 0.0, key, warnings);
-  for (NetworkEdge& e : net.edges) e.kept = true;
-  return net;
 }
 
 // Snapped (within `snap`, 0: 1/1000 of the lines' extent) and noded.

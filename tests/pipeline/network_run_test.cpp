@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -291,6 +293,172 @@ TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
     for (const LineFeature& l : lanes)
       found = found || std::find(l.points.begin(), l.points.end(), p) != l.points.end();
     EXPECT_TRUE(found) << p.x << " " << p.y;
+  }
+}
+
+// One reading of a drawing (network/partial.hpp): a `partial` whose lines cross is refused by
+// the run with the command's words, naming the file and the FIDs (not noded into a junction).
+TEST(NetworkRun, CrossingPartialIsRefusedAsTheCommandRefusesIt) {
+  test::TempDir dir;
+  test::write_layer(dir / "drawn.gpkg", "drawn",
+                    {{"LINESTRING (291100 9114100, 291300 9114300)"},
+                     {"LINESTRING (291100 9114300, 291300 9114100)"}},
+                    "EPSG:31985");
+  const std::string drawing = (dir / "drawn.gpkg").string() + ":drawn";
+  std::string run_error = "no error";
+  try {
+    Warnings warnings;
+    plan_world(demo(dir / "p", {{"features.lanes.network.partial", drawing}}), {}, warnings);
+  } catch (const Error& e) {
+    run_error = e.what();
+  }
+  const test::CommandResult command =
+      test::run_command(test::terraweave_binary().string() + " network complete --exemplar " +
+                        (test::source_dir() / "tests/data/network_drawn.svg").string() +
+                        " --scale 0.5 --region 291000,9114000,291600,9114400 --partial " + drawing +
+                        " --out " + (dir / "c").string() + " 2>&1");
+  EXPECT_EQ(command.exit_code, 1);
+  const std::string words =
+      drawing + ": FID 1 crosses FID 2 (a partial network may meet itself only where a line ends)";
+  EXPECT_THAT(run_error, HasSubstr("features.lanes.network.partial " + words));
+  EXPECT_THAT(command.output, HasSubstr("--partial " + words));
+}
+
+// A drawing in another CRS (WGS 84) is moved into the heightfield's (UTM 25S), as map layers
+// are; one without a CRS is refused, as a map layer without one is.
+TEST(NetworkRun, APartialDrawingInAnotherCrsIsReprojected) {
+  test::TempDir dir;
+  const std::vector<Vec2> drawn = {
+      {291100, 9114200}, {291300, 9114210}, {291500, 9114200}, {291310, 9114350}};
+  OGRSpatialReference utm, wgs84;
+  utm.importFromEPSG(31985);
+  wgs84.importFromEPSG(4326);
+  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_wgs84(
+      OGRCreateCoordinateTransformation(&utm, &wgs84));
+  ASSERT_NE(to_wgs84, nullptr);
+  std::vector<std::array<double, 2>> lonlat;
+  for (Vec2 p : drawn) {
+    double x = p.x, y = p.y;
+    ASSERT_TRUE(to_wgs84->Transform(1, &x, &y));
+    lonlat.push_back({x, y});
+  }
+  const std::vector<test::VectorFeature> lines = {
+      test::VectorFeature({lonlat[0], lonlat[1], lonlat[2]}, 4.0),
+      test::VectorFeature({lonlat[1], lonlat[3]}, 4.0)};
+  test::write_layer(dir / "drawn.gpkg", "drawn", lines, "EPSG:4326");
+  test::write_layer(dir / "nocrs.shp", "nocrs", lines, "");  // a Shapefile without .prj
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p", {{"features.lanes.network.partial",
+                                                      (dir / "drawn.gpkg").string() + ":drawn"}}),
+                                    {}, warnings);
+  const auto& lanes = plan.lines.at(2);
+  EXPECT_GE(plan.report.classes.at(2).network->kept, 3);
+  for (const Vec2 p : drawn) {
+    double nearest = INFINITY;
+    for (const LineFeature& l : lanes)
+      for (Vec2 q : l.points) nearest = std::min(nearest, distance(p, q));
+    EXPECT_LT(nearest, 1e-3) << p.x << " " << p.y;
+  }
+  std::string message = "no error";
+  try {
+    plan_world(demo(dir / "q", {{"features.lanes.network.partial", (dir / "nocrs.shp").string()}}),
+               {}, warnings);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_THAT(message, HasSubstr("features.lanes.network.partial"));
+  EXPECT_THAT(message, HasSubstr("layer has no CRS"));
+}
+
+// The sample DEM with a hole of 2 x 2 nodata cells (180 m a side) in the middle of the lanes'
+// region: no lane passes over it (each segment sampled every 0.5 m).
+TEST(NetworkRun, LanesStayOffTheHeightfieldsNodata) {
+  test::TempDir dir;
+  GDALAllRegister();
+  const fs::path dem = dir / "holed.tif";
+  double transform[6];
+  {
+    GDALDatasetUniquePtr src(GDALDataset::Open((test::source_dir() / "samples/dem.tif").c_str(),
+                                               GDAL_OF_RASTER | GDAL_OF_READONLY));
+    ASSERT_NE(src, nullptr);
+    GDALDatasetUniquePtr copy(GetGDALDriverManager()->GetDriverByName("GTiff")->CreateCopy(
+        dem.c_str(), src.get(), FALSE, nullptr, nullptr, nullptr));
+    ASSERT_NE(copy, nullptr);
+    copy->GetGeoTransform(transform);
+    GDALRasterBand* band = copy->GetRasterBand(1);
+    ASSERT_EQ(band->SetNoDataValue(-9999.0), CE_None);
+    float hole[4] = {-9999.f, -9999.f, -9999.f, -9999.f};
+    ASSERT_EQ(band->RasterIO(GF_Write, 15, 50, 2, 2, hole, 2, 2, GDT_Float32, 0, 0), CE_None);
+  }
+  const auto on_hole = [&](Vec2 p) {
+    const double col = (p.x - transform[0]) / transform[1];
+    const double row = (p.y - transform[3]) / transform[5];
+    return col >= 15 && col < 17 && row >= 50 && row < 52;
+  };
+  Warnings warnings;
+  const WorldPlan plan = plan_world(demo(dir / "p", {{"heightfield", dem.string()}}), {}, warnings);
+  const auto& lanes = plan.lines.at(2);
+  ASSERT_GE(lanes.size(), 8u);
+  int samples = 0;
+  for (std::size_t i = 0; i < lanes.size(); ++i)
+    for (std::size_t k = 0; k + 1 < lanes[i].points.size(); ++k) {
+      const Vec2 a = lanes[i].points[k], b = lanes[i].points[k + 1];
+      const int n = 1 + int(distance(a, b) / 0.5);
+      for (int s = 0; s <= n; ++s, ++samples) {
+        const Vec2 p = a + (b - a) * (double(s) / n);
+        ASSERT_FALSE(on_hole(p)) << "lane " << i << " at " << p.x << " " << p.y;
+      }
+    }
+  EXPECT_GT(samples, 1000);
+}
+
+// `choose: mix` on a network class: near_junction binds the crossing exemplar around the grown
+// junctions (a small region: a few lanes); a where or tags rule has no layer to ask and is
+// refused naming the rule.
+TEST(NetworkRun, MixBindsNearJunctionsAndRefusesAttributeRules) {
+  test::TempDir dir;
+  const fs::path exemplars = test::source_dir() / "samples/exemplars";
+  const std::string list = "[" + (exemplars / "hedge_192x48.png").string() + ", " +
+                           (exemplars / "crossing_240x64.png").string() + "]";
+  const auto mix = [&](const fs::path& out, const std::string& rule) {
+    return demo(out, {{"region", "[290990, 9113990, 291310, 9114210]"},
+                      {"features.lanes.network.region", "[291000, 9114000, 291300, 9114200]"},
+                      {"features.lanes.synthesis.exemplar", list},
+                      {"features.lanes.synthesis.choose", "mix"},
+                      {"features.lanes.synthesis.delta", "8"},
+                      {"features.lanes.synthesis.bind", "[{exemplar: 1, " + rule + "}]"}});
+  };
+  run_pipeline(mix(dir / "m", "near_junction: 10"));
+  const nlohmann::json report = nlohmann::json::parse(test::read_file(dir / "m/report.json"));
+  EXPECT_EQ(report["pattern_violations"].get<int>(), 0);
+  const auto& classes = report["classes"];
+  const auto lanes = std::find_if(classes.begin(), classes.end(),
+                                  [](const auto& c) { return c["name"] == "lanes"; });
+  ASSERT_NE(lanes, classes.end());
+  std::map<std::string, int> pieces;
+  int mixed = 0;
+  for (const auto& f : (*lanes)["features"]) {
+    if (!f.contains("synthesis") || !f["synthesis"].contains("mix")) continue;
+    ++mixed;
+    const auto& m = f["synthesis"]["mix"];
+    for (std::size_t e = 0; e < m["exemplars"].size(); ++e)
+      pieces[fs::path(m["exemplars"][e].get<std::string>()).filename().string()] +=
+          m["pieces_per_exemplar"][e].get<int>();
+  }
+  EXPECT_GE(mixed, 3);
+  EXPECT_GT(pieces["hedge_192x48.png"], 0);
+  EXPECT_GT(pieces["crossing_240x64.png"], 0);
+  for (const std::string rule : {"where: \"1 = 1\"", "tags: {highway: [track]}"}) {
+    std::string message = "no error";
+    try {
+      mix(dir / "w", rule);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_THAT(message, HasSubstr("features.lanes.synthesis.bind.0")) << rule;
+    EXPECT_THAT(message, HasSubstr("bind them by near_junction")) << rule;
   }
 }
 

@@ -10,6 +10,7 @@
 #include "network/check.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
+#include "network/partial.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
@@ -69,26 +70,24 @@ ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
   return mask;
 }
 
-// The user's lines, kept as drawn: refused when they cross each other or leave the region.
+// The user's lines in the heightfield's CRS, kept as drawn (network/partial.hpp).
 Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>& region,
-                        const std::string& key, Warnings& warnings) {
+                        const Heightfield& heightfield, const std::string& key,
+                        Warnings& warnings) {
   NetworkLines lines;
   try {
-    lines = read_network_lines(
-        {.source = n.partial, .scale = n.scale, .subject = key, .min_lines = 1}, warnings);
+    lines = read_network_lines({.source = n.partial,
+                                .scale = n.scale,
+                                .subject = key,
+                                .min_lines = 1,
+                                .target_crs_wkt = heightfield.crs_wkt},
+                               warnings);
   } catch (const Error& error) {
     const std::string what = error.what();
     if (what.starts_with(key)) throw;
     fail("{}: {}", key, what);
   }
-  lines.region = region;
-  Network net = build_planar_network(lines, 0.0, key, warnings);
-  for (NetworkEdge& e : net.edges) e.kept = true;
-  const NetworkCheck check = check_network(net, region, nullptr);
-  if (check.total() != 0)
-    fail("{}: {}: the drawn lines must lie in the region ({} outside): {}", key, n.partial,
-         check.outside, check.first);
-  return net;
+  return tw::partial_network(lines, region, key, n.partial, warnings);
 }
 
 }  // namespace
@@ -127,9 +126,12 @@ void grow_network_classes(const PipelineConfig& config, const HeightfieldSource&
     }
     const std::vector<Polygon> region = region_of(n, heightfield, key + ".region", warnings);
     std::optional<Network> partial;
-    if (!n.partial.empty()) partial = partial_network(n, region, key + ".partial", warnings);
+    if (!n.partial.empty())
+      partial = partial_network(n, region, heightfield, key + ".partial", warnings);
     std::optional<ForbiddenMask> forbidden;
     if (n.avoid) forbidden = forbidden_mask(config, c, region, existing, lines);
+    forbid_nodata_cells(forbidden, region, source.grid(),
+                        [&](const Window& w) { return source.read(w); });
     NetworkGrowthOptions options;
     options.seed = n.seed;
     options.lead_bearing = n.lead_bearing;
