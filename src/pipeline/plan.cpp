@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
@@ -103,10 +105,9 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
     // A class whose lines a method makes gets them from its stage, below.
-    const auto maker =
-        std::find_if(methods.begin(), methods.end(), [&](const SynthesisMethod* m) {
-          return m->makes_lines_of(feature_class);
-        });
+    const auto maker = std::find_if(methods.begin(), methods.end(), [&](const SynthesisMethod* m) {
+      return m->makes_lines_of(feature_class);
+    });
     lines.push_back(maker != methods.end()
                         ? std::vector<LineFeature>{}
                         : detail::load_feature_class(feature_class, heightfield, warnings));
@@ -188,6 +189,9 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   clock.start("plan");
   plan.splat_materials = splat_materials();
   for (MethodPlan& entry : plan.methods) entry.method->collect(context, entry);
+  for (const MethodPlan& entry : plan.methods)
+    if (const nlohmann::json part = entry.method->report(plan, entry); !part.is_null())
+      report.method_reports.push_back({entry.method->name(), part.dump()});
 
   plan.existing.polygons = std::move(existing.polygons);
   plan.existing.lines = std::move(existing.lines);

@@ -127,8 +127,8 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
   files["terrain_features"] = store.put_cbor(encode(plan.terrain_features));
   files["terrain_params"] = store.put_cbor(encode(plan.terrain_params));
   files["terrain"] = store.put_cbor(encode(plan.terrain));
-  files["index"] = store.put_cbor(json{{"features", encode(plan.feature_index)},
-                                       {"ribbons", encode(plan.ribbon_index)}});
+  files["index"] = store.put_cbor(
+      json{{"features", encode(plan.feature_index)}, {"ribbons", encode(plan.ribbon_index)}});
   RunReport report = plan.report;
   const json timings = take_timings(report);
   files["report"] = store.put_cbor(encode(report));

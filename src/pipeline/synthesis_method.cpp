@@ -2,6 +2,8 @@
 // and nowhere else in the pipeline.
 #include "pipeline/synthesis_method.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/grown_method.hpp"
@@ -9,6 +11,11 @@
 #include "pipeline/detail/pattern_method.hpp"
 
 namespace tw {
+
+nlohmann::json SynthesisMethod::report(const WorldPlan& /*plan*/,
+                                       const MethodPlan& /*entry*/) const {
+  return nullptr;
+}
 
 const std::vector<const SynthesisMethod*>& builtin_synthesis_methods() {
   static const std::vector<const SynthesisMethod*> methods = {

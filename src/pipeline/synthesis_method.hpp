@@ -90,6 +90,10 @@ class SynthesisMethod {
     return {};
   }
 
+  // Its own part of report.json (`methods.<name>`); null: none (the built-in methods report in
+  // the classes' and areas' fields).
+  virtual nlohmann::json report(const WorldPlan& plan, const MethodPlan& entry) const;
+
   // Its entry in plan.json (objects through `objects`), and back.
   virtual nlohmann::json encode(const MethodPlan& entry, detail::PlanObjects& objects) const = 0;
   virtual void decode(const nlohmann::json& value, detail::PlanObjects& objects,

@@ -16,9 +16,9 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/detail/area_lead.hpp"
 #include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/pattern_method.hpp"
-#include "pipeline/detail/area_lead.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -304,7 +304,8 @@ TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
   options.synthesis_tasks = true;
   const PlannedJob job = plan_job(config, options);
   ASSERT_GE(job.syntheses, 1u);
-  EXPECT_TRUE(detail::areas_plan(load_plan(job.plan_dir))->areas.empty());  // not before the curve patterns
+  EXPECT_TRUE(
+      detail::areas_plan(load_plan(job.plan_dir))->areas.empty());  // not before the curve patterns
   for (std::size_t i = 0; i < job.syntheses; ++i) synthesize_job_feature(job.plan_dir, int(i));
   const PlannedJob complete = complete_job_plan(job.plan_dir);
   EXPECT_EQ(complete.plan, inline_plan);  // the same plan: the same areas, the same tiles
@@ -499,7 +500,8 @@ TEST_F(AreaRun, TagsSelectThePolygonsAsTheirWhereClause) {
                                        {}, warnings);
   ASSERT_EQ(detail::areas_plan(by_tags)->areas.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_EQ(detail::areas_plan(by_tags)->areas[i].fid, detail::areas_plan(by_where)->areas[i].fid);
+    EXPECT_EQ(detail::areas_plan(by_tags)->areas[i].fid,
+              detail::areas_plan(by_where)->areas[i].fid);
     EXPECT_EQ(detail::areas_plan(by_tags)->areas[i].pattern.instances.size(),
               detail::areas_plan(by_where)->areas[i].pattern.instances.size());
   }

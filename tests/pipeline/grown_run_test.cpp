@@ -19,8 +19,8 @@
 #include "core/error.hpp"
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
-#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/grown_classes.hpp"
+#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -241,9 +241,12 @@ TEST_F(GrownRun, SameSeedSameBytesOtherSeedOtherLinesAndThePlanKeepsThem) {
   const WorldPlan loaded = load_plan(dir_ / "plan");
   ASSERT_EQ(detail::grown_plan(loaded)->classes.size(), detail::grown_plan(plan)->classes.size());
   for (std::size_t i = 0; i < detail::grown_plan(plan)->classes.size(); ++i) {
-    ASSERT_EQ(detail::grown_plan(loaded)->classes[i].lines.size(), detail::grown_plan(plan)->classes[i].lines.size());
-    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().points, detail::grown_plan(plan)->classes[i].lines.back().points);
-    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().name, detail::grown_plan(plan)->classes[i].lines.back().name);
+    ASSERT_EQ(detail::grown_plan(loaded)->classes[i].lines.size(),
+              detail::grown_plan(plan)->classes[i].lines.size());
+    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().points,
+              detail::grown_plan(plan)->classes[i].lines.back().points);
+    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().name,
+              detail::grown_plan(plan)->classes[i].lines.back().name);
   }
   EXPECT_EQ(loaded.report.classes.at(1).grow->elements, plan.report.classes.at(1).grow->elements);
 }

@@ -15,8 +15,8 @@
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/job_files.hpp"
+#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -105,14 +105,17 @@ class PlanFolder : public ::testing::Test {
 TEST_F(PlanFolder, ALoadedPlanRendersEveryTileBitForBit) {
   const WorldPlan original = plan();
   ASSERT_EQ(original.tiles.size(), 9u);
-  ASSERT_EQ(detail::patterns_plan(original)->patterns.size(), 3u);  // what the round trip must carry
+  ASSERT_EQ(detail::patterns_plan(original)->patterns.size(),
+            3u);  // what the round trip must carry
   ASSERT_TRUE(original.heights.heights || original.heights.reader);
   const std::string hash = save_plan(original, dir_ / "plan");
   EXPECT_EQ(plan_hash(dir_ / "plan"), hash);
   const WorldPlan loaded = load_plan(dir_ / "plan");
   ASSERT_EQ(detail::patterns_plan(loaded)->patterns.size(), 3u);
-  EXPECT_EQ(detail::patterns_plan(loaded)->patterns[1].synthesis.total_cost, detail::patterns_plan(original)->patterns[1].synthesis.total_cost);
-  EXPECT_EQ(detail::patterns_plan(loaded)->exemplars.at(0).channel_names, detail::patterns_plan(original)->exemplars.at(0).channel_names);
+  EXPECT_EQ(detail::patterns_plan(loaded)->patterns[1].synthesis.total_cost,
+            detail::patterns_plan(original)->patterns[1].synthesis.total_cost);
+  EXPECT_EQ(detail::patterns_plan(loaded)->exemplars.at(0).channel_names,
+            detail::patterns_plan(original)->exemplars.at(0).channel_names);
   double pattern_pixels = 0.0;
   for (const TileSpec& tile : original.tiles) {
     const LayerSet a = render_tile(original, tile);

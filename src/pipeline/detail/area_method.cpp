@@ -44,9 +44,9 @@ class AreaMethod final : public SynthesisMethod {
     HeightSampler heights(context.source);
     const PatternsPlan* patterns = patterns_plan(context.plan);
     const PatternRun* run = patterns && patterns->run ? patterns->run.get() : nullptr;
-    areas.run = std::make_shared<AreaRun>(synthesize_areas(
-        context.config, *areas.polygons, context.lines, *context.ribbons, *context.existing, run,
-        heights, context.warnings));
+    areas.run = std::make_shared<AreaRun>(
+        synthesize_areas(context.config, *areas.polygons, context.lines, *context.ribbons,
+                         *context.existing, run, heights, context.warnings));
   }
 
   void collect(MethodContext& context, MethodPlan& entry) const override {

@@ -1,7 +1,5 @@
 #include "pipeline/detail/instance_heights.hpp"
 
-#include "pipeline/detail/area_method.hpp"
-
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -9,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "pipeline/detail/area_method.hpp"
 
 namespace tw::detail {
 

@@ -8,9 +8,9 @@
 #include "layers/vrt.hpp"
 #include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/area_output.hpp"
+#include "pipeline/detail/grow_region.hpp"
 #include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/pattern_method.hpp"
-#include "pipeline/detail/grow_region.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "synth/placements_io.hpp"
 

@@ -4,7 +4,9 @@
 #include <map>
 #include <span>
 
+#include "core/content_hash.hpp"
 #include "core/error.hpp"
+#include "core/file_io.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
@@ -12,8 +14,6 @@
 #include "pipeline/detail/tile_cache.hpp"
 #include "raster/footprint.hpp"
 #include "raster/sparse_raster.hpp"
-#include "core/file_io.hpp"
-#include "core/content_hash.hpp"
 #include "synth/pattern_canvas.hpp"
 #include "synth/placements_io.hpp"
 #include "synth/render.hpp"

@@ -67,7 +67,7 @@ class TileCache {
   std::unique_ptr<CacheFolder> folder_;                    // with dir_: locked and written through
   ContentHash config_;                                     // what every tile shares
   std::vector<ContentHash> terrain_, ribbons_;             // by plan index
-  std::vector<std::vector<ContentHash>> methods_;  // per plan.methods entry, by item
+  std::vector<std::vector<ContentHash>> methods_;          // per plan.methods entry, by item
 };
 
 // The parts of a key that the methods' item hashes share (SynthesisMethod::item_hashes).
