@@ -3,24 +3,22 @@
 #include <algorithm>
 #include <chrono>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
-#include "pipeline/detail/areas.hpp"
 #include "pipeline/detail/conformance.hpp"
-#include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
-#include "pipeline/detail/network_classes.hpp"
-#include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/stages.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "raster/footprint.hpp"
-#include "synth/pattern_canvas.hpp"
+#include "terrain/splat.hpp"
 
 namespace tw {
 
@@ -42,73 +40,16 @@ void report_decks(const TerrainPlan& plan, RunReport& report) {
   }
 }
 
-std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemplar& exemplar) {
-  if (!c.synthesis->channels.empty()) return c.synthesis->channels;
-  std::vector<ChannelMapping> mappings = {{"A", "splat." + c.name + "_pattern"}};
-  if (exemplar.channel_index("height") >= 0) mappings.push_back({"height", "height"});
-  return mappings;
-}
-
-// The patterns as the renderer needs them, and their splat materials in order of first use
-// (the order an untiled render adds them in). Throws tw::Error naming the class and the channel
-// when an exemplar lacks a mapped channel.
-void plan_patterns(const PipelineConfig& config, detail::PatternRun run, WorldPlan& plan) {
-  plan.splat_materials = splat_materials();
-  const auto material_index = [&](const std::string& target) {
-    const std::string material = target.substr(6);  // after "splat."
-    auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
-    if (it == plan.splat_materials.end()) {
-      plan.splat_materials.push_back(material);
-      it = plan.splat_materials.end() - 1;
-    }
-    return std::size_t(it - plan.splat_materials.begin());
-  };
-  for (detail::FeaturePattern& p : run.patterns) {
-    const FeatureClassConfig& c = config.features[p.class_index];
-    const Exemplar& exemplar = run.exemplars[p.exemplar_index];
-    if (!p.synthesized) {  // outside the region: its bands still come in the same order
-      if (p.on_ground && ribbon_window(p.ribbon, plan.grid).width > 0)
-        for (const ChannelMapping& m : mappings_of(c, exemplar))
-          if (m.target != "height") material_index(m.target);
-      continue;
-    }
-    PlannedPattern& planned = plan.patterns.emplace_back();
-    planned.class_index = p.class_index;
-    planned.feature_index = p.feature_index;
-    planned.exemplar_index = p.exemplar_index;
-    planned.on_ground = p.on_ground;
-    // The render reaches kCanvasHalo cells beyond the pieces (synth/pattern_canvas.hpp).
-    const Window on_grid = p.on_ground ? ribbon_window(p.ribbon, plan.grid) : Window{};
-    planned.window = on_grid.width > 0 ? grow_window(on_grid, kCanvasHalo, plan.grid) : Window{};
-    planned.ribbon = std::move(p.ribbon);
-    planned.synthesis = std::move(p.synthesis);
-    planned.stitch = c.synthesis->stitch;
-    planned.feather = c.synthesis->feather;
-    planned.height_detail = float(c.synthesis->height_detail);
-    if (planned.window.width == 0) continue;  // off the grid: no band is added
-    for (const ChannelMapping& m : mappings_of(c, exemplar)) {
-      PatternTarget& target = planned.targets.emplace_back();
-      target.exemplar_channel = exemplar.channel_index(m.channel);
-      if (target.exemplar_channel < 0) {
-        fail("features.{}.synthesis.channels.{}: exemplar {} has no channel '{}' (it has {})",
-             c.name, m.channel, exemplar.path, m.channel, fmt::join(exemplar.channel_names, ", "));
-      }
-      target.to_height = m.target == "height";
-      target.is_alpha = m.channel == "A";
-      if (target.to_height) continue;
-      target.material = material_index(m.target);
-    }
+// Plans every method of `stage` that the config gives work, in the methods' order, each timed
+// as its stage.
+void plan_methods(MethodStage stage, MethodContext& context, detail::StageClock& clock) {
+  for (MethodPlan& entry : context.plan.methods) {
+    const SynthesisMethod& method = *entry.method;
+    if (method.stage() != stage || !method.serves(context.config, context.options)) continue;
+    clock.start(method.stage_name());
+    method.plan(context, entry);
+    clock.stop();
   }
-  plan.exemplars = std::move(run.exemplars);
-}
-
-// The synthesis ribbon's width and delta in the feature's report, and where they came from.
-void record_geometry(const SynthesisConfig& s, FeatureReport& feature) {
-  FeatureSynthesisReport& r = *feature.synthesis;
-  r.width_m = s.width.value_or(feature.width_m);
-  r.width_from = s.width_of_feature ? "feature" : s.width_from_exemplar ? "exemplar" : "config";
-  r.delta_m = s.delta.value_or(0.0);
-  r.delta_from = s.delta_from_exemplar ? "exemplar" : "config";
 }
 
 }  // namespace
@@ -127,79 +68,6 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
   return {plan.existing.polygons, plan.existing.lines, plan.existing.line_widths};
 }
 
-void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
-                  Warnings& warnings) {
-  for (std::size_t c = 0; c < config.features.size(); ++c)
-    if (config.features[c].synthesis && plan.report.classes[c].grow)
-      plan.report.classes[c].grow->synthesis.emplace();
-  for (const FeaturePattern& p : patterns.patterns) {
-    if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
-    FeatureClassReport& feature_class = plan.report.classes[p.class_index];
-    FeatureReport& feature = feature_class.features[p.feature_index];
-    feature.synthesis = p.report;
-    record_geometry(*config.features[p.class_index].synthesis, feature);
-    feature.cache = p.cache;
-    plan.report.pattern_violations += p.report.violations;
-    if (feature_class.grow) {
-      const bool bare = std::size_t(p.report.empty_pieces) == p.synthesis.placements.size();
-      ++(bare ? feature_class.grow->synthesis->no_room : feature_class.grow->synthesis->dressed);
-    }
-  }
-  // Bare lines are no error (short lines between joints), but a class none of whose lines
-  // took its pattern is a setting that does not fit (too wide, too long pieces).
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const auto& grow = plan.report.classes[c].grow;
-    if (!grow || !grow->synthesis || grow->synthesis->dressed > 0 || grow->synthesis->no_room == 0)
-      continue;
-    warnings.add("grown_undressed", "features." + config.features[c].name, std::nullopt,
-                 fmt::format("synthesis dressed 0 of {} grown lines: every piece had no room "
-                             "(a narrower synthesis.width or a shorter delta may fit)",
-                             grow->synthesis->no_room));
-  }
-  plan_patterns(config, std::move(patterns), plan);
-}
-
-void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
-  plan.area_names.clear();
-  plan.areas.clear();
-  for (const AreaClassConfig& a : config.areas) plan.area_names.push_back(a.name);
-  for (std::size_t i = 0; i < run.areas.size(); ++i) {
-    PlannedArea& area = run.areas[i];
-    std::vector<Vec2> points;
-    double reach = 0.0;
-    for (const PlacedStroke& s : area.pattern.strokes) {
-      points.insert(points.end(), s.points.begin(), s.points.end());
-      reach = std::max(reach, 0.5 * s.width);
-    }
-    area.window = points.empty() ? Window{} : points_window(points, reach, plan.grid);
-    if (area.window.width > 0) {  // off the grid: no band is added
-      for (std::size_t t = 0; t < area.targets.size(); ++t) {
-        const std::string& material = run.splats[i][t];
-        auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
-        if (it == plan.splat_materials.end()) {
-          plan.splat_materials.push_back(material);
-          it = plan.splat_materials.end() - 1;
-        }
-        area.targets[t].material = std::size_t(it - plan.splat_materials.begin());
-      }
-    }
-    plan.areas.push_back(std::move(area));
-  }
-  plan.report.areas = std::move(run.reports);
-}
-
-AreaRun synthesize_plan_areas(const PipelineConfig& config, const WorldPlan& plan,
-                              const PatternRun* patterns, Warnings& warnings) {
-  // The plan's ingest read these polygons and reported their repairs already.
-  Warnings read_again;
-  const Heightfield heightfield = plan.heights.reader->without_pixels();
-  const std::vector<std::vector<PolygonFeature>> polygons =
-      load_area_polygons(config, heightfield, read_again);
-  HeightSampler heights(*plan.heights.reader);
-  return synthesize_areas(config, polygons, plan.lines, synthesis_ribbons(plan),
-                          existing_features(plan), patterns, heights, warnings);
-}
-
 }  // namespace detail
 
 void index_plan(WorldPlan& plan) {
@@ -212,12 +80,8 @@ void index_plan(WorldPlan& plan) {
   for (const auto& class_ribbons : plan.ribbons)
     for (const Ribbon& r : class_ribbons) ribbons.push_back(ribbon_window(r, plan.grid));
   plan.ribbon_index = index_windows(plan.grid, std::move(ribbons));
-  std::vector<Window> patterns;
-  for (const PlannedPattern& p : plan.patterns) patterns.push_back(p.window);
-  plan.pattern_index = index_windows(plan.grid, std::move(patterns));
-  std::vector<Window> areas;
-  for (const PlannedArea& a : plan.areas) areas.push_back(a.window);
-  plan.area_index = index_windows(plan.grid, std::move(areas));
+  for (MethodPlan& entry : plan.methods)
+    entry.index = index_windows(plan.grid, entry.method->windows(plan, entry));
 }
 
 WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Warnings& warnings) {
@@ -236,25 +100,33 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // No pixel is read here: ingest, conformance, the terrain plan and every tile read the
   // windows they touch. A region is a window of the world's grid (detail/region.hpp).
   const Heightfield heightfield = source->without_pixels();
+  const std::vector<const SynthesisMethod*>& methods = methods_or_builtin(options.methods);
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
-    // A grown class's lines come from the growth stage, below.
-    lines.push_back(feature_class.grow || feature_class.network
+    // A class whose lines a method makes gets them from its stage, below.
+    const auto maker = std::find_if(methods.begin(), methods.end(), [&](const SynthesisMethod* m) {
+      return m->makes_lines_of(feature_class);
+    });
+    lines.push_back(maker != methods.end()
                         ? std::vector<LineFeature>{}
                         : detail::load_feature_class(feature_class, heightfield, warnings));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
-    class_report.source = feature_class.network
-                              ? feature_class.network->exemplar
+    class_report.source = maker != methods.end()
+                              ? (*maker)->class_source(feature_class)
                               : feature_class.source.string() + ":" + feature_class.layer;
     class_report.ingest_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     plan.class_names.push_back(feature_class.name);
   }
-  const std::vector<std::vector<PolygonFeature>> area_polygons =
-      detail::load_area_polygons(config, heightfield, warnings);
+  // Every method has its entry, in the methods' order; each reads its own inputs here.
+  MethodContext context{config, options, *source, heightfield, lines, plan, warnings};
+  for (const SynthesisMethod* method : methods) {
+    MethodPlan& entry = plan.methods.emplace_back(method, method->empty_payload());
+    method->ingest(context, entry);
+  }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(config, *source, lines, warnings);
   detail::ExistingFeatures existing =
@@ -270,29 +142,9 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   report.heightfield = heightfield.source;
   clock.stop();
 
-  // Grown lines avoid the lines read and the existing features; everything after treats them
-  // as the class's features.
-  if (std::any_of(config.features.begin(), config.features.end(),
-                  [](const FeatureClassConfig& c) { return bool(c.grow); })) {
-    clock.start("grow");
-    plan.grown = detail::grow_classes(config, *source, heightfield, existing, lines, report.classes,
-                                      warnings);
-    for (const FeatureClassReport& c : report.classes)
-      if (c.grow)
-        report.grown_crossings +=
-            c.grow->crossings.grown + c.grow->crossings.feature + c.grow->crossings.forbidden;
-    clock.stop();
-  }
-
-  // Networks grow after the grown classes, off everything before them; once, in the plan, so
-  // that every tile and worker sees the same lines.
-  if (std::any_of(config.features.begin(), config.features.end(),
-                  [](const FeatureClassConfig& c) { return bool(c.network); })) {
-    clock.start("network");
-    detail::grow_network_classes(config, *source, heightfield, existing, lines, report.classes,
-                                 warnings);
-    clock.stop();
-  }
+  // The lines methods make their classes' lines; everything after treats them as read.
+  context.existing = &existing;
+  plan_methods(MethodStage::lines, context, clock);
 
   clock.start("ribbons");
   detail::FeatureRibbons ribbons =
@@ -330,46 +182,16 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   report_decks(plan.terrain, report);
   clock.stop();
 
-  std::optional<detail::PatternRun> patterns;
-  if (options.synthesize && !config.synthesis_order.empty()) {
-    clock.start("synthesis");
-    detail::SynthesisCache cache(options.cache_dir ? options.cache_dir : config.cache_dir,
-                                 warnings);
-    detail::PatternOptions pattern_options;
-    pattern_options.backend = options.backend;
-    pattern_options.cache = &cache;
-    if (config.region) {  // the patterns whose render reaches the region, and what they avoid
-      const GridSpec output = window_grid(plan.grid, plan.output_window);
-      const double reach = (kCanvasHalo + 2) * std::max(output.pixel_width, output.pixel_height);
-      pattern_options.wanted = [output, reach](const GridSpec& canvas) {
-        return canvas.origin_x - reach < output.origin_x + output.width * output.pixel_width &&
-               output.origin_x < canvas.origin_x + canvas.width * canvas.pixel_width + reach &&
-               canvas.origin_y - canvas.height * canvas.pixel_height - reach < output.origin_y &&
-               output.origin_y - output.height * output.pixel_height < canvas.origin_y + reach;
-      };
-    }
-    patterns = detail::synthesize_patterns(config, lines, ribbons, existing, pattern_options);
-    clock.stop();
-  }
-  // Areas after the curve patterns, which they avoid.
-  detail::AreaRun areas;
-  if (options.synthesize && !config.areas.empty()) {
-    clock.start("areas");
-    // The whole heightfield, also with a region: a close-up's polygons get the leads of the
-    // full run, and polygons beyond the region keep theirs.
-    HeightSampler heights(*source);
-    areas = detail::synthesize_areas(config, area_polygons, lines, ribbons, existing,
-                                     patterns ? &*patterns : nullptr, heights, warnings);
-    clock.stop();
-  }
-  // Collecting the plan: patterns and areas into its indexes, the tiles.
+  // The placements methods, in order (the areas avoid the patterns before them).
+  context.ribbons = &ribbons;
+  plan_methods(MethodStage::placements, context, clock);
+  // Collecting the plan: every method's entry as the renderer needs it, its indexes, the tiles.
   clock.start("plan");
-  if (patterns) {
-    detail::add_patterns(config, std::move(*patterns), plan, warnings);
-  } else {
-    plan.splat_materials = splat_materials();
-  }
-  detail::add_areas(config, std::move(areas), plan);
+  plan.splat_materials = splat_materials();
+  for (MethodPlan& entry : plan.methods) entry.method->collect(context, entry);
+  for (const MethodPlan& entry : plan.methods)
+    if (const nlohmann::json part = entry.method->report(plan, entry); !part.is_null())
+      report.method_reports.push_back({entry.method->name(), part.dump()});
 
   plan.existing.polygons = std::move(existing.polygons);
   plan.existing.lines = std::move(existing.lines);

@@ -18,6 +18,7 @@
 #include "layers/layer_set.hpp"
 #include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/method_plan.hpp"
 #include "pipeline/run.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/window_index.hpp"
@@ -159,9 +160,6 @@ struct WorldPlan {
   // Per class and feature, the synthesis junctions it meets (FeatureRibbons).
   std::vector<std::vector<std::vector<Vec2>>> synthesis_junctions;
 
-  // The grown classes' lines (ornaments.gpkg), in class order.
-  std::vector<GrownClass> grown;
-
   // Existing features (polygons, buffered lines) burnt into the avoidance layer.
   AvoidanceInputs existing;
 
@@ -171,23 +169,18 @@ struct WorldPlan {
   TerrainParams terrain_params;
   TerrainPlan terrain;
 
-  // Synthesized patterns, in synthesis order, and the exemplars they use.
-  std::deque<Exemplar> exemplars;
-  std::vector<PlannedPattern> patterns;
-  // splat_materials() followed by the patterns' materials in order of first use: every tile
+  // One entry per synthesis method, in the methods' order (pipeline/synthesis_method.hpp):
+  // what each planned (its placements, lines, exemplars...), behind the one seam.
+  std::vector<MethodPlan> methods;
+  // splat_materials() followed by the methods' materials in order of first use: every tile
   // has these channels.
   std::vector<std::string> splat_materials;
 
-  // Shape-patterns of the `kind: area` classes, after the curve patterns (they avoid them).
-  std::vector<std::string> area_names;
-  std::vector<PlannedArea> areas;
-
-  // Which terrain features (terrain_features order), ribbons (class-major over `ribbons`) and
-  // patterns can touch a window: their footprint plus reach, binned.
+  // Which terrain features (terrain_features order) and ribbons (class-major over `ribbons`)
+  // can touch a window: their footprint plus reach, binned. Each method's items have their own
+  // index (MethodPlan::index).
   WindowIndex feature_index;
   WindowIndex ribbon_index;
-  WindowIndex pattern_index;
-  WindowIndex area_index;
 
   RenderOptions render;
   int tile_size = 0;  // output.tiles.size (0: untiled)
@@ -205,14 +198,17 @@ struct PlanOptions {
   // Reuses and stores syntheses there (`--cache`, docs/cache.md); absent: the config's `cache`,
   // or none.
   std::optional<std::filesystem::path> cache_dir;
+  // The synthesis methods, in plan order; empty: the built-in ones
+  // (builtin_synthesis_methods, pipeline/synthesis_method.hpp).
+  std::vector<const SynthesisMethod*> methods;
 };
 
 // Ingest, conformance, ribbons, junctions, the terrain plan and the syntheses. Throws tw::Error
 // naming the file, key, FID or piece of the first bad input; warnings go to `warnings`.
 WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings);
 
-// Builds feature_index, ribbon_index, pattern_index and area_index from the plan's features,
-// ribbons, patterns and areas (plan_world does; a plan read back from files calls it again).
+// Builds feature_index, ribbon_index and every method entry's index from the plan's features,
+// ribbons and the methods' items (plan_world does; a plan read back from files calls it again).
 void index_plan(WorldPlan& plan);
 
 // Pixels beyond a window that its avoidance layer reads: the distance cap, plus a pixel.

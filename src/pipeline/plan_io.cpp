@@ -1,5 +1,6 @@
 #include "pipeline/plan_io.hpp"
 
+#include <algorithm>
 #include <set>
 #include <system_error>
 #include <utility>
@@ -12,7 +13,8 @@
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/json_file.hpp"
 #include "pipeline/detail/plan_fields.hpp"
-#include "synth/placements_io.hpp"
+#include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/synthesis_method.hpp"
 
 namespace tw {
 
@@ -23,74 +25,16 @@ using nlohmann::json;
 
 namespace {
 
-// Objects are written once under their hash.
-class ObjectStore {
- public:
-  explicit ObjectStore(fs::path dir) : dir_(std::move(dir)) {}
-
-  json put(const std::string& bytes, const std::string& extension) {
-    const std::string hash = content_hash(bytes);
-    const std::string name = "objects/" + hash + extension;
-    std::error_code ec;
-    // Same name, same bytes: an object an earlier plan wrote is kept (if it is intact).
-    if (fs::file_size(dir_ / name, ec) != bytes.size() || ec ||
-        content_hash(read_file_bytes(dir_ / name)) != hash) {
-      write_file_atomic(dir_ / name, bytes);
-    }
-    return {{"file", name}, {"xxh3_128", hash}, {"bytes", bytes.size()}};
-  }
-  json put_cbor(const json& value) {
-    const std::vector<std::uint8_t> cbor = json::to_cbor(value);
-    return put(std::string(cbor.begin(), cbor.end()), ".cbor");
-  }
-
- private:
-  fs::path dir_;
-};
-
-// Reads an object named in plan.json, refusing one whose bytes do not match their hash.
-std::string get_object(const fs::path& dir, const json& entry, const std::string& key) {
-  const std::string where = fmt::format("plan {}: {}", dir.string(), key);
-  if (!entry.is_object() || !entry.contains("file") || !entry.contains("xxh3_128"))
-    fail("{}: expected {{file, xxh3_128}}", where);
-  const std::string file = entry["file"].get<std::string>();
-  if (file.find("..") != std::string::npos || !file.starts_with("objects/"))
-    fail("{}: file {} is not under objects/", where, file);
-  std::string bytes = read_file_bytes(dir / file);
-  if (content_hash(bytes) != entry["xxh3_128"].get<std::string>())
-    fail("{}: {} does not match its content hash (corrupt, or changed after planning)", where,
-         (dir / file).string());
-  return bytes;
-}
-
-json get_cbor_json(const fs::path& dir, const json& files, const std::string& key) {
-  if (!files.contains(key)) fail("plan {}: files.{}: missing", dir.string(), key);
-  const std::string bytes = get_object(dir, files[key], "files." + key);
-  try {
-    return json::from_cbor(bytes);
-  } catch (const json::exception& e) {
-    fail("plan {}: files.{}: not CBOR ({})", dir.string(), key, e.what());
-  }
+json get_cbor_json(const detail::PlanObjects& objects, const json& files, const std::string& key) {
+  if (!files.contains(key)) fail("plan {}: files.{}: missing", objects.dir().string(), key);
+  return objects.get_cbor(files[key], "files." + key);
 }
 
 template <class T>
-void get_cbor(const fs::path& dir, const json& files, const std::string& key, T& value) {
-  decode(get_cbor_json(dir, files, key), value, fmt::format("plan {}: {}", dir.string(), key));
-}
-
-// A pattern without its synthesis, which goes to its own placements file.
-template <class Io>
-void pattern_fields(Io& io, PlannedPattern& p) {
-  io("class_index", p.class_index);
-  io("feature_index", p.feature_index);
-  io("exemplar_index", p.exemplar_index);
-  io("on_ground", p.on_ground);
-  io("ribbon", p.ribbon);
-  io("window", p.window);
-  io("stitch", p.stitch);
-  io("feather", p.feather);
-  io("height_detail", p.height_detail);
-  io("targets", p.targets);
+void get_cbor(const detail::PlanObjects& objects, const json& files, const std::string& key,
+              T& value) {
+  decode(get_cbor_json(objects, files, key), value,
+         fmt::format("plan {}: {}", objects.dir().string(), key));
 }
 
 // The report's timings move out of its object into plan.json, outside the plan's hash: two plans
@@ -169,7 +113,7 @@ nlohmann::json read_plan_file(const fs::path& path, const char* format) {
 namespace detail {
 
 StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
-  ObjectStore store(dir);
+  detail::PlanObjects store(dir);
   json files;
   // Numbers that may be NaN or infinite stay out of the text of plan.json.
   files["settings"] =
@@ -183,37 +127,17 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
   files["terrain_features"] = store.put_cbor(encode(plan.terrain_features));
   files["terrain_params"] = store.put_cbor(encode(plan.terrain_params));
   files["terrain"] = store.put_cbor(encode(plan.terrain));
-  files["index"] = store.put_cbor(json{{"features", encode(plan.feature_index)},
-                                       {"ribbons", encode(plan.ribbon_index)},
-                                       {"patterns", encode(plan.pattern_index)},
-                                       {"areas", encode(plan.area_index)}});
-  files["areas"] = store.put_cbor(encode(plan.areas));
-  files["grown"] = store.put_cbor(encode(plan.grown));
+  files["index"] = store.put_cbor(
+      json{{"features", encode(plan.feature_index)}, {"ribbons", encode(plan.ribbon_index)}});
   RunReport report = plan.report;
   const json timings = take_timings(report);
   files["report"] = store.put_cbor(encode(report));
-  json exemplars = json::array();
-  for (const Exemplar& e : plan.exemplars) {
-    json entry = store.put_cbor(encode(e));
-    entry["path"] = e.path;
-    std::error_code ec;  // the source's hash, when it is a file (a generated exemplar is not)
-    entry["source_xxh3_128"] =
-        fs::is_regular_file(e.path, ec) ? json(content_hash(read_file_bytes(e.path))) : json();
-    exemplars.push_back(std::move(entry));
-  }
-  json patterns = json::array();
-  const fs::path scratch = dir / "objects" / temporary_beside("placements.json").filename();
-  for (const PlannedPattern& p : plan.patterns) {
-    detail::JsonWriter writer;
-    pattern_fields(writer, const_cast<PlannedPattern&>(p));
-    fs::create_directories(scratch.parent_path());
-    save_placements(p.synthesis, plan.exemplars.at(p.exemplar_index).path, scratch.string());
-    json entry = store.put_cbor(writer.value);
-    entry["placements"] = store.put(read_file_bytes(scratch), ".json");
-    patterns.push_back(std::move(entry));
-  }
-  std::error_code ec;
-  fs::remove(scratch, ec);
+  // Every method's entry, in the methods' order: its name, its index and what it encodes.
+  json methods = json::array();
+  for (const MethodPlan& entry : plan.methods)
+    methods.push_back({{"name", entry.method->name()},
+                       {"index", store.put_cbor(encode(entry.index))},
+                       {"entry", entry.method->encode(entry, store)}});
   // A DEM file travels as its path, options and the hash of its bytes (render-tile reads its
   // windows from it; the hash keeps the plan content-addressed); a generated world as its
   // parameters; heights held in memory (a plan made by hand) as a raster on the plan's grid.
@@ -238,12 +162,10 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
               {"crs_wkt", plan.crs_wkt},
               {"heights", heights},
               {"class_names", plan.class_names},
-              {"area_names", plan.area_names},
               {"splat_materials", plan.splat_materials},
               {"tiles", {{"size", plan.tile_size}, {"overlap", plan.tile_overlap}}},
               {"files", files},
-              {"exemplars", exemplars},
-              {"patterns", patterns}};
+              {"methods", methods}};
   // The plan's hash covers every value above; objects enter through their hashes.
   const std::string hash = content_hash(doc.dump() + tasks_json(plan, "").dump());
   doc["plan"] = hash;
@@ -299,7 +221,7 @@ std::string plan_hash(const fs::path& dir) {
   return read_plan_file(dir / "plan.json", kPlanFormat).value("plan", "");
 }
 
-WorldPlan load_plan(const fs::path& dir) {
+WorldPlan load_plan(const fs::path& dir, const std::vector<const SynthesisMethod*>& methods) {
   const json doc = read_plan_file(dir / "plan.json", kPlanFormat);
   std::error_code ec;
   if (!fs::is_regular_file(dir / "tasks.json", ec))
@@ -329,13 +251,13 @@ WorldPlan load_plan(const fs::path& dir) {
           (dir / "plan.json").string(), doc.value("plan", ""), detail::plan_again(dir));
   }
   WorldPlan plan;
+  detail::PlanObjects objects(dir);
   try {
     detail::JsonReader reader(doc, where);
     reader("grid", plan.grid);
     reader("output_window", plan.output_window);
     reader("crs_wkt", plan.crs_wkt);
     reader("class_names", plan.class_names);
-    reader("area_names", plan.area_names);
     reader("splat_materials", plan.splat_materials);
     decode(doc.at("tiles").at("size"), plan.tile_size, where + ": tiles.size");
     decode(doc.at("tiles").at("overlap"), plan.tile_overlap, where + ": tiles.overlap");
@@ -346,56 +268,46 @@ WorldPlan load_plan(const fs::path& dir) {
     decode(heights.at("file"), plan.heights.file, where + ": heights.file");
     if (!heights.at("raster").is_null()) {
       const json wrapper = {{"raster", heights["raster"]}};
-      get_cbor(dir, wrapper, "raster", plan.heights.heights);
+      get_cbor(objects, wrapper, "raster", plan.heights.heights);
     }
     if (plan.heights.file)
       plan.heights.reader = open_planned_heightfield(*plan.heights.file, where);
     if (plan.heights.generated)
       plan.heights.reader = open_generated_heightfield(*plan.heights.generated);
     const json& files = doc.at("files");
-    const json settings = get_cbor_json(dir, files, "settings");
+    const json settings = get_cbor_json(objects, files, "settings");
     detail::JsonReader settings_reader(settings, where + ": settings");
     settings_reader("nodata", plan.nodata);
     settings_reader("render", plan.render);
-    get_cbor(dir, files, "lines", plan.lines);
-    get_cbor(dir, files, "ribbons", plan.ribbons);
-    get_cbor(dir, files, "junction_discs", plan.junction_discs);
-    get_cbor(dir, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
-    get_cbor(dir, files, "synthesis_junctions", plan.synthesis_junctions);
-    get_cbor(dir, files, "existing", plan.existing);
-    get_cbor(dir, files, "terrain_features", plan.terrain_features);
-    get_cbor(dir, files, "terrain_params", plan.terrain_params);
-    get_cbor(dir, files, "terrain", plan.terrain);
-    const json index = get_cbor_json(dir, files, "index");
+    get_cbor(objects, files, "lines", plan.lines);
+    get_cbor(objects, files, "ribbons", plan.ribbons);
+    get_cbor(objects, files, "junction_discs", plan.junction_discs);
+    get_cbor(objects, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
+    get_cbor(objects, files, "synthesis_junctions", plan.synthesis_junctions);
+    get_cbor(objects, files, "existing", plan.existing);
+    get_cbor(objects, files, "terrain_features", plan.terrain_features);
+    get_cbor(objects, files, "terrain_params", plan.terrain_params);
+    get_cbor(objects, files, "terrain", plan.terrain);
+    const json index = get_cbor_json(objects, files, "index");
     detail::JsonReader index_reader(index, where + ": index");
     index_reader("features", plan.feature_index);
     index_reader("ribbons", plan.ribbon_index);
-    index_reader("patterns", plan.pattern_index);
-    index_reader("areas", plan.area_index);
-    get_cbor(dir, files, "areas", plan.areas);
-    get_cbor(dir, files, "grown", plan.grown);
-    get_cbor(dir, files, "report", plan.report);
+    get_cbor(objects, files, "report", plan.report);
     if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
-    for (std::size_t i = 0; i < doc.at("exemplars").size(); ++i) {
-      const json wrapper = {{"exemplar", doc["exemplars"][i]}};
-      get_cbor(dir, wrapper, "exemplar", plan.exemplars.emplace_back());
-    }
-    const fs::path scratch = fs::temp_directory_path() / temporary_beside("placements.json");
-    for (std::size_t i = 0; i < doc.at("patterns").size(); ++i) {
-      const json& entry = doc["patterns"][i];
-      const std::string key = fmt::format("patterns[{}]", i);
-      PlannedPattern& p = plan.patterns.emplace_back();
-      const json fields_json = json::from_cbor(get_object(dir, entry, key));
-      detail::JsonReader pattern_reader(fields_json, where + ": " + key);
-      pattern_fields(pattern_reader, p);
-      // Through the one placements reader (its checks, its messages), from verified bytes.
-      write_file_atomic(scratch, get_object(dir, entry.at("placements"), key + ".placements"));
-      p.synthesis = load_placements(scratch.string());
-      std::error_code ec;
-      fs::remove(scratch, ec);
-      if (p.exemplar_index >= plan.exemplars.size())
-        fail("{}: {}.exemplar_index {} of {} exemplars", where, key, p.exemplar_index,
-             plan.exemplars.size());
+    const std::vector<const SynthesisMethod*>& known = methods_or_builtin(methods);
+    const json& entries = doc.at("methods");
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const std::string key = fmt::format("methods[{}]", i);
+      const std::string name = entries[i].at("name").get<std::string>();
+      const auto method = std::find_if(known.begin(), known.end(),
+                                       [&](const SynthesisMethod* m) { return m->name() == name; });
+      if (method == known.end())
+        fail("{}: {}: method '{}' is not one this terraweave knows; plan again ({})", where, key,
+             name, detail::plan_again(dir));
+      MethodPlan& entry = plan.methods.emplace_back(*method, (*method)->empty_payload());
+      decode(objects.get_cbor(entries[i].at("index"), key + ".index"), entry.index,
+             where + ": " + key + ".index");
+      (*method)->decode(entries[i].at("entry"), objects, entry);
     }
   } catch (const json::exception& e) {
     fail("{}: {}", where, e.what());

@@ -7,14 +7,16 @@
 //                              parameters), and the list of object files with their content hashes
 //   <dir>/tasks.json           one task per tile: index, _x/_y, window and halo window
 //   <dir>/objects/<hash>.cbor  lines, ribbons, junctions, existing features, terrain plan,
-//                              areas' shapes, exemplars (texels), heights (only when held in
-//                              memory), the plan's report
+//                              heights (only when held in memory), the plan's report, and what
+//                              each synthesis method stores of its entry (`methods` in
+//                              plan.json: areas' shapes, exemplars' texels, grown lines...)
 //   <dir>/objects/<hash>.json  one pattern's placements (synth/placements_io)
 // <hash> is the XXH3-128 of the file's bytes: a file is never trusted if it does not match, and
 // an unchanged object keeps its name from one plan to the next. The plan's own hash (`plan`
 // in plan.json and tasks.json) covers everything, so a tile result names the plan it belongs to.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,8 +28,10 @@ inline constexpr const char* kPlanFormat = "terraweave.plan";
 inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // 3: the grown classes (files.grown); 4: their short_lines and synthesis counts; 5:
 // synthesis_junctions (choose: mix); 6: tasks.json's hash in plan.json, syntheses.json's in
-// job.json, a mix's report fields (issue #24); 7: a network class's report (`network`).
-inline constexpr int kPlanVersion = 7;
+// job.json, a mix's report fields (issue #24); 7: a network class's report (`network`); 8: one
+// entry per synthesis method (`methods`: name, index, the method's own entry) in place of
+// area_names, exemplars, patterns and files.areas/grown/index.patterns/index.areas.
+inline constexpr int kPlanVersion = 8;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's
@@ -38,7 +42,10 @@ std::string save_plan(const WorldPlan& plan, const std::filesystem::path& dir);
 // is missing, malformed, of another format version, or does not match its content hash: the
 // objects, tasks.json (its hash in plan.json) and plan.json's own fields (the plan's hash,
 // recomputed), with the command that plans again.
-WorldPlan load_plan(const std::filesystem::path& dir);
+// `methods`: the synthesis methods whose entries it reads (empty: the built-in ones); an entry of
+// a method not among them is an error naming it.
+WorldPlan load_plan(const std::filesystem::path& dir,
+                    const std::vector<const SynthesisMethod*>& methods = {});
 
 // The plan's hash as plan.json records it (without reading the objects).
 std::string plan_hash(const std::filesystem::path& dir);

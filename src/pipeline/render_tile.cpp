@@ -5,11 +5,8 @@
 #include "core/error.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/plan.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "raster/footprint.hpp"
-#include "raster/stroke_coverage.hpp"
-#include "synth/pattern_canvas.hpp"
-#include "synth/render.hpp"
-#include "terrain/pattern_layers.hpp"
 #include "terrain/splat.hpp"
 
 namespace tw {
@@ -30,59 +27,6 @@ TerrainPlan terrain_part(const TerrainPlan& plan, const std::vector<std::size_t>
     part.earthwork.push_back(plan.earthwork[i]);
   }
   return part;
-}
-
-// Each pattern is rendered on the blocks of the lattice its ribbon meets (kBlock pixels on the
-// world grid, as an untiled render), cut to the window.
-void add_patterns(const WorldPlan& plan, const Window& window, Raster<float>& height,
-                  SplatLayers& splat) {
-  constexpr int kBlock = 256;
-  const SparseRaster<std::uint8_t> layout(plan.grid.width, plan.grid.height, 0, kBlock);
-  for (const std::size_t p : items_meeting(plan.pattern_index, window)) {
-    const PlannedPattern& pattern = plan.patterns[p];
-    if (!pattern.on_ground || pattern.targets.empty()) continue;
-    const Exemplar& exemplar = plan.exemplars[pattern.exemplar_index];
-    for (const TileIndex t : ribbon_tiles(pattern.ribbon, plan.grid, kBlock, kCanvasHalo)) {
-      const Window part = intersect(layout.tile_window(t), window);
-      if (part.width == 0) continue;
-      const RenderedPattern rendered =
-          render_pattern(exemplar, pattern.ribbon, pattern.synthesis, plan.grid, part,
-                         pattern.stitch, pattern.feather);
-      std::vector<PatternLayerTarget> targets;
-      for (const PatternTarget& target : pattern.targets) {
-        targets.push_back({&rendered.channels[std::size_t(target.exemplar_channel)],
-                           target.to_height, target.material, target.is_alpha});
-      }
-      add_pattern_to_layers(window, height, splat, part, rendered.coverage, targets,
-                            pattern.height_detail);
-    }
-  }
-}
-
-// Each area's strokes, material by material, as anti-aliased coverage (a per-pixel function of
-// the world grid) taking its share from the other materials, plus their height detail.
-void add_areas(const WorldPlan& plan, const Window& window, Raster<float>& height,
-               SplatLayers& splat) {
-  for (const std::size_t i : items_meeting(plan.area_index, window)) {
-    const PlannedArea& area = plan.areas[i];
-    const Window part = intersect(area.window, window);
-    if (part.width == 0) continue;
-    const Raster<float> ones(part.width, part.height, 1.0f);
-    for (const AreaTarget& target : area.targets) {
-      std::vector<const std::vector<Vec2>*> lines;
-      std::vector<double> widths;
-      for (const PlacedStroke& s : area.pattern.strokes) {
-        if (s.material != target.stroke_material) continue;
-        lines.push_back(&s.points);
-        widths.push_back(s.width);
-      }
-      if (lines.empty()) continue;
-      const Raster<float> coverage = stroke_coverage(lines, widths, plan.grid, part);
-      std::vector<PatternLayerTarget> targets = {{&ones, false, target.material, true}};
-      if (target.height != 0.0f) targets.push_back({&ones, true, 0, false});
-      add_pattern_to_layers(window, height, splat, part, coverage, targets, target.height);
-    }
-  }
 }
 
 Layer avoidance_layer(AvoidanceMap map) {
@@ -140,8 +84,9 @@ LayerSet render_tile(const WorldPlan& plan, const TileSpec& tile) {
     splat.materials.push_back(plan.splat_materials[m]);
     splat.weights.emplace_back(window.width, window.height, 0.0f);
   }
-  add_patterns(plan, window, height, splat);
-  add_areas(plan, window, height, splat);
+  // Every method that writes into the layers, in the methods' order.
+  for (const MethodPlan& entry : plan.methods)
+    if (entry.method->renders()) entry.method->render(plan, entry, window, height, splat);
 
   LayerSet layers;
   layers.grid = window_grid(plan.grid, window);

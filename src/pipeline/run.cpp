@@ -17,7 +17,9 @@
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/areas.hpp"
+#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
@@ -257,12 +259,12 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   clock.start("placements");
   detail::write_placements(plan, dir, transaction, report);
   clock.stop();
-  if (!plan.area_names.empty()) {
+  if (const detail::AreasPlan* areas = detail::areas_plan(plan); areas && !areas->names.empty()) {
     clock.start("areas.gpkg");  // with instances.csv and instances.json
     detail::write_area_outputs(plan, instance_heights, dir, transaction);
     clock.stop();
   }
-  if (!plan.grown.empty()) {
+  if (const detail::GrownPlan* grown = detail::grown_plan(plan); grown && !grown->classes.empty()) {
     clock.start("ornaments.gpkg");
     detail::write_ornament_outputs(plan, dir, transaction);
     clock.stop();

@@ -158,6 +158,13 @@ struct FileRecord {
 // The lowest and highest height that is not nodata (absent: every cell is nodata).
 using HeightRange = std::optional<std::array<float, 2>>;
 
+// A synthesis method's own part of report.json (`methods.<method>`), as JSON text
+// (SynthesisMethod::report); the built-in methods report in RunReport's fields instead.
+struct MethodReport {
+  std::string method;
+  std::string json;
+};
+
 struct RunReport {
   GridSpec grid;
   std::string crs_wkt;
@@ -166,6 +173,7 @@ struct RunReport {
   std::vector<StageTiming> stages;
   std::vector<FeatureClassReport> classes;
   std::vector<AreaClassReport> areas;          // `kind: area` classes, in config order
+  std::vector<MethodReport> method_reports;    // in method order, those that report one
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
   std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)

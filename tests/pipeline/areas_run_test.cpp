@@ -17,6 +17,8 @@
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/detail/area_lead.hpp"
+#include "pipeline/detail/area_method.hpp"
+#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -121,7 +123,7 @@ class AreaRun : public ::testing::Test {
 TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
   Warnings warnings;
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
-  ASSERT_EQ(plan.areas.size(), 2u);
+  ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 2u);
   const AreaFeatureReport& vines = plan.report.areas.at(0).features.at(0);
   EXPECT_NEAR(vines.lead_bearing_deg, 30.0, 1e-6);  // along the road
   EXPECT_GT(vines.shapes, 20);
@@ -130,7 +132,7 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
   // Every stroke stays clear of the road's footprint (up to a canvas cell's diagonal, the
   // avoidance lattice's resolution).
   int left = 0, right = 0;
-  for (const PlacedStroke& s : plan.areas[0].pattern.strokes)
+  for (const PlacedStroke& s : detail::areas_plan(plan)->areas[0].pattern.strokes)
     for (const Vec2 p : s.points) {
       EXPECT_GT(distance_to_road(p), 0.5 * (kRoadWidth + s.width) - std::sqrt(2.0));
       const Vec2 d = p - kRoadStart;
@@ -142,7 +144,7 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
   EXPECT_NEAR(orchard.lead_bearing_deg, 90.0, 1e-9);
   EXPECT_GT(orchard.shapes, 10);
   EXPECT_EQ(orchard.forbidden_touched, 0);
-  EXPECT_EQ(plan.area_names, (std::vector<std::string>{"vines", "orchard"}));
+  EXPECT_EQ(detail::areas_plan(plan)->names, (std::vector<std::string>{"vines", "orchard"}));
   for (const char* m : {"vine_row", "vine_post", "orchard_trunk", "orchard_crown"})
     EXPECT_NE(std::find(plan.splat_materials.begin(), plan.splat_materials.end(), m),
               plan.splat_materials.end())
@@ -153,7 +155,7 @@ TEST_F(AreaRun, RowsRaiseTheTerrainByTheirHeightDetailAndPaintTheirSplat) {
   Warnings warnings;
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
   WorldPlan bare = plan;
-  bare.areas.clear();
+  detail::areas_plan(bare)->areas.clear();
   index_plan(bare);
   const LayerSet with = render_tile(plan, plan.tiles.at(0));
   const LayerSet without = render_tile(bare, bare.tiles.at(0));
@@ -212,7 +214,7 @@ TEST_F(AreaRun, ARenderFromTheSavedPlanIsTheSameBytes) {
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
   save_plan(plan, dir_ / "plan");
   const WorldPlan loaded = load_plan(dir_ / "plan");
-  ASSERT_EQ(loaded.areas.size(), plan.areas.size());
+  ASSERT_EQ(detail::areas_plan(loaded)->areas.size(), detail::areas_plan(plan)->areas.size());
   const LayerSet a = render_tile(plan, plan.tiles.at(0));
   const LayerSet b = render_tile(loaded, loaded.tiles.at(0));
   ASSERT_EQ(a.layers.size(), b.layers.size());
@@ -302,13 +304,14 @@ TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
   options.synthesis_tasks = true;
   const PlannedJob job = plan_job(config, options);
   ASSERT_GE(job.syntheses, 1u);
-  EXPECT_TRUE(load_plan(job.plan_dir).areas.empty());  // not before the curve patterns
+  EXPECT_TRUE(
+      detail::areas_plan(load_plan(job.plan_dir))->areas.empty());  // not before the curve patterns
   for (std::size_t i = 0; i < job.syntheses; ++i) synthesize_job_feature(job.plan_dir, int(i));
   const PlannedJob complete = complete_job_plan(job.plan_dir);
   EXPECT_EQ(complete.plan, inline_plan);  // the same plan: the same areas, the same tiles
   const WorldPlan plan = load_plan(job.plan_dir);
-  ASSERT_EQ(plan.areas.size(), 2u);
-  EXPECT_FALSE(plan.patterns.empty());
+  ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 2u);
+  EXPECT_FALSE(detail::patterns_plan(plan)->patterns.empty());
   EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
   for (std::size_t t = 0; t < complete.tiles; ++t) render_job_tile(job.plan_dir, int(t));
   finish_job(job.plan_dir);
@@ -480,8 +483,8 @@ features:
   const double bearing = plan.report.areas.at(0).features.at(0).lead_bearing_deg;
   // The long axis (east-west, 90 degrees) and the road would say otherwise.
   EXPECT_LT(std::min(std::abs(bearing), std::abs(bearing - 180.0)), 0.5) << bearing;
-  ASSERT_FALSE(plan.areas.at(0).pattern.strokes.empty());
-  for (const PlacedStroke& s : plan.areas[0].pattern.strokes) {
+  ASSERT_FALSE(detail::areas_plan(plan)->areas.at(0).pattern.strokes.empty());
+  for (const PlacedStroke& s : detail::areas_plan(plan)->areas[0].pattern.strokes) {
     const Vec2 d = s.points.back() - s.points.front();
     EXPECT_LT(std::abs(d.x), 0.1 * std::abs(d.y) + 1e-6);  // furrows run north-south
   }
@@ -495,15 +498,16 @@ TEST_F(AreaRun, TagsSelectThePolygonsAsTheirWhereClause) {
                                                     {"features.orchard.where", "\"\""},
                                                     {"features.orchard.tags", "{ crop: fruit }"}}),
                                        {}, warnings);
-  ASSERT_EQ(by_tags.areas.size(), 2u);
+  ASSERT_EQ(detail::areas_plan(by_tags)->areas.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_EQ(by_tags.areas[i].fid, by_where.areas[i].fid);
-    EXPECT_EQ(by_tags.areas[i].pattern.instances.size(),
-              by_where.areas[i].pattern.instances.size());
+    EXPECT_EQ(detail::areas_plan(by_tags)->areas[i].fid,
+              detail::areas_plan(by_where)->areas[i].fid);
+    EXPECT_EQ(detail::areas_plan(by_tags)->areas[i].pattern.instances.size(),
+              detail::areas_plan(by_where)->areas[i].pattern.instances.size());
   }
   const WorldPlan none =
       plan_world(config("r", {{"features.vines.tags", "{ crop: [rice] }"}}), {}, warnings);
-  EXPECT_EQ(none.areas.size(), 1u);  // the orchard only
+  EXPECT_EQ(detail::areas_plan(none)->areas.size(), 1u);  // the orchard only
   bool empty_warned = false;
   for (const Warning& w : warnings.list())
     empty_warned |= w.code == "empty_class" && w.subject == "features.vines";
@@ -531,15 +535,15 @@ features:
   Warnings warnings;
   const WorldPlan plan =
       plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path()), {}, warnings);
-  ASSERT_EQ(plan.areas.size(), 1u);
-  EXPECT_GT(plan.areas[0].pattern.instances.size(), 5u);
+  ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 1u);
+  EXPECT_GT(detail::areas_plan(plan)->areas[0].pattern.instances.size(), 5u);
   EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
   Warnings none_warnings;
   const WorldPlan none =
       plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path(),
                                 {{"features.forest.tags", "{ landuse: vineyard }"}}),
                  {}, none_warnings);
-  EXPECT_TRUE(none.areas.empty());
+  EXPECT_TRUE(detail::areas_plan(none)->areas.empty());
 }
 
 // terraweave validate analyses the sketches it would synthesize from.

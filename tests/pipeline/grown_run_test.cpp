@@ -20,6 +20,7 @@
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/detail/grown_classes.hpp"
+#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -190,13 +191,13 @@ TEST_F(GrownRun, LinesInOrnamentsGpkgKeepOffTheRoadAndEachOther) {
 TEST_F(GrownRun, HedgesAndWallsRaiseTheTerrainDitchesLowerIt) {
   Warnings warnings;
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
-  ASSERT_EQ(plan.grown.size(), 3u);
+  ASSERT_EQ(detail::grown_plan(plan)->classes.size(), 3u);
   const TileSpec& tile = plan.tiles.at(0);
   const GridSpec grid = window_grid(plan.grid, tile.halo_window);
   const Raster<float> before = read_height_window(plan.heights, plan.grid, tile.halo_window);
   const LayerSet layers = render_tile(plan, tile);
   const Raster<float>& after = find_layer(layers, "height")->bands[0];
-  for (const GrownClass& g : plan.grown) {
+  for (const GrownClass& g : detail::grown_plan(plan)->classes) {
     // The change at every line's vertices, averaged: hedge banks and walls stand proud of
     // the ground by about their height, ditches are cut about their depth into it.
     double sum = 0.0;
@@ -238,11 +239,14 @@ TEST_F(GrownRun, SameSeedSameBytesOtherSeedOtherLinesAndThePlanKeepsThem) {
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
   save_plan(plan, dir_ / "plan");
   const WorldPlan loaded = load_plan(dir_ / "plan");
-  ASSERT_EQ(loaded.grown.size(), plan.grown.size());
-  for (std::size_t i = 0; i < plan.grown.size(); ++i) {
-    ASSERT_EQ(loaded.grown[i].lines.size(), plan.grown[i].lines.size());
-    EXPECT_EQ(loaded.grown[i].lines.back().points, plan.grown[i].lines.back().points);
-    EXPECT_EQ(loaded.grown[i].lines.back().name, plan.grown[i].lines.back().name);
+  ASSERT_EQ(detail::grown_plan(loaded)->classes.size(), detail::grown_plan(plan)->classes.size());
+  for (std::size_t i = 0; i < detail::grown_plan(plan)->classes.size(); ++i) {
+    ASSERT_EQ(detail::grown_plan(loaded)->classes[i].lines.size(),
+              detail::grown_plan(plan)->classes[i].lines.size());
+    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().points,
+              detail::grown_plan(plan)->classes[i].lines.back().points);
+    EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().name,
+              detail::grown_plan(plan)->classes[i].lines.back().name);
   }
   EXPECT_EQ(loaded.report.classes.at(1).grow->elements, plan.report.classes.at(1).grow->elements);
 }

@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "pipeline/detail/job_files.hpp"
+#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -104,14 +105,17 @@ class PlanFolder : public ::testing::Test {
 TEST_F(PlanFolder, ALoadedPlanRendersEveryTileBitForBit) {
   const WorldPlan original = plan();
   ASSERT_EQ(original.tiles.size(), 9u);
-  ASSERT_EQ(original.patterns.size(), 3u);  // what the round trip must carry
+  ASSERT_EQ(detail::patterns_plan(original)->patterns.size(),
+            3u);  // what the round trip must carry
   ASSERT_TRUE(original.heights.heights || original.heights.reader);
   const std::string hash = save_plan(original, dir_ / "plan");
   EXPECT_EQ(plan_hash(dir_ / "plan"), hash);
   const WorldPlan loaded = load_plan(dir_ / "plan");
-  ASSERT_EQ(loaded.patterns.size(), 3u);
-  EXPECT_EQ(loaded.patterns[1].synthesis.total_cost, original.patterns[1].synthesis.total_cost);
-  EXPECT_EQ(loaded.exemplars.at(0).channel_names, original.exemplars.at(0).channel_names);
+  ASSERT_EQ(detail::patterns_plan(loaded)->patterns.size(), 3u);
+  EXPECT_EQ(detail::patterns_plan(loaded)->patterns[1].synthesis.total_cost,
+            detail::patterns_plan(original)->patterns[1].synthesis.total_cost);
+  EXPECT_EQ(detail::patterns_plan(loaded)->exemplars.at(0).channel_names,
+            detail::patterns_plan(original)->exemplars.at(0).channel_names);
   double pattern_pixels = 0.0;
   for (const TileSpec& tile : original.tiles) {
     const LayerSet a = render_tile(original, tile);
@@ -295,7 +299,7 @@ TEST_F(PlanFolder, SynthesesAsTasksInTheirDependencyOrderGiveTheSamePlan) {
   EXPECT_EQ(plan_hash(job.plan_dir), inline_plan);
   EXPECT_EQ(complete_job_plan(job.plan_dir).plan, inline_plan);  // complete already: no change
   expect_error([&] { synthesize_job_feature(job.plan_dir, 0); }, "complete already");
-  EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
+  EXPECT_EQ(detail::patterns_plan(load_plan(job.plan_dir))->patterns.size(), 3u);
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
 }
 
@@ -372,7 +376,7 @@ TEST_F(PlanFolder, AMissingSynthesesFileIsAnErrorUntilThePlanIsComplete) {
   fs::remove(list);
   EXPECT_EQ(complete_job_plan(job.plan_dir).plan, complete.plan);
   EXPECT_EQ(render_job_tile(job.plan_dir, 4).tile, 4);
-  EXPECT_EQ(load_plan(job.plan_dir).patterns.size(), 3u);
+  EXPECT_EQ(detail::patterns_plan(load_plan(job.plan_dir))->patterns.size(), 3u);
 }
 
 // Issue #24 item 3: the plan folder's own files are checked like its objects. An edited tile

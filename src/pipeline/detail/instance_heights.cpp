@@ -7,14 +7,16 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "pipeline/detail/area_method.hpp"
 
 namespace tw::detail {
 
 std::string instance_heights_fact(const WorldPlan& plan, const Raster<float>& height,
                                   const Window& halo, const Window& core) {
   std::string fact;
-  for (std::size_t a = 0; a < plan.areas.size(); ++a) {
-    const std::vector<ShapeInstance>& instances = plan.areas[a].pattern.instances;
+  const AreasPlan* areas = areas_plan(plan);
+  for (std::size_t a = 0; areas && a < areas->areas.size(); ++a) {
+    const std::vector<ShapeInstance>& instances = areas->areas[a].pattern.instances;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       const Vec2 p = plan.grid.world_to_pixel(instances[i].position);
       const double col = std::floor(p.x), row = std::floor(p.y);
@@ -30,7 +32,9 @@ std::string instance_heights_fact(const WorldPlan& plan, const Raster<float>& he
 
 InstanceHeights unknown_instance_heights(const WorldPlan& plan) {
   InstanceHeights heights;
-  for (const PlannedArea& area : plan.areas)
+  const AreasPlan* areas = areas_plan(plan);
+  if (!areas) return heights;
+  for (const PlannedArea& area : areas->areas)
     heights.emplace_back(area.pattern.instances.size(), std::numeric_limits<double>::quiet_NaN());
   return heights;
 }

@@ -6,8 +6,11 @@
 
 #include "core/error.hpp"
 #include "layers/vrt.hpp"
+#include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/area_output.hpp"
 #include "pipeline/detail/grow_region.hpp"
+#include "pipeline/detail/grown_method.hpp"
+#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "synth/placements_io.hpp"
 
@@ -29,15 +32,17 @@ void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& 
                       RunReport& report) {
   // placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend field is left
   // out so that every backend writes the same bytes.
+  const PatternsPlan* patterns = patterns_plan(plan);
+  if (!patterns) return;
   std::map<std::string, int> parts;
-  for (const PlannedPattern& p : plan.patterns) {
+  for (const PlannedPattern& p : patterns->patterns) {
     std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
                                    plan.lines[p.class_index][p.feature_index].fid);
     if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
     const std::string file = "placements/" + name + ".json";
     Synthesis saved = p.synthesis;
     saved.backend.clear();
-    save_placements(saved, plan.exemplars[p.exemplar_index].path,
+    save_placements(saved, patterns->exemplars[p.exemplar_index].path,
                     transaction.stage(out / file).string());
     auto& synthesis = report.classes[p.class_index].features[p.feature_index].synthesis;
     if (synthesis) synthesis->placements = file;
@@ -46,11 +51,12 @@ void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& 
 
 void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights, const fs::path& out,
                         OutputFolder& transaction) {
-  if (plan.area_names.empty()) return;
+  const AreasPlan* areas = areas_plan(plan);
+  if (!areas || areas->names.empty()) return;
   std::vector<AreaResult> results;
-  for (std::size_t i = 0; i < plan.areas.size(); ++i) {
-    const PlannedArea& a = plan.areas[i];
-    results.push_back({plan.area_names.at(a.area_class), a.fid, a.pattern, heights.at(i)});
+  for (std::size_t i = 0; i < areas->areas.size(); ++i) {
+    const PlannedArea& a = areas->areas[i];
+    results.push_back({areas->names.at(a.area_class), a.fid, a.pattern, heights.at(i)});
   }
   write_area_geopackage(transaction.stage(out / "areas.gpkg"), plan.crs_wkt, results);
   write_instances_csv(transaction.stage(out / "instances.csv"), results);
@@ -58,9 +64,10 @@ void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights, c
 }
 
 void write_ornament_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction) {
-  if (plan.grown.empty()) return;
+  const GrownPlan* grown = grown_plan(plan);
+  if (!grown || grown->classes.empty()) return;
   std::vector<OrnamentLayer> layers;
-  for (const GrownClass& g : plan.grown)
+  for (const GrownClass& g : grown->classes)
     layers.push_back({plan.class_names.at(g.class_index), g.kind, g.height_m, &g.lines, {}});
   write_ornament_geopackage(transaction.stage(out / "ornaments.gpkg"), plan.crs_wkt, layers);
 }

@@ -85,9 +85,10 @@ TW_FIELDS(AreaFeatureReport,
           F(fid) F(area_m2) F(lead_bearing_deg) F(seed) F(shapes) F(strokes) F(outside) F(forbidden)
               F(overlapping) F(forbidden_touched) F(on_nodata) F(canvas_cells))
 TW_FIELDS(AreaClassReport, F(name) F(source) F(sketch) F(lead) F(features))
+TW_FIELDS(MethodReport, F(method) F(json))
 TW_FIELDS(RunReport, F(grid) F(crs_wkt) F(heightfield) F(seed) F(stages) F(classes) F(areas)
-                         F(forbidden_pixels) F(pattern_violations) F(grown_crossings)
-                             F(total_seconds) F(warnings))
+                         F(method_reports) F(forbidden_pixels) F(pattern_violations)
+                             F(grown_crossings) F(total_seconds) F(warnings))
 
 // Avoidance inputs that a plan holds own their geometry: ribbons of synthesized features are
 // the plan's own (`patterns`), so pointers into them are never stored.

@@ -38,6 +38,7 @@ TW_PLAN_FIELDS(NetworkClassReport);
 TW_PLAN_FIELDS(FeatureClassReport);
 TW_PLAN_FIELDS(GrownLine);
 TW_PLAN_FIELDS(GrownClass);
+TW_PLAN_FIELDS(MethodReport);
 TW_PLAN_FIELDS(RunReport);
 TW_PLAN_FIELDS(ShapeInstance);
 TW_PLAN_FIELDS(PlacedStroke);

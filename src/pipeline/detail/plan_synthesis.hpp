@@ -16,16 +16,17 @@ FeatureRibbons synthesis_ribbons(const WorldPlan& plan);
 ExistingFeatures existing_features(const WorldPlan& plan);
 
 // The syntheses' reports and cache statuses into plan.report, the patterns as the renderer needs
-// them into plan.patterns, their exemplars and splat materials (plan_world does the same).
+// them into the plan's patterns entry (detail/pattern_method.hpp), their exemplars and splat
+// materials (the patterns method's collect does the same in plan_world).
 // Throws tw::Error naming the class and the channel when an exemplar lacks a mapped channel.
 // A grown class whose synthesis dressed none of its lines warns (`grown_undressed`), so that
 // --strict fails it.
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
                   Warnings& warnings);
 
-// The areas as the renderer needs them, replacing those the plan held: their splat materials
-// after the patterns' (call add_patterns first), the output pixels their strokes can touch,
-// their report.
+// The areas as the renderer needs them, replacing those the plan's areas entry held: their
+// splat materials after the patterns' (call add_patterns first), the output pixels their strokes
+// can touch, their report.
 void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan);
 
 // The `kind: area` classes synthesized on a plan as plan_world synthesizes them: its lines,

@@ -241,7 +241,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
     tiles.push_back(std::move(tile));
   }
   const GridSpec& g = report.grid;
-  return {
+  json j = {
       {"format", kReportFormat},
       {"version", {{"schema", kReportSchemaVersion}, {"terraweave", kTerraweaveVersion}}},
       {"versions", library_versions()},
@@ -278,6 +278,10 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"warnings", warnings},
       {"timings", timings_json(report)},
   };
+  // A method's own part, under its name (SynthesisMethod::report); none for the built-in ones.
+  for (const MethodReport& m : report.method_reports)
+    j["methods"][m.method] = nlohmann::json::parse(m.json);
+  return j;
 }
 
 }  // namespace tw::detail

@@ -3,16 +3,15 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <map>
 #include <span>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/polygons_hash.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "pipeline/version.hpp"
 #include "raster/footprint.hpp"
 #include "raster/window_index.hpp"
-#include "synth/placements_io.hpp"
 
 namespace tw::detail {
 
@@ -25,10 +24,6 @@ namespace {
 constexpr std::uint64_t kTileCacheFormat = 4;
 constexpr const char* kFilePrefix = "file:";
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
-
-void hash_window(Hasher& h, const Window& w) {
-  h.i64(w.col0).i64(w.row0).i64(w.width).i64(w.height);
-}
 
 void hash_optional(Hasher& h, const std::optional<double>& v) {
   h.boolean(v.has_value()).real(v.value_or(0.0));
@@ -52,17 +47,6 @@ ContentHash terrain_hash(const TerrainFeature& f,
     h.bytes(std::as_bytes(std::span(profiles[i]->data(), profiles[i]->size()))).real(steps[i]);
   }
   return h.digest();
-}
-
-ContentHash ribbon_hash(const Ribbon& r) {
-  return Hasher()
-      .points(r.centerline.points)
-      .boolean(r.centerline.closed)
-      .real(r.width)
-      .real(r.delta)
-      .boolean(r.closed)
-      .u64(r.pieces.size())
-      .digest();
 }
 
 // Stages through an OutputFolder and remembers what (the names under `dir`, the staged paths).
@@ -89,6 +73,21 @@ std::string read_bytes(const fs::path& path) {
 }
 
 }  // namespace
+
+void hash_window(Hasher& h, const Window& w) {
+  h.i64(w.col0).i64(w.row0).i64(w.width).i64(w.height);
+}
+
+ContentHash ribbon_hash(const Ribbon& r) {
+  return Hasher()
+      .points(r.centerline.points)
+      .boolean(r.centerline.closed)
+      .real(r.width)
+      .real(r.delta)
+      .boolean(r.closed)
+      .u64(r.pieces.size())
+      .digest();
+}
 
 ContentHash TileKey::combined() const {
   return Hasher().text("terraweave.tile").hash(heightfield).hash(features).hash(config).digest();
@@ -132,43 +131,9 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
     terrain_.push_back(terrain_hash(plan.terrain_features[f], profiles[f], steps[f]));
   for (const auto& class_ribbons : plan.ribbons)
     for (const Ribbon& r : class_ribbons) ribbons_.push_back(ribbon_hash(r));
-  std::map<std::size_t, ContentHash> exemplars;
-  for (const PlannedPattern& p : plan.patterns) {
-    auto it = exemplars.find(p.exemplar_index);
-    if (it == exemplars.end()) {
-      const Exemplar& exemplar = plan.exemplars[p.exemplar_index];
-      const fs::path path = exemplar.path;
-      const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
-      std::error_code ec;
-      Hasher e;
-      if (fs::is_regular_file(path, ec)) {
-        e.file(path).file(height);
-      } else {  // a mix's atlas (synth/exemplar_mix.hpp) names no one file: its texels
-        e.text(exemplar.path).i64(exemplar.width).i64(exemplar.height);
-        for (const std::string& name : exemplar.channel_names) e.text(name);
-        e.bytes(std::as_bytes(std::span(exemplar.texels)));
-      }
-      it = exemplars.emplace(p.exemplar_index, e.digest()).first;
-    }
-    Hasher h;
-    h.hash(it->second).text(placements_to_json(p.synthesis, "")).hash(ribbon_hash(p.ribbon));
-    h.boolean(p.on_ground).boolean(p.stitch).real(p.feather).real(p.height_detail);
-    hash_window(h, p.window);
-    h.u64(p.targets.size());
-    for (const PatternTarget& t : p.targets)
-      h.i64(t.exemplar_channel).boolean(t.to_height).u64(t.material).boolean(t.is_alpha);
-    patterns_.push_back(h.digest());
-  }
-  for (const PlannedArea& a : plan.areas) {  // what render_tile reads of an area
-    Hasher h;
-    hash_window(h, a.window);
-    h.u64(a.targets.size());
-    for (const AreaTarget& t : a.targets) h.text(t.stroke_material).u64(t.material).real(t.height);
-    h.u64(a.pattern.strokes.size());
-    for (const PlacedStroke& s : a.pattern.strokes)
-      h.points(s.points).text(s.material).real(s.width);
-    areas_.push_back(h.digest());
-  }
+  for (const MethodPlan& entry : plan.methods)
+    methods_.push_back(entry.method->renders() ? entry.method->item_hashes(plan, entry)
+                                               : std::vector<ContentHash>{});
 }
 
 TileKey TileCache::key(const TileSpec& tile) const {
@@ -201,10 +166,13 @@ TileKey TileCache::key(const TileSpec& tile) const {
   }
   f.text("junctions");
   hash_polygons_meeting(f, plan_.junction_discs, box);
-  f.text("patterns");
-  for (const std::size_t i : items_meeting(plan_.pattern_index, window)) f.hash(patterns_[i]);
-  f.text("areas");
-  for (const std::size_t i : items_meeting(plan_.area_index, window)) f.hash(areas_[i]);
+  // A section per method that renders, named after it, in the methods' order.
+  for (std::size_t m = 0; m < plan_.methods.size(); ++m) {
+    const MethodPlan& entry = plan_.methods[m];
+    if (!entry.method->renders()) continue;
+    f.text(entry.method->name());
+    for (const std::size_t i : items_meeting(entry.index, window)) f.hash(methods_[m][i]);
+  }
   key.features = f.digest();
 
   Hasher c;

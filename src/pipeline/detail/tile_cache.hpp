@@ -32,7 +32,7 @@ struct TileKey {
 
 class TileCache {
  public:
-  // Hashes every feature, ribbon and pattern of `plan` once (a tile then hashes their hashes);
+  // Hashes every feature, ribbon and method item of `plan` once (a tile then hashes their hashes);
   // `output`: the writer's options the tile's files depend on. No `dir`: keys only.
   TileCache(const WorldPlan& plan, const WriteOptions& output,
             std::optional<std::filesystem::path> dir, Warnings& warnings);
@@ -66,7 +66,12 @@ class TileCache {
   Warnings& warnings_;
   std::unique_ptr<CacheFolder> folder_;                    // with dir_: locked and written through
   ContentHash config_;                                     // what every tile shares
-  std::vector<ContentHash> terrain_, ribbons_, patterns_, areas_;  // by plan index
+  std::vector<ContentHash> terrain_, ribbons_;             // by plan index
+  std::vector<std::vector<ContentHash>> methods_;          // per plan.methods entry, by item
 };
+
+// The parts of a key that the methods' item hashes share (SynthesisMethod::item_hashes).
+void hash_window(Hasher& h, const Window& w);
+ContentHash ribbon_hash(const Ribbon& r);
 
 }  // namespace tw::detail

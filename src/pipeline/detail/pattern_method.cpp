@@ -1,0 +1,338 @@
+#include "pipeline/detail/pattern_method.hpp"
+
+#include <algorithm>
+#include <map>
+#include <span>
+
+#include "core/content_hash.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "pipeline/detail/plan_fields.hpp"
+#include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_synthesis.hpp"
+#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/detail/tile_cache.hpp"
+#include "raster/footprint.hpp"
+#include "raster/sparse_raster.hpp"
+#include "synth/pattern_canvas.hpp"
+#include "synth/placements_io.hpp"
+#include "synth/render.hpp"
+#include "terrain/pattern_layers.hpp"
+#include "terrain/splat.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemplar& exemplar) {
+  if (!c.synthesis->channels.empty()) return c.synthesis->channels;
+  std::vector<ChannelMapping> mappings = {{"A", "splat." + c.name + "_pattern"}};
+  if (exemplar.channel_index("height") >= 0) mappings.push_back({"height", "height"});
+  return mappings;
+}
+
+// The patterns as the renderer needs them, and their splat materials in order of first use
+// (the order an untiled render adds them in). Throws tw::Error naming the class and the channel
+// when an exemplar lacks a mapped channel.
+void plan_patterns(const PipelineConfig& config, PatternRun run, WorldPlan& plan,
+                   PatternsPlan& out) {
+  const auto material_index = [&](const std::string& target) {
+    const std::string material = target.substr(6);  // after "splat."
+    auto it = std::find(plan.splat_materials.begin(), plan.splat_materials.end(), material);
+    if (it == plan.splat_materials.end()) {
+      plan.splat_materials.push_back(material);
+      it = plan.splat_materials.end() - 1;
+    }
+    return std::size_t(it - plan.splat_materials.begin());
+  };
+  out.patterns.clear();
+  for (FeaturePattern& p : run.patterns) {
+    const FeatureClassConfig& c = config.features[p.class_index];
+    const Exemplar& exemplar = run.exemplars[p.exemplar_index];
+    if (!p.synthesized) {  // outside the region: its bands still come in the same order
+      if (p.on_ground && ribbon_window(p.ribbon, plan.grid).width > 0)
+        for (const ChannelMapping& m : mappings_of(c, exemplar))
+          if (m.target != "height") material_index(m.target);
+      continue;
+    }
+    PlannedPattern& planned = out.patterns.emplace_back();
+    planned.class_index = p.class_index;
+    planned.feature_index = p.feature_index;
+    planned.exemplar_index = p.exemplar_index;
+    planned.on_ground = p.on_ground;
+    // The render reaches kCanvasHalo cells beyond the pieces (synth/pattern_canvas.hpp).
+    const Window on_grid = p.on_ground ? ribbon_window(p.ribbon, plan.grid) : Window{};
+    planned.window = on_grid.width > 0 ? grow_window(on_grid, kCanvasHalo, plan.grid) : Window{};
+    planned.ribbon = std::move(p.ribbon);
+    planned.synthesis = std::move(p.synthesis);
+    planned.stitch = c.synthesis->stitch;
+    planned.feather = c.synthesis->feather;
+    planned.height_detail = float(c.synthesis->height_detail);
+    if (planned.window.width == 0) continue;  // off the grid: no band is added
+    for (const ChannelMapping& m : mappings_of(c, exemplar)) {
+      PatternTarget& target = planned.targets.emplace_back();
+      target.exemplar_channel = exemplar.channel_index(m.channel);
+      if (target.exemplar_channel < 0) {
+        fail("features.{}.synthesis.channels.{}: exemplar {} has no channel '{}' (it has {})",
+             c.name, m.channel, exemplar.path, m.channel, fmt::join(exemplar.channel_names, ", "));
+      }
+      target.to_height = m.target == "height";
+      target.is_alpha = m.channel == "A";
+      if (target.to_height) continue;
+      target.material = material_index(m.target);
+    }
+  }
+  out.exemplars = std::move(run.exemplars);
+}
+
+// The synthesis ribbon's width and delta in the feature's report, and where they came from.
+void record_geometry(const SynthesisConfig& s, FeatureReport& feature) {
+  FeatureSynthesisReport& r = *feature.synthesis;
+  r.width_m = s.width.value_or(feature.width_m);
+  r.width_from = s.width_of_feature ? "feature" : s.width_from_exemplar ? "exemplar" : "config";
+  r.delta_m = s.delta.value_or(0.0);
+  r.delta_from = s.delta_from_exemplar ? "exemplar" : "config";
+}
+
+// A pattern without its synthesis, which goes to its own placements file.
+template <class Io>
+void pattern_fields(Io& io, PlannedPattern& p) {
+  io("class_index", p.class_index);
+  io("feature_index", p.feature_index);
+  io("exemplar_index", p.exemplar_index);
+  io("on_ground", p.on_ground);
+  io("ribbon", p.ribbon);
+  io("window", p.window);
+  io("stitch", p.stitch);
+  io("feather", p.feather);
+  io("height_detail", p.height_detail);
+  io("targets", p.targets);
+}
+
+class PatternMethod final : public SynthesisMethod {
+ public:
+  std::string name() const override { return "patterns"; }
+  std::string stage_name() const override { return "synthesis"; }
+  MethodStage stage() const override { return MethodStage::placements; }
+  bool serves(const PipelineConfig& config, const PlanOptions& options) const override {
+    return options.synthesize && !config.synthesis_order.empty();
+  }
+  std::unique_ptr<MethodPayload> empty_payload() const override {
+    return std::make_unique<PatternsPlan>();
+  }
+
+  void plan(MethodContext& context, MethodPlan& entry) const override {
+    const PipelineConfig& config = context.config;
+    const WorldPlan& plan = context.plan;
+    SynthesisCache cache(context.options.cache_dir ? context.options.cache_dir : config.cache_dir,
+                         context.warnings);
+    PatternOptions pattern_options;
+    pattern_options.backend = context.options.backend;
+    pattern_options.cache = &cache;
+    if (config.region) {  // the patterns whose render reaches the region, and what they avoid
+      const GridSpec output = window_grid(plan.grid, plan.output_window);
+      const double reach = (kCanvasHalo + 2) * std::max(output.pixel_width, output.pixel_height);
+      pattern_options.wanted = [output, reach](const GridSpec& canvas) {
+        return canvas.origin_x - reach < output.origin_x + output.width * output.pixel_width &&
+               output.origin_x < canvas.origin_x + canvas.width * canvas.pixel_width + reach &&
+               canvas.origin_y - canvas.height * canvas.pixel_height - reach < output.origin_y &&
+               output.origin_y - output.height * output.pixel_height < canvas.origin_y + reach;
+      };
+    }
+    payload_as<PatternsPlan>(entry).run = std::make_shared<PatternRun>(synthesize_patterns(
+        config, context.lines, *context.ribbons, *context.existing, pattern_options));
+  }
+
+  void collect(MethodContext& context, MethodPlan& entry) const override {
+    PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
+    if (!patterns.run) return;
+    add_patterns(context.config, std::move(*patterns.run), context.plan, context.warnings);
+    patterns.run.reset();
+  }
+
+  std::vector<Window> windows(const WorldPlan& /*plan*/, const MethodPlan& entry) const override {
+    std::vector<Window> out;
+    for (const PlannedPattern& p : payload_as<PatternsPlan>(entry).patterns)
+      out.push_back(p.window);
+    return out;
+  }
+
+  bool renders() const override { return true; }
+
+  // Each pattern is rendered on the blocks of the lattice its ribbon meets (kBlock pixels on
+  // the world grid, as an untiled render), cut to the window.
+  void render(const WorldPlan& plan, const MethodPlan& entry, const Window& window,
+              Raster<float>& height, SplatLayers& splat) const override {
+    const PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
+    constexpr int kBlock = 256;
+    const SparseRaster<std::uint8_t> layout(plan.grid.width, plan.grid.height, 0, kBlock);
+    for (const std::size_t p : items_meeting(entry.index, window)) {
+      const PlannedPattern& pattern = patterns.patterns[p];
+      if (!pattern.on_ground || pattern.targets.empty()) continue;
+      const Exemplar& exemplar = patterns.exemplars[pattern.exemplar_index];
+      for (const TileIndex t : ribbon_tiles(pattern.ribbon, plan.grid, kBlock, kCanvasHalo)) {
+        const Window part = intersect(layout.tile_window(t), window);
+        if (part.width == 0) continue;
+        const RenderedPattern rendered =
+            render_pattern(exemplar, pattern.ribbon, pattern.synthesis, plan.grid, part,
+                           pattern.stitch, pattern.feather);
+        std::vector<PatternLayerTarget> targets;
+        for (const PatternTarget& target : pattern.targets) {
+          targets.push_back({&rendered.channels[std::size_t(target.exemplar_channel)],
+                             target.to_height, target.material, target.is_alpha});
+        }
+        add_pattern_to_layers(window, height, splat, part, rendered.coverage, targets,
+                              pattern.height_detail);
+      }
+    }
+  }
+
+  std::vector<ContentHash> item_hashes(const WorldPlan& /*plan*/,
+                                       const MethodPlan& entry) const override {
+    const PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
+    std::vector<ContentHash> out;
+    std::map<std::size_t, ContentHash> exemplars;
+    for (const PlannedPattern& p : patterns.patterns) {
+      auto it = exemplars.find(p.exemplar_index);
+      if (it == exemplars.end()) {
+        const Exemplar& exemplar = patterns.exemplars[p.exemplar_index];
+        const fs::path path = exemplar.path;
+        const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
+        std::error_code ec;
+        Hasher e;
+        if (fs::is_regular_file(path, ec)) {
+          e.file(path).file(height);
+        } else {  // a mix's atlas (synth/exemplar_mix.hpp) names no one file: its texels
+          e.text(exemplar.path).i64(exemplar.width).i64(exemplar.height);
+          for (const std::string& name : exemplar.channel_names) e.text(name);
+          e.bytes(std::as_bytes(std::span(exemplar.texels)));
+        }
+        it = exemplars.emplace(p.exemplar_index, e.digest()).first;
+      }
+      Hasher h;
+      h.hash(it->second).text(placements_to_json(p.synthesis, "")).hash(ribbon_hash(p.ribbon));
+      h.boolean(p.on_ground).boolean(p.stitch).real(p.feather).real(p.height_detail);
+      hash_window(h, p.window);
+      h.u64(p.targets.size());
+      for (const PatternTarget& t : p.targets)
+        h.i64(t.exemplar_channel).boolean(t.to_height).u64(t.material).boolean(t.is_alpha);
+      out.push_back(h.digest());
+    }
+    return out;
+  }
+
+  // The exemplars (texels) as objects, with their source's hash when it is a file; each pattern
+  // as an object and its placements as the placements file of synth/placements_io.
+  json encode(const MethodPlan& entry, PlanObjects& objects) const override {
+    const PatternsPlan& plan = payload_as<PatternsPlan>(entry);
+    json exemplars = json::array();
+    for (const Exemplar& e : plan.exemplars) {
+      json item = objects.put_cbor(detail::encode(e));
+      item["path"] = e.path;
+      std::error_code ec;  // the source's hash, when it is a file (a generated exemplar is not)
+      item["source_xxh3_128"] =
+          fs::is_regular_file(e.path, ec) ? json(content_hash(read_file_bytes(e.path))) : json();
+      exemplars.push_back(std::move(item));
+    }
+    json patterns = json::array();
+    const fs::path scratch =
+        objects.dir() / "objects" / temporary_beside("placements.json").filename();
+    for (const PlannedPattern& p : plan.patterns) {
+      JsonWriter writer;
+      pattern_fields(writer, const_cast<PlannedPattern&>(p));
+      fs::create_directories(scratch.parent_path());
+      save_placements(p.synthesis, plan.exemplars.at(p.exemplar_index).path, scratch.string());
+      json item = objects.put_cbor(writer.value);
+      item["placements"] = objects.put(read_file_bytes(scratch), ".json");
+      patterns.push_back(std::move(item));
+    }
+    std::error_code ec;
+    fs::remove(scratch, ec);
+    return {{"exemplars", exemplars}, {"patterns", patterns}};
+  }
+
+  void decode(const json& value, PlanObjects& objects, MethodPlan& entry) const override {
+    PatternsPlan& plan = payload_as<PatternsPlan>(entry);
+    const std::string where = "plan " + (objects.dir() / "plan.json").string();
+    const json& exemplars = value.at("exemplars");
+    for (std::size_t i = 0; i < exemplars.size(); ++i) {
+      const std::string key = fmt::format("methods.patterns.exemplars[{}]", i);
+      detail::decode(objects.get_cbor(exemplars[i], key), plan.exemplars.emplace_back(),
+                     where + ": " + key);
+    }
+    const fs::path scratch = fs::temp_directory_path() / temporary_beside("placements.json");
+    const json& patterns = value.at("patterns");
+    for (std::size_t i = 0; i < patterns.size(); ++i) {
+      const json& item = patterns[i];
+      const std::string key = fmt::format("methods.patterns.patterns[{}]", i);
+      PlannedPattern& p = plan.patterns.emplace_back();
+      const json fields_json = json::from_cbor(objects.get(item, key));
+      JsonReader pattern_reader(fields_json, where + ": " + key);
+      pattern_fields(pattern_reader, p);
+      // Through the one placements reader (its checks, its messages), from verified bytes.
+      write_file_atomic(scratch, objects.get(item.at("placements"), key + ".placements"));
+      p.synthesis = load_placements(scratch.string());
+      std::error_code ec;
+      fs::remove(scratch, ec);
+      if (p.exemplar_index >= plan.exemplars.size())
+        fail("{}: {}.exemplar_index {} of {} exemplars", where, key, p.exemplar_index,
+             plan.exemplars.size());
+    }
+  }
+};
+
+}  // namespace
+
+const SynthesisMethod& pattern_method() {
+  static const PatternMethod method;
+  return method;
+}
+
+const PatternsPlan* patterns_plan(const WorldPlan& plan) {
+  const MethodPlan* entry = find_method_plan(plan, "patterns");
+  return entry ? &payload_as<PatternsPlan>(*entry) : nullptr;
+}
+
+PatternsPlan* patterns_plan(WorldPlan& plan) {
+  MethodPlan* entry = find_method_plan(plan, "patterns");
+  return entry ? &payload_as<PatternsPlan>(*entry) : nullptr;
+}
+
+void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
+                  Warnings& warnings) {
+  for (std::size_t c = 0; c < config.features.size(); ++c)
+    if (config.features[c].synthesis && plan.report.classes[c].grow)
+      plan.report.classes[c].grow->synthesis.emplace();
+  for (const FeaturePattern& p : patterns.patterns) {
+    if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
+    FeatureClassReport& feature_class = plan.report.classes[p.class_index];
+    FeatureReport& feature = feature_class.features[p.feature_index];
+    feature.synthesis = p.report;
+    record_geometry(*config.features[p.class_index].synthesis, feature);
+    feature.cache = p.cache;
+    plan.report.pattern_violations += p.report.violations;
+    if (feature_class.grow) {
+      const bool bare = std::size_t(p.report.empty_pieces) == p.synthesis.placements.size();
+      ++(bare ? feature_class.grow->synthesis->no_room : feature_class.grow->synthesis->dressed);
+    }
+  }
+  // Bare lines are no error (short lines between joints), but a class none of whose lines
+  // took its pattern is a setting that does not fit (too wide, too long pieces).
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    const auto& grow = plan.report.classes[c].grow;
+    if (!grow || !grow->synthesis || grow->synthesis->dressed > 0 || grow->synthesis->no_room == 0)
+      continue;
+    warnings.add("grown_undressed", "features." + config.features[c].name, std::nullopt,
+                 fmt::format("synthesis dressed 0 of {} grown lines: every piece had no room "
+                             "(a narrower synthesis.width or a shorter delta may fit)",
+                             grow->synthesis->no_room));
+  }
+  PatternsPlan* entry = patterns_plan(plan);
+  if (!entry) fail("plan: no patterns entry to add {} patterns to", patterns.patterns.size());
+  plan_patterns(config, std::move(patterns), plan, *entry);
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,54 @@
+#include "pipeline/detail/plan_objects.hpp"
+
+#include <system_error>
+
+#include "core/content_hash.hpp"
+#include "core/error.hpp"
+#include "core/file_io.hpp"
+
+namespace tw::detail {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json PlanObjects::put(const std::string& bytes, const std::string& extension) const {
+  const std::string hash = content_hash(bytes);
+  const std::string name = "objects/" + hash + extension;
+  std::error_code ec;
+  // Same name, same bytes: an object an earlier plan wrote is kept (if it is intact).
+  if (fs::file_size(dir_ / name, ec) != bytes.size() || ec ||
+      content_hash(read_file_bytes(dir_ / name)) != hash) {
+    write_file_atomic(dir_ / name, bytes);
+  }
+  return {{"file", name}, {"xxh3_128", hash}, {"bytes", bytes.size()}};
+}
+
+json PlanObjects::put_cbor(const json& value) const {
+  const std::vector<std::uint8_t> cbor = json::to_cbor(value);
+  return put(std::string(cbor.begin(), cbor.end()), ".cbor");
+}
+
+std::string PlanObjects::get(const json& entry, const std::string& key) const {
+  const std::string where = fmt::format("plan {}: {}", dir_.string(), key);
+  if (!entry.is_object() || !entry.contains("file") || !entry.contains("xxh3_128"))
+    fail("{}: expected {{file, xxh3_128}}", where);
+  const std::string file = entry["file"].get<std::string>();
+  if (file.find("..") != std::string::npos || !file.starts_with("objects/"))
+    fail("{}: file {} is not under objects/", where, file);
+  std::string bytes = read_file_bytes(dir_ / file);
+  if (content_hash(bytes) != entry["xxh3_128"].get<std::string>())
+    fail("{}: {} does not match its content hash (corrupt, or changed after planning)", where,
+         (dir_ / file).string());
+  return bytes;
+}
+
+json PlanObjects::get_cbor(const json& entry, const std::string& key) const {
+  const std::string bytes = get(entry, key);
+  try {
+    return json::from_cbor(bytes);
+  } catch (const json::exception& e) {
+    fail("plan {}: {}: not CBOR ({})", dir_.string(), key, e.what());
+  }
+}
+
+}  // namespace tw::detail

@@ -1,0 +1,52 @@
+// The registry of synthesis methods (pipeline/synthesis_method.hpp): a method is added here,
+// and nowhere else in the pipeline.
+#include "pipeline/synthesis_method.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "pipeline/detail/area_method.hpp"
+#include "pipeline/detail/grown_method.hpp"
+#include "pipeline/detail/network_method.hpp"
+#include "pipeline/detail/pattern_method.hpp"
+
+namespace tw {
+
+nlohmann::json SynthesisMethod::report(const WorldPlan& /*plan*/,
+                                       const MethodPlan& /*entry*/) const {
+  return nullptr;
+}
+
+const std::vector<const SynthesisMethod*>& builtin_synthesis_methods() {
+  static const std::vector<const SynthesisMethod*> methods = {
+      &detail::grown_method(), &detail::network_method(), &detail::pattern_method(),
+      &detail::area_method()};
+  return methods;
+}
+
+const std::vector<const SynthesisMethod*>& methods_or_builtin(
+    const std::vector<const SynthesisMethod*>& methods) {
+  return methods.empty() ? builtin_synthesis_methods() : methods;
+}
+
+std::string method_name(const MethodPlan& entry) {
+  return entry.method ? entry.method->name() : std::string();
+}
+
+void fail_payload_type(const MethodPlan& entry) {
+  fail("plan: the entry of method '{}' holds another method's payload", method_name(entry));
+}
+
+const MethodPlan* find_method_plan(const WorldPlan& plan, const std::string& name) {
+  for (const MethodPlan& entry : plan.methods)
+    if (method_name(entry) == name) return &entry;
+  return nullptr;
+}
+
+MethodPlan* find_method_plan(WorldPlan& plan, const std::string& name) {
+  for (MethodPlan& entry : plan.methods)
+    if (method_name(entry) == name) return &entry;
+  return nullptr;
+}
+
+}  // namespace tw

@@ -1,0 +1,116 @@
+#pragma once
+// One seam for every synthesis method (DESIGN.md, "Synthesis methods behind one seam";
+// docs/methods.md). A method takes its domain (the classes or areas of the config it serves),
+// plans their lines or placements once for the world, and says what the renderer needs of them:
+// the windows of its items, how a tile renders them, what of them a tile's cache key covers and
+// how its entry travels in a plan folder. plan_world, render_tile, the tile cache and the plan
+// codec loop over the methods; none of them names one.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/content_hash.hpp"
+#include "pipeline/method_plan.hpp"
+#include "pipeline/plan.hpp"
+
+namespace tw {
+
+namespace detail {
+struct ExistingFeatures;
+struct FeatureRibbons;
+class PlanObjects;
+}  // namespace detail
+
+// When a method plans. Lines methods make the lines of their classes before the ribbons are cut
+// (everything after treats them as read); placements methods synthesize on the ribbons, the
+// terrain plan and the placements of the methods before them.
+enum class MethodStage { lines, placements };
+
+// What a method sees while planning; the pointers fill in as plan_world goes on.
+struct MethodContext {
+  const PipelineConfig& config;  // with the exemplars' defaults
+  const PlanOptions& options;
+  const HeightfieldSource& source;
+  const Heightfield& heightfield;  // the world's, without pixels
+  // Per class (config order): the lines read; a lines method fills its classes'.
+  std::vector<std::vector<LineFeature>>& lines;
+  // The plan so far: grid, output window, report, and the entries of every method (those before
+  // this one planned already, in plan.methods order).
+  WorldPlan& plan;
+  Warnings& warnings;
+  const detail::ExistingFeatures* existing = nullptr;  // from conformance on
+  const detail::FeatureRibbons* ribbons = nullptr;     // in the placements stage
+};
+
+class SynthesisMethod {
+ public:
+  virtual ~SynthesisMethod() = default;
+
+  // Its entry's name in plan.json and the stage its planning is timed as (report.json).
+  virtual std::string name() const = 0;
+  virtual std::string stage_name() const { return name(); }
+  virtual MethodStage stage() const = 0;
+  // Whether the config gives it work (false: its entry stays empty and plan() is not called).
+  virtual bool serves(const PipelineConfig& config, const PlanOptions& options) const = 0;
+  // Whether it makes the lines of this class (a lines method): then the class reads no source,
+  // and its report's source is class_source's.
+  virtual bool makes_lines_of(const FeatureClassConfig& /*c*/) const { return false; }
+  virtual std::string class_source(const FeatureClassConfig& /*c*/) const { return {}; }
+  // An empty entry: what a plan without its classes holds.
+  virtual std::unique_ptr<MethodPayload> empty_payload() const = 0;
+
+  // Reads its own inputs with the plan's ingest (warnings in the ingest's order). Called for
+  // every method, before conformance; context.existing is not there yet.
+  virtual void ingest(MethodContext& /*context*/, MethodPlan& /*entry*/) const {}
+  // Plans its domain: the lines of its classes into context.lines (lines stage), or its
+  // placements into the entry; its report into context.plan.report.
+  virtual void plan(MethodContext& context, MethodPlan& entry) const = 0;
+  // After every method planned, in method order: the entry as the renderer needs it (splat
+  // materials into plan.splat_materials, in order of first use).
+  virtual void collect(MethodContext& /*context*/, MethodPlan& /*entry*/) const {}
+
+  // The output pixels each of its items can touch (index_plan bins them into entry.index).
+  virtual std::vector<Window> windows(const WorldPlan& /*plan*/,
+                                      const MethodPlan& /*entry*/) const {
+    return {};
+  }
+  // Whether it writes into a tile's layers: then render() is called for every tile and its item
+  // hashes enter the tile's cache key (a section named after the method).
+  virtual bool renders() const { return false; }
+  // Adds its items meeting `window` (entry.index) into the window's height and splat.
+  virtual void render(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/,
+                      const Window& /*window*/, Raster<float>& /*height*/,
+                      SplatLayers& /*splat*/) const {}
+  // Per item (entry.index order): the hash of everything render() reads of it.
+  virtual std::vector<ContentHash> item_hashes(const WorldPlan& /*plan*/,
+                                               const MethodPlan& /*entry*/) const {
+    return {};
+  }
+
+  // Its own part of report.json (`methods.<name>`); null: none (the built-in methods report in
+  // the classes' and areas' fields).
+  virtual nlohmann::json report(const WorldPlan& plan, const MethodPlan& entry) const;
+
+  // Its entry in plan.json (objects through `objects`), and back.
+  virtual nlohmann::json encode(const MethodPlan& entry, detail::PlanObjects& objects) const = 0;
+  virtual void decode(const nlohmann::json& value, detail::PlanObjects& objects,
+                      MethodPlan& entry) const = 0;
+};
+
+// The built-in methods in plan order, which the outputs' bytes depend on: the lines methods
+// first (grown ornaments, then networks), then Zhou's DP along ribbons (patterns), then the
+// shape-patterns in areas, which avoid the patterns.
+const std::vector<const SynthesisMethod*>& builtin_synthesis_methods();
+
+// `methods`, or the built-in ones when it is empty.
+const std::vector<const SynthesisMethod*>& methods_or_builtin(
+    const std::vector<const SynthesisMethod*>& methods);
+
+// The entry of the method named `name` in the plan; null when the plan has none.
+const MethodPlan* find_method_plan(const WorldPlan& plan, const std::string& name);
+MethodPlan* find_method_plan(WorldPlan& plan, const std::string& name);
+
+}  // namespace tw

@@ -1,0 +1,236 @@
+// The synthesis-method seam (pipeline/synthesis_method.hpp, docs/methods.md): the built-in
+// methods in their fixed order, and a fifth method, defined here only, that reaches the plan,
+// the tile render, the tile cache key, the plan folder and report.json without a line of
+// pipeline code naming it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "layers/layer_set.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/detail/plan_codec.hpp"
+#include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/report_json.hpp"
+#include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/plan_io.hpp"
+#include "pipeline/synthesis_method.hpp"
+#include "raster/footprint.hpp"
+#include "terrain/splat.hpp"
+#include "test_support.hpp"
+#include "test_world.hpp"
+
+namespace tw {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A stamp: one square of `side` pixels at the grid's centre, painted in its own splat material
+// "stamp" and raised by `raise` metres.
+struct StampPlan : MethodPayloadOf<StampPlan> {
+  std::vector<Window> squares;
+  std::size_t material = 0;  // in plan.splat_materials
+  float raise = 0.0f;
+};
+
+class StampMethod final : public SynthesisMethod {
+ public:
+  explicit StampMethod(int side, float raise) : side_(side), raise_(raise) {}
+  std::string name() const override { return "stamp"; }
+  MethodStage stage() const override { return MethodStage::placements; }
+  bool serves(const PipelineConfig&, const PlanOptions& options) const override {
+    return options.synthesize;
+  }
+  std::unique_ptr<MethodPayload> empty_payload() const override {
+    return std::make_unique<StampPlan>();
+  }
+  void plan(MethodContext& context, MethodPlan& entry) const override {
+    const GridSpec& g = context.plan.grid;
+    StampPlan& stamp = payload_as<StampPlan>(entry);
+    stamp.squares = {{g.width / 2 - side_ / 2, g.height / 2 - side_ / 2, side_, side_}};
+    stamp.raise = raise_;
+  }
+  void collect(MethodContext& context, MethodPlan& entry) const override {
+    std::vector<std::string>& materials = context.plan.splat_materials;
+    payload_as<StampPlan>(entry).material = materials.size();
+    materials.push_back("stamp");
+  }
+  std::vector<Window> windows(const WorldPlan&, const MethodPlan& entry) const override {
+    return payload_as<StampPlan>(entry).squares;
+  }
+  bool renders() const override { return true; }
+  void render(const WorldPlan&, const MethodPlan& entry, const Window& window,
+              Raster<float>& height, SplatLayers& splat) const override {
+    const StampPlan& stamp = payload_as<StampPlan>(entry);
+    for (const std::size_t i : items_meeting(entry.index, window)) {
+      const Window part = intersect(stamp.squares[i], window);
+      for (int r = part.row0; r < part.row_end(); ++r)
+        for (int c = part.col0; c < part.col_end(); ++c) {
+          const int x = c - window.col0, y = r - window.row0;
+          height.at(x, y) += stamp.raise;
+          for (std::size_t m = 0; m < splat.weights.size(); ++m)
+            splat.weights[m].at(x, y) = m == stamp.material ? 1.0f : 0.0f;
+        }
+    }
+  }
+  std::vector<ContentHash> item_hashes(const WorldPlan&, const MethodPlan& entry) const override {
+    std::vector<ContentHash> out;
+    for (const Window& w : payload_as<StampPlan>(entry).squares) {
+      Hasher h;
+      detail::hash_window(h, w);
+      out.push_back(h.real(payload_as<StampPlan>(entry).raise).digest());
+    }
+    return out;
+  }
+  json report(const WorldPlan&, const MethodPlan& entry) const override {
+    return {{"squares", payload_as<StampPlan>(entry).squares.size()}};
+  }
+  json encode(const MethodPlan& entry, detail::PlanObjects& objects) const override {
+    const StampPlan& stamp = payload_as<StampPlan>(entry);
+    return {{"squares", objects.put_cbor(detail::encode(stamp.squares))},
+            {"material", stamp.material},
+            {"raise", stamp.raise}};
+  }
+  void decode(const json& value, detail::PlanObjects& objects, MethodPlan& entry) const override {
+    StampPlan& stamp = payload_as<StampPlan>(entry);
+    detail::decode(objects.get_cbor(value.at("squares"), "stamp"), stamp.squares, "stamp");
+    stamp.material = value.at("material").get<std::size_t>();
+    stamp.raise = value.at("raise").get<float>();
+  }
+
+ private:
+  int side_;
+  float raise_;
+};
+
+constexpr const char* kWorld = R"(version: 1
+seed: 3
+heightfield: dem.tif
+output: { dir: out, exr: false, geotiff: true, preview: false }
+features:
+  roads:
+    source: map.gpkg
+    layer: roads
+    kind: road
+    width: 6
+)";
+
+class SynthesisMethods : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::write_dem(dir_ / "dem.tif");  // 64 x 64 pixels of 10 m
+    test::write_layer(dir_ / "map.gpkg", "roads",
+                      {{"LINESTRING (500020 5000100, 500300 5000400, 500600 5000620)"}});
+  }
+  PipelineConfig config() const { return parse_pipeline(kWorld, "world.yaml", dir_.path(), {}); }
+
+  // The built-in methods and a stamp after them.
+  std::vector<const SynthesisMethod*> with_stamp(const StampMethod& stamp) const {
+    std::vector<const SynthesisMethod*> methods = builtin_synthesis_methods();
+    methods.push_back(&stamp);
+    return methods;
+  }
+
+  WorldPlan plan(const std::vector<const SynthesisMethod*>& methods) const {
+    Warnings warnings;
+    PlanOptions options;
+    options.methods = methods;
+    return plan_world(config(), options, warnings);
+  }
+
+  test::TempDir dir_;
+};
+
+TEST(SynthesisMethodRegistry, TheBuiltInMethodsComeLinesFirstThenPatternsThenAreas) {
+  std::vector<std::string> names;
+  std::vector<MethodStage> stages;
+  for (const SynthesisMethod* m : builtin_synthesis_methods()) {
+    names.push_back(m->name());
+    stages.push_back(m->stage());
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"grown", "network", "patterns", "areas"}));
+  EXPECT_EQ(stages, (std::vector<MethodStage>{MethodStage::lines, MethodStage::lines,
+                                              MethodStage::placements, MethodStage::placements}));
+}
+
+TEST_F(SynthesisMethods, APlanHoldsOneEntryPerMethodInOrder) {
+  const StampMethod stamp(8, 2.0f);
+  const WorldPlan plan = this->plan(with_stamp(stamp));
+  std::vector<std::string> names;
+  for (const MethodPlan& entry : plan.methods) names.push_back(method_name(entry));
+  EXPECT_EQ(names, (std::vector<std::string>{"grown", "network", "patterns", "areas", "stamp"}));
+  // Copying a plan copies the payloads.
+  const WorldPlan copy = plan;
+  EXPECT_NE(copy.methods.back().payload.get(), plan.methods.back().payload.get());
+  EXPECT_EQ(payload_as<StampPlan>(copy.methods.back()).squares.size(), 1u);
+}
+
+TEST_F(SynthesisMethods, AFifthMethodReachesTheTileRenderTheCacheKeyThePlanFolderAndTheReport) {
+  const StampMethod stamp(8, 2.0f);
+  const WorldPlan bare = plan(builtin_synthesis_methods());
+  const WorldPlan stamped = plan(with_stamp(stamp));
+  ASSERT_EQ(stamped.tiles.size(), 1u);
+  const LayerSet without = render_tile(bare, bare.tiles[0]);
+  const LayerSet with = render_tile(stamped, stamped.tiles[0]);
+
+  // The render: the square is raised by 2 m and all "stamp"; every other pixel is unchanged.
+  const Layer* splat = find_layer(with, "splat");
+  ASSERT_NE(splat, nullptr);
+  const auto channel = std::find(splat->channels.begin(), splat->channels.end(), "splat.stamp");
+  ASSERT_NE(channel, splat->channels.end());
+  const std::size_t s = std::size_t(channel - splat->channels.begin());
+  EXPECT_EQ(s, splat_materials().size());  // after the terrain's materials
+  const Raster<float>& h0 = find_layer(without, "height")->bands[0];
+  const Raster<float>& h1 = find_layer(with, "height")->bands[0];
+  const Window square = payload_as<StampPlan>(stamped.methods.back()).squares.at(0);
+  int inside = 0, outside_changed = 0;
+  for (int y = 0; y < h1.height; ++y)
+    for (int x = 0; x < h1.width; ++x) {
+      const bool in =
+          x >= square.col0 && x < square.col_end() && y >= square.row0 && y < square.row_end();
+      if (in) {
+        ++inside;
+        EXPECT_FLOAT_EQ(h1.at(x, y), h0.at(x, y) + 2.0f);
+        EXPECT_EQ(splat->bands[s].at(x, y), 1.0f);
+      } else {
+        outside_changed += h1.at(x, y) != h0.at(x, y);
+        EXPECT_EQ(splat->bands[s].at(x, y), 0.0f);
+      }
+    }
+  EXPECT_EQ(inside, 64);
+  EXPECT_EQ(outside_changed, 0);
+
+  // The tile cache key: its section changes with the stamp's items.
+  const StampMethod higher(8, 3.0f);
+  Warnings warnings;
+  const WorldPlan raised = plan(with_stamp(higher));
+  const detail::TileCache a(stamped, WriteOptions{}, std::nullopt, warnings);
+  const detail::TileCache b(raised, WriteOptions{}, std::nullopt, warnings);
+  EXPECT_EQ(a.key(stamped.tiles[0]).heightfield, b.key(raised.tiles[0]).heightfield);
+  EXPECT_NE(a.key(stamped.tiles[0]).features, b.key(raised.tiles[0]).features);
+
+  // The plan folder: the entry travels and renders the same bytes; a program that does not
+  // know the method refuses the plan, naming it.
+  save_plan(stamped, dir_ / "plan");
+  const WorldPlan loaded = load_plan(dir_ / "plan", with_stamp(stamp));
+  const LayerSet again = render_tile(loaded, loaded.tiles[0]);
+  EXPECT_EQ(find_layer(again, "height")->bands[0].pixels, h1.pixels);
+  EXPECT_EQ(find_layer(again, "splat")->bands[s].pixels, splat->bands[s].pixels);
+  try {
+    load_plan(dir_ / "plan");
+    FAIL() << "a plan with an unknown method loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("method 'stamp'"), std::string::npos) << e.what();
+  }
+
+  // report.json: the method's own part under its name; none for the built-in methods.
+  const json report = detail::report_to_json(loaded.report, config());
+  EXPECT_EQ(report.at("methods").at("stamp").at("squares"), 1);
+  EXPECT_FALSE(detail::report_to_json(bare.report, config()).contains("methods"));
+}
+
+}  // namespace
+}  // namespace tw
