@@ -126,5 +126,65 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   EXPECT_GT(fs::file_size(dir / "shot.png"), 10000u);
 }
 
+// The drawing page's server options (`view --serve --exemplar SRC --where --scale --seed --save`)
+// act in its answers: one stroke completed in one region against servers started with each
+// option changed (view_drawing_requests.py, plain HTTP), the suggestions or the saved file differ.
+// The option tables (option_tables_test.cpp) point here for these rows.
+TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
+  TempDir dir;
+  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
+  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
+  // An exemplar with two kinds of lines, for --where: a field grid ('a') and diagonals ('b').
+  std::vector<VectorFeature> lines;
+  for (int i = 0; i <= 4; ++i) {
+    const std::string x = std::to_string(i * 150), y = std::to_string(i * 100);
+    lines.push_back({"LINESTRING (" + x + " 0, " + x + " 400)", 1.0, {{"kind", "a"}}});
+    lines.push_back({"LINESTRING (0 " + y + ", 600 " + y + ")", 1.0, {{"kind", "a"}}});
+  }
+  lines.push_back({"LINESTRING (0 0, 150 100)", 1.0, {{"kind", "b"}}});
+  lines.push_back({"LINESTRING (300 100, 450 300)", 1.0, {{"kind", "b"}}});
+  write_layer(dir / "exemplar.gpkg", "lines", lines);
+  const std::string cd = "cd '" + dir.path().string() + "' && ";
+  const std::string binary = "'" + terraweave_binary().string() + "'";
+  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
+  const auto ask = [&](const std::string& options) {
+    const CommandResult r = run_command(
+        cd + "timeout 120 /usr/bin/python3 '" +
+        (source_dir() / "tests/pipeline/view_drawing_requests.py").string() + "' " + binary +
+        " out . '[[500080, 4999900], [500200, 4999930]]' "
+        "'[[500040, 4999850], [500620, 4999850], [500620, 4999990], [500040, 4999990]]' " +
+        options);
+    EXPECT_EQ(r.exit_code, 0) << options << ": " << r.output;
+    const nlohmann::json answer = nlohmann::json::parse(r.output, nullptr, false);
+    EXPECT_FALSE(answer.is_discarded()) << r.output;
+    std::printf("%-60s %zu suggestions\n", options.c_str(),
+                answer.is_discarded() ? 0 : answer["suggestions"].size());
+    return answer;
+  };
+  const std::string base = "--exemplar '" + svg + "' --scale 0.5 --seed 1 --save a.gpkg";
+  const nlohmann::json a = ask(base);
+  ASSERT_FALSE(a.is_discarded());
+  ASSERT_GT(a["suggestions"].size(), 0u);
+  EXPECT_TRUE(fs::equivalent(a["saved"].get<std::string>(), dir / "a.gpkg"));
+  const std::string gpkg = "--exemplar exemplar.gpkg --seed 1 --save a.gpkg";
+  const nlohmann::json all_kinds = ask(gpkg);
+  const nlohmann::json grid_only = ask(gpkg + " --where \"kind = 'a'\"");
+  EXPECT_NE(all_kinds["suggestions"], a["suggestions"]) << "--exemplar";
+  EXPECT_NE(grid_only["suggestions"], all_kinds["suggestions"]) << "--where";
+  EXPECT_NE(ask("--exemplar '" + svg + "' --scale 0.8 --seed 1 --save a.gpkg")["suggestions"],
+            a["suggestions"])
+      << "--scale";
+  EXPECT_NE(ask("--exemplar '" + svg + "' --scale 0.5 --seed 2 --save a.gpkg")["suggestions"],
+            a["suggestions"])
+      << "--seed";
+  const nlohmann::json saved_b =
+      ask("--exemplar '" + svg + "' --scale 0.5 --seed 1 --save sub_b.gpkg");
+  EXPECT_EQ(saved_b["suggestions"], a["suggestions"]) << "--save: where, not what";
+  EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
+}
+
 }  // namespace
 }  // namespace tw::test

@@ -316,11 +316,27 @@ void check_option_rows(const std::string& table, const std::set<std::string>& li
   EXPECT_EQ(listed, tabled) << table << ": --help lists options the table does not, or the reverse";
   std::vector<Invocation> all;
   for (const OptionRow& row : rows) {
+    if (row.expect == Expect::tested_by) continue;
     all.push_back(row.a);
     all.push_back(row.b);
   }
   batch.run(all);
   for (const OptionRow& row : rows) {
+    if (row.expect == Expect::tested_by) {
+      // "tests/pipeline/FILE.cpp: Suite.Test": the file defines that test.
+      const std::size_t colon = row.doc.find(": ");
+      ASSERT_NE(colon, std::string::npos) << table << " " << row.option << ": doc is FILE: TEST";
+      const std::string test = row.doc.substr(colon + 2);
+      const std::size_t dot = test.find('.');
+      ASSERT_NE(dot, std::string::npos) << row.doc;
+      const std::string text = read_file(source_dir() / row.doc.substr(0, colon));
+      EXPECT_NE(text.find("TEST(" + test.substr(0, dot) + ", " + test.substr(dot + 1) + ")"),
+                std::string::npos)
+          << table << " " << row.option << ": " << row.doc.substr(0, colon) << " has no test "
+          << test;
+      std::printf("%-28s tested by %s\n", (table + " " + row.option).c_str(), test.c_str());
+      continue;
+    }
     const Outcome& a = batch[row.a];
     const Outcome& b = batch[row.b];
     const std::string where = table + " " + row.option;

@@ -69,6 +69,9 @@ enum class Expect {
   changes,     // exit status, stdout, stderr or a file differs
   same_bytes,  // every file is equal (what is printed may differ); documented
   log_only,    // every file is equal and the log (stderr) differs; documented
+  // Takes effect only in a process that keeps running (the drawing server of `view --serve`):
+  // the row runs nothing here, its doc names the test that changes it and checks the change.
+  tested_by,
 };
 
 // One row: `option` changed from A to B. A `doc` is "docs/FILE.md: a sentence of that file"

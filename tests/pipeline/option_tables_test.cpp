@@ -388,7 +388,7 @@ TEST_F(OptionTables, RunReaders) {
   socklen_t length = sizeof address;
   ASSERT_EQ(getsockname(server, reinterpret_cast<sockaddr*>(&address), &length), 0);
   const std::string port = std::to_string(ntohs(address.sin_port));
-  const std::vector<OptionRow> view = {
+  std::vector<OptionRow> view = {
       row("RUN_DIR", "-q view", "@d/r1 --out v.html", "@d/r2 --out v.html"),
       {"--out",
        {words("-q view @d/r1 --out v.html")},
@@ -400,6 +400,14 @@ TEST_F(OptionTables, RunReaders) {
       row("--serve", "-q view", "@d/r1 --out v.html", "@d/r1 --out v.html --serve " + port,
           Expect::changes, "", 0, 1),
   };
+  // The drawing page's options act in the server's answers: tested against the running server.
+  for (const char* option : {"--exemplar", "--where", "--scale", "--seed", "--save"})
+    view.push_back({option,
+                    {},
+                    {},
+                    Expect::tested_by,
+                    "tests/pipeline/network_page_test.cpp: "
+                    "NetworkPage.EveryDrawingOptionChangesWhatTheServerAnswersOrWrites"});
   check_option_rows("view", help_options("view"), view, batch);
   close(server);
 

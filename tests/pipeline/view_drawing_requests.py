@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Asks the drawing server of `terraweave view RUN --serve 0 --exemplar ...` what the page would:
+completes one drawn stroke inside one region (POST /complete), saves the stroke and the
+suggestions (POST /save), and prints {"suggestions": [...], "saved": PATH} as JSON. The server's
+own options follow the run folder; it is stopped whatever happens.
+
+  view_drawing_requests.py TERRAWEAVE RUN_DIR WORK_DIR STROKE REGION [SERVER OPTION ...]
+
+STROKE and REGION are JSON lists of [x, y] points in the run's CRS.
+"""
+import ctypes
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+import urllib.error
+import urllib.request
+
+
+def post(url, body):
+    request = urllib.request.Request(url, data=json.dumps(body).encode(),
+                                     headers={"Content-Type": "application/json"})
+    try:
+        with urllib.request.urlopen(request, timeout=60) as answer:
+            return json.loads(answer.read())
+    except urllib.error.HTTPError as error:
+        sys.exit(f"{url}: {error.code} {error.read().decode()}")
+
+
+def main():
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("terminated"))
+    terraweave, run, work, stroke, region, *options = sys.argv[1:]
+    server = subprocess.Popen(
+        [terraweave, "view", run, "--out", os.path.join(work, "page.html"), "--serve", "0",
+         *options], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+        preexec_fn=lambda: ctypes.CDLL("libc.so.6").prctl(1, signal.SIGKILL))  # PR_SET_PDEATHSIG
+    try:
+        deadline, seen, match = time.time() + 60, "", None
+        while not match and time.time() < deadline:
+            line = server.stdout.readline()
+            if not line and server.poll() is not None:
+                break
+            seen += line
+            match = re.search(r"serving (http://127\.0\.0\.1:\d+)/", line)
+        if not match:
+            sys.exit(f"no 'serving' line from terraweave view: {seen[-2000:]}")
+        base = match.group(1)
+        drawn = json.loads(stroke)
+        suggestions = post(base + "/complete",
+                           {"lines": [drawn], "region": json.loads(region)})["suggestions"]
+        saved = post(base + "/save", {"lines": [drawn] + suggestions,
+                                      "origins": ["drawn"] + ["suggested"] * len(suggestions)})
+        print(json.dumps({"suggestions": suggestions, "saved": saved["path"]}))
+    finally:
+        server.kill()
+        server.wait()
+
+
+if __name__ == "__main__":
+    main()
