@@ -2,8 +2,8 @@
 // Every tw::Error becomes one line "terraweave: error: <message>" (newlines escaped) and exit
 // code 1; usage errors are one line "terraweave: usage error: ..." and exit with 2.
 #include <cpl_error.h>
-#include <gdal.h>
 #include <fmt/format.h>
+#include <gdal.h>
 #include <CLI/CLI.hpp>
 
 #include <sys/wait.h>
