@@ -164,14 +164,26 @@ json view_data_features(const fs::path& run) {
   return features;
 }
 
-json view_data(const fs::path& run, const ViewOptions& options) {
+// What both pages show first: the run's name and its grid (without the CRS's WKT), and the
+// grid's size.
+struct PageHead {
+  json data;
+  int width = 0, height = 0;
+};
+
+PageHead page_head(const fs::path& run) {
   const json report = detail::parse_json_file(run / "report.json", "run it again");
   const json& grid = report.at("grid");
-  const int width = grid.at("width"), height = grid.at("height");
-  json data;
-  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
-  data["grid"] = grid;
-  data["grid"].erase("crs_wkt");
+  PageHead head{json::object(), grid.at("width"), grid.at("height")};
+  head.data["name"] =
+      (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
+  head.data["grid"] = grid;
+  head.data["grid"].erase("crs_wkt");
+  return head;
+}
+
+json view_data(const fs::path& run, const ViewOptions& options) {
+  auto [data, width, height] = page_head(run);
   const auto [mw, mh] = fit(width, height, options.mesh_size);
   json heights = json::array();
   const std::vector<float> mesh =
@@ -192,13 +204,7 @@ json view_data(const fs::path& run, const ViewOptions& options) {
 std::string network_page(const ViewOptions& options, const std::string& save_path) {
   if (options.verify) verify_run_files(options.run_dir, "view");
   const fs::path& run = options.run_dir;
-  const json report = detail::parse_json_file(run / "report.json", "run it again");
-  const json& grid = report.at("grid");
-  const int width = grid.at("width"), height = grid.at("height");
-  json data;
-  data["name"] = (run.filename().empty() ? run.parent_path().filename() : run.filename()).string();
-  data["grid"] = grid;
-  data["grid"].erase("crs_wkt");
+  auto [data, width, height] = page_head(run);
   const auto [tw, th] = fit(width, height, options.texture_size);
   std::string rgb = splat_rgb(run, tw, th);  // rows south first: the canvas wants north first
   std::string north_first(rgb.size(), '\0');

@@ -356,6 +356,8 @@ void check_option_rows(const std::string& table, const std::set<std::string>& li
         EXPECT_EQ(files, "") << where << ": documented to write the same bytes";
         EXPECT_NE(a.err, b.err) << where << ": documented to change the log";
         break;
+      case Expect::tested_by:  // handled above: nothing was run
+        break;
     }
     if (!row.doc.empty()) {
       const std::size_t colon = row.doc.find(": ");
