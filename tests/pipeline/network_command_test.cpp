@@ -195,6 +195,18 @@ TEST_F(NetworkCommandTest, CloneIntoABoxKeepsTheMapsLinesAlreadyThere) {
   EXPECT_EQ(crossings(all), 0);
 }
 
+// A box --source-region is the source's polygon, as `--help` says (it was opened as a file name:
+// "cannot open as vector data").
+TEST_F(NetworkCommandTest, CloneFromABoxSourceRegion) {
+  const CommandResult c =
+      network("clone --map " + exemplar + " --source-region 500000,4000000,500350,4000480" +
+              " --target-region 500700,4000000,501300,4000480 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer cloned = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(cloned.lines.size(), 10u);
+  EXPECT_EQ(crossings(cloned), 0);
+}
+
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
   std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
   std::ofstream(dir / "bad.svg")
