@@ -207,6 +207,39 @@ TEST_F(NetworkCommandTest, CloneFromABoxSourceRegion) {
   EXPECT_EQ(crossings(cloned), 0);
 }
 
+// An SVG map is cut by both regions like any map: the lines already in the target are kept as cut
+// by it (they were kept whole and refused as outside the region or crossing).
+TEST_F(NetworkCommandTest, CloneOfAnSvgMapKeepsItsLinesInTheTarget) {
+  // The grid exemplar's layout in SVG units (1 m each; y down, so the map lies at y in -480..0).
+  std::string paths;
+  for (int i = 0; i <= 6; ++i)
+    paths +=
+        "<path d=\"M " + std::to_string(i * 100) + " 0 L " + std::to_string(i * 100) + " 480\"/>";
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i < 6; ++i) {
+      if ((i + j) % 3 == 1 && j > 0 && j < 6) continue;
+      const std::string y = std::to_string(j * 80 + ((i * 7 + j) % 3) * 6 * (j > 0 && j < 6));
+      paths += "<path d=\"M " + std::to_string(i * 100) + " " + y + " L " +
+               std::to_string((i + 1) * 100) + " " + y + "\"/>";
+    }
+  std::ofstream(dir / "map.svg") << "<svg>" + paths + "</svg>";
+  const CommandResult c = network("clone --map " + (dir / "map.svg").string() +
+                                  " --source-region 0,-480,350,0 --target-region 350,-480,950,0" +
+                                  " --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer kept = read_layer(dir / "d/network.gpkg", "kept");
+  ASSERT_GE(kept.lines.size(), 10u);
+  for (const auto& line : kept.lines)
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 350 - 1e-6);
+      EXPECT_LE(x, 600 + 1e-6);
+    }
+  Layer all = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(all.lines.size(), 3u);
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), 0);
+}
+
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
   std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
   std::ofstream(dir / "bad.svg")
