@@ -1004,8 +1004,23 @@ class Grower {
       std::vector<Vec2> ray{p, p + Vec2{std::cos(ahead), std::sin(ahead)} * (0.6 * median_)};
       if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
         truncate(ray, *hit);
-        if (valid(ray, true)) {
-          link_onto(n, std::move(ray), *hit);
+        // Met exactly at the hit edge's end node: joined to that node (splitting the edge there
+        // would leave a one-point piece crossing what meets at the node).
+        const NetworkEdge& met = out_.edges[std::size_t(hit->edge)];
+        int node = -1;
+        for (int m : {met.from, met.to})
+          if (distance(ray.back(), out_.nodes[std::size_t(m)]) <= 1e-7 * median_) node = m;
+        if (node != n && (node < 0 || !connected(n, node)) && valid(ray, true)) {
+          if (node < 0) {
+            link_onto(n, std::move(ray), *hit);
+          } else {
+            ray.back() = out_.nodes[std::size_t(node)];
+            NetworkEdge link;
+            link.from = n;
+            link.to = node;
+            link.points = std::move(ray);
+            add_edge(std::move(link));
+          }
           --dangling;
           continue;
         }
