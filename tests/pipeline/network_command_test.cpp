@@ -280,6 +280,11 @@ TEST_F(NetworkCloneWhere, DanglingEndsMeetingANodeJoinIt) {
   clone_kind_a(2, "a", "--seed 4");
 }
 
+// A piece ended exactly on a seed whose stubs had found nothing yet (a node without edges).
+TEST_F(NetworkCloneWhere, PiecesKeepOffSeedsWithoutEdges) {
+  clone_kind_a(3, "b", "");
+}
+
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
   std::ofstream(dir / "one.geojson") << lines_geojson({"[[500000,4000000],[500100,4000000]]"});
   std::ofstream(dir / "bad.svg")
