@@ -185,6 +185,10 @@ NetworkLines read_network_lines(const NetworkSource& s, Warnings& warnings) {
       out.lines.push_back(std::move(pts));
       out.fids.push_back(line.element);
     }
+    // Cut like any map (a clone's source and target regions), in the SVG's metres (no CRS).
+    out.region = s.region.empty() ? s.region_polygons
+                                  : read_region_polygons(s.region, "", "", s.subject + " region");
+    if (!out.region.empty()) out = cut_network_lines(out, out.region);
   } else {
     Dataset ds = open_vector(path, s.subject);
     OGRLayer* layer = layer_of(*ds, path, layer_name, s.where, s.subject);

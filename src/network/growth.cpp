@@ -536,6 +536,24 @@ class Grower {
         if (!at_joint && bg::distance(trimmed, v.first) < clearance_) return false;
       }
     }
+    // Nodes without edges yet (seeds whose stubs are still to be retried) are in no segment
+    // index: a candidate ending on or passing by one would meet its later edges off a node.
+    std::vector<NodeValue> seeds;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Vec2 a = pts[k], b = pts[k + 1];
+      const BgBox box(
+          {std::min(a.x, b.x) - clearance_ - eps, std::min(a.y, b.y) - clearance_ - eps},
+          {std::max(a.x, b.x) + clearance_ + eps, std::max(a.y, b.y) + clearance_ + eps});
+      seeds.clear();
+      nodes_.query(bgi::intersects(box), std::back_inserter(seeds));
+      for (const NodeValue& n : seeds) {
+        const Vec2 p = vec(n.first);
+        if (degree_[std::size_t(n.second)] > 0 || distance(p, start) <= eps ||
+            (end_joint && distance(p, end) <= eps))
+          continue;
+        if (distance_to_segment(p, a, b) < clearance_) return false;
+      }
+    }
     for (std::size_t k = 1; k < pts.size(); ++k)
       if (!inside_region(pts[k])) {
         ++report_.rejected_region;
@@ -1004,8 +1022,23 @@ class Grower {
       std::vector<Vec2> ray{p, p + Vec2{std::cos(ahead), std::sin(ahead)} * (0.6 * median_)};
       if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
         truncate(ray, *hit);
-        if (valid(ray, true)) {
-          link_onto(n, std::move(ray), *hit);
+        // Met exactly at the hit edge's end node: joined to that node (splitting the edge there
+        // would leave a one-point piece crossing what meets at the node).
+        const NetworkEdge& met = out_.edges[std::size_t(hit->edge)];
+        int node = -1;
+        for (int m : {met.from, met.to})
+          if (distance(ray.back(), out_.nodes[std::size_t(m)]) <= 1e-7 * median_) node = m;
+        if (node != n && (node < 0 || !connected(n, node)) && valid(ray, true)) {
+          if (node < 0) {
+            link_onto(n, std::move(ray), *hit);
+          } else {
+            ray.back() = out_.nodes[std::size_t(node)];
+            NetworkEdge link;
+            link.from = n;
+            link.to = node;
+            link.points = std::move(ray);
+            add_edge(std::move(link));
+          }
           --dangling;
           continue;
         }

@@ -167,12 +167,17 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
     if (c.map.empty()) fail("{}: --map is required", cmd);
     if (c.source_region.empty()) fail("{}: --source-region is required", cmd);
     if (c.target_region.empty()) fail("{}: --target-region is required", cmd);
-    exemplar_lines = read_network_lines({.source = c.map,
-                                         .where = c.exemplar_where,
-                                         .region = c.source_region,
-                                         .scale = c.scale,
-                                         .subject = "--map (in --source-region)"},
-                                        warnings);
+    // A box is the source's polygon itself (it would be opened as a file name otherwise).
+    const std::optional<std::vector<Polygon>> source_box =
+        box_region(c.source_region, "--source-region");
+    exemplar_lines =
+        read_network_lines({.source = c.map,
+                            .where = c.exemplar_where,
+                            .region = source_box ? "" : c.source_region,
+                            .region_polygons = source_box.value_or(std::vector<Polygon>{}),
+                            .scale = c.scale,
+                            .subject = "--map (in --source-region)"},
+                           warnings);
     region = region_of(c.target_region, "--target-region", exemplar_lines.crs_wkt);
     // What is already in the target is kept: the map's lines inside it, if any.
     kept_lines = read_network_lines({.source = c.map,

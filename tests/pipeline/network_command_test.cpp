@@ -23,17 +23,20 @@ using ::testing::HasSubstr;
 
 const std::string kCrs = R"("crs":{"type":"name","properties":{"name":"EPSG:32631"}})";
 
-std::string lines_geojson(const std::vector<std::string>& coordinates) {
+// `kinds`, when given: each line's "kind" property.
+std::string lines_geojson(const std::vector<std::string>& coordinates,
+                          const std::vector<std::string>& kinds = {}) {
   std::string features;
   for (std::size_t i = 0; i < coordinates.size(); ++i)
     features += std::string(i ? "," : "") + R"({"type":"Feature","id":)" + std::to_string(i + 1) +
-                R"(,"properties":{},"geometry":{"type":"LineString","coordinates":)" +
-                coordinates[i] + "}}";
+                R"(,"properties":{)" +
+                (kinds.empty() ? std::string() : R"("kind":")" + kinds[i] + "\"") +
+                R"(},"geometry":{"type":"LineString","coordinates":)" + coordinates[i] + "}}";
   return R"({"type":"FeatureCollection",)" + kCrs + R"(,"features":[)" + features + "]}";
 }
 
-// A small grid of fields in UTM 31N metres.
-std::string grid_exemplar() {
+// A small grid of fields in UTM 31N metres: its lines' coordinates.
+std::vector<std::string> grid_lines() {
   std::vector<std::string> lines;
   for (int i = 0; i <= 6; ++i) {
     const int x = 500000 + i * 100;
@@ -46,7 +49,10 @@ std::string grid_exemplar() {
       lines.push_back("[[" + std::to_string(500000 + i * 100) + "," + std::to_string(y) + "],[" +
                       std::to_string(500000 + (i + 1) * 100) + "," + std::to_string(y) + "]]");
     }
-  return lines_geojson(lines);
+  return lines;
+}
+std::string grid_exemplar() {
+  return lines_geojson(grid_lines());
 }
 
 struct Layer {
@@ -193,6 +199,90 @@ TEST_F(NetworkCommandTest, CloneIntoABoxKeepsTheMapsLinesAlreadyThere) {
   EXPECT_GT(all.lines.size(), 3u);  // the strip east of the map is grown
   all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
   EXPECT_EQ(crossings(all), 0);
+}
+
+// A box --source-region is the source's polygon, as `--help` says (it was opened as a file name:
+// "cannot open as vector data").
+TEST_F(NetworkCommandTest, CloneFromABoxSourceRegion) {
+  const CommandResult c =
+      network("clone --map " + exemplar + " --source-region 500000,4000000,500350,4000480" +
+              " --target-region 500700,4000000,501300,4000480 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer cloned = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(cloned.lines.size(), 10u);
+  EXPECT_EQ(crossings(cloned), 0);
+}
+
+// An SVG map is cut by both regions like any map: the lines already in the target are kept as cut
+// by it (they were kept whole and refused as outside the region or crossing).
+TEST_F(NetworkCommandTest, CloneOfAnSvgMapKeepsItsLinesInTheTarget) {
+  // The grid exemplar's layout in SVG units (1 m each; y down, so the map lies at y in -480..0).
+  std::string paths;
+  for (int i = 0; i <= 6; ++i)
+    paths +=
+        "<path d=\"M " + std::to_string(i * 100) + " 0 L " + std::to_string(i * 100) + " 480\"/>";
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i < 6; ++i) {
+      if ((i + j) % 3 == 1 && j > 0 && j < 6) continue;
+      const std::string y = std::to_string(j * 80 + ((i * 7 + j) % 3) * 6 * (j > 0 && j < 6));
+      paths += "<path d=\"M " + std::to_string(i * 100) + " " + y + " L " +
+               std::to_string((i + 1) * 100) + " " + y + "\"/>";
+    }
+  std::ofstream(dir / "map.svg") << "<svg>" + paths + "</svg>";
+  const CommandResult c = network("clone --map " + (dir / "map.svg").string() +
+                                  " --source-region 0,-480,350,0 --target-region 350,-480,950,0" +
+                                  " --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const Layer kept = read_layer(dir / "d/network.gpkg", "kept");
+  ASSERT_GE(kept.lines.size(), 10u);
+  for (const auto& line : kept.lines)
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 350 - 1e-6);
+      EXPECT_LE(x, 600 + 1e-6);
+    }
+  Layer all = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(all.lines.size(), 3u);
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), 0);
+}
+
+// `--where` keeps a subset of the grid: the sparser exemplar's pieces meet the target's lattice
+// of seeds exactly, where growth used to leave lines meeting off a node ("4 crossings ... (a
+// growth bug)").
+class NetworkCloneWhere : public NetworkCommandTest {
+ protected:
+  // The lines (counted from 1) whose number is a multiple of `every` are of kind `multiples`,
+  // the others of the other kind; the 'a' lines are cloned.
+  void clone_kind_a(int every, const std::string& multiples, const std::string& seed) {
+    const std::string others = multiples == "a" ? "b" : "a";
+    std::vector<std::string> kinds;
+    for (std::size_t i = 1; i <= grid_lines().size(); ++i)
+      kinds.push_back(i % std::size_t(every) ? others : multiples);
+    std::ofstream(dir / "kinds.geojson") << lines_geojson(grid_lines(), kinds);
+    std::ofstream(dir / "source.geojson")
+        << R"({"type":"FeatureCollection",)" + kCrs +
+               R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
+    const CommandResult c =
+        network("clone --map " + (dir / "kinds.geojson").string() +
+                " --where \"kind = 'a'\" --source-region " + (dir / "source.geojson").string() +
+                " --target-region 500700,4000000,501300,4000480 " + seed + " --out " +
+                (dir / "d").string());
+    ASSERT_EQ(c.exit_code, 0) << c.output;
+    const Layer grown = read_layer(dir / "d/network.gpkg", "suggestions");
+    EXPECT_GT(grown.lines.size(), 5u);
+    EXPECT_EQ(crossings(grown), 0);
+  }
+};
+
+// A dangling end joined straight ahead exactly onto another edge's end node is joined to that
+// node (it split the edge there, leaving a one-point piece).
+TEST_F(NetworkCloneWhere, DanglingEndsMeetingANodeJoinIt) {
+  clone_kind_a(2, "a", "--seed 4");
+}
+
+// A piece ended exactly on a seed whose stubs had found nothing yet (a node without edges).
+TEST_F(NetworkCloneWhere, PiecesKeepOffSeedsWithoutEdges) {
+  clone_kind_a(3, "b", "");
 }
 
 TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {

@@ -659,8 +659,8 @@ TEST_F(OptionTables, Network) {
       "network clone", help_options("network clone"),
       shared_rows(
           clone + target + source + map,
-          // An SVG map cannot be cloned (its lines in the target are kept and must not
-          // cross), so --scale has nothing to scale.
+          // The map here is GeoJSON, so --scale has nothing to scale (an SVG map is cloned in
+          // NetworkCommandTest.CloneOfAnSvgMapKeepsItsLinesInTheTarget).
           row("--scale", clone + target + source + map, "", "--scale 14", Expect::same_bytes,
               "docs/cli.md: `--scale` scales an SVG only"),
           "@d/track_east.geojson",
