@@ -409,7 +409,10 @@ std::vector<KeyBlock> make_blocks() {
               .exclusive_maximum = true}},
             "compass degrees the exemplar's main bearing is turned to"},
            {"clearance", {non_negative()}, "metres between curves; 0: 6 % of the median edge"},
-           {"snap", {non_negative()}, "metres within which near-junctions join; 0: automatic"},
+           {"snap",
+            {non_negative()},
+            "metres within which a growing end is pulled onto the network; 0: 35 % of the "
+            "median edge"},
            {"candidates",
             {integer(1, 1000)},
             "pieces tried per open end",
