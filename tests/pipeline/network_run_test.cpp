@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -412,6 +413,48 @@ TEST(NetworkRun, LanesStayOffTheHeightfieldsNodata) {
       }
     }
   EXPECT_GT(samples, 1000);
+}
+
+// An area class's polygon in the lanes' region: its shape-patterns fill it later, so no lane
+// enters it (sampled every 0.5 m, 2 m inside its edge: the mask's cells are a metre); without the
+// area class, lanes cross the same square.
+TEST(NetworkRun, LanesStayOutOfTheAreaClassesPolygons) {
+  test::TempDir dir;
+  const double x0 = 291200, y0 = 9114120, x1 = 291380, y1 = 9114300;
+  test::write_layer(dir / "plots.gpkg", "plots",
+                    {{fmt::format("POLYGON (({0} {1}, {2} {1}, {2} {3}, {0} {3}, {0} {1}))", x0, y0,
+                                  x1, y1)}},
+                    "EPSG:32725");
+  std::string yaml = test::read_file(kDemo);
+  for (std::size_t at = yaml.find("../"); at != std::string::npos; at = yaml.find("../", at))
+    yaml.replace(at, 3, test::source_dir().string() + "/");
+  const std::string plots = "  plots:\n    kind: area\n    source: " + (dir / "plots.gpkg").string() +
+                            "\n    layer: plots\n    sketch: " +
+                            (test::source_dir() / "samples/sketches/orchard.geojson").string() +
+                            "\n    scale: 40\n    materials: { crown: orchard_crown, trunk: "
+                            "orchard_trunk }\n";
+  const std::string with_plots = std::string(yaml).insert(yaml.find("existing:"), plots);
+  const auto lanes_in_square = [&](const std::string& text) {
+    std::ofstream(dir / "p.yaml") << text;
+    Warnings warnings;
+    const WorldPlan plan = plan_world(
+        load_pipeline(dir / "p.yaml", {{"output.dir", (dir / "out").string()}}), {}, warnings);
+    const auto& lanes = plan.lines.at(2);
+    EXPECT_GE(lanes.size(), 8u);
+    int inside = 0;
+    for (const LineFeature& lane : lanes)
+      for (std::size_t k = 0; k + 1 < lane.points.size(); ++k) {
+        const Vec2 a = lane.points[k], b = lane.points[k + 1];
+        const int n = 1 + int(distance(a, b) / 0.5);
+        for (int s = 0; s <= n; ++s) {
+          const Vec2 p = a + (b - a) * (double(s) / n);
+          inside += p.x > x0 + 2 && p.x < x1 - 2 && p.y > y0 + 2 && p.y < y1 - 2;
+        }
+      }
+    return inside;
+  };
+  EXPECT_GT(lanes_in_square(yaml), 0) << "the square is where lanes grow without the area";
+  EXPECT_EQ(lanes_in_square(with_plots), 0);
 }
 
 // `choose: mix` on a network class: near_junction binds the crossing exemplar around the grown
