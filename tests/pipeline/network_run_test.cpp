@@ -3,11 +3,11 @@
 // features.geojson, never cross (GEOS), lie in the region and off the roads read before them,
 // are painted in the class's splat material and forbidden in the avoidance layer, are the same
 // bytes for the same seed, and a tiled run equals the untiled one; config errors name the key.
+#include <fmt/format.h>
 #include <gdal_priv.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
-#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -421,18 +421,19 @@ TEST(NetworkRun, LanesStayOffTheHeightfieldsNodata) {
 TEST(NetworkRun, LanesStayOutOfTheAreaClassesPolygons) {
   test::TempDir dir;
   const double x0 = 291200, y0 = 9114120, x1 = 291380, y1 = 9114300;
-  test::write_layer(dir / "plots.gpkg", "plots",
-                    {{fmt::format("POLYGON (({0} {1}, {2} {1}, {2} {3}, {0} {3}, {0} {1}))", x0, y0,
-                                  x1, y1)}},
-                    "EPSG:32725");
+  test::write_layer(
+      dir / "plots.gpkg", "plots",
+      {{fmt::format("POLYGON (({0} {1}, {2} {1}, {2} {3}, {0} {3}, {0} {1}))", x0, y0, x1, y1)}},
+      "EPSG:32725");
   std::string yaml = test::read_file(kDemo);
   for (std::size_t at = yaml.find("../"); at != std::string::npos; at = yaml.find("../", at))
     yaml.replace(at, 3, test::source_dir().string() + "/");
-  const std::string plots = "  plots:\n    kind: area\n    source: " + (dir / "plots.gpkg").string() +
-                            "\n    layer: plots\n    sketch: " +
-                            (test::source_dir() / "samples/sketches/orchard.geojson").string() +
-                            "\n    scale: 40\n    materials: { crown: orchard_crown, trunk: "
-                            "orchard_trunk }\n";
+  const std::string plots =
+      "  plots:\n    kind: area\n    source: " + (dir / "plots.gpkg").string() +
+      "\n    layer: plots\n    sketch: " +
+      (test::source_dir() / "samples/sketches/orchard.geojson").string() +
+      "\n    scale: 40\n    materials: { crown: orchard_crown, trunk: "
+      "orchard_trunk }\n";
   const std::string with_plots = std::string(yaml).insert(yaml.find("existing:"), plots);
   const auto lanes_in_square = [&](const std::string& text) {
     std::ofstream(dir / "p.yaml") << text;
