@@ -93,6 +93,9 @@ class MixWorld : public ::testing::Test {
     std::ifstream in(dir_ / "out" / "report.json");
     return nlohmann::json::parse(in);
   }
+  // The first class's features, by value: a range-for over report()[...] would iterate a part
+  // of a temporary destroyed before the loop's body (C++20).
+  nlohmann::json first_class_features() const { return report()["classes"][0]["features"]; }
 
   test::TempDir dir_;
 };
@@ -250,16 +253,16 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
   options.cache_dir = dir_ / "cache";
   run_pipeline(config(), options);
   run_pipeline(config(), options);
-  for (const auto& f : report()["classes"][0]["features"])
+  for (const auto& f : first_class_features())
     EXPECT_EQ(f["cache"]["why"], "unchanged");
   run_pipeline(config({{"features.roads.synthesis.switch_cost", "40"}}), options);
-  for (const auto& f : report()["classes"][0]["features"]) {
+  for (const auto& f : first_class_features()) {
     EXPECT_EQ(f["cache"]["status"], "rebuilt");
     EXPECT_EQ(f["cache"]["why"], "config changed");
   }
   // Reused entries report the mix as built.
   run_pipeline(config({{"features.roads.synthesis.switch_cost", "40"}}), options);
-  for (const auto& f : report()["classes"][0]["features"]) {
+  for (const auto& f : first_class_features()) {
     EXPECT_EQ(f["cache"]["status"], "reused");
     EXPECT_EQ(f["synthesis"]["mix"]["switch_cost"], 40);
     EXPECT_EQ(f["synthesis"]["mix"]["exemplars"].size(), 3u);

@@ -243,6 +243,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         pattern.opaque = std::move(cached->opaque);
         pattern.report = std::move(cached->report);
         if (plan.mix) {
+          // The cached report holds the list already: set, not appended to.
+          pattern.report.mix_exemplars.clear();
           for (const fs::path& path : synthesis.exemplars)
             pattern.report.mix_exemplars.push_back(path.string());
           pattern.report.pieces_per_exemplar = pattern.synthesis.pieces_per_exemplar;
