@@ -1,14 +1,16 @@
 #pragma once
 // SplitMix64 as a small generator: the same draws on every platform from the same seed
 // (std:: distributions are implementation-defined). Header-only, no state but its own.
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 
 namespace tw {
 
 class SplitMix64 {
  public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
+  explicit constexpr SplitMix64(std::uint64_t seed) : state_(seed) {}
+  constexpr std::uint64_t next() {
     std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
@@ -18,9 +20,20 @@ class SplitMix64 {
   double uniform(double a, double b) { return a + (b - a) * uniform(); }
   // [0, n): n > 0
   std::uint64_t below(std::uint64_t n) { return next() % n; }
+  // A standard normal draw (Box-Muller, one of the pair): two uniform draws.
+  double normal() {
+    const double u = 1.0 - uniform(), v = uniform();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
+  }
 
  private:
   std::uint64_t state_;
 };
+
+// One draw from a generator seeded with x: a hash of x that mixes every bit (seeds derived
+// from several values: `split_mix64(split_mix64(a) ^ b)`).
+constexpr std::uint64_t split_mix64(std::uint64_t x) {
+  return SplitMix64(x).next();
+}
 
 }  // namespace tw

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/split_mix.hpp"
+
 namespace tw::detail {
 namespace {
 
@@ -25,7 +27,8 @@ constexpr std::int64_t lerp_q16(std::int64_t a, std::int64_t b, std::int64_t t) 
 
 // One of eight gradients (axes and diagonals) for a lattice point.
 int gradient_index(std::int64_t ix, std::int64_t iy, std::uint64_t seed) {
-  return int(mix64(seed ^ mix64(std::uint64_t(ix) * 0x8CB92BA72F3D8DD7ull + std::uint64_t(iy))) >>
+  return int(split_mix64(seed ^ split_mix64(std::uint64_t(ix) * 0x8CB92BA72F3D8DD7ull +
+                                            std::uint64_t(iy))) >>
              61);
 }
 
@@ -87,11 +90,11 @@ struct Octave {
 std::vector<Octave> octaves(std::int64_t largest_cell, std::uint64_t seed) {
   std::vector<Octave> result;
   std::int64_t amplitude = kNoiseOne;
-  std::uint64_t octave_seed = mix64(seed);
+  std::uint64_t octave_seed = split_mix64(seed);
   for (std::int64_t cell = std::max<std::int64_t>(largest_cell, 2); cell >= 2; cell /= 2) {
     result.push_back({cell, amplitude, octave_seed});
     amplitude /= 2;
-    octave_seed = mix64(octave_seed);
+    octave_seed = split_mix64(octave_seed);
   }
   return result;
 }

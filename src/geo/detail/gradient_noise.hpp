@@ -8,14 +8,6 @@ namespace tw::detail {
 
 inline constexpr std::int64_t kNoiseOne = 1 << 16;  // 1.0 in the noise's Q16 fixed point
 
-// SplitMix64's finalizer: a good 64-bit mix from an integer.
-constexpr std::uint64_t mix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 // Gradient noise at the integer pixel (col, row) of a lattice whose cells are `cell` pixels
 // wide, in Q16, roughly within [-1, 1].
 std::int64_t gradient_noise(std::int64_t col, std::int64_t row, std::int64_t cell,

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "core/split_mix.hpp"
 #include "pipeline/detail/bindings.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
@@ -18,13 +19,6 @@ namespace tw::detail {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 
 struct ClassPlan {
   std::size_t class_index = 0;
@@ -76,9 +70,9 @@ std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
 }  // namespace
 
 std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid) {
-  std::uint64_t h = splitmix64(run_seed);
-  h = splitmix64(h ^ class_seed);
-  h = splitmix64(h ^ std::uint64_t(fid));
+  std::uint64_t h = split_mix64(run_seed);
+  h = split_mix64(h ^ class_seed);
+  h = split_mix64(h ^ std::uint64_t(fid));
   return h == 0 ? 1 : h;
 }
 

@@ -6,23 +6,6 @@
 
 namespace tw::detail {
 
-std::uint64_t SplitMix::next() {
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-double SplitMix::uniform() {
-  return double(next() >> 11) * 0x1.0p-53;
-}
-double SplitMix::uniform(double a, double b) {
-  return a + (b - a) * uniform();
-}
-double SplitMix::normal() {
-  const double u = 1.0 - uniform(), v = uniform();
-  return std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * std::numbers::pi * v);
-}
-
 namespace {
 
 // A copy of one fibre median inside a lead direction: shifted across the lead by `shift`, its
@@ -60,7 +43,7 @@ Interval project_rect(Vec2 lo, Vec2 hi, Vec2 origin, Vec2 direction) {
 }
 
 std::vector<MedianCopy> median_copies(const Grouping& lead, const std::vector<Grouping>& medians,
-                                      Interval span, double jitter, SplitMix& rng) {
+                                      Interval span, double jitter, SplitMix64& rng) {
   std::vector<MedianCopy> copies;
   for (std::size_t k = 0; k < lead.members.size(); ++k) {
     copies.push_back(
@@ -146,7 +129,7 @@ std::vector<Vec2> extend_unbounded(std::vector<Vec2> local, UnboundedCategory ca
 void area_candidates(const SupportHierarchy& h, Vec2 lo, Vec2 hi, double jitter, bool keep_input,
                      std::uint64_t seed, const CandidateFilter& near, const CandidateVisitor& visit,
                      std::int64_t& skipped) {
-  SplitMix rng(seed);
+  SplitMix64 rng(seed);
   for (std::size_t l = 0; l < h.leads.size(); ++l) {
     const Grouping& lead = h.leads[l];
     LeadFrame frame{lead.line.point, lead.line.direction, perp(lead.line.direction), 0.0};

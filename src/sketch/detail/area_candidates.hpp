@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/split_mix.hpp"
 #include "core/vec2.hpp"
 #include "sketch/hierarchy.hpp"
 
@@ -18,19 +19,6 @@ struct Candidate {
   std::vector<std::vector<Vec2>> strokes;  // one per stroke of the shape, same order
   Vec2 centre;
   Vec2 axis{1.0, 0.0};
-};
-
-// A portable uniform generator: the same numbers from the same seed on every platform
-// (std:: distributions are implementation-defined).
-class SplitMix {
- public:
-  explicit SplitMix(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next();
-  double uniform();                    // [0, 1)
-  double uniform(double a, double b);  // [a, b)
-  double normal();                     // standard normal (Box-Muller)
- private:
-  std::uint64_t state_;
 };
 
 // Every candidate of the hierarchy over the rectangle [lo, hi] of input space (the output space

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/progress.hpp"
+#include "core/split_mix.hpp"
 #include "synth/detail/closed_cycle.hpp"
 #include "synth/detail/cost.hpp"
 #include "synth/detail/dp_driver.hpp"
@@ -19,13 +20,6 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
 }
 
 }  // namespace
@@ -99,7 +93,7 @@ DpResult run_dp(Backend& backend, const DpInput& input) {
            input.space.ux(*input.first_index), input.space.uy(*input.first_index));
     first_row = {*input.first_index};
   } else if (input.seed != 0 && !valid[0].empty()) {
-    first_row = {valid[0][splitmix64(input.seed) % valid[0].size()]};
+    first_row = {valid[0][split_mix64(input.seed) % valid[0].size()]};
   }
 
   const int rows = input.closed ? N + 1 : N;
