@@ -77,16 +77,20 @@ static int writes_mode(const char* mode) {
   return mode && (strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'));
 }
 
+// The optional mode argument of open(2): read only when the flags create a file.
+#define CREATION_MODE(mode, flags)       \
+  mode_t mode = 0;                       \
+  if ((flags) & (O_CREAT | O_TMPFILE)) { \
+    va_list args;                        \
+    va_start(args, flags);               \
+    mode = va_arg(args, mode_t);         \
+    va_end(args);                        \
+  }
+
 #define OPEN_LIKE(name)                             \
   int name(const char* path, int flags, ...) {      \
     REAL(name);                                     \
-    mode_t mode = 0;                                \
-    if (flags & (O_CREAT | O_TMPFILE)) {            \
-      va_list args;                                 \
-      va_start(args, flags);                        \
-      mode = va_arg(args, mode_t);                  \
-      va_end(args);                                 \
-    }                                               \
+    CREATION_MODE(mode, flags)                      \
     if (writes(flags)) step(#name, AT_FDCWD, path); \
     return real_##name(path, flags, mode);          \
   }
@@ -96,13 +100,7 @@ OPEN_LIKE(open64)
 #define OPENAT_LIKE(name)                                 \
   int name(int dirfd, const char* path, int flags, ...) { \
     REAL(name);                                           \
-    mode_t mode = 0;                                      \
-    if (flags & (O_CREAT | O_TMPFILE)) {                  \
-      va_list args;                                       \
-      va_start(args, flags);                              \
-      mode = va_arg(args, mode_t);                        \
-      va_end(args);                                       \
-    }                                                     \
+    CREATION_MODE(mode, flags)                            \
     if (writes(flags)) step(#name, dirfd, path);          \
     return real_##name(dirfd, path, flags, mode);         \
   }
