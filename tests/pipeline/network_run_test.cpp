@@ -9,14 +9,17 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cache_world.hpp"
 #include "core/error.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -213,6 +216,84 @@ TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
   for (std::size_t i = 0; i < plan.lines[lanes].size(); ++i) {
     EXPECT_EQ(loaded.lines[lanes][i].points, plan.lines[lanes][i].points);
     EXPECT_EQ(loaded.lines[lanes][i].fid, std::int64_t(i + 1));
+  }
+}
+
+// report.json's values but the timings and the pipeline it echoes.
+nlohmann::json report_values(const nlohmann::json& j) {
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& v : j) out.push_back(report_values(v));
+    return out;
+  }
+  if (!j.is_object()) return j;
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, v] : j.items())
+    if (key != "pipeline" && key != "timings" && key != "stages" && !key.ends_with("seconds"))
+      out[key] = report_values(v);
+  return out;
+}
+
+// Issue #20: a network class run distributed (docs/distributed.md) as separate terraweave
+// processes: plan (which grows the lanes and, the demo being a close-up, synthesizes their
+// patterns), render-tile per tile (last first), finish. Every file is the bytes of `terraweave
+// run` of the same tiled pipeline (report.json: the same values but timings): the lanes grown
+// once in the plan reach every tile. A corner of the demo: 22 lanes, 2 x 2 tiles.
+TEST(NetworkRun, DistributedStepsWriteTheBytesOfARun) {
+  test::TempDir dir;
+  const std::string binary = "'" + test::terraweave_binary().string() + "' -q ";
+  const std::string sets =
+      " --set 'region=[290990, 9113990, 291310, 9114210]'"
+      " --set 'features.lanes.network.region=[291000, 9114000, 291300, 9114200]'"
+      " --set output.tiles.size=48 --set output.tiles.overlap=4 --set output.preview=false"
+      " --set features.lanes.synthesis.exemplar=" +
+      (test::source_dir() / "samples/exemplars/hedge_192x48.png").string() +
+      " --set features.lanes.synthesis.delta=8";
+  const auto step = [&](const std::string& args) {
+    const test::CommandResult r = test::run_command(binary + args + " 2>&1");
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.output;
+    return r.output;
+  };
+  step("run " + kDemo.string() + " --out " + (dir / "local").string() + sets);
+  const fs::path out = dir / "distributed";
+  const std::string planned = step("plan " + kDemo.string() + " --out " + out.string() + sets);
+  std::size_t tiles = 0, syntheses = 0;
+  ASSERT_EQ(std::sscanf(planned.substr(planned.find("plan ")).c_str(),
+                        "plan %*s %zu tiles, %zu syntheses to run", &tiles, &syntheses),
+            2)
+      << planned;
+  EXPECT_EQ(tiles, 4u);      // 81 x 56 pixels
+  EXPECT_EQ(syntheses, 0u);  // a close-up synthesizes in the plan
+  for (std::size_t t = tiles; t-- > 0;)
+    step("render-tile " + out.string() + " --tile " + std::to_string(t));
+  step("finish " + out.string());
+
+  const auto local = test::output_files(dir / "local");
+  const auto distributed = test::output_files(out);
+  ASSERT_TRUE(local.contains("features.geojson"));
+  EXPECT_GE(class_lines(dir / "local", "lanes").size(), 3u);
+  const nlohmann::json local_report =
+      nlohmann::json::parse(test::read_file(dir / "local/report.json"));
+  int dressed = 0;  // lanes carrying the hedge pattern
+  for (const auto& c : local_report["classes"])
+    if (c["name"] == "lanes")
+      for (const auto& f : c["features"]) dressed += f["pieces"].get<int>() > 0;
+  EXPECT_GE(dressed, 3);
+  std::vector<std::string> names, other_names;
+  for (const auto& [name, bytes] : local) names.push_back(name);
+  for (const auto& [name, bytes] : distributed) other_names.push_back(name);
+  EXPECT_EQ(names, other_names);
+  EXPECT_GE(std::count_if(names.begin(), names.end(),
+                          [](const std::string& n) { return n.starts_with("tiles/"); }),
+            4);
+  const auto report = [](const fs::path& folder) {
+    return report_values(nlohmann::json::parse(test::read_file(folder / "report.json")));
+  };
+  EXPECT_EQ(report(dir / "local"), report(out));
+  for (const auto& [name, bytes] : local) {
+    const auto it = distributed.find(name);
+    if (it == distributed.end()) continue;
+    EXPECT_TRUE(bytes == it->second) << name << " differs";
   }
 }
 
