@@ -333,4 +333,34 @@ void write_drawn_network(const std::filesystem::path& path, const std::string& c
   transaction.commit();
 }
 
+std::vector<std::vector<Vec2>> read_drawn_network(const std::filesystem::path& path,
+                                                  const std::string& crs_wkt,
+                                                  std::vector<std::string>& origins) {
+  GDALAllRegister();
+  const std::unique_ptr<GDALDataset> ds(GDALDataset::Open(
+      path.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  OGRLayer* layer = ds ? ds->GetLayerByName("lines") : nullptr;
+  if (!layer) fail("{}: not a saved drawing (no GeoPackage layer 'lines')", path.string());
+  OGRSpatialReference run;
+  const OGRSpatialReference* own = layer->GetSpatialRef();
+  if (!crs_wkt.empty() && run.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE &&
+      (!own || !own->IsSame(&run)))
+    fail("{}: the drawing is not in the run's CRS", path.string());
+  const int origin_field = layer->GetLayerDefn()->GetFieldIndex("origin");
+  std::vector<std::vector<Vec2>> lines;
+  origins.clear();
+  for (auto& f : *layer) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString)
+      fail("{}: FID {}: not a line", path.string(), f->GetFID());
+    const OGRLineString* ls = g->toLineString();
+    std::vector<Vec2>& line = lines.emplace_back();
+    for (int i = 0; i < ls->getNumPoints(); ++i) line.push_back({ls->getX(i), ls->getY(i)});
+    origins.push_back(origin_field >= 0 && f->GetFieldAsString(origin_field) == std::string("drawn")
+                          ? "drawn"
+                          : "suggested");
+  }
+  return lines;
+}
+
 }  // namespace tw
