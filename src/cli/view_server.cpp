@@ -115,6 +115,23 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
                      to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};
       });
     });
+    // The drawing saved at --save, when there is one: {lines, origins} as saved (empty lists
+    // when nothing was saved yet), shown by the page on loading as accepted lines.
+    server.Get("/drawing", [&](const httplib::Request&, httplib::Response& response) {
+      json body = {{"lines", json::array()}, {"origins", json::array()}};
+      try {
+        std::lock_guard lock(one_at_a_time);
+        if (std::filesystem::exists(o.save)) {
+          std::vector<std::string> origins;
+          body["lines"] = to_json(read_drawn_network(o.save, crs_wkt, origins));
+          body["origins"] = origins;
+        }
+        response.set_content(body.dump(), "application/json");
+      } catch (const std::exception& e) {
+        response.status = 400;
+        response.set_content(json{{"error", single_line(e.what())}}.dump(), "application/json");
+      }
+    });
     // {lines: [...], origins: ["drawn" | "suggested", ...]} -> {path, lines}
     server.Post("/save", [&](const httplib::Request& request, httplib::Response& response) {
       answer(request, response, [&](const json& body) {

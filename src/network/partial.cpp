@@ -17,6 +17,41 @@ OGRLineString ogr_line(const std::vector<Vec2>& points) {
   return line;
 }
 
+// Pairs of lines (i < j, in order) meeting where neither ends.
+std::vector<std::pair<std::size_t, std::size_t>> crossing_lines(const NetworkLines& lines) {
+  std::vector<OGRLineString> ogr;
+  std::vector<OGREnvelope> envelopes(lines.lines.size());
+  for (std::size_t i = 0; i < lines.lines.size(); ++i) {
+    ogr.push_back(ogr_line(lines.lines[i]));
+    ogr.back().getEnvelope(&envelopes[i]);
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t i = 0; i < ogr.size(); ++i)
+    for (std::size_t j = i + 1; j < ogr.size(); ++j) {
+      if (!envelopes[i].Intersects(envelopes[j]) || !ogr[i].Intersects(&ogr[j])) continue;
+      const auto& a = lines.lines[i];
+      const auto& b = lines.lines[j];
+      const std::unique_ptr<OGRGeometry> common(ogr[i].Intersection(&ogr[j]));
+      const auto at_an_end = [&](double x, double y) {
+        const Vec2 p{x, y};
+        for (Vec2 q : {a.front(), a.back(), b.front(), b.back()})
+          if (distance(p, q) < 1e-9 * (1.0 + length(p))) return true;
+        return false;
+      };
+      bool bad = false;
+      const auto type = wkbFlatten(common->getGeometryType());
+      if (type == wkbPoint)
+        bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
+      else if (type == wkbMultiPoint)
+        for (const OGRPoint* p : *common->toMultiPoint())
+          bad = bad || !at_an_end(p->getX(), p->getY());
+      else
+        bad = !common->IsEmpty();
+      if (bad) out.emplace_back(i, j);
+    }
+  return out;
+}
+
 }  // namespace
 
 Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& region,
@@ -46,38 +81,30 @@ Network partial_network(const NetworkLines& lines, const std::vector<Polygon>& r
           "{} {}: FID {} crosses itself (a partial network may meet itself only where a line "
           "ends)",
           subject, source, e.fid);
-  // Crossings: two lines meeting where neither ends.
-  for (std::size_t i = 0; i < drawn.edges.size(); ++i)
-    for (std::size_t j = i + 1; j < drawn.edges.size(); ++j) {
-      const auto& a = drawn.edges[i].points;
-      const auto& b = drawn.edges[j].points;
-      const OGRLineString la = ogr_line(a), lb = ogr_line(b);
-      if (!la.Intersects(&lb)) continue;
-      const std::unique_ptr<OGRGeometry> common(la.Intersection(&lb));
-      const auto at_an_end = [&](double x, double y) {
-        const Vec2 p{x, y};
-        for (Vec2 q : {a.front(), a.back(), b.front(), b.back()})
-          if (distance(p, q) < 1e-9 * (1.0 + length(p))) return true;
-        return false;
-      };
-      bool bad = false;
-      const auto type = wkbFlatten(common->getGeometryType());
-      if (type == wkbPoint)
-        bad = !at_an_end(common->toPoint()->getX(), common->toPoint()->getY());
-      else if (type == wkbMultiPoint)
-        for (const OGRPoint* p : *common->toMultiPoint())
-          bad = bad || !at_an_end(p->getX(), p->getY());
-      else
-        bad = !common->IsEmpty();
-      if (bad)
-        fail(
-            "{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
-            "ends)",
-            subject, source, drawn.edges[i].fid, drawn.edges[j].fid);
-    }
+  const std::vector<std::pair<std::size_t, std::size_t>> crossing = crossing_lines(lines);
+  if (!crossing.empty())
+    fail(
+        "{} {}: FID {} crosses FID {} (a partial network may meet itself only where a line "
+        "ends)",
+        subject, source, lines.fids[crossing.front().first], lines.fids[crossing.front().second]);
   NetworkLines in = lines;
   in.region = region;
   Network net = build_planar_network(in, 0.0, subject, warnings);
+  for (NetworkEdge& e : net.edges) e.kept = true;
+  return net;
+}
+
+}  // namespace tw
+
+namespace tw {
+
+Network kept_map_network(const NetworkLines& lines, double snap_m, const std::string& subject,
+                         Warnings& warnings) {
+  for (const auto& [i, j] : crossing_lines(lines))
+    warnings.add("crossing_lines", subject, lines.fids[i],
+                 fmt::format("crosses FID {} where neither ends: noded into a junction there",
+                             lines.fids[j]));
+  Network net = build_planar_network(lines, snap_m, subject, warnings);
   for (NetworkEdge& e : net.edges) e.kept = true;
   return net;
 }

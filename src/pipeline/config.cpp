@@ -427,12 +427,17 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   if (m.has("synthesis")) {
     f.synthesis = read_synthesis(
         MapReader(m.source(), m.get("synthesis"), m.path("synthesis"), "synthesis"), seed, inputs);
-    // A network's lines are grown: there is no layer for a where or tags rule to ask.
-    for (std::size_t i = 0; f.network && i < f.synthesis->bind.size(); ++i)
+    // A network's or a grown class's lines are grown: there is no layer of them for a where or
+    // tags rule to ask (a grown class's source holds its region's polygons, whose FIDs are not
+    // the lines').
+    for (std::size_t i = 0; (f.network || f.grow) && i < f.synthesis->bind.size(); ++i)
       if (!f.synthesis->bind[i].where.empty() || !f.synthesis->bind[i].tags.empty())
         m.source().fail(m.get("synthesis")["bind"][i], f.synthesis->bind[i].key,
-                        "a network class's lines are grown and have no attributes for where or "
-                        "tags to select; bind them by near_junction");
+                        f.network ? "a network class's lines are grown and have no attributes for "
+                                    "where or tags to select; bind them by near_junction"
+                                  : "a grown class's lines have no attributes for where or tags "
+                                    "to select (its source is the region's polygons); bind them "
+                                    "by near_junction");
   }
   return f;
 }

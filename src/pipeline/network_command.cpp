@@ -44,15 +44,19 @@ std::vector<Polygon> region_of(const std::string& text, const std::string& key,
   return read_region_polygons(text, "", crs_wkt, key);
 }
 
-// Snapped (within `snap`, 0: 1/1000 of the lines' extent) and noded.
-Network exemplar_network(const NetworkLines& lines, double snap, Warnings& warnings) {
+// The exemplar's repair distance: `snap`, or (0) 1/1000 of the lines' extent.
+double repair_snap(const NetworkLines& lines, double snap) {
   Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
   for (const auto& l : lines.lines)
     for (Vec2 p : l)
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  const double extent = std::max(hi.x - lo.x, hi.y - lo.y);
-  return build_planar_network(lines, snap > 0.0 ? snap : 1e-3 * extent, "--exemplar", warnings);
+  return snap > 0.0 ? snap : 1e-3 * std::max(hi.x - lo.x, hi.y - lo.y);
+}
+
+// Snapped (within `snap`, 0: 1/1000 of the lines' extent) and noded.
+Network exemplar_network(const NetworkLines& lines, double snap, Warnings& warnings) {
+  return build_planar_network(lines, repair_snap(lines, snap), "--exemplar", warnings);
 }
 
 ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>& region,
@@ -207,9 +211,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   }
   const Network exemplar = exemplar_network(exemplar_lines, c.snap, warnings);
   std::optional<Network> partial;
-  if (kept_lines)
-    partial = partial_network(*kept_lines, region, c.mode == "clone" ? "--map" : "--partial",
-                              c.mode == "clone" ? c.map : c.partial, warnings);
+  if (kept_lines && c.mode == "clone")  // map data: noded and repaired as the exemplar is
+    partial = kept_map_network(*kept_lines, repair_snap(exemplar_lines, c.snap),
+                               "--map (in --target-region)", warnings);
+  else if (kept_lines)  // the user's drawing: kept exactly, never crossing itself
+    partial = partial_network(*kept_lines, region, "--partial", c.partial, warnings);
   std::optional<ForbiddenMask> forbidden;
   if (!c.avoid.empty()) forbidden = forbidden_mask(c, region, exemplar_lines.crs_wkt, warnings);
 
@@ -325,6 +331,36 @@ void write_drawn_network(const std::filesystem::path& path, const std::string& c
     if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
   }
   transaction.commit();
+}
+
+std::vector<std::vector<Vec2>> read_drawn_network(const std::filesystem::path& path,
+                                                  const std::string& crs_wkt,
+                                                  std::vector<std::string>& origins) {
+  GDALAllRegister();
+  const std::unique_ptr<GDALDataset> ds(GDALDataset::Open(
+      path.string().c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  OGRLayer* layer = ds ? ds->GetLayerByName("lines") : nullptr;
+  if (!layer) fail("{}: not a saved drawing (no GeoPackage layer 'lines')", path.string());
+  OGRSpatialReference run;
+  const OGRSpatialReference* own = layer->GetSpatialRef();
+  if (!crs_wkt.empty() && run.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE &&
+      (!own || !own->IsSame(&run)))
+    fail("{}: the drawing is not in the run's CRS", path.string());
+  const int origin_field = layer->GetLayerDefn()->GetFieldIndex("origin");
+  std::vector<std::vector<Vec2>> lines;
+  origins.clear();
+  for (auto& f : *layer) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (!g || wkbFlatten(g->getGeometryType()) != wkbLineString)
+      fail("{}: FID {}: not a line", path.string(), f->GetFID());
+    const OGRLineString* ls = g->toLineString();
+    std::vector<Vec2>& line = lines.emplace_back();
+    for (int i = 0; i < ls->getNumPoints(); ++i) line.push_back({ls->getX(i), ls->getY(i)});
+    origins.push_back(origin_field >= 0 && f->GetFieldAsString(origin_field) == std::string("drawn")
+                          ? "drawn"
+                          : "suggested");
+  }
+  return lines;
 }
 
 }  // namespace tw

@@ -63,4 +63,11 @@ void write_drawn_network(const std::filesystem::path& path, const std::string& c
                          const std::vector<std::vector<Vec2>>& lines,
                          const std::vector<std::string>& origins);
 
+// A drawing saved by write_drawn_network, read back as written (the same doubles, in order):
+// layer "lines", its `origin` per line into `origins`. Throws tw::Error naming the file when it
+// is no such GeoPackage or its CRS is not `crs_wkt` (it cannot be shown on this run's map).
+std::vector<std::vector<Vec2>> read_drawn_network(const std::filesystem::path& path,
+                                                  const std::string& crs_wkt,
+                                                  std::vector<std::string>& origins);
+
 }  // namespace tw

@@ -15,6 +15,7 @@
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/plan_io.hpp"
 
 namespace tw {
@@ -138,7 +139,9 @@ json plan_synthesis_tasks(const PipelineConfig& config, const WorldPlan& plan,
   options.backend = backend;
   options.cache = &statuses;
   options.scope = Scope::keys;
-  const PatternRun run = synthesize(config, plan, options);
+  // The keys of the syntheses plan_world would run: with the exemplars' width and delta where the
+  // pipeline gives none (the tasks read the pipeline so too).
+  const PatternRun run = synthesize(with_exemplar_defaults(config), plan, options);
   json features = json::array();
   std::vector<int> waves;
   for (std::size_t i = 0; i < run.patterns.size(); ++i) {
@@ -279,7 +282,8 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   result.name = entry.at("name").get<std::string>();
   if (!entry.at("task").get<bool>()) return result;  // reused from the cache by the plan
 
-  const PipelineConfig config = detail::job_config(job);
+  // With the exemplars' width and delta where the pipeline gives none, as the plan read it.
+  const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
   const WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;  // a store entry of a dependency that is corrupt: an error below
   detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);
@@ -378,7 +382,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
          syntheses_path(plan_dir).string(), list.value("plan", ""), hash,
          detail::plan_again(plan_dir));
   }
-  const PipelineConfig config = detail::job_config(job);
+  const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
   WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;
   detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);

@@ -206,5 +206,57 @@ TEST_F(GrownSynthesis, AClassWithNoLineDressedWarnsAndFailsUnderStrict) {
   for (const Warning& w : dressed.warnings) EXPECT_NE(w.code, "grown_undressed");
 }
 
+// `choose: mix` on a grown class: its lines are grown and its source is the region's polygons, so
+// a where or tags rule would ask the polygons' layer and bind the grown lines whose numbers happen
+// to be the selected polygons' FIDs (polygon 1's where bound grown line 1, wherever it lay). It
+// is refused when the pipeline is read, naming the rule, as for network classes; a near_junction
+// rule is read as before.
+TEST_F(GrownSynthesis, MixRefusesWhereAndTagsRulesOnGrownLines) {
+  // Two fields west and east of the road; field 1 carries crop=wheat.
+  test::write_layer(dir_ / "fields.gpkg", "fields",
+                    {{"POLYGON ((500010 4999810, 500090 4999810, 500090 4999990, 500010 4999990, "
+                      "500010 4999810))",
+                      0.0,
+                      {{"crop", "wheat"}}},
+                     {"POLYGON ((500110 4999810, 500190 4999810, 500190 4999990, 500110 4999990, "
+                      "500110 4999810))",
+                      0.0,
+                      {{"crop", "barley"}}}});
+  const std::string exemplars =
+      "[" + (dir_ / "hedge.png").string() + ", " + (dir_ / "lanes.png").string() + "]";
+  const auto config = [&](const std::string& rule, bool polygons) {
+    std::vector<Override> overrides = {
+        {"features.hedges.synthesis.exemplar", exemplars},
+        {"features.hedges.synthesis.choose", "mix"},
+        {"features.hedges.synthesis.bind", "[{exemplar: 1, " + rule + "}]"},
+        {"output.dir", (dir_ / "m").string()}};
+    std::string text = kWorld;
+    if (polygons) {  // the region is the fields layer, not a box
+      const std::string box = ", region: [500010, 4999810, 500190, 4999990]";
+      text.replace(text.find(box), box.size(), "");
+      const std::string grow = "    grow:";
+      text.replace(text.find(grow), grow.size(),
+                   "    source: fields.gpkg\n    layer: fields\n    grow:");
+    }
+    return parse_pipeline(text, "world.yaml", dir_.path(), overrides);
+  };
+  for (const bool polygons : {false, true})
+    for (const std::string rule : {"where: \"crop = 'wheat'\"", "tags: {crop: [wheat]}"}) {
+      std::string message = "no error";
+      try {
+        config(rule, polygons);
+      } catch (const Error& e) {
+        message = e.what();
+      }
+      EXPECT_THAT(message, ::testing::HasSubstr("features.hedges.synthesis.bind.0"))
+          << rule << (polygons ? " (polygons)" : " (box)");
+      EXPECT_THAT(message, ::testing::HasSubstr("bind them by near_junction"))
+          << rule << (polygons ? " (polygons)" : " (box)");
+    }
+  // A near_junction rule is read (grown lines meet at junctions).
+  EXPECT_EQ(config("near_junction: 6", true).features.at(1).synthesis->bind.at(0).near_junction,
+            6.0);
+}
+
 }  // namespace
 }  // namespace tw

@@ -246,6 +246,58 @@ TEST_F(NetworkCommandTest, CloneOfAnSvgMapKeepsItsLinesInTheTarget) {
   EXPECT_EQ(crossings(all), 0);
 }
 
+// A map's lines crossing where neither ends (an SVG grid of full-length lines) are map data in the
+// target: noded like the exemplar, with a warning per crossing naming both FIDs (they were read
+// like a drawing and refused: "FID 3 crosses FID 6 (a partial network may meet itself only where
+// a line ends)"). The kept layer still holds them exactly as cut by the target.
+TEST_F(NetworkCommandTest, CloneNodesTheMapsCrossingLinesInTheTarget) {
+  // Verticals x = 0..600 and horizontals y = 40..440 (SVG units, 1 m), each the map's full length.
+  std::string paths;
+  for (int i = 0; i <= 6; ++i)
+    paths += "<line x1=\"" + std::to_string(i * 100) + "\" y1=\"0\" x2=\"" +
+             std::to_string(i * 100) + "\" y2=\"480\"/>";
+  for (int j = 0; j < 6; ++j)
+    paths += "<line x1=\"0\" y1=\"" + std::to_string(40 + j * 80) + "\" x2=\"600\" y2=\"" +
+             std::to_string(40 + j * 80 + (j % 2) * 3) + "\"/>";
+  std::ofstream(dir / "crossing_map.svg") << "<svg>" + paths + "</svg>";
+  const CommandResult c = network("clone --map " + (dir / "crossing_map.svg").string() +
+                                  " --source-region 0,-480,350,0 --target-region 350,-480,950,0" +
+                                  " --seed 4 --out " + (dir / "d").string());
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  // In the target, the verticals at 400 and 500 cross the six horizontals (the one at 600 is
+  // where they end): 12 crossings, each warned once, naming the vertical (elements 4, 5) first.
+  std::size_t warned = 0;
+  for (std::size_t at = c.output.find("noded into a junction"); at != std::string::npos;
+       at = c.output.find("noded into a junction", at + 1))
+    ++warned;
+  EXPECT_EQ(warned, 12u) << c.output;
+  EXPECT_THAT(c.output, HasSubstr("--map (in --target-region): FID 4: crosses FID 7 where neither "
+                                  "ends: noded into a junction there"));
+  const Layer kept = read_layer(dir / "d/network.gpkg", "kept");
+  ASSERT_EQ(kept.lines.size(), 9u);  // 3 verticals, 6 horizontals from x = 350 to 600
+  for (const auto& line : kept.lines)
+    for (auto [x, y] : line) {
+      EXPECT_GE(x, 350 - 1e-6);
+      EXPECT_LE(x, 600 + 1e-6);
+    }
+  const Layer suggested = read_layer(dir / "d/network.gpkg", "suggestions");
+  EXPECT_GT(suggested.lines.size(), 3u);  // the strip east of the map is grown
+  EXPECT_EQ(crossings(suggested), 0);
+  // The suggestions cross no kept line: every crossing of the whole is one of the map's own.
+  Layer all = suggested;
+  all.lines.insert(all.lines.end(), kept.lines.begin(), kept.lines.end());
+  EXPECT_EQ(crossings(all), crossings(kept));
+  EXPECT_EQ(crossings(kept), 12);
+
+  // A user's drawing keeps its strict rule: the same lines as --partial are refused.
+  const CommandResult drawn = network("complete --exemplar " + (dir / "crossing_map.svg").string() +
+                                      " --partial " + (dir / "crossing_map.svg").string() +
+                                      " --region 0,-480,600,0 --out " + (dir / "e").string());
+  EXPECT_NE(drawn.exit_code, 0);
+  EXPECT_THAT(drawn.output, HasSubstr("crosses FID"));
+  EXPECT_FALSE(fs::exists(dir / "e"));
+}
+
 // `--where` keeps a subset of the grid: the sparser exemplar's pieces meet the target's lattice
 // of seeds exactly, where growth used to leave lines meeting off a node ("4 crossings ... (a
 // growth bug)").

@@ -2,8 +2,10 @@
 """Drives the drawing page of `terraweave view RUN --serve 0 --exemplar ...` (docs/networks.md,
 "Drawing") in headless Chromium through the DevTools protocol, with real pointer input: draw a
 stroke, drag a region, complete, accept one suggestion by a click and others by a lasso, reject
-the rest, complete again, accept all, save. Writes what it saw as JSON (--report) and a
-screenshot (--screenshot); stops the server and the browser whatever happens.
+the rest, complete again, accept all, undo that (Ctrl+Z) and accept all again, save; then reload
+the page (the saved drawing is shown again), draw strokes starting 2 px from a line and from a
+line's end (joined to them) and undo them (the button, Ctrl+Z). Writes what it saw as JSON
+(--report) and a screenshot (--screenshot); stops the server and the browser whatever happens.
 
   network_page_drive.py TERRAWEAVE RUN_DIR WORK_DIR --exemplar SRC [--scale S] --report FILE
       [--screenshot PNG]
@@ -80,10 +82,100 @@ class Page:
             self.mouse("mouseMoved", *p, 1)
         self.mouse("mouseReleased", *points[-1], 0)
 
+    def ctrl_z(self):
+        for kind in ("keyDown", "keyUp"):
+            self.call("Input.dispatchKeyEvent", type=kind, modifiers=2, key="z", code="KeyZ",
+                      windowsVirtualKeyCode=90)
+
     def click(self, element_id):
         r = self.eval(f"(r => [r.x + r.width / 2, r.y + r.height / 2])"
                       f"(document.getElementById('{element_id}').getBoundingClientRect())")
         self.drag([r])
+
+
+def reload_snap_and_undo(page, url, to_map):
+    """Reloads the page (it shows the saved drawing), then draws a stroke starting 2 px from the
+    middle of a segment of the first line and undoes it with the button, and one starting 2 px
+    from that line's last point and undoes it with Ctrl+Z, then Ctrl+Z once more (nothing left
+    to undo: the saved lines stay)."""
+    page.eval("window.__old_page = true")
+    page.call("Page.navigate", url=url)
+    page.wait("!window.__old_page && document.readyState === 'complete' && !!window.__network"
+              " && document.body.dataset.loaded !== undefined")
+    state = "({lines: window.__network.lines, origins: window.__network.origins})"
+    reloaded = page.eval(state)
+    rect = page.eval("(r => [r.x, r.y])(document.getElementById('map').getBoundingClientRect())")
+    t = page.eval("window.__network.transform")
+    screen = lambda p: [rect[0] + (p[0] - t["origin"][0]) / t["pixel"][0],
+                        rect[1] + (t["origin"][1] - p[1]) / t["pixel"][1]]
+    lines = [[screen(p) for p in line] for line in reloaded["lines"]]
+
+    def clearance(q):  # screen pixels from q to the nearest segment of any line
+        best = math.inf
+        for line in lines:
+            for a, b in zip(line, line[1:]):
+                dx, dy = b[0] - a[0], b[1] - a[1]
+                f = max(0, min(1, ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) /
+                               max(dx * dx + dy * dy, 1e-12)))
+                best = min(best, math.hypot(a[0] + f * dx - q[0], a[1] + f * dy - q[1]))
+        return best
+
+    def vertex_clearance(q):
+        return min(math.hypot(p[0] - q[0], p[1] - q[1]) for line in lines for p in line)
+
+    # A point of the first line at least 12 px from every vertex, whose 2 px offset is at least
+    # 6 px from every other line: a stroke from there is joined to that segment.
+    first = lines[0]
+    target = None
+    for a, b in zip(first, first[1:]):
+        length = math.hypot(b[0] - a[0], b[1] - a[1])
+        normal = [-(b[1] - a[1]) / length, (b[0] - a[0]) / length]
+        for f in [i / 20 for i in range(1, 20)]:
+            q = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]
+            for side in (1, -1):
+                start = [q[0] + 2 * side * normal[0], q[1] + 2 * side * normal[1]]
+                away = [q[0] + 40 * side * normal[0], q[1] + 40 * side * normal[1]]
+                if vertex_clearance(q) > 12 and abs(clearance(start) - 2) < 0.01 and \
+                        all(clearance([start[0] + (away[0] - start[0]) * g,
+                                       start[1] + (away[1] - start[1]) * g]) > 7
+                            for g in (0.25, 0.5, 0.75, 1.0)):
+                    target = (start, away)
+                    break
+            if target:
+                break
+        if target:
+            break
+    if target is None:
+        sys.exit("no segment of the first line with room for a stroke beside it")
+    page.drag([target[0], [(target[0][0] + target[1][0]) / 2, (target[0][1] + target[1][1]) / 2],
+               target[1]])
+    on_segment = page.eval(state)
+    page.click("undo")
+    after_button = page.eval(state)
+
+    # 2 px from the first line's last point, moving away from it along its last segment.
+    a, b = first[-2], first[-1]
+    length = math.hypot(b[0] - a[0], b[1] - a[1])
+    ahead = [(b[0] - a[0]) / length, (b[1] - a[1]) / length]
+    start = [b[0] + 2 * ahead[0], b[1] + 2 * ahead[1]]
+    page.drag([start, [start[0] + 20 * ahead[0], start[1] + 20 * ahead[1] + 10],
+               [start[0] + 40 * ahead[0], start[1] + 40 * ahead[1] + 25]])
+    at_end = page.eval(state)
+    page.ctrl_z()
+    after_ctrl_z = page.eval(state)
+    page.ctrl_z()
+    nothing_left = page.eval(state)
+    return {
+        "reloaded": reloaded,
+        "segment_stroke_dispatched": to_map(*target[0]),
+        "on_segment": on_segment,
+        "after_undo_button": after_button,
+        "end_stroke_dispatched": to_map(*start),
+        "at_end": at_end,
+        "after_ctrl_z": after_ctrl_z,
+        "after_nothing_to_undo": nothing_left,
+        "undo_status": page.eval("document.getElementById('status').textContent"),
+    }
 
 
 def die_with_parent():
@@ -185,6 +277,11 @@ def main():
         second = page.eval("window.__network.suggestions.length")
         second_status = page.eval("document.getElementById('status').textContent")
         page.click("all")
+        all_accepted = page.eval("window.__network.lines.length")
+        page.ctrl_z()  # takes "accept all" back: its lines are suggestions again
+        after_undo_accept = page.eval("[window.__network.lines.length,"
+                                      " window.__network.suggestions.length]")
+        page.click("all")
         page.click("save")
         page.wait("window.__network.saved !== null")
         state = page.eval("({lines: window.__network.lines, origins: window.__network.origins,"
@@ -203,8 +300,11 @@ def main():
             "second_status": second_status,
             "server_pid": server.pid,
             "view_page": view_page,
+            "all_accepted": all_accepted,
+            "after_undo_accept": after_undo_accept,
             **state,
         }
+        report.update(reload_snap_and_undo(page, url, to_map))
         with open(args.report, "w") as f:
             json.dump(report, f)
     finally:

@@ -2,14 +2,18 @@
 // --serve 0 --exemplar ...` driven in headless Chromium by real pointer input
 // (network_page_drive.py, over the DevTools protocol): a stroke is drawn, a region dragged,
 // completed, suggestions accepted one by a click and others by a lasso, the rest rejected,
-// completed again, all accepted, saved. The GeoPackage holds the stroke exactly as the page drew
-// it (within a pixel of where the pointer went) and the accepted suggestions, in the run's CRS,
-// off the run's road; a pipeline reads it as a line class; the server is gone afterwards.
+// completed again, all accepted, that undone (Ctrl+Z) and redone, saved. The GeoPackage holds the
+// stroke exactly as the page drew it (within a pixel of where the pointer went) and the accepted
+// suggestions, in the run's CRS, off the run's road; a pipeline reads it as a line class; the
+// reloaded page shows it again bit for bit; strokes starting 2 px from a line or from its end
+// start exactly on it, and undo removes them; the server is gone afterwards.
 #include <gdal_priv.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <fstream>
@@ -66,6 +70,39 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   // The server was stopped with the test's driver.
   EXPECT_EQ(kill(r["server_pid"].get<int>(), 0), -1);
   EXPECT_EQ(errno, ESRCH);
+
+  // Ctrl+Z took "accept all" back (its lines were suggestions again), then all were accepted.
+  EXPECT_EQ(r["after_undo_accept"][0], r["after_lasso"]);
+  EXPECT_EQ(r["after_undo_accept"][1], r["second_suggestions"]);
+  EXPECT_EQ(r["all_accepted"].get<std::size_t>(), lines.size());
+
+  // Reloaded, the page shows the saved drawing again: every line bit for bit, with its origin.
+  EXPECT_EQ(r["reloaded"]["lines"], lines);
+  EXPECT_EQ(r["reloaded"]["origins"], r["origins"]);
+  // A stroke starting 2 px from the middle of a segment of the first line starts on it: that
+  // point is inserted into the first line, so both hold the same doubles (a T-junction).
+  const auto& on_segment = r["on_segment"]["lines"];
+  ASSERT_EQ(on_segment.size(), lines.size() + 1);
+  const nlohmann::json joined = on_segment.back().front();
+  ASSERT_EQ(on_segment[0].size(), lines[0].size() + 1);
+  EXPECT_EQ(std::count(on_segment[0].begin(), on_segment[0].end(), joined), 1);
+  const auto pixels_between = [&](const nlohmann::json& a, const nlohmann::json& b) {
+    return std::hypot((a[0].get<double>() - b[0].get<double>()) / r["pixel"][0].get<double>(),
+                      (a[1].get<double>() - b[1].get<double>()) / r["pixel"][1].get<double>());
+  };
+  EXPECT_NEAR(pixels_between(joined, r["segment_stroke_dispatched"]), 2.0, 1.0);
+  // The undo button removes the stroke and the vertex it added.
+  EXPECT_EQ(r["after_undo_button"]["lines"], lines);
+  // A stroke starting 2 px beyond the first line's end starts exactly at that end.
+  const auto& at_end = r["at_end"]["lines"];
+  ASSERT_EQ(at_end.size(), lines.size() + 1);
+  EXPECT_EQ(at_end.back().front(), lines[0].back());
+  EXPECT_NEAR(pixels_between(lines[0].back(), r["end_stroke_dispatched"]), 2.0, 1.0);
+  EXPECT_EQ(at_end[0], lines[0]);
+  // Ctrl+Z removes it; with nothing left to undo the saved lines stay.
+  EXPECT_EQ(r["after_ctrl_z"]["lines"], lines);
+  EXPECT_EQ(r["after_nothing_to_undo"]["lines"], lines);
+  EXPECT_EQ(r["undo_status"], "nothing to undo");
 
   // The stroke is where the pointer went (within a pixel of the page's map).
   const auto& stroke = lines[0];
@@ -169,8 +206,19 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   ASSERT_FALSE(a.is_discarded());
   ASSERT_GT(a["suggestions"].size(), 0u);
   EXPECT_TRUE(fs::equivalent(a["saved"].get<std::string>(), dir / "a.gpkg"));
+  EXPECT_EQ(a["drawing"]["status"], 200);
+  EXPECT_EQ(a["drawing"]["body"]["lines"], nlohmann::json::array());  // nothing saved yet
   const std::string gpkg = "--exemplar exemplar.gpkg --seed 1 --save a.gpkg";
   const nlohmann::json all_kinds = ask(gpkg);
+  // The next server serves back what the first saved, the same doubles, with their origins.
+  ASSERT_EQ(all_kinds["drawing"]["status"], 200);
+  const nlohmann::json& reloaded = all_kinds["drawing"]["body"];
+  ASSERT_EQ(reloaded["lines"].size(), a["suggestions"].size() + 1);
+  EXPECT_EQ(reloaded["lines"][0], nlohmann::json::parse("[[500080, 4999900], [500200, 4999930]]"));
+  for (std::size_t i = 0; i < a["suggestions"].size(); ++i)
+    EXPECT_EQ(reloaded["lines"][i + 1], a["suggestions"][i]) << i;
+  EXPECT_EQ(reloaded["origins"][0], "drawn");
+  EXPECT_EQ(reloaded["origins"][1], "suggested");
   const nlohmann::json grid_only = ask(gpkg + " --where \"kind = 'a'\"");
   EXPECT_NE(all_kinds["suggestions"], a["suggestions"]) << "--exemplar";
   EXPECT_NE(grid_only["suggestions"], all_kinds["suggestions"]) << "--where";
@@ -184,6 +232,13 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
       ask("--exemplar '" + svg + "' --scale 0.5 --seed 1 --save sub_b.gpkg");
   EXPECT_EQ(saved_b["suggestions"], a["suggestions"]) << "--save: where, not what";
   EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
+  // A drawing in another CRS than the run's is not shown: the page says why.
+  write_layer(dir / "lon_lat.gpkg", "lines", {{"LINESTRING (3 45, 3.1 45.1)"}}, "EPSG:4326");
+  const nlohmann::json other_crs =
+      ask("--exemplar '" + svg + "' --scale 0.5 --seed 1 --save lon_lat.gpkg");
+  EXPECT_EQ(other_crs["drawing"]["status"], 400);
+  EXPECT_THAT(other_crs["drawing"]["body"]["error"].get<std::string>(),
+              ::testing::HasSubstr("lon_lat.gpkg: the drawing is not in the run's CRS"));
 }
 
 }  // namespace

@@ -9,14 +9,17 @@
 #include <gtest/gtest.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cache_world.hpp"
 #include "core/error.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -214,6 +217,123 @@ TEST(NetworkRun, SameSeedSameBytesOtherSeedOtherLanesTiledEqualsUntiled) {
     EXPECT_EQ(loaded.lines[lanes][i].points, plan.lines[lanes][i].points);
     EXPECT_EQ(loaded.lines[lanes][i].fid, std::int64_t(i + 1));
   }
+}
+
+// report.json's values but the timings and the pipeline it echoes.
+nlohmann::json report_values(const nlohmann::json& j) {
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& v : j) out.push_back(report_values(v));
+    return out;
+  }
+  if (!j.is_object()) return j;
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, v] : j.items())
+    if (key != "pipeline" && key != "timings" && key != "stages" && !key.ends_with("seconds"))
+      out[key] = report_values(v);
+  return out;
+}
+
+// A run of `pipeline` by `terraweave run` and as separate processes (docs/distributed.md): plan
+// (with --synthesis tasks: synth-feature per feature, then complete-plan), render-tile per tile
+// (last first), finish. Every file of the two output folders is the same bytes (report.json: the
+// same values but timings); their lanes carry the hedge pattern. Returns the plan's counts.
+struct Planned {
+  std::size_t tiles = 0, syntheses = 0;
+};
+Planned expect_distributed_equals_run(const fs::path& dir, const fs::path& pipeline,
+                                      const std::string& sets, bool synthesis_tasks) {
+  const std::string binary = "'" + test::terraweave_binary().string() + "' -q ";
+  const auto step = [&](const std::string& args) {
+    const test::CommandResult r = test::run_command(binary + args + " 2>&1");
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.output;
+    return r.output;
+  };
+  step("run " + pipeline.string() + " --out " + (dir / "local").string() + sets);
+  const fs::path out = dir / "distributed";
+  const std::string planned = step("plan " + pipeline.string() + " --out " + out.string() + sets +
+                                   (synthesis_tasks ? " --synthesis tasks" : ""));
+  Planned counts;
+  const std::size_t at = planned.find("plan ");
+  EXPECT_NE(at, std::string::npos) << planned;
+  if (at == std::string::npos) return counts;
+  EXPECT_EQ(std::sscanf(planned.substr(at).c_str(), "plan %*s %zu tiles, %zu syntheses to run",
+                        &counts.tiles, &counts.syntheses),
+            2)
+      << planned;
+  for (std::size_t f = 0; f < counts.syntheses; ++f)
+    step("synth-feature " + out.string() + " --feature " + std::to_string(f));
+  if (counts.syntheses > 0) step("complete-plan " + out.string());
+  for (std::size_t t = counts.tiles; t-- > 0;)
+    step("render-tile " + out.string() + " --tile " + std::to_string(t));
+  step("finish " + out.string());
+
+  const auto local = test::output_files(dir / "local");
+  const auto distributed = test::output_files(out);
+  EXPECT_TRUE(local.contains("features.geojson"));
+  EXPECT_GE(class_lines(dir / "local", "lanes").size(), 3u);
+  const nlohmann::json local_report =
+      nlohmann::json::parse(test::read_file(dir / "local/report.json"));
+  int dressed = 0;  // lanes carrying the hedge pattern
+  for (const auto& c : local_report["classes"])
+    if (c["name"] == "lanes")
+      for (const auto& f : c["features"]) dressed += f["pieces"].get<int>() > 0;
+  EXPECT_GE(dressed, 3);
+  std::vector<std::string> names, other_names;
+  for (const auto& [name, bytes] : local) names.push_back(name);
+  for (const auto& [name, bytes] : distributed) other_names.push_back(name);
+  EXPECT_EQ(names, other_names);
+  EXPECT_GE(std::count_if(names.begin(), names.end(),
+                          [](const std::string& n) { return n.starts_with("tiles/"); }),
+            4);
+  EXPECT_EQ(report_values(local_report),
+            report_values(nlohmann::json::parse(test::read_file(out / "report.json"))));
+  for (const auto& [name, bytes] : local) {
+    const auto it = distributed.find(name);
+    if (it != distributed.end()) EXPECT_TRUE(bytes == it->second) << name << " differs";
+  }
+  return counts;
+}
+
+// Issue #20: a network class run distributed: the lanes grown once in the plan reach every tile.
+// A corner of the demo (a close-up, so its plan synthesizes the lanes' patterns itself): 22
+// lanes, 2 x 2 tiles.
+TEST(NetworkRun, DistributedStepsWriteTheBytesOfARun) {
+  test::TempDir dir;
+  const Planned planned = expect_distributed_equals_run(
+      dir.path(), kDemo,
+      " --set 'region=[290990, 9113990, 291310, 9114210]'"
+      " --set 'features.lanes.network.region=[291000, 9114000, 291300, 9114200]'"
+      " --set output.tiles.size=48 --set output.tiles.overlap=4 --set output.preview=false"
+      " --set features.lanes.synthesis.exemplar=" +
+          (test::source_dir() / "samples/exemplars/hedge_192x48.png").string() +
+          " --set features.lanes.synthesis.delta=8",
+      false);
+  EXPECT_EQ(planned.tiles, 4u);      // 81 x 56 pixels
+  EXPECT_EQ(planned.syntheses, 0u);  // a close-up synthesizes in the plan
+}
+
+// The lanes' syntheses as tasks (synth-feature reads the grown lanes from the plan), on a tiny
+// generated world (not a close-up). The synthesis gives no width: the exemplar's, which the tasks
+// did not take (they read the pipeline without the exemplars' defaults and drew narrower
+// ribbons: other placements than the run's).
+TEST(NetworkRun, SynthesisTasksWriteTheBytesOfARun) {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.yaml")
+      << "version: 1\nseed: 7\n"
+         "generate: { width: 50, height: 40, pixel_size: 4, relief: 20, origin: [500000, "
+         "5000160] }\n"
+         "output: { exr: false, preview: false, tiles: { size: 32, overlap: 4 } }\n"
+         "features:\n  lanes:\n    kind: road\n    width: 4\n"
+         "    network: { exemplar: " +
+             (test::source_dir() / "tests/data/network_drawn.svg").string() +
+             ", scale: 0.5, region: [500010, 5000010, 500150, 5000120] }\n"
+             "    synthesis: { exemplar: " +
+             (test::source_dir() / "samples/exemplars/hedge_192x48.png").string() +
+             ", delta: 8 }\n";
+  const Planned planned = expect_distributed_equals_run(dir.path(), dir / "tiny.yaml", "", true);
+  EXPECT_EQ(planned.tiles, 4u);
+  EXPECT_GE(planned.syntheses, 3u);  // one task per lane
 }
 
 TEST(NetworkRun, SynthesisAlongTheLanes) {

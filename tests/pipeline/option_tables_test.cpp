@@ -659,10 +659,12 @@ TEST_F(OptionTables, Network) {
       "network clone", help_options("network clone"),
       shared_rows(
           clone + target + source + map,
-          // The map here is GeoJSON, so --scale has nothing to scale (an SVG map is cloned in
-          // NetworkCommandTest.CloneOfAnSvgMapKeepsItsLinesInTheTarget).
-          row("--scale", clone + target + source + map, "", "--scale 14", Expect::same_bytes,
-              "docs/cli.md: `--scale` scales an SVG only"),
+          // An SVG map of full-length lines crossing each other (noded in the target), its
+          // regions boxes in its metres clear of its lines at both scales.
+          row("--scale",
+              clone + " --map @d/grid.svg --source-region 0,-1050,480,10" +
+                  " --target-region 520,-1050,1100,10",
+              "--scale 10", "--scale 14"),
           "@d/track_east.geojson",
           {row("--map", clone + target + source, map, " --map @d/south_lines.geojson"),
            row("--source-region", clone + target + map, source, "--source-region @d/south.geojson"),

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Asks the drawing server of `terraweave view RUN --serve 0 --exemplar ...` what the page would:
-completes one drawn stroke inside one region (POST /complete), saves the stroke and the
-suggestions (POST /save), and prints {"suggestions": [...], "saved": PATH} as JSON. The server's
-own options follow the run folder; it is stopped whatever happens.
+the drawing saved before (GET /drawing), completes one drawn stroke inside one region (POST
+/complete), saves the stroke and the suggestions (POST /save), and prints {"drawing": {"status":
+HTTP status, "body": answer}, "suggestions": [...], "saved": PATH} as JSON. The server's own
+options follow the run folder; it is stopped whatever happens.
 
   view_drawing_requests.py TERRAWEAVE RUN_DIR WORK_DIR STROKE REGION [SERVER OPTION ...]
 
@@ -30,6 +31,14 @@ def post(url, body):
         sys.exit(f"{url}: {error.code} {error.read().decode()}")
 
 
+def get(url):
+    try:
+        with urllib.request.urlopen(url, timeout=60) as answer:
+            return {"status": answer.status, "body": json.loads(answer.read())}
+    except urllib.error.HTTPError as error:
+        return {"status": error.code, "body": json.loads(error.read())}
+
+
 def main():
     signal.signal(signal.SIGTERM, lambda *_: sys.exit("terminated"))
     terraweave, run, work, stroke, region, *options = sys.argv[1:]
@@ -48,12 +57,14 @@ def main():
         if not match:
             sys.exit(f"no 'serving' line from terraweave view: {seen[-2000:]}")
         base = match.group(1)
+        drawing = get(base + "/drawing")
         drawn = json.loads(stroke)
         suggestions = post(base + "/complete",
                            {"lines": [drawn], "region": json.loads(region)})["suggestions"]
         saved = post(base + "/save", {"lines": [drawn] + suggestions,
                                       "origins": ["drawn"] + ["suggested"] * len(suggestions)})
-        print(json.dumps({"suggestions": suggestions, "saved": saved["path"]}))
+        print(json.dumps({"drawing": drawing, "suggestions": suggestions,
+                          "saved": saved["path"]}))
     finally:
         server.kill()
         server.wait()

@@ -3,7 +3,9 @@
 // @DATA@ becomes the run's map as JSON (its colours as RGB rows north first, its grid and CRS,
 // its feature lines, where the drawing is saved). The page draws strokes in map coordinates,
 // asks the server (POST /complete) to complete a region, lets the user accept the suggestions
-// (all, one by a click, or those inside a lasso) or reject them, and saves (POST /save).
+// (all, one by a click, or those inside a lasso) or reject them, undo the last stroke or
+// accept (Ctrl+Z), and saves (POST /save). On loading it shows the drawing saved before (GET
+// /drawing) as accepted lines; a stroke's ends within a few pixels of a line are joined to it.
 // window.__network exposes the state (lines, suggestions, the map's transform) for the tests.
 namespace tw::detail {
 
@@ -27,6 +29,7 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 <button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>
 <button id="all" title="accept every suggestion">accept all</button>
 <button id="reject" title="drop the suggestions not accepted">reject</button>
+<button id="undo" title="undo the last stroke or accept (Ctrl+Z)">undo</button>
 <button id="save">save</button>
 <span id="status"></span>
 </div>
@@ -55,8 +58,11 @@ for (let r = 0; r < H; ++r)
     pixels.data[o + 3] = 255;
   }
 image.getContext('2d').putImageData(pixels, 0, 0);
+// history: what undo takes back, last first: {kind: 'stroke', inserted: [[line, vertex], ...]}
+// (the stroke is the last line; vertices its snapped ends added to other lines) or
+// {kind: 'accept', count} (the last `count` lines, accepted suggestions).
 const S = {lines: [], origins: [], suggestions: [], region: null, mode: 'draw', saved: null,
-           transform: {origin: D.grid.origin, pixel: [sx, sy]}};
+           history: [], transform: {origin: D.grid.origin, pixel: [sx, sy]}};
 window.__network = S;
 const status = t => { document.getElementById('status').textContent = t; };
 const path = (pts, close) => {
@@ -123,9 +129,65 @@ const accept = keep => {  // suggestions for which keep(s) holds join the lines
     if (keep(s)) { S.lines.push(s); S.origins.push('suggested'); } else rest.push(s);
   const n = S.suggestions.length - rest.length;
   S.suggestions = rest;
+  if (n > 0) S.history.push({kind: 'accept', count: n});
   status(`${n} accepted, ${rest.length} suggestions left`);
   redraw();
 };
+// A stroke's end within SNAP canvas pixels of a line of the drawing is joined to it exactly: onto
+// the nearest line end, else the nearest vertex of the nearest segment, else the point of that
+// segment nearest to it, inserted into the line as a vertex (both lines then hold the same
+// doubles: a T-junction the server's noding sees). Insertions are recorded in `inserted`.
+const SNAP = 6;
+const snapEnd = (stroke, which, inserted) => {
+  const [u, v] = toPixel(stroke[which]);
+  const far = q => { const [a, b] = toPixel(q); return Math.hypot(a - u, b - v); };
+  let end = null, endD = SNAP;
+  for (const l of S.lines)
+    for (const q of [l[0], l[l.length - 1]])
+      if (far(q) <= endD) { endD = far(q); end = q; }
+  if (end) { stroke[which] = end.slice(); return; }
+  let near = null, nearD = SNAP;
+  S.lines.forEach((l, i) => {
+    for (let k = 0; k + 1 < l.length; ++k) {
+      const [a, b] = [toPixel(l[k]), toPixel(l[k + 1])];
+      const dx = b[0] - a[0], dy = b[1] - a[1];
+      const t = Math.max(0, Math.min(1, ((u - a[0]) * dx + (v - a[1]) * dy) /
+                                            Math.max(dx * dx + dy * dy, 1e-12)));
+      const d = Math.hypot(a[0] + t * dx - u, a[1] + t * dy - v);
+      if (d <= nearD) { nearD = d; near = {i, k, t}; }
+    }
+  });
+  if (!near) return;
+  const l = S.lines[near.i], a = l[near.k], b = l[near.k + 1];
+  const vertex = far(a) <= far(b) ? a : b;
+  if (far(vertex) <= SNAP) { stroke[which] = vertex.slice(); return; }
+  const q = [a[0] + near.t * (b[0] - a[0]), a[1] + near.t * (b[1] - a[1])];
+  l.splice(near.k + 1, 0, q);
+  inserted.push([near.i, near.k + 1]);
+  stroke[which] = q.slice();
+};
+const undo = () => {
+  const last = S.history.pop();
+  if (!last) { status('nothing to undo'); return; }
+  if (last.kind === 'stroke') {
+    S.lines.pop(); S.origins.pop();
+    for (const [i, k] of last.inserted.reverse()) S.lines[i].splice(k, 1);
+    status('stroke undone');
+  } else {
+    S.suggestions.push(...S.lines.splice(S.lines.length - last.count, last.count));
+    S.origins.splice(S.origins.length - last.count, last.count);
+    status(`${last.count} accepted lines back among the suggestions`);
+  }
+  document.body.dataset.undone = (+document.body.dataset.undone || 0) + 1;
+  redraw();
+};
+document.getElementById('undo').onclick = undo;
+document.addEventListener('keydown', e => {
+  if ((e.ctrlKey || e.metaKey) && !e.shiftKey && e.key.toLowerCase() === 'z') {
+    e.preventDefault();
+    undo();
+  }
+});
 canvas.addEventListener('pointerdown', e => {
   canvas.setPointerCapture(e.pointerId);
   if (S.mode === 'pick') {
@@ -154,7 +216,13 @@ canvas.addEventListener('pointerup', e => {
   if (!live) return;
   const done = live; live = null;
   if (done.points.length < 2) { redraw(); return; }
-  if (done.kind === 'draw') { S.lines.push(done.points); S.origins.push('drawn'); }
+  if (done.kind === 'draw') {
+    const inserted = [];
+    snapEnd(done.points, 0, inserted);
+    snapEnd(done.points, done.points.length - 1, inserted);
+    S.lines.push(done.points); S.origins.push('drawn');
+    S.history.push({kind: 'stroke', inserted});
+  }
   if (done.kind === 'region') S.region = box(done.points);
   if (done.kind === 'area' && done.points.length > 2) S.region = done.points;
   if (done.kind === 'lasso') accept(s => s.every(p => inside(p, done.points)));
@@ -192,6 +260,18 @@ document.getElementById('save').onclick = async () => {
 };
 status(`${D.name}: lines are saved to ${D.save_path}`);
 redraw();
+// The drawing saved before, if any, as accepted lines (before anything drawn meanwhile).
+fetch('drawing').then(async r => {
+  const a = await r.json();
+  if (!r.ok) throw new Error(a.error);
+  const n = a.lines.length;
+  S.lines = a.lines.concat(S.lines);
+  S.origins = a.origins.concat(S.origins);
+  for (const h of S.history) if (h.inserted) h.inserted = h.inserted.map(([i, k]) => [i + n, k]);
+  if (n) status(`${n} saved lines shown from ${D.save_path}`);
+  document.body.dataset.loaded = n;
+  redraw();
+}).catch(err => { status(err.message); document.body.dataset.loaded = 'error'; });
 </script></body></html>
 )html";
 
