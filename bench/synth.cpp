@@ -29,6 +29,7 @@
 #include "synth/baseline.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/footprint.hpp"
+#include "synth/detail/forwarding_backend.hpp"
 #include "synth/detail/opencl_backend.hpp"
 #include "synth/opencl_context.hpp"
 #include "synth/render.hpp"
@@ -155,7 +156,7 @@ void per_row(const std::string& file, double paper_ms, int pieces, bool naive) {
 
 // Records the inputs of every DP row of a synthesis so that the row update can be replayed and
 // timed alone, repeatedly, on the very same rows (the machine is shared: best and median).
-class RecordingBackend final : public detail::Backend {
+class RecordingBackend final : public detail::ForwardingBackend {
  public:
   struct Row {
     std::vector<std::int64_t> previous;
@@ -164,33 +165,12 @@ class RecordingBackend final : public detail::Backend {
   std::vector<Row> rows;
 
   std::string name() const override { return "recording cpu"; }
-  void find_valid_positions(const detail::CostTexels& t, const detail::PositionSpace& s,
-                            const detail::PieceFootprint& p,
-                            std::vector<std::uint8_t>& flags) override {
-    cpu_->find_valid_positions(t, s, p, flags);
-  }
-  void compact_valid_positions(const std::vector<std::uint8_t>& flags,
-                               std::vector<std::int32_t>& indices) override {
-    cpu_->compact_valid_positions(flags, indices);
-  }
-  void extract_right_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
-                             const detail::PieceFootprint& p, const std::vector<std::int32_t>& i,
-                             detail::ColumnSet& out) override {
-    cpu_->extract_right_columns(t, s, p, i, out);
-  }
-  void extract_left_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
-                            const std::vector<std::int32_t>& i, detail::ColumnSet& out) override {
-    cpu_->extract_left_columns(t, s, i, out);
-  }
   void update_table_row(const std::vector<std::int64_t>& previous, const detail::ColumnSet& right,
                         const detail::ColumnSet& left, std::vector<std::int64_t>& cost,
                         std::vector<std::int32_t>& argmin) override {
     rows.push_back({previous, right, left});
-    cpu_->update_table_row(previous, right, left, cost, argmin);
+    ForwardingBackend::update_table_row(previous, right, left, cost, argmin);
   }
-
- private:
-  std::unique_ptr<detail::Backend> cpu_ = detail::make_cpu_backend();
 };
 
 struct Spread {

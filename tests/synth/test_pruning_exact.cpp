@@ -13,6 +13,7 @@
 #include "synth/detail/cost.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/edge_bound.hpp"
+#include "synth/detail/forwarding_backend.hpp"
 #include "synth/detail/group_scan.hpp"
 #include "synth/detail/opaque_count.hpp"
 #include "synth/detail/opencl_backend.hpp"
@@ -25,35 +26,14 @@ namespace tw::test {
 namespace {
 
 // The CPU backend with the exhaustive row update (the definition) instead of the pruned one.
-class ExhaustiveCpuBackend final : public detail::Backend {
+class ExhaustiveCpuBackend final : public detail::ForwardingBackend {
  public:
   std::string name() const override { return "cpu (exhaustive rows)"; }
-  void find_valid_positions(const detail::CostTexels& t, const detail::PositionSpace& s,
-                            const detail::PieceFootprint& p,
-                            std::vector<std::uint8_t>& flags) override {
-    cpu_->find_valid_positions(t, s, p, flags);
-  }
-  void compact_valid_positions(const std::vector<std::uint8_t>& flags,
-                               std::vector<std::int32_t>& indices) override {
-    cpu_->compact_valid_positions(flags, indices);
-  }
-  void extract_right_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
-                             const detail::PieceFootprint& p, const std::vector<std::int32_t>& i,
-                             detail::ColumnSet& out) override {
-    cpu_->extract_right_columns(t, s, p, i, out);
-  }
-  void extract_left_columns(const detail::CostTexels& t, const detail::PositionSpace& s,
-                            const std::vector<std::int32_t>& i, detail::ColumnSet& out) override {
-    cpu_->extract_left_columns(t, s, i, out);
-  }
   void update_table_row(const std::vector<std::int64_t>& previous, const detail::ColumnSet& right,
                         const detail::ColumnSet& left, std::vector<std::int64_t>& cost,
                         std::vector<std::int32_t>& argmin) override {
     detail::update_table_row_naive(previous, right, left, cost, argmin);
   }
-
- private:
-  std::unique_ptr<detail::Backend> cpu_ = detail::make_cpu_backend();
 };
 
 // A band of random colours (rows row0..row1) with stray opaque texels above and below it, as
