@@ -3,9 +3,6 @@
 // recognizes (GeoJSON lines and polygons). What read_network_lines accepts has lines of at least
 // two finite points with one FID each, and build_planar_network makes of it a graph whose edges
 // join existing nodes; what it refuses is a tw::Error.
-#include <cpl_conv.h>
-#include <cpl_error.h>
-#include <gdal.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -18,15 +15,11 @@
 #include "core/warnings.hpp"
 #include "fuzz_support.hpp"
 #include "network/exemplar.hpp"
+#include "offline_gdal.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   tw::fuzz::silence_logging();
-  GDALAllRegister();
-  CPLSetConfigOption("CPL_LOG_ERRORS", "OFF");
-  CPLSetErrorHandler(CPLQuietErrorHandler);
-  // The bytes are a file, never a pointer to somewhere else: no network, no other files.
-  CPLSetConfigOption("GDAL_HTTP_TIMEOUT", "1");
-  CPLSetConfigOption("CPL_VSIL_CURL_ALLOWED_EXTENSIONS", "none");
+  tw::fuzz::start_offline_gdal();
   return 0;
 }
 

@@ -1,10 +1,7 @@
 // libFuzzer target: vector ingest of a small GeoJSON (or whatever GDAL recognizes in the bytes)
 // written to /vsimem/, read with read_line_features and read_polygon_features over a small
 // generated heightfield. What comes back must be finite, clipped to the grid and well formed.
-#include <cpl_conv.h>
-#include <cpl_error.h>
 #include <cpl_vsi.h>
-#include <gdal.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +10,7 @@
 #include "fuzz_support.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
+#include "offline_gdal.hpp"
 
 namespace {
 
@@ -74,12 +72,7 @@ void read_polygons() {
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   tw::fuzz::silence_logging();
-  GDALAllRegister();
-  CPLSetConfigOption("CPL_LOG_ERRORS", "OFF");
-  CPLSetErrorHandler(CPLQuietErrorHandler);
-  // The bytes are a file, never a pointer to somewhere else: no network, no other files.
-  CPLSetConfigOption("GDAL_HTTP_TIMEOUT", "1");
-  CPLSetConfigOption("CPL_VSIL_CURL_ALLOWED_EXTENSIONS", "none");
+  tw::fuzz::start_offline_gdal();
   (void)grid();
   return 0;
 }
