@@ -14,7 +14,8 @@ bash scripts/setup.sh || exit 1
 run_ctest() {
   local dir="$1"
   shift
-  (cd "$dir" && ctest --output-on-failure --parallel "$(nproc)" --timeout 600 "$@") 2>&1 |
+  (cd "$dir" && ctest --output-on-failure --parallel "$(nproc)" \
+    --timeout "${TW_CTEST_TIMEOUT:-600}" "$@") 2>&1 |
     tee "$dir/ctest.log"
   return "${PIPESTATUS[0]}"
 }
@@ -31,7 +32,7 @@ sanitized_tests() {
   fi
   TERRAWEAVE_BUILD_DIR=build-asan TERRAWEAVE_TARGETS="$targets" bash scripts/build.sh \
     -DTERRAWEAVE_SANITIZE=ON -DTERRAWEAVE_BENCH=OFF || return 1
-  (source scripts/sanitizer/env.sh && run_ctest build-asan ${labels:+-L "^($labels)\$"})
+  (source scripts/sanitizer/env.sh && TW_CTEST_TIMEOUT=1800 run_ctest build-asan ${labels:+-L "^($labels)\$"})
 }
 
 # "N tests failed out of M" of a ctest log (0 0 when ctest printed no summary: a build failure).

@@ -9,3 +9,5 @@ export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$sanitizer_dir/lsan.supp:print
 # crashes on at exit ("Tracer caught signal 11", about half the runs of an OpenCL test); its
 # single-threaded basic device runs the same kernels and exits cleanly.
 export POCL_DEVICES="${POCL_DEVICES:-basic}"
+# Sanitized code runs 2-5x slower: the forked batches of the option tests and ctest allow more.
+export TERRAWEAVE_FORK_BATCH_SECONDS="${TERRAWEAVE_FORK_BATCH_SECONDS:-300}"
