@@ -164,7 +164,7 @@ TEST_F(TileCacheRun, CorruptTileEntryIsDetectedAndRebuilt) {
   const TiledRun first = run("first");
   const fs::path entry = dir_ / "cache/tiles" / (first.tiles.at({1, 1}).key + ".twc");
   std::string bytes = read_file(entry);
-  ASSERT_GT(bytes.size(), 1000u);
+  ASSERT_GT(bytes.size(), 300u);  // the files' digests (the files themselves: tiles/files)
   bytes[bytes.size() - 100] ^= 0x01;
   std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
   const TiledRun second = run("second");
