@@ -51,37 +51,56 @@ ContentHash terrain_hash(const TerrainFeature& f,
   return h.digest();
 }
 
+// The part [t0, t1] of the segment a + t (b - a), t in [0, 1], that lies in `box`
+// (Liang-Barsky); false when none does.
+bool clip_segment(Vec2 a, Vec2 b, const PieceBox& box, double& t0, double& t1) {
+  t0 = 0.0;
+  t1 = 1.0;
+  const Vec2 d = b - a;
+  const auto clip = [&](double p, double q) {  // keeps the t with p t <= q
+    if (p == 0.0) return q >= 0.0;
+    const double r = q / p;
+    if (p < 0.0) {
+      if (r > t1) return false;
+      t0 = std::max(t0, r);
+    } else {
+      if (r < t0) return false;
+      t1 = std::min(t1, r);
+    }
+    return true;
+  };
+  return clip(-d.x, a.x - box.lo.x) && clip(d.x, box.hi.x - a.x) && clip(-d.y, a.y - box.lo.y) &&
+         clip(d.y, box.hi.y - a.y);
+}
+
 // The samples of a planned profile (of terrain plan entry `entry`) that rendering the world box
 // `box` can read, hashed with their first index. apply_terrain takes a pixel's value from the
 // profile at the arc length of its nearest centreline point (interpolated between two samples),
-// and only within the feature's reach (plus half a pixel): so the samples over the segments
-// whose box, grown by the reach and two pixels, meets `box`, two more on each side (the arc
-// length is kept as a float there). A closed centreline: every sample. A profile graded at a
-// junction (a partner moved) changes near the junction only, and the tiles away from it keep
-// their key.
+// and only within the feature's reach (plus half a pixel): so the samples at the arc lengths of
+// the centreline's parts within the box grown by the reach and two pixels, two more on each
+// side (the arc length is kept as a float there). A closed centreline: every sample. A profile
+// graded anew near a junction (a partner moved) leaves the key of a tile away from it alone.
 void hash_profile_part(Hasher& h, const TerrainFeature& entry, const std::vector<float>& profile,
                        double step, const PieceBox& box, double pixel) {
   std::size_t first = 0, end = profile.size();
   const std::vector<Vec2>& p = entry.centerline.points;
   if (!entry.centerline.closed && step > 0.0 && !profile.empty()) {
-    const double margin = feature_reach(entry) + 2.0 * pixel;
+    const PieceBox reach = grown(box, feature_reach(entry) + 2.0 * pixel);
     double lo = INFINITY, hi = -INFINITY, s = 0.0;
     for (std::size_t k = 0; k + 1 < p.size(); ++k) {  // arc lengths as FeatureIndex sums them
-      const double next = s + length(p[k + 1] - p[k]);
-      PieceBox segment;
-      include(segment, p[k]);
-      include(segment, p[k + 1]);
-      if (meets(grown(segment, margin), box)) {
-        lo = std::min(lo, s);
-        hi = std::max(hi, next);
+      const double length_k = length(p[k + 1] - p[k]);
+      double t0 = 0.0, t1 = 0.0;
+      if (clip_segment(p[k], p[k + 1], reach, t0, t1)) {
+        lo = std::min(lo, s + t0 * length_k);
+        hi = std::max(hi, s + t1 * length_k);
       }
-      s = next;
+      s += length_k;
     }
-    if (lo > hi) {  // no segment within reach: no sample is read
+    if (!(lo <= hi)) {  // no part within reach: no sample is read
       first = end = 0;
     } else {
       first = std::size_t(std::max(0.0, std::floor(lo / step) - 2.0));
-      end = std::min(profile.size(), std::size_t(std::ceil(hi / step)) + 3);
+      end = std::min(profile.size(), std::size_t(std::max(0.0, std::ceil(hi / step))) + 3);
       first = std::min(first, end);
     }
   }
