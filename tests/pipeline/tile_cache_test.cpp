@@ -1,8 +1,10 @@
 // Incremental rebuilds with --cache (docs/cache.md, issue #10 item 3), tiles: a 5 x 5 tiling of
 // the cache world, rendered through the tile cache. One changed road rebuilds exactly the tiles
 // that its old and new footprints, and its junction partner's, reach (worked out here from the
-// geometry); every other tile's files are copied from the cache; the files equal a run without
-// cache byte for byte; a corrupt tile entry is detected and rebuilt.
+// geometry); every other tile's files come from the cache (hard links); the files equal a run
+// without cache byte for byte; a corrupt tile entry is detected and rebuilt. A tile's key holds
+// the profile samples it can read: a changed sample reaches exactly the tiles whose render it
+// changes, and a partner's tiles far from a moved junction are reused.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
