@@ -381,6 +381,36 @@ TEST_F(CacheRun, AnOutputEditedInPlaceNeverReachesALaterRun) {
   expect_same_outputs("again", "clean");
 }
 
+// The tile cache's warnings are the run's: under --strict, a corrupt cache file fails the run
+// before anything is committed (the folder keeps the previous run's files).
+TEST_F(CacheRun, UnderStrictACorruptCacheFileFailsTheRunBeforeTheCommit) {
+  run("out", true, kTiled);
+  const fs::path edited = dir_ / "out/tiles/splat_x0_y0.exr";
+  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
+  {
+    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(std::streamoff(fs::file_size(edited) - 10));
+    file.put('\x7f');
+    ASSERT_TRUE(file.good());
+  }
+  const std::string bytes = test::read_file(edited);
+  const PipelineConfig config =
+      parse_pipeline(std::string(kCachePipeline) + kTiled, "cache.yaml", dir_.path(),
+                     {{"output.dir", (dir_ / "out").string()}});
+  RunOptions options;
+  options.cache_dir = dir_ / "cache";
+  options.strict = true;
+  try {
+    run_pipeline(config, options);
+    FAIL() << "a strict run with a corrupt cache file succeeded";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("strict: 1 warning"));
+    EXPECT_THAT(e.what(), HasSubstr("tiles/files/"));
+    EXPECT_THAT(e.what(), HasSubstr("content hash mismatch"));
+  }
+  EXPECT_EQ(test::read_file(edited), bytes);  // nothing committed
+}
+
 // A cache file pruned while its entry stays: the tiles that need it are rebuilt as "new",
 // without a warning, and their files are a clean run's.
 TEST_F(CacheRun, APrunedCacheFileRebuildsTheTilesThatNeedIt) {
