@@ -128,6 +128,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   report.tiles.overlap = plan.tile_overlap;
   // Tile by tile: each is rendered, written and dropped, so memory follows the tile.
   std::map<std::string, std::vector<fs::path>> tile_tifs;  // per layer, for the mosaics
+  std::map<fs::path, FileDigest> tile_digests;  // what the tile cache hashed, for the manifest
   // Per tile, each part's time goes to its stage (`render`, `layers`, `preview`, `exports`).
   double render_seconds = 0.0, layer_seconds = 0.0, preview_seconds = 0.0, export_seconds = 0.0;
   Progress progress("render", std::int64_t(plan.tiles.size()), "tile");
@@ -209,6 +210,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       for (const auto& [name, staged] : outcome.staged) {
         if (staged.extension() == ".tif") tile_tifs[layer_of_tile_file(name)].push_back(staged);
       }
+      tile_digests.insert(outcome.digests.begin(), outcome.digests.end());
       report.forbidden_pixels += std::stoll(outcome.facts.at("forbidden_pixels"));
       tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
       detail::widen(report.input_height, detail::range_of_fact(outcome.facts.at("input_height")));
@@ -221,6 +223,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     tile_report.seconds = seconds_since(started);
     progress.advance();
   }
+  // The tile cache's warnings (a corrupt entry rebuilt, a cache that cannot be written) count
+  // as any other, and fail a strict run before anything is committed.
+  finish_warnings(warnings, strict, report);
   const auto mosaics = std::chrono::steady_clock::now();
   std::map<std::string, fs::path> layer_files;  // staged height / splat GeoTIFF or mosaic
   if (tiled) {
@@ -270,7 +275,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     clock.stop();
   }
   clock.start("manifest");  // the hash of every output file
-  report.output_files = detail::record_outputs(transaction);
+  report.output_files = detail::record_outputs(transaction, tile_digests);
   clock.stop();
 
   // Only report.json itself and the commit (a rename) come after the total.

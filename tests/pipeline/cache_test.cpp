@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -291,6 +292,147 @@ TEST_F(CacheRun, PipelineKeyNamesTheCacheRelativeToTheFile) {
   again.output.dir = dir_ / "third";
   run_pipeline(again, elsewhere);
   EXPECT_EQ(rebuilt("third").size(), 5u);
+}
+
+// --- Tiles as links (issue #23 item 2, docs/cache.md "Tile files are links") --------------------
+constexpr const char* kTiled = "output: { tiles: { size: 80, overlap: 2 } }\n";
+
+// Each tile's cache status as report.json lists it, by tile index.
+std::vector<nlohmann::json> tile_statuses(const fs::path& out) {
+  std::ifstream in(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);  // owned: the loop reads into it
+  std::vector<nlohmann::json> statuses;
+  for (const auto& t : report["tiles"]["tiles"]) statuses.push_back(t["cache"]);
+  return statuses;
+}
+
+std::set<ino_t> inodes_under(const fs::path& dir) {
+  std::set<ino_t> inodes;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    struct stat s {};
+    if (::stat(entry.path().c_str(), &s) == 0) inodes.insert(s.st_ino);
+  }
+  return inodes;
+}
+
+// A reused tile's files are hard links to the cache's read-only files, not copies of them; the
+// manifest's hashes (taken once, when a file is stored or checked) are a clean run's.
+TEST_F(CacheRun, ReusedTileFilesAreReadOnlyLinksAndTheReportIsACleanRunsReport) {
+  run("first", true, kTiled);
+  run("second", true, kTiled);
+  run("clean", false, kTiled);
+  const std::vector<nlohmann::json> tiles = tile_statuses(dir_ / "second");
+  ASSERT_EQ(tiles.size(), 4u);  // 80-pixel tiles of the 160-pixel world
+  for (const auto& t : tiles) EXPECT_EQ(t["why"], "unchanged");
+  expect_same_outputs("second", "clean");
+  std::size_t values = 0, clean_values = 0;
+  std::ifstream second(dir_ / "second/report.json"), clean(dir_ / "clean/report.json");
+  const nlohmann::json cached = without_timings(nlohmann::json::parse(second), values);
+  EXPECT_EQ(cached.dump(1), without_timings(nlohmann::json::parse(clean), clean_values).dump(1));
+  EXPECT_GE(cached["outputs"].size(), 4u * 6u);  // their hashes compared
+
+  const std::set<ino_t> kept = inodes_under(dir_ / "cache/tiles/files");
+  std::size_t linked = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "second/tiles")) {
+    struct stat s {};
+    ASSERT_EQ(::stat(entry.path().c_str(), &s), 0);
+    EXPECT_TRUE(kept.contains(s.st_ino)) << entry.path() << " is no link to a cache file";
+    EXPECT_GE(s.st_nlink, 3u) << entry.path();  // first, second and the cache
+    EXPECT_EQ(s.st_mode & 0222, 0u) << entry.path() << " is writable";
+    ++linked;
+  }
+  EXPECT_EQ(linked, 4u * 6u);  // height, splat, avoidance as EXR and GeoTIFF per tile
+}
+
+// An output file edited in place (made writable first) edits the cache file it is linked to:
+// the next run finds its hash changed, warns naming it, rebuilds that tile alone and writes a
+// clean run's bytes; the run after reuses every tile again.
+TEST_F(CacheRun, AnOutputEditedInPlaceNeverReachesALaterRun) {
+  run("out", true, kTiled);
+  run("clean", false, kTiled);
+  const fs::path edited = dir_ / "out/tiles/height_x1_y0.exr";
+  ASSERT_TRUE(fs::exists(edited));
+  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
+  {
+    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekg(std::streamoff(fs::file_size(edited) - 10));
+    const char byte = char(file.get());
+    file.seekp(std::streamoff(fs::file_size(edited) - 10));
+    file.put(char(byte ^ 0x5a));
+    ASSERT_TRUE(file.good());
+  }
+  ASSERT_NE(test::read_file(edited), test::read_file(dir_ / "clean/tiles/height_x1_y0.exr"));
+  const RunReport report = run("out", true, kTiled);
+  int corrupt = 0;
+  for (const Warning& w : report.warnings) {
+    if (w.code != "cache_corrupt") continue;
+    ++corrupt;
+    EXPECT_THAT(w.message, HasSubstr("tiles/files/"));
+    EXPECT_THAT(w.message, HasSubstr("content hash mismatch"));
+  }
+  EXPECT_EQ(corrupt, 1);
+  const std::vector<nlohmann::json> tiles = tile_statuses(dir_ / "out");
+  ASSERT_EQ(tiles.size(), 4u);
+  for (std::size_t i = 0; i < tiles.size(); ++i)
+    EXPECT_EQ(tiles[i]["why"], i == 1 ? "corrupt entry" : "unchanged") << "tile " << i;
+  expect_same_outputs("out", "clean");
+  run("again", true, kTiled);
+  for (const auto& t : tile_statuses(dir_ / "again")) EXPECT_EQ(t["why"], "unchanged");
+  expect_same_outputs("again", "clean");
+}
+
+// The tile cache's warnings are the run's: under --strict, a corrupt cache file fails the run
+// before anything is committed (the folder keeps the previous run's files).
+TEST_F(CacheRun, UnderStrictACorruptCacheFileFailsTheRunBeforeTheCommit) {
+  run("out", true, kTiled);
+  const fs::path edited = dir_ / "out/tiles/splat_x0_y0.exr";
+  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
+  {
+    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(std::streamoff(fs::file_size(edited) - 10));
+    file.put('\x7f');
+    ASSERT_TRUE(file.good());
+  }
+  const std::string bytes = test::read_file(edited);
+  const PipelineConfig config =
+      parse_pipeline(std::string(kCachePipeline) + kTiled, "cache.yaml", dir_.path(),
+                     {{"output.dir", (dir_ / "out").string()}});
+  RunOptions options;
+  options.cache_dir = dir_ / "cache";
+  options.strict = true;
+  try {
+    run_pipeline(config, options);
+    FAIL() << "a strict run with a corrupt cache file succeeded";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("strict: 1 warning"));
+    EXPECT_THAT(e.what(), HasSubstr("tiles/files/"));
+    EXPECT_THAT(e.what(), HasSubstr("content hash mismatch"));
+  }
+  EXPECT_EQ(test::read_file(edited), bytes);  // nothing committed
+}
+
+// A cache file pruned while its entry stays: the tiles that need it are rebuilt as "new",
+// without a warning, and their files are a clean run's.
+TEST_F(CacheRun, APrunedCacheFileRebuildsTheTilesThatNeedIt) {
+  run("first", true, kTiled);
+  run("clean", false, kTiled);
+  struct stat s {};
+  ASSERT_EQ(::stat((dir_ / "first/tiles/splat_x0_y1.tif").c_str(), &s), 0);
+  std::size_t pruned = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "cache/tiles/files")) {
+    struct stat c {};
+    if (::stat(entry.path().c_str(), &c) == 0 && c.st_ino == s.st_ino)
+      pruned += fs::remove(entry.path());
+  }
+  ASSERT_EQ(pruned, 1u);
+  const RunReport report = run("second", true, kTiled);
+  for (const Warning& w : report.warnings) EXPECT_NE(w.code, "cache_corrupt") << w.message;
+  const std::vector<nlohmann::json> tiles = tile_statuses(dir_ / "second");
+  ASSERT_EQ(tiles.size(), 4u);
+  EXPECT_EQ(tiles[2]["status"], "rebuilt");  // tile x0 y1
+  EXPECT_EQ(tiles[2]["why"], "new");
+  for (const auto& t : tiles) EXPECT_TRUE(t["why"] == "new" || t["why"] == "unchanged") << t;
+  expect_same_outputs("second", "clean");
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // Incremental rebuilds with --cache (docs/cache.md, issue #10 item 3), tiles: a 5 x 5 tiling of
 // the cache world, rendered through the tile cache. One changed road rebuilds exactly the tiles
 // that its old and new footprints, and its junction partner's, reach (worked out here from the
-// geometry); every other tile's files are copied from the cache; the files equal a run without
-// cache byte for byte; a corrupt tile entry is detected and rebuilt.
+// geometry); every other tile's files come from the cache (hard links); the files equal a run
+// without cache byte for byte; a corrupt tile entry is detected and rebuilt. A tile's key holds
+// the profile samples it can read: a changed sample reaches exactly the tiles whose render it
+// changes, and a partner's tiles far from a moved junction are reused.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -72,7 +74,12 @@ class TileCacheRun : public ::testing::Test {
   }
 
   PipelineConfig config() const {
-    return parse_pipeline(std::string(kCachePipeline) + kTiling, "tiles.yaml", dir_.path());
+    std::string text = kCachePipeline;
+    if (plain_) {  // the roads without synthesis
+      const std::size_t at = text.find("    synthesis:");
+      text.erase(at, text.find('\n', at) + 1 - at);
+    }
+    return parse_pipeline(text + kTiling, "tiles.yaml", dir_.path());
   }
 
   TiledRun run(const std::string& name, bool with_cache = true) {
@@ -125,6 +132,7 @@ class TileCacheRun : public ::testing::Test {
 
   TempDir dir_;
   std::vector<TileSpec> tiles_;
+  bool plain_ = false;
 };
 
 TEST_F(TileCacheRun, UnchangedRerunCopiesEveryTile) {
@@ -160,11 +168,87 @@ TEST_F(TileCacheRun, OneChangedRoadRebuildsTheTilesItsFootprintReaches) {
   expect_same_files("after", "clean");
 }
 
+// Issue #23 item 2: plain roads (no synthesis). R1's west end moves, so its crossing with R2
+// moves and R2's profile is graded anew near it. A tile's key holds only the profile samples the
+// tile can read: R2's tiles far from the crossing keep their key, R1's own are rebuilt, and
+// every file equals a clean run's (no tile that reads a changed sample is reused).
+TEST_F(TileCacheRun, APartnersTilesFarFromAMovedJunctionKeepTheirKey) {
+  plain_ = true;
+  run("before");
+  const std::vector<Line> after = roads_with_r1_west_moved();
+  write_roads(dir_ / "roads.gpkg", after);
+  const TiledRun changed = run("after");
+  run("clean", false);
+  expect_same_files("after", "clean");
+  const Line r2 = roads()[1];
+  ASSERT_EQ(r2, after[1]);  // R2 itself is unchanged
+  const Box junction = line_box({{320, 300}}, 150.0);
+  std::set<std::pair<int, int>> own, far;
+  for (const TileSpec& tile : tiles_) {
+    const Box box = tile_box(tile);
+    const bool r1_reaches =
+        box.meets(line_box(roads()[0], 20.0)) || box.meets(line_box(after[0], 20.0));
+    if (r1_reaches) own.insert({tile.ix, tile.iy});
+    if (!r1_reaches && box.meets(line_box(r2, 20.0)) && !box.meets(junction))
+      far.insert({tile.ix, tile.iy});
+  }
+  ASSERT_GE(own.size(), 5u);
+  ASSERT_GE(far.size(), 2u);
+  for (const auto& at : own)
+    EXPECT_FALSE(changed.tiles.at(at).reused) << at.first << "," << at.second;
+  for (const auto& at : far) {
+    EXPECT_TRUE(changed.tiles.at(at).reused) << at.first << "," << at.second;
+    EXPECT_EQ(changed.tiles.at(at).why, "unchanged");
+  }
+}
+
+// The key against the render itself: one sample of R2's planned profile raised by a metre (as a
+// partner's grading would). Every tile whose render changes gets a new key (a stale reuse is
+// impossible), and the tiles that cannot read that sample keep theirs.
+TEST_F(TileCacheRun, AChangedProfileSampleChangesTheKeyOfEveryTileWhoseRenderItReaches) {
+  plain_ = true;
+  Warnings warnings;
+  const WorldPlan plan = plan_world(config(), PlanOptions{}, warnings);
+  WorldPlan changed = plan_world(config(), PlanOptions{}, warnings);
+  std::size_t r2 = changed.terrain.features.size();
+  for (std::size_t e = 0; e < changed.terrain.features.size(); ++e)
+    if (changed.terrain.input_index[e] == 1) r2 = e;  // FID 2, from y 50 to 590 at x 320
+  ASSERT_LT(r2, changed.terrain.features.size());
+  const double step = changed.terrain.steps[r2];
+  const std::size_t sample = std::size_t(std::lround(400.0 / step));  // y 450, beside R3's end
+  ASSERT_LT(sample, changed.terrain.profiles[r2].size());
+  changed.terrain.profiles[r2][sample] += 1.0f;
+  WriteOptions write_options;
+  const detail::TileCache before(plan, write_options, std::nullopt, warnings);
+  const detail::TileCache after(changed, write_options, std::nullopt, warnings);
+  const auto pixels = [](const LayerSet& layers) {
+    std::string bytes;
+    for (const Layer& layer : layers.layers)
+      for (const Raster<float>& band : layer.bands)
+        bytes.append(reinterpret_cast<const char*>(band.pixels.data()),
+                     band.pixels.size() * sizeof(float));
+    return bytes;
+  };
+  int rendered_differently = 0, kept = 0;
+  for (const TileSpec& tile : plan.tiles) {
+    const bool same_key = before.key(tile).combined() == after.key(tile).combined();
+    const bool same_render = pixels(render_tile(plan, tile)) == pixels(render_tile(changed, tile));
+    if (!same_render) {
+      ++rendered_differently;
+      EXPECT_FALSE(same_key) << "tile " << tile.ix << "," << tile.iy << " would be reused stale";
+    }
+    kept += same_key;
+  }
+  EXPECT_GE(rendered_differently, 1);
+  EXPECT_LE(rendered_differently, 4);  // a sample reaches the tiles within 23 m of it
+  EXPECT_GE(kept, 20);                 // of 25: R2's other tiles among them
+}
+
 TEST_F(TileCacheRun, CorruptTileEntryIsDetectedAndRebuilt) {
   const TiledRun first = run("first");
   const fs::path entry = dir_ / "cache/tiles" / (first.tiles.at({1, 1}).key + ".twc");
   std::string bytes = read_file(entry);
-  ASSERT_GT(bytes.size(), 1000u);
+  ASSERT_GT(bytes.size(), 300u);  // the files' digests (the files themselves: tiles/files)
   bytes[bytes.size() - 100] ^= 0x01;
   std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
   const TiledRun second = run("second");

@@ -142,6 +142,43 @@ CacheRead read_cache_entry(const fs::path& path) {
   return read;
 }
 
+CacheRead::State check_cache_file(const fs::path& path, const FileDigest& expected,
+                                  std::string& problem) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) {
+    if (ec == std::errc::no_such_file_or_directory) return CacheRead::State::absent;
+    problem = ec.message();
+    return CacheRead::State::corrupt;
+  }
+  if (size != expected.bytes) {
+    problem = fmt::format("{} bytes, the entry says {}", size, expected.bytes);
+    return CacheRead::State::corrupt;
+  }
+  try {
+    if (file_digest(path).xxh3_128 != expected.xxh3_128) {
+      problem = "content hash mismatch (edited through an output file linked to it?)";
+      return CacheRead::State::corrupt;
+    }
+  } catch (const Error& e) {
+    problem = e.what();
+    return CacheRead::State::corrupt;
+  }
+  return CacheRead::State::ok;
+}
+
+void place_cache_file(const fs::path& path, const fs::path& target) {
+  std::error_code ec;
+  fs::create_hard_link(path, target, ec);
+  if (!ec) return;
+  const std::string link_problem = ec.message();
+  ec.clear();
+  fs::copy_file(path, target, ec);
+  if (ec)
+    fail("cannot write {} from the cache ({}; a link: {})", target.string(), ec.message(),
+         link_problem);
+}
+
 void touch_cache_entry(const fs::path& path) {
   std::error_code ignored;
   fs::last_write_time(path, fs::file_time_type::clock::now(), ignored);
@@ -189,7 +226,7 @@ CacheFolder::CacheFolder(const fs::path& dir, Warnings& warnings) : warnings_(wa
   // a killed run's. Then shared, as every run holds it.
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) == 0) {
     std::error_code ec;
-    for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last"}) {
+    for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last", "tiles/files"}) {
       for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code removed;
         if (is_cache_temporary(it->path()) && fs::remove(it->path(), removed)) ++swept_;
@@ -216,6 +253,32 @@ void CacheFolder::write(const fs::path& path, const CacheSections& sections) {
     write_cache_entry(path, sections);
   } catch (const Error& e) {
     give_up(e.what());
+  }
+}
+
+void CacheFolder::keep_file(const fs::path& path, const fs::path& file) {
+  if (!writable_) return;
+  std::error_code ec;
+  // Read-only before it is shared: the output file and the cache file are one inode.
+  fs::permissions(file, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read, ec);
+  if (!ec) fs::create_directories(path.parent_path(), ec);
+  if (ec) {
+    give_up(fmt::format("cache: cannot keep {}: {}", path.string(), ec.message()));
+    return;
+  }
+  const fs::path temporary =
+      path.parent_path() / ("." + path.filename().string() + ".tmp" + unique_suffix());
+  fs::create_hard_link(file, temporary, ec);
+  if (ec) {  // another file system: a copy, read-only like a link
+    ec.clear();
+    fs::copy_file(file, temporary, ec);
+  }
+  if (!ec) fs::rename(temporary, path, ec);
+  std::error_code ignored;
+  fs::remove(temporary, ignored);  // left by a rename onto a link of the same file (a no-op)
+  if (ec) {
+    give_up(
+        fmt::format("cache: cannot keep {} as {}: {}", file.string(), path.string(), ec.message()));
   }
 }
 

@@ -13,6 +13,7 @@
 #include <map>
 #include <string>
 
+#include "core/file_hash.hpp"
 #include "core/warnings.hpp"
 
 namespace tw::detail {
@@ -32,6 +33,19 @@ void write_cache_entry(const std::filesystem::path& path, const CacheSections& s
 
 // Reads and checks an entry; never throws for a bad file (that is State::corrupt).
 CacheRead read_cache_entry(const std::filesystem::path& path);
+
+// A file kept whole in the cache (a tile's output file, docs/cache.md): its own bytes, not a
+// container, so that a reuse hard-links it into the output folder instead of copying. It is
+// read-only, named by its content hash, and checked against `expected` (size and XXH3-128, read
+// through once) before each reuse: an output file edited in place edits the cache file it is
+// linked to, and that edit must never reach a later run. State::absent: no such file (pruned).
+CacheRead::State check_cache_file(const std::filesystem::path& path, const FileDigest& expected,
+                                  std::string& problem);
+
+// Places the checked cache file `path` at `target` (which must not exist): a hard link, or a
+// copy where the two lie on different file systems (or links fail). Throws tw::Error naming
+// `target` when neither works.
+void place_cache_file(const std::filesystem::path& path, const std::filesystem::path& target);
 
 // Marks an entry as used now (its modification time), so that pruning by age keeps what the
 // latest runs used. Errors are ignored (a read-only cache still serves).
@@ -56,6 +70,11 @@ class CacheFolder {
 
   // write_cache_entry, unless an earlier write failed; a failure is the warning. Any thread.
   void write(const std::filesystem::path& path, const CacheSections& sections);
+  // Keeps `file` (a finished output, hashed as `digest`) as the cache file `path` (see
+  // check_cache_file): `file` is made read-only and hard-linked there (a copy, read-only too,
+  // across file systems), atomically (a temporary, then rename). A failure is the warning. Any
+  // thread.
+  void keep_file(const std::filesystem::path& path, const std::filesystem::path& file);
   int swept() const { return swept_; }  // temporaries removed
 
  private:

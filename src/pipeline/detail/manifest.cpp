@@ -56,10 +56,17 @@ std::vector<FileRecord> record_inputs(const PipelineConfig& config) {
   return records;
 }
 
-std::vector<FileRecord> record_outputs(const OutputFolder& output) {
+std::vector<FileRecord> record_outputs(const OutputFolder& output,
+                                       const std::map<fs::path, FileDigest>& known) {
   std::vector<FileRecord> records;
-  for (const auto& [relative, staged] : output.staged_files())
+  for (const auto& [relative, staged] : output.staged_files()) {
+    if (const auto digest = known.find(relative); digest != known.end()) {
+      records.push_back(
+          {relative.string(), relative.string(), digest->second.bytes, digest->second.xxh3_128});
+      continue;
+    }
     records.push_back(record(relative.string(), staged, relative.string()));
+  }
   std::sort(records.begin(), records.end(),
             [](const FileRecord& a, const FileRecord& b) { return a.path < b.path; });
   return records;

@@ -1,8 +1,8 @@
 #include "pipeline/detail/tile_cache.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <span>
 
 #include "core/error.hpp"
@@ -12,6 +12,7 @@
 #include "pipeline/version.hpp"
 #include "raster/footprint.hpp"
 #include "raster/window_index.hpp"
+#include "terrain/features.hpp"
 
 namespace tw::detail {
 
@@ -20,15 +21,19 @@ namespace fs = std::filesystem;
 namespace {
 
 // 2: the instance heights fact; 3: every writer option in the key (the GeoTIFFs' metadata
-// carries the seed: issue #24); 4: EXR codecs and pixel types chosen per layer.
-constexpr std::uint64_t kTileCacheFormat = 4;
-constexpr const char* kFilePrefix = "file:";
+// carries the seed: issue #24); 4: EXR codecs and pixel types chosen per layer; 5: the files
+// kept whole under tiles/files (hard-linked into the output), the entry holding their digests.
+// 6: a feature's planned profiles in part, the samples the tile can read.
+constexpr std::uint64_t kTileCacheFormat = 6;
+constexpr const char* kFilePrefix = "file:";  // a file's "<xxh3-128 hex> <bytes>"
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
 
 void hash_optional(Hasher& h, const std::optional<double>& v) {
   h.boolean(v.has_value()).real(v.value_or(0.0));
 }
 
+// A terrain feature's own values; its planned profiles enter each tile's key in part
+// (hash_profile_part), with their steps and lengths here.
 ContentHash terrain_hash(const TerrainFeature& f,
                          const std::vector<const std::vector<float>*>& profiles,
                          const std::vector<double>& steps) {
@@ -41,12 +46,65 @@ ContentHash terrain_hash(const TerrainFeature& f,
   h.real(f.river.depth).real(f.river.bank_width).real(f.river.falloff).real(f.river.min_slope);
   hash_optional(h, f.river.max_carve);
   h.real(f.ridge.height).real(f.ridge.falloff).real(f.ridge.sharpness);
-  // Its planned profiles: graded at junctions, so a partner's change reaches them.
   h.u64(profiles.size());
-  for (std::size_t i = 0; i < profiles.size(); ++i) {
-    h.bytes(std::as_bytes(std::span(profiles[i]->data(), profiles[i]->size()))).real(steps[i]);
-  }
+  for (std::size_t i = 0; i < profiles.size(); ++i) h.u64(profiles[i]->size()).real(steps[i]);
   return h.digest();
+}
+
+// The part [t0, t1] of the segment a + t (b - a), t in [0, 1], that lies in `box`
+// (Liang-Barsky); false when none does.
+bool clip_segment(Vec2 a, Vec2 b, const PieceBox& box, double& t0, double& t1) {
+  t0 = 0.0;
+  t1 = 1.0;
+  const Vec2 d = b - a;
+  const auto clip = [&](double p, double q) {  // keeps the t with p t <= q
+    if (p == 0.0) return q >= 0.0;
+    const double r = q / p;
+    if (p < 0.0) {
+      if (r > t1) return false;
+      t0 = std::max(t0, r);
+    } else {
+      if (r < t0) return false;
+      t1 = std::min(t1, r);
+    }
+    return true;
+  };
+  return clip(-d.x, a.x - box.lo.x) && clip(d.x, box.hi.x - a.x) && clip(-d.y, a.y - box.lo.y) &&
+         clip(d.y, box.hi.y - a.y);
+}
+
+// The samples of a planned profile (of terrain plan entry `entry`) that rendering the world box
+// `box` can read, hashed with their first index. apply_terrain takes a pixel's value from the
+// profile at the arc length of its nearest centreline point (interpolated between two samples),
+// and only within the feature's reach (plus half a pixel): so the samples at the arc lengths of
+// the centreline's parts within the box grown by the reach and two pixels, two more on each
+// side (the arc length is kept as a float there). A closed centreline: every sample. A profile
+// graded anew near a junction (a partner moved) leaves the key of a tile away from it alone.
+void hash_profile_part(Hasher& h, const TerrainFeature& entry, const std::vector<float>& profile,
+                       double step, const PieceBox& box, double pixel) {
+  std::size_t first = 0, end = profile.size();
+  const std::vector<Vec2>& p = entry.centerline.points;
+  if (!entry.centerline.closed && step > 0.0 && !profile.empty()) {
+    const PieceBox reach = grown(box, feature_reach(entry) + 2.0 * pixel);
+    double lo = INFINITY, hi = -INFINITY, s = 0.0;
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) {  // arc lengths as FeatureIndex sums them
+      const double length_k = length(p[k + 1] - p[k]);
+      double t0 = 0.0, t1 = 0.0;
+      if (clip_segment(p[k], p[k + 1], reach, t0, t1)) {
+        lo = std::min(lo, s + t0 * length_k);
+        hi = std::max(hi, s + t1 * length_k);
+      }
+      s += length_k;
+    }
+    if (!(lo <= hi)) {  // no part within reach: no sample is read
+      first = end = 0;
+    } else {
+      first = std::size_t(std::max(0.0, std::floor(lo / step) - 2.0));
+      end = std::min(profile.size(), std::size_t(std::max(0.0, std::ceil(hi / step))) + 3);
+      first = std::min(first, end);
+    }
+  }
+  h.u64(first).bytes(std::as_bytes(std::span(profile.data() + first, end - first)));
 }
 
 // Stages through an OutputFolder and remembers what (the names under `dir`, the staged paths).
@@ -66,10 +124,23 @@ class RecordingStager final : public OutputStager {
   fs::path dir_;
 };
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cache: cannot read back {}", path.string());
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+std::string digest_text(const FileDigest& digest) {
+  return digest.xxh3_128 + " " + std::to_string(digest.bytes);
+}
+
+// digest_text's inverse; nullopt for anything else (a malformed entry).
+std::optional<FileDigest> parse_digest(const std::string& text) {
+  const std::size_t space = text.find(' ');
+  if (space != 32 || text.size() == 33 || text.size() > 33 + 20) return std::nullopt;
+  const std::string hex = text.substr(0, 32);
+  if (hex.find_first_not_of("0123456789abcdef") != std::string::npos) return std::nullopt;
+  if (text.find_first_not_of("0123456789", 33) != std::string::npos) return std::nullopt;
+  return FileDigest{std::stoull(text.substr(33)), hex};
+}
+
+// A tile file's bytes under the cache: tiles/files/<xxh3-128>.twc.
+fs::path cache_file_path(const fs::path& dir, const FileDigest& digest) {
+  return dir / "tiles" / "files" / (digest.xxh3_128 + ".twc");
 }
 
 }  // namespace
@@ -129,6 +200,9 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
   }
   for (std::size_t f = 0; f < plan.terrain_features.size(); ++f)
     terrain_.push_back(terrain_hash(plan.terrain_features[f], profiles[f], steps[f]));
+  entries_.resize(plan.terrain_features.size());
+  for (std::size_t i = 0; i < plan.terrain.features.size(); ++i)
+    entries_[plan.terrain.input_index[i]].push_back(i);
   for (const auto& class_ribbons : plan.ribbons)
     for (const Ribbon& r : class_ribbons) ribbons_.push_back(ribbon_hash(r));
   for (const MethodPlan& entry : plan.methods)
@@ -152,7 +226,14 @@ TileKey TileCache::key(const TileSpec& tile) const {
 
   Hasher f;
   f.text("terrain");
-  for (const std::size_t i : items_meeting(plan_.feature_index, window)) f.hash(terrain_[i]);
+  const PieceBox window_box = world_box(window, plan_.grid);
+  const double pixel = std::min(plan_.grid.pixel_width, plan_.grid.pixel_height);
+  for (const std::size_t i : items_meeting(plan_.feature_index, window)) {
+    f.hash(terrain_[i]);
+    for (const std::size_t e : entries_[i])
+      hash_profile_part(f, plan_.terrain.features[e], plan_.terrain.profiles[e],
+                        plan_.terrain.steps[e], window_box, pixel);
+  }
   const Window reach = grow_window(window, avoidance_halo_pixels(plan_), plan_.grid);
   f.text("ribbons");
   for (const std::size_t i : items_meeting(plan_.ribbon_index, reach)) f.hash(ribbons_[i]);
@@ -187,18 +268,41 @@ std::optional<CacheSections> TileCache::find(const std::string& name, const Tile
   const ContentHash combined = key.combined();
   status = {false, "no cache", combined.hex()};
   if (!dir_) return std::nullopt;
-  const fs::path path = *dir_ / "tiles" / (combined.hex() + ".twc");
+  fs::path path = *dir_ / "tiles" / (combined.hex() + ".twc");  // or the corrupt file's
   CacheRead read = read_cache_entry(path);
   if (read.state == CacheRead::State::ok) {
     const auto k = read.sections.find("key");
     if (k != read.sections.end() && k->second == combined.hex()) {
-      touch_cache_entry(path);
-      status.reused = true;
-      status.why = "unchanged";
-      return std::move(read.sections);
+      // Every file checked before any is placed: a tile is reused whole or rebuilt whole.
+      for (const auto& [section, text] : read.sections) {
+        if (!section.starts_with(kFilePrefix)) continue;
+        const std::optional<FileDigest> digest = parse_digest(text);
+        if (!digest) {
+          read.state = CacheRead::State::corrupt;
+          read.problem = "malformed digest of " + section.substr(std::strlen(kFilePrefix));
+          break;
+        }
+        const fs::path file = cache_file_path(*dir_, *digest);
+        std::string problem;
+        const CacheRead::State state = check_cache_file(file, *digest, problem);
+        if (state == CacheRead::State::ok) continue;
+        read.state = state;  // absent: pruned, the tile is "new"
+        if (state == CacheRead::State::corrupt) {
+          path = file;
+          read.problem = problem;
+        }
+        break;
+      }
+      if (read.state == CacheRead::State::ok) {
+        touch_cache_entry(path);
+        status.reused = true;
+        status.why = "unchanged";
+        return std::move(read.sections);
+      }
+    } else {
+      read.state = CacheRead::State::corrupt;
+      read.problem = "key mismatch";
     }
-    read.state = CacheRead::State::corrupt;
-    read.problem = "key mismatch";
   }
   if (read.state == CacheRead::State::corrupt) {
     warnings_.add(
@@ -246,12 +350,15 @@ TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager
       }
       if (section.rfind(kFilePrefix, 0) != 0) continue;
       const fs::path relative = section.substr(std::strlen(kFilePrefix));
+      const FileDigest digest = *parse_digest(bytes);  // checked by find
       const fs::path staged = output.stage(output_dir / relative);
-      std::ofstream out(staged, std::ios::binary);
-      out.write(bytes.data(), std::streamsize(bytes.size()));
-      out.close();
-      if (!out) fail("cannot write {}", staged.string());
+      // A link, not a copy: the cache file is read-only and checked before each reuse.
+      std::error_code ignored;
+      fs::remove(staged, ignored);
+      place_cache_file(cache_file_path(*dir_, digest), staged);
+      touch_cache_entry(cache_file_path(*dir_, digest));
       outcome.staged.push_back({relative, staged});
+      outcome.digests[relative] = digest;
     }
     logger().debug("{}: reused from the cache ({})", name, outcome.status.key);
     return outcome;
@@ -262,8 +369,13 @@ TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager
   outcome.staged = stager.files;
   if (dir_) {
     CacheSections sections;
-    for (const auto& [file, staged] : stager.files)
-      sections[kFilePrefix + file.generic_string()] = read_bytes(staged);
+    // Each file read once, for its hash (which the manifest reuses), and kept by a link.
+    for (const auto& [file, staged] : stager.files) {
+      const FileDigest digest = file_digest(staged);
+      folder_->keep_file(cache_file_path(*dir_, digest), staged);
+      sections[kFilePrefix + file.generic_string()] = digest_text(digest);
+      outcome.digests[file] = digest;
+    }
     for (const auto& [fact, value] : outcome.facts) sections[kFactPrefix + fact] = value;
     store(name, key, sections);
   }

@@ -2,10 +2,13 @@
 // The per-tile render cache (docs/cache.md). A tile's files are keyed by exactly what
 // render_tile reads for its window (with the overlap): the heights of the window (the generated
 // source's parameters, or the window's values as ingested), the features whose footprint meets
-// it — terrain features with their planned profiles (a junction partner's profile included),
+// it — terrain features with the samples of their planned profiles that the window can read (a
+// junction partner's grading reaches the tiles near the junction),
 // ribbons and existing features and junction discs within the avoidance halo, and the rendered
 // patterns (placements, ribbon, exemplar bytes, render options) — and the render and output
-// values with the program version. Entries hold the tile's file bytes: <dir>/tiles/<key>.twc.
+// values with the program version. Entries hold the digests of the tile's files, which are kept
+// whole, read-only, as <dir>/tiles/files/<xxh3-128>.twc and hard-linked into the output on
+// reuse after a check of their hash: <dir>/tiles/<key>.twc.
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -41,18 +44,21 @@ class TileCache {
 
   // What render_or_reuse did: the status, the files it staged (name under the output folder ->
   // staged path) and the facts `write` noted about the rendered tile (kept with its files, so a
-  // reused tile reports the same numbers).
+  // reused tile reports the same numbers), and, with a cache, the digests of its files (hashed
+  // once, on storing or on the check before reuse: the manifest need not read them again).
   struct Outcome {
     CacheStatus status;
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged;
     std::map<std::string, std::string> facts;
+    std::map<std::filesystem::path, FileDigest> digests;  // by name under the output folder
   };
   using Writer =
       std::function<void(LayerSet&, OutputStager&, std::map<std::string, std::string>& facts)>;
 
   // Renders `tile` and has `write` stage its files through the given stager, or, when the cache
-  // holds the files under the tile's key, stages copies of them (the same names, the same
-  // bytes). Stores a rebuilt tile's files and facts.
+  // holds the files under the tile's key, stages hard links to them (the same names, the same
+  // bytes; copies across file systems). Stores a rebuilt tile's files (made read-only and linked
+  // into the cache) and facts.
   Outcome render_or_reuse(const TileSpec& tile, OutputStager& output,
                           const std::filesystem::path& output_dir, const Writer& write);
 
@@ -67,6 +73,7 @@ class TileCache {
   std::unique_ptr<CacheFolder> folder_;                    // with dir_: locked and written through
   ContentHash config_;                                     // what every tile shares
   std::vector<ContentHash> terrain_, ribbons_;             // by plan index
+  std::vector<std::vector<std::size_t>> entries_;  // terrain plan entries per terrain feature
   std::vector<std::vector<ContentHash>> methods_;          // per plan.methods entry, by item
 };
 
