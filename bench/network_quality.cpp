@@ -120,9 +120,9 @@ int main(int argc, char** argv) {
                 ok ? "yes" : "no", st.dangling_per_km());
     std::fprintf(
         stderr,
-        "%s: %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
-        c.name.c_str(), ex.edges.size(), out.edges.size(), ms, (long long)check.crossings,
-        (long long)check.outside);
+        "%s (%s): %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
+        c.name.c_str(), report.quilted ? "quilt" : "grow", ex.edges.size(), out.edges.size(), ms,
+        (long long)check.crossings, (long long)check.outside);
     if (!images.empty()) {
       OutputTransaction t;
       const auto ex_region = box_of(ex, 1.0);
