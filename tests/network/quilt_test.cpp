@@ -138,13 +138,13 @@ TEST_P(QuiltProperty, CrocodileCellsKeepTheExemplarsStyle) {
     const double d_out = normalized_w1(property(se, p), property(m.quilt, p));
     const double d_placed = normalized_w1(property(se, p), property(m.placed, p));
     const double d_tiled = normalized_w1(property(se, p), property(m.tiled, p));
-    // Bounds: about twice the largest measured on 2026-12-03 over both seeds (degree: 0.000,
-    // edge length 0.234, curvature 0.205, junction angle 0.090, face area 0.250, bearing 0.105).
-    constexpr double kBound[] = {0.05, 0.5, 0.4, 0.2, 0.5, 0.2};
+    // Bounds: about twice the largest measured on 2026-12-03 over both seeds (degree 0.005,
+    // edge length 0.227, curvature 0.199, junction angle 0.126, face area 0.393, bearing 0.081).
+    constexpr double kBound[] = {0.05, 0.5, 0.4, 0.25, 0.8, 0.2};
     EXPECT_LT(d_out, kBound[p]) << kNetworkProperties[p] << " seed " << k + 1;
     // Closer than the random placement of exemplar squares, but for bearings: the placement
-    // copies the exemplar unturned, so its bearings are the exemplar's (quilting's are as close
-    // for one seed and not for the other).
+    // copies the exemplar unturned, so its bearings are the exemplar's (quilting is closer here
+    // for both seeds, but not for every exemplar and seed: the quality table).
     if (p != 5) EXPECT_LT(d_out, d_placed) << kNetworkProperties[p] << " seed " << k + 1;
     if (p == 0) {
       EXPECT_LT(d_out, d_tiled) << "seed " << k + 1;  // the tiling breaks degrees at its seams

@@ -48,6 +48,42 @@ Vec2 inner_vertex(const std::vector<Vec2>& pts, int end) {
   return end == 0 ? pts[1] : pts[pts.size() - 2];
 }
 
+// The distance to the exemplar's nearest line on a lattice over its extent, clamped, read
+// bilinearly: the candidates' scores read it hundreds of times per block (an R-tree query each
+// would dominate the synthesis).
+class DistanceField {
+ public:
+  DistanceField(const Segments& lines, Vec2 lo, Vec2 hi, double cell, double clamp)
+      : lo_(lo), clamp_(clamp) {
+    cell_ = std::max({cell, (hi.x - lo.x) / 1024.0, (hi.y - lo.y) / 1024.0, 1e-9});
+    width_ = int(std::ceil((hi.x - lo.x) / cell_)) + 1;
+    height_ = int(std::ceil((hi.y - lo.y) / cell_)) + 1;
+    d_.resize(std::size_t(width_) * std::size_t(height_));
+    for (int j = 0; j < height_; ++j)
+      for (int i = 0; i < width_; ++i)
+        d_[std::size_t(j) * std::size_t(width_) + std::size_t(i)] =
+            nearest(lines, lo + cell_ * Vec2{double(i), double(j)}, clamp);
+  }
+  // The clamped distance at p; beyond the lattice, the clamp (no exemplar there).
+  double at(Vec2 p) const {
+    const double x = (p.x - lo_.x) / cell_, y = (p.y - lo_.y) / cell_;
+    if (!(x >= 0.0 && y >= 0.0 && x <= width_ - 1 && y <= height_ - 1)) return clamp_;
+    const int i = std::min(width_ - 2, int(x)), j = std::min(height_ - 2, int(y));
+    const double u = x - i, v = y - j;
+    const auto d = [&](int a, int b) {
+      return d_[std::size_t(b) * std::size_t(width_) + std::size_t(a)];
+    };
+    return (1 - v) * ((1 - u) * d(i, j) + u * d(i + 1, j)) +
+           v * ((1 - u) * d(i, j + 1) + u * d(i + 1, j + 1));
+  }
+
+ private:
+  Vec2 lo_;
+  double clamp_, cell_ = 1.0;
+  int width_ = 2, height_ = 2;
+  std::vector<double> d_;
+};
+
 struct Block {
   Vec2 source;  // the exemplar square's centre
   Vec2 centre;  // where it lands
@@ -66,6 +102,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
     insert_line(lines, exemplar.edges[i].points, int(i));
   }
   const double shorter = std::min(ehi.x - elo.x, ehi.y - elo.y);
+  if (!(shorter > 0.0)) return {};  // lines along one line: no square to copy
   const double overlap = kOverlapFraction * kBlockFraction * shorter;
   const double stride = kBlockFraction * shorter - overlap;
   const Vec2 lo = settings.lo, hi = settings.hi;
@@ -86,6 +123,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
           INFINITY));
   std::nth_element(gaps.begin(), gaps.begin() + long(gaps.size() / 2), gaps.end());
   const double empty = 3.0 * gaps[gaps.size() / 2];
+  const DistanceField field(lines, elo, ehi, overlap / 8.0, 2.0 * std::max(cap, empty));
   const auto to_exemplar = [&](const Block& b, Vec2 q) {
     return rotate(q - b.centre, -settings.turn) + b.source;
   };
@@ -94,7 +132,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i) {
         const Vec2 q = b.centre + Vec2{(i - 2) * 0.45 * side, (j - 2) * 0.45 * side};
-        far += nearest(lines, to_exemplar(b, q), INFINITY) > empty;
+        far += field.at(to_exemplar(b, q)) > empty;
       }
     return far > 1;
   };
@@ -132,7 +170,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
       const auto cost_of = [&](const Block& b, double bound) {
         double cost = 0.0;
         for (std::size_t s = 0; s < samples.size() && cost < bound; ++s) {
-          const double d = nearest(lines, to_exemplar(b, samples[s]), cap) - placed_distance[s];
+          const double d = std::min(cap, field.at(to_exemplar(b, samples[s]))) - placed_distance[s];
           cost += d * d;
         }
         return cost;
