@@ -19,8 +19,8 @@ using EndValue = std::pair<BgPoint, int>;
 
 // A block's side as a fraction of the exemplar's shorter side, and the overlap compared between
 // neighbouring blocks as a fraction of the block.
-constexpr double kBlockFraction = 0.45;
-constexpr double kOverlapFraction = 0.25;
+constexpr double kBlockFraction = 0.6;
+constexpr double kOverlapFraction = 0.18;
 // Seam ends are joined when their lines cross the seam within this angle of each other.
 constexpr double kStitchCos = 0.64;  // cos 50°
 
