@@ -145,7 +145,9 @@ TEST_P(QuiltProperty, CrocodileCellsKeepTheExemplarsStyle) {
     // Closer than the random placement of exemplar squares, but for bearings: the placement
     // copies the exemplar unturned, so its bearings are the exemplar's (quilting is as close for
     // one seed, 0.102 to 0.097, and closer for the other).
-    if (p != 5) EXPECT_LT(d_out, d_placed) << kNetworkProperties[p] << " seed " << k + 1;
+    if (p != 5) {
+      EXPECT_LT(d_out, d_placed) << kNetworkProperties[p] << " seed " << k + 1;
+    }
     if (p == 0) {
       EXPECT_LT(d_out, d_tiled) << "seed " << k + 1;  // the tiling breaks degrees at its seams
       EXPECT_LE(m.quilt.dangling_per_km(), 1.5 * se.dangling_per_km() + 0.5) << "seed " << k + 1;
