@@ -4,6 +4,7 @@
 // half, (c) the naive baseline (random exemplar patches), and the dangling ends per km; writes
 // docs/images/network_<name>.png (exemplar | output | baseline) with --images DIR.
 //   build/bench/bench_network_quality [--images docs/images] [--seed N]
+//                                     [--method automatic|grow|quilt]
 // NETWORK_VERBOSE=1 also prints, per exemplar, degree histograms, bent edges, mean lengths and
 // areas of the exemplar, the output and the baseline, and the growth counters.
 #include <chrono>
@@ -49,7 +50,12 @@ std::vector<Polygon> box_of(const Network& n, double factor) {
 int main(int argc, char** argv) {
   std::string images;
   std::uint64_t seed = 1;
+  NetworkMethod method = NetworkMethod::automatic;
   for (int i = 1; i + 1 < argc; ++i) {
+    if (!std::strcmp(argv[i], "--method"))
+      method = !std::strcmp(argv[i + 1], "grow")    ? NetworkMethod::grow
+               : !std::strcmp(argv[i + 1], "quilt") ? NetworkMethod::quilt
+                                                    : NetworkMethod::automatic;
     if (!std::strcmp(argv[i], "--images")) images = argv[i + 1];
     if (!std::strcmp(argv[i], "--seed")) seed = std::stoull(argv[i + 1]);
   }
@@ -71,7 +77,8 @@ int main(int argc, char** argv) {
     const std::vector<Polygon> region = box_of(ex, 1.0);
     const auto t0 = std::chrono::steady_clock::now();
     NetworkGrowthReport report;
-    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
+    const Network out =
+        grow_network(ex, region, nullptr, nullptr, {.seed = seed, .method = method}, &report);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Network base = baseline_network(ex, region, seed);
@@ -120,8 +127,13 @@ int main(int argc, char** argv) {
                 ok ? "yes" : "no", st.dangling_per_km());
     std::fprintf(
         stderr,
-        "%s: %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
-        c.name.c_str(), ex.edges.size(), out.edges.size(), ms, (long long)check.crossings,
+        "%s (%s): %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
+        c.name.c_str(),
+        method == NetworkMethod::automatic
+            ? (report.quilted ? "automatic: quilt" : "automatic: grow")
+        : method == NetworkMethod::quilt ? "quilt"
+                                         : "grow",
+        ex.edges.size(), out.edges.size(), ms, (long long)check.crossings,
         (long long)check.outside);
     if (!images.empty()) {
       OutputTransaction t;

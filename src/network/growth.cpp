@@ -12,6 +12,8 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/quilt.hpp"
+#include "network/stats.hpp"
 
 namespace tw {
 
@@ -116,7 +118,11 @@ class Grower {
   Grower(const Network& exemplar, const std::vector<Polygon>& region,
          const ForbiddenMask* forbidden, const NetworkGrowthOptions& options,
          NetworkGrowthReport& report)
-      : forbidden_(forbidden), options_(options), report_(report), rng_(options.seed) {
+      : exemplar_(exemplar),
+        forbidden_(forbidden),
+        options_(options),
+        report_(report),
+        rng_(options.seed) {
     learn(exemplar);
     set_region(region);
     if (forbidden_) dilate_forbidden();
@@ -148,11 +154,16 @@ class Grower {
     }
   }
 
-  Network run() {
-    drain();
-    seed_lattice();
-    retry_failed();
-    close_corners();
+  Network run(bool quilted) {
+    if (quilted) {
+      quilt();
+      drain();  // a partial network's open ends, when quilting was asked for anyway
+    } else {
+      drain();
+      seed_lattice();
+      retry_failed();
+      close_corners();
+    }
     close_dangling_ends();
     return finish();
   }
@@ -484,7 +495,9 @@ class Grower {
   // Whether the candidate may be placed: no crossing but at its joints (its start, and its end
   // when that is on the network), the clearance elsewhere, inside the region, off forbidden
   // cells.
-  bool valid(const std::vector<Vec2>& pts, bool end_joint) {
+  // `own_clearance` false: a copy of an exemplar line, whose ends may lie near its own segments
+  // as they do in the exemplar (it is still checked to be simple).
+  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true) {
     const Vec2 start = pts.front(), end = pts.back();
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
@@ -497,9 +510,9 @@ class Grower {
       for (Vec2 p : pts) bg::append(line, to_bg(p));
       if (!bg::is_simple(line)) return false;
     }
-    for (std::size_t k = 0; k + 2 < pts.size(); ++k)
+    for (std::size_t k = 0; own_clearance && k + 2 < pts.size(); ++k)
       if (distance_to_segment(end, pts[k], pts[k + 1]) < clearance_) return false;
-    for (std::size_t k = 1; k + 1 < pts.size(); ++k)
+    for (std::size_t k = 1; own_clearance && k + 1 < pts.size(); ++k)
       if (distance_to_segment(start, pts[k], pts[k + 1]) < clearance_) return false;
     std::vector<Vec2> joints{start};
     if (end_joint) joints.push_back(end);
@@ -587,6 +600,130 @@ class Grower {
     else
       a = p2;
     return true;
+  }
+
+  // ---- quilting (docs/networks.md, "Quilting") -----------------------------------------------
+  // The quilt's lines are committed one by one under the same rules as grown pieces (no
+  // crossing but at shared nodes, clearance, region, forbidden cells): a line that breaks one
+  // is left out. Seam ends that found no partner are linked straight onto the line ahead, or
+  // trimmed back to the last junction.
+  void quilt() {
+    network_detail::QuiltSettings settings;
+    settings.lo = vec(extent_.min_corner());
+    settings.hi = vec(extent_.max_corner());
+    settings.stitch = 0.6 * snap_;
+    settings.clearance = clearance_;
+    settings.turn = turn_;
+    settings.candidates = 32;
+    std::vector<network_detail::QuiltLine> lines =
+        network_detail::quilt_lines(exemplar_, settings, rng_);
+    std::vector<Vec2> seam_ends;
+    for (network_detail::QuiltLine& line : lines) {
+      for (int end = 0; end < 2; ++end)
+        if (line.seam_end[end])
+          seam_ends.push_back(end == 0 ? line.points.front() : line.points.back());
+      for (std::vector<Vec2>& part : inside_parts(line.points)) place_line(std::move(part));
+    }
+    for (Vec2 p : seam_ends) {
+      const auto it = node_at_.find({p.x, p.y});
+      if (it == node_at_.end()) continue;
+      const int n = it->second;
+      if (degree_[std::size_t(n)] != 1 || out_.on_boundary[std::size_t(n)]) continue;
+      int edge = -1;
+      for (int i : incident_[std::size_t(n)])
+        if (alive_[std::size_t(i)]) edge = i;
+      const NetworkEdge& e = out_.edges[std::size_t(edge)];
+      if (link_ahead(n, leaving(e.points, e.from == n) + kPi, 1.5 * median_, edge)) continue;
+      trim_from(n);
+    }
+    close_corners();  // a junction that lost a line to the trimming or the rules
+  }
+
+  // The parts of a line inside the region; an end cut by the region's boundary is pulled a
+  // hair inside (as a grown piece's is).
+  std::vector<std::vector<Vec2>> inside_parts(std::vector<Vec2> pts) const {
+    bool whole = true;
+    for (Vec2 p : pts) whole = whole && inside_region(p);
+    if (whole && !first_boundary_hit(pts)) return {std::move(pts)};
+    BgLine line;
+    for (Vec2 p : pts) bg::append(line, to_bg(p));
+    BgLines parts;
+    bg::intersection(line, region_, parts);
+    std::vector<std::vector<Vec2>> out;
+    for (const BgLine& part : parts) {
+      std::vector<Vec2> q;
+      for (const BgPoint& p : part)
+        if (q.empty() || !(vec(p) == q.back())) q.push_back(vec(p));
+      if (q.size() < 2) continue;
+      for (int end = 0; end < 2; ++end) {
+        Vec2& p = end == 0 ? q.front() : q.back();
+        const Vec2 inner = end == 0 ? q[1] : q[q.size() - 2];
+        if (p == pts.front() || p == pts.back() || !near_boundary(p)) continue;
+        p = p + (inner - p) * std::min(0.5, 1e-9 * median_ / std::max(distance(inner, p), 1e-300));
+      }
+      out.push_back(std::move(q));
+    }
+    return out;
+  }
+
+  // Commits a quilt line when it keeps the rules; its ends join the nodes already at their
+  // exact places (the block's junctions, a stitched seam).
+  bool place_line(std::vector<Vec2> pts) {
+    if (pts.size() < 2 || polyline_length(pts) <= 1e-9 * median_) return false;
+    const auto existing = [&](Vec2 p) {
+      const auto it = node_at_.find({p.x, p.y});
+      return it == node_at_.end() ? -1 : it->second;
+    };
+    int ends[2] = {existing(pts.front()), existing(pts.back())};
+    const bool ring = pts.front() == pts.back();
+    for (int k = 0; k < 2; ++k) {
+      if (ends[k] >= 0) continue;
+      // A new node keeps the clearance from every line (it may not lie on one).
+      const Vec2 p = k == 0 ? pts.front() : pts.back();
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < clearance_) return false;
+    }
+    if (ring && pts.size() < 4) return false;
+    if (!valid(pts, true, false)) return false;
+    for (int k = 0; k < 2; ++k) {
+      if (ends[k] >= 0) continue;
+      if (k == 1 && ring) {
+        ends[1] = ends[0];
+        continue;
+      }
+      const Vec2 p = k == 0 ? pts.front() : pts.back();
+      ends[k] = add_node(p);
+      node_at_[{p.x, p.y}] = ends[k];
+      if (near_boundary(p)) out_.on_boundary[std::size_t(ends[k])] = 1;
+    }
+    NetworkEdge e;
+    e.from = ends[0];
+    e.to = ends[1];
+    e.points = std::move(pts);
+    add_edge(std::move(e));
+    ++report_.placed;
+    return true;
+  }
+
+  // A dangling end removed with its edge, and the chain behind it up to the last junction.
+  void trim_from(int n) {
+    double trimmed = 0.0;
+    while (degree_[std::size_t(n)] == 1 && !out_.on_boundary[std::size_t(n)] && trimmed < median_) {
+      int edge = -1;
+      for (int i : incident_[std::size_t(n)])
+        if (alive_[std::size_t(i)]) edge = i;
+      if (edge < 0 || out_.edges[std::size_t(edge)].kept) return;
+      const NetworkEdge& e = out_.edges[std::size_t(edge)];
+      const int other = e.from == n ? e.to : e.from;
+      trimmed += polyline_length(e.points);
+      index_edge(edge, false);
+      alive_[std::size_t(edge)] = 0;
+      --degree_[std::size_t(n)];
+      --degree_[std::size_t(other)];
+      ++report_.pruned;
+      n = other;
+    }
   }
 
   // ---- growth ----------------------------------------------------------------------------------
@@ -1114,8 +1251,10 @@ class Grower {
     return net;
   }
 
+  const Network& exemplar_;
   const ForbiddenMask* forbidden_;
   Raster<std::uint8_t> dilated_;
+  std::map<std::pair<double, double>, int> node_at_;  // quilt nodes by their exact place
   NetworkGrowthOptions options_;
   NetworkGrowthReport& report_;
   SplitMix64 rng_;
@@ -1154,13 +1293,41 @@ class Grower {
 
 }  // namespace
 
+namespace {
+
+// How far a network's style is from the exemplar's: the normalized W1 distances of its six
+// properties (each capped at 5: an empty sample is not infinitely worse) and the difference of
+// the dangling ends' rates relative to the exemplar's (at least 0.5 per km).
+double style_distance(const NetworkStats& exemplar, const Network& network) {
+  const NetworkStats s = network_stats(network);
+  double total = 0.0;
+  for (int p = 0; p < 6; ++p)
+    total += std::min(5.0, normalized_w1(property(exemplar, p), property(s, p)));
+  return total + std::min(5.0, std::abs(s.dangling_per_km() - exemplar.dangling_per_km()) /
+                                   std::max(0.5, exemplar.dangling_per_km()));
+}
+
+}  // namespace
+
 Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
                      const ForbiddenMask* forbidden, const Network* partial,
                      const NetworkGrowthOptions& options, NetworkGrowthReport* report) {
+  const auto make = [&](bool quilted, NetworkGrowthReport& counters) {
+    Grower grower(exemplar, region, forbidden, options, counters);
+    if (partial) grower.add_partial(*partial);
+    return grower.run(quilted);
+  };
   NetworkGrowthReport local;
-  Grower grower(exemplar, region, forbidden, options, report ? *report : local);
-  if (partial) grower.add_partial(*partial);
-  return grower.run();
+  if (options.method != NetworkMethod::automatic || partial)
+    return make(options.method == NetworkMethod::quilt, report ? *report : local);
+  // Both ways, and the one whose style is closer to the exemplar's (ties: growth).
+  NetworkGrowthReport quilt_report;
+  Network grown = make(false, local), quilted = make(true, quilt_report);
+  const NetworkStats target = network_stats(exemplar);
+  const bool quilt_wins = style_distance(target, quilted) < style_distance(target, grown);
+  if (report) *report = quilt_wins ? quilt_report : local;
+  if (report) report->quilted = quilt_wins;
+  return quilt_wins ? std::move(quilted) : std::move(grown);
 }
 
 GridSpec forbidden_mask_grid(const std::vector<Polygon>& region) {

@@ -17,6 +17,13 @@
 
 namespace tw {
 
+// How a network is made (docs/networks.md): `quilt`, exemplar blocks chosen by how their lines
+// agree in the overlaps and stitched across the seams ("Quilting"); `grow`, whole exemplar pieces
+// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and the
+// one whose statistics are closer to the exemplar's; growth to complete a partial network (it
+// grows from the drawn ends).
+enum class NetworkMethod { automatic, grow, quilt };
+
 struct NetworkGrowthOptions {
   std::uint64_t seed = 1;
   // Compass degrees: the exemplar's main bearing is turned to it (absent: kept as drawn).
@@ -27,6 +34,7 @@ struct NetworkGrowthOptions {
   // Pieces are strokes (edges chained across junctions where a line goes on nearly straight,
   // their side junctions kept) rather than single edges.
   bool strokes = true;
+  NetworkMethod method = NetworkMethod::automatic;
 };
 
 // Cells no curve may enter (non-zero), on any grid in the region's frame.
@@ -50,6 +58,7 @@ void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<P
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;
+  bool quilted = false;  // `automatic` chose the quilt
 };
 
 // The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as
