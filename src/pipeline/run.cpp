@@ -28,7 +28,7 @@
 #include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
-#include "pipeline/export_command.hpp"
+#include "pipeline/export_layer_files.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
