@@ -1,4 +1,4 @@
-#include "pipeline/export_command.hpp"
+#include "commands/export_command.hpp"
 
 #include <fstream>
 #include <nlohmann/json.hpp>

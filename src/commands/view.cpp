@@ -1,4 +1,4 @@
-#include "pipeline/view.hpp"
+#include "commands/view.hpp"
 
 #include <cpl_minixml.h>
 #include <cpl_string.h>
@@ -12,14 +12,14 @@
 #include <sstream>
 #include <string_view>
 
+#include "commands/detail/network_page.hpp"
+#include "commands/detail/three_js.hpp"
+#include "commands/detail/view_page.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/output_guard.hpp"
 #include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/network_page.hpp"
-#include "pipeline/detail/three_js.hpp"
-#include "pipeline/detail/view_page.hpp"
 #include "pipeline/json_file.hpp"
 #include "pipeline/run_layers.hpp"
 

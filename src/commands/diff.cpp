@@ -1,4 +1,4 @@
-#include "pipeline/diff.hpp"
+#include "commands/diff.hpp"
 
 #include <ogr_spatialref.h>
 #include <fstream>
