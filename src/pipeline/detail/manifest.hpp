@@ -13,8 +13,8 @@ namespace tw::detail {
 
 // Every input file of the pipeline once (a GeoPackage named by two classes is one entry), and
 // an exemplar's NAME_height.tif twin where it exists. A URL (--allow-network) is listed
-// without size or hash.
-std::vector<FileRecord> record_inputs(const PipelineConfig& config);
+// without size or hash. `inputs`: the pipeline's (PipelineConfig::inputs).
+std::vector<FileRecord> record_inputs(const std::vector<InputFile>& inputs);
 // Every file staged so far (report.json is staged last, after this).
 std::vector<FileRecord> record_outputs(const OutputFolder& output);
 HeightRange height_range(const Raster<float>& height);
