@@ -20,6 +20,7 @@
 #include "pipeline/config.hpp"
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "terrain/height_ops.hpp"
 #include "terrain/trench.hpp"
@@ -47,15 +48,17 @@ Lowering measure(PipelineConfig config, std::optional<double> max_carve, double 
     c.conform_corridor = corridor;
   }
   Warnings warnings;
-  const Heightfield heightfield = detail::load_heightfield(config, warnings);
+  const Heightfield heightfield =
+      detail::load_heightfield(detail::heightfield_input(config), warnings);
   std::vector<std::vector<LineFeature>> lines;
   for (const auto& c : config.features)
     lines.push_back(detail::load_feature_class(c, heightfield, warnings));
+  const detail::TerrainOptions terrain = detail::terrain_options(config);
   const auto moves =
-      detail::conform_lines(config, *in_memory_heightfield(heightfield), lines, warnings);
-  const auto features = detail::terrain_features(config, lines);
+      detail::conform_lines(terrain, *in_memory_heightfield(heightfield), lines, warnings);
+  const auto features = detail::terrain_features(terrain, lines);
   const TerrainPlan plan =
-      plan_terrain(heightfield.height, heightfield.grid, features, detail::terrain_params(config));
+      plan_terrain(heightfield.height, heightfield.grid, features, detail::terrain_params(terrain));
   Raster<float> after = heightfield.height;
   apply_terrain(after, heightfield.grid, Window::whole(heightfield.grid), plan);
 

@@ -13,8 +13,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include "commands/synth_command.hpp"
 #include "generated_exemplars.hpp"
-#include "pipeline/synth_command.hpp"
 #include "synth/baseline.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/exemplar_stats.hpp"

@@ -13,7 +13,8 @@
 # program (core/resources.hpp) and three.js is compiled in (src/CMakeLists.txt).
 include(CMakePackageConfigHelpers)
 
-set(TW_MODULES core image geo ribbon raster synth terrain ornament sketch network layers pipeline)
+set(TW_MODULES core image geo ribbon raster synth terrain ornament sketch network layers pipeline
+  commands)
 set(TW_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/terraweave)
 
 install(TARGETS terraweave RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
@@ -42,7 +43,7 @@ install(FILES ${CMAKE_BINARY_DIR}/terraweaveConfig.cmake
 
 # pkg-config: the libraries in link order (downstream first), their Debian pkg-config packages.
 set(TW_PC_LIBS "")  # CGAL (header-only) needs GMP and MPFR
-foreach(m pipeline layers network ornament sketch terrain synth raster ribbon geo image core)
+foreach(m commands pipeline layers network ornament sketch terrain synth raster ribbon geo image core)
   string(APPEND TW_PC_LIBS " -ltw_${m}")
 endforeach()
 file(RELATIVE_PATH TW_PC_PREFIX "/root/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/root")

@@ -22,25 +22,25 @@
 #include <string>
 #include <vector>
 
+#include "commands/area_command.hpp"
+#include "commands/grow_command.hpp"
+#include "commands/network_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "pipeline/area_command.hpp"
-#include "pipeline/grow_command.hpp"
-#include "pipeline/network_command.hpp"
 
 #include "cli/view_server.hpp"
-#include "pipeline/big_world.hpp"
+#include "commands/big_world.hpp"
+#include "commands/diff.hpp"
+#include "commands/exemplar_command.hpp"
+#include "commands/export_command.hpp"
+#include "commands/synth_command.hpp"
+#include "commands/view.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/diff.hpp"
-#include "pipeline/exemplar_command.hpp"
-#include "pipeline/export_command.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/schema.hpp"
-#include "pipeline/synth_command.hpp"
 #include "pipeline/synthesis_job.hpp"
 #include "pipeline/version.hpp"
-#include "pipeline/view.hpp"
 
 namespace {
 

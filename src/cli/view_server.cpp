@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "commands/network_command.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_guard.hpp"
 #include "core/warnings.hpp"
 #include "network/exemplar.hpp"
-#include "pipeline/network_command.hpp"
 
 namespace tw {
 

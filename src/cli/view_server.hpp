@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "pipeline/view.hpp"
+#include "commands/view.hpp"
 
 namespace tw {
 

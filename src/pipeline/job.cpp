@@ -18,9 +18,9 @@
 #include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/job_outputs.hpp"
-#include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/plan.hpp"
@@ -324,8 +324,8 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
     fail("--tile {}: the plan has {} tiles (0 to {})", tile, plan.tiles.size(),
          int(plan.tiles.size()) - 1);
   const TileSpec& spec = plan.tiles[std::size_t(tile)];
-  const WriteOptions write =
-      detail::layer_write_options(detail::job_config(job), plan.heights.source);
+  const WriteOptions write = detail::layer_write_options(
+      detail::layer_options(detail::job_config(job)), plan.heights.source);
   const fs::path dir = tiles_dir(plan_dir, hash);
   // Through the tile cache, as terraweave run renders a tile (keys only without a cache).
   Warnings warnings;  // a corrupt entry is rebuilt (run does not report it either)
@@ -443,14 +443,14 @@ RunReport finish_job(const fs::path& plan_dir) {
   }
   RunReport report = detail::write_job_outputs(plan, config, tiles, out, transaction);
   // As run_pipeline: the manifest's inputs, height ranges and features.geojson.
-  report.inputs = detail::record_inputs(config);
+  report.inputs = detail::record_inputs(config.inputs);
   report.started_utc = detail::utc_timestamp();
   for (const detail::RenderedTile& t : tiles) {
     detail::widen(report.input_height, detail::range_of_fact(t.input_height));
     detail::widen(report.output_height, detail::range_of_fact(t.output_height));
   }
-  write_curves_geojson(detail::export_curves(config, plan.lines), plan.crs_wkt,
-                       transaction.stage(out / "features.geojson"));
+  write_curves_geojson(detail::export_curves(detail::layer_options(config), plan.lines),
+                       plan.crs_wkt, transaction.stage(out / "features.geojson"));
   double render_seconds = 0.0;  // the tiles' own, summed (on any number of workers)
   for (const detail::RenderedTile& t : tiles) render_seconds += t.seconds;
   report.stages.push_back({"render", render_seconds});

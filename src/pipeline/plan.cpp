@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stage_clock.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -91,11 +92,14 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   detail::StageClock clock(report.stages);
 
   clock.start("ingest");
-  detail::check_inputs(given);
+  detail::check_inputs(given.inputs);
   // Synthesis width and delta from the exemplars where a class gives none.
   const PipelineConfig config = detail::with_exemplar_defaults(given);
+  // Each stage takes its own options, taken from the config here (detail/stage_options.hpp).
+  const detail::HeightfieldInput dem_input = detail::heightfield_input(config);
+  const detail::TerrainOptions terrain_options = detail::terrain_options(config);
   const std::shared_ptr<const HeightfieldSource> source =
-      detail::open_heightfield_source(config, warnings);
+      detail::open_heightfield_source(dem_input, warnings);
   require_some_height(*source);
   // No pixel is read here: ingest, conformance, the terrain plan and every tile read the
   // windows they touch. A region is a window of the world's grid (detail/region.hpp).
@@ -128,7 +132,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
     method->ingest(context, entry);
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
-  const auto moves = detail::conform_lines(config, *source, lines, warnings);
+  const auto moves = detail::conform_lines(terrain_options, *source, lines, warnings);
   detail::ExistingFeatures existing =
       detail::load_existing(config.existing, heightfield, config.repair, warnings);
   plan.grid = heightfield.grid;
@@ -147,8 +151,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan_methods(MethodStage::lines, context, clock);
 
   clock.start("ribbons");
-  detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(config, lines, heightfield.grid, warnings);
+  detail::FeatureRibbons ribbons = detail::make_feature_ribbons(detail::ribbon_options(config),
+                                                                lines, heightfield.grid, warnings);
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
@@ -172,13 +176,13 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // Profiles are sampled once from the unedited terrain (a bound on the earthwork, a feature
   // over nodata are warnings).
   clock.start("terrain");
-  plan.terrain_features = detail::terrain_features(config, lines);
-  plan.terrain_params = detail::terrain_params(config);
+  plan.terrain_features = detail::terrain_features(terrain_options, lines);
+  plan.terrain_params = detail::terrain_params(terrain_options);
   {
     HeightSampler heights(*source);
     plan.terrain = plan_terrain(heights, plan.terrain_features, plan.terrain_params, warnings);
   }
-  detail::report_earthwork(config, lines, plan.terrain, report, warnings);
+  detail::report_earthwork(terrain_options, lines, plan.terrain, report, warnings);
   report_decks(plan.terrain, report);
   clock.stop();
 
@@ -205,11 +209,10 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan.heights.source = heightfield.source;
   plan.heights.reader = source;
   if (!config.heightfield) {
-    plan.heights.generated = detail::generated_terrain(config);
+    plan.heights.generated = detail::generated_terrain(dem_input);
   } else {
-    plan.heights.file =
-        HeightfieldFile{fs::absolute(*config.heightfield).lexically_normal().string(), "", 0,
-                        detail::heightfield_options(config)};
+    plan.heights.file = HeightfieldFile{
+        fs::absolute(*config.heightfield).lexically_normal().string(), "", 0, dem_input.options};
   }
 
   index_plan(plan);

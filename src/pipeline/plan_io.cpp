@@ -11,9 +11,9 @@
 #include "core/file_io.hpp"
 #include "geo/heightfield_source.hpp"
 #include "pipeline/detail/job_files.hpp"
-#include "pipeline/detail/json_file.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/json_file.hpp"
 #include "pipeline/synthesis_method.hpp"
 
 namespace tw {
@@ -101,7 +101,7 @@ json tasks_json(const WorldPlan& plan, const std::string& hash) {
 
 nlohmann::json read_plan_file(const fs::path& path, const char* format) {
   using nlohmann::json;
-  const json j = detail::parse_json_file(path, "plan again (terraweave plan PIPELINE --out DIR)");
+  const json j = parse_json_file(path, "plan again (terraweave plan PIPELINE --out DIR)");
   if (!j.is_object() || j.value("format", "") != format)
     fail("{}: not a {} file", path.string(), format);
   if (j.value("version", 0) != kPlanVersion)

@@ -22,13 +22,13 @@
 #include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_outputs.hpp"
-#include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/stage_clock.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
-#include "pipeline/export_command.hpp"
+#include "pipeline/export_layer_files.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
@@ -104,7 +104,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
     return std::move(report);
   }
   clock.start("inputs");  // hashes of every input file, for the manifest
-  report.inputs = detail::record_inputs(config);
+  report.inputs = detail::record_inputs(config.inputs);
   clock.stop();
   finish_warnings(warnings, strict, report);
   for (const EngineExportOptions& engine : config.exports) {
@@ -121,8 +121,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
 
   if (!output) output = std::make_unique<OutputFolder>(dir);
   OutputFolder& transaction = *output;
-  const WriteOptions write_options = detail::layer_write_options(config, plan.heights.source);
-  const std::vector<ExportCurve> curves = detail::export_curves(config, plan.lines);
+  const detail::LayerOptions layer_options = detail::layer_options(config);
+  const WriteOptions write_options =
+      detail::layer_write_options(layer_options, plan.heights.source);
+  const std::vector<ExportCurve> curves = detail::export_curves(layer_options, plan.lines);
   const bool tiled = plan.tile_size > 0;
   report.tiles.size = plan.tile_size;
   report.tiles.overlap = plan.tile_overlap;

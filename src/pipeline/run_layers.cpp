@@ -5,7 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
-#include "pipeline/detail/json_file.hpp"
+#include "pipeline/json_file.hpp"
 
 namespace tw {
 
@@ -53,7 +53,7 @@ std::vector<RunFile> hash_run_files(const fs::path& run) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     fail("{}: no report.json: not the output folder of a finished terraweave run", run.string());
-  const nlohmann::json report = detail::parse_json_file(path, "run it again");
+  const nlohmann::json report = parse_json_file(path, "run it again");
   if (!report.is_object() || !report.contains("outputs") || !report["outputs"].is_array())
     fail("{}: no `outputs` list (a report of an older terraweave? run it again)", path.string());
   std::vector<RunFile> files;

@@ -14,6 +14,11 @@
 
 namespace tw {
 
+// report.json's `format` and `version.schema`: the schema changes its number when a key
+// changes meaning or place (2: manifest keys, timings under `timings`).
+inline constexpr const char* kReportFormat = "terraweave-report";
+inline constexpr int kReportSchemaVersion = 2;
+
 // True when `run` was run tiled: it holds the height mosaic `height.vrt`.
 bool is_tiled_run(const std::filesystem::path& run);
 

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <memory>
 
-#include "pipeline/area_command.hpp"
+#include "commands/area_command.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {

@@ -10,7 +10,7 @@
 
 #include "core/atomic_output.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/export_command.hpp"
+#include "pipeline/export_layer_files.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"

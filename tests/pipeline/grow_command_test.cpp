@@ -13,9 +13,9 @@
 #include <memory>
 #include <set>
 
+#include "commands/grow_command.hpp"
 #include "core/error.hpp"
 #include "option_table.hpp"
-#include "pipeline/grow_command.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {

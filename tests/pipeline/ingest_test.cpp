@@ -4,6 +4,7 @@
 
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -23,7 +24,8 @@ TEST(Ingest, FeaturesJustOffTheHeightfieldAreKeptWithinTheirReach) {
       "kind: road, width: 6, profile: { shoulder_width: 3, falloff: 15 } }\n",
       "p.yaml", dir.path());
   Warnings warnings;
-  const Heightfield heightfield = detail::load_heightfield(config, warnings);
+  const Heightfield heightfield =
+      detail::load_heightfield(detail::heightfield_input(config), warnings);
   const std::vector<LineFeature> lines =
       detail::load_feature_class(config.features[0], heightfield, warnings);
   ASSERT_EQ(lines.size(), 1u);

@@ -11,8 +11,8 @@
 #include <fstream>
 #include <memory>
 
+#include "commands/network_command.hpp"
 #include "core/error.hpp"
-#include "pipeline/network_command.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {

@@ -18,6 +18,7 @@
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/patterns.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/run.hpp"
 #include "raster/foldover.hpp"
@@ -258,13 +259,13 @@ TEST_F(SmallWorld, SparseCanvasEqualsTheDenseCanvas) {
   const PipelineConfig c = config({{"features.roads.source", (dir_ / "hairpin.gpkg").string()},
                                    {"features.roads.synthesis.empty_pieces", "true"}});
   Warnings warnings;
-  const Heightfield heightfield = detail::load_heightfield(c, warnings);
+  const Heightfield heightfield = detail::load_heightfield(detail::heightfield_input(c), warnings);
   const std::vector<std::vector<LineFeature>> lines = {
       detail::load_feature_class(c.features[0], heightfield, warnings)};
   const detail::ExistingFeatures existing =
       detail::load_existing(c.existing, heightfield, c.repair, warnings);
   const detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(c, lines, heightfield.grid, warnings);
+      detail::make_feature_ribbons(detail::ribbon_options(c), lines, heightfield.grid, warnings);
   ASSERT_FALSE(ribbons.synthesis_junction_discs.empty());
   detail::PatternOptions dense_options;
   dense_options.backend = "cpu";

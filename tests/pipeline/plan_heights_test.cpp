@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/plan.hpp"
 #include "test_support.hpp"
 
@@ -20,7 +21,8 @@ TEST(PlanHeights, TheDemoPlansThroughWindowsAsOverTheWholeRead) {
   ASSERT_TRUE(plan.heights.reader);  // no region: the DEM is read window by window
 
   Warnings whole_warnings;
-  const Heightfield whole = detail::load_heightfield(config, whole_warnings);  // resampled 6 m
+  const Heightfield whole =
+      detail::load_heightfield(detail::heightfield_input(config), whole_warnings);  // resampled 6 m
   ASSERT_EQ(plan.grid, whole.grid);
   const TerrainPlan expected =
       plan_terrain(whole.height, whole.grid, plan.terrain_features, plan.terrain_params);

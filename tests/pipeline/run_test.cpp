@@ -21,6 +21,7 @@
 #include "geo/heightfield.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "raster/distance.hpp"
 #include "raster/foldover.hpp"
@@ -206,7 +207,8 @@ TEST_F(DemoRun, RiversAreCarvedAndRoadsGraded) {
 TEST_F(DemoRun, NothingChangesBeyondTheFeaturesReach) {
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
-  const std::vector<TerrainFeature> features = detail::terrain_features(*config_, lines);
+  const std::vector<TerrainFeature> features =
+      detail::terrain_features(detail::terrain_options(*config_), lines);
   std::vector<std::vector<Vec2>> centerlines;
   std::vector<double> widths;
   const double margin = 2.0 * original_->grid.pixel_width;
@@ -235,8 +237,8 @@ TEST_F(DemoRun, AvoidanceLayerEqualsTheWholeGridMapCapped) {
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& c : config_->features) lines.push_back(lines_of(c.name));
   Warnings warnings;
-  const detail::FeatureRibbons ribbons =
-      detail::make_feature_ribbons(*config_, lines, original_->grid, warnings);
+  const detail::FeatureRibbons ribbons = detail::make_feature_ribbons(
+      detail::ribbon_options(*config_), lines, original_->grid, warnings);
   const detail::ExistingFeatures existing =
       detail::load_existing(config_->existing, *original_, config_->repair, warnings);
   const GridSpec& grid = original_->grid;

@@ -19,6 +19,7 @@ mkdir "$work/moved"
 mv "$work/prefix" "$work/moved/terraweave"
 p="$work/moved/terraweave"
 for f in bin/terraweave lib/libtw_pipeline.a lib/libtw_core.a include/terraweave/pipeline/run.hpp \
+  lib/libtw_commands.a include/terraweave/commands/area_command.hpp \
   lib/cmake/terraweave/terraweaveConfig.cmake lib/cmake/terraweave/terraweaveTargets.cmake \
   lib/pkgconfig/terraweave.pc share/terraweave/kernels/row_update.cl \
   share/terraweave/pipelines/demo.yaml share/terraweave/samples/dem.tif \

@@ -9,7 +9,7 @@
 
 namespace tw::detail {
 
-std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
+std::vector<std::vector<LineMove>> conform_lines(const TerrainOptions& terrain,
                                                  const HeightfieldSource& heightfield,
                                                  std::vector<std::vector<LineFeature>>& lines,
                                                  Warnings& warnings) {
@@ -18,7 +18,7 @@ std::vector<std::vector<LineMove>> conform_lines(const PipelineConfig& config,
       0.5 * std::min(heightfield.grid().pixel_width, heightfield.grid().pixel_height);
   HeightSampler heights(heightfield);
   for (std::size_t c = 0; c < lines.size(); ++c) {
-    const FeatureClassConfig& feature_class = config.features[c];
+    const TerrainClass& feature_class = terrain.classes[c];
     moves[c].resize(lines[c].size());
     if (feature_class.conform_corridor <= 0.0) continue;
     const bool ridge = feature_class.kind == FeatureKind::ridge;
@@ -80,7 +80,7 @@ void warn_limit(Warnings& warnings, const std::string& subject, std::int64_t fid
 // What to do about a river held by max_carve: a line that misses the DEM's valley (a coarse map
 // crossing spurs) is answered by conformance; a depression the line really crosses (a DEM's
 // pit, even under a line traced from the DEM) by a larger max_carve, if a cut is wanted.
-std::string carve_advice(const FeatureClassConfig& feature_class) {
+std::string carve_advice(const TerrainClass& feature_class) {
   if (feature_class.conform_corridor <= 0.0) {
     return fmt::format(
         ". The river meets the terrain there (a spur, or the rim of a closed depression of the "
@@ -111,7 +111,7 @@ double steepest_grade(const std::vector<float>& profile, double step) {
 
 }  // namespace
 
-void report_earthwork(const PipelineConfig& config,
+void report_earthwork(const TerrainOptions& terrain,
                       const std::vector<std::vector<LineFeature>>& lines, const TerrainPlan& plan,
                       RunReport& report, Warnings& warnings) {
   // terrain_features lists the lines class by class: flat index -> (class, line).
@@ -125,7 +125,7 @@ void report_earthwork(const PipelineConfig& config,
     feature.cut_max_m = e.max_cut;
     feature.fill_max_m = e.max_fill;
     feature.grade_max = steepest_grade(plan.profiles[k], plan.steps[k]);
-    const FeatureClassConfig& feature_class = config.features[c];
+    const TerrainClass& feature_class = terrain.classes[c];
     const std::string subject = "features." + feature_class.name;
     const std::int64_t fid = lines[c][i].fid;
     if (feature_class.kind == FeatureKind::river) {

@@ -27,31 +27,21 @@ double clip_margin(const FeatureClassConfig& config, double cell) {
 
 }  // namespace
 
-HeightfieldOptions heightfield_options(const PipelineConfig& config) {
-  HeightfieldOptions options;
-  options.resampling = config.resampling;
-  options.crs = config.output.crs;
-  options.resolution = config.resolution;  // a region is a window of this grid
-  return options;
-}
-
-std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
+std::unique_ptr<HeightfieldSource> open_heightfield_source(const HeightfieldInput& input,
                                                            Warnings& warnings) {
-  if (config.heightfield) {
-    return open_heightfield(config.heightfield->string(), heightfield_options(config), warnings);
-  }
-  return open_generated_heightfield(generated_terrain(config));
+  if (input.file) return open_heightfield(input.file->string(), input.options, warnings);
+  return open_generated_heightfield(generated_terrain(input));
 }
 
-GeneratedTerrain generated_terrain(const PipelineConfig& config) {
-  const GenerateConfig& g = config.generate;
-  if (!config.output.crs.empty() && config.output.crs != g.crs)
+GeneratedTerrain generated_terrain(const HeightfieldInput& input) {
+  const GenerateConfig& g = input.generate;
+  if (!input.options.crs.empty() && input.options.crs != g.crs)
     fail("output.crs: a generated world is in generate.crs ({}); set that instead", g.crs);
   GeneratedTerrain params;
   params.width = g.width;
   params.height = g.height;
-  params.pixel_size = config.resolution.value_or(g.pixel_size);
-  params.seed = config.seed;
+  params.pixel_size = input.options.resolution.value_or(g.pixel_size);
+  params.seed = input.seed;
   params.relief = g.relief;
   params.crs = g.crs;
   params.origin_x = g.origin_x;
@@ -59,8 +49,8 @@ GeneratedTerrain generated_terrain(const PipelineConfig& config) {
   return params;
 }
 
-Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings) {
-  return read_whole_heightfield(*open_heightfield_source(config, warnings));
+Heightfield load_heightfield(const HeightfieldInput& input, Warnings& warnings) {
+  return read_whole_heightfield(*open_heightfield_source(input, warnings));
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,

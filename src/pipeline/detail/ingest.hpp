@@ -1,6 +1,9 @@
 #pragma once
 // The ingest stage: the heightfield, the line features of each class and the existing
 // (avoidance) features, all in the heightfield's metric grid CRS.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,18 +16,26 @@
 
 namespace tw::detail {
 
-// Opens config.heightfield (at config.resolution) or the world generated from config.generate
-// and config.seed, reading no pixel: windows are read as the stages need them.
-std::unique_ptr<HeightfieldSource> open_heightfield_source(const PipelineConfig& config,
+// What the heightfield's ingest reads of the pipeline config (heightfield_input,
+// detail/stage_options.hpp): the file and how it is read, or the world to generate.
+struct HeightfieldInput {
+  std::optional<std::filesystem::path> file;  // `heightfield`; none: the generated world
+  // `resolution`, `resampling`, `output.crs`: how the file is read (the plan keeps them:
+  // HeightfieldFile); the generated world's cell and CRS check too.
+  HeightfieldOptions options;
+  GenerateConfig generate;  // `generate`
+  std::uint64_t seed = 0;   // `seed`: the generated world's
+};
+
+// Opens input.file (at its resolution) or the world generated from input.generate and
+// input.seed, reading no pixel: windows are read as the stages need them.
+std::unique_ptr<HeightfieldSource> open_heightfield_source(const HeightfieldInput& input,
                                                            Warnings& warnings);
 
-// How open_heightfield_source opens config.heightfield (the plan keeps them: HeightfieldFile).
-HeightfieldOptions heightfield_options(const PipelineConfig& config);
-
 // The whole heightfield of open_heightfield_source (an error when every cell is nodata).
-Heightfield load_heightfield(const PipelineConfig& config, Warnings& warnings);
+Heightfield load_heightfield(const HeightfieldInput& input, Warnings& warnings);
 // The generator's parameters of a pipeline without a heightfield file.
-GeneratedTerrain generated_terrain(const PipelineConfig& config);
+GeneratedTerrain generated_terrain(const HeightfieldInput& input);
 
 // The lines of one class. A class none of whose features lies on the heightfield (an empty
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning

@@ -35,9 +35,9 @@ void check_gdal_input(const InputFile& input) {
 
 }  // namespace
 
-void check_inputs(const PipelineConfig& config) {
+void check_inputs(const std::vector<InputFile>& inputs) {
   GDALAllRegister();
-  for (const InputFile& input : config.inputs) {
+  for (const InputFile& input : inputs) {
     VSIStatBufL stat;
     if (VSIStatL(input.path.c_str(), &stat) != 0) {
       fail("{}: {}: file does not exist", input.named_at, input.path.string());

@@ -1,6 +1,8 @@
 #pragma once
 // Every file a run will open, checked before any stage starts: a missing or unreadable one is
 // reported at the pipeline key that names it ("file:line:col: key: ..."), by run and validate.
+#include <vector>
+
 #include "pipeline/config.hpp"
 
 namespace tw::detail {
@@ -8,6 +10,7 @@ namespace tw::detail {
 // Throws tw::Error "<file:line:col>: <key>: <path>: <problem>" for the first input that does
 // not exist or cannot be opened as what its key expects: raster data (heightfield), vector
 // data (sources), an exemplar image (read whole, with its NAME_height.tif twin when present).
-void check_inputs(const PipelineConfig& config);
+// `inputs`: the pipeline's (PipelineConfig::inputs).
+void check_inputs(const std::vector<InputFile>& inputs);
 
 }  // namespace tw::detail

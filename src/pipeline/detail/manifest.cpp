@@ -41,10 +41,10 @@ FileRecord record(std::string role, const fs::path& path, std::string label) {
 
 }  // namespace
 
-std::vector<FileRecord> record_inputs(const PipelineConfig& config) {
+std::vector<FileRecord> record_inputs(const std::vector<InputFile>& inputs) {
   std::vector<FileRecord> records;
   std::set<fs::path> seen;
-  for (const InputFile& input : config.inputs) {
+  for (const InputFile& input : inputs) {
     if (!seen.insert(input.path).second) continue;
     records.push_back(record(role_of(input.kind), input.path, input.path.string()));
     if (input.kind != InputFile::Kind::exemplar) continue;

@@ -4,13 +4,9 @@
 
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/run_layers.hpp"
 
 namespace tw::detail {
-
-// report.json's `format` and `version.schema`: the schema changes its number when a key
-// changes meaning or place (2: manifest keys, timings under `timings`).
-inline constexpr const char* kReportFormat = "terraweave-report";
-inline constexpr int kReportSchemaVersion = 2;
 
 nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config);
 

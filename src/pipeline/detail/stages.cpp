@@ -4,13 +4,12 @@
 #include <cmath>
 
 #include "core/log.hpp"
-#include "pipeline/detail/synthesis_defaults.hpp"
 #include "raster/junction_discs.hpp"
 #include "ribbon/junctions.hpp"
 
 namespace tw::detail {
 
-FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
+FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
                                     const std::vector<std::vector<LineFeature>>& lines,
                                     const GridSpec& grid, Warnings& warnings) {
   FeatureRibbons out;
@@ -18,9 +17,9 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   std::vector<CurveLevel> levels;  // bridges, tunnels and layers meet nothing they pass
   std::vector<double> widths;
   std::vector<double> synthesis_widths;  // the synthesis ribbon's width where it has its own
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const FeatureClassConfig& feature_class = config.features[c];
-    const double delta = class_delta(feature_class);
+  for (std::size_t c = 0; c < options.classes.size(); ++c) {
+    const RibbonClass& feature_class = options.classes[c];
+    const double delta = feature_class.delta;
     out.delta.push_back(delta);
     auto& lengths = out.lengths.emplace_back();
     auto& ribbons = out.ribbons.emplace_back();
@@ -32,7 +31,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
       if (length < delta) {
         // Grown lines are short by design (one per spline of an element): counted in the
         // report (grow.short_lines), not a warning each.
-        if (!feature_class.grow)
+        if (!feature_class.grown)
           warnings.add("shorter_than_delta", "features." + feature_class.name, line.fid,
                        fmt::format("{:.2f} m long, shorter than one piece (delta {} m): it gets "
                                    "no ribbon, so no pattern and no avoidance footprint",
@@ -45,11 +44,11 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
       curves.push_back(curve);
       levels.push_back({line.structure, line.layer});
       widths.push_back(line.width);
-      synthesis_widths.push_back(feature_class.synthesis && feature_class.synthesis->width
-                                     ? std::max(line.width, *feature_class.synthesis->width)
+      synthesis_widths.push_back(feature_class.synthesis_width
+                                     ? std::max(line.width, *feature_class.synthesis_width)
                                      : line.width);
     }
-    if (feature_class.grow && short_lines > 0)
+    if (feature_class.grown && short_lines > 0)
       logger().info(
           "features.{}: {} of {} grown lines shorter than one piece (delta {} m): no "
           "ribbon, no pattern",
@@ -66,7 +65,7 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
     radii.push_back(junction_disc_radius(member_widths, pixel));
   }
   out.junction_discs = junction_discs(junctions, radii);
-  const double cell = config.synthesis_resolution;
+  const double cell = options.synthesis_cell;
   const std::vector<Junction> synthesis_junctions = at_grade(find_junctions(curves, cell), levels);
   std::vector<double> synthesis_radii;
   for (const Junction& j : synthesis_junctions) {
@@ -90,11 +89,11 @@ FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
   return out;
 }
 
-std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
+std::vector<TerrainFeature> terrain_features(const TerrainOptions& options,
                                              const std::vector<std::vector<LineFeature>>& lines) {
   std::vector<TerrainFeature> features;
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const FeatureClassConfig& feature_class = config.features[c];
+  for (std::size_t c = 0; c < options.classes.size(); ++c) {
+    const TerrainClass& feature_class = options.classes[c];
     for (const LineFeature& line : lines[c]) {
       TerrainFeature& f = features.emplace_back();
       f.kind = feature_class.kind;
@@ -112,9 +111,9 @@ std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
   return features;
 }
 
-TerrainParams terrain_params(const PipelineConfig& config) {
+TerrainParams terrain_params(const TerrainOptions& options) {
   std::vector<FeatureKind> order = {FeatureKind::ridge, FeatureKind::river, FeatureKind::road};
-  for (const FeatureClassConfig& feature_class : config.features) {
+  for (const TerrainClass& feature_class : options.classes) {
     order.erase(std::remove(order.begin(), order.end(), feature_class.kind), order.end());
     order.push_back(feature_class.kind);
   }

@@ -1,6 +1,8 @@
 #pragma once
 // The middle stages of a run, between ingest and the layers: ribbons and junctions, the
 // features as the terrain module sees them.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -27,17 +29,43 @@ struct FeatureRibbons {
   std::vector<std::vector<std::vector<Vec2>>> synthesis_junctions;
 };
 
-// Slices every feature into pieces of its class's delta (the synthesis delta, or its default)
-// and finds the junctions between all features. A feature shorter than one piece gets no
-// pieces and a "shorter_than_delta" warning (a grown class's only a count in the log; the run
-// reports them in grow.short_lines).
-FeatureRibbons make_feature_ribbons(const PipelineConfig& config,
+// What the ribbons stage reads of each feature class (ribbon_options,
+// detail/stage_options.hpp).
+struct RibbonClass {
+  std::string name;
+  double delta = 0.0;  // piece length, metres: the synthesis delta or its default (class_delta)
+  bool grown = false;  // `grow:` lines: short ones are counted, not warned about
+  std::optional<double> synthesis_width;  // the synthesis ribbon's own width, metres
+};
+struct RibbonOptions {
+  std::vector<RibbonClass> classes;  // config order
+  double synthesis_cell = 1.0;       // `synthesis_resolution`: the canvas junctions' tolerance
+};
+
+// Slices every feature into pieces of its class's delta and finds the junctions between all
+// features. A feature shorter than one piece gets no pieces and a "shorter_than_delta" warning
+// (a grown class's only a count in the log; the run reports them in grow.short_lines).
+FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
                                     const std::vector<std::vector<LineFeature>>& lines,
                                     const GridSpec& grid, Warnings& warnings);
 
-std::vector<TerrainFeature> terrain_features(const PipelineConfig& config,
+// What the terrain stages (conformance, the terrain plan, the earthwork report) read of each
+// feature class (terrain_options, detail/stage_options.hpp).
+struct TerrainClass {
+  std::string name;
+  FeatureKind kind = FeatureKind::road;
+  RoadProfile road;
+  RiverProfile river;
+  RidgeProfile ridge;
+  double conform_corridor = 0.0;  // `conform.corridor`, metres; 0: as drawn
+};
+struct TerrainOptions {
+  std::vector<TerrainClass> classes;  // config order
+};
+
+std::vector<TerrainFeature> terrain_features(const TerrainOptions& options,
                                              const std::vector<std::vector<LineFeature>>& lines);
 // Kinds in the order of the classes (a kind's last class decides its place), later wins.
-TerrainParams terrain_params(const PipelineConfig& config);
+TerrainParams terrain_params(const TerrainOptions& options);
 
 }  // namespace tw::detail

@@ -1,4 +1,4 @@
-#include "pipeline/exemplar_command.hpp"
+#include "commands/exemplar_command.hpp"
 
 #include <fmt/format.h>
 

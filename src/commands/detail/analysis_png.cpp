@@ -1,4 +1,4 @@
-#include "pipeline/detail/analysis_png.hpp"
+#include "commands/detail/analysis_png.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "pipeline/area_command.hpp"
+#include "commands/area_command.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -7,6 +7,8 @@
 #include <cmath>
 #include <memory>
 
+#include "commands/detail/analysis_png.hpp"
+#include "commands/detail/vector_inputs.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -14,11 +16,9 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
-#include "pipeline/detail/analysis_png.hpp"
 #include "pipeline/detail/area_canvas.hpp"
 #include "pipeline/detail/area_lead.hpp"
 #include "pipeline/detail/area_output.hpp"
-#include "pipeline/detail/vector_inputs.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 

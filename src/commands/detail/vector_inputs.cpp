@@ -1,4 +1,4 @@
-#include "pipeline/detail/vector_inputs.hpp"
+#include "commands/detail/vector_inputs.hpp"
 
 #include "core/error.hpp"
 

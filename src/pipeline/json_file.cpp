@@ -1,11 +1,11 @@
-#include "pipeline/detail/json_file.hpp"
+#include "pipeline/json_file.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 std::string json_reason(const std::exception& e) {
   std::string text = e.what();
@@ -35,4 +35,4 @@ nlohmann::json parse_json_file(const std::filesystem::path& path, std::string_vi
   return parse_json_text(read_file_bytes(path), path, what_to_do);
 }
 
-}  // namespace tw::detail
+}  // namespace tw

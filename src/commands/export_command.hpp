@@ -26,13 +26,4 @@ struct ExportCommand {
 // no longer matches report.json (pipeline/run_layers.hpp, verify_run_files).
 EngineExportResult run_export_command(const ExportCommand& command);
 
-// The export of a run's layer files (run tiled at `run_tile_size`, 0: untiled): in tiles read
-// by windows when export_tile_size says so, else one heightmap from the layers read whole.
-// Shared by the command and by `export:` on tiled runs.
-EngineExportResult export_layer_files(
-    const ExportFiles& files, const std::vector<ExportCurve>& curves, EngineExportOptions options,
-    int run_tile_size, const std::filesystem::path& dir, OutputStager& stager,
-    const std::optional<std::filesystem::path>& input_height = std::nullopt,
-    Resampling input_resampling = Resampling::bilinear);
-
 }  // namespace tw

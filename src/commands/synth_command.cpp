@@ -1,4 +1,4 @@
-#include "pipeline/synth_command.hpp"
+#include "commands/synth_command.hpp"
 
 #include <algorithm>
 #include <cmath>

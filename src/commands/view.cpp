@@ -1,4 +1,4 @@
-#include "pipeline/view.hpp"
+#include "commands/view.hpp"
 
 #include <cpl_minixml.h>
 #include <cpl_string.h>
@@ -12,15 +12,15 @@
 #include <sstream>
 #include <string_view>
 
+#include "commands/detail/network_page.hpp"
+#include "commands/detail/three_js.hpp"
+#include "commands/detail/view_page.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/output_guard.hpp"
 #include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/json_file.hpp"
-#include "pipeline/detail/network_page.hpp"
-#include "pipeline/detail/three_js.hpp"
-#include "pipeline/detail/view_page.hpp"
+#include "pipeline/json_file.hpp"
 #include "pipeline/run_layers.hpp"
 
 namespace tw {
@@ -142,7 +142,7 @@ json view_data_features(const fs::path& run) {
   json features = json::array();
   if (fs::exists(run / "features.geojson")) {
     const fs::path path = run / "features.geojson";
-    const json lines = detail::parse_json_file(path, "run it again");
+    const json lines = parse_json_file(path, "run it again");
     if (!lines.is_object() || !lines.contains("features") || !lines["features"].is_array())
       fail("{}: key features: expected a list of GeoJSON features; run it again", path.string());
     for (const json& f : lines["features"]) {
@@ -172,7 +172,7 @@ struct PageHead {
 };
 
 PageHead page_head(const fs::path& run) {
-  const json report = detail::parse_json_file(run / "report.json", "run it again");
+  const json report = parse_json_file(run / "report.json", "run it again");
   const json& grid = report.at("grid");
   PageHead head{json::object(), grid.at("width"), grid.at("height")};
   head.data["name"] =
@@ -225,7 +225,7 @@ std::string network_page(const ViewOptions& options, const std::string& save_pat
 }
 
 ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
-  const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
+  const json report = parse_json_file(run_dir / "report.json", "run it again");
   const json& grid = report.at("grid");
   // At most 4096 cells a side (GDAL resamples on reading): memory follows the page, not the world.
   const int width = grid.at("width"), height = grid.at("height");
@@ -246,7 +246,7 @@ ForbiddenMask run_forbidden_mask(const fs::path& run_dir) {
 }
 
 std::string run_crs_wkt(const fs::path& run_dir) {
-  const json report = detail::parse_json_file(run_dir / "report.json", "run it again");
+  const json report = parse_json_file(run_dir / "report.json", "run it again");
   const json& grid = report.at("grid");
   return grid.contains("crs_wkt") && grid["crs_wkt"].is_string()
              ? grid["crs_wkt"].get<std::string>()

@@ -1,4 +1,4 @@
-#include "pipeline/big_world.hpp"
+#include "commands/big_world.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>

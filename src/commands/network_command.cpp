@@ -1,4 +1,4 @@
-#include "pipeline/network_command.hpp"
+#include "commands/network_command.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "commands/detail/vector_inputs.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -19,7 +20,6 @@
 #include "network/exemplar.hpp"
 #include "network/partial.hpp"
 #include "network/preview.hpp"
-#include "pipeline/detail/vector_inputs.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

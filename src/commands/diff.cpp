@@ -1,4 +1,4 @@
-#include "pipeline/diff.hpp"
+#include "commands/diff.hpp"
 
 #include <ogr_spatialref.h>
 #include <fstream>
@@ -7,8 +7,7 @@
 #include <optional>
 
 #include "core/error.hpp"
-#include "pipeline/detail/json_file.hpp"
-#include "pipeline/detail/report_json.hpp"
+#include "pipeline/json_file.hpp"
 #include "pipeline/run_layers.hpp"
 
 namespace tw {
@@ -23,8 +22,8 @@ json read_manifest(const fs::path& run) {
   std::ifstream in(path);
   if (!in) fail("{}: no report.json: not the output folder of a terraweave run", run.string());
   in.close();
-  const json report = detail::parse_json_file(path, "run it again");
-  if (!report.is_object() || report.value("format", "") != detail::kReportFormat ||
+  const json report = parse_json_file(path, "run it again");
+  if (!report.is_object() || report.value("format", "") != kReportFormat ||
       !report.contains("version") || report["version"].value("schema", 0) < 2) {
     fail("{}: not a terraweave report of schema 2 or later (run it again with this version)",
          path.string());

@@ -1,4 +1,4 @@
-#include "pipeline/grow_command.hpp"
+#include "commands/grow_command.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "commands/detail/vector_inputs.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -20,7 +21,6 @@
 #include "ornament/crossings.hpp"
 #include "ornament/grow.hpp"
 #include "pipeline/detail/grow_region.hpp"
-#include "pipeline/detail/vector_inputs.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

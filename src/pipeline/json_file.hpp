@@ -5,7 +5,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string_view>
 
-namespace tw::detail {
+namespace tw {
 
 // Throws tw::Error naming `path` (which is only used in the message) and the byte.
 nlohmann::json parse_json_text(std::string_view text, const std::filesystem::path& path,
@@ -16,4 +16,4 @@ nlohmann::json parse_json_file(const std::filesystem::path& path, std::string_vi
 // nlohmann's exception text without its "[json.exception.type_error.302] " prefix.
 std::string json_reason(const std::exception& e);
 
-}  // namespace tw::detail
+}  // namespace tw
