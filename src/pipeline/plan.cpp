@@ -126,6 +126,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (const SynthesisMethod* method : methods) {
     MethodPlan& entry = plan.methods.emplace_back(method, method->empty_payload());
     method->ingest(context, entry);
+    for (Polygon& polygon : method->reserved(context, entry))
+      context.reserved.push_back(std::move(polygon));
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(config, *source, lines, warnings);

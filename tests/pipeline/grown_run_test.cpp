@@ -197,7 +197,7 @@ TEST_F(GrownRun, HedgesAndWallsRaiseTheTerrainDitchesLowerIt) {
   const Raster<float> before = read_height_window(plan.heights, plan.grid, tile.halo_window);
   const LayerSet layers = render_tile(plan, tile);
   const Raster<float>& after = find_layer(layers, "height")->bands[0];
-  for (const GrownClass& g : detail::grown_plan(plan)->classes) {
+  for (const detail::GrownClass& g : detail::grown_plan(plan)->classes) {
     // The change at every line's vertices, averaged: hedge banks and walls stand proud of
     // the ground by about their height, ditches are cut about their depth into it.
     double sum = 0.0;
@@ -514,7 +514,7 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
     l.points = std::move(points);
     return l;
   };
-  std::vector<GrownClass> grown(2);
+  std::vector<detail::GrownClass> grown(2);
   grown[0].class_index = 1;
   grown[1].class_index = 2;
   // Hedges: FID 1 and 2 meet end to end at (50, 50); FID 3 ends 1.9 m from the road's centre

@@ -13,6 +13,7 @@
 #include "geo/heightfield_source.hpp"
 #include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/plan.hpp"
 

@@ -13,6 +13,30 @@
 
 namespace tw::detail {
 
+// Where one exemplar channel of a pattern goes on the output grid.
+struct PatternTarget {
+  int exemplar_channel = 0;
+  bool to_height = false;    // else a splat material
+  std::size_t material = 0;  // index into WorldPlan::splat_materials (splat targets)
+  bool is_alpha = false;     // the A channel: the share is the coverage itself
+};
+
+// One feature's synthesized pattern as the renderer needs it.
+struct PlannedPattern {
+  std::size_t class_index = 0;     // in config.features / WorldPlan::class_names
+  std::size_t feature_index = 0;   // in the class's lines
+  std::size_t exemplar_index = 0;  // in PatternsPlan::exemplars
+  bool on_ground = true;           // false: a bridge's or tunnel's, written to placements only
+  Ribbon ribbon;                   // the synthesis ribbon
+  Synthesis synthesis;
+  Window window;  // the output pixels its render can touch (empty: off the grid)
+  // Render options of its class.
+  bool stitch = true;
+  double feather = 0.0;
+  float height_detail = 1.0f;
+  std::vector<PatternTarget> targets;
+};
+
 struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
   // Synthesized patterns, in synthesis order, and the exemplars they use.
   std::deque<Exemplar> exemplars;
