@@ -19,6 +19,7 @@
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
+#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
@@ -254,10 +255,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (options.synthesis_tasks)
     syntheses =
         detail::plan_synthesis_tasks(config, plan, options.backend, cache, plan_dir, warnings);
-  // Areas avoid the curve patterns, so complete-plan synthesizes them after the tasks; with no
-  // synthesis to wait for, the plan is complete here.
-  if (syntheses && syntheses->at("features").empty() && !config.areas.empty()) {
-    detail::add_areas(config, detail::synthesize_plan_areas(config, plan, nullptr, warnings), plan);
+  // The methods after the patterns (the areas avoid the curve patterns) plan in complete-plan,
+  // after the tasks; with no synthesis to wait for, the plan is complete here.
+  if (syntheses && syntheses->at("features").empty()) {
+    detail::plan_after(config, plan, detail::pattern_method(), warnings);
     index_plan(plan);
   }
   plan.report.warnings = warnings.list();

@@ -6,11 +6,11 @@
 #include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
 #include "pipeline/detail/area_output.hpp"
+#include "pipeline/detail/areas.hpp"
 #include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
-#include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "raster/footprint.hpp"
 #include "raster/stroke_coverage.hpp"
@@ -20,6 +20,10 @@
 namespace tw::detail {
 
 using nlohmann::json;
+
+// The areas as the renderer needs them, replacing those the entry held: their splat materials
+// after the methods' before them, the output pixels their strokes can touch, their report.
+void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan);
 
 // The codec's field lists of its own types (detail/plan_codec.hpp).
 #define TW_FIELDS TW_DEFINE_PLAN_FIELDS
@@ -269,18 +273,6 @@ void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
     entry->areas.push_back(std::move(area));
   }
   plan.report.areas = std::move(run.reports);
-}
-
-AreaRun synthesize_plan_areas(const PipelineConfig& config, const WorldPlan& plan,
-                              const PatternRun* patterns, Warnings& warnings) {
-  // The plan's ingest read these polygons and reported their repairs already.
-  Warnings read_again;
-  const Heightfield heightfield = plan.heights.reader->without_pixels();
-  const std::vector<std::vector<PolygonFeature>> polygons =
-      load_area_polygons(config, heightfield, read_again);
-  HeightSampler heights(*plan.heights.reader);
-  return synthesize_areas(config, polygons, plan.lines, synthesis_ribbons(plan),
-                          existing_features(plan), patterns, heights, warnings);
 }
 
 }  // namespace tw::detail
