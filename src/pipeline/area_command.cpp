@@ -15,10 +15,10 @@
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/detail/analysis_png.hpp"
-#include "pipeline/detail/area_canvas.hpp"
-#include "pipeline/detail/area_lead.hpp"
-#include "pipeline/detail/area_output.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
+#include "pipeline/methods/areas/area_canvas.hpp"
+#include "pipeline/methods/areas/area_lead.hpp"
+#include "pipeline/methods/areas/area_output.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 

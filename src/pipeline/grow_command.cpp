@@ -19,8 +19,8 @@
 #include "layers/write.hpp"
 #include "ornament/crossings.hpp"
 #include "ornament/grow.hpp"
-#include "pipeline/detail/grow_region.hpp"
 #include "pipeline/detail/vector_inputs.hpp"
+#include "pipeline/methods/grown/grow_region.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

@@ -19,10 +19,10 @@
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/layer_options.hpp"
 #include "pipeline/detail/manifest.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 

@@ -12,10 +12,10 @@
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
 #include "pipeline/detail/job_files.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan_io.hpp"
 
 namespace tw {

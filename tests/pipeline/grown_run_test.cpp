@@ -19,8 +19,8 @@
 #include "core/error.hpp"
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
-#include "pipeline/detail/grown_classes.hpp"
-#include "pipeline/detail/grown_method.hpp"
+#include "pipeline/methods/grown/grown_classes.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -488,7 +488,6 @@ features:
   }
   EXPECT_GT(near_other_class, 0);  // the regions overlap: hedges and ditches meet there
 }
-
 
 // Issue #21: the check after growth counts what the growth should have refused and fails the
 // run naming the lines; lines that only meet end to end (an ornament's joint) and keep their

@@ -4,8 +4,8 @@
 // the areas, which avoid the curve patterns and so are synthesized after all of them.
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
-#include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
 
@@ -16,10 +16,10 @@ FeatureRibbons synthesis_ribbons(const WorldPlan& plan);
 ExistingFeatures existing_features(const WorldPlan& plan);
 
 // The syntheses' reports and cache statuses into plan.report, the patterns as the renderer needs
-// them into the plan's patterns entry (detail/pattern_method.hpp), their exemplars and splat
-// materials (the patterns method's collect does the same in plan_world).
-// Throws tw::Error naming the class and the channel when an exemplar lacks a mapped channel.
-// A grown class whose synthesis dressed none of its lines warns (`grown_undressed`), so that
+// them into the plan's patterns entry (methods/patterns/pattern_method.hpp), their exemplars and
+// splat materials (the patterns method's collect does the same in plan_world). Throws tw::Error
+// naming the class and the channel when an exemplar lacks a mapped channel. A grown class whose
+// synthesis dressed none of its lines warns (`grown_undressed`), so that
 // --strict fails it.
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
                   Warnings& warnings);

@@ -1,7 +1,7 @@
 #pragma once
 // Ornaments grown over the surface (FloralSurf) as a synthesis method
 // (pipeline/synthesis_method.hpp): a class with `grow` gets its lines grown
-// (detail/grown_classes.hpp); the plan keeps them as ornaments.gpkg holds them.
+// (grown_classes.hpp); the plan keeps them as ornaments.gpkg holds them.
 #include <string>
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "pipeline/detail/network_classes.hpp"
+#include "pipeline/methods/network/network_classes.hpp"
 
 #include <algorithm>
 #include <chrono>

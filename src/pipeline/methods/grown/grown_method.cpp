@@ -1,13 +1,13 @@
-#include "pipeline/detail/grown_method.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
 
 #include <algorithm>
 
 #include "core/output_folder.hpp"
-#include "pipeline/detail/grow_region.hpp"
-#include "pipeline/detail/grown_classes.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/methods/grown/grow_region.hpp"
+#include "pipeline/methods/grown/grown_classes.hpp"
 
 namespace tw::detail {
 

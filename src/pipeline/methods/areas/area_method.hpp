@@ -1,7 +1,7 @@
 #pragma once
 // Shape-patterns in areas (Olivier et al.) as a synthesis method (pipeline/synthesis_method.hpp):
 // every polygon of a `kind: area` class gets the shape-pattern of its sketch
-// (detail/areas.hpp), after the curve patterns, whose coverage it avoids.
+// (areas.hpp), after the curve patterns, whose coverage it avoids.
 #include <memory>
 #include <string>
 #include <vector>

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
-#include "pipeline/detail/area_method.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
 
 namespace tw::detail {
 

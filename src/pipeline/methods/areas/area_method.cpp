@@ -1,17 +1,17 @@
-#include "pipeline/detail/area_method.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
 
 #include <algorithm>
 
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
-#include "pipeline/detail/area_output.hpp"
-#include "pipeline/detail/areas.hpp"
-#include "pipeline/detail/instance_heights.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/areas/area_output.hpp"
+#include "pipeline/methods/areas/areas.hpp"
+#include "pipeline/methods/areas/instance_heights.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "raster/footprint.hpp"
 #include "raster/stroke_coverage.hpp"
 #include "terrain/pattern_layers.hpp"
@@ -176,7 +176,7 @@ class AreaMethod final : public SynthesisMethod {
     return out;
   }
 
-  // The final height under each instance, from every tile (detail/instance_heights.hpp).
+  // The final height under each instance, from every tile (instance_heights.hpp).
   std::string tile_fact_key() const override { return "instance_heights"; }
   std::string tile_fact(const WorldPlan& plan, const MethodPlan& entry, const Raster<float>& height,
                         const Window& halo, const Window& core) const override {

@@ -1,10 +1,10 @@
-#include "pipeline/detail/network_method.hpp"
+#include "pipeline/methods/network/network_method.hpp"
 
 #include <algorithm>
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/detail/network_classes.hpp"
+#include "pipeline/methods/network/network_classes.hpp"
 
 namespace tw::detail {
 

@@ -1,4 +1,4 @@
-#include "pipeline/detail/pattern_method.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 
 #include <algorithm>
 #include <map>

@@ -1,4 +1,4 @@
-#include "pipeline/detail/instance_heights.hpp"
+#include "pipeline/methods/areas/instance_heights.hpp"
 
 #include <bit>
 #include <cmath>

@@ -13,8 +13,8 @@
 #include "geo/heightfield_source.hpp"
 #include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/detail/grown_method.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
 #include "pipeline/plan.hpp"
 
 namespace tw::detail {

@@ -10,10 +10,10 @@
 #include "geo/features.hpp"
 #include "geo/height_sampler.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/detail/area_method.hpp"
 #include "pipeline/detail/ingest.hpp"
-#include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "sketch/hierarchy.hpp"
 

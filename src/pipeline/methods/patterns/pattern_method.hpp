@@ -1,13 +1,13 @@
 #pragma once
 // Zhou et al. 2013 along ribbons as a synthesis method (pipeline/synthesis_method.hpp): every
-// feature of a class with `synthesis` gets its pattern by the exact DP (detail/patterns.hpp);
+// feature of a class with `synthesis` gets its pattern by the exact DP (patterns.hpp);
 // the plan keeps each pattern as the renderer needs it and the exemplars they use.
 #include <deque>
 #include <memory>
 #include <vector>
 
 #include "pipeline/config.hpp"
-#include "pipeline/detail/patterns.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
 
