@@ -165,12 +165,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                              tile.halo_window, tile.window));
       detail::widen(report.output_height, detail::core_range(find_layer(layers, "height")->bands[0],
                                                              tile.halo_window, tile.window));
-      std::map<std::string, std::string> facts;
-      for (const MethodPlan& entry : plan.methods)
-        if (const std::string key = entry.method->tile_fact_key(); !key.empty())
-          facts[key] = entry.method->tile_fact(plan, entry, find_layer(layers, "height")->bands[0],
-                                               tile.halo_window, tile.window);
-      detail::add_method_facts(plan, facts, "tile", method_facts);
+      detail::add_method_facts(
+          plan, detail::method_tile_facts(plan, find_layer(layers, "height")->bands[0], tile),
+          "tile", method_facts);
       write_layer_set(layers, dir, transaction, write_options);
       layer_seconds += seconds_since(writing);
       const auto previewing = std::chrono::steady_clock::now();

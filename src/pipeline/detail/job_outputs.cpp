@@ -23,19 +23,26 @@ std::vector<fs::path> write_tile_files(LayerSet& layers, const TileSpec& tile, c
   return write_layer_set(layers, dir / "tiles", stager, tile_options);
 }
 
+std::map<std::string, std::string> method_tile_facts(const WorldPlan& plan,
+                                                     const Raster<float>& height,
+                                                     const TileSpec& tile) {
+  std::map<std::string, std::string> facts;
+  for (const MethodPlan& entry : plan.methods)
+    if (const std::string key = entry.method->tile_fact_key(); !key.empty())
+      facts[key] = entry.method->tile_fact(plan, entry, height, tile.halo_window, tile.window);
+  return facts;
+}
+
 std::map<std::string, std::string> tile_facts(const WorldPlan& plan, const LayerSet& layers,
                                               const TileSpec& tile) {
-  std::map<std::string, std::string> facts;
   const Raster<float>& height = find_layer(layers, "height")->bands[0];
+  std::map<std::string, std::string> facts = method_tile_facts(plan, height, tile);
   facts["forbidden_pixels"] = std::to_string(forbidden_in(layers, tile.halo_window, tile.window));
   facts["xxh64"] = std::to_string(layer_bytes_hash(layers));
   facts["input_height"] =
       range_fact(core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
                             tile.halo_window, tile.window));
   facts["output_height"] = range_fact(core_range(height, tile.halo_window, tile.window));
-  for (const MethodPlan& entry : plan.methods)
-    if (const std::string key = entry.method->tile_fact_key(); !key.empty())
-      facts[key] = entry.method->tile_fact(plan, entry, height, tile.halo_window, tile.window);
   return facts;
 }
 

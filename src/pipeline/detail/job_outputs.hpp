@@ -58,6 +58,12 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
 std::map<std::string, std::string> tile_facts(const WorldPlan& plan, const LayerSet& layers,
                                               const TileSpec& tile);
 
+// Every method's tile fact (SynthesisMethod::tile_fact) under its key, from the tile's height
+// layer over `tile.halo_window`.
+std::map<std::string, std::string> method_tile_facts(const WorldPlan& plan,
+                                                     const Raster<float>& height,
+                                                     const TileSpec& tile);
+
 // Per method (plan.methods order), its fact of every tile, in tile order.
 using MethodTileFacts = std::vector<std::vector<MethodTileFact>>;
 
