@@ -16,9 +16,9 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
-#include "pipeline/detail/area_canvas.hpp"
-#include "pipeline/detail/area_lead.hpp"
-#include "pipeline/detail/area_output.hpp"
+#include "pipeline/methods/areas/area_canvas.hpp"
+#include "pipeline/methods/areas/area_lead.hpp"
+#include "pipeline/methods/areas/area_output.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 

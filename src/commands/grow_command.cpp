@@ -20,7 +20,7 @@
 #include "layers/write.hpp"
 #include "ornament/crossings.hpp"
 #include "ornament/grow.hpp"
-#include "pipeline/detail/grow_region.hpp"
+#include "pipeline/methods/grown/grow_region.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

@@ -15,7 +15,6 @@
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/manifest.hpp"
@@ -23,6 +22,7 @@
 #include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 
@@ -255,10 +255,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (options.synthesis_tasks)
     syntheses =
         detail::plan_synthesis_tasks(config, plan, options.backend, cache, plan_dir, warnings);
-  // Areas avoid the curve patterns, so complete-plan synthesizes them after the tasks; with no
-  // synthesis to wait for, the plan is complete here.
-  if (syntheses && syntheses->at("features").empty() && !config.areas.empty()) {
-    detail::add_areas(config, detail::synthesize_plan_areas(config, plan, nullptr, warnings), plan);
+  // The methods after the patterns (the areas avoid the curve patterns) plan in complete-plan,
+  // after the tasks; with no synthesis to wait for, the plan is complete here.
+  if (syntheses && syntheses->at("features").empty()) {
+    detail::plan_after(config, plan, detail::pattern_method(), warnings);
     index_plan(plan);
   }
   plan.report.warnings = warnings.list();
@@ -334,16 +334,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   const detail::TileCache::Outcome outcome = cache.render_or_reuse(
       spec, stager, dir,
       [&](LayerSet& layers, OutputStager& to, std::map<std::string, std::string>& facts) {
-        facts["forbidden_pixels"] =
-            std::to_string(detail::forbidden_in(layers, spec.halo_window, spec.window));
-        facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
-        facts["input_height"] = detail::range_fact(
-            detail::core_range(read_height_window(plan.heights, plan.grid, spec.halo_window),
-                               spec.halo_window, spec.window));
-        facts["output_height"] = detail::range_fact(detail::core_range(
-            find_layer(layers, "height")->bands[0], spec.halo_window, spec.window));
-        facts["instance_heights"] = detail::instance_heights_fact(
-            plan, find_layer(layers, "height")->bands[0], spec.halo_window, spec.window);
+        facts = detail::tile_facts(plan, layers, spec);
         detail::write_tile_files(layers, spec, dir, to, write);
       });
   stager.commit();
@@ -362,19 +353,20 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   }
   result.seconds = seconds_since(started);
   const CacheStatus& status = outcome.status;
-  const json record = {
-      {"format", kTileResultFormat},
-      {"version", kPlanVersion},
-      {"plan", hash},
-      {"tile", tile},
-      {"files", files},
-      {"forbidden_pixels", std::stoll(outcome.facts.at("forbidden_pixels"))},
-      {"xxh64", std::stoull(outcome.facts.at("xxh64"))},
-      {"input_height", outcome.facts.at("input_height")},
-      {"output_height", outcome.facts.at("output_height")},
-      {"instance_heights", outcome.facts.at("instance_heights")},
-      {"cache", {{"reused", status.reused}, {"why", status.why}, {"key", status.key}}},
-      {"seconds", result.seconds}};
+  json record = {{"format", kTileResultFormat},
+                 {"version", kPlanVersion},
+                 {"plan", hash},
+                 {"tile", tile},
+                 {"files", files},
+                 {"forbidden_pixels", std::stoll(outcome.facts.at("forbidden_pixels"))},
+                 {"xxh64", std::stoull(outcome.facts.at("xxh64"))},
+                 {"input_height", outcome.facts.at("input_height")},
+                 {"output_height", outcome.facts.at("output_height")},
+                 {"cache", {{"reused", status.reused}, {"why", status.why}, {"key", status.key}}},
+                 {"seconds", result.seconds}};
+  for (const MethodPlan& entry : plan.methods)  // the methods' tile facts, under their keys
+    if (const std::string key = entry.method->tile_fact_key(); !key.empty())
+      record[key] = outcome.facts.at(key);
   // Last: a result names only complete files.
   write_file_atomic(results_dir(plan_dir, hash) / fmt::format("tile-{}.json", tile),
                     record.dump(1) + "\n");
@@ -422,7 +414,9 @@ RunReport finish_job(const fs::path& plan_dir) {
     rendered.xxh64 = result.value("xxh64", std::uint64_t(0));
     rendered.input_height = result.value("input_height", std::string());
     rendered.output_height = result.value("output_height", std::string());
-    rendered.instance_heights = result.value("instance_heights", std::string());
+    for (const MethodPlan& entry : plan.methods)
+      if (const std::string key = entry.method->tile_fact_key(); !key.empty())
+        rendered.method_facts[key] = result.value(key, std::string());
     if (cached && result.contains("cache")) {  // as run reports it: only with a cache
       const json& c = result["cache"];
       rendered.cache = CacheStatus{c.at("reused").get<bool>(), c.at("why").get<std::string>(),

@@ -69,6 +69,39 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
   return {plan.existing.polygons, plan.existing.lines, plan.existing.line_widths};
 }
 
+std::vector<StageTiming> plan_after(const PipelineConfig& config, WorldPlan& plan,
+                                    const SynthesisMethod& after, Warnings& warnings) {
+  const auto first = std::find_if(plan.methods.begin(), plan.methods.end(),
+                                  [&](const MethodPlan& e) { return e.method == &after; });
+  if (first == plan.methods.end()) fail("plan: no '{}' entry to plan after", after.name());
+  PlanOptions options;  // synthesize: the methods after it plan
+  const Heightfield heightfield = plan.heights.reader->without_pixels();
+  std::vector<std::vector<LineFeature>> lines = plan.lines;
+  const FeatureRibbons ribbons = synthesis_ribbons(plan);
+  const ExistingFeatures existing = existing_features(plan);
+  Warnings read_again;  // the plan's ingest read their inputs and reported their repairs
+  MethodContext reading{config, options,   *plan.heights.reader, heightfield, lines,
+                        plan,   read_again};
+  MethodContext context{config, options, *plan.heights.reader, heightfield, lines, plan, warnings};
+  context.existing = &existing;
+  context.ribbons = &ribbons;
+  std::vector<StageTiming> timings;
+  std::vector<MethodPlan*> collected = {&*first};
+  for (auto it = std::next(first); it != plan.methods.end(); ++it) {
+    const SynthesisMethod& method = *it->method;
+    if (method.stage() != MethodStage::placements || !method.serves(config, options)) continue;
+    const auto started = std::chrono::steady_clock::now();
+    method.ingest(reading, *it);
+    method.plan(context, *it);
+    timings.push_back(
+        {method.stage_name(),
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count()});
+    collected.push_back(&*it);
+  }
+  for (MethodPlan* entry : collected) entry->method->collect(context, *entry);
+  return timings;
+}
+
 }  // namespace detail
 
 void index_plan(WorldPlan& plan) {
@@ -130,6 +163,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (const SynthesisMethod* method : methods) {
     MethodPlan& entry = plan.methods.emplace_back(method, method->empty_payload());
     method->ingest(context, entry);
+    for (Polygon& polygon : method->reserved(context, entry))
+      context.reserved.push_back(std::move(polygon));
   }
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(terrain_options, *source, lines, warnings);

@@ -4,7 +4,6 @@
 // and synthesized placements. render_tile decides everything that belongs to a pixel, for one
 // window: heights, splat, avoidance and pattern layers, the same bytes at any tiling.
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,16 +15,12 @@
 #include "geo/heightfield.hpp"
 #include "geo/heightfield_source.hpp"
 #include "layers/layer_set.hpp"
-#include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/method_plan.hpp"
 #include "pipeline/run.hpp"
 #include "raster/avoidance.hpp"
 #include "raster/window_index.hpp"
 #include "ribbon/ribbon.hpp"
-#include "sketch/area_synthesis.hpp"
-#include "synth/exemplar.hpp"
-#include "synth/synthesize.hpp"
 #include "terrain/height_ops.hpp"
 
 namespace tw {
@@ -81,55 +76,6 @@ struct HeightSource {
 // The heights of `window` of `grid` (the plan's grid). NaN marks nodata.
 Raster<float> read_height_window(const HeightSource& source, const GridSpec& grid,
                                  const Window& window);
-
-// Where one exemplar channel of a pattern goes on the output grid.
-struct PatternTarget {
-  int exemplar_channel = 0;
-  bool to_height = false;    // else a splat material
-  std::size_t material = 0;  // index into WorldPlan::splat_materials (splat targets)
-  bool is_alpha = false;     // the A channel: the share is the coverage itself
-};
-
-// One feature's synthesized pattern as the renderer needs it.
-struct PlannedPattern {
-  std::size_t class_index = 0;     // in config.features / WorldPlan::class_names
-  std::size_t feature_index = 0;   // in the class's lines
-  std::size_t exemplar_index = 0;  // in WorldPlan::exemplars
-  bool on_ground = true;           // false: a bridge's or tunnel's, written to placements only
-  Ribbon ribbon;                   // the synthesis ribbon
-  Synthesis synthesis;
-  Window window;  // the output pixels its render can touch (empty: off the grid)
-  // Render options of its class.
-  bool stitch = true;
-  double feather = 0.0;
-  float height_detail = 1.0f;
-  std::vector<PatternTarget> targets;
-};
-
-// One sketch material of an area and where it goes: a splat material and height detail.
-struct AreaTarget {
-  std::string stroke_material;
-  std::size_t material = 0;  // index into WorldPlan::splat_materials
-  float height = 0.0f;       // metres times the strokes' coverage
-};
-
-// One polygon's shape-pattern as the renderer and the area outputs need it.
-struct PlannedArea {
-  std::size_t area_class = 0;  // in config.areas / WorldPlan::area_names
-  std::int64_t fid = 0;
-  AreaPattern pattern;              // instances and strokes in world metres
-  std::vector<AreaTarget> targets;  // every stroke material of the pattern, in config order
-  Window window;                    // the output pixels its strokes can touch
-};
-
-// A grown class's lines as ornaments.gpkg holds them (docs/pipeline.md, "Grown classes"); line
-// i is the class's feature with FID i + 1.
-struct GrownClass {
-  std::size_t class_index = 0;  // in config.features / WorldPlan::class_names
-  std::string kind;             // hedge, wall, trail, ditch, or the line kind it was given
-  double height_m = 0.0;        // the profile's raise (+) or carve (-)
-  std::vector<GrownLine> lines;
-};
 
 // The options of render_tile, one per stage (not the pipeline config).
 struct RenderOptions {

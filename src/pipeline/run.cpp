@@ -17,10 +17,6 @@
 #include "layers/layer_set.hpp"
 #include "layers/vrt.hpp"
 #include "layers/write.hpp"
-#include "pipeline/detail/area_method.hpp"
-#include "pipeline/detail/areas.hpp"
-#include "pipeline/detail/grown_method.hpp"
-#include "pipeline/detail/instance_heights.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/report_json.hpp"
@@ -30,6 +26,7 @@
 #include "pipeline/detail/tile_stats.hpp"
 #include "pipeline/export_layer_files.hpp"
 #include "pipeline/plan.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "pipeline/version.hpp"
 #include "synth/placements_io.hpp"
 
@@ -95,9 +92,13 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   report.started_utc = started_utc;
   detail::StageClock clock(report.stages);
   if (!options.write_outputs) {
-    clock.start("sketches");
-    detail::check_area_sketches(config, warnings);
-    clock.stop();
+    for (const MethodPlan& entry : plan.methods) {  // what the plan did not read
+      const std::string stage = entry.method->validate_stage();
+      if (stage.empty()) continue;
+      clock.start(stage);
+      entry.method->validate(config, warnings);
+      clock.stop();
+    }
     finish_warnings(warnings, strict, report);
     report.total_seconds = seconds_since(run_started);
     detail::add_untimed_stage(report.stages, report.total_seconds);
@@ -143,19 +144,10 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   // The same writer as terraweave render-tile (detail/job_outputs.hpp): the same bytes.
   const auto write_tile = [&](const TileSpec& tile, LayerSet& layers, OutputStager& stager,
                               std::map<std::string, std::string>& facts) {
-    facts["forbidden_pixels"] =
-        std::to_string(detail::forbidden_in(layers, tile.halo_window, tile.window));
-    facts["xxh64"] = std::to_string(detail::layer_bytes_hash(layers));
-    facts["input_height"] = detail::range_fact(
-        detail::core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
-                           tile.halo_window, tile.window));
-    facts["output_height"] = detail::range_fact(
-        detail::core_range(find_layer(layers, "height")->bands[0], tile.halo_window, tile.window));
-    facts["instance_heights"] = detail::instance_heights_fact(
-        plan, find_layer(layers, "height")->bands[0], tile.halo_window, tile.window);
+    facts = detail::tile_facts(plan, layers, tile);
     detail::write_tile_files(layers, tile, dir, stager, write_options);
   };
-  detail::InstanceHeights instance_heights = detail::unknown_instance_heights(plan);
+  detail::MethodTileFacts method_facts;  // per method, its fact of every tile
   for (const TileSpec& tile : plan.tiles) {
     const auto started = std::chrono::steady_clock::now();
     TileReport& tile_report = report.tiles.tiles.emplace_back();
@@ -176,10 +168,9 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
                              tile.halo_window, tile.window));
       detail::widen(report.output_height, detail::core_range(find_layer(layers, "height")->bands[0],
                                                              tile.halo_window, tile.window));
-      detail::add_instance_heights(
-          detail::instance_heights_fact(plan, find_layer(layers, "height")->bands[0],
-                                        tile.halo_window, tile.window),
-          "tile", instance_heights);
+      detail::add_method_facts(
+          plan, detail::method_tile_facts(plan, find_layer(layers, "height")->bands[0], tile),
+          "tile", method_facts);
       write_layer_set(layers, dir, transaction, write_options);
       layer_seconds += seconds_since(writing);
       const auto previewing = std::chrono::steady_clock::now();
@@ -217,8 +208,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
       tile_report.xxh64 = std::stoull(outcome.facts.at("xxh64"));
       detail::widen(report.input_height, detail::range_of_fact(outcome.facts.at("input_height")));
       detail::widen(report.output_height, detail::range_of_fact(outcome.facts.at("output_height")));
-      detail::add_instance_heights(outcome.facts.at("instance_heights"),
-                                   fmt::format("tile {}", tile.index), instance_heights);
+      detail::add_method_facts(plan, outcome.facts, fmt::format("tile {}", tile.index),
+                               method_facts);
       if (cache_dir) tile_report.cache = outcome.status;
       render_seconds += seconds_since(started);
     }
@@ -263,19 +254,7 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   clock.start("features.geojson");
   write_curves_geojson(curves, plan.crs_wkt, transaction.stage(dir / "features.geojson"));
   clock.stop();
-  clock.start("placements");
-  detail::write_placements(plan, dir, transaction, report);
-  clock.stop();
-  if (const detail::AreasPlan* areas = detail::areas_plan(plan); areas && !areas->names.empty()) {
-    clock.start("areas.gpkg");  // with instances.csv and instances.json
-    detail::write_area_outputs(plan, instance_heights, dir, transaction);
-    clock.stop();
-  }
-  if (const detail::GrownPlan* grown = detail::grown_plan(plan); grown && !grown->classes.empty()) {
-    clock.start("ornaments.gpkg");
-    detail::write_ornament_outputs(plan, dir, transaction);
-    clock.stop();
-  }
+  detail::write_method_outputs(plan, std::move(method_facts), dir, transaction, report, &clock);
   clock.start("manifest");  // the hash of every output file
   report.output_files = detail::record_outputs(transaction, tile_digests);
   clock.stop();

@@ -16,6 +16,7 @@
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan_io.hpp"
 
 namespace tw {
@@ -417,24 +418,22 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
     }
     seconds += p.report.avoidance_seconds + p.report.synthesis_seconds + p.report.render_seconds;
   }
-  // The areas avoid the curve patterns: here, after every synthesis, as plan_world orders them.
-  Warnings area_warnings;
-  std::optional<detail::AreaRun> areas;
-  const auto areas_started = std::chrono::steady_clock::now();
-  if (!config.areas.empty())
-    areas = detail::synthesize_plan_areas(config, plan, &run, area_warnings);
-  const double area_seconds = seconds_since(areas_started);
-  detail::add_patterns(config, std::move(run), plan, area_warnings);
+  // The syntheses into the patterns' entry; the methods after it (the areas, which avoid the
+  // curve patterns) plan here, after every synthesis, as plan_world orders them.
+  Warnings synthesis_warnings;
+  detail::PatternsPlan* patterns = detail::patterns_plan(plan);
+  if (!patterns) fail("plan: no patterns entry to complete");
+  patterns->run = std::make_shared<detail::PatternRun>(std::move(run));
   plan.report.stages.push_back({"synthesis", seconds});
-  if ((strict || config.strict) && !area_warnings.list().empty())
-    fail("strict: {} (the synthesis); nothing completed", to_string(area_warnings.list().front()));
-  if (areas) {
-    detail::add_areas(config, std::move(*areas), plan);
-    plan.report.stages.push_back({"areas", area_seconds});
-  }
+  for (const StageTiming& t :
+       detail::plan_after(config, plan, detail::pattern_method(), synthesis_warnings))
+    plan.report.stages.push_back(t);
+  if ((strict || config.strict) && !synthesis_warnings.list().empty())
+    fail("strict: {} (the synthesis); nothing completed",
+         to_string(synthesis_warnings.list().front()));
   // Appended as plan_world's Warnings would keep them: each once.
   std::vector<Warning>& kept = plan.report.warnings;
-  for (const Warning& w : area_warnings.list())
+  for (const Warning& w : synthesis_warnings.list())
     if (std::none_of(kept.begin(), kept.end(), [&](const Warning& k) {
           return k.code == w.code && k.subject == w.subject && k.fid == w.fid &&
                  k.message == w.message;

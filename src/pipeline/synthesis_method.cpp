@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "pipeline/detail/area_method.hpp"
-#include "pipeline/detail/grown_method.hpp"
-#include "pipeline/detail/network_method.hpp"
-#include "pipeline/detail/pattern_method.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
+#include "pipeline/methods/network/network_method.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 
 namespace tw {
 

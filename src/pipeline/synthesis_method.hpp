@@ -18,6 +18,8 @@
 
 namespace tw {
 
+class OutputFolder;
+
 namespace detail {
 struct ExistingFeatures;
 struct FeatureRibbons;
@@ -43,6 +45,24 @@ struct MethodContext {
   Warnings& warnings;
   const detail::ExistingFeatures* existing = nullptr;  // from conformance on
   const detail::FeatureRibbons* ribbons = nullptr;     // in the placements stage
+  // What the methods reserve for themselves after their ingest (SynthesisMethod::reserved), in
+  // method order: the lines methods keep out of them.
+  std::vector<Polygon> reserved{};
+};
+
+// One tile's fact of a method (SynthesisMethod::tile_fact) and the tile it came from, as error
+// messages name it ("tile", "tile 3").
+struct MethodTileFact {
+  std::string where;
+  std::string fact;
+};
+
+// Where a method writes its run outputs (SynthesisMethod::write_outputs).
+struct MethodOutputs {
+  std::filesystem::path dir;  // the output folder
+  OutputFolder& transaction;  // stages every file (the manifest hashes what it staged)
+  RunReport& report;          // completed with what the outputs name (placements files)
+  std::vector<MethodTileFact> tile_facts;  // its fact of every tile, in tile order
 };
 
 class SynthesisMethod {
@@ -65,6 +85,16 @@ class SynthesisMethod {
   // Reads its own inputs with the plan's ingest (warnings in the ingest's order). Called for
   // every method, before conformance; context.existing is not there yet.
   virtual void ingest(MethodContext& /*context*/, MethodPlan& /*entry*/) const {}
+  // After its ingest: the polygons it keeps for itself (the areas' polygons), which plan_world
+  // gathers into context.reserved for the lines methods to keep out of.
+  virtual std::vector<Polygon> reserved(const MethodContext& /*context*/,
+                                        const MethodPlan& /*entry*/) const {
+    return {};
+  }
+  // What `terraweave validate` checks of its inputs besides the plan's ingest (the areas:
+  // their sketches), timed as the stage validate_stage() names ("": nothing to check).
+  virtual std::string validate_stage() const { return {}; }
+  virtual void validate(const PipelineConfig& /*config*/, Warnings& /*warnings*/) const {}
   // Plans its domain: the lines of its classes into context.lines (lines stage), or its
   // placements into the entry; its report into context.plan.report.
   virtual void plan(MethodContext& context, MethodPlan& entry) const = 0;
@@ -90,9 +120,30 @@ class SynthesisMethod {
     return {};
   }
 
+  // A fact of every rendered tile that its outputs need (the areas: the final height under each
+  // instance), from the tile's height layer over `halo`, for the pixels of `core`; kept with
+  // the tile in the tile cache and in a worker's tile result under tile_fact_key() ("": none).
+  virtual std::string tile_fact_key() const { return {}; }
+  virtual std::string tile_fact(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/,
+                                const Raster<float>& /*height*/, const Window& /*halo*/,
+                                const Window& /*core*/) const {
+    return {};
+  }
+  // Its run outputs beside the layers (placements/, areas.gpkg, ornaments.gpkg), timed as the
+  // stage outputs_stage() names; "" when the plan gives it none to write.
+  virtual std::string outputs_stage(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/) const {
+    return {};
+  }
+  virtual void write_outputs(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/,
+                             MethodOutputs& /*outputs*/) const {}
+
   // Its own part of report.json (`methods.<name>`); null: none (the built-in methods report in
-  // the classes' and areas' fields).
+  // RunReport's fields, which report_json writes into their places).
   virtual nlohmann::json report(const WorldPlan& plan, const MethodPlan& entry) const;
+  // Writes its fields of `report` into their places in report.json `json` (the classes, their
+  // features, top-level keys), called for every method once the rest is there.
+  virtual void report_json(const RunReport& /*report*/, const PipelineConfig& /*config*/,
+                           nlohmann::json& /*json*/) const {}
 
   // Its entry in plan.json (objects through `objects`), and back.
   virtual nlohmann::json encode(const MethodPlan& entry, detail::PlanObjects& objects) const = 0;

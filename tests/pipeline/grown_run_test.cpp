@@ -19,8 +19,8 @@
 #include "core/error.hpp"
 #include "geo/resample.hpp"
 #include "layers/layer_set.hpp"
-#include "pipeline/detail/grown_classes.hpp"
-#include "pipeline/detail/grown_method.hpp"
+#include "pipeline/methods/grown/grown_classes.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -197,7 +197,7 @@ TEST_F(GrownRun, HedgesAndWallsRaiseTheTerrainDitchesLowerIt) {
   const Raster<float> before = read_height_window(plan.heights, plan.grid, tile.halo_window);
   const LayerSet layers = render_tile(plan, tile);
   const Raster<float>& after = find_layer(layers, "height")->bands[0];
-  for (const GrownClass& g : detail::grown_plan(plan)->classes) {
+  for (const detail::GrownClass& g : detail::grown_plan(plan)->classes) {
     // The change at every line's vertices, averaged: hedge banks and walls stand proud of
     // the ground by about their height, ditches are cut about their depth into it.
     double sum = 0.0;
@@ -489,7 +489,6 @@ features:
   EXPECT_GT(near_other_class, 0);  // the regions overlap: hedges and ditches meet there
 }
 
-
 // Issue #21: the check after growth counts what the growth should have refused and fails the
 // run naming the lines; lines that only meet end to end (an ornament's joint) and keep their
 // footprints apart pass with zero counts.
@@ -514,7 +513,7 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
     l.points = std::move(points);
     return l;
   };
-  std::vector<GrownClass> grown(2);
+  std::vector<detail::GrownClass> grown(2);
   grown[0].class_index = 1;
   grown[1].class_index = 2;
   // Hedges: FID 1 and 2 meet end to end at (50, 50); FID 3 ends 1.9 m from the road's centre

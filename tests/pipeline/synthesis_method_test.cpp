@@ -1,15 +1,20 @@
 // The synthesis-method seam (pipeline/synthesis_method.hpp, docs/methods.md): the built-in
 // methods in their fixed order, and a fifth method, defined here only, that reaches the plan,
-// the tile render, the tile cache key, the plan folder and report.json without a line of
-// pipeline code naming it.
+// the tile render, the tile cache key, the plan folder, the run's outputs (with its facts of
+// every tile) and report.json without a line of pipeline code naming it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/file_io.hpp"
+#include "core/output_folder.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/report_json.hpp"
@@ -85,8 +90,30 @@ class StampMethod final : public SynthesisMethod {
     }
     return out;
   }
+  // Per tile: the square's pixels in the tile's core and the height at the first of them.
+  std::string tile_fact_key() const override { return "stamp_pixels"; }
+  std::string tile_fact(const WorldPlan&, const MethodPlan& entry, const Raster<float>& height,
+                        const Window& halo, const Window& core) const override {
+    const Window part = intersect(payload_as<StampPlan>(entry).squares.at(0), core);
+    if (part.width == 0) return "0";
+    return fmt::format("{} {}", part.width * part.height,
+                       height.at(part.col0 - halo.col0, part.row0 - halo.row0));
+  }
+  // stamp.txt: every tile's fact, one line each.
+  std::string outputs_stage(const WorldPlan&, const MethodPlan&) const override {
+    return "stamp.txt";
+  }
+  void write_outputs(const WorldPlan&, const MethodPlan&, MethodOutputs& outputs) const override {
+    std::ofstream out(outputs.transaction.stage(outputs.dir / "stamp.txt"));
+    for (const MethodTileFact& f : outputs.tile_facts) out << f.where << ": " << f.fact << "\n";
+  }
   json report(const WorldPlan&, const MethodPlan& entry) const override {
     return {{"squares", payload_as<StampPlan>(entry).squares.size()}};
+  }
+  // Its field in every class of report.json.
+  void report_json(const RunReport& report, const PipelineConfig&, json& out) const override {
+    for (std::size_t c = 0; c < report.classes.size(); ++c)
+      out["classes"][c]["stamped"] = report.classes[c].name;
   }
   json encode(const MethodPlan& entry, detail::PlanObjects& objects) const override {
     const StampPlan& stamp = payload_as<StampPlan>(entry);
@@ -126,6 +153,13 @@ class SynthesisMethods : public ::testing::Test {
                       {{"LINESTRING (500020 5000100, 500300 5000400, 500600 5000620)"}});
   }
   PipelineConfig config() const { return parse_pipeline(kWorld, "world.yaml", dir_.path(), {}); }
+  PipelineConfig tiled_config() const {  // tiles of 24 pixels, 2 of overlap
+    std::string yaml = kWorld;
+    const std::string output = "preview: false }";
+    yaml.replace(yaml.find(output), output.size(),
+                 "preview: false, tiles: { size: 24, overlap: 2 } }");
+    return parse_pipeline(yaml, "world.yaml", dir_.path(), {});
+  }
 
   // The built-in methods and a stamp after them.
   std::vector<const SynthesisMethod*> with_stamp(const StampMethod& stamp) const {
@@ -135,10 +169,14 @@ class SynthesisMethods : public ::testing::Test {
   }
 
   WorldPlan plan(const std::vector<const SynthesisMethod*>& methods) const {
+    return plan(methods, config());
+  }
+  WorldPlan plan(const std::vector<const SynthesisMethod*>& methods,
+                 const PipelineConfig& config) const {
     Warnings warnings;
     PlanOptions options;
     options.methods = methods;
-    return plan_world(config(), options, warnings);
+    return plan_world(config, options, warnings);
   }
 
   test::TempDir dir_;
@@ -230,6 +268,69 @@ TEST_F(SynthesisMethods, AFifthMethodReachesTheTileRenderTheCacheKeyThePlanFolde
   const json report = detail::report_to_json(loaded.report, config());
   EXPECT_EQ(report.at("methods").at("stamp").at("squares"), 1);
   EXPECT_FALSE(detail::report_to_json(bare.report, config()).contains("methods"));
+}
+
+TEST_F(SynthesisMethods, AFifthMethodsTileFactsOutputsAndReportFieldsGoThroughTheSeam) {
+  const StampMethod stamp(8, 2.0f);
+  const std::vector<const SynthesisMethod*> methods = with_stamp(stamp);
+  const WorldPlan plan = this->plan(methods, tiled_config());
+  ASSERT_EQ(plan.tiles.size(), 9u);  // 64 pixels in tiles of 24: 3 x 3
+
+  // Every tile's facts hold each method's under its key (the areas' instance heights too), and
+  // the outputs get the stamp's facts of every tile, in tile order.
+  detail::MethodTileFacts facts;
+  int pixels = 0;
+  for (const TileSpec& tile : plan.tiles) {
+    const LayerSet layers = render_tile(plan, tile);
+    const std::map<std::string, std::string> tile_facts = detail::tile_facts(plan, layers, tile);
+    ASSERT_TRUE(tile_facts.contains("stamp_pixels"));
+    EXPECT_TRUE(tile_facts.contains("instance_heights"));
+    EXPECT_TRUE(tile_facts.contains("xxh64"));
+    std::istringstream fact(tile_facts.at("stamp_pixels"));
+    int n = 0;
+    fact >> n;
+    pixels += n;
+    if (n > 0) {  // the raised height of the square's first pixel in this tile
+      const Window part =
+          intersect(payload_as<StampPlan>(plan.methods.back()).squares[0], tile.window);
+      float z = 0.0f;
+      fact >> z;
+      EXPECT_EQ(z, find_layer(layers, "height")
+                       ->bands[0]
+                       .at(part.col0 - tile.halo_window.col0, part.row0 - tile.halo_window.row0));
+    }
+    detail::add_method_facts(plan, tile_facts, fmt::format("tile {}", tile.index), facts);
+  }
+  EXPECT_EQ(pixels, 64);  // the square, once over the tiles' cores
+  ASSERT_EQ(facts.size(), plan.methods.size());
+  ASSERT_EQ(facts.back().size(), plan.tiles.size());
+
+  OutputFolder folder(dir_ / "out");
+  RunReport report = plan.report;
+  detail::write_method_outputs(plan, facts, dir_ / "out", folder, report, nullptr);
+  folder.commit();
+  const std::string written = read_file_bytes(dir_ / "out" / "stamp.txt");
+  std::string expected;
+  for (const MethodTileFact& f : facts.back()) expected += f.where + ": " + f.fact + "\n";
+  EXPECT_EQ(written, expected);
+  EXPECT_NE(written.find("tile 8: "), std::string::npos);
+  // The built-in methods wrote nothing here: no patterns, areas or grown classes.
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "areas.gpkg"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "ornaments.gpkg"));
+
+  // report.json: its field in every class; the built-in methods' fields come from them, so a
+  // list without them has none of their keys.
+  const json with_all = detail::report_to_json(report, config(), methods);
+  EXPECT_EQ(with_all.at("classes").at(0).at("stamped"), "roads");
+  for (const char* key : {"areas", "pattern_violations", "grown_crossings"})
+    EXPECT_TRUE(with_all.contains(key)) << key;
+  EXPECT_TRUE(with_all.at("timings").contains("synthesis"));
+  const json stamp_only = detail::report_to_json(report, config(), {&stamp});
+  EXPECT_EQ(stamp_only.at("classes").at(0).at("stamped"), "roads");
+  for (const char* key : {"areas", "pattern_violations", "grown_crossings"})
+    EXPECT_FALSE(stamp_only.contains(key)) << key;
+  EXPECT_FALSE(stamp_only.at("timings").contains("synthesis"));
+  EXPECT_FALSE(detail::report_to_json(report, config()).at("classes").at(0).contains("stamped"));
 }
 
 }  // namespace

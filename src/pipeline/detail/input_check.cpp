@@ -4,7 +4,7 @@
 
 #include "core/error.hpp"
 #include "ornament/element.hpp"
-#include "pipeline/detail/patterns.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 
 namespace tw::detail {
 namespace {

@@ -6,13 +6,8 @@
 
 #include "core/error.hpp"
 #include "layers/vrt.hpp"
-#include "pipeline/detail/area_method.hpp"
-#include "pipeline/detail/area_output.hpp"
-#include "pipeline/detail/grow_region.hpp"
-#include "pipeline/detail/grown_method.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/report_json.hpp"
-#include "synth/placements_io.hpp"
+#include "pipeline/detail/tile_stats.hpp"
 
 namespace tw::detail {
 
@@ -28,48 +23,49 @@ std::vector<fs::path> write_tile_files(LayerSet& layers, const TileSpec& tile, c
   return write_layer_set(layers, dir / "tiles", stager, tile_options);
 }
 
-void write_placements(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction,
-                      RunReport& report) {
-  // placements/<class>_<fid>.json (a multi-part FID adds _<part>). The backend field is left
-  // out so that every backend writes the same bytes.
-  const PatternsPlan* patterns = patterns_plan(plan);
-  if (!patterns) return;
-  std::map<std::string, int> parts;
-  for (const PlannedPattern& p : patterns->patterns) {
-    std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
-                                   plan.lines[p.class_index][p.feature_index].fid);
-    if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
-    const std::string file = "placements/" + name + ".json";
-    Synthesis saved = p.synthesis;
-    saved.backend.clear();
-    save_placements(saved, patterns->exemplars[p.exemplar_index].path,
-                    transaction.stage(out / file).string());
-    auto& synthesis = report.classes[p.class_index].features[p.feature_index].synthesis;
-    if (synthesis) synthesis->placements = file;
-  }
+std::map<std::string, std::string> method_tile_facts(const WorldPlan& plan,
+                                                     const Raster<float>& height,
+                                                     const TileSpec& tile) {
+  std::map<std::string, std::string> facts;
+  for (const MethodPlan& entry : plan.methods)
+    if (const std::string key = entry.method->tile_fact_key(); !key.empty())
+      facts[key] = entry.method->tile_fact(plan, entry, height, tile.halo_window, tile.window);
+  return facts;
 }
 
-void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights, const fs::path& out,
-                        OutputFolder& transaction) {
-  const AreasPlan* areas = areas_plan(plan);
-  if (!areas || areas->names.empty()) return;
-  std::vector<AreaResult> results;
-  for (std::size_t i = 0; i < areas->areas.size(); ++i) {
-    const PlannedArea& a = areas->areas[i];
-    results.push_back({areas->names.at(a.area_class), a.fid, a.pattern, heights.at(i)});
-  }
-  write_area_geopackage(transaction.stage(out / "areas.gpkg"), plan.crs_wkt, results);
-  write_instances_csv(transaction.stage(out / "instances.csv"), results);
-  write_instances_json(transaction.stage(out / "instances.json"), results);
+std::map<std::string, std::string> tile_facts(const WorldPlan& plan, const LayerSet& layers,
+                                              const TileSpec& tile) {
+  const Raster<float>& height = find_layer(layers, "height")->bands[0];
+  std::map<std::string, std::string> facts = method_tile_facts(plan, height, tile);
+  facts["forbidden_pixels"] = std::to_string(forbidden_in(layers, tile.halo_window, tile.window));
+  facts["xxh64"] = std::to_string(layer_bytes_hash(layers));
+  facts["input_height"] =
+      range_fact(core_range(read_height_window(plan.heights, plan.grid, tile.halo_window),
+                            tile.halo_window, tile.window));
+  facts["output_height"] = range_fact(core_range(height, tile.halo_window, tile.window));
+  return facts;
 }
 
-void write_ornament_outputs(const WorldPlan& plan, const fs::path& out, OutputFolder& transaction) {
-  const GrownPlan* grown = grown_plan(plan);
-  if (!grown || grown->classes.empty()) return;
-  std::vector<OrnamentLayer> layers;
-  for (const GrownClass& g : grown->classes)
-    layers.push_back({plan.class_names.at(g.class_index), g.kind, g.height_m, &g.lines, {}});
-  write_ornament_geopackage(transaction.stage(out / "ornaments.gpkg"), plan.crs_wkt, layers);
+void add_method_facts(const WorldPlan& plan, const std::map<std::string, std::string>& facts,
+                      const std::string& where, MethodTileFacts& out) {
+  out.resize(plan.methods.size());
+  for (std::size_t m = 0; m < plan.methods.size(); ++m)
+    if (const std::string key = plan.methods[m].method->tile_fact_key(); !key.empty())
+      out[m].push_back({where, facts.at(key)});
+}
+
+void write_method_outputs(const WorldPlan& plan, MethodTileFacts facts, const fs::path& out,
+                          OutputFolder& transaction, RunReport& report, StageClock* clock) {
+  facts.resize(plan.methods.size());
+  for (std::size_t m = 0; m < plan.methods.size(); ++m) {
+    const MethodPlan& entry = plan.methods[m];
+    const std::string stage = entry.method->outputs_stage(plan, entry);
+    if (stage.empty()) continue;
+    if (clock) clock->start(stage);
+    MethodOutputs outputs{out, transaction, report, std::move(facts[m])};
+    entry.method->write_outputs(plan, entry, outputs);
+    if (clock) clock->stop();
+  }
 }
 
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
@@ -93,12 +89,10 @@ RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*confi
   // As terraweave run writes a tiled world: the mosaics, no preview.
   for (const auto& [layer, sources] : tifs)
     write_vrt_mosaic(transaction.stage(out / (layer + ".vrt")), sources);
-  write_placements(plan, out, transaction, report);
-  InstanceHeights heights = unknown_instance_heights(plan);
+  MethodTileFacts facts;
   for (const RenderedTile& t : tiles)
-    add_instance_heights(t.instance_heights, fmt::format("tile {}", t.tile.index), heights);
-  write_area_outputs(plan, heights, out, transaction);
-  write_ornament_outputs(plan, out, transaction);
+    add_method_facts(plan, t.method_facts, fmt::format("tile {}", t.tile.index), facts);
+  write_method_outputs(plan, std::move(facts), out, transaction, report, nullptr);
   return report;
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // What `terraweave finish` writes besides the tiles (pipeline/job.hpp): the mosaics, the
-// placements, the preview and report.json, staged in the output folder's transaction.
+// methods' outputs and report.json, staged in the output folder's transaction; and what
+// terraweave run and render-tile share with it: a tile's files and facts, the methods' outputs.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,8 +13,9 @@
 #include "layers/write.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/detail/instance_heights.hpp"
+#include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/plan.hpp"
+#include "pipeline/synthesis_method.hpp"
 
 namespace tw::detail {
 
@@ -30,8 +33,9 @@ struct RenderedTile {
   std::int64_t forbidden_pixels = 0;        // in its core window
   std::uint64_t xxh64 = 0;                  // of its pixels (detail/tile_stats.hpp)
   std::string input_height, output_height;  // over its core (detail::range_fact)
-  std::string instance_heights;             // detail::instance_heights_fact
-  std::optional<CacheStatus> cache;         // with a cache: rendered or reused, and why
+  // The methods' tile facts, by SynthesisMethod::tile_fact_key.
+  std::map<std::string, std::string> method_facts;
+  std::optional<CacheStatus> cache;  // with a cache: rendered or reused, and why
 };
 
 // Writes <dir>/tiles/<layer>_x<i>_y<j>.{exr,tif} for every layer of one tile's LayerSet.
@@ -41,27 +45,38 @@ std::vector<std::filesystem::path> write_tile_files(LayerSet& layers, const Tile
                                                     OutputStager& stager,
                                                     const WriteOptions& options);
 
-// The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs and placements/, as terraweave run
-// writes them for a tiled world. Returns the plan's report completed with what the tiles found.
+// The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs and the methods' outputs, as
+// terraweave run writes them for a tiled world. Returns the plan's report completed with what the
+// tiles found.
 RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
                             const std::vector<RenderedTile>& tiles,
                             const std::filesystem::path& out, OutputFolder& transaction);
 
-// placements/<class>_<fid>.json for every synthesized feature (a multi-part FID adds _<part>),
-// named in the report.
-void write_placements(const WorldPlan& plan, const std::filesystem::path& out,
-                      OutputFolder& transaction, RunReport& report);
+// The facts of a rendered tile that the run's report and outputs gather (kept with the tile in
+// the tile cache and in a worker's tile result): forbidden_pixels, xxh64, input_height,
+// output_height, and every method's tile fact under its tile_fact_key.
+std::map<std::string, std::string> tile_facts(const WorldPlan& plan, const LayerSet& layers,
+                                              const TileSpec& tile);
 
-// areas.gpkg (layers strokes and instances), instances.csv and instances.json of the plan's
-// `kind: area` classes (docs/shape-patterns.md), the instances' z from `heights`; nothing when
-// it has none.
-void write_area_outputs(const WorldPlan& plan, const InstanceHeights& heights,
-                        const std::filesystem::path& out, OutputFolder& transaction);
+// Every method's tile fact (SynthesisMethod::tile_fact) under its key, from the tile's height
+// layer over `tile.halo_window`.
+std::map<std::string, std::string> method_tile_facts(const WorldPlan& plan,
+                                                     const Raster<float>& height,
+                                                     const TileSpec& tile);
 
-// ornaments.gpkg of the plan's grown classes (one layer per class, named by it; FIDs as the
-// class's features'); nothing when it has none.
-void write_ornament_outputs(const WorldPlan& plan, const std::filesystem::path& out,
-                            OutputFolder& transaction);
+// Per method (plan.methods order), its fact of every tile, in tile order.
+using MethodTileFacts = std::vector<std::vector<MethodTileFact>>;
+
+// The methods' facts of one tile (as tile_facts keys them) into `out`; `where` names the tile
+// in messages. Throws std::out_of_range when a method's fact is missing.
+void add_method_facts(const WorldPlan& plan, const std::map<std::string, std::string>& facts,
+                      const std::string& where, MethodTileFacts& out);
+
+// Every method's run outputs (SynthesisMethod::write_outputs), in method order, each timed as
+// its outputs stage on `clock` when there is one.
+void write_method_outputs(const WorldPlan& plan, MethodTileFacts facts,
+                          const std::filesystem::path& out, OutputFolder& transaction,
+                          RunReport& report, StageClock* clock);
 
 // <out>/report.json, as terraweave run writes it.
 void write_job_report(const RunReport& report, const PipelineConfig& config,

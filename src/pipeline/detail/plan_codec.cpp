@@ -1,6 +1,7 @@
-// The field lists of every type a WorldPlan holds (plan_codec.hpp). A field added to one of
-// these types must be added here too: the plan round-trip test renders from a loaded plan and
-// compares the bytes, so a missing field that matters shows there.
+// The field lists of the types a WorldPlan holds (plan_codec.hpp); a method's own types have
+// theirs in its file. A field added to one of these types must be added to its list too: the
+// plan round-trip test renders from a loaded plan and compares the bytes, so a missing field
+// that matters shows there.
 #include "pipeline/detail/plan_codec.hpp"
 
 #include "pipeline/detail/plan_fields.hpp"
@@ -8,18 +9,8 @@
 namespace tw::detail {
 
 // One definition for both directions: Io is JsonWriter or JsonReader.
-#define TW_FIELDS(Type, ...)               \
-  template <class Io>                      \
-  static void fields_of(Io& io, Type& v) { \
-    __VA_ARGS__                            \
-  }                                        \
-  void fields(JsonWriter& io, Type& v) {   \
-    fields_of(io, v);                      \
-  }                                        \
-  void fields(JsonReader& io, Type& v) {   \
-    fields_of(io, v);                      \
-  }
-#define F(name) io(#name, v.name);
+#define TW_FIELDS TW_DEFINE_PLAN_FIELDS
+#define F TW_FIELD
 
 TW_FIELDS(GridSpec, F(width) F(height) F(origin_x) F(origin_y) F(pixel_width) F(pixel_height))
 TW_FIELDS(Window, F(col0) F(row0) F(width) F(height))
@@ -43,9 +34,6 @@ TW_FIELDS(GeneratedTerrain, F(width) F(height) F(pixel_size) F(seed) F(relief) F
                                 F(origin_y) F(feature_size))
 TW_FIELDS(HeightfieldOptions, F(resolution) F(resampling) F(crs))
 TW_FIELDS(HeightfieldFile, F(path) F(xxh3_128) F(bytes) F(options))
-TW_FIELDS(CostTexels, F(width) F(height) F(rgba) F(binary_alpha))
-TW_FIELDS(Exemplar, F(width) F(height) F(channel_names) F(texels) F(cost) F(path))
-TW_FIELDS(PatternTarget, F(exemplar_channel) F(to_height) F(material) F(is_alpha))
 TW_FIELDS(RenderOptions, F(avoidance_max_distance))
 TW_FIELDS(WindowIndex, F(bin_size) F(bins_x) F(bins_y) F(windows) F(offsets) F(items))
 TW_FIELDS(Warning, F(code) F(subject) F(fid) F(message))
@@ -74,13 +62,6 @@ TW_FIELDS(NetworkClassReport, F(exemplar) F(exemplar_edges) F(lines) F(kept) F(p
                                       F(rejected_region) F(rejected_forbidden))
 TW_FIELDS(FeatureClassReport,
           F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow) F(network))
-TW_FIELDS(GrownLine, F(ornament) F(element) F(name) F(material) F(points) F(heights))
-TW_FIELDS(GrownClass, F(class_index) F(kind) F(height_m) F(lines))
-TW_FIELDS(ShapeInstance, F(shape) F(lead) F(position) F(rotation) F(scale) F(material) F(unbounded))
-TW_FIELDS(PlacedStroke, F(points) F(material) F(width) F(instance))
-TW_FIELDS(AreaPattern, F(instances) F(strokes) F(outside) F(forbidden) F(overlapping))
-TW_FIELDS(AreaTarget, F(stroke_material) F(material) F(height))
-TW_FIELDS(PlannedArea, F(area_class) F(fid) F(pattern) F(targets) F(window))
 TW_FIELDS(AreaFeatureReport,
           F(fid) F(area_m2) F(lead_bearing_deg) F(seed) F(shapes) F(strokes) F(outside) F(forbidden)
               F(overlapping) F(forbidden_touched) F(on_nodata) F(canvas_cells))

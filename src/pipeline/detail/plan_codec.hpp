@@ -69,6 +69,22 @@ void decode(const json& j, T& v, const std::string& path);
   void fields(JsonWriter& io, Type& v); \
   void fields(JsonReader& io, Type& v)
 
+// Defines the field list of Type for both directions, in one .cpp (plan_codec.cpp for the
+// plan's own types, a method's file for its own): TW_DEFINE_PLAN_FIELDS(Type, TW_FIELD(a)
+// TW_FIELD(b)). A field list is defined before the encode or decode that needs it.
+#define TW_DEFINE_PLAN_FIELDS(Type, ...)   \
+  template <class Io>                      \
+  static void fields_of(Io& io, Type& v) { \
+    __VA_ARGS__                            \
+  }                                        \
+  void fields(JsonWriter& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(JsonReader& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }
+#define TW_FIELD(name) io(#name, v.name);
+
 template <class T>
 concept HasFields = requires(JsonWriter& w, T& v) {
   fields(w, v);

@@ -1,13 +1,22 @@
 #pragma once
 // report.json: what a run read, made and wrote, with the versions that made it.
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "pipeline/config.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/run_layers.hpp"
 
+namespace tw {
+class SynthesisMethod;
+}
+
 namespace tw::detail {
 
-nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config);
+// The report as report.json holds it; each method (empty: the built-in ones) writes its own
+// fields into it (SynthesisMethod::report_json).
+nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config,
+                              const std::vector<const SynthesisMethod*>& methods = {});
 
 }  // namespace tw::detail

@@ -1,13 +1,24 @@
 #pragma once
 // Ornaments grown over the surface (FloralSurf) as a synthesis method
 // (pipeline/synthesis_method.hpp): a class with `grow` gets its lines grown
-// (detail/grown_classes.hpp); the plan keeps them as ornaments.gpkg holds them.
+// (grown_classes.hpp); the plan keeps them as ornaments.gpkg holds them.
+#include <string>
 #include <vector>
 
+#include "ornament/grow.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
 
 namespace tw::detail {
+
+// A grown class's lines as ornaments.gpkg holds them (docs/pipeline.md, "Grown classes"); line
+// i is the class's feature with FID i + 1.
+struct GrownClass {
+  std::size_t class_index = 0;  // in config.features / WorldPlan::class_names
+  std::string kind;             // hedge, wall, trail, ditch, or the line kind it was given
+  double height_m = 0.0;        // the profile's raise (+) or carve (-)
+  std::vector<GrownLine> lines;
+};
 
 struct GrownPlan : MethodPayloadOf<GrownPlan> {
   std::vector<GrownClass> classes;  // in class order

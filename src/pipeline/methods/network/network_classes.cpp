@@ -1,4 +1,4 @@
-#include "pipeline/detail/network_classes.hpp"
+#include "pipeline/methods/network/network_classes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,6 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/partial.hpp"
-#include "pipeline/detail/areas.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
@@ -37,13 +36,13 @@ std::vector<Polygon> region_of(const NetworkClassConfig& n, const Heightfield& h
   return out;
 }
 
-// Cells no edge may enter: the existing features, the area classes' polygons (their
-// shape-patterns come later and fill them) and the lines of the classes before `c`, each widened
-// by this class's width (so that the footprints do not overlap), on a grid over the region of at
-// most 4096 cells a side and no finer than a metre.
+// Cells no edge may enter: the existing features, the polygons the other methods reserve (the
+// area classes': their shape-patterns come later and fill them) and the lines of the classes before
+// `c`, each widened by this class's width (so that the footprints do not overlap), on a grid over
+// the region of at most 4096 cells a side and no finer than a metre.
 ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
                              const std::vector<Polygon>& region, const ExistingFeatures& existing,
-                             const std::vector<Polygon>& area_polygons,
+                             const std::vector<Polygon>& reserved,
                              const std::vector<std::vector<LineFeature>>& lines) {
   ForbiddenMask mask;
   mask.grid = forbidden_mask_grid(region);
@@ -69,7 +68,7 @@ ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
   const Window whole = Window::whole(mask.grid);
   mask.cells = Raster<std::uint8_t>(mask.grid.width, mask.grid.height);
   burn_polygons(existing.polygons, mask.grid, whole, mask.cells, 1);
-  burn_polygons(area_polygons, mask.grid, whole, mask.cells, 1);
+  burn_polygons(reserved, mask.grid, whole, mask.cells, 1);
   burn_buffered_lines(avoided, widths, mask.grid, whole, mask.cells, 1);
   return mask;
 }
@@ -98,18 +97,10 @@ Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>&
 
 void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
                           const Heightfield& heightfield, const ExistingFeatures& existing,
+                          const std::vector<Polygon>& reserved,
                           std::vector<std::vector<LineFeature>>& lines,
                           std::vector<FeatureClassReport>& reports, Warnings& warnings) {
   HeightSampler sampler(source);
-  // The area classes' polygons, read again here: they belong to the areas method, which plans
-  // after the lines methods (its own read reported their repairs).
-  std::vector<Polygon> area_polygons;
-  if (!config.areas.empty()) {
-    Warnings read_again;
-    for (const auto& per_class : load_area_polygons(config, heightfield, read_again))
-      for (const PolygonFeature& f : per_class)
-        area_polygons.emplace_back(f.rings.begin(), f.rings.end());
-  }
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     const FeatureClassConfig& fc = config.features[c];
     if (!fc.network) continue;
@@ -142,7 +133,7 @@ void grow_network_classes(const PipelineConfig& config, const HeightfieldSource&
     if (!n.partial.empty())
       partial = partial_network(n, region, heightfield, key + ".partial", warnings);
     std::optional<ForbiddenMask> forbidden;
-    if (n.avoid) forbidden = forbidden_mask(config, c, region, existing, area_polygons, lines);
+    if (n.avoid) forbidden = forbidden_mask(config, c, region, existing, reserved, lines);
     forbid_nodata_cells(forbidden, region, source.grid(),
                         [&](const Window& w) { return source.read(w); });
     NetworkGrowthOptions options;

@@ -8,21 +8,22 @@
 #include <vector>
 
 #include "core/grid.hpp"
-#include "pipeline/plan.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
 
 namespace tw::detail {
 
-// Per area of the plan, per instance: its z, NaN where no tile held its pixel (beyond the
-// output window or the grid).
+// Per area of the plan's areas entry, per instance: its z, NaN where no tile held its pixel (beyond
+// the output window or the grid).
 using InstanceHeights = std::vector<std::vector<double>>;
 
 // The instances whose pixel lies in `core`, with the height there, as a tile fact (text: one
-// "area instance float-bits" line each). `height` covers `halo` of the plan's grid.
-std::string instance_heights_fact(const WorldPlan& plan, const Raster<float>& height,
-                                  const Window& halo, const Window& core);
+// "area instance float-bits" line each). `height` covers `halo` of `grid`, the plan's.
+std::string instance_heights_fact(const GridSpec& grid, const AreasPlan& areas,
+                                  const Raster<float>& height, const Window& halo,
+                                  const Window& core);
 
 // Every instance unknown (NaN).
-InstanceHeights unknown_instance_heights(const WorldPlan& plan);
+InstanceHeights unknown_instance_heights(const AreasPlan& areas);
 
 // The heights of one tile's fact into `heights`. Throws tw::Error naming `where` when the fact
 // is not one instance_heights_fact wrote for this plan.

@@ -1,4 +1,4 @@
-#include "pipeline/detail/area_lead.hpp"
+#include "pipeline/methods/areas/area_lead.hpp"
 
 #include <algorithm>
 #include <cmath>

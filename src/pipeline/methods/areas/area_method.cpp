@@ -1,14 +1,17 @@
-#include "pipeline/detail/area_method.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
 
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
-#include "pipeline/detail/pattern_method.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
-#include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/areas/area_output.hpp"
+#include "pipeline/methods/areas/areas.hpp"
+#include "pipeline/methods/areas/instance_heights.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "raster/footprint.hpp"
 #include "raster/stroke_coverage.hpp"
 #include "terrain/pattern_layers.hpp"
@@ -18,7 +21,56 @@ namespace tw::detail {
 
 using nlohmann::json;
 
+// The areas as the renderer needs them, replacing those the entry held: their splat materials
+// after the methods' before them, the output pixels their strokes can touch, their report.
+void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan);
+
+// The codec's field lists of its own types (detail/plan_codec.hpp).
+#define TW_FIELDS TW_DEFINE_PLAN_FIELDS
+#define F TW_FIELD
+TW_FIELDS(ShapeInstance, F(shape) F(lead) F(position) F(rotation) F(scale) F(material) F(unbounded))
+TW_FIELDS(PlacedStroke, F(points) F(material) F(width) F(instance))
+TW_FIELDS(AreaPattern, F(instances) F(strokes) F(outside) F(forbidden) F(overlapping))
+TW_FIELDS(AreaTarget, F(stroke_material) F(material) F(height))
+TW_FIELDS(PlannedArea, F(area_class) F(fid) F(pattern) F(targets) F(window))
+#undef F
+#undef TW_FIELDS
+
 namespace {
+
+// `kind: area` classes: per polygon, what was placed and what was left out, and why.
+json areas_json(const RunReport& report) {
+  json areas = json::array();
+  for (const AreaClassReport& a : report.areas) {
+    json features = json::array();
+    int shapes = 0;
+    std::int64_t touched = 0;
+    for (const AreaFeatureReport& f : a.features) {
+      features.push_back(
+          {{"fid", f.fid},
+           {"area_m2", f.area_m2},
+           {"lead_bearing_deg", f.lead_bearing_deg},
+           {"seed", f.seed},
+           {"shapes", f.shapes},
+           {"strokes", f.strokes},
+           {"left_out",
+            {{"outside", f.outside}, {"forbidden", f.forbidden}, {"overlapping", f.overlapping}}},
+           {"forbidden_touched", f.forbidden_touched},
+           {"on_nodata", f.on_nodata},
+           {"canvas_cells", f.canvas_cells}});
+      shapes += f.shapes;
+      touched += f.forbidden_touched;
+    }
+    areas.push_back({{"name", a.name},
+                     {"source", a.source},
+                     {"sketch", a.sketch},
+                     {"lead", a.lead},
+                     {"shapes", shapes},
+                     {"forbidden_touched", touched},
+                     {"features", features}});
+  }
+  return areas;
+}
 
 class AreaMethod final : public SynthesisMethod {
  public:
@@ -31,10 +83,24 @@ class AreaMethod final : public SynthesisMethod {
     return std::make_unique<AreasPlan>();
   }
 
+  std::string validate_stage() const override { return "sketches"; }
+  void validate(const PipelineConfig& config, Warnings& warnings) const override {
+    check_area_sketches(config, warnings);
+  }
+
   void ingest(MethodContext& context, MethodPlan& entry) const override {
     payload_as<AreasPlan>(entry).polygons =
         std::make_shared<const std::vector<std::vector<PolygonFeature>>>(
             load_area_polygons(context.config, context.heightfield, context.warnings));
+  }
+
+  // The polygons its shape-patterns fill: the lines methods (networks) keep out of them.
+  std::vector<Polygon> reserved(const MethodContext& /*context*/,
+                                const MethodPlan& entry) const override {
+    std::vector<Polygon> out;
+    for (const auto& per_class : *payload_as<AreasPlan>(entry).polygons)
+      for (const PolygonFeature& f : per_class) out.emplace_back(f.rings.begin(), f.rings.end());
+    return out;
   }
 
   void plan(MethodContext& context, MethodPlan& entry) const override {
@@ -110,6 +176,43 @@ class AreaMethod final : public SynthesisMethod {
     return out;
   }
 
+  // The final height under each instance, from every tile (instance_heights.hpp).
+  std::string tile_fact_key() const override { return "instance_heights"; }
+  std::string tile_fact(const WorldPlan& plan, const MethodPlan& entry, const Raster<float>& height,
+                        const Window& halo, const Window& core) const override {
+    return instance_heights_fact(plan.grid, payload_as<AreasPlan>(entry), height, halo, core);
+  }
+
+  std::string outputs_stage(const WorldPlan& /*plan*/, const MethodPlan& entry) const override {
+    return payload_as<AreasPlan>(entry).names.empty() ? "" : "areas.gpkg";
+  }
+
+  // areas.gpkg (layers strokes and instances), instances.csv and instances.json
+  // (docs/shape-patterns.md), the instances' z from the tiles' facts.
+  void write_outputs(const WorldPlan& plan, const MethodPlan& entry,
+                     MethodOutputs& outputs) const override {
+    const AreasPlan& areas = payload_as<AreasPlan>(entry);
+    InstanceHeights heights = unknown_instance_heights(areas);
+    for (const MethodTileFact& f : outputs.tile_facts)
+      add_instance_heights(f.fact, f.where, heights);
+    std::vector<AreaResult> results;
+    for (std::size_t i = 0; i < areas.areas.size(); ++i) {
+      const PlannedArea& a = areas.areas[i];
+      results.push_back({areas.names.at(a.area_class), a.fid, a.pattern, heights.at(i)});
+    }
+    const auto stage = [&](const char* name) {
+      return outputs.transaction.stage(outputs.dir / name);
+    };
+    write_area_geopackage(stage("areas.gpkg"), plan.crs_wkt, results);
+    write_instances_csv(stage("instances.csv"), results);
+    write_instances_json(stage("instances.json"), results);
+  }
+
+  void report_json(const RunReport& report, const PipelineConfig& /*config*/,
+                   json& out) const override {
+    out["areas"] = areas_json(report);
+  }
+
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {
     const AreasPlan& areas = payload_as<AreasPlan>(entry);
     return {{"names", areas.names}, {"areas", objects.put_cbor(detail::encode(areas.areas))}};
@@ -170,18 +273,6 @@ void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
     entry->areas.push_back(std::move(area));
   }
   plan.report.areas = std::move(run.reports);
-}
-
-AreaRun synthesize_plan_areas(const PipelineConfig& config, const WorldPlan& plan,
-                              const PatternRun* patterns, Warnings& warnings) {
-  // The plan's ingest read these polygons and reported their repairs already.
-  Warnings read_again;
-  const Heightfield heightfield = plan.heights.reader->without_pixels();
-  const std::vector<std::vector<PolygonFeature>> polygons =
-      load_area_polygons(config, heightfield, read_again);
-  HeightSampler heights(*plan.heights.reader);
-  return synthesize_areas(config, polygons, plan.lines, synthesis_ribbons(plan),
-                          existing_features(plan), patterns, heights, warnings);
 }
 
 }  // namespace tw::detail

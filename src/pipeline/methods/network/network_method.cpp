@@ -1,10 +1,10 @@
-#include "pipeline/detail/network_method.hpp"
+#include "pipeline/methods/network/network_method.hpp"
 
 #include <algorithm>
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/detail/network_classes.hpp"
+#include "pipeline/methods/network/network_classes.hpp"
 
 namespace tw::detail {
 
@@ -34,7 +34,33 @@ class NetworkMethod final : public SynthesisMethod {
   // and worker sees the same lines.
   void plan(MethodContext& context, MethodPlan& /*entry*/) const override {
     grow_network_classes(context.config, context.source, context.heightfield, *context.existing,
-                         context.lines, context.plan.report.classes, context.warnings);
+                         context.reserved, context.lines, context.plan.report.classes,
+                         context.warnings);
+  }
+
+  // Per network class its `network`.
+  void report_json(const RunReport& report, const PipelineConfig& /*config*/,
+                   json& out) const override {
+    for (std::size_t i = 0; i < report.classes.size(); ++i) {
+      const FeatureClassReport& c = report.classes[i];
+      json& entry = out["classes"][i];
+      if (c.network) {
+        const NetworkClassReport& n = *c.network;
+        entry["network"] = {{"exemplar", n.exemplar},
+                            {"exemplar_edges", n.exemplar_edges},
+                            {"lines", n.lines},
+                            {"kept", n.kept},
+                            {"placed", n.placed},
+                            {"snapped", n.snapped},
+                            {"t_junctions", n.t_junctions},
+                            {"boundary_ends", n.boundary_ends},
+                            {"pruned", n.pruned},
+                            {"rejected",
+                             {{"crossing", n.rejected_crossing},
+                              {"region", n.rejected_region},
+                              {"forbidden", n.rejected_forbidden}}}};
+      }
+    }
   }
 
   json encode(const MethodPlan& /*entry*/, PlanObjects& /*objects*/) const override {

@@ -1,4 +1,4 @@
-#include "pipeline/detail/pattern_method.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 
 #include <algorithm>
 #include <map>
@@ -7,6 +7,7 @@
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "core/output_folder.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
@@ -24,6 +25,15 @@ namespace tw::detail {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+// The codec's field lists of its own types (detail/plan_codec.hpp).
+#define TW_FIELDS TW_DEFINE_PLAN_FIELDS
+#define F TW_FIELD
+TW_FIELDS(CostTexels, F(width) F(height) F(rgba) F(binary_alpha))
+TW_FIELDS(Exemplar, F(width) F(height) F(channel_names) F(texels) F(cost) F(path))
+TW_FIELDS(PatternTarget, F(exemplar_channel) F(to_height) F(material) F(is_alpha))
+#undef F
+#undef TW_FIELDS
 
 namespace {
 
@@ -222,6 +232,89 @@ class PatternMethod final : public SynthesisMethod {
       out.push_back(h.digest());
     }
     return out;
+  }
+
+  std::string outputs_stage(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/) const override {
+    return "placements";
+  }
+
+  // placements/<class>_<fid>.json (a multi-part FID adds _<part>), named in the feature's
+  // report. The backend field is left out so that every backend writes the same bytes.
+  void write_outputs(const WorldPlan& plan, const MethodPlan& entry,
+                     MethodOutputs& outputs) const override {
+    const PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
+    std::map<std::string, int> parts;
+    for (const PlannedPattern& p : patterns.patterns) {
+      std::string name = fmt::format("{}_{}", plan.class_names[p.class_index],
+                                     plan.lines[p.class_index][p.feature_index].fid);
+      if (const int part = parts[name]++; part > 0) name += fmt::format("_{}", part);
+      const std::string file = "placements/" + name + ".json";
+      Synthesis saved = p.synthesis;
+      saved.backend.clear();
+      save_placements(saved, patterns.exemplars[p.exemplar_index].path,
+                      outputs.transaction.stage(outputs.dir / file).string());
+      auto& synthesis = outputs.report.classes[p.class_index].features[p.feature_index].synthesis;
+      if (synthesis) synthesis->placements = file;
+    }
+  }
+
+  // Per synthesized feature its `synthesis` and `cache`, its timings under
+  // `timings.synthesis`, and the violations over every feature.
+  void report_json(const RunReport& report, const PipelineConfig& /*config*/,
+                   json& out) const override {
+    json timings = json::array();
+    for (std::size_t c = 0; c < report.classes.size(); ++c) {
+      const FeatureClassReport& fc = report.classes[c];
+      for (std::size_t i = 0; i < fc.features.size(); ++i) {
+        const FeatureReport& f = fc.features[i];
+        json& feature = out["classes"][c]["features"][i];
+        if (f.synthesis) {
+          const FeatureSynthesisReport& s = *f.synthesis;
+          feature["synthesis"] = {
+              {"exemplar", s.exemplar},
+              {"seed", s.seed},
+              {"backend", s.backend},
+              {"mean_valid_positions", s.mean_valid_positions},
+              {"omega", s.omega},
+              {"mean_seam_cost", s.mean_seam_cost},
+              {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
+              {"objective", s.objective},
+              {"min_coverage", s.min_coverage},
+              {"min_coverage_from", s.min_coverage_from_exemplar ? "exemplar" : "pipeline"},
+              {"coverage_ratio", s.coverage_ratio},
+              {"mean_coverage", s.mean_coverage},
+              {"natural_coverage", s.natural_coverage},
+              {"parametric_seam_cost", s.parametric_seam_cost},
+              {"width_m", s.width_m},
+              {"width_from", s.width_from},
+              {"delta_m", s.delta_m},
+              {"delta_from", s.delta_from},
+              {"empty_pieces", s.empty_pieces},
+              {"violations", s.violations},
+              {"canvas", {s.canvas_width, s.canvas_height}},
+              {"placements", s.placements}};
+          if (!s.mix_exemplars.empty()) {  // choose: mix
+            feature["synthesis"]["mix"] = {{"exemplars", s.mix_exemplars},
+                                           {"pieces_per_exemplar", s.pieces_per_exemplar},
+                                           {"switches", s.exemplar_switches},
+                                           {"switch_cost", s.switch_cost}};
+          }
+        }
+        if (f.cache) {
+          feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},
+                              {"why", f.cache->why},
+                              {"key", f.cache->key}};
+        }
+        if (!f.synthesis) continue;
+        timings.push_back({{"class", fc.name},
+                           {"fid", f.fid},
+                           {"avoidance", f.synthesis->avoidance_seconds},
+                           {"synthesis", f.synthesis->synthesis_seconds},
+                           {"render", f.synthesis->render_seconds}});
+      }
+    }
+    out["timings"]["synthesis"] = std::move(timings);
+    out["pattern_violations"] = report.pattern_violations;
   }
 
   // The exemplars (texels) as objects, with their source's hash when it is a file; each pattern

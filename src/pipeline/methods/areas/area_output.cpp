@@ -1,4 +1,4 @@
-#include "pipeline/detail/area_output.hpp"
+#include "pipeline/methods/areas/area_output.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -14,7 +14,7 @@
 #include "core/error.hpp"
 #include "core/progress.hpp"
 #include "image/image_io.hpp"
-#include "pipeline/detail/area_lead.hpp"
+#include "pipeline/methods/areas/area_lead.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {

@@ -1,4 +1,4 @@
-#include "pipeline/detail/areas.hpp"
+#include "pipeline/methods/areas/areas.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "pipeline/detail/area_canvas.hpp"
-#include "pipeline/detail/area_lead.hpp"
+#include "pipeline/methods/areas/area_canvas.hpp"
+#include "pipeline/methods/areas/area_lead.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 

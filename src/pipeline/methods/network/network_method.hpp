@@ -1,6 +1,6 @@
 #pragma once
 // Curve networks by example as a synthesis method (pipeline/synthesis_method.hpp): a class with
-// `network` gets its lines grown as a network (detail/network_classes.hpp), once, in the plan;
+// `network` gets its lines grown as a network (network_classes.hpp), once, in the plan;
 // its lines are the class's features and its report the class's `network`, so its entry holds
 // nothing else.
 #include "pipeline/synthesis_method.hpp"

@@ -1,4 +1,4 @@
-#include "pipeline/detail/grow_region.hpp"
+#include "pipeline/methods/grown/grow_region.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>

@@ -1,4 +1,4 @@
-#include "pipeline/detail/grown_classes.hpp"
+#include "pipeline/methods/grown/grown_classes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
 #include "ornament/crossings.hpp"
-#include "pipeline/detail/grow_region.hpp"
+#include "pipeline/methods/grown/grow_region.hpp"
 
 namespace tw::detail {
 

@@ -15,11 +15,13 @@
 namespace tw::detail {
 
 // Fills lines[c] of every network class c (FID n: the n-th edge, from 1) and its report's
-// `network`. Deterministic with
+// `network`, its edges kept out of `reserved` (the polygons the other methods keep for
+// themselves: the area classes') where the class avoids. Deterministic with
 // each class's network.seed. Throws tw::Error naming features.<class>.network.<key> on a bad
 // exemplar, region or partial network, and on any crossing the GEOS check finds.
 void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
                           const Heightfield& heightfield, const ExistingFeatures& existing,
+                          const std::vector<Polygon>& reserved,
                           std::vector<std::vector<LineFeature>>& lines,
                           std::vector<FeatureClassReport>& reports, Warnings& warnings);
 

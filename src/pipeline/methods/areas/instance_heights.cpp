@@ -1,4 +1,4 @@
-#include "pipeline/detail/instance_heights.hpp"
+#include "pipeline/methods/areas/instance_heights.hpp"
 
 #include <bit>
 #include <cmath>
@@ -7,18 +7,17 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "pipeline/detail/area_method.hpp"
 
 namespace tw::detail {
 
-std::string instance_heights_fact(const WorldPlan& plan, const Raster<float>& height,
-                                  const Window& halo, const Window& core) {
+std::string instance_heights_fact(const GridSpec& grid, const AreasPlan& areas,
+                                  const Raster<float>& height, const Window& halo,
+                                  const Window& core) {
   std::string fact;
-  const AreasPlan* areas = areas_plan(plan);
-  for (std::size_t a = 0; areas && a < areas->areas.size(); ++a) {
-    const std::vector<ShapeInstance>& instances = areas->areas[a].pattern.instances;
+  for (std::size_t a = 0; a < areas.areas.size(); ++a) {
+    const std::vector<ShapeInstance>& instances = areas.areas[a].pattern.instances;
     for (std::size_t i = 0; i < instances.size(); ++i) {
-      const Vec2 p = plan.grid.world_to_pixel(instances[i].position);
+      const Vec2 p = grid.world_to_pixel(instances[i].position);
       const double col = std::floor(p.x), row = std::floor(p.y);
       if (!(col >= core.col0 && col < core.col_end() && row >= core.row0 && row < core.row_end()))
         continue;
@@ -30,11 +29,9 @@ std::string instance_heights_fact(const WorldPlan& plan, const Raster<float>& he
   return fact;
 }
 
-InstanceHeights unknown_instance_heights(const WorldPlan& plan) {
+InstanceHeights unknown_instance_heights(const AreasPlan& areas) {
   InstanceHeights heights;
-  const AreasPlan* areas = areas_plan(plan);
-  if (!areas) return heights;
-  for (const PlannedArea& area : areas->areas)
+  for (const PlannedArea& area : areas.areas)
     heights.emplace_back(area.pattern.instances.size(), std::numeric_limits<double>::quiet_NaN());
   return heights;
 }

@@ -1,4 +1,4 @@
-#include "pipeline/detail/patterns.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 
 #include <algorithm>
 #include <map>

@@ -14,6 +14,7 @@
 #include "ornament/grow.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/methods/grown/grown_method.hpp"
 #include "pipeline/plan.hpp"
 
 namespace tw::detail {

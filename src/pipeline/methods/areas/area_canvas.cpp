@@ -1,4 +1,4 @@
-#include "pipeline/detail/area_canvas.hpp"
+#include "pipeline/methods/areas/area_canvas.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,9 @@
 #include "geo/height_sampler.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
-#include "pipeline/detail/patterns.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/methods/areas/area_method.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "sketch/hierarchy.hpp"
 

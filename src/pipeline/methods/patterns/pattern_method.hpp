@@ -1,0 +1,54 @@
+#pragma once
+// Zhou et al. 2013 along ribbons as a synthesis method (pipeline/synthesis_method.hpp): every
+// feature of a class with `synthesis` gets its pattern by the exact DP (patterns.hpp);
+// the plan keeps each pattern as the renderer needs it and the exemplars they use.
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "pipeline/config.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
+#include "pipeline/plan.hpp"
+#include "pipeline/synthesis_method.hpp"
+
+namespace tw::detail {
+
+// Where one exemplar channel of a pattern goes on the output grid.
+struct PatternTarget {
+  int exemplar_channel = 0;
+  bool to_height = false;    // else a splat material
+  std::size_t material = 0;  // index into WorldPlan::splat_materials (splat targets)
+  bool is_alpha = false;     // the A channel: the share is the coverage itself
+};
+
+// One feature's synthesized pattern as the renderer needs it.
+struct PlannedPattern {
+  std::size_t class_index = 0;     // in config.features / WorldPlan::class_names
+  std::size_t feature_index = 0;   // in the class's lines
+  std::size_t exemplar_index = 0;  // in PatternsPlan::exemplars
+  bool on_ground = true;           // false: a bridge's or tunnel's, written to placements only
+  Ribbon ribbon;                   // the synthesis ribbon
+  Synthesis synthesis;
+  Window window;  // the output pixels its render can touch (empty: off the grid)
+  // Render options of its class.
+  bool stitch = true;
+  double feather = 0.0;
+  float height_detail = 1.0f;
+  std::vector<PatternTarget> targets;
+};
+
+struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
+  // Synthesized patterns, in synthesis order, and the exemplars they use.
+  std::deque<Exemplar> exemplars;
+  std::vector<PlannedPattern> patterns;
+  // What the synthesis returned, until collected (the areas avoid its coverage).
+  std::shared_ptr<PatternRun> run;
+};
+
+const SynthesisMethod& pattern_method();
+
+// The plan's patterns entry; null when it has none (a plan made by hand).
+const PatternsPlan* patterns_plan(const WorldPlan& plan);
+PatternsPlan* patterns_plan(WorldPlan& plan);
+
+}  // namespace tw::detail
