@@ -3,6 +3,7 @@
 // compares the bytes, so a missing field that matters shows there.
 #include "pipeline/detail/plan_codec.hpp"
 
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 
 namespace tw::detail {
@@ -17,6 +18,12 @@ namespace tw::detail {
     fields_of(io, v);                      \
   }                                        \
   void fields(JsonReader& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(BinaryWriter& io, Type& v) { \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(BinaryReader& io, Type& v) { \
     fields_of(io, v);                      \
   }
 #define F(name) io(#name, v.name);
@@ -105,6 +112,13 @@ void fields(JsonWriter& io, AvoidanceInputs& v) {
   existing_fields(io, v);
 }
 void fields(JsonReader& io, AvoidanceInputs& v) {
+  existing_fields(io, v);
+}
+void fields(BinaryWriter& io, AvoidanceInputs& v) {
+  if (!v.ribbons.empty() || v.current) fail("plan: existing features refer to ribbons");
+  existing_fields(io, v);
+}
+void fields(BinaryReader& io, AvoidanceInputs& v) {
   existing_fields(io, v);
 }
 

@@ -27,6 +27,8 @@ using nlohmann::json;
 
 class JsonWriter;
 class JsonReader;
+class BinaryWriter;  // plan_binary.hpp
+class BinaryReader;
 
 template <class T>
 concept Packed = std::is_arithmetic_v<T> || std::is_same_v<T, Vec2>;
@@ -64,10 +66,13 @@ json encode(const T& v);
 template <class T>
 void decode(const json& j, T& v, const std::string& path);
 
-// The field lists (plan_codec.cpp and, for templates, here). Each type used in a plan has one.
-#define TW_PLAN_FIELDS(Type)            \
-  void fields(JsonWriter& io, Type& v); \
-  void fields(JsonReader& io, Type& v)
+// The field lists (plan_codec.cpp and, for templates, here). Each type used in a plan has one,
+// read and written as JSON values and as bytes (plan_binary.hpp).
+#define TW_PLAN_FIELDS(Type)              \
+  void fields(JsonWriter& io, Type& v);   \
+  void fields(JsonReader& io, Type& v);   \
+  void fields(BinaryWriter& io, Type& v); \
+  void fields(BinaryReader& io, Type& v)
 
 template <class T>
 concept HasFields = requires(JsonWriter& w, T& v) {
