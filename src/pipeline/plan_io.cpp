@@ -329,14 +329,17 @@ WorldPlan read_plan(const fs::path& dir, const std::vector<const SynthesisMethod
                                  only ? &*only : nullptr, where + ": ribbons");
     }
     get_value(objects, files, "junction_discs", plan.junction_discs);
-    get_value(objects, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
-    get_value(objects, files, "synthesis_junctions", plan.synthesis_junctions);
     get_value(objects, files, "existing", plan.existing);
     get_value(objects, files, "terrain_features", plan.terrain_features);
     get_value(objects, files, "terrain_params", plan.terrain_params);
     get_value(objects, files, "terrain", plan.terrain);
-    get_value(objects, files, "report", plan.report);
-    if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
+    // What syntheses read and what the run reports: not a tile's render (left unread for one).
+    if (!tile) {
+      get_value(objects, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
+      get_value(objects, files, "synthesis_junctions", plan.synthesis_junctions);
+      get_value(objects, files, "report", plan.report);
+    }
+    if (!tile && doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
     const std::vector<const SynthesisMethod*>& known = methods_or_builtin(methods);
     const json& entries = doc.at("methods");
     for (std::size_t i = 0; i < entries.size(); ++i) {

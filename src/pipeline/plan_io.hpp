@@ -52,8 +52,9 @@ WorldPlan load_plan(const std::filesystem::path& dir,
 
 // The plan as render_tile needs it for tile `tile` (tasks.json), checked as load_plan checks it:
 // the ribbons that cannot reach the tile's halo window (WorldPlan::ribbon_index grown by
-// avoidance_halo_pixels) are left empty, so its decoding follows the tile, not the world. Only
-// for rendering that tile. Throws tw::Error when the plan has no such tile.
+// avoidance_halo_pixels) are left empty, so its decoding follows the tile, not the world; the
+// syntheses' inputs (synthesis_junction_discs, synthesis_junctions) and the report are not read.
+// Only for rendering that tile. Throws tw::Error when the plan has no such tile.
 WorldPlan load_plan_for_tile(const std::filesystem::path& dir, int tile,
                              const std::vector<const SynthesisMethod*>& methods = {});
 

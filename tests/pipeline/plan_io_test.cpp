@@ -179,6 +179,8 @@ TEST_F(PlanFolder, ATileDecodesOnlyTheRibbonsThatReachItAndRendersTheSameBits) {
   for (const auto& class_ribbons : original.ribbons)
     for (const Ribbon& r : class_ribbons) all.push_back(&r);
   ASSERT_EQ(all.size(), 3u);
+  ASSERT_FALSE(original.synthesis_junction_discs.empty());
+  ASSERT_FALSE(original.report.classes.empty());
   std::size_t skipped = 0, decoded = 0;
   for (const TileSpec& tile : original.tiles) {
     const WorldPlan part = load_plan_for_tile(dir_ / "plan", tile.index);
@@ -204,6 +206,9 @@ TEST_F(PlanFolder, ATileDecodesOnlyTheRibbonsThatReachItAndRendersTheSameBits) {
         }
       }
     EXPECT_EQ(flat, all.size());
+    // Neither the syntheses' inputs nor the report: a tile's render reads neither.
+    EXPECT_TRUE(part.synthesis_junction_discs.empty() && part.synthesis_junctions.empty());
+    EXPECT_TRUE(part.report.classes.empty());
     expect_same_bits(render_tile(original, tile), render_tile(part, tile), tile.index);
   }
   EXPECT_GT(skipped, 0u);  // some tile left a ribbon out
