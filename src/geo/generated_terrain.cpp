@@ -154,7 +154,7 @@ std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTer
 }
 
 std::unique_ptr<HeightfieldSource> detail::open_generated_source(const GeneratedTerrain& params,
-                                                                std::int64_t copied_cells) {
+                                                                 std::int64_t copied_cells) {
   return std::make_unique<GeneratedSource>(params, copied_cells);
 }
 
