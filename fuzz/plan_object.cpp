@@ -1,15 +1,19 @@
-// Fuzz target: a plan object's bytes (CBOR, docs/distributed.md) decoded as the plan's report,
-// its terrain parameters and its lines, the way load_plan decodes verified objects. A bad object is
-// a tw::Error or a json::exception (which load_plan turns into an error naming the plan and key);
-// anything else that escapes, a crash or a sanitizer report is a finding.
+// Fuzz target: a plan object's bytes (docs/distributed.md) decoded as the plan's report, its
+// terrain parameters, its lines and its ribbons, the way load_plan decodes verified objects: as a
+// binary object's body (pipeline/detail/plan_binary.hpp, the plan's own objects) and as CBOR (a
+// method's entries). A bad object is a tw::Error or a json::exception (which load_plan turns into
+// an error naming the plan and key); anything else that escapes, a crash or a sanitizer report is
+// a finding.
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "fuzz_support.hpp"
 #include "pipeline/detail/plan_fields.hpp"
+#include "pipeline/detail/plan_ribbons.hpp"
 
 namespace {
 
@@ -23,6 +27,15 @@ void decode_as(const nlohmann::json& object) {
   }
 }
 
+template <class T>
+void from_bytes_as(std::string_view bytes) {
+  T value;
+  try {
+    tw::detail::from_bytes(bytes, value, "fuzz");
+  } catch (const tw::Error&) {
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -31,6 +44,15 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  from_bytes_as<tw::RunReport>(bytes);
+  from_bytes_as<decltype(tw::WorldPlan::terrain_params)>(bytes);
+  from_bytes_as<decltype(tw::WorldPlan::lines)>(bytes);
+  try {
+    std::vector<std::vector<tw::Ribbon>> ribbons;
+    tw::detail::ribbons_from_bytes(bytes, ribbons, nullptr, "fuzz");
+  } catch (const tw::Error&) {
+  }
   nlohmann::json object;
   try {
     object = nlohmann::json::from_cbor(std::vector<std::uint8_t>(data, data + size));

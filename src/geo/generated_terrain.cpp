@@ -87,35 +87,50 @@ std::string generated_name(const GeneratedTerrain& params) {
 
 class GeneratedSource final : public HeightfieldSource {
  public:
-  explicit GeneratedSource(const GeneratedTerrain& params)
+  GeneratedSource(const GeneratedTerrain& params, std::int64_t copied_cells)
       : HeightfieldSource({params.width, params.height, params.origin_x, params.origin_y,
                            params.pixel_size, params.pixel_size},
                           checked_crs_wkt(params, generated_name(params)), std::nullopt,
                           generated_name(params)),
-        params_(params) {}
+        params_(params),
+        copied_cells_(copied_cells) {}
 
  protected:
-  // The last window generated (up to kRememberedCells) is kept and copied out when the same
-  // window is asked again: a tile's render and its report facts (input height range) compute
-  // the noise once per pixel (issue #23 item 4). cells_read() counts only computed windows.
+  // The last window generated is kept and handed out when the same window is asked again: a
+  // tile's render and its report facts (input height range) compute the noise once per pixel
+  // (issue #23 item 4), at any window size. A window of up to copied_cells_ is copied out (and
+  // stays for a third read); a larger one (an untiled world's) is moved out on its second read,
+  // so the source holds at most one window's band, and only between those two reads.
   Raster<float> read_window(const Window& w) const override {
-    const bool remember = std::int64_t(w.width) * w.height <= kRememberedCells;
-    if (remember) {
+    const bool copy = std::int64_t(w.width) * w.height <= copied_cells_;
+    {
       const std::lock_guard lock(mutex_);
-      if (last_window_ == w && !last_.pixels.empty()) return last_;
+      if (last_window_ == w && !last_.pixels.empty()) {
+        if (copy) return last_;
+        last_window_ = {};
+        Raster<float> out = std::move(last_);
+        last_ = {};
+        return out;
+      }
     }
     Raster<float> cells = generate_cells(params_, w.col0, w.row0, w.width, w.height);
-    if (remember) {
-      const std::lock_guard lock(mutex_);
-      last_window_ = w;
-      last_ = cells;
-    }
+    const std::lock_guard lock(mutex_);
+    computed_ += std::int64_t(w.width) * w.height;
+    last_window_ = w;
+    last_ = cells;
     return cells;
   }
 
+ public:
+  std::int64_t computed() const {
+    const std::lock_guard lock(mutex_);
+    return computed_;
+  }
+
  private:
-  static constexpr std::int64_t kRememberedCells = std::int64_t(4096) * 4096;  // 64 MiB
   GeneratedTerrain params_;
+  std::int64_t copied_cells_;
+  mutable std::int64_t computed_ = 0;  // guarded by mutex_
   mutable std::mutex mutex_;  // guards last_window_ and last_
   mutable Window last_window_{};
   mutable Raster<float> last_;
@@ -135,7 +150,17 @@ Heightfield generate_heightfield(const GeneratedTerrain& params) {
 }
 
 std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params) {
-  return std::make_unique<GeneratedSource>(params);
+  return detail::open_generated_source(params, detail::kGeneratedCopiedCells);
+}
+
+std::unique_ptr<HeightfieldSource> detail::open_generated_source(const GeneratedTerrain& params,
+                                                                 std::int64_t copied_cells) {
+  return std::make_unique<GeneratedSource>(params, copied_cells);
+}
+
+std::int64_t detail::generated_cells(const HeightfieldSource& source) {
+  const auto* generated = dynamic_cast<const GeneratedSource*>(&source);
+  return generated ? generated->computed() : 0;
 }
 
 bool detail::is_generated_source(const HeightfieldSource& source) {

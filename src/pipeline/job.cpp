@@ -319,10 +319,7 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   const json job = detail::read_job(plan_dir);
   const std::string hash = plan_hash(plan_dir);
   detail::require_complete_plan(plan_dir, hash);
-  const WorldPlan plan = load_plan(plan_dir);
-  if (tile < 0 || std::size_t(tile) >= plan.tiles.size())
-    fail("--tile {}: the plan has {} tiles (0 to {})", tile, plan.tiles.size(),
-         int(plan.tiles.size()) - 1);
+  const WorldPlan plan = load_plan_for_tile(plan_dir, tile);
   const TileSpec& spec = plan.tiles[std::size_t(tile)];
   const WriteOptions write = detail::layer_write_options(
       detail::layer_options(detail::job_config(job)), plan.heights.source);

@@ -13,8 +13,11 @@
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_ribbons.hpp"
 #include "pipeline/json_file.hpp"
 #include "pipeline/synthesis_method.hpp"
+#include "raster/footprint.hpp"
+#include "raster/window_index.hpp"
 
 namespace tw {
 
@@ -25,16 +28,23 @@ using nlohmann::json;
 
 namespace {
 
-json get_cbor_json(const detail::PlanObjects& objects, const json& files, const std::string& key) {
+const json& file_entry(const detail::PlanObjects& objects, const json& files,
+                       const std::string& key) {
   if (!files.contains(key)) fail("plan {}: files.{}: missing", objects.dir().string(), key);
-  return objects.get_cbor(files[key], "files." + key);
+  return files[key];
+}
+
+// A binary object of plan.json's `files`, checked against its hash and version.
+detail::PlanObjects::Binary get_binary(const detail::PlanObjects& objects, const json& files,
+                                       const std::string& key) {
+  return objects.get_binary(file_entry(objects, files, key), "files." + key);
 }
 
 template <class T>
-void get_cbor(const detail::PlanObjects& objects, const json& files, const std::string& key,
-              T& value) {
-  decode(get_cbor_json(objects, files, key), value,
-         fmt::format("plan {}: {}", objects.dir().string(), key));
+void get_value(const detail::PlanObjects& objects, const json& files, const std::string& key,
+               T& value) {
+  detail::from_bytes(get_binary(objects, files, key).body(), value,
+                     fmt::format("plan {}: {}", objects.dir().string(), key));
 }
 
 // The report's timings move out of its object into plan.json, outside the plan's hash: two plans
@@ -116,27 +126,37 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
   detail::PlanObjects store(dir);
   json files;
   // Numbers that may be NaN or infinite stay out of the text of plan.json.
-  files["settings"] =
-      store.put_cbor(json{{"nodata", encode(plan.nodata)}, {"render", encode(plan.render)}});
-  files["lines"] = store.put_cbor(encode(plan.lines));
-  files["ribbons"] = store.put_cbor(encode(plan.ribbons));
-  files["junction_discs"] = store.put_cbor(encode(plan.junction_discs));
-  files["synthesis_junction_discs"] = store.put_cbor(encode(plan.synthesis_junction_discs));
-  files["synthesis_junctions"] = store.put_cbor(encode(plan.synthesis_junctions));
-  files["existing"] = store.put_cbor(encode(plan.existing));
-  files["terrain_features"] = store.put_cbor(encode(plan.terrain_features));
-  files["terrain_params"] = store.put_cbor(encode(plan.terrain_params));
-  files["terrain"] = store.put_cbor(encode(plan.terrain));
-  files["index"] = store.put_cbor(
-      json{{"features", encode(plan.feature_index)}, {"ribbons", encode(plan.ribbon_index)}});
+  // Binary objects (plan_binary.hpp): read straight into the values, without a JSON document.
+  {
+    detail::BinaryWriter settings;  // numbers that may be NaN or infinite stay out of plan.json
+    settings.write(plan.nodata);
+    settings.write(plan.render);
+    files["settings"] = store.put_binary(settings.bytes);
+  }
+  files["lines"] = store.put_binary(detail::to_bytes(plan.lines));
+  files["ribbons"] = store.put_binary(detail::ribbons_to_bytes(plan.ribbons));
+  files["junction_discs"] = store.put_binary(detail::to_bytes(plan.junction_discs));
+  files["synthesis_junction_discs"] =
+      store.put_binary(detail::to_bytes(plan.synthesis_junction_discs));
+  files["synthesis_junctions"] = store.put_binary(detail::to_bytes(plan.synthesis_junctions));
+  files["existing"] = store.put_binary(detail::to_bytes(plan.existing));
+  files["terrain_features"] = store.put_binary(detail::to_bytes(plan.terrain_features));
+  files["terrain_params"] = store.put_binary(detail::to_bytes(plan.terrain_params));
+  files["terrain"] = store.put_binary(detail::to_bytes(plan.terrain));
+  {
+    detail::BinaryWriter index;
+    index.write(plan.feature_index);
+    index.write(plan.ribbon_index);
+    files["index"] = store.put_binary(index.bytes);
+  }
   RunReport report = plan.report;
   const json timings = take_timings(report);
-  files["report"] = store.put_cbor(encode(report));
+  files["report"] = store.put_binary(detail::to_bytes(report));
   // Every method's entry, in the methods' order: its name, its index and what it encodes.
   json methods = json::array();
   for (const MethodPlan& entry : plan.methods)
     methods.push_back({{"name", entry.method->name()},
-                       {"index", store.put_cbor(encode(entry.index))},
+                       {"index", store.put_binary(detail::to_bytes(entry.index))},
                        {"entry", entry.method->encode(entry, store)}});
   // A DEM file travels as its path, options and the hash of its bytes (render-tile reads its
   // windows from it; the hash keeps the plan content-addressed); a generated world as its
@@ -153,7 +173,7 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
   json heights = {{"source", plan.heights.source},
                   {"generated", encode(plan.heights.generated)},
                   {"file", encode(file)},
-                  {"raster", raster ? store.put_cbor(encode(raster)) : json()}};
+                  {"raster", raster ? store.put_binary(detail::to_bytes(raster)) : json()}};
 
   json doc = {{"format", kPlanFormat},
               {"version", kPlanVersion},
@@ -221,7 +241,11 @@ std::string plan_hash(const fs::path& dir) {
   return read_plan_file(dir / "plan.json", kPlanFormat).value("plan", "");
 }
 
-WorldPlan load_plan(const fs::path& dir, const std::vector<const SynthesisMethod*>& methods) {
+namespace {
+
+// load_plan, and with `tile` load_plan_for_tile.
+WorldPlan read_plan(const fs::path& dir, const std::vector<const SynthesisMethod*>& methods,
+                    std::optional<int> tile) {
   const json doc = read_plan_file(dir / "plan.json", kPlanFormat);
   std::error_code ec;
   if (!fs::is_regular_file(dir / "tasks.json", ec))
@@ -268,32 +292,54 @@ WorldPlan load_plan(const fs::path& dir, const std::vector<const SynthesisMethod
     decode(heights.at("file"), plan.heights.file, where + ": heights.file");
     if (!heights.at("raster").is_null()) {
       const json wrapper = {{"raster", heights["raster"]}};
-      get_cbor(objects, wrapper, "raster", plan.heights.heights);
+      get_value(objects, wrapper, "raster", plan.heights.heights);
     }
     if (plan.heights.file)
       plan.heights.reader = open_planned_heightfield(*plan.heights.file, where);
     if (plan.heights.generated)
       plan.heights.reader = open_generated_heightfield(*plan.heights.generated);
+    if (tile && (*tile < 0 || std::size_t(*tile) >= plan.tiles.size()))
+      fail("--tile {}: the plan has {} tiles (0 to {})", *tile, plan.tiles.size(),
+           int(plan.tiles.size()) - 1);
     const json& files = doc.at("files");
-    const json settings = get_cbor_json(objects, files, "settings");
-    detail::JsonReader settings_reader(settings, where + ": settings");
-    settings_reader("nodata", plan.nodata);
-    settings_reader("render", plan.render);
-    get_cbor(objects, files, "lines", plan.lines);
-    get_cbor(objects, files, "ribbons", plan.ribbons);
-    get_cbor(objects, files, "junction_discs", plan.junction_discs);
-    get_cbor(objects, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
-    get_cbor(objects, files, "synthesis_junctions", plan.synthesis_junctions);
-    get_cbor(objects, files, "existing", plan.existing);
-    get_cbor(objects, files, "terrain_features", plan.terrain_features);
-    get_cbor(objects, files, "terrain_params", plan.terrain_params);
-    get_cbor(objects, files, "terrain", plan.terrain);
-    const json index = get_cbor_json(objects, files, "index");
-    detail::JsonReader index_reader(index, where + ": index");
-    index_reader("features", plan.feature_index);
-    index_reader("ribbons", plan.ribbon_index);
-    get_cbor(objects, files, "report", plan.report);
-    if (doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
+    {
+      const auto settings = get_binary(objects, files, "settings");
+      detail::BinaryReader reader(settings.body(), where + ": settings");
+      reader.read(plan.nodata);
+      reader.read(plan.render);
+      reader.finish();
+    }
+    {
+      const auto index = get_binary(objects, files, "index");
+      detail::BinaryReader reader(index.body(), where + ": index");
+      reader.read(plan.feature_index);
+      reader.read(plan.ribbon_index);
+      reader.finish();
+    }
+    get_value(objects, files, "lines", plan.lines);
+    {
+      // A tile's render reads the ribbons that can reach its halo window (render_tile's
+      // avoidance, the tile cache's key): the others stay empty.
+      std::optional<std::vector<std::size_t>> only;
+      if (tile)
+        only =
+            items_meeting(plan.ribbon_index, grow_window(plan.tiles[std::size_t(*tile)].halo_window,
+                                                         avoidance_halo_pixels(plan), plan.grid));
+      detail::ribbons_from_bytes(get_binary(objects, files, "ribbons").body(), plan.ribbons,
+                                 only ? &*only : nullptr, where + ": ribbons");
+    }
+    get_value(objects, files, "junction_discs", plan.junction_discs);
+    get_value(objects, files, "existing", plan.existing);
+    get_value(objects, files, "terrain_features", plan.terrain_features);
+    get_value(objects, files, "terrain_params", plan.terrain_params);
+    get_value(objects, files, "terrain", plan.terrain);
+    // What syntheses read and what the run reports: not a tile's render (left unread for one).
+    if (!tile) {
+      get_value(objects, files, "synthesis_junction_discs", plan.synthesis_junction_discs);
+      get_value(objects, files, "synthesis_junctions", plan.synthesis_junctions);
+      get_value(objects, files, "report", plan.report);
+    }
+    if (!tile && doc.contains("timings")) restore_timings(doc["timings"], plan.report, where);
     const std::vector<const SynthesisMethod*>& known = methods_or_builtin(methods);
     const json& entries = doc.at("methods");
     for (std::size_t i = 0; i < entries.size(); ++i) {
@@ -305,14 +351,25 @@ WorldPlan load_plan(const fs::path& dir, const std::vector<const SynthesisMethod
         fail("{}: {}: method '{}' is not one this terraweave knows; plan again ({})", where, key,
              name, detail::plan_again(dir));
       MethodPlan& entry = plan.methods.emplace_back(*method, (*method)->empty_payload());
-      decode(objects.get_cbor(entries[i].at("index"), key + ".index"), entry.index,
-             where + ": " + key + ".index");
+      detail::from_bytes(objects.get_binary(entries[i].at("index"), key + ".index").body(),
+                         entry.index, where + ": " + key + ".index");
       (*method)->decode(entries[i].at("entry"), objects, entry);
     }
   } catch (const json::exception& e) {
     fail("{}: {}", where, e.what());
   }
   return plan;
+}
+
+}  // namespace
+
+WorldPlan load_plan(const fs::path& dir, const std::vector<const SynthesisMethod*>& methods) {
+  return read_plan(dir, methods, std::nullopt);
+}
+
+WorldPlan load_plan_for_tile(const fs::path& dir, int tile,
+                             const std::vector<const SynthesisMethod*>& methods) {
+  return read_plan(dir, methods, tile);
 }
 
 }  // namespace tw

@@ -6,9 +6,11 @@
 //                              options and XXH3-128 of its bytes; a generated world by its
 //                              parameters), and the list of object files with their content hashes
 //   <dir>/tasks.json           one task per tile: index, _x/_y, window and halo window
-//   <dir>/objects/<hash>.cbor  lines, ribbons, junctions, existing features, terrain plan,
-//                              heights (only when held in memory), the plan's report, and what
-//                              each synthesis method stores of its entry (`methods` in
+//   <dir>/objects/<hash>.bin   settings, lines, ribbons, junctions, existing features, terrain
+//                              plan, indexes, heights (only when held in memory), the plan's
+//                              report: values as bytes (detail/plan_binary.hpp), the ribbons
+//                              with an offset table so a tile decodes only those that reach it
+//   <dir>/objects/<hash>.cbor  what each synthesis method stores of its entry (`methods` in
 //                              plan.json: areas' shapes, exemplars' texels, grown lines...)
 //   <dir>/objects/<hash>.json  one pattern's placements (synth/placements_io)
 // <hash> is the XXH3-128 of the file's bytes: a file is never trusted if it does not match, and
@@ -30,8 +32,9 @@ inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // synthesis_junctions (choose: mix); 6: tasks.json's hash in plan.json, syntheses.json's in
 // job.json, a mix's report fields (issue #24); 7: a network class's report (`network`); 8: one
 // entry per synthesis method (`methods`: name, index, the method's own entry) in place of
-// area_names, exemplars, patterns and files.areas/grown/index.patterns/index.areas.
-inline constexpr int kPlanVersion = 8;
+// area_names, exemplars, patterns and files.areas/grown/index.patterns/index.areas; 9: the
+// plan's own objects and the methods' indexes as binary objects (.bin) in place of CBOR.
+inline constexpr int kPlanVersion = 9;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's
@@ -46,6 +49,14 @@ std::string save_plan(const WorldPlan& plan, const std::filesystem::path& dir);
 // a method not among them is an error naming it.
 WorldPlan load_plan(const std::filesystem::path& dir,
                     const std::vector<const SynthesisMethod*>& methods = {});
+
+// The plan as render_tile needs it for tile `tile` (tasks.json), checked as load_plan checks it:
+// the ribbons that cannot reach the tile's halo window (WorldPlan::ribbon_index grown by
+// avoidance_halo_pixels) are left empty, so its decoding follows the tile, not the world; the
+// syntheses' inputs (synthesis_junction_discs, synthesis_junctions) and the report are not read.
+// Only for rendering that tile. Throws tw::Error when the plan has no such tile.
+WorldPlan load_plan_for_tile(const std::filesystem::path& dir, int tile,
+                             const std::vector<const SynthesisMethod*>& methods = {});
 
 // The plan's hash as plan.json records it (without reading the objects).
 std::string plan_hash(const std::filesystem::path& dir);

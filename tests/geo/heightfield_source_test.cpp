@@ -7,6 +7,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "geo/detail/generated_source.hpp"
 #include "geo/height_sampler.hpp"
 #include "geo/resample.hpp"
 #include "geo_test_data.hpp"
@@ -146,6 +147,28 @@ TEST(HeightfieldSource, TheSameGeneratedWindowAgainIsTheSameCopy) {
   EXPECT_TRUE(same_bits(whole.height, tile, source->read(tile)));
   EXPECT_TRUE(same_bits(whole.height, other, source->read(other)));
   EXPECT_TRUE(same_bits(whole.height, tile, source->read(tile)));
+  EXPECT_EQ(detail::generated_cells(*source), 2 * 120 * 90 + 16 * 16);
+}
+
+// An untiled world's window (over the copied size) is kept too, and moved out on its second
+// read: the noise once per pixel at any size, and the source holds the band only in between.
+TEST(HeightfieldSource, ALargeGeneratedWindowIsComputedOnceAndHandedOutOnce) {
+  GeneratedTerrain params;
+  params.width = 300;
+  params.height = 200;
+  params.seed = 5;
+  const auto source = detail::open_generated_source(params, 100);  // 100 cells are "large"
+  const Heightfield whole = generate_heightfield(params);
+  const Window window{40, 30, 120, 90};
+  const std::int64_t cells = std::int64_t(window.width) * window.height;
+  Raster<float> first = source->read(window);
+  EXPECT_EQ(detail::generated_cells(*source), cells);
+  first.pixels.assign(first.pixels.size(), -1.0f);  // the caller's raster, not the kept one
+  EXPECT_TRUE(same_bits(whole.height, window, source->read(window)));
+  EXPECT_EQ(detail::generated_cells(*source), cells);  // not computed again
+  EXPECT_TRUE(same_bits(whole.height, window, source->read(window)));
+  EXPECT_EQ(detail::generated_cells(*source), 2 * cells);  // handed out already: computed again
+  EXPECT_EQ(source->cells_read(), 3 * cells);
 }
 
 // A HeightSampler over a generated world reads 16 x 16 blocks whatever block it is given: the

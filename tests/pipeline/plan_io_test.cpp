@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -16,11 +17,15 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "pipeline/detail/job_files.hpp"
+#include "pipeline/detail/plan_fields.hpp"
+#include "pipeline/detail/plan_ribbons.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/synthesis_job.hpp"
+#include "raster/footprint.hpp"
+#include "raster/window_index.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -161,6 +166,58 @@ TEST_F(PlanFolder, AnObjectThatDoesNotMatchItsHashIsRefusedByName) {
     EXPECT_THAT(e.what(), HasSubstr("files.ribbons"));
     EXPECT_THAT(e.what(), HasSubstr(object.filename().string()));
     EXPECT_THAT(e.what(), HasSubstr("does not match its content hash"));
+  }
+}
+
+// A render-tile decodes the ribbons that can reach its tile, not the world's (issue #23 item 4):
+// the others are empty in its plan, and every tile renders the bits of the whole plan.
+TEST_F(PlanFolder, ATileDecodesOnlyTheRibbonsThatReachItAndRendersTheSameBits) {
+  WorldPlan original = plan();
+  original.render.avoidance_max_distance = 20.0;  // a reach of 3 pixels: not the whole world
+  save_plan(original, dir_ / "plan");
+  std::vector<const Ribbon*> all;
+  for (const auto& class_ribbons : original.ribbons)
+    for (const Ribbon& r : class_ribbons) all.push_back(&r);
+  ASSERT_EQ(all.size(), 3u);
+  ASSERT_FALSE(original.synthesis_junction_discs.empty());
+  ASSERT_FALSE(original.report.classes.empty());
+  std::size_t skipped = 0, decoded = 0;
+  for (const TileSpec& tile : original.tiles) {
+    const WorldPlan part = load_plan_for_tile(dir_ / "plan", tile.index);
+    const std::vector<std::size_t> reach = items_meeting(
+        original.ribbon_index,
+        grow_window(tile.halo_window, avoidance_halo_pixels(original), original.grid));
+    std::size_t flat = 0;
+    for (std::size_t c = 0; c < part.ribbons.size(); ++c)
+      for (const Ribbon& r : part.ribbons[c]) {
+        const Ribbon& whole = *all.at(flat);
+        if (std::binary_search(reach.begin(), reach.end(), flat++)) {
+          ++decoded;
+          ASSERT_EQ(r.pieces.size(), whole.pieces.size());
+          ASSERT_FALSE(r.pieces.empty());
+          EXPECT_EQ(
+              std::memcmp(r.pieces.data(), whole.pieces.data(), r.pieces.size() * sizeof(Piece)),
+              0);
+          EXPECT_EQ(r.centerline.points.size(), whole.centerline.points.size());
+          EXPECT_EQ(r.closed, whole.closed);
+        } else {
+          ++skipped;
+          EXPECT_TRUE(r.pieces.empty() && r.centerline.points.empty());
+        }
+      }
+    EXPECT_EQ(flat, all.size());
+    // Neither the syntheses' inputs nor the report: a tile's render reads neither.
+    EXPECT_TRUE(part.synthesis_junction_discs.empty() && part.synthesis_junctions.empty());
+    EXPECT_TRUE(part.report.classes.empty());
+    expect_same_bits(render_tile(original, tile), render_tile(part, tile), tile.index);
+  }
+  EXPECT_GT(skipped, 0u);  // some tile left a ribbon out
+  EXPECT_GT(decoded, 0u);
+  try {
+    load_plan_for_tile(dir_ / "plan", 9);
+    FAIL() << "a tile the plan does not have was loaded";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("--tile 9: the plan has 9 tiles (0 to 8)"));
   }
 }
 
@@ -479,6 +536,63 @@ TEST(SynthesisGraph, UnknownSelfCyclesAndLaterDependenciesAreNamed) {
   nlohmann::json wrong_index = graph({{}, {0}});
   wrong_index[1]["index"] = 7;
   EXPECT_THAT(error(wrong_index), HasSubstr("features[1]: `index` is not 1"));
+}
+
+// The plan's binary objects (detail/plan_binary.hpp): exact values (NaN, -0, optional, nested
+// vectors) back, and bytes that are short or too long are one error naming the object.
+TEST(PlanBinary, ValuesComeBackExactlyAndBadBytesAreOneClearError) {
+  std::vector<std::vector<Ribbon>> ribbons(2);
+  Curve line{{{0.0, 0.0}, {10.0, 0.5}, {20.0, -0.0}, {31.0, 2.0}}, false};
+  ribbons[1].push_back(make_ribbon(line, {4.0, 5.0, 0.0}));
+  ribbons[1].push_back(Ribbon{});  // a feature too short for a ribbon
+  ribbons[1].push_back(make_ribbon(line, {2.0, 3.0, 0.0}));
+  const std::optional<double> nodata = std::nan("");
+  const std::string bytes = detail::ribbons_to_bytes(ribbons);
+  std::vector<std::vector<Ribbon>> back;
+  detail::ribbons_from_bytes(bytes, back, nullptr, "test: ribbons");
+  ASSERT_EQ(back.size(), 2u);
+  ASSERT_EQ(back[1].size(), 3u);
+  EXPECT_TRUE(back[0].empty());
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(detail::to_bytes(back[1][i]), detail::to_bytes(ribbons[1][i])) << i;
+    EXPECT_EQ(back[1][i].pieces.size(), ribbons[1][i].pieces.size());
+  }
+  EXPECT_GT(back[1][2].pieces.size(), 5u);
+  const std::vector<std::size_t> only = {2};  // flat index: class 1, ribbon 1
+  detail::ribbons_from_bytes(bytes, back, &only, "test: ribbons");
+  EXPECT_TRUE(back[1][0].pieces.empty());
+  EXPECT_EQ(back[1][1].pieces.size(), 0u);
+  EXPECT_EQ(back[1][2].pieces.size(), ribbons[1][2].pieces.size());
+
+  std::optional<double> nodata_back;
+  detail::from_bytes(detail::to_bytes(nodata), nodata_back, "test: nodata");
+  ASSERT_TRUE(nodata_back.has_value());
+  EXPECT_TRUE(std::isnan(*nodata_back));
+
+  const std::string whole = detail::to_bytes(ribbons);
+  for (const std::string& bad : {whole.substr(0, whole.size() - 3), whole + "x"}) {
+    try {
+      detail::from_bytes(bad, back, "plan P: ribbons");
+      FAIL() << "bad bytes were read";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("plan P: ribbons: "));
+    }
+  }
+  try {  // a count larger than the bytes left never allocates
+    std::string huge = whole;
+    const std::uint64_t count = std::uint64_t(1) << 60;
+    std::memcpy(huge.data(), &count, sizeof count);
+    detail::from_bytes(huge, back, "plan P: ribbons");
+    FAIL() << "a corrupt count was read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("more than the object holds"));
+  }
+  try {
+    detail::ribbons_from_bytes(bytes.substr(0, bytes.size() - 1), back, nullptr, "plan P: ribbons");
+    FAIL() << "short ribbons were read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("plan P: ribbons: "));
+  }
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #pragma once
 // What HeightSampler (geo) asks of a source without widening HeightfieldSource's interface.
+#include <cstdint>
+#include <memory>
+
+#include "geo/heightfield.hpp"
 #include "geo/heightfield_source.hpp"
 
 namespace tw::detail {
@@ -11,5 +15,16 @@ bool is_generated_source(const HeightfieldSource& source);
 
 // The block side a HeightSampler uses over a generated world.
 inline constexpr int kGeneratedSampleBlock = 16;
+
+// A generated world's source keeps the last window it computed, so the same window asked again
+// (a tile's render, then its report facts) is not computed twice: a window of up to
+// `copied_cells` is copied out on every read of it, a larger one moved out on its second read
+// (the source then holds nothing). open_generated_heightfield uses kGeneratedCopiedCells.
+inline constexpr std::int64_t kGeneratedCopiedCells = std::int64_t(4096) * 4096;  // 64 MiB
+std::unique_ptr<HeightfieldSource> open_generated_source(const GeneratedTerrain& params,
+                                                         std::int64_t copied_cells);
+// The cells a generated source computed (cells_read() counts the kept windows handed out too);
+// 0 for another source.
+std::int64_t generated_cells(const HeightfieldSource& source);
 
 }  // namespace tw::detail

@@ -4,6 +4,7 @@
 // that matters shows there.
 #include "pipeline/detail/plan_codec.hpp"
 
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 
 namespace tw::detail {
@@ -86,6 +87,13 @@ void fields(JsonWriter& io, AvoidanceInputs& v) {
   existing_fields(io, v);
 }
 void fields(JsonReader& io, AvoidanceInputs& v) {
+  existing_fields(io, v);
+}
+void fields(BinaryWriter& io, AvoidanceInputs& v) {
+  if (!v.ribbons.empty() || v.current) fail("plan: existing features refer to ribbons");
+  existing_fields(io, v);
+}
+void fields(BinaryReader& io, AvoidanceInputs& v) {
   existing_fields(io, v);
 }
 

@@ -27,6 +27,8 @@ using nlohmann::json;
 
 class JsonWriter;
 class JsonReader;
+class BinaryWriter;  // plan_binary.hpp
+class BinaryReader;
 
 template <class T>
 concept Packed = std::is_arithmetic_v<T> || std::is_same_v<T, Vec2>;
@@ -64,12 +66,16 @@ json encode(const T& v);
 template <class T>
 void decode(const json& j, T& v, const std::string& path);
 
-// The field lists (plan_codec.cpp and, for templates, here). Each type used in a plan has one.
-#define TW_PLAN_FIELDS(Type)            \
-  void fields(JsonWriter& io, Type& v); \
-  void fields(JsonReader& io, Type& v)
+// The field lists (plan_codec.cpp and, for templates, here). Each type used in a plan has one,
+// read and written as JSON values and as bytes (plan_binary.hpp).
+#define TW_PLAN_FIELDS(Type)              \
+  void fields(JsonWriter& io, Type& v);   \
+  void fields(JsonReader& io, Type& v);   \
+  void fields(BinaryWriter& io, Type& v); \
+  void fields(BinaryReader& io, Type& v)
 
-// Defines the field list of Type for both directions, in one .cpp (plan_codec.cpp for the
+// Defines the field list of Type for both directions and both forms (JSON, binary: the .cpp
+// includes plan_binary.hpp), in one .cpp (plan_codec.cpp for the
 // plan's own types, a method's file for its own): TW_DEFINE_PLAN_FIELDS(Type, TW_FIELD(a)
 // TW_FIELD(b)). A field list is defined before the encode or decode that needs it.
 #define TW_DEFINE_PLAN_FIELDS(Type, ...)   \
@@ -81,6 +87,12 @@ void decode(const json& j, T& v, const std::string& path);
     fields_of(io, v);                      \
   }                                        \
   void fields(JsonReader& io, Type& v) {   \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(BinaryWriter& io, Type& v) { \
+    fields_of(io, v);                      \
+  }                                        \
+  void fields(BinaryReader& io, Type& v) { \
     fields_of(io, v);                      \
   }
 #define TW_FIELD(name) io(#name, v.name);

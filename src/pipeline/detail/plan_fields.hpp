@@ -1,5 +1,7 @@
 #pragma once
-// The field lists of plan_codec.cpp, declared for the encode/decode templates.
+// The field lists of plan_codec.cpp, declared for the encode/decode templates (JSON values and
+// bytes).
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/plan.hpp"
 

@@ -1,10 +1,13 @@
 #include "pipeline/detail/plan_objects.hpp"
 
+#include <cstdint>
+#include <cstring>
 #include <system_error>
 
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "core/file_io.hpp"
+#include "pipeline/plan_io.hpp"
 
 namespace tw::detail {
 
@@ -26,6 +29,37 @@ json PlanObjects::put(const std::string& bytes, const std::string& extension) co
 json PlanObjects::put_cbor(const json& value) const {
   const std::vector<std::uint8_t> cbor = json::to_cbor(value);
   return put(std::string(cbor.begin(), cbor.end()), ".cbor");
+}
+
+namespace {
+constexpr std::string_view kBinaryMagic = "twplan.b";
+constexpr std::size_t kBinaryHeader = kBinaryMagic.size() + sizeof(std::uint32_t);
+}  // namespace
+
+json PlanObjects::put_binary(std::string_view body) const {
+  std::string bytes;
+  bytes.reserve(kBinaryHeader + body.size());
+  bytes.append(kBinaryMagic);
+  const std::uint32_t version = kPlanVersion;
+  bytes.append(reinterpret_cast<const char*>(&version), sizeof version);
+  bytes.append(body);
+  return put(bytes, ".bin");
+}
+
+std::string_view PlanObjects::Binary::body() const {
+  return std::string_view(bytes).substr(kBinaryHeader);
+}
+
+PlanObjects::Binary PlanObjects::get_binary(const json& entry, const std::string& key) const {
+  Binary object{get(entry, key)};
+  std::uint32_t version = 0;
+  if (object.bytes.size() >= kBinaryHeader)
+    std::memcpy(&version, object.bytes.data() + kBinaryMagic.size(), sizeof version);
+  if (object.bytes.size() < kBinaryHeader || !object.bytes.starts_with(kBinaryMagic) ||
+      version != std::uint32_t(kPlanVersion))
+    fail("plan {}: {}: {} is not a version {} binary object (plan again)", dir_.string(), key,
+         entry["file"].get<std::string>(), kPlanVersion);
+  return object;
 }
 
 std::string PlanObjects::get(const json& entry, const std::string& key) const {

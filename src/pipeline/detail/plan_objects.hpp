@@ -4,6 +4,7 @@
 // The plan's own fields and every method's entry (SynthesisMethod::encode) store through it.
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -17,11 +18,21 @@ class PlanObjects {
   // returns the entry naming it.
   nlohmann::json put(const std::string& bytes, const std::string& extension) const;
   nlohmann::json put_cbor(const nlohmann::json& value) const;
+  // Values as bytes (plan_binary.hpp: to_bytes), behind a header of the magic "twplan.b" and
+  // the plan version (uint32), as objects/<hash>.bin.
+  nlohmann::json put_binary(std::string_view body) const;
 
   // What an entry names, refused (tw::Error naming `key`) when its bytes do not match their
   // hash or it is not under objects/.
   std::string get(const nlohmann::json& entry, const std::string& key) const;
   nlohmann::json get_cbor(const nlohmann::json& entry, const std::string& key) const;
+  // A binary object's bytes; body() is what follows the header (refused, naming `key`, when the
+  // header is not this version's).
+  struct Binary {
+    std::string bytes;
+    std::string_view body() const;
+  };
+  Binary get_binary(const nlohmann::json& entry, const std::string& key) const;
 
   const std::filesystem::path& dir() const { return dir_; }
 

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/tile_cache.hpp"

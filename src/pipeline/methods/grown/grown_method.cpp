@@ -4,6 +4,7 @@
 
 #include "core/output_folder.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/methods/grown/grow_region.hpp"

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "core/output_folder.hpp"
+#include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"

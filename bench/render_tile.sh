@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# One `terraweave render-tile` of a planned generated world (issue #23 item 4, docs/performance.md,
+# "The plan's objects as bytes"): terraweave make-world (SIZE^2 cells of PIXEL m, tiles of TILE
+# + 16 overlap) with every STRIDE-th road in a class of its own with lane markings synthesized
+# (bench/nightly.sh's world), planned once (`terraweave plan`), then tile TILE_INDEX rendered
+# RUNS times. Prints each run's wall time, CPU seconds (user + system) and peak RSS, and their
+# ranges; with BASELINE=path/to/another/terraweave, that program plans its own copy and runs
+# interleaved with this one (before/after on the same load). With PERF=1 (and perf installed),
+# records one run of each (`perf record --call-graph dwarf`) into WORK/perf.<name>.data.
+# Never fails on time. Usage:
+#   bench/render_tile.sh   (env SIZE=4096 PIXEL=4 TILE=1024 STRIDE=8 TILE_INDEX=5 RUNS=5
+#                           TERRAWEAVE=build/src/terraweave BASELINE= PERF=0
+#                           WORK=/tmp/terraweave-render-tile)
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+bin=$(realpath "${TERRAWEAVE:-build/src/terraweave}")
+work=${WORK:-/tmp/terraweave-render-tile}
+size=${SIZE:-4096}
+pixel=${PIXEL:-4}
+tile=${TILE:-1024}
+stride=${STRIDE:-8}
+index=${TILE_INDEX:-5}
+runs=${RUNS:-5}
+[ -x "$bin" ] || { echo "render_tile: build $bin first" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "render_tile: needs GNU time (scripts/setup.sh installs it)" >&2; exit 1; }
+# The image module beside the build tree's program (exemplars are images).
+export TERRAWEAVE_IMAGE_MODULE=${TERRAWEAVE_IMAGE_MODULE:-$(dirname "$bin")/libterraweave_image.so}
+rm -rf "$work" && mkdir -p "$work/world" || exit 1
+
+cd "$work/world" || exit 1
+"$bin" -q make-world --size "$size" --pixel "$pixel" --tile "$tile" --overlap 16 --out . >&2 ||
+  exit 1
+python3 - "$stride" "$root/samples/exemplars/road_lanes_240x64.png" <<'PY' || exit 1
+import sys
+stride, exemplar = sys.argv[1], sys.argv[2]
+text = open("world.yaml").read()
+text = text.replace("precedence: [rivers, roads]", "precedence: [rivers, lanes, roads]")
+roads = text[text.index("  roads:"):]
+lanes = roads.replace("  roads:", "  lanes:", 1) + (
+    f'    where: "fid % {stride} = 0"\n'
+    f"    synthesis: {{ exemplar: {exemplar}, width: 10, scale: 4, delta: 14,\n"
+    "                 channels: { alpha: splat.road_marking, height: height } }\n")
+text = text.replace(roads, roads + f'    where: "fid % {stride} <> 0"\n' + lanes)
+open("world.yaml", "w").write(text)
+PY
+
+names=(this)
+programs=("$bin")
+if [ -n "${BASELINE:-}" ]; then
+  names+=(baseline)
+  programs+=("$(realpath "$BASELINE")")
+fi
+for i in "${!names[@]}"; do
+  mkdir -p "$work/${names[$i]}" && cp world.yaml world.gpkg "$work/${names[$i]}/" || exit 1
+  (cd "$work/${names[$i]}" && "${programs[$i]}" -q plan world.yaml >plan.log 2>&1) ||
+    { echo "render_tile: ${names[$i]}: plan failed (see $work/${names[$i]}/plan.log)" >&2; exit 1; }
+done
+
+for run in $(seq "$runs"); do
+  for i in "${!names[@]}"; do
+    (cd "$work/${names[$i]}" &&
+      /usr/bin/time -f "${names[$i]} %e %U %S %M" -a -o ../times.txt \
+        "${programs[$i]}" -q render-tile out --tile "$index" >/dev/null) ||
+      { echo "render_tile: ${names[$i]}: render-tile failed" >&2; exit 1; }
+  done
+done
+if [ "${PERF:-0}" = 1 ] && command -v perf >/dev/null; then
+  for i in "${!names[@]}"; do
+    (cd "$work/${names[$i]}" && perf record -q -g --call-graph dwarf -F 2000 \
+      -o "$work/perf.${names[$i]}.data" "${programs[$i]}" -q render-tile out --tile "$index" \
+      >/dev/null 2>&1)
+  done
+fi
+echo "render_tile: ${size}^2 cells of $pixel m, tile $index of ${tile}^2 + 16, $runs runs, load $(cut -d' ' -f1-3 /proc/loadavg)"
+python3 - "$work/times.txt" <<'PY'
+import collections, sys
+runs = collections.defaultdict(list)
+for line in open(sys.argv[1]):
+    name, wall, user, system, rss = line.split()
+    runs[name].append((float(wall), float(user) + float(system), int(rss) / 1024))
+for name, values in runs.items():
+    for column, unit, k in (("wall", "s", 0), ("CPU", "s", 1), ("peak RSS", "MB", 2)):
+        v = sorted(x[k] for x in values)
+        print(f"  {name:<9} {column:<9} {v[0]:8.2f} - {v[-1]:8.2f} {unit} (median {v[len(v) // 2]:.2f})")
+PY
