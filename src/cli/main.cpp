@@ -623,6 +623,15 @@ int cli_main(int argc, char** argv) {
         ->check(number_above(0.0, true));
     mode->add_option("--candidates", network_args.growth.candidates, "pieces tried per stub")
         ->check(CLI::Range(1, 1000));
+    mode->add_option_function<std::string>(
+            "--method",
+            [&network_args](const std::string& name) {
+              network_args.growth.method = tw::network_method_named(name);
+            },
+            "growth, quilt, or automatic (default): both, and the one closer to the exemplar's "
+            "statistics; completing lines is growth (quilt refused)")
+        ->check(CLI::IsMember(std::vector<std::string>(tw::kNetworkMethodNames.begin(),
+                                                       tw::kNetworkMethodNames.end())));
     mode->add_option("--out", network_args.out, "folder for network.gpkg, preview.png")
         ->required()
         ->check(non_empty);

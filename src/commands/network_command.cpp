@@ -158,6 +158,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   if (c.mode != "synthesize" && c.mode != "complete" && c.mode != "clone")
     fail("network: unknown mode '{}' (synthesize, complete, clone)", c.mode);
   if (c.out.empty()) fail("{}: --out is required", cmd);
+  if (c.mode == "complete" && c.growth.method == NetworkMethod::quilt)
+    fail(
+        "{}: --method quilt cannot complete a drawing: completing is growth from its ends (use "
+        "growth or automatic)",
+        cmd);
   std::vector<std::filesystem::path> inputs;
   for (const std::string& s : {c.exemplar, c.partial, c.map})
     if (!s.empty()) inputs.push_back(split_source(s).first);
@@ -216,6 +221,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
                                "--map (in --target-region)", warnings);
   else if (kept_lines)  // the user's drawing: kept exactly, never crossing itself
     partial = partial_network(*kept_lines, region, "--partial", c.partial, warnings);
+  if (partial && c.mode == "clone" && c.growth.method == NetworkMethod::quilt)
+    fail(
+        "{}: --method quilt: --target-region {} holds {} lines of --map, and completing them is "
+        "growth from their ends (use growth or automatic, or a target without lines)",
+        cmd, c.target_region, kept_lines->lines.size());
   std::optional<ForbiddenMask> forbidden;
   if (!c.avoid.empty()) forbidden = forbidden_mask(c, region, exemplar_lines.crs_wkt, warnings);
 

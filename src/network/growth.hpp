@@ -6,9 +6,11 @@
 // leave the region, enter a forbidden cell or come closer than the clearance are rejected; the
 // order in which pieces are tried follows the statistics still missing (degree, length and
 // bearing histograms), with seeded ties.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -23,6 +25,17 @@ namespace tw {
 // one whose statistics are closer to the exemplar's; growth to complete a partial network (it
 // grows from the drawn ends).
 enum class NetworkMethod { automatic, grow, quilt };
+
+// The methods as the command's `--method` and the pipeline key `network.method` name them, in
+// the enum's order.
+inline constexpr std::array<std::string_view, 3> kNetworkMethodNames = {"automatic", "growth",
+                                                                        "quilt"};
+// The method named so; anything else is `automatic` (names are checked where they are read).
+inline NetworkMethod network_method_named(std::string_view name) {
+  for (std::size_t i = 0; i < kNetworkMethodNames.size(); ++i)
+    if (kNetworkMethodNames[i] == name) return NetworkMethod(i);
+  return NetworkMethod::automatic;
+}
 
 struct NetworkGrowthOptions {
   std::uint64_t seed = 1;

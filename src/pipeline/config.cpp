@@ -24,6 +24,7 @@ namespace tw {
 
 namespace fs = std::filesystem;
 using detail::MapReader;
+using detail::read_one_of;
 using detail::YamlSource;
 
 namespace {
@@ -34,25 +35,6 @@ bool is_identifier(const std::string& name) {
     return letter(c) || std::isdigit((unsigned char)c) || c == '-';
   };
   return !name.empty() && letter(name[0]) && std::all_of(name.begin() + 1, name.end(), other);
-}
-
-// The index in `options` of the string at `key`; absent: `fallback`, or the reader's "missing
-// key" error without one. Anything else fails as "unknown <noun> 'x', expected a, b or c", with
-// a did-you-mean hint when one is close.
-std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_view noun,
-                        const std::vector<std::string>& options,
-                        std::optional<std::size_t> fallback = 0) {
-  if (!m.has(key) && fallback) return *fallback;
-  const std::string value = m.string(key);
-  for (std::size_t i = 0; i < options.size(); ++i)
-    if (value == options[i]) return i;
-  std::string expected = options.front();
-  for (std::size_t i = 1; i < options.size(); ++i)
-    expected += (i + 1 == options.size() ? " or " : ", ") + options[i];
-  const std::string hint = detail::closest_match(value, options);
-  m.source().fail(m.get(key), m.path(key),
-                  fmt::format("unknown {} '{}', expected {}{}", noun, value, expected,
-                              hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
 }
 
 // m.file(key), recorded as an input of `kind`.

@@ -612,7 +612,8 @@ TEST_F(OptionTables, Network) {
         row("--lead-bearing", base, "--lead-bearing 0", "--lead-bearing 45"),
         row("--clearance", base, "", "--clearance 30"),
         {"--out", {words(base), {}, {}, "out"}, moved, Expect::same_bytes, out_doc},
-        row("--candidates", base, "", "--candidates 2"),
+        // Pieces tried per stub, a knob of growth (`automatic` may keep the quilt).
+        row("--candidates", base, "--method growth", "--method growth --candidates 2"),
     };
     rows.insert(rows.end(), more.begin(), more.end());
     return rows;
@@ -631,7 +632,8 @@ TEST_F(OptionTables, Network) {
            row("--exemplar-region", synth + fields, "", "--exemplar-region @d/west.geojson"),
            row("--region", "-q network synthesize --seed 4 --out out" + fields, region,
                "--region 500000,4000000,500500,4000500"),
-           row("--snap", synth + " --exemplar @d/gappy.geojson", "--snap 0.01", "--snap 6")}),
+           row("--snap", synth + " --exemplar @d/gappy.geojson", "--snap 0.01", "--snap 6"),
+           row("--method", synth + fields, "--method growth", "--method quilt")}),
       batch);
   const std::string complete = "-q network complete" + region + " --seed 4 --out out";
   const std::string drawn = " --partial @d/drawn.geojson";
@@ -649,7 +651,10 @@ TEST_F(OptionTables, Network) {
                "--region 500000,4000000,500600,4000700"),
            row("--partial", complete + fields, drawn, "--partial @d/drawn2.geojson"),
            row("--snap", complete + drawn + " --exemplar @d/gappy.geojson", "--snap 0.01",
-               "--snap 6")}),
+               "--snap 6"),
+           // Completing a drawing is growth: the quilt is refused.
+           row("--method", complete + drawn + fields, "--method growth", "--method quilt",
+               Expect::changes, "", 0, 1)}),
       batch);
   const std::string target = " --target-region 500700,4000000,501300,4000480";
   const std::string source = " --source-region @d/west.geojson";
@@ -671,7 +676,8 @@ TEST_F(OptionTables, Network) {
            row("--target-region", clone + source + map, target,
                "--target-region 500700,4000000,501100,4000480"),
            row("--snap", clone + target + source + " --map @d/gappy.geojson", "--snap 0.01",
-               "--snap 6")}),
+               "--snap 6"),
+           row("--method", clone + target + source + map, "--method growth", "--method quilt")}),
       batch);
 }
 

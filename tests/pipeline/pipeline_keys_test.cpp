@@ -548,6 +548,7 @@ TEST_F(PipelineKeys, Network) {
            {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false", n + "snap=80"},
            {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false"}},
           {"candidates", {n + "candidates=2"}},
+          {"method", {n + "method=quilt"}, {n + "method=growth"}},
           {"avoid"},
       });
 }

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "network/exemplar.hpp"
+#include "network/growth.hpp"
 
 namespace tw::detail {
 
@@ -68,6 +69,12 @@ NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
   if (n.candidates < 1 || n.candidates > 1000)
     m.source().fail(m.get("candidates"), m.path("candidates"),
                     fmt::format("must be in [1, 1000], got {}", n.candidates));
+  const std::vector<std::string> methods(kNetworkMethodNames.begin(), kNetworkMethodNames.end());
+  n.method = methods[read_one_of(m, "method", "method", methods)];
+  if (n.method == "quilt" && !n.partial.empty())
+    m.source().fail(m.get("method"), m.path("method"),
+                    "quilt cannot complete `partial`: completing a drawing is growth from its "
+                    "ends (use growth or automatic)");
   n.avoid = m.bool_or("avoid", true);
   return n;
 }

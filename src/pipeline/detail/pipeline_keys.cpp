@@ -417,6 +417,11 @@ std::vector<KeyBlock> make_blocks() {
             {integer(1, 1000)},
             "pieces tried per open end",
             def(NetworkGrowthOptions{}.candidates)},
+           {"method",
+            {choice({kNetworkMethodNames.begin(), kNetworkMethodNames.end()})},
+            "growth, quilt, or automatic: both and the one closer to the exemplar's statistics "
+            "(growth with `partial`)",
+            def_text("automatic")},
            {"avoid",
             {boolean()},
             "keep off the existing features and the classes placed before",

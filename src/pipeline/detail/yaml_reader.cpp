@@ -413,4 +413,20 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
   return best;
 }
 
+std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_view noun,
+                        const std::vector<std::string>& options,
+                        std::optional<std::size_t> fallback) {
+  if (!m.has(key) && fallback) return *fallback;
+  const std::string value = m.string(key);
+  for (std::size_t i = 0; i < options.size(); ++i)
+    if (value == options[i]) return i;
+  std::string expected = options.front();
+  for (std::size_t i = 1; i < options.size(); ++i)
+    expected += (i + 1 == options.size() ? " or " : ", ") + options[i];
+  const std::string hint = closest_match(value, options);
+  m.source().fail(m.get(key), m.path(key),
+                  fmt::format("unknown {} '{}', expected {}{}", noun, value, expected,
+                              hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+}
+
 }  // namespace tw::detail

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -96,5 +97,12 @@ class MapReader {
 
 // The closest of `candidates` to `word` when it is a plausible typo, else "".
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+
+// The index in `options` of the string at `key`; absent: `fallback`, or the reader's "missing
+// key" error without one. Anything else fails as "unknown <noun> 'x', expected a, b or c", with
+// a did-you-mean hint when one is close.
+std::size_t read_one_of(const MapReader& m, const std::string& key, std::string_view noun,
+                        const std::vector<std::string>& options,
+                        std::optional<std::size_t> fallback = 0);
 
 }  // namespace tw::detail

@@ -142,6 +142,7 @@ void grow_network_classes(const PipelineConfig& config, const HeightfieldSource&
     options.clearance = n.clearance;
     options.snap = n.snap;
     options.candidates = n.candidates;
+    options.method = network_method_named(n.method);
     NetworkGrowthReport report;
     const auto t0 = std::chrono::steady_clock::now();
     Network grown;
