@@ -125,7 +125,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   detail::StageClock clock(report.stages);
 
   clock.start("ingest");
-  detail::check_inputs(given.inputs);
+  detail::check_inputs(given.inputs, options.cache_dir ? options.cache_dir : given.cache_dir);
   // Synthesis width and delta from the exemplars where a class gives none.
   const PipelineConfig config = detail::with_exemplar_defaults(given);
   // Each stage takes its own options, taken from the config here (detail/stage_options.hpp).

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "ornament/element.hpp"
+#include "pipeline/detail/exemplar_memo.hpp"
 #include "pipeline/methods/patterns/patterns.hpp"
 
 namespace tw::detail {
@@ -35,8 +36,13 @@ void check_gdal_input(const InputFile& input) {
 
 }  // namespace
 
-void check_inputs(const std::vector<InputFile>& inputs) {
+void check_inputs(const std::vector<InputFile>& inputs,
+                  const std::optional<std::filesystem::path>& cache_dir) {
   GDALAllRegister();
+  // Only when an exemplar is remembered now. A folder it cannot write is warned about once by
+  // the run's synthesis and tile caches, which use the same folder: not here as well.
+  Warnings unwritable;
+  std::unique_ptr<CacheFolder> folder;
   for (const InputFile& input : inputs) {
     VSIStatBufL stat;
     if (VSIStatL(input.path.c_str(), &stat) != 0) {
@@ -54,11 +60,19 @@ void check_inputs(const std::vector<InputFile>& inputs) {
       check_gdal_input(input);
       continue;
     }
+    // One validated before with these bytes (and height twin) is not decoded again.
+    const std::optional<ContentHash> hash =
+        cache_dir ? std::optional(exemplar_file_hash(input.path)) : std::nullopt;
+    if (hash && remembered_exemplar(*cache_dir, *hash, input.path)) continue;
+    Exemplar exemplar;
     try {
-      load_exemplar_with_height(input.path, false);
+      exemplar = load_exemplar_with_height(input.path, false);
     } catch (const Error& e) {
       fail("{}: cannot be used as an exemplar: {}", input.named_at, e.what());
     }
+    if (!hash) continue;
+    if (!folder) folder = std::make_unique<CacheFolder>(*cache_dir, unwritable);
+    remember_exemplar(*folder, *cache_dir, *hash, exemplar);
   }
 }
 

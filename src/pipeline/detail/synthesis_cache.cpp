@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/detail/exemplar_memo.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/polygons_hash.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
@@ -114,12 +115,13 @@ SynthesisCache::SynthesisCache(std::optional<fs::path> dir, Warnings& warnings)
 
 ContentHash SynthesisCache::exemplar_hash(const fs::path& path) {
   auto it = exemplars_.find(path);
-  if (it == exemplars_.end()) {
-    // The image and the height channel that load_exemplar_with_height reads beside it.
-    const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
-    it = exemplars_.emplace(path, Hasher().file(path).file(height).digest()).first;
-  }
+  if (it == exemplars_.end()) it = exemplars_.emplace(path, exemplar_file_hash(path)).first;
   return it->second;
+}
+
+std::optional<Exemplar> SynthesisCache::remembered(const fs::path& path) {
+  if (!dir_) return std::nullopt;
+  return remembered_exemplar(*dir_, exemplar_hash(path), path);
 }
 
 SynthesisKey SynthesisCache::key(const PipelineConfig& config,

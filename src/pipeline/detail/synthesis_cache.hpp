@@ -73,6 +73,10 @@ class SynthesisCache {
              std::size_t exemplar_slot, const Curve* start,
              const SparseRaster<std::uint8_t>& opaque, const FeatureSynthesisReport& report);
 
+  // The exemplar at `path` as the input check remembered it (detail/exemplar_memo.hpp): size
+  // and channel names, no texels; nullopt without a dir or when not remembered.
+  std::optional<Exemplar> remembered(const std::filesystem::path& path);
+
  private:
   ContentHash exemplar_hash(const std::filesystem::path& path);
   std::filesystem::path entry_path(const ContentHash& key) const;

@@ -97,6 +97,7 @@ void plan_patterns(const PipelineConfig& config, PatternRun run, WorldPlan& plan
     }
   }
   out.exemplars = std::move(run.exemplars);
+  out.unread = std::move(run.unread);
 }
 
 // The synthesis ribbon's width and delta in the feature's report, and where they came from.
@@ -183,7 +184,7 @@ class PatternMethod final : public SynthesisMethod {
     for (const std::size_t p : items_meeting(entry.index, window)) {
       const PlannedPattern& pattern = patterns.patterns[p];
       if (!pattern.on_ground || pattern.targets.empty()) continue;
-      const Exemplar& exemplar = patterns.exemplars[pattern.exemplar_index];
+      const Exemplar& exemplar = patterns.texels(pattern.exemplar_index);
       for (const TileIndex t : ribbon_tiles(pattern.ribbon, plan.grid, kBlock, kCanvasHalo)) {
         const Window part = intersect(layout.tile_window(t), window);
         if (part.width == 0) continue;
@@ -323,7 +324,8 @@ class PatternMethod final : public SynthesisMethod {
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {
     const PatternsPlan& plan = payload_as<PatternsPlan>(entry);
     json exemplars = json::array();
-    for (const Exemplar& e : plan.exemplars) {
+    for (std::size_t i = 0; i < plan.exemplars.size(); ++i) {
+      const Exemplar& e = plan.texels(i);
       json item = objects.put_cbor(detail::encode(e));
       item["path"] = e.path;
       std::error_code ec;  // the source's hash, when it is a file (a generated exemplar is not)
@@ -379,6 +381,11 @@ class PatternMethod final : public SynthesisMethod {
 };
 
 }  // namespace
+
+const Exemplar& PatternsPlan::texels(std::size_t index) const {
+  const std::lock_guard lock(*texels_mutex_);
+  return read_texels(exemplars, unread, index);
+}
 
 const SynthesisMethod& pattern_method() {
   static const PatternMethod method;

@@ -3,7 +3,9 @@
 // feature of a class with `synthesis` gets its pattern by the exact DP (patterns.hpp);
 // the plan keeps each pattern as the renderer needs it and the exemplars they use.
 #include <deque>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "pipeline/config.hpp"
@@ -39,10 +41,18 @@ struct PlannedPattern {
 
 struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
   // Synthesized patterns, in synthesis order, and the exemplars they use.
-  std::deque<Exemplar> exemplars;
+  // An exemplar listed in `unread` (index -> continuous_alpha) is known by its size and channel
+  // names only (detail/exemplar_memo.hpp): texels() reads it on first use, once, from any
+  // thread (the render of a tile that is rebuilt); a run reusing every tile reads none.
+  mutable std::deque<Exemplar> exemplars;
+  mutable std::map<std::size_t, bool> unread;
+  const Exemplar& texels(std::size_t index) const;
   std::vector<PlannedPattern> patterns;
   // What the synthesis returned, until collected (the areas avoid its coverage).
   std::shared_ptr<PatternRun> run;
+
+ private:
+  std::shared_ptr<std::mutex> texels_mutex_ = std::make_shared<std::mutex>();
 };
 
 const SynthesisMethod& pattern_method();

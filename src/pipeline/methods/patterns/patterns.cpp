@@ -84,6 +84,15 @@ Exemplar load_exemplar_with_height(const fs::path& path, bool continuous_alpha) 
   return load_exemplar(path.string(), options);
 }
 
+const Exemplar& read_texels(std::deque<Exemplar>& exemplars, std::map<std::size_t, bool>& unread,
+                            std::size_t index) {
+  if (const auto it = unread.find(index); it != unread.end()) {
+    exemplars[index] = load_exemplar_with_height(exemplars[index].path, it->second);
+    unread.erase(it);
+  }
+  return exemplars[index];
+}
+
 PatternRun synthesize_patterns(const PipelineConfig& config,
                                const std::vector<std::vector<LineFeature>>& lines,
                                const FeatureRibbons& ribbons, const ExistingFeatures& existing,
@@ -98,9 +107,15 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
     }
     ClassPlan& plan = plans.emplace_back();
     plan.class_index = std::size_t(it - config.features.begin());
+    const bool mix = it->synthesis->choice == ExemplarChoice::mix;  // its atlas: texels now
     for (const fs::path& path : it->synthesis->exemplars) {
       plan.exemplars.push_back(run.exemplars.size());
-      run.exemplars.push_back(load_exemplar_with_height(path, it->synthesis->continuous_alpha));
+      std::optional<Exemplar> known =
+          options.cache && !mix ? options.cache->remembered(path) : std::nullopt;
+      if (known) run.unread[run.exemplars.size()] = it->synthesis->continuous_alpha;
+      run.exemplars.push_back(known ? std::move(*known)
+                                    : load_exemplar_with_height(path,
+                                                                it->synthesis->continuous_alpha));
     }
     if (it->synthesis->choice == ExemplarChoice::mix) {
       plan.matches = binding_matches(*it, lines[plan.class_index]);
@@ -264,7 +279,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         feature_options.junctions = std::move(junctions);
       }
       std::vector<const Exemplar*> exemplars;
-      for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
+      for (const std::size_t e : plan.exemplars)
+        exemplars.push_back(&read_texels(run.exemplars, run.unread, e));
       std::vector<EarlierPattern> earlier;
       for (const FeaturePattern& p : run.patterns)
         if (p.synthesized) earlier.push_back({&p.canvas, &p.opaque});

@@ -6,6 +6,7 @@
 // features synthesized before it; then the patterns are rendered into the output grid.
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <functional>
 #include <optional>
 #include <string>
@@ -32,6 +33,10 @@ std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
 Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
 
+// exemplars[index], its texels read first when `unread` lists it (then no longer).
+const Exemplar& read_texels(std::deque<Exemplar>& exemplars, std::map<std::size_t, bool>& unread,
+                            std::size_t index);
+
 class SynthesisCache;
 
 struct FeaturePattern {
@@ -56,6 +61,9 @@ struct FeaturePattern {
 
 struct PatternRun {
   std::deque<Exemplar> exemplars;
+  // Exemplars known by size and channels only (remembered by the run cache, while every
+  // synthesis using them comes from it): index -> continuous_alpha. read_texels loads one.
+  std::map<std::size_t, bool> unread;
   std::vector<FeaturePattern> patterns;  // in synthesis order
 };
 
