@@ -290,7 +290,9 @@ Planned expect_distributed_equals_run(const fs::path& dir, const fs::path& pipel
             report_values(nlohmann::json::parse(test::read_file(out / "report.json"))));
   for (const auto& [name, bytes] : local) {
     const auto it = distributed.find(name);
-    if (it != distributed.end()) EXPECT_TRUE(bytes == it->second) << name << " differs";
+    if (it != distributed.end()) {
+      EXPECT_TRUE(bytes == it->second) << name << " differs";
+    }
   }
   return counts;
 }
