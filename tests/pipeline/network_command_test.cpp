@@ -21,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-const std::string kCrs = R"("crs":{"type":"name","properties":{"name":"EPSG:32631"}})";
+const std::string kUtm31nCrsMember = R"("crs":{"type":"name","properties":{"name":"EPSG:32631"}})";
 
 // `kinds`, when given: each line's "kind" property.
 std::string lines_geojson(const std::vector<std::string>& coordinates,
@@ -32,7 +32,8 @@ std::string lines_geojson(const std::vector<std::string>& coordinates,
                 R"(,"properties":{)" +
                 (kinds.empty() ? std::string() : R"("kind":")" + kinds[i] + "\"") +
                 R"(},"geometry":{"type":"LineString","coordinates":)" + coordinates[i] + "}}";
-  return R"({"type":"FeatureCollection",)" + kCrs + R"(,"features":[)" + features + "]}";
+  return R"({"type":"FeatureCollection",)" + kUtm31nCrsMember + R"(,"features":[)" + features +
+         "]}";
 }
 
 // A small grid of fields in UTM 31N metres: its lines' coordinates.
@@ -159,7 +160,7 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
 
   // Clone: the exemplar's western half into an empty box east of it.
   std::ofstream(dir / "source.geojson")
-      << R"({"type":"FeatureCollection",)" + kCrs +
+      << R"({"type":"FeatureCollection",)" + kUtm31nCrsMember +
              R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
   const CommandResult c =
       network("clone --map " + exemplar + " --source-region " + (dir / "source.geojson").string() +
@@ -175,7 +176,7 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
 // silently keep nothing).
 TEST_F(NetworkCommandTest, CloneIntoABoxKeepsTheMapsLinesAlreadyThere) {
   std::ofstream(dir / "source.geojson")
-      << R"({"type":"FeatureCollection",)" + kCrs +
+      << R"({"type":"FeatureCollection",)" + kUtm31nCrsMember +
              R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
   const CommandResult c =
       network("clone --map " + exemplar + " --source-region " + (dir / "source.geojson").string() +
@@ -312,7 +313,7 @@ class NetworkCloneWhere : public NetworkCommandTest {
       kinds.push_back(i % std::size_t(every) ? others : multiples);
     std::ofstream(dir / "kinds.geojson") << lines_geojson(grid_lines(), kinds);
     std::ofstream(dir / "source.geojson")
-        << R"({"type":"FeatureCollection",)" + kCrs +
+        << R"({"type":"FeatureCollection",)" + kUtm31nCrsMember +
                R"(,"features":[{"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500350,4000000],[500350,4000480],[500000,4000480],[500000,4000000]]]}}]})";
     const CommandResult c =
         network("clone --map " + (dir / "kinds.geojson").string() +
@@ -349,7 +350,7 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       << lines_geojson({"[[500100,4000100],[500300,4000300],[500300,4000100],[500100,4000300]]"});
   std::ofstream(dir / "empty.geojson") << lines_geojson({});
   std::ofstream(dir / "flat.geojson")
-      << R"({"type":"FeatureCollection",)" + kCrs +
+      << R"({"type":"FeatureCollection",)" + kUtm31nCrsMember +
              R"(,"features":[{"type":"Feature","id":3,"properties":{},"geometry":{"type":"Polygon","coordinates":[[[500000,4000000],[500500,4000000],[500900,4000000],[500000,4000000]]]}}]})";
   const std::string out = (dir / "never").string();
   const struct {
