@@ -12,6 +12,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -44,55 +45,11 @@ TEST(NetworkGrowth, GridNeverCrossesStaysInsideAndIsDeterministic) {
             true);
 }
 
-}  // namespace
-}  // namespace tw
-
-namespace tw {
-namespace {
-
-double min_distance_between_unrelated(const Network& net, double near_node) {
-  // Pairs of edges sharing no node, away from every node by near_node: the smallest distance.
-  double best = INFINITY;
-  for (std::size_t i = 0; i < net.edges.size(); ++i)
-    for (std::size_t j = i + 1; j < net.edges.size(); ++j) {
-      const NetworkEdge& a = net.edges[i];
-      const NetworkEdge& b = net.edges[j];
-      if (a.from == b.from || a.from == b.to || a.to == b.from || a.to == b.to) continue;
-      for (std::size_t k = 0; k + 1 < a.points.size(); ++k)
-        for (std::size_t m = 0; m + 1 < b.points.size(); ++m) {
-          // Sample a's segment; skip samples near any of the four end nodes.
-          for (int s = 0; s <= 8; ++s) {
-            const Vec2 p = lerp(a.points[k], a.points[k + 1], s / 8.0);
-            bool near = false;
-            for (int n : {a.from, a.to, b.from, b.to})
-              near = near || distance(p, net.nodes[std::size_t(n)]) < near_node;
-            if (near) continue;
-            best = std::min(best, distance_to_segment(p, b.points[m], b.points[m + 1]));
-          }
-        }
-    }
-  return best;
-}
-
 TEST(NetworkGrowth, PolygonWithAHoleAvoidsForbiddenCellsAndKeepsClearance) {
   const Network ex = exemplar("bocage", 600.0);
   // An L-shaped field with a pond (a hole), and a forbidden road across it.
-  const std::vector<Polygon> region{
-      {{{0, 0}, {900, 0}, {900, 400}, {400, 400}, {400, 800}, {0, 800}},
-       {{100, 100}, {250, 100}, {250, 250}, {100, 250}}}};
-  ForbiddenMask forbidden;
-  forbidden.grid = {.width = 180,
-                    .height = 160,
-                    .origin_x = 0,
-                    .origin_y = 800,
-                    .pixel_width = 5,
-                    .pixel_height = 5};
-  forbidden.cells = Raster<std::uint8_t>(180, 160, 0);
-  for (int r = 0; r < 160; ++r)
-    for (int c = 0; c < 180; ++c) {
-      const Vec2 p = forbidden.grid.pixel_centre_world(c, r);
-      if (std::abs(p.x - 0.5 * p.y - 300) < 8) forbidden.cells.at(c, r) = 1;  // a diagonal road
-    }
+  const std::vector<Polygon> region = test::field_with_pond();
+  const ForbiddenMask forbidden = test::diagonal_road_mask();
   NetworkGrowthOptions options;
   options.seed = 11;
   options.clearance = 6.0;
@@ -106,10 +63,10 @@ TEST(NetworkGrowth, PolygonWithAHoleAvoidsForbiddenCellsAndKeepsClearance) {
   EXPECT_GT(report.rejected_forbidden, 0);  // the road was in the way
   // Lines on both sides of the road.
   int left = 0, right = 0;
-  for (Vec2 p : out.nodes) (p.x - 0.5 * p.y - 300 < 0 ? left : right)++;
+  for (Vec2 p : out.nodes) (test::across_diagonal_road(p) < 0 ? left : right)++;
   EXPECT_GT(left, 5);
   EXPECT_GT(right, 5);
-  EXPECT_GE(min_distance_between_unrelated(out, options.clearance), options.clearance - 1e-6);
+  EXPECT_GE(test::min_distance_between_unrelated(out, options.clearance), options.clearance - 1e-6);
 }
 
 TEST(NetworkGrowth, CompleteKeepsThePartialNetworkExactly) {

@@ -13,6 +13,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 
 namespace tw {
 namespace {
@@ -28,22 +29,8 @@ std::vector<Polygon> square(double side) {
 
 TEST(NetworkQuilt, KeepsTheRulesInAPolygonWithAHoleAndIsDeterministic) {
   const Network ex = quilt_exemplar("bocage", 600.0);
-  const std::vector<Polygon> region{
-      {{{0, 0}, {900, 0}, {900, 400}, {400, 400}, {400, 800}, {0, 800}},
-       {{100, 100}, {250, 100}, {250, 250}, {100, 250}}}};
-  ForbiddenMask forbidden;
-  forbidden.grid = {.width = 180,
-                    .height = 160,
-                    .origin_x = 0,
-                    .origin_y = 800,
-                    .pixel_width = 5,
-                    .pixel_height = 5};
-  forbidden.cells = Raster<std::uint8_t>(180, 160, 0);
-  for (int r = 0; r < 160; ++r)
-    for (int c = 0; c < 180; ++c) {
-      const Vec2 p = forbidden.grid.pixel_centre_world(c, r);
-      if (std::abs(p.x - 0.5 * p.y - 300) < 8) forbidden.cells.at(c, r) = 1;  // a diagonal road
-    }
+  const std::vector<Polygon> region = test::field_with_pond();
+  const ForbiddenMask forbidden = test::diagonal_road_mask();
   NetworkGrowthOptions options;
   options.seed = 4;
   options.clearance = 6.0;
@@ -57,23 +44,7 @@ TEST(NetworkQuilt, KeepsTheRulesInAPolygonWithAHoleAndIsDeterministic) {
   EXPECT_EQ(check.outside, 0) << check.first;
   EXPECT_EQ(check.forbidden, 0) << check.first;
   // Unrelated lines (sharing no node) keep the clearance away from the nodes.
-  double closest = INFINITY;
-  for (std::size_t i = 0; i < out.edges.size(); ++i)
-    for (std::size_t j = i + 1; j < out.edges.size(); ++j) {
-      const NetworkEdge& a = out.edges[i];
-      const NetworkEdge& b = out.edges[j];
-      if (a.from == b.from || a.from == b.to || a.to == b.from || a.to == b.to) continue;
-      for (std::size_t k = 0; k + 1 < a.points.size(); ++k)
-        for (int s = 0; s <= 8; ++s) {
-          const Vec2 p = lerp(a.points[k], a.points[k + 1], s / 8.0);
-          bool near = false;
-          for (int n : {a.from, a.to, b.from, b.to})
-            near = near || distance(p, out.nodes[std::size_t(n)]) < options.clearance;
-          for (std::size_t m = 0; !near && m + 1 < b.points.size(); ++m)
-            closest = std::min(closest, distance_to_segment(p, b.points[m], b.points[m + 1]));
-        }
-    }
-  EXPECT_GE(closest, options.clearance - 1e-6);
+  EXPECT_GE(test::min_distance_between_unrelated(out, options.clearance), options.clearance - 1e-6);
   const Network again = grow_network(ex, region, &forbidden, nullptr, options);
   ASSERT_EQ(again.edges.size(), out.edges.size());
   for (std::size_t i = 0; i < out.edges.size(); ++i)

@@ -1,0 +1,63 @@
+#pragma once
+// What the growth and quilt tests share: an L-shaped field with a pond (a hole) and a forbidden
+// diagonal road across it, and the clearance measure between lines that share no node.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/segment_distance.hpp"
+#include "network/growth.hpp"
+
+namespace tw::test {
+
+// The road's centreline: x - 0.5 y = 300; cells within 8 m of it are forbidden.
+inline double across_diagonal_road(Vec2 p) {
+  return p.x - 0.5 * p.y - 300;
+}
+
+inline std::vector<Polygon> field_with_pond() {
+  return {{{{0, 0}, {900, 0}, {900, 400}, {400, 400}, {400, 800}, {0, 800}},
+           {{100, 100}, {250, 100}, {250, 250}, {100, 250}}}};
+}
+
+inline ForbiddenMask diagonal_road_mask() {
+  ForbiddenMask forbidden;
+  forbidden.grid = {.width = 180,
+                    .height = 160,
+                    .origin_x = 0,
+                    .origin_y = 800,
+                    .pixel_width = 5,
+                    .pixel_height = 5};
+  forbidden.cells = Raster<std::uint8_t>(180, 160, 0);
+  for (int r = 0; r < 160; ++r)
+    for (int c = 0; c < 180; ++c)
+      if (std::abs(across_diagonal_road(forbidden.grid.pixel_centre_world(c, r))) < 8)
+        forbidden.cells.at(c, r) = 1;
+  return forbidden;
+}
+
+// Pairs of edges sharing no node, sampled away from their four end nodes by near_node: the
+// smallest distance between them.
+inline double min_distance_between_unrelated(const Network& net, double near_node) {
+  double best = INFINITY;
+  for (std::size_t i = 0; i < net.edges.size(); ++i)
+    for (std::size_t j = i + 1; j < net.edges.size(); ++j) {
+      const NetworkEdge& a = net.edges[i];
+      const NetworkEdge& b = net.edges[j];
+      if (a.from == b.from || a.from == b.to || a.to == b.from || a.to == b.to) continue;
+      for (std::size_t k = 0; k + 1 < a.points.size(); ++k)
+        for (int s = 0; s <= 8; ++s) {
+          const Vec2 p = lerp(a.points[k], a.points[k + 1], s / 8.0);
+          bool near = false;
+          for (int n : {a.from, a.to, b.from, b.to})
+            near = near || distance(p, net.nodes[std::size_t(n)]) < near_node;
+          if (near) continue;
+          for (std::size_t m = 0; m + 1 < b.points.size(); ++m)
+            best = std::min(best, distance_to_segment(p, b.points[m], b.points[m + 1]));
+        }
+    }
+  return best;
+}
+
+}  // namespace tw::test
