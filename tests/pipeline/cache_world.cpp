@@ -1,5 +1,7 @@
 #include "cache_world.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <optional>
 #include <sstream>
@@ -148,6 +150,20 @@ std::map<std::string, std::string> output_files(const fs::path& root) {
     files[name] = read_file(it->path());
   }
   return files;
+}
+
+std::size_t expect_same_output_files(const fs::path& a, const fs::path& b) {
+  const auto x = output_files(a), y = output_files(b);
+  EXPECT_EQ(x.size(), y.size()) << a << " and " << b;
+  for (const auto& [name, bytes] : x) {
+    const auto it = y.find(name);
+    if (it == y.end()) {
+      ADD_FAILURE() << name << " is in " << a << " but not in " << b;
+      continue;
+    }
+    EXPECT_TRUE(bytes == it->second) << name << " differs between " << a << " and " << b;
+  }
+  return x.size();
 }
 
 }  // namespace tw::test

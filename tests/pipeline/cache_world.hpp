@@ -56,4 +56,9 @@ std::set<int> expected_rebuilds(const std::vector<Line>& before, const std::vect
 // the links.
 std::map<std::string, std::string> output_files(const std::filesystem::path& root);
 
+// Expects the run folders a and b to hold the same outputs (output_files), byte for byte;
+// returns how many a holds, for the caller's count.
+std::size_t expect_same_output_files(const std::filesystem::path& a,
+                                     const std::filesystem::path& b);
+
 }  // namespace tw::test
