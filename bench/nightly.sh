@@ -13,6 +13,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
+source bench/lib/lanes_world.sh
 bin=$(realpath "${TERRAWEAVE:-build/src/terraweave}")
 work=${WORK:-/tmp/terraweave-nightly}
 size=${SIZE:-4096}
@@ -24,23 +25,8 @@ move=${MOVE:-12}
 rm -rf "$work" && mkdir -p "$work" || exit 1
 cd "$work" || exit 1
 
-summary=$("$bin" -q make-world --size "$size" --pixel "$pixel" --tile "$tile" --overlap 16 \
-  --out .) || exit 1
+summary=$(lanes_world "$bin" "$root" "$size" "$pixel" "$tile" "$stride") || exit 1
 echo "nightly: $size^2 cells of $pixel m: $summary" >&2
-# The same roads, every STRIDE-th one (by FID) in a class of its own with synthesis.
-python3 - "$stride" "$root/samples/exemplars/road_lanes_240x64.png" <<'PY' || exit 1
-import re, sys
-stride, exemplar = sys.argv[1], sys.argv[2]
-text = open("world.yaml").read()
-text = text.replace("precedence: [rivers, roads]", "precedence: [rivers, lanes, roads]")
-roads = text[text.index("  roads:"):]
-lanes = roads.replace("  roads:", "  lanes:", 1) + (
-    f'    where: "fid % {stride} = 0"\n'
-    f"    synthesis: {{ exemplar: {exemplar}, width: 10, scale: 4, delta: 14,\n"
-    "                 channels: { alpha: splat.road_marking, height: height } }\n")
-text = text.replace(roads, roads + f'    where: "fid % {stride} <> 0"\n' + lanes)
-open("world.yaml", "w").write(text)
-PY
 road=${ROAD:-$stride}  # a synthesized road by default
 cp world.gpkg world_clean.gpkg
 

@@ -14,6 +14,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
+source bench/lib/lanes_world.sh
 bin=$(realpath "${TERRAWEAVE:-build/src/terraweave}")
 work=${WORK:-/tmp/terraweave-render-tile}
 size=${SIZE:-4096}
@@ -29,21 +30,7 @@ export TERRAWEAVE_IMAGE_MODULE=${TERRAWEAVE_IMAGE_MODULE:-$(dirname "$bin")/libt
 rm -rf "$work" && mkdir -p "$work/world" || exit 1
 
 cd "$work/world" || exit 1
-"$bin" -q make-world --size "$size" --pixel "$pixel" --tile "$tile" --overlap 16 --out . >&2 ||
-  exit 1
-python3 - "$stride" "$root/samples/exemplars/road_lanes_240x64.png" <<'PY' || exit 1
-import sys
-stride, exemplar = sys.argv[1], sys.argv[2]
-text = open("world.yaml").read()
-text = text.replace("precedence: [rivers, roads]", "precedence: [rivers, lanes, roads]")
-roads = text[text.index("  roads:"):]
-lanes = roads.replace("  roads:", "  lanes:", 1) + (
-    f'    where: "fid % {stride} = 0"\n'
-    f"    synthesis: {{ exemplar: {exemplar}, width: 10, scale: 4, delta: 14,\n"
-    "                 channels: { alpha: splat.road_marking, height: height } }\n")
-text = text.replace(roads, roads + f'    where: "fid % {stride} <> 0"\n' + lanes)
-open("world.yaml", "w").write(text)
-PY
+lanes_world "$bin" "$root" "$size" "$pixel" "$tile" "$stride" >&2 || exit 1
 
 names=(this)
 programs=("$bin")
