@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "geo/geopackage.hpp"
 #include "geo/heightfield_source.hpp"
 
 namespace tw {
@@ -112,13 +113,11 @@ std::vector<Line> rivers_following_flow(const HeightfieldSource& terrain, double
   return rivers;
 }
 
-void write_layer(GDALDataset& gpkg, const char* name, const std::vector<Line>& lines, double width,
-                 OGRSpatialReference& srs) {
-  OGRLayer* layer = gpkg.CreateLayer(name, &srs, wkbLineString, nullptr);
-  OGRFieldDefn field("width", OFTReal);
-  if (!layer || layer->CreateField(&field) != OGRERR_NONE ||
-      layer->StartTransaction() != OGRERR_NONE)
-    fail("world.gpkg: cannot create layer {}", name);
+void write_layer(GeoPackageWriter& gpkg, const char* name, const std::vector<Line>& lines,
+                 double width) {
+  OGRLayer* layer = &gpkg.create_layer(name, wkbLineString);
+  gpkg.add_fields(*layer, {{"width", OFTReal}});
+  if (layer->StartTransaction() != OGRERR_NONE) fail("world.gpkg: cannot create layer {}", name);
   for (const Line& line : lines) {
     OGRFeature feature(layer->GetLayerDefn());
     feature.SetField("width", width);
@@ -180,18 +179,13 @@ BigWorldSummary write_big_world(const BigWorldOptions& o) {
   summary.roads = int(roads.size());
   summary.rivers = int(rivers.size());
 
-  GDALAllRegister();
   const fs::path gpkg_path = o.dir / "world.gpkg";
   fs::remove(gpkg_path);
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("make-world: GDAL has no GPKG driver");
-  GDALDataset* gpkg = driver->Create(gpkg_path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr);
-  if (!gpkg) fail("cannot create {}", gpkg_path.string());
-  OGRSpatialReference srs;
-  srs.SetFromUserInput(kCrs);
-  write_layer(*gpkg, "rivers", rivers, 10.0, srs);
-  write_layer(*gpkg, "roads", roads, 6.0, srs);
-  GDALClose(gpkg);
+  {
+    GeoPackageWriter gpkg = create_geopackage(gpkg_path, kCrs);
+    write_layer(gpkg, "rivers", rivers, 10.0);
+    write_layer(gpkg, "roads", roads, 6.0);
+  }
   write_pipeline(o.dir / "world.yaml", o, true);
   write_pipeline(o.dir / "world_untiled.yaml", o, false);
   logger().info("{}: {} roads ({:.0f} km), {} rivers ({:.0f} km) over {:.0f} km^2", o.dir.string(),

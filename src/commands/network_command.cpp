@@ -15,6 +15,7 @@
 #include "core/log.hpp"
 #include "core/output_guard.hpp"
 #include "core/warnings.hpp"
+#include "geo/geopackage.hpp"
 #include "geo/heightfield.hpp"
 #include "network/check.hpp"
 #include "network/exemplar.hpp"
@@ -75,31 +76,14 @@ ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>
   return mask;
 }
 
-void create_field(OGRLayer& layer, const char* name, OGRFieldType type, const std::string& path) {
-  OGRFieldDefn field(name, type);
-  if (layer.CreateField(&field) != OGRERR_NONE) fail("{}: cannot add field {}", path, name);
-}
-
 void write_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                       const Network& grown, const NetworkLines* kept) {
-  GDALAllRegister();
-  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");  // same bytes
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
-  std::unique_ptr<GDALDataset> ds(
-      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!ds) fail("{}: cannot create the GeoPackage", path.string());
-  OGRSpatialReference srs;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  const bool has_crs = !crs_wkt.empty() && srs.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE;
+  GeoPackageWriter gpkg = create_geopackage(path, crs_wkt);
   const std::vector<int> degree = grown.degrees();
   {
-    OGRLayer* layer =
-        ds->CreateLayer("suggestions", has_crs ? &srs : nullptr, wkbLineString, nullptr);
-    if (!layer) fail("{}: cannot create layer 'suggestions'", path.string());
-    create_field(*layer, "from_node", OFTInteger, path.string());
-    create_field(*layer, "to_node", OFTInteger, path.string());
-    create_field(*layer, "length_m", OFTReal, path.string());
+    OGRLayer* layer = &gpkg.create_layer("suggestions", wkbLineString);
+    gpkg.add_fields(*layer,
+                    {{"from_node", OFTInteger}, {"to_node", OFTInteger}, {"length_m", OFTReal}});
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     GIntBig fid = 1;
     for (const NetworkEdge& e : grown.edges) {
@@ -117,10 +101,8 @@ void write_geopackage(const std::filesystem::path& path, const std::string& crs_
     if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
   }
   {
-    OGRLayer* layer = ds->CreateLayer("nodes", has_crs ? &srs : nullptr, wkbPoint, nullptr);
-    if (!layer) fail("{}: cannot create layer 'nodes'", path.string());
-    create_field(*layer, "degree", OFTInteger, path.string());
-    create_field(*layer, "on_boundary", OFTInteger, path.string());
+    OGRLayer* layer = &gpkg.create_layer("nodes", wkbPoint);
+    gpkg.add_fields(*layer, {{"degree", OFTInteger}, {"on_boundary", OFTInteger}});
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t n = 0; n < grown.nodes.size(); ++n) {
       OGRFeature f(layer->GetLayerDefn());
@@ -134,9 +116,8 @@ void write_geopackage(const std::filesystem::path& path, const std::string& crs_
     if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
   }
   if (kept) {
-    OGRLayer* layer = ds->CreateLayer("kept", has_crs ? &srs : nullptr, wkbLineString, nullptr);
-    if (!layer) fail("{}: cannot create layer 'kept'", path.string());
-    create_field(*layer, "source_fid", OFTInteger64, path.string());
+    OGRLayer* layer = &gpkg.create_layer("kept", wkbLineString);
+    gpkg.add_fields(*layer, {{"source_fid", OFTInteger64}});
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t i = 0; i < kept->lines.size(); ++i) {
       OGRFeature f(layer->GetLayerDefn());
@@ -312,22 +293,12 @@ void write_drawn_network(const std::filesystem::path& path, const std::string& c
   if (lines.empty()) fail("{}: nothing to save (no lines drawn or accepted)", path.string());
   for (std::size_t i = 0; i < lines.size(); ++i)
     if (lines[i].size() < 2) fail("{}: line {} has fewer than two points", path.string(), i + 1);
-  GDALAllRegister();
-  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");  // same bytes
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
   OutputTransaction transaction;
   const std::filesystem::path staged = transaction.stage(path);
   {
-    std::unique_ptr<GDALDataset> ds(
-        driver->Create(staged.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-    if (!ds) fail("{}: cannot create the GeoPackage", path.string());
-    OGRSpatialReference srs;
-    srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    const bool has_crs = !crs_wkt.empty() && srs.importFromWkt(crs_wkt.c_str()) == OGRERR_NONE;
-    OGRLayer* layer = ds->CreateLayer("lines", has_crs ? &srs : nullptr, wkbLineString, nullptr);
-    if (!layer) fail("{}: cannot create layer 'lines'", path.string());
-    create_field(*layer, "origin", OFTString, path.string());
+    GeoPackageWriter gpkg = create_geopackage(staged, crs_wkt);
+    OGRLayer* layer = &gpkg.create_layer("lines", wkbLineString);
+    gpkg.add_fields(*layer, {{"origin", OFTString}});
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t i = 0; i < lines.size(); ++i) {
       OGRFeature f(layer->GetLayerDefn());

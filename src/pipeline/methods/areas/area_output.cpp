@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/progress.hpp"
+#include "geo/geopackage.hpp"
 #include "image/image_io.hpp"
 #include "pipeline/methods/areas/area_lead.hpp"
 #include "raster/rasterize.hpp"
@@ -30,50 +31,29 @@ double z_of(const AreaResult& r, std::size_t instance) {
   return instance < r.z.size() ? r.z[instance] : std::numeric_limits<double>::quiet_NaN();
 }
 
-void create_field(OGRLayer& layer, const char* name, OGRFieldType type) {
-  OGRFieldDefn field(name, type);
-  if (layer.CreateField(&field) != OGRERR_NONE) fail("cannot create field {}", name);
-}
-
 }  // namespace
 
 void write_area_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                            const std::vector<AreaResult>& results) {
-  GDALAllRegister();
-  // gpkg_contents.last_change holds the time of writing; a fixed one gives the same bytes for
-  // the same shapes (manifest hashes, nightly diffs).
-  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("GDAL has no GPKG driver");
-  std::unique_ptr<GDALDataset> dataset(
-      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!dataset) fail("{}: cannot create GeoPackage", path.string());
-  OGRSpatialReference srs;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE) fail("area: unreadable CRS");
-  OGRLayer* strokes = dataset->CreateLayer("strokes", &srs, wkbLineString, nullptr);
+  GeoPackageWriter gpkg = create_geopackage(path, crs_wkt);
+  OGRLayer* strokes = &gpkg.create_layer("strokes", wkbLineString);
   const bool with_z =
       std::any_of(results.begin(), results.end(), [](const AreaResult& r) { return !r.z.empty(); });
-  OGRLayer* instances =
-      dataset->CreateLayer("instances", &srs, with_z ? wkbPoint25D : wkbPoint, nullptr);
-  if (!strokes || !instances) fail("{}: cannot create layers", path.string());
-  for (auto [name, type] : {std::pair{"class", OFTString},
-                            {"polygon_fid", OFTInteger64},
-                            {"instance", OFTInteger},
-                            {"shape", OFTInteger},
-                            {"material", OFTString},
-                            {"width_m", OFTReal}}) {
-    create_field(*strokes, name, type);
-  }
-  for (auto [name, type] : {std::pair{"class", OFTString},
-                            {"polygon_fid", OFTInteger64},
-                            {"shape", OFTInteger},
-                            {"type", OFTString},
-                            {"material", OFTString},
-                            {"rotation_deg", OFTReal},
-                            {"scale", OFTReal}}) {
-    create_field(*instances, name, type);
-  }
+  OGRLayer* instances = &gpkg.create_layer("instances", with_z ? wkbPoint25D : wkbPoint);
+  gpkg.add_fields(*strokes, {{"class", OFTString},
+                             {"polygon_fid", OFTInteger64},
+                             {"instance", OFTInteger},
+                             {"shape", OFTInteger},
+                             {"material", OFTString},
+                             {"width_m", OFTReal}});
+  gpkg.add_fields(*instances, {{"class", OFTString},
+                               {"polygon_fid", OFTInteger64},
+                               {"shape", OFTInteger},
+                               {"type", OFTString},
+                               {"material", OFTString},
+                               {"rotation_deg", OFTReal},
+                               {"scale", OFTReal}});
+  GDALDataset* dataset = &gpkg.dataset();
   dataset->StartTransaction();
   int base = 0;  // instance numbers run on across polygons
   // Millions of strokes take minutes: a line per tenth, with the time left.
@@ -112,7 +92,6 @@ void write_area_geopackage(const std::filesystem::path& path, const std::string&
     progress.advance();
   }
   if (dataset->CommitTransaction() != OGRERR_NONE) fail("{}: commit failed", path.string());
-  dataset.reset();  // GDALClose flushes; an error here would be a disk error
 }
 
 void write_instances_csv(const std::filesystem::path& path,

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "geo/geopackage.hpp"
 #include "ornament/surface.hpp"
 #include "pipeline/detail/grow_config.hpp"
 #include "raster/rasterize.hpp"
@@ -119,40 +120,17 @@ double grown_kind_width(const std::string& kind) {
   return c.width;
 }
 
-namespace {
-
-void create_field(OGRLayer& layer, const char* name, OGRFieldType type) {
-  OGRFieldDefn field(name, type);
-  if (layer.CreateField(&field) != OGRERR_NONE) fail("cannot create field {}", name);
-}
-
-}  // namespace
-
 void write_ornament_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                                const std::vector<OrnamentLayer>& layers) {
-  GDALAllRegister();
-  // gpkg_contents.last_change holds the time of writing; a fixed one gives the same bytes for
-  // the same lines (manifest hashes, the determinism tests).
-  CPLSetThreadLocalConfigOption("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z");
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("{}: GDAL has no GPKG driver", path.string());
-  std::unique_ptr<GDALDataset> ds(
-      driver->Create(path.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!ds) fail("{}: cannot create the GeoPackage", path.string());
-  OGRSpatialReference srs;
-  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE) fail("{}: unreadable CRS", path.string());
+  GeoPackageWriter gpkg = create_geopackage(path, crs_wkt);
   for (const OrnamentLayer& l : layers) {
-    OGRLayer* layer = ds->CreateLayer(l.name.c_str(), &srs, wkbLineString25D, nullptr);
-    if (!layer) fail("{}: cannot create layer '{}'", path.string(), l.name);
-    for (auto [name, type] : {std::pair{"ornament", OFTInteger},
-                              {"element", OFTInteger},
-                              {"name", OFTString},
-                              {"material", OFTString},
-                              {"kind", OFTString},
-                              {"height_m", OFTReal}}) {
-      create_field(*layer, name, type);
-    }
+    OGRLayer* layer = &gpkg.create_layer(l.name, wkbLineString25D);
+    gpkg.add_fields(*layer, {{"ornament", OFTInteger},
+                             {"element", OFTInteger},
+                             {"name", OFTString},
+                             {"material", OFTString},
+                             {"kind", OFTString},
+                             {"height_m", OFTReal}});
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t i = 0; i < l.lines->size(); ++i) {
       const GrownLine& line = (*l.lines)[i];
@@ -173,7 +151,6 @@ void write_ornament_geopackage(const std::filesystem::path& path, const std::str
     }
     if (layer->CommitTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
   }
-  ds.reset();  // GDALClose flushes; an error here would be a disk error
 }
 
 }  // namespace tw::detail
