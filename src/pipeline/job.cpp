@@ -432,7 +432,7 @@ RunReport finish_job(const fs::path& plan_dir) {
       rendered.files.push_back({relative, bytes.size(), digest, staged});
     }
   }
-  RunReport report = detail::write_job_outputs(plan, config, tiles, out, transaction);
+  RunReport report = detail::write_job_outputs(plan, tiles, out, transaction);
   // As run_pipeline: the manifest's inputs, height ranges and features.geojson.
   report.inputs = detail::record_inputs(config.inputs);
   report.started_utc = detail::utc_timestamp();

@@ -68,9 +68,8 @@ void write_method_outputs(const WorldPlan& plan, MethodTileFacts facts, const fs
   }
 }
 
-RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& /*config*/,
-                            const std::vector<RenderedTile>& tiles, const fs::path& out,
-                            OutputFolder& transaction) {
+RunReport write_job_outputs(const WorldPlan& plan, const std::vector<RenderedTile>& tiles,
+                            const fs::path& out, OutputFolder& transaction) {
   RunReport report = plan.report;
   report.forbidden_pixels = 0;
   report.tiles.size = plan.tile_size;

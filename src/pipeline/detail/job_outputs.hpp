@@ -48,8 +48,7 @@ std::vector<std::filesystem::path> write_tile_files(LayerSet& layers, const Tile
 // The mosaics <out>/<layer>.vrt over the tiles' GeoTIFFs and the methods' outputs, as
 // terraweave run writes them for a tiled world. Returns the plan's report completed with what the
 // tiles found.
-RunReport write_job_outputs(const WorldPlan& plan, const PipelineConfig& config,
-                            const std::vector<RenderedTile>& tiles,
+RunReport write_job_outputs(const WorldPlan& plan, const std::vector<RenderedTile>& tiles,
                             const std::filesystem::path& out, OutputFolder& transaction);
 
 // The facts of a rendered tile that the run's report and outputs gather (kept with the tile in
