@@ -3,6 +3,7 @@
 #include <httplib.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include "core/output_guard.hpp"
 #include "core/warnings.hpp"
 #include "network/exemplar.hpp"
+#include "network/growth.hpp"
 
 namespace tw {
 
@@ -38,6 +40,17 @@ std::vector<std::vector<Vec2>> lines_of(const json& body) {
   for (std::size_t i = 0; i < body["lines"].size(); ++i)
     lines.push_back(points_of(body["lines"][i], fmt::format("line {}", i + 1)));
   return lines;
+}
+
+// The request's `method` (absent: automatic), named as `network complete --method` names them.
+NetworkMethod method_of(const json& body) {
+  const json name = body.value("method", json("automatic"));
+  const auto& names = kNetworkMethodNames;
+  const auto known = name.is_string()
+                         ? std::find(names.begin(), names.end(), name.get<std::string>())
+                         : names.end();
+  if (known == names.end()) fail("key method: {} is none of automatic, growth, quilt", name.dump());
+  return NetworkMethod(known - names.begin());
 }
 
 json to_json(const std::vector<std::vector<Vec2>>& lines) {
@@ -96,7 +109,8 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
     server.Get("/network.html", [&](const httplib::Request&, httplib::Response& response) {
       response.set_content(page, "text/html; charset=utf-8");
     });
-    // {lines: [[[x, y], ...], ...], region: [[x, y], ...]} -> {suggestions: [...]}
+    // {lines: [[[x, y], ...], ...], region: [[x, y], ...], method: "automatic" | "growth" |
+    // "quilt" (absent: automatic)} -> {suggestions: [...]}
     server.Post("/complete", [&](const httplib::Request& request, httplib::Response& response) {
       answer(request, response, [&](const json& body) {
         NetworkLines drawn;
@@ -110,6 +124,7 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
         const std::vector<Vec2> ring = points_of(body["region"], "key region");
         NetworkGrowthOptions growth;
         growth.seed = body.value("seed", o.seed);
+        growth.method = method_of(body);
         std::lock_guard lock(one_at_a_time);
         return json{{"suggestions",
                      to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};

@@ -266,6 +266,10 @@ std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const N
   // is cut there: the cut is no dangling end to grow from); what lies outside is not touched.
   const NetworkLines inside = cut_network_lines(drawn, region);
   std::optional<Network> partial;
+  if (!inside.lines.empty() && options.method == NetworkMethod::quilt)
+    fail(
+        "method quilt cannot complete a drawing (the region holds drawn lines): completing is "
+        "growth from their ends (use growth or automatic)");
   if (!inside.lines.empty())
     partial = partial_network(inside, region, "drawing", "(lines numbered from 1)", warnings);
   const Network grown =

@@ -164,8 +164,9 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
 }
 
 // The drawing page's server options (`view --serve --exemplar SRC --where --scale --seed --save`)
-// act in its answers: one stroke completed in one region against servers started with each
-// option changed (view_drawing_requests.py, plain HTTP), the suggestions or the saved file differ.
+// and its method choice act in its answers: one stroke completed in one region against servers
+// started with each option changed (view_drawing_requests.py, plain HTTP), the suggestions or
+// the saved file differ.
 // The option tables (option_tables_test.cpp) point here for these rows.
 TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   TempDir dir;
@@ -187,13 +188,21 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
 
   const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
+  // The stroke inside the region. `methods`: the completions asked of one server, by the
+  // request's `method` as the page's method choice sets it ("-": none named).
+  const std::string stroke_region =
+      "'[[500080, 4999900], [500200, 4999930]]' "
+      "'[[500040, 4999850], [500620, 4999850], [500620, 4999990], [500040, 4999990]]' ";
+  const auto request = [&](const std::string& options, const std::string& methods = "",
+                           const std::string& stroke_and_region = "") {
+    return run_command(cd + (methods.empty() ? "" : "COMPLETE_METHOD=" + methods + " ") +
+                       "timeout 120 /usr/bin/python3 '" +
+                       (source_dir() / "tests/pipeline/view_drawing_requests.py").string() + "' " +
+                       binary + " out . " +
+                       (stroke_and_region.empty() ? stroke_region : stroke_and_region) + options);
+  };
   const auto ask = [&](const std::string& options) {
-    const CommandResult r = run_command(
-        cd + "timeout 120 /usr/bin/python3 '" +
-        (source_dir() / "tests/pipeline/view_drawing_requests.py").string() + "' " + binary +
-        " out . '[[500080, 4999900], [500200, 4999930]]' "
-        "'[[500040, 4999850], [500620, 4999850], [500620, 4999990], [500040, 4999990]]' " +
-        options);
+    const CommandResult r = request(options);
     EXPECT_EQ(r.exit_code, 0) << options << ": " << r.output;
     const nlohmann::json answer = nlohmann::json::parse(r.output, nullptr, false);
     EXPECT_FALSE(answer.is_discarded()) << r.output;
@@ -232,6 +241,43 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
       ask("--exemplar '" + svg + "' --scale 0.5 --seed 1 --save sub_b.gpkg");
   EXPECT_EQ(saved_b["suggestions"], a["suggestions"]) << "--save: where, not what";
   EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
+  // The page's method choice: over a region without drawn lines (south of the stroke, clear of
+  // the road) growth and quilting answer differently, and naming none is automatic (one of the
+  // two). Quilting a region with drawn lines is refused (completing is growth from their ends),
+  // as is a method of another name.
+  const std::string empty_south =
+      "'[[500080, 4999900], [500200, 4999930]]' "
+      "'[[500300, 4999530], [500620, 4999530], [500620, 4999660], [500300, 4999660]]' ";
+  const std::string plain = "--exemplar '" + svg + "' --scale 0.5 --seed 1 --save m.gpkg";
+  const auto completions = [&](const std::string& methods, const std::string& stroke_and_region) {
+    const CommandResult r = request(plain, methods, stroke_and_region);
+    EXPECT_EQ(r.exit_code, 0) << methods << ": " << r.output;
+    const nlohmann::json answer = nlohmann::json::parse(r.output, nullptr, false);
+    EXPECT_FALSE(answer.is_discarded()) << r.output;
+    return answer.is_discarded() ? nlohmann::json::object() : answer["completions"];
+  };
+  const nlohmann::json south = completions("growth,quilt,automatic,-", empty_south);
+  for (const char* method : {"growth", "quilt", "automatic", "-"})
+    ASSERT_EQ(south[method]["status"], 200) << method;
+  const nlohmann::json& grown = south["growth"]["body"]["suggestions"];
+  const nlohmann::json& quilted = south["quilt"]["body"]["suggestions"];
+  const nlohmann::json& chosen = south["-"]["body"]["suggestions"];
+  std::printf("method growth %zu, quilt %zu, none named %zu suggestions\n", grown.size(),
+              quilted.size(), chosen.size());
+  ASSERT_GT(grown.size(), 0u);
+  ASSERT_GT(quilted.size(), 0u);
+  EXPECT_NE(grown, quilted) << "method";
+  EXPECT_EQ(chosen, south["automatic"]["body"]["suggestions"]) << "no method: automatic";
+  EXPECT_TRUE(chosen == grown || chosen == quilted) << "automatic: one of the two";
+  const nlohmann::json over_stroke = completions("quilt,grow", stroke_region);
+  EXPECT_EQ(over_stroke["quilt"]["status"], 400);
+  EXPECT_THAT(over_stroke["quilt"]["body"]["error"].get<std::string>(),
+              ::testing::HasSubstr("method quilt cannot complete a drawing (the region holds "
+                                   "drawn lines)"));
+  EXPECT_EQ(over_stroke["grow"]["status"], 400);
+  EXPECT_EQ(over_stroke["grow"]["body"]["error"],
+            "key method: \"grow\" is none of automatic, growth, quilt");
+
   // A drawing in another CRS than the run's is not shown: the page says why.
   write_layer(dir / "lon_lat.gpkg", "lines", {{"LINESTRING (3 45, 3.1 45.1)"}}, "EPSG:4326");
   const nlohmann::json other_crs =

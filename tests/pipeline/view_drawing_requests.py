@@ -7,7 +7,10 @@ options follow the run folder; it is stopped whatever happens.
 
   view_drawing_requests.py TERRAWEAVE RUN_DIR WORK_DIR STROKE REGION [SERVER OPTION ...]
 
-STROKE and REGION are JSON lists of [x, y] points in the run's CRS.
+STROKE and REGION are JSON lists of [x, y] points in the run's CRS. With COMPLETE_METHOD set to
+a comma-separated list of methods ("-": none named), it completes once per method as the page's
+method choice asks, saves nothing and prints {"drawing": ..., "completions": {METHOD: {"status":
+HTTP status, "body": answer}}}.
 """
 import ctypes
 import json
@@ -31,9 +34,12 @@ def post(url, body):
         sys.exit(f"{url}: {error.code} {error.read().decode()}")
 
 
-def get(url):
+def get(url, body=None):
+    """GET url, or POST body as JSON when given: {"status": HTTP status, "body": answer}."""
+    request = url if body is None else urllib.request.Request(
+        url, data=json.dumps(body).encode(), headers={"Content-Type": "application/json"})
     try:
-        with urllib.request.urlopen(url, timeout=60) as answer:
+        with urllib.request.urlopen(request, timeout=60) as answer:
             return {"status": answer.status, "body": json.loads(answer.read())}
     except urllib.error.HTTPError as error:
         return {"status": error.code, "body": json.loads(error.read())}
@@ -59,6 +65,15 @@ def main():
         base = match.group(1)
         drawing = get(base + "/drawing")
         drawn = json.loads(stroke)
+        if "COMPLETE_METHOD" in os.environ:
+            completions = {}
+            for method in os.environ["COMPLETE_METHOD"].split(","):
+                request = {"lines": [drawn], "region": json.loads(region)}
+                if method != "-":
+                    request["method"] = method
+                completions[method] = get(base + "/complete", request)
+            print(json.dumps({"drawing": drawing, "completions": completions}))
+            return
         suggestions = post(base + "/complete",
                            {"lines": [drawn], "region": json.loads(region)})["suggestions"]
         saved = post(base + "/save", {"lines": [drawn] + suggestions,

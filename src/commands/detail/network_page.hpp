@@ -2,10 +2,10 @@
 // The drawing page of `terraweave view RUN --serve --exemplar ...` (docs/networks.md, "Drawing"):
 // @DATA@ becomes the run's map as JSON (its colours as RGB rows north first, its grid and CRS,
 // its feature lines, where the drawing is saved). The page draws strokes in map coordinates,
-// asks the server (POST /complete) to complete a region, lets the user accept the suggestions
-// (all, one by a click, or those inside a lasso) or reject them, undo the last stroke or
-// accept (Ctrl+Z), and saves (POST /save). On loading it shows the drawing saved before (GET
-// /drawing) as accepted lines; a stroke's ends within a few pixels of a line are joined to it.
+// asks the server (POST /complete) to complete a region by the method chosen, lets the user accept
+// the suggestions (all, one by a click, or those inside a lasso) or reject them, undo the last
+// stroke or accept (Ctrl+Z), and saves (POST /save). On loading it shows the drawing saved before
+// (GET /drawing) as accepted lines; a stroke's ends within a few pixels of a line are joined to it.
 // window.__network exposes the state (lines, suggestions, the map's transform) for the tests.
 namespace tw::detail {
 
@@ -24,6 +24,8 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 <button id="draw" class="on" title="draw strokes with the pointer">draw</button>
 <button id="region" title="drag a box: the region to complete">region</button>
 <button id="area" title="draw a loop: the region to complete">region by lasso</button>
+<select id="method" title="how the region is completed: growth from the drawn ends, quilting of exemplar blocks (a region without drawn lines), or automatic (the closer to the exemplar's style; growth where lines are drawn)">
+<option>automatic</option><option>growth</option><option>quilt</option></select>
 <button id="complete" title="ask for suggestions in the region">complete</button>
 <button id="pick" title="click a suggestion to accept it">accept one</button>
 <button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>
@@ -239,7 +241,8 @@ document.getElementById('complete').onclick = async () => {
   if (!S.region) { status('drag a region first'); return; }
   status('completing...');
   try {
-    const a = await post('complete', {lines: S.lines, region: S.region});
+    const a = await post('complete', {lines: S.lines, region: S.region,
+                                      method: document.getElementById('method').value});
     S.suggestions = a.suggestions;
     status(`${a.suggestions.length} suggestions`);
   } catch (err) { status(err.message); }
