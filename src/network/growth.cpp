@@ -13,6 +13,7 @@
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
 #include "network/detail/quilt.hpp"
+#include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
 
 namespace tw {
@@ -49,13 +50,7 @@ int bearing_bin(Vec2 chord) {
 
 // First distinct-point heading leaving an end of a polyline.
 double leaving(const std::vector<Vec2>& pts, bool from_start) {
-  const std::size_t n = pts.size();
-  const Vec2 a = from_start ? pts[0] : pts[n - 1];
-  for (std::size_t k = 1; k < n; ++k) {
-    const Vec2 b = from_start ? pts[k] : pts[n - 1 - k];
-    if (!(b == a)) return heading(b - a);
-  }
-  return 0.0;
+  return network_detail::leaving_heading(pts, from_start);
 }
 
 // A whole exemplar edge, walked from one end: start at the origin heading +x.
@@ -86,6 +81,10 @@ struct Stub {
 
 // Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
 constexpr double kMinMeetingAngle = 0.35;
+// The layout copies strokes at least this part of the exemplar's longer side long, when they
+// hold at least this share of its length.
+constexpr double kLayoutStrokeFraction = 0.4;
+constexpr double kLayoutShare = 0.25;
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
 
@@ -154,11 +153,13 @@ class Grower {
     }
   }
 
-  Network run(bool quilted) {
-    if (quilted) {
+  enum class Mode { grow, quilt, layout };
+  Network run(Mode mode) {
+    if (mode == Mode::quilt) {
       quilt();
       drain();  // a partial network's open ends, when quilting was asked for anyway
     } else {
+      if (mode == Mode::layout) lay_out_long_strokes();
       drain();
       seed_lattice();
       retry_failed();
@@ -600,6 +601,87 @@ class Grower {
     else
       a = p2;
     return true;
+  }
+
+  // ---- layout (docs/networks.md, "Layout") ---------------------------------------------------
+  // The exemplar's long strokes (the tracks of a grid, terrace walls, rings and spokes) copied
+  // rigidly as one piece, repeated at the exemplar's extent to cover the region (a seeded shift
+  // of at most half a median edge), committed under the same rules as quilted lines; each of
+  // their junctions then gets stubs along the exemplar's other edges there, from which growth
+  // fills the cells. False when the exemplar has no such strokes.
+  bool lay_out_long_strokes() {
+    const std::vector<char> skeleton = network_detail::long_stroke_edges(
+        exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
+    if (std::find(skeleton.begin(), skeleton.end(), 1) == skeleton.end()) return false;
+    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    for (Vec2 p : exemplar_.nodes) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    const Vec2 centre = 0.5 * (lo + hi), size = hi - lo;
+    if (!(size.x > 0.0 && size.y > 0.0)) return false;
+    const Vec2 region_lo = vec(extent_.min_corner()), region_hi = vec(extent_.max_corner());
+    const Vec2 shift{rng_.uniform(-0.5, 0.5) * median_, rng_.uniform(-0.5, 0.5) * median_};
+    const Vec2 origin = 0.5 * (region_lo + region_hi) + shift;
+    const double reach = 0.5 * distance(region_lo, region_hi) + median_;
+    const int ni = int(std::ceil(reach / size.x)), nj = int(std::ceil(reach / size.y));
+    std::vector<std::pair<int, int>> tiles;
+    for (int j = -nj; j <= nj; ++j)
+      for (int i = -ni; i <= ni; ++i) tiles.push_back({i, j});
+    // The middle first: its copy is whole, the others fill around it.
+    std::stable_sort(tiles.begin(), tiles.end(), [](auto a, auto b) {
+      return a.first * a.first + a.second * a.second < b.first * b.first + b.second * b.second;
+    });
+    const std::vector<int> degree = exemplar_.degrees();
+    // Per exemplar node, the headings of its edges that are not laid out: the stubs growth
+    // fills the cells from.
+    std::vector<std::vector<double>> grown_headings(exemplar_.nodes.size());
+    for (std::size_t e = 0; e < exemplar_.edges.size(); ++e) {
+      if (skeleton[e]) continue;
+      const NetworkEdge& edge = exemplar_.edges[e];
+      grown_headings[std::size_t(edge.from)].push_back(leaving(edge.points, true) + turn_);
+      grown_headings[std::size_t(edge.to)].push_back(leaving(edge.points, false) + turn_);
+    }
+    std::vector<char> laid(out_.nodes.size(), 0);
+    for (auto [i, j] : tiles) {
+      const Vec2 tile{i * size.x, j * size.y};
+      const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
+      std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
+      for (std::size_t e = 0; e < exemplar_.edges.size(); ++e) {
+        if (!skeleton[e]) continue;
+        const NetworkEdge& edge = exemplar_.edges[e];
+        std::vector<Vec2> pts;
+        for (Vec2 p : edge.points) pts.push_back(place(p));
+        for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
+          const std::vector<Vec2> kept = part;
+          if (!place_line(std::move(part))) continue;
+          count_line(kept);
+          for (int end : {edge.from, edge.to}) {
+            const Vec2 p = place(exemplar_.nodes[std::size_t(end)]);
+            const auto it = node_at_.find({p.x, p.y});
+            if (it != node_at_.end()) copied.push_back({end, it->second});
+          }
+        }
+      }
+      laid.resize(out_.nodes.size(), 0);
+      for (auto [from, node] : copied) {
+        if (laid[std::size_t(node)] || out_.on_boundary[std::size_t(node)]) continue;
+        laid[std::size_t(node)] = 1;
+        planned_[std::size_t(node)] = degree[std::size_t(from)];
+        have_degree_[std::size_t(std::min(degree[std::size_t(from)], 6))] += 1.0;
+        junction_count_ += 1.0;
+        for (double h : grown_headings[std::size_t(from)]) push_stub(node, h);
+      }
+    }
+    return true;
+  }
+
+  // A placed line counted in the histograms growth steers by.
+  void count_line(const std::vector<Vec2>& pts) {
+    have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
+    have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
+    placed_ += 1.0;
+    grown_length_ += polyline_length(pts);
   }
 
   // ---- quilting (docs/networks.md, "Quilting") -----------------------------------------------
@@ -1295,39 +1377,82 @@ class Grower {
 
 namespace {
 
-// How far a network's style is from the exemplar's: the normalized W1 distances of its six
-// properties (each capped at 5: an empty sample is not infinitely worse) and the difference of
-// the dangling ends' rates relative to the exemplar's (at least 0.5 per km).
-double style_distance(const NetworkStats& exemplar, const Network& network) {
-  const NetworkStats s = network_stats(network);
-  double total = 0.0;
-  for (int p = 0; p < 6; ++p)
-    total += std::min(5.0, normalized_w1(property(exemplar, p), property(s, p)));
-  return total + std::min(5.0, std::abs(s.dangling_per_km() - exemplar.dangling_per_km()) /
-                                   std::max(0.5, exemplar.dangling_per_km()));
-}
+// How close a network's style is to the exemplar's: how many of the quality targets it meets
+// (docs/networks.md, "Quality": each property's normalized W1 distance within 1.5 × the
+// exemplar's own half-to-half distance or 0.05, the dangling ends within 1.5 × the exemplar's
+// rate), and, to break ties, the sum of the distances (each capped at 5: an empty sample is not
+// infinitely worse) and of the difference of the dangling ends' rates relative to the
+// exemplar's (at least 0.5 per km).
+struct StyleScore {
+  int met = 0;
+  double distance = 0.0;
+  bool better_than(const StyleScore& o) const {
+    return met != o.met ? met > o.met : distance < o.distance;
+  }
+};
+
+struct ExemplarStyle {
+  NetworkStats whole, half[2];
+  explicit ExemplarStyle(const Network& exemplar) : whole(network_stats(exemplar)) {
+    const auto [a, b] = halves(exemplar);
+    half[0] = network_stats(exemplar, a);
+    half[1] = network_stats(exemplar, b);
+  }
+  StyleScore score(const Network& network) const {
+    const NetworkStats s = network_stats(network);
+    StyleScore score;
+    for (int p = 0; p < 6; ++p) {
+      const double d = normalized_w1(property(whole, p), property(s, p));
+      const double own = normalized_w1(property(half[0], p), property(half[1], p));
+      score.met += d <= std::max(1.5 * own, 0.05);
+      score.distance += std::min(5.0, d);
+    }
+    score.met += s.dangling_per_km() <= 1.5 * whole.dangling_per_km() + 1e-9;
+    score.distance += std::min(5.0, std::abs(s.dangling_per_km() - whole.dangling_per_km()) /
+                                        std::max(0.5, whole.dangling_per_km()));
+    return score;
+  }
+};
 
 }  // namespace
 
 Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
                      const ForbiddenMask* forbidden, const Network* partial,
                      const NetworkGrowthOptions& options, NetworkGrowthReport* report) {
-  const auto make = [&](bool quilted, NetworkGrowthReport& counters) {
+  using Mode = Grower::Mode;
+  const auto make = [&](Mode mode, NetworkGrowthReport& counters) {
     Grower grower(exemplar, region, forbidden, options, counters);
     if (partial) grower.add_partial(*partial);
-    return grower.run(quilted);
+    return grower.run(mode);
   };
   NetworkGrowthReport local;
   if (options.method != NetworkMethod::automatic || partial)
-    return make(options.method == NetworkMethod::quilt, report ? *report : local);
-  // Both ways, and the one whose style is closer to the exemplar's (ties: growth).
-  NetworkGrowthReport quilt_report;
-  Network grown = make(false, local), quilted = make(true, quilt_report);
-  const NetworkStats target = network_stats(exemplar);
-  const bool quilt_wins = style_distance(target, quilted) < style_distance(target, grown);
-  if (report) *report = quilt_wins ? quilt_report : local;
-  if (report) report->quilted = quilt_wins;
-  return quilt_wins ? std::move(quilted) : std::move(grown);
+    return make(options.method == NetworkMethod::quilt ? Mode::quilt : Mode::grow,
+                report ? *report : local);
+  // Growth, the quilt and, when the exemplar has long strokes, growth from their layout; the
+  // one meeting the most targets on the exemplar's statistics (ties: the closer, then the
+  // first).
+  std::vector<Mode> modes{Mode::grow, Mode::quilt};
+  const std::vector<char> skeleton = network_detail::long_stroke_edges(
+      exemplar, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
+  if (std::find(skeleton.begin(), skeleton.end(), 1) != skeleton.end())
+    modes.push_back(Mode::layout);
+  const ExemplarStyle style(exemplar);
+  Network best;
+  StyleScore best_score;
+  NetworkGrowthReport best_report;
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    NetworkGrowthReport counters;
+    Network candidate = make(modes[m], counters);
+    const StyleScore score = style.score(candidate);
+    if (m == 0 || score.better_than(best_score)) {
+      best = std::move(candidate), best_score = score, best_report = counters;
+      best_report.quilted = modes[m] == Mode::quilt;
+      best_report.laid_out = modes[m] == Mode::layout;
+    }
+  }
+  if (report) *report = best_report;
+  return best;
 }
 
 GridSpec forbidden_mask_grid(const std::vector<Polygon>& region) {

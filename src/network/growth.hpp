@@ -71,7 +71,8 @@ void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<P
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;
-  bool quilted = false;  // `automatic` chose the quilt
+  bool quilted = false;   // `automatic` chose the quilt
+  bool laid_out = false;  // `automatic` chose growth from the exemplar's long strokes
 };
 
 // The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as
