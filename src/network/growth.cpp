@@ -77,6 +77,7 @@ struct Stub {
   int node = 0;
   double heading = 0.0;
   int id = 0;
+  int own_piece = -1;  // a laid-out junction's stub: the piece leaving it in the exemplar
 };
 
 // Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
@@ -215,6 +216,7 @@ class Grower {
       const double main_bearing = weight[main] > 0.0 ? sum[main] / weight[main] : 0.0;
       turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
     }
+    piece_of_.assign(2 * ex.edges.size(), -1);
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
       const NetworkEdge& e = ex.edges[i];
       for (int dir = 0; dir < 2; ++dir) {
@@ -272,6 +274,7 @@ class Grower {
           p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
+        piece_of_[2 * i + std::size_t(dir)] = int(pieces_.size());
         pieces_.push_back(std::move(p));
       }
     }
@@ -498,7 +501,11 @@ class Grower {
   // cells.
   // `own_clearance` false: a copy of an exemplar line, whose ends may lie near its own segments
   // as they do in the exemplar (it is still checked to be simple).
-  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true) {
+  // `joint_slack`: a crossing this close to a joint, with a segment that ends at that joint,
+  // counts as meeting there (a line copied by a translation meets its continuation nearly
+  // collinearly, where the rounding of the copy puts the crossing a hair off the node).
+  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true,
+             double joint_slack = 0.0) {
     const Vec2 start = pts.front(), end = pts.back();
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
@@ -537,8 +544,14 @@ class Grower {
         if (!common.empty()) {
           if (common.size() > 1 && bg::distance(common[0], common[1]) > eps) return false;
           const Vec2 x = vec(common[0]);
-          const bool at_start = k == 0 && distance(x, start) <= eps;
-          const bool at_end = end_joint && k + 2 == pts.size() && distance(x, end) <= eps;
+          const auto meets = [&](Vec2 joint) {
+            if (distance(x, joint) <= eps) return true;
+            return distance(x, joint) <= joint_slack &&
+                   (distance(vec(v.first.first), joint) <= eps ||
+                    distance(vec(v.first.second), joint) <= eps);
+          };
+          const bool at_start = k == 0 && meets(start);
+          const bool at_end = end_joint && k + 2 == pts.size() && meets(end);
           if (!at_start && !at_end) return false;
           continue;
         }
@@ -610,9 +623,16 @@ class Grower {
   // their junctions then gets stubs along the exemplar's other edges there, from which growth
   // fills the cells. False when the exemplar has no such strokes.
   bool lay_out_long_strokes() {
-    const std::vector<char> skeleton = network_detail::long_stroke_edges(
+    const std::vector<double> skeleton = network_detail::long_stroke_edges(
         exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
-    if (std::find(skeleton.begin(), skeleton.end(), 1) == skeleton.end()) return false;
+    // The longest strokes first (rings, whole tracks): a shorter one ending short of them, as
+    // drawn exemplars' lines do, gives way.
+    std::vector<std::size_t> order;
+    for (std::size_t e = 0; e < skeleton.size(); ++e)
+      if (skeleton[e] > 0.0) order.push_back(e);
+    if (order.empty()) return false;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return skeleton[a] > skeleton[b]; });
     Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
     for (Vec2 p : exemplar_.nodes) {
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
@@ -635,26 +655,27 @@ class Grower {
     const std::vector<int> degree = exemplar_.degrees();
     // Per exemplar node, the headings of its edges that are not laid out: the stubs growth
     // fills the cells from.
-    std::vector<std::vector<double>> grown_headings(exemplar_.nodes.size());
+    std::vector<std::vector<std::pair<double, int>>> grown_headings(exemplar_.nodes.size());
     for (std::size_t e = 0; e < exemplar_.edges.size(); ++e) {
-      if (skeleton[e]) continue;
+      if (skeleton[e] > 0.0) continue;
       const NetworkEdge& edge = exemplar_.edges[e];
-      grown_headings[std::size_t(edge.from)].push_back(leaving(edge.points, true) + turn_);
-      grown_headings[std::size_t(edge.to)].push_back(leaving(edge.points, false) + turn_);
+      grown_headings[std::size_t(edge.from)].push_back(
+          {leaving(edge.points, true) + turn_, piece_of_[2 * e]});
+      grown_headings[std::size_t(edge.to)].push_back(
+          {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
     for (auto [i, j] : tiles) {
       const Vec2 tile{i * size.x, j * size.y};
       const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
       std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
-      for (std::size_t e = 0; e < exemplar_.edges.size(); ++e) {
-        if (!skeleton[e]) continue;
+      for (std::size_t e : order) {
         const NetworkEdge& edge = exemplar_.edges[e];
         std::vector<Vec2> pts;
         for (Vec2 p : edge.points) pts.push_back(place(p));
         for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
           const std::vector<Vec2> kept = part;
-          if (!place_line(std::move(part))) continue;
+          if (!place_line(std::move(part), clearance_)) continue;
           count_line(kept);
           for (int end : {edge.from, edge.to}) {
             const Vec2 p = place(exemplar_.nodes[std::size_t(end)]);
@@ -670,7 +691,7 @@ class Grower {
         planned_[std::size_t(node)] = degree[std::size_t(from)];
         have_degree_[std::size_t(std::min(degree[std::size_t(from)], 6))] += 1.0;
         junction_count_ += 1.0;
-        for (double h : grown_headings[std::size_t(from)]) push_stub(node, h);
+        for (auto [h, piece] : grown_headings[std::size_t(from)]) push_stub(node, h, piece);
       }
     }
     return true;
@@ -750,7 +771,7 @@ class Grower {
 
   // Commits a quilt line when it keeps the rules; its ends join the nodes already at their
   // exact places (the block's junctions, a stitched seam).
-  bool place_line(std::vector<Vec2> pts) {
+  bool place_line(std::vector<Vec2> pts, double joint_slack = 0.0) {
     if (pts.size() < 2 || polyline_length(pts) <= 1e-9 * median_) return false;
     const auto existing = [&](Vec2 p) {
       const auto it = node_at_.find({p.x, p.y});
@@ -767,7 +788,7 @@ class Grower {
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < clearance_) return false;
     }
     if (ring && pts.size() < 4) return false;
-    if (!valid(pts, true, false)) return false;
+    if (!valid(pts, true, false, joint_slack)) return false;
     for (int k = 0; k < 2; ++k) {
       if (ends[k] >= 0) continue;
       if (k == 1 && ring) {
@@ -863,6 +884,17 @@ class Grower {
           o && (o->how.kind == Ending::Kind::node || o->how.kind == Ending::Kind::edge)) {
         o->cost = outcome_cost(*o);
         best = std::move(o), best_piece = &link;
+      }
+    }
+    if (stub.own_piece >= 0 && !retry) {
+      // A laid-out junction takes the exemplar's own piece there when it fits (the cells
+      // between the long strokes as the exemplar has them); the drawn candidates otherwise.
+      const Piece& piece = pieces_[std::size_t(stub.own_piece)];
+      std::vector<Vec2> pts;
+      for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts))) {
+        commit(stub, piece, std::move(*o));
+        return;
       }
     }
     const int candidates = retry ? 4 * options_.candidates : options_.candidates;
@@ -1100,9 +1132,9 @@ class Grower {
       for (double turn : piece.end_turns) push_stub(end, wrap(arrive + turn));
   }
 
-  void push_stub(int node, double heading) {
+  void push_stub(int node, double heading, int own_piece = -1) {
     const int id = int(stubs_.size());
-    stubs_.push_back({node, heading, id});
+    stubs_.push_back({node, heading, id, own_piece});
     cancelled_.push_back(0);
     stubs_of_[std::size_t(node)].push_back(id);
     queue_.push_back(stubs_.back());
@@ -1342,6 +1374,7 @@ class Grower {
   SplitMix64 rng_;
 
   std::vector<Piece> pieces_;
+  std::vector<int> piece_of_;  // per exemplar edge and direction (2 i + dir): its piece or -1
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
@@ -1433,9 +1466,10 @@ Network grow_network(const Network& exemplar, const std::vector<Polygon>& region
   // one meeting the most targets on the exemplar's statistics (ties: the closer, then the
   // first).
   std::vector<Mode> modes{Mode::grow, Mode::quilt};
-  const std::vector<char> skeleton = network_detail::long_stroke_edges(
+  const std::vector<double> skeleton = network_detail::long_stroke_edges(
       exemplar, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
-  if (std::find(skeleton.begin(), skeleton.end(), 1) != skeleton.end())
+  if (std::find_if(skeleton.begin(), skeleton.end(), [](double l) { return l > 0.0; }) !=
+      skeleton.end())
     modes.push_back(Mode::layout);
   const ExemplarStyle style(exemplar);
   Network best;

@@ -28,8 +28,8 @@ double leaving_heading(const std::vector<Vec2>& pts, bool from_start) {
   return 0.0;
 }
 
-std::vector<char> long_stroke_edges(const Network& ex, double deflection, double min_fraction,
-                                    double min_share) {
+std::vector<double> long_stroke_edges(const Network& ex, double deflection, double min_fraction,
+                                      double min_share) {
   const std::size_t ne = ex.edges.size();
   // Per node, the edges leaving it (edge index, which end) with their headings.
   struct Leaving {
@@ -65,7 +65,8 @@ std::vector<char> long_stroke_edges(const Network& ex, double deflection, double
       if (other < 0) continue;
       const NetworkEdge& o = ex.edges[std::size_t(other)];
       const int other_end = o.from == int(n) ? 0 : 1;
-      if (best_continuation(int(n), other, other_end) == l.edge) next[std::size_t(l.edge)][l.end] = other;
+      if (best_continuation(int(n), other, other_end) == l.edge)
+        next[std::size_t(l.edge)][l.end] = other;
     }
   Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
   for (Vec2 p : ex.nodes) {
@@ -87,18 +88,19 @@ std::vector<char> long_stroke_edges(const Network& ex, double deflection, double
       stroke[std::size_t(e)] = id;
       length += polyline_length(ex.edges[std::size_t(e)].points);
       for (int k = 0; k < 2; ++k)
-        if (next[std::size_t(e)][std::size_t(k)] >= 0) todo.push_back(next[std::size_t(e)][std::size_t(k)]);
+        if (next[std::size_t(e)][std::size_t(k)] >= 0)
+          todo.push_back(next[std::size_t(e)][std::size_t(k)]);
     }
     stroke_length.push_back(length);
   }
-  std::vector<char> is_long(ne, 0);
+  std::vector<double> is_long(ne, 0.0);
   double long_length = 0.0;
   for (std::size_t i = 0; i < ne; ++i)
     if (stroke_length[std::size_t(stroke[i])] >= min_length) {
-      is_long[i] = 1;
+      is_long[i] = stroke_length[std::size_t(stroke[i])];
       long_length += polyline_length(ex.edges[i].points);
     }
-  if (long_length < min_share * ex.total_length()) std::fill(is_long.begin(), is_long.end(), 0);
+  if (long_length < min_share * ex.total_length()) std::fill(is_long.begin(), is_long.end(), 0.0);
   return is_long;
 }
 

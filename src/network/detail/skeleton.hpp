@@ -13,11 +13,11 @@ namespace tw::network_detail {
 // Heading (radians) leaving an end of a polyline along its first distinct segment.
 double leaving_heading(const std::vector<Vec2>& points, bool from_start);
 
-// Per exemplar edge: 1 when it belongs to a stroke (edges chained across junctions, each the
-// other's least deflected continuation within `deflection` radians) at least `min_fraction` of
-// the exemplar's longer side long. All zero when such strokes hold less than `min_share` of the
-// exemplar's length (no global structure worth laying out).
-std::vector<char> long_stroke_edges(const Network& exemplar, double deflection,
-                                    double min_fraction, double min_share);
+// Per exemplar edge: the length of its stroke (edges chained across junctions, each the
+// other's least deflected continuation within `deflection` radians) when that is at least
+// `min_fraction` of the exemplar's longer side, else 0. All 0 when such strokes hold less than
+// `min_share` of the exemplar's length (no global structure worth laying out).
+std::vector<double> long_stroke_edges(const Network& exemplar, double deflection,
+                                      double min_fraction, double min_share);
 
 }  // namespace tw::network_detail
