@@ -21,8 +21,9 @@ namespace tw {
 
 // How a network is made (docs/networks.md): `quilt`, exemplar blocks chosen by how their lines
 // agree in the overlaps and stitched across the seams ("Quilting"); `grow`, whole exemplar pieces
-// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and the
-// one whose statistics are closer to the exemplar's; growth to complete a partial network (it
+// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and
+// growth from the exemplar's laid-out long strokes ("Layout"), and the one meeting the most
+// quality targets on the exemplar's statistics; growth to complete a partial network (it
 // grows from the drawn ends).
 enum class NetworkMethod { automatic, grow, quilt };
 
