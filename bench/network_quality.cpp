@@ -4,9 +4,10 @@
 // half, (c) the naive baseline (random exemplar patches), and the dangling ends per km; writes
 // docs/images/network_<name>.png (exemplar | output | baseline) with --images DIR.
 //   build/bench/bench_network_quality [--images docs/images] [--seed N]
-//                                     [--method automatic|grow|quilt]
+//                                     [--method automatic|growth|quilt]
 // NETWORK_VERBOSE=1 also prints, per exemplar, degree histograms, bent edges, mean lengths and
 // areas of the exemplar, the output and the baseline, and the growth counters.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -52,10 +53,14 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   NetworkMethod method = NetworkMethod::automatic;
   for (int i = 1; i + 1 < argc; ++i) {
-    if (!std::strcmp(argv[i], "--method"))
-      method = !std::strcmp(argv[i + 1], "grow")    ? NetworkMethod::grow
-               : !std::strcmp(argv[i + 1], "quilt") ? NetworkMethod::quilt
-                                                    : NetworkMethod::automatic;
+    if (!std::strcmp(argv[i], "--method")) {
+      if (std::find(kNetworkMethodNames.begin(), kNetworkMethodNames.end(), argv[i + 1]) ==
+          kNetworkMethodNames.end()) {
+        std::fprintf(stderr, "--method %s: expected automatic, growth or quilt\n", argv[i + 1]);
+        return 2;
+      }
+      method = network_method_named(argv[i + 1]);
+    }
     if (!std::strcmp(argv[i], "--images")) images = argv[i + 1];
     if (!std::strcmp(argv[i], "--seed")) seed = std::stoull(argv[i + 1]);
   }
@@ -130,9 +135,10 @@ int main(int argc, char** argv) {
         "%s (%s): %zu exemplar edges, %zu output edges in %.0f ms, crossings %lld outside %lld\n",
         c.name.c_str(),
         method == NetworkMethod::automatic
-            ? (report.quilted ? "automatic: quilt" : "automatic: grow")
-        : method == NetworkMethod::quilt ? "quilt"
-                                         : "grow",
+            ? (report.quilted    ? "automatic: quilt"
+               : report.laid_out ? "automatic: layout"
+                                 : "automatic: growth")
+            : std::string(kNetworkMethodNames[std::size_t(method)]).c_str(),
         ex.edges.size(), out.edges.size(), ms, (long long)check.crossings,
         (long long)check.outside);
     if (!images.empty()) {

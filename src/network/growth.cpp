@@ -13,6 +13,7 @@
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
 #include "network/detail/quilt.hpp"
+#include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
 
 namespace tw {
@@ -49,13 +50,7 @@ int bearing_bin(Vec2 chord) {
 
 // First distinct-point heading leaving an end of a polyline.
 double leaving(const std::vector<Vec2>& pts, bool from_start) {
-  const std::size_t n = pts.size();
-  const Vec2 a = from_start ? pts[0] : pts[n - 1];
-  for (std::size_t k = 1; k < n; ++k) {
-    const Vec2 b = from_start ? pts[k] : pts[n - 1 - k];
-    if (!(b == a)) return heading(b - a);
-  }
-  return 0.0;
+  return network_detail::leaving_heading(pts, from_start);
 }
 
 // A whole exemplar edge, walked from one end: start at the origin heading +x.
@@ -82,10 +77,15 @@ struct Stub {
   int node = 0;
   double heading = 0.0;
   int id = 0;
+  int own_piece = -1;  // a laid-out junction's stub: the piece leaving it in the exemplar
 };
 
 // Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
 constexpr double kMinMeetingAngle = 0.35;
+// The layout copies strokes at least this part of the exemplar's longer side long, when they
+// hold at least this share of its length.
+constexpr double kLayoutStrokeFraction = 0.4;
+constexpr double kLayoutShare = 0.25;
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
 
@@ -154,11 +154,13 @@ class Grower {
     }
   }
 
-  Network run(bool quilted) {
-    if (quilted) {
+  enum class Mode { grow, quilt, layout };
+  Network run(Mode mode) {
+    if (mode == Mode::quilt) {
       quilt();
       drain();  // a partial network's open ends, when quilting was asked for anyway
     } else {
+      if (mode == Mode::layout) lay_out_long_strokes();
       drain();
       seed_lattice();
       retry_failed();
@@ -214,6 +216,7 @@ class Grower {
       const double main_bearing = weight[main] > 0.0 ? sum[main] / weight[main] : 0.0;
       turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
     }
+    piece_of_.assign(2 * ex.edges.size(), -1);
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
       const NetworkEdge& e = ex.edges[i];
       for (int dir = 0; dir < 2; ++dir) {
@@ -271,6 +274,7 @@ class Grower {
           p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
+        piece_of_[2 * i + std::size_t(dir)] = int(pieces_.size());
         pieces_.push_back(std::move(p));
       }
     }
@@ -497,7 +501,11 @@ class Grower {
   // cells.
   // `own_clearance` false: a copy of an exemplar line, whose ends may lie near its own segments
   // as they do in the exemplar (it is still checked to be simple).
-  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true) {
+  // `joint_slack`: a crossing this close to a joint, with a segment that ends at that joint,
+  // counts as meeting there (a line copied by a translation meets its continuation nearly
+  // collinearly, where the rounding of the copy puts the crossing a hair off the node).
+  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true,
+             double joint_slack = 0.0) {
     const Vec2 start = pts.front(), end = pts.back();
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
@@ -536,8 +544,14 @@ class Grower {
         if (!common.empty()) {
           if (common.size() > 1 && bg::distance(common[0], common[1]) > eps) return false;
           const Vec2 x = vec(common[0]);
-          const bool at_start = k == 0 && distance(x, start) <= eps;
-          const bool at_end = end_joint && k + 2 == pts.size() && distance(x, end) <= eps;
+          const auto meets = [&](Vec2 joint) {
+            if (distance(x, joint) <= eps) return true;
+            return distance(x, joint) <= joint_slack &&
+                   (distance(vec(v.first.first), joint) <= eps ||
+                    distance(vec(v.first.second), joint) <= eps);
+          };
+          const bool at_start = k == 0 && meets(start);
+          const bool at_end = end_joint && k + 2 == pts.size() && meets(end);
           if (!at_start && !at_end) return false;
           continue;
         }
@@ -600,6 +614,95 @@ class Grower {
     else
       a = p2;
     return true;
+  }
+
+  // ---- layout (docs/networks.md, "Layout") ---------------------------------------------------
+  // The exemplar's long strokes (the tracks of a grid, terrace walls, rings and spokes) copied
+  // rigidly as one piece, repeated at the exemplar's extent to cover the region (a seeded shift
+  // of at most half a median edge), committed under the same rules as quilted lines; each of
+  // their junctions then gets stubs along the exemplar's other edges there, from which growth
+  // fills the cells. False when the exemplar has no such strokes.
+  bool lay_out_long_strokes() {
+    const std::vector<double> skeleton = network_detail::long_stroke_edges(
+        exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
+    // The longest strokes first (rings, whole tracks): a shorter one ending short of them, as
+    // drawn exemplars' lines do, gives way.
+    std::vector<std::size_t> order;
+    for (std::size_t e = 0; e < skeleton.size(); ++e)
+      if (skeleton[e] > 0.0) order.push_back(e);
+    if (order.empty()) return false;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return skeleton[a] > skeleton[b]; });
+    Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+    for (Vec2 p : exemplar_.nodes) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    const Vec2 centre = 0.5 * (lo + hi), size = hi - lo;
+    if (!(size.x > 0.0 && size.y > 0.0)) return false;
+    const Vec2 region_lo = vec(extent_.min_corner()), region_hi = vec(extent_.max_corner());
+    const Vec2 shift{rng_.uniform(-0.5, 0.5) * median_, rng_.uniform(-0.5, 0.5) * median_};
+    const Vec2 origin = 0.5 * (region_lo + region_hi) + shift;
+    const double reach = 0.5 * distance(region_lo, region_hi) + median_;
+    const int ni = int(std::ceil(reach / size.x)), nj = int(std::ceil(reach / size.y));
+    std::vector<std::pair<int, int>> tiles;
+    for (int j = -nj; j <= nj; ++j)
+      for (int i = -ni; i <= ni; ++i) tiles.push_back({i, j});
+    // The middle first: its copy is whole, the others fill around it.
+    std::stable_sort(tiles.begin(), tiles.end(), [](auto a, auto b) {
+      return a.first * a.first + a.second * a.second < b.first * b.first + b.second * b.second;
+    });
+    const std::vector<int> degree = exemplar_.degrees();
+    // Per exemplar node, the headings of its edges that are not laid out: the stubs growth
+    // fills the cells from.
+    std::vector<std::vector<std::pair<double, int>>> grown_headings(exemplar_.nodes.size());
+    for (std::size_t e = 0; e < exemplar_.edges.size(); ++e) {
+      if (skeleton[e] > 0.0) continue;
+      const NetworkEdge& edge = exemplar_.edges[e];
+      grown_headings[std::size_t(edge.from)].push_back(
+          {leaving(edge.points, true) + turn_, piece_of_[2 * e]});
+      grown_headings[std::size_t(edge.to)].push_back(
+          {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
+    }
+    std::vector<char> laid(out_.nodes.size(), 0);
+    for (auto [i, j] : tiles) {
+      const Vec2 tile{i * size.x, j * size.y};
+      const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
+      std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
+      for (std::size_t e : order) {
+        const NetworkEdge& edge = exemplar_.edges[e];
+        std::vector<Vec2> pts;
+        for (Vec2 p : edge.points) pts.push_back(place(p));
+        for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
+          const std::vector<Vec2> kept = part;
+          if (!place_line(std::move(part), clearance_)) continue;
+          count_line(kept);
+          for (int end : {edge.from, edge.to}) {
+            const Vec2 p = place(exemplar_.nodes[std::size_t(end)]);
+            const auto it = node_at_.find({p.x, p.y});
+            if (it != node_at_.end()) copied.push_back({end, it->second});
+          }
+        }
+      }
+      laid.resize(out_.nodes.size(), 0);
+      for (auto [from, node] : copied) {
+        if (laid[std::size_t(node)] || out_.on_boundary[std::size_t(node)]) continue;
+        laid[std::size_t(node)] = 1;
+        planned_[std::size_t(node)] = degree[std::size_t(from)];
+        have_degree_[std::size_t(std::min(degree[std::size_t(from)], 6))] += 1.0;
+        junction_count_ += 1.0;
+        for (auto [h, piece] : grown_headings[std::size_t(from)]) push_stub(node, h, piece);
+      }
+    }
+    return true;
+  }
+
+  // A placed line counted in the histograms growth steers by.
+  void count_line(const std::vector<Vec2>& pts) {
+    have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
+    have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
+    placed_ += 1.0;
+    grown_length_ += polyline_length(pts);
   }
 
   // ---- quilting (docs/networks.md, "Quilting") -----------------------------------------------
@@ -668,7 +771,7 @@ class Grower {
 
   // Commits a quilt line when it keeps the rules; its ends join the nodes already at their
   // exact places (the block's junctions, a stitched seam).
-  bool place_line(std::vector<Vec2> pts) {
+  bool place_line(std::vector<Vec2> pts, double joint_slack = 0.0) {
     if (pts.size() < 2 || polyline_length(pts) <= 1e-9 * median_) return false;
     const auto existing = [&](Vec2 p) {
       const auto it = node_at_.find({p.x, p.y});
@@ -685,7 +788,7 @@ class Grower {
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < clearance_) return false;
     }
     if (ring && pts.size() < 4) return false;
-    if (!valid(pts, true, false)) return false;
+    if (!valid(pts, true, false, joint_slack)) return false;
     for (int k = 0; k < 2; ++k) {
       if (ends[k] >= 0) continue;
       if (k == 1 && ring) {
@@ -781,6 +884,17 @@ class Grower {
           o && (o->how.kind == Ending::Kind::node || o->how.kind == Ending::Kind::edge)) {
         o->cost = outcome_cost(*o);
         best = std::move(o), best_piece = &link;
+      }
+    }
+    if (stub.own_piece >= 0 && !retry) {
+      // A laid-out junction takes the exemplar's own piece there when it fits (the cells
+      // between the long strokes as the exemplar has them); the drawn candidates otherwise.
+      const Piece& piece = pieces_[std::size_t(stub.own_piece)];
+      std::vector<Vec2> pts;
+      for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts))) {
+        commit(stub, piece, std::move(*o));
+        return;
       }
     }
     const int candidates = retry ? 4 * options_.candidates : options_.candidates;
@@ -1018,9 +1132,9 @@ class Grower {
       for (double turn : piece.end_turns) push_stub(end, wrap(arrive + turn));
   }
 
-  void push_stub(int node, double heading) {
+  void push_stub(int node, double heading, int own_piece = -1) {
     const int id = int(stubs_.size());
-    stubs_.push_back({node, heading, id});
+    stubs_.push_back({node, heading, id, own_piece});
     cancelled_.push_back(0);
     stubs_of_[std::size_t(node)].push_back(id);
     queue_.push_back(stubs_.back());
@@ -1260,6 +1374,7 @@ class Grower {
   SplitMix64 rng_;
 
   std::vector<Piece> pieces_;
+  std::vector<int> piece_of_;  // per exemplar edge and direction (2 i + dir): its piece or -1
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
@@ -1295,39 +1410,83 @@ class Grower {
 
 namespace {
 
-// How far a network's style is from the exemplar's: the normalized W1 distances of its six
-// properties (each capped at 5: an empty sample is not infinitely worse) and the difference of
-// the dangling ends' rates relative to the exemplar's (at least 0.5 per km).
-double style_distance(const NetworkStats& exemplar, const Network& network) {
-  const NetworkStats s = network_stats(network);
-  double total = 0.0;
-  for (int p = 0; p < 6; ++p)
-    total += std::min(5.0, normalized_w1(property(exemplar, p), property(s, p)));
-  return total + std::min(5.0, std::abs(s.dangling_per_km() - exemplar.dangling_per_km()) /
-                                   std::max(0.5, exemplar.dangling_per_km()));
-}
+// How close a network's style is to the exemplar's: how many of the quality targets it meets
+// (docs/networks.md, "Quality": each property's normalized W1 distance within 1.5 × the
+// exemplar's own half-to-half distance or 0.05, the dangling ends within 1.5 × the exemplar's
+// rate), and, to break ties, the sum of the distances (each capped at 5: an empty sample is not
+// infinitely worse) and of the difference of the dangling ends' rates relative to the
+// exemplar's (at least 0.5 per km).
+struct StyleScore {
+  int met = 0;
+  double distance = 0.0;
+  bool better_than(const StyleScore& o) const {
+    return met != o.met ? met > o.met : distance < o.distance;
+  }
+};
+
+struct ExemplarStyle {
+  NetworkStats whole, half[2];
+  explicit ExemplarStyle(const Network& exemplar) : whole(network_stats(exemplar)) {
+    const auto [a, b] = halves(exemplar);
+    half[0] = network_stats(exemplar, a);
+    half[1] = network_stats(exemplar, b);
+  }
+  StyleScore score(const Network& network) const {
+    const NetworkStats s = network_stats(network);
+    StyleScore score;
+    for (int p = 0; p < 6; ++p) {
+      const double d = normalized_w1(property(whole, p), property(s, p));
+      const double own = normalized_w1(property(half[0], p), property(half[1], p));
+      score.met += d <= std::max(1.5 * own, 0.05);
+      score.distance += std::min(5.0, d);
+    }
+    score.met += s.dangling_per_km() <= 1.5 * whole.dangling_per_km() + 1e-9;
+    score.distance += std::min(5.0, std::abs(s.dangling_per_km() - whole.dangling_per_km()) /
+                                        std::max(0.5, whole.dangling_per_km()));
+    return score;
+  }
+};
 
 }  // namespace
 
 Network grow_network(const Network& exemplar, const std::vector<Polygon>& region,
                      const ForbiddenMask* forbidden, const Network* partial,
                      const NetworkGrowthOptions& options, NetworkGrowthReport* report) {
-  const auto make = [&](bool quilted, NetworkGrowthReport& counters) {
+  using Mode = Grower::Mode;
+  const auto make = [&](Mode mode, NetworkGrowthReport& counters) {
     Grower grower(exemplar, region, forbidden, options, counters);
     if (partial) grower.add_partial(*partial);
-    return grower.run(quilted);
+    return grower.run(mode);
   };
   NetworkGrowthReport local;
   if (options.method != NetworkMethod::automatic || partial)
-    return make(options.method == NetworkMethod::quilt, report ? *report : local);
-  // Both ways, and the one whose style is closer to the exemplar's (ties: growth).
-  NetworkGrowthReport quilt_report;
-  Network grown = make(false, local), quilted = make(true, quilt_report);
-  const NetworkStats target = network_stats(exemplar);
-  const bool quilt_wins = style_distance(target, quilted) < style_distance(target, grown);
-  if (report) *report = quilt_wins ? quilt_report : local;
-  if (report) report->quilted = quilt_wins;
-  return quilt_wins ? std::move(quilted) : std::move(grown);
+    return make(options.method == NetworkMethod::quilt ? Mode::quilt : Mode::grow,
+                report ? *report : local);
+  // Growth, the quilt and, when the exemplar has long strokes, growth from their layout; the
+  // one meeting the most targets on the exemplar's statistics (ties: the closer, then the
+  // first).
+  std::vector<Mode> modes{Mode::grow, Mode::quilt};
+  const std::vector<double> skeleton = network_detail::long_stroke_edges(
+      exemplar, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
+  if (std::find_if(skeleton.begin(), skeleton.end(), [](double l) { return l > 0.0; }) !=
+      skeleton.end())
+    modes.push_back(Mode::layout);
+  const ExemplarStyle style(exemplar);
+  Network best;
+  StyleScore best_score;
+  NetworkGrowthReport best_report;
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    NetworkGrowthReport counters;
+    Network candidate = make(modes[m], counters);
+    const StyleScore score = style.score(candidate);
+    if (m == 0 || score.better_than(best_score)) {
+      best = std::move(candidate), best_score = score, best_report = counters;
+      best_report.quilted = modes[m] == Mode::quilt;
+      best_report.laid_out = modes[m] == Mode::layout;
+    }
+  }
+  if (report) *report = best_report;
+  return best;
 }
 
 GridSpec forbidden_mask_grid(const std::vector<Polygon>& region) {

@@ -21,8 +21,9 @@ namespace tw {
 
 // How a network is made (docs/networks.md): `quilt`, exemplar blocks chosen by how their lines
 // agree in the overlaps and stitched across the seams ("Quilting"); `grow`, whole exemplar pieces
-// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and the
-// one whose statistics are closer to the exemplar's; growth to complete a partial network (it
+// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and
+// growth from the exemplar's laid-out long strokes ("Layout"), and the one meeting the most
+// quality targets on the exemplar's statistics; growth to complete a partial network (it
 // grows from the drawn ends).
 enum class NetworkMethod { automatic, grow, quilt };
 
@@ -71,7 +72,8 @@ void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<P
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;
-  bool quilted = false;  // `automatic` chose the quilt
+  bool quilted = false;   // `automatic` chose the quilt
+  bool laid_out = false;  // `automatic` chose growth from the exemplar's long strokes
 };
 
 // The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as

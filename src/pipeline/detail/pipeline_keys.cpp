@@ -419,8 +419,8 @@ std::vector<KeyBlock> make_blocks() {
             def(NetworkGrowthOptions{}.candidates)},
            {"method",
             {choice({kNetworkMethodNames.begin(), kNetworkMethodNames.end()})},
-            "growth, quilt, or automatic: both and the one closer to the exemplar's statistics "
-            "(growth with `partial`)",
+            "growth, quilt, or automatic: both, and growth from the exemplar's long strokes, and "
+            "the one meeting the most quality targets (growth with `partial`)",
             def_text("automatic")},
            {"avoid",
             {boolean()},

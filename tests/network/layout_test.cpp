@@ -1,0 +1,81 @@
+// Growth from the exemplar's layout (docs/networks.md, "Layout"): where the exemplar's style is
+// global (rings and spokes around one centre, terrace walls across the whole slope), `automatic`
+// lays out its long strokes first and grows the rest from their junctions, and comes closer to
+// the exemplar than growth alone on the properties that structure decides.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "network/check.hpp"
+#include "network/example_networks.hpp"
+#include "network/exemplar.hpp"
+#include "network/growth.hpp"
+#include "network/stats.hpp"
+
+namespace tw {
+namespace {
+
+Network layout_exemplar(const std::string& kind) {
+  Warnings w;
+  return build_planar_network(example_network(kind, 400.0, 3), 1e-3, "exemplar", w);
+}
+
+std::vector<Polygon> layout_region(const Network& ex) {
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : ex.nodes) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  return {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+}
+
+double layout_distance(const Network& ex, const Network& out, int p) {
+  return normalized_w1(property(network_stats(ex), p), property(network_stats(out), p));
+}
+
+constexpr int kDegree = 0, kJunctionAngle = 3, kFaceArea = 4;
+
+// `automatic` over a region of the exemplar's size, seed 1: it chose the layout, and the
+// output keeps every rule.
+struct LaidOut {
+  Network ex;
+  std::vector<Polygon> region;
+  Network out;
+};
+LaidOut laid_out(const std::string& kind) {
+  LaidOut l{layout_exemplar(kind), {}, {}};
+  l.region = layout_region(l.ex);
+  NetworkGrowthReport report;
+  l.out = grow_network(l.ex, l.region, nullptr, nullptr, {.seed = 1}, &report);
+  EXPECT_TRUE(report.laid_out) << kind;
+  EXPECT_EQ(check_network(l.out, l.region, nullptr).total(), 0) << kind;
+  return l;
+}
+
+TEST(NetworkLayout, RadialKeepsItsJunctionAnglesAndCellsAroundOneCentre) {
+  const auto [ex, region, out] = laid_out("radial");
+  const Network grown =
+      grow_network(ex, region, nullptr, nullptr, {.seed = 1, .method = NetworkMethod::grow});
+  const double angle = layout_distance(ex, out, kJunctionAngle);
+  const double cells = layout_distance(ex, out, kFaceArea);
+  EXPECT_LT(angle, 0.5 * layout_distance(ex, grown, kJunctionAngle)) << angle;
+  EXPECT_LT(cells, 0.5 * layout_distance(ex, grown, kFaceArea)) << cells;
+  // Same seed, same bytes.
+  const Network again = grow_network(ex, region, nullptr, nullptr, {.seed = 1});
+  ASSERT_EQ(again.edges.size(), out.edges.size());
+  for (std::size_t i = 0; i < out.edges.size(); ++i)
+    ASSERT_EQ(again.edges[i].points, out.edges[i].points);
+}
+
+TEST(NetworkLayout, TerraceWallsKeepTheirDegreesAndCells) {
+  const auto [ex, region, out] = laid_out("terraces");
+  const auto [a, b] = halves(ex);
+  for (int p : {kDegree, kFaceArea}) {
+    const double own =
+        normalized_w1(property(network_stats(ex, a), p), property(network_stats(ex, b), p));
+    EXPECT_LE(layout_distance(ex, out, p), std::max(1.5 * own, 0.05)) << kNetworkProperties[p];
+  }
+}
+
+}  // namespace
+}  // namespace tw
