@@ -222,15 +222,21 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan.terrain_features = detail::terrain_features(terrain_options, lines);
   plan.terrain_params = detail::terrain_params(terrain_options);
   {
-    // A rerun whose terrain features and heights are unchanged samples no height here.
-    const ContentHash key = detail::terrain_plan_key(
-        cache_dir ? detail::heights_identity(dem_input, heightfield) : ContentHash{},
-        plan.terrain_features, plan.terrain_params);
+    // A rerun whose terrain features and heights are unchanged samples no height here; one
+    // with a moved road samples the heights along that road alone.
+    const ContentHash heights =
+        cache_dir ? detail::heights_identity(dem_input, heightfield) : ContentHash{};
+    const ContentHash key =
+        detail::terrain_plan_key(heights, plan.terrain_features, plan.terrain_params);
     CacheStatus status;
     plan.terrain = detail::cached_stage<TerrainPlan>(
         cache_dir, "terrain", key, warnings, status, [&](Warnings& w) {
-          HeightSampler heights(*source);
-          return plan_terrain(heights, plan.terrain_features, plan.terrain_params, w);
+          HeightSampler sampler(*source);
+          detail::CachedHeightsAlong along(cache_dir, heights, sample_heights_along(sampler));
+          TerrainPlan planned = plan_terrain(heightfield.grid, along.reader(),
+                                             plan.terrain_features, plan.terrain_params, w);
+          along.store();
+          return planned;
         });
   }
   detail::report_earthwork(terrain_options, lines, plan.terrain, report, warnings);

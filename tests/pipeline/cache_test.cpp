@@ -546,5 +546,46 @@ TEST(PlanStageCacheKey, HoldsTheHeightsTheFeaturesAndTheParameters) {
   EXPECT_NE(detail::terrain_plan_key(seed5, {road}, reordered), key);
 }
 
+// A terrain plan rebuilt for a moved road reads the heights along that road alone: the others'
+// samples come from the cache, the same values, and the entry keeps the latest centrelines.
+TEST(PlanStageCacheKey, HeightsAlongAreSampledOnlyForCentrelinesNotSeenBefore) {
+  test::TempDir dir;
+  int calls = 0;
+  const HeightsAlong sample = [&](const Curve& c, double step) {
+    ++calls;
+    return std::vector<double>{c.points[0].x, c.points[0].y, step};
+  };
+  const ContentHash heights = Hasher().text("some heights").digest();
+  const Curve r1{{{0.0, 0.0}, {100.0, 0.0}}, false}, r2{{{0.0, 5.0}, {0.0, 90.0}}, false};
+  Curve moved = r1;
+  moved.points[0].y = 10.0;
+  {
+    detail::CachedHeightsAlong along(dir.path(), heights, sample);
+    const HeightsAlong read = along.reader();
+    EXPECT_EQ(read(r1, 2.0), (std::vector<double>{0.0, 0.0, 2.0}));
+    read(r2, 2.0);
+    EXPECT_EQ(along.sampled(), 2);
+    along.store();
+  }
+  detail::CachedHeightsAlong along(dir.path(), heights, sample);
+  const HeightsAlong read = along.reader();
+  EXPECT_EQ(read(r2, 2.0), (std::vector<double>{0.0, 5.0, 2.0}));  // from the cache
+  EXPECT_EQ(read(moved, 2.0), (std::vector<double>{0.0, 10.0, 2.0}));
+  read(r2, 3.0);  // another step: sampled again
+  EXPECT_EQ(along.sampled(), 2);
+  EXPECT_EQ(calls, 4);
+  along.store();
+  detail::CachedHeightsAlong latest(dir.path(), heights, sample);
+  latest.reader()(moved, 2.0);
+  latest.reader()(r1, 2.0);  // not in the latest plan: dropped from the entry
+  EXPECT_EQ(latest.sampled(), 1);
+  detail::CachedHeightsAlong other(dir.path(), Hasher().text("other heights").digest(), sample);
+  other.reader()(r2, 2.0);
+  EXPECT_EQ(other.sampled(), 1);
+  detail::CachedHeightsAlong none(std::nullopt, heights, sample);
+  none.reader()(r2, 2.0);
+  EXPECT_EQ(none.sampled(), 1);
+}
+
 }  // namespace
 }  // namespace tw

@@ -88,6 +88,49 @@ ContentHash ribbons_key(const RibbonOptions& options,
   return h.digest();
 }
 
+CachedHeightsAlong::CachedHeightsAlong(const std::optional<fs::path>& dir,
+                                       const ContentHash& heights, HeightsAlong sample)
+    : sample_(std::move(sample)) {
+  if (!dir) return;
+  path_ = *dir / "plan" / "heights_along" / (heights.hex() + ".twc");
+  // A corrupt entry counts as none (as a remembered exemplar, detail/exemplar_memo.hpp): its
+  // centrelines are sampled again and it is replaced. Not a warning: it would be counted among
+  // the terrain plan's, and replayed with it.
+  CacheRead read = read_cache_entry(*path_);
+  if (read.state == CacheRead::State::ok) {
+    known_ = std::move(read.sections);
+    touch_cache_entry(*path_);
+  }
+}
+
+HeightsAlong CachedHeightsAlong::reader() {
+  return [this](const Curve& centerline, double step) {
+    const std::string key =
+        Hasher().points(centerline.points).boolean(centerline.closed).real(step).digest().hex();
+    std::vector<double> heights;
+    if (const auto it = known_.find(key); it != known_.end()) {
+      try {
+        from_bytes(it->second, heights, "heights along");
+        used_[key] = it->second;
+        return heights;
+      } catch (const Error&) {  // written by another version: sampled again and replaced
+        heights.clear();
+      }
+    }
+    heights = sample_(centerline, step);
+    used_[key] = to_bytes(heights);
+    ++sampled_;
+    return heights;
+  };
+}
+
+void CachedHeightsAlong::store() const {
+  if (!path_ || sampled_ == 0) return;
+  Warnings unwritable;  // the run's synthesis and tile caches warn about it, once
+  CacheFolder folder(path_->parent_path().parent_path().parent_path(), unwritable);
+  folder.write(*path_, used_);
+}
+
 std::optional<StageEntry> find_stage_entry(const fs::path& dir, const std::string& stage,
                                            const ContentHash& key, Warnings& warnings,
                                            CacheStatus& status) {

@@ -14,6 +14,7 @@
 #include "core/warnings.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/cache_status.hpp"
+#include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/stages.hpp"
@@ -38,6 +39,30 @@ ContentHash terrain_plan_key(const ContentHash& heights,
 // The key of make_feature_ribbons(options, lines, grid).
 ContentHash ribbons_key(const RibbonOptions& options,
                         const std::vector<std::vector<LineFeature>>& lines, const GridSpec& grid);
+
+// The heights along each feature that a terrain plan read (HeightsAlong), kept per centreline
+// and step under the heights' identity (DIR/plan/heights_along/<heights>.twc): when the terrain
+// plan is rebuilt (a moved road), only the features whose centreline changed read the heights
+// again. The entry is rewritten with the centrelines of the latest plan when one was sampled.
+// No cache dir: every centreline is sampled.
+class CachedHeightsAlong {
+ public:
+  CachedHeightsAlong(const std::optional<std::filesystem::path>& dir, const ContentHash& heights,
+                     HeightsAlong sample);
+  // The HeightsAlong plan_terrain reads through (the cached samples, else `sample`'s).
+  HeightsAlong reader();
+  // Stores the samples read since construction when any was new (a failed write is silent: the
+  // run's other caches warn about the folder).
+  void store() const;
+  int sampled() const { return sampled_; }  // centrelines sampled, not found
+
+ private:
+  std::optional<std::filesystem::path> path_;
+  HeightsAlong sample_;
+  CacheSections known_;  // <curve key hex> -> samples (plan_binary bytes)
+  CacheSections used_;
+  int sampled_ = 0;
+};
 
 // An entry of a plan stage, found: its value's bytes and the warnings the stage gave.
 struct StageEntry {
