@@ -11,6 +11,7 @@
 #include "pipeline/detail/conformance.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/input_check.hpp"
+#include "pipeline/detail/plan_stage_cache.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/detail/stage_clock.hpp"
@@ -125,7 +126,8 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   detail::StageClock clock(report.stages);
 
   clock.start("ingest");
-  detail::check_inputs(given.inputs, options.cache_dir ? options.cache_dir : given.cache_dir);
+  const std::optional<fs::path> cache_dir = options.cache_dir ? options.cache_dir : given.cache_dir;
+  detail::check_inputs(given.inputs, cache_dir);
   // Synthesis width and delta from the exemplars where a class gives none.
   const PipelineConfig config = detail::with_exemplar_defaults(given);
   // Each stage takes its own options, taken from the config here (detail/stage_options.hpp).
@@ -186,8 +188,14 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan_methods(MethodStage::lines, context, clock);
 
   clock.start("ribbons");
-  detail::FeatureRibbons ribbons = detail::make_feature_ribbons(detail::ribbon_options(config),
-                                                                lines, heightfield.grid, warnings);
+  // Cached under what they read (detail/plan_stage_cache.hpp), as the terrain plan below.
+  const detail::RibbonOptions ribbon_options = detail::ribbon_options(config);
+  CacheStatus ribbons_status;
+  detail::FeatureRibbons ribbons = detail::cached_stage<detail::FeatureRibbons>(
+      cache_dir, "ribbons", detail::ribbons_key(ribbon_options, lines, heightfield.grid), warnings,
+      ribbons_status, [&](Warnings& w) {
+        return detail::make_feature_ribbons(ribbon_options, lines, heightfield.grid, w);
+      });
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
@@ -214,8 +222,22 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan.terrain_features = detail::terrain_features(terrain_options, lines);
   plan.terrain_params = detail::terrain_params(terrain_options);
   {
-    HeightSampler heights(*source);
-    plan.terrain = plan_terrain(heights, plan.terrain_features, plan.terrain_params, warnings);
+    // A rerun whose terrain features and heights are unchanged samples no height here; one
+    // with a moved road samples the heights along that road alone.
+    const ContentHash heights =
+        cache_dir ? detail::heights_identity(dem_input, heightfield) : ContentHash{};
+    const ContentHash key =
+        detail::terrain_plan_key(heights, plan.terrain_features, plan.terrain_params);
+    CacheStatus status;
+    plan.terrain = detail::cached_stage<TerrainPlan>(
+        cache_dir, "terrain", key, warnings, status, [&](Warnings& w) {
+          HeightSampler sampler(*source);
+          detail::CachedHeightsAlong along(cache_dir, heights, sample_heights_along(sampler));
+          TerrainPlan planned = plan_terrain(heightfield.grid, along.reader(),
+                                             plan.terrain_features, plan.terrain_params, w);
+          along.store();
+          return planned;
+        });
   }
   detail::report_earthwork(terrain_options, lines, plan.terrain, report, warnings);
   report_decks(plan.terrain, report);

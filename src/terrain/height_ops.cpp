@@ -335,7 +335,18 @@ TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
 
 TerrainPlan plan_terrain(HeightSampler& heights, const std::vector<TerrainFeature>& features,
                          const TerrainParams& params, Warnings& warnings) {
-  const GridSpec& grid = heights.grid();
+  return plan_terrain(heights.grid(), sample_heights_along(heights), features, params, warnings);
+}
+
+HeightsAlong sample_heights_along(HeightSampler& heights) {
+  return [&heights](const Curve& centerline, double step) {
+    return detail::terrain_along(heights, centerline, step);
+  };
+}
+
+TerrainPlan plan_terrain(const GridSpec& grid, const HeightsAlong& heights_along,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                         Warnings& warnings) {
   TerrainPlan plan;
   plan.params = params;
   const auto ranks = detail::precedence_ranks(params);
@@ -367,7 +378,7 @@ TerrainPlan plan_terrain(HeightSampler& heights, const std::vector<TerrainFeatur
       profiles[i] = {0.0};
       continue;
     }
-    auto terrain = detail::terrain_along(heights, f.centerline, step);
+    auto terrain = heights_along(f.centerline, step);
     if (terrain.empty()) {
       // Off this grid altogether (a close-up region, a tile) is expected; over nodata is not.
       if (reaches_grid(f, grid, step)) {

@@ -1,5 +1,6 @@
 #pragma once
 // Height operations: carve rivers, grade roads, raise ridges on a heightfield.
+#include <functional>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -56,6 +57,17 @@ struct TerrainPlan {
 // `over_nodata` warning (its subject, FID).
 TerrainPlan plan_terrain(HeightSampler& heights, const std::vector<TerrainFeature>& features,
                          const TerrainParams& params, Warnings& warnings);
+// What plan_terrain reads of the heightfield: the heights under a centreline every `step`
+// metres, nodata gaps bridged (detail::terrain_along; empty when all of it is over nodata).
+// A caller may keep them per centreline and give back those of unchanged features (the run
+// cache: a moved road samples only itself again).
+using HeightsAlong = std::function<std::vector<double>(const Curve& centerline, double step)>;
+// The HeightsAlong of `heights` (which must outlive it).
+HeightsAlong sample_heights_along(HeightSampler& heights);
+// The same plan, reading the heights through `heights_along` (over `grid`).
+TerrainPlan plan_terrain(const GridSpec& grid, const HeightsAlong& heights_along,
+                         const std::vector<TerrainFeature>& features, const TerrainParams& params,
+                         Warnings& warnings);
 // The same over `height`, which covers the whole grid (the same plan, bit for bit).
 TerrainPlan plan_terrain(const Raster<float>& height, const GridSpec& grid,
                          const std::vector<TerrainFeature>& features, const TerrainParams& params,

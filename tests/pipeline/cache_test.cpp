@@ -16,8 +16,11 @@
 
 #include "cache_world.hpp"
 #include "core/error.hpp"
+#include "pipeline/detail/cache_entry.hpp"
+#include "pipeline/detail/plan_stage_cache.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
+#include "test_world.hpp"
 
 namespace tw {
 namespace {
@@ -427,6 +430,158 @@ TEST_F(CacheRun, APrunedCacheFileRebuildsTheTilesThatNeedIt) {
   EXPECT_EQ(tiles[2]["why"], "new");
   for (const auto& t : tiles) EXPECT_TRUE(t["why"] == "new" || t["why"] == "unchanged") << t;
   expect_same_outputs("second", "clean");
+}
+
+// --- Plan stages (ribbons, terrain plan) in the cache: issue #23 item 2 -------------------------
+
+// The entries of a plan stage: DIR/plan/<stage>/<key>.twc.
+std::vector<fs::path> plan_stage_entries(const fs::path& cache, const std::string& stage) {
+  std::vector<fs::path> entries;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(cache / "plan" / stage, ec))
+    entries.push_back(e.path());
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+
+// A rerun takes the ribbons and the terrain plan from the cache, not from the lines and the
+// heights: a cached terrain plan whose profiles were raised by a metre (a valid entry under the
+// same key) reaches the outputs. A new seed (the generated heights) keys a new terrain plan and
+// keeps the ribbons; a moved road keys new ones of both; each run's outputs are a clean run's.
+TEST_F(CacheRun, PlanStagesAreReusedUnderTheirKeysAndRebuiltWhenTheirInputsChange) {
+  run("first");
+  const fs::path cache = dir_ / "cache";
+  const std::vector<fs::path> terrain = plan_stage_entries(cache, "terrain");
+  ASSERT_EQ(terrain.size(), 1u);
+  ASSERT_EQ(plan_stage_entries(cache, "ribbons").size(), 1u);
+  const detail::CacheRead read = detail::read_cache_entry(terrain[0]);
+  ASSERT_EQ(read.state, detail::CacheRead::State::ok);
+  detail::CacheSections raised = read.sections;
+  TerrainPlan plan;
+  detail::from_bytes(raised.at("value"), plan, "test");
+  ASSERT_FALSE(plan.profiles.empty());
+  for (auto& profile : plan.profiles)
+    for (float& z : profile) z += 1.0f;
+  raised["value"] = detail::to_bytes(plan);
+  detail::write_cache_entry(terrain[0], raised);
+  run("raised");
+  EXPECT_EQ(plan_stage_entries(cache, "terrain"), terrain);  // the same key
+  EXPECT_NE(output_files(dir_ / "raised").at("height.exr"),
+            output_files(dir_ / "first").at("height.exr"));
+  detail::write_cache_entry(terrain[0], read.sections);  // as computed
+
+  run("seed6", true, "", {{"seed", "6"}});
+  run("clean6", false, "", {{"seed", "6"}});
+  expect_same_outputs("seed6", "clean6");
+  EXPECT_EQ(plan_stage_entries(cache, "terrain").size(), 2u);
+  EXPECT_EQ(plan_stage_entries(cache, "ribbons").size(), 1u);
+
+  write_roads(dir_ / "roads.gpkg", roads_with_r1_moved());
+  run("moved");
+  run("clean_moved", false);
+  expect_same_outputs("moved", "clean_moved");
+  EXPECT_EQ(plan_stage_entries(cache, "terrain").size(), 3u);
+  EXPECT_EQ(plan_stage_entries(cache, "ribbons").size(), 2u);
+}
+
+// A corrupt plan-stage entry is the warning cache_corrupt naming it, is rebuilt (a clean run's
+// outputs) and is whole again for the next run.
+TEST_F(CacheRun, ACorruptPlanStageEntryIsAWarningAndRebuilt) {
+  run("first");
+  const std::vector<fs::path> ribbons = plan_stage_entries(dir_ / "cache", "ribbons");
+  ASSERT_EQ(ribbons.size(), 1u);
+  std::string bytes = test::read_file(ribbons[0]);
+  bytes[bytes.size() / 2] ^= 0x20;
+  fs::permissions(ribbons[0], fs::perms::owner_write, fs::perm_options::add);
+  std::ofstream(ribbons[0], std::ios::binary | std::ios::trunc) << bytes;
+  const RunReport report = run("second");
+  int corrupt = 0;
+  for (const Warning& w : report.warnings) {
+    if (w.code != "cache_corrupt") continue;
+    ++corrupt;
+    EXPECT_EQ(w.subject, "plan.ribbons");
+    EXPECT_THAT(w.message, HasSubstr(ribbons[0].filename().string()));
+  }
+  EXPECT_EQ(corrupt, 1);
+  expect_same_outputs("first", "second");
+  const RunReport third = run("third");
+  for (const Warning& w : third.warnings) EXPECT_NE(w.code, "cache_corrupt") << w.message;
+}
+
+// The heights' identity in the terrain plan's key: a DEM's bytes (the same grid and nodata),
+// a generated world's seed; the key also changes with the features and the parameters.
+TEST(PlanStageCacheKey, HoldsTheHeightsTheFeaturesAndTheParameters) {
+  test::TempDir dir;
+  Heightfield grid_only;
+  grid_only.grid = {64, 64, 500000.0, 5000640.0, 10.0, 10.0};
+  detail::HeightfieldInput dem;
+  dem.file = dir / "dem.tif";
+  test::write_dem(*dem.file, {.nodata = -9999.0});
+  const ContentHash slope = detail::heights_identity(dem, grid_only);
+  EXPECT_EQ(detail::heights_identity(dem, grid_only), slope);
+  test::write_dem(*dem.file, {.nodata = -9999.0, .all_nodata = true});
+  EXPECT_NE(detail::heights_identity(dem, grid_only), slope);
+
+  detail::HeightfieldInput generated;
+  generated.seed = 5;
+  const ContentHash seed5 = detail::heights_identity(generated, grid_only);
+  generated.seed = 6;
+  EXPECT_NE(detail::heights_identity(generated, grid_only), seed5);
+
+  TerrainFeature road;
+  road.kind = FeatureKind::road;
+  road.centerline = {{{500100.0, 5000300.0}, {500500.0, 5000300.0}}, false};
+  road.width = 6.0;
+  const TerrainParams params;
+  const ContentHash key = detail::terrain_plan_key(seed5, {road}, params);
+  EXPECT_NE(detail::terrain_plan_key(slope, {road}, params), key);
+  TerrainFeature moved = road;
+  moved.centerline.points[1].y += 1.0;
+  EXPECT_NE(detail::terrain_plan_key(seed5, {moved}, params), key);
+  TerrainParams reordered;
+  reordered.precedence = {FeatureKind::road, FeatureKind::river, FeatureKind::ridge};
+  EXPECT_NE(detail::terrain_plan_key(seed5, {road}, reordered), key);
+}
+
+// A terrain plan rebuilt for a moved road reads the heights along that road alone: the others'
+// samples come from the cache, the same values, and the entry keeps the latest centrelines.
+TEST(PlanStageCacheKey, HeightsAlongAreSampledOnlyForCentrelinesNotSeenBefore) {
+  test::TempDir dir;
+  int calls = 0;
+  const HeightsAlong sample = [&](const Curve& c, double step) {
+    ++calls;
+    return std::vector<double>{c.points[0].x, c.points[0].y, step};
+  };
+  const ContentHash heights = Hasher().text("some heights").digest();
+  const Curve r1{{{0.0, 0.0}, {100.0, 0.0}}, false}, r2{{{0.0, 5.0}, {0.0, 90.0}}, false};
+  Curve moved = r1;
+  moved.points[0].y = 10.0;
+  {
+    detail::CachedHeightsAlong along(dir.path(), heights, sample);
+    const HeightsAlong read = along.reader();
+    EXPECT_EQ(read(r1, 2.0), (std::vector<double>{0.0, 0.0, 2.0}));
+    read(r2, 2.0);
+    EXPECT_EQ(along.sampled(), 2);
+    along.store();
+  }
+  detail::CachedHeightsAlong along(dir.path(), heights, sample);
+  const HeightsAlong read = along.reader();
+  EXPECT_EQ(read(r2, 2.0), (std::vector<double>{0.0, 5.0, 2.0}));  // from the cache
+  EXPECT_EQ(read(moved, 2.0), (std::vector<double>{0.0, 10.0, 2.0}));
+  read(r2, 3.0);  // another step: sampled again
+  EXPECT_EQ(along.sampled(), 2);
+  EXPECT_EQ(calls, 4);
+  along.store();
+  detail::CachedHeightsAlong latest(dir.path(), heights, sample);
+  latest.reader()(moved, 2.0);
+  latest.reader()(r1, 2.0);  // not in the latest plan: dropped from the entry
+  EXPECT_EQ(latest.sampled(), 1);
+  detail::CachedHeightsAlong other(dir.path(), Hasher().text("other heights").digest(), sample);
+  other.reader()(r2, 2.0);
+  EXPECT_EQ(other.sampled(), 1);
+  detail::CachedHeightsAlong none(std::nullopt, heights, sample);
+  none.reader()(r2, 2.0);
+  EXPECT_EQ(none.sampled(), 1);
 }
 
 }  // namespace

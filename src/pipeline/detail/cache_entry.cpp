@@ -227,7 +227,7 @@ CacheFolder::CacheFolder(const fs::path& dir, Warnings& warnings) : warnings_(wa
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) == 0) {
     std::error_code ec;
     for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last", "tiles/files",
-                            "exemplars"}) {
+                            "exemplars", "plan/terrain", "plan/ribbons", "plan/heights_along"}) {
       for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code removed;
         if (is_cache_temporary(it->path()) && fs::remove(it->path(), removed)) ++swept_;
