@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/area_lead.hpp"
 #include "pipeline/job.hpp"
-#include "pipeline/methods/areas/area_lead.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
@@ -612,15 +612,15 @@ TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
 
 TEST(AreaCompass, BearingsAreClockwiseFromNorthInZeroTo360) {
   const double pi = std::numbers::pi;
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi / 2.0), 0.0);  // +y: north
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(0.0), 90.0);      // +x: east
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi), 270.0);
+  EXPECT_DOUBLE_EQ(compass_degrees(pi / 2.0), 0.0);  // +y: north
+  EXPECT_DOUBLE_EQ(compass_degrees(0.0), 90.0);      // +x: east
+  EXPECT_DOUBLE_EQ(compass_degrees(pi), 270.0);
   // Just past north counter-clockwise: fmod leaves a tiny negative whose + 360 rounds to 360.
-  const double just_past = detail::compass_degrees(std::nextafter(pi / 2.0, 4.0));
+  const double just_past = compass_degrees(std::nextafter(pi / 2.0, 4.0));
   EXPECT_GE(just_past, 0.0);
   EXPECT_LT(just_past, 360.0);
   for (double deg : {0.0, 30.0, 90.0, 181.5, 359.0})
-    EXPECT_NEAR(detail::compass_degrees(detail::angle_from_compass(deg)), deg, 1e-9);
+    EXPECT_NEAR(compass_degrees(angle_from_compass(deg)), deg, 1e-9);
 }
 
 }  // namespace
