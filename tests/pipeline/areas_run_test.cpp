@@ -24,6 +24,8 @@
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synthesis_job.hpp"
+#include "pipeline/synthesis_method.hpp"
+#include "raster/sparse_raster.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -149,6 +151,50 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
     EXPECT_NE(std::find(plan.splat_materials.begin(), plan.splat_materials.end(), m),
               plan.splat_materials.end())
         << m;
+}
+
+// A method before the areas that keeps them out of the vine field's west half (x below
+// kKeepWestEdge) through the seam, as the curve patterns keep them off their coverage: a band
+// burnt on the areas' canvases by SynthesisMethod::keep_out.
+constexpr double kKeepWestEdge = 500160.0;
+struct AreaKeepWestPlan : MethodPayloadOf<AreaKeepWestPlan> {};
+class AreaKeepWestMethod final : public SynthesisMethod {
+ public:
+  std::string name() const override { return "keep_west"; }
+  MethodStage stage() const override { return MethodStage::placements; }
+  bool serves(const PipelineConfig&, const PlanOptions&) const override { return true; }
+  std::unique_ptr<MethodPayload> empty_payload() const override {
+    return std::make_unique<AreaKeepWestPlan>();
+  }
+  void plan(MethodContext&, MethodPlan&) const override {}
+  void keep_out(const MethodPlan&, const GridSpec& lattice,
+                SparseRaster<std::uint8_t>& forbidden) const override {
+    const std::vector<Vec2> band = {{kKeepWestEdge - 60.0, 4999500.0},
+                                    {kKeepWestEdge - 60.0, 5000000.0}};
+    burn_buffered_lines_on({&band}, {120.0}, lattice, forbidden, 1);
+  }
+  nlohmann::json encode(const MethodPlan&, detail::PlanObjects&) const override { return {}; }
+  void decode(const nlohmann::json&, detail::PlanObjects&, MethodPlan&) const override {}
+};
+
+TEST_F(AreaRun, ShapesKeepOutOfWhatTheMethodsBeforeThemKeepOut) {
+  const AreaKeepWestMethod keep_west;
+  auto west_points = [](const WorldPlan& plan, double margin) {
+    int west = 0;
+    for (const PlacedStroke& s : detail::areas_plan(plan)->areas.at(0).pattern.strokes)
+      for (const Vec2 p : s.points) west += p.x < kKeepWestEdge + 0.5 * s.width - margin;
+    return west;
+  };
+  Warnings warnings;
+  PlanOptions options;
+  options.methods = {&detail::area_method()};
+  const WorldPlan alone = plan_world(config("alone"), options, warnings);
+  EXPECT_GT(west_points(alone, 0.0), 20);  // without it, the vines fill the west half too
+  options.methods = {&keep_west, &detail::area_method()};
+  const WorldPlan kept = plan_world(config("kept"), options, warnings);
+  // Up to a canvas cell's diagonal, the avoidance lattice's resolution.
+  EXPECT_EQ(west_points(kept, std::sqrt(2.0)), 0);
+  EXPECT_GT(detail::areas_plan(kept)->areas.at(0).pattern.strokes.size(), 5u);
 }
 
 TEST_F(AreaRun, RowsRaiseTheTerrainByTheirHeightDetailAndPaintTheirSplat) {
