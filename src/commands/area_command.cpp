@@ -16,9 +16,9 @@
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
-#include "pipeline/methods/areas/area_canvas.hpp"
-#include "pipeline/methods/areas/area_lead.hpp"
-#include "pipeline/methods/areas/area_output.hpp"
+#include "pipeline/area_canvas.hpp"
+#include "pipeline/area_lead.hpp"
+#include "pipeline/area_output.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 
@@ -93,7 +93,7 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
       detail::avoided_features(frame, c.avoid, c.avoid_width, "area.avoid", warnings);
 
   const auto synthesis_started = std::chrono::steady_clock::now();
-  std::vector<detail::AreaResult> results;
+  std::vector<AreaResult> results;
   std::vector<Polygon> polygons;
   for (std::size_t k = 0; k < features.size(); ++k) {
     const PolygonFeature& f = features[k];
@@ -103,25 +103,24 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
     params.jitter = c.jitter;
     // One seed per polygon part: the same part gets the same shapes whatever else is in the file.
     params.seed = c.seed * 0x9E3779B97F4A7C15ull + std::uint64_t(f.fid) * 0x100000001B3ull + k;
-    params.bearing =
-        c.bearing ? detail::angle_from_compass(*c.bearing) : long_axis_bearing(polygon);
+    params.bearing = c.bearing ? angle_from_compass(*c.bearing) : long_axis_bearing(polygon);
     params.tolerance = 0.25 * c.resolution;
     const std::string label = fmt::format("{}: FID {}", c.polygons, f.fid);
     const double cell = c.avoid.empty() ? 0.0 : c.resolution;
     const double margin = canvas_margin(hierarchy, c.scale, c.resolution);
-    detail::require_area_memory(hierarchy, polygon, params, cell, margin, label);
-    detail::AreaResult& r = results.emplace_back();
+    require_area_memory(hierarchy, polygon, params, cell, margin, label);
+    AreaResult& r = results.emplace_back();
     r.area_class = c.sketch.stem().string();
     r.fid = f.fid;
     std::optional<SparseAvoidance> avoidance;
     if (!c.avoid.empty()) {
-      detail::AreaCanvas canvas = detail::area_canvas(polygon, c.resolution, margin);
+      AreaCanvas canvas = area_canvas(polygon, c.resolution, margin);
       burn_avoidance(avoided, canvas.grid, canvas.forbidden);
-      avoidance = detail::finish_canvas(std::move(canvas));
+      avoidance = finish_canvas(std::move(canvas));
     }
     r.pattern = synthesize_area(hierarchy, polygon, params, avoidance ? &*avoidance : nullptr);
     if (avoidance) {
-      if (const std::int64_t touched = detail::forbidden_touched(r.pattern, *avoidance))
+      if (const std::int64_t touched = forbidden_touched(r.pattern, *avoidance))
         fail("{}: {} stroke cells on forbidden ones (a synthesis bug)", label, touched);
     }
     result.instances += int(r.pattern.instances.size());
@@ -136,10 +135,10 @@ AreaCommandResult run_area_command(const AreaCommand& c) {
 
   fail_if_strict(warnings.list(), c.strict);
   OutputTransaction transaction;
-  detail::write_area_geopackage(transaction.stage(c.out / "shapes.gpkg"), frame.crs_wkt, results);
-  detail::write_instances_csv(transaction.stage(c.out / "instances.csv"), results);
-  detail::write_area_preview(transaction.stage(c.out / "preview.png"), polygons, avoided, results,
-                             c.preview_resolution);
+  write_area_geopackage(transaction.stage(c.out / "shapes.gpkg"), frame.crs_wkt, results);
+  write_instances_csv(transaction.stage(c.out / "instances.csv"), results);
+  write_area_preview(transaction.stage(c.out / "preview.png"), polygons, avoided, results,
+                     c.preview_resolution);
   if (c.analysis_png) detail::write_analysis_png(transaction.stage(*c.analysis_png), hierarchy);
   transaction.commit();
   logger().info(

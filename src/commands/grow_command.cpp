@@ -20,7 +20,7 @@
 #include "layers/write.hpp"
 #include "ornament/crossings.hpp"
 #include "ornament/grow.hpp"
-#include "pipeline/methods/grown/grow_region.hpp"
+#include "pipeline/grow_region.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {
@@ -41,7 +41,7 @@ std::optional<Polygon> bbox_polygon(const std::string& text) {
     return std::nullopt;
   }
   if (!(v[0] < v[2] && v[1] < v[3])) fail("--region {}: expected minx,miny,maxx,maxy", text);
-  return detail::box_polygon(v);
+  return box_polygon(v);
 }
 
 std::vector<Polygon> region_polygons(const GrowCommand& c, const Heightfield& frame,
@@ -72,21 +72,21 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
   const Heightfield frame = dem->without_pixels();
   const GridSpec& grid = frame.grid;
   const std::vector<Polygon> region = region_polygons(c, frame, warnings);
-  const Window window = detail::window_around(region, grid);
+  const Window window = window_around(region, grid);
 
   AvoidanceInputs avoided;
   if (!c.avoid.empty())
     avoided = detail::avoided_features(frame, c.avoid, c.avoid_width, "grow.avoid", warnings);
   // The lines are their kind's width (a hedge bank 2 m, as in a run): footprints keep apart.
-  const double width = detail::grown_kind_width(set.kind);
-  const FootprintIndex footprints = detail::footprints_of(avoided);
+  const double width = grown_kind_width(set.kind);
+  const FootprintIndex footprints = footprints_of(avoided);
   for (double& w : avoided.line_widths) w += width;  // the mesh's mask: footprints apart
   Raster<float> dem_heights = dem->read(window);
-  const ForbiddenCells cells = detail::nodata_cells(grid, window, dem_heights);
+  const ForbiddenCells cells = nodata_cells(grid, window, dem_heights);
   const KeepOff keep_off{&footprints, 0.5 * width, &cells};
-  const detail::GrownRegion grown_region =
-      detail::grow_region(detail::with_settings(set, c), c, grid, window, std::move(dem_heights),
-                          region, avoided, keep_off, "--region " + c.region);
+  const GrownRegion grown_region =
+      grow_region(with_settings(set, c), c, grid, window, std::move(dem_heights), region, avoided,
+                  keep_off, "--region " + c.region);
   const GrowthResult& grown = grown_region.grown;
   const Raster<float>& heights = grown_region.heights;
 
@@ -130,8 +130,8 @@ GrowCommandResult run_grow_command(const GrowCommand& c) {
 
   fail_if_strict(warnings.list(), c.strict);
   OutputTransaction transaction;
-  detail::write_ornament_geopackage(transaction.stage(c.out / "ornaments.gpkg"), frame.crs_wkt,
-                                    {{"ornaments", set.kind, 0.0, &grown.lines, {}}});
+  write_ornament_geopackage(transaction.stage(c.out / "ornaments.gpkg"), frame.crs_wkt,
+                            {{"ornaments", set.kind, 0.0, &grown.lines, {}}});
   write_preview_png(preview, transaction.stage(c.out / "preview.png"), drawn);
   transaction.commit();
   logger().info(

@@ -36,4 +36,15 @@ constexpr std::uint64_t split_mix64(std::uint64_t x) {
   return SplitMix64(x).next();
 }
 
+// The seed of one feature (FID) of a class in a run, for every synthesis method (the curve
+// patterns, the areas' shape-patterns): split_mix64 over (run seed, class seed, FID), never 0
+// (0 would ask a synthesizer for its seedless global optimum).
+constexpr std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed,
+                                     std::int64_t fid) {
+  std::uint64_t h = split_mix64(run_seed);
+  h = split_mix64(h ^ class_seed);
+  h = split_mix64(h ^ std::uint64_t(fid));
+  return h == 0 ? 1 : h;
+}
+
 }  // namespace tw

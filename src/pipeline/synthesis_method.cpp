@@ -24,6 +24,16 @@ const std::vector<const SynthesisMethod*>& builtin_synthesis_methods() {
   return methods;
 }
 
+namespace detail {
+
+const std::vector<MethodKeys>& builtin_method_keys() {
+  static const std::vector<MethodKeys> keys = {pattern_keys(), grown_keys(), network_keys(),
+                                               area_keys()};
+  return keys;
+}
+
+}  // namespace detail
+
 const std::vector<const SynthesisMethod*>& methods_or_builtin(
     const std::vector<const SynthesisMethod*>& methods) {
   return methods.empty() ? builtin_synthesis_methods() : methods;

@@ -15,6 +15,7 @@
 #include "core/content_hash.hpp"
 #include "pipeline/method_plan.hpp"
 #include "pipeline/plan.hpp"
+#include "raster/sparse_raster.hpp"
 
 namespace tw {
 
@@ -98,6 +99,12 @@ class SynthesisMethod {
   // Plans its domain: the lines of its classes into context.lines (lines stage), or its
   // placements into the entry; its report into context.plan.report.
   virtual void plan(MethodContext& context, MethodPlan& entry) const = 0;
+  // While the placements methods after it plan (before collect): what they keep out of, burnt
+  // into `forbidden` over `lattice` (the patterns: their opaque coverage on the ground, which
+  // the areas' shapes avoid). Through this hook a method reads another's work without its
+  // types (docs/methods.md).
+  virtual void keep_out(const MethodPlan& /*entry*/, const GridSpec& /*lattice*/,
+                        SparseRaster<std::uint8_t>& /*forbidden*/) const {}
   // After every method planned, in method order: the entry as the renderer needs it (splat
   // materials into plan.splat_materials, in order of first use).
   virtual void collect(MethodContext& /*context*/, MethodPlan& /*entry*/) const {}

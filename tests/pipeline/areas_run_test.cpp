@@ -16,14 +16,16 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
+#include "pipeline/area_lead.hpp"
 #include "pipeline/job.hpp"
-#include "pipeline/methods/areas/area_lead.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/synthesis_job.hpp"
+#include "pipeline/synthesis_method.hpp"
+#include "raster/sparse_raster.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -149,6 +151,50 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
     EXPECT_NE(std::find(plan.splat_materials.begin(), plan.splat_materials.end(), m),
               plan.splat_materials.end())
         << m;
+}
+
+// A method before the areas that keeps them out of the vine field's west half (x below
+// kKeepWestEdge) through the seam, as the curve patterns keep them off their coverage: a band
+// burnt on the areas' canvases by SynthesisMethod::keep_out.
+constexpr double kKeepWestEdge = 500160.0;
+struct AreaKeepWestPlan : MethodPayloadOf<AreaKeepWestPlan> {};
+class AreaKeepWestMethod final : public SynthesisMethod {
+ public:
+  std::string name() const override { return "keep_west"; }
+  MethodStage stage() const override { return MethodStage::placements; }
+  bool serves(const PipelineConfig&, const PlanOptions&) const override { return true; }
+  std::unique_ptr<MethodPayload> empty_payload() const override {
+    return std::make_unique<AreaKeepWestPlan>();
+  }
+  void plan(MethodContext&, MethodPlan&) const override {}
+  void keep_out(const MethodPlan&, const GridSpec& lattice,
+                SparseRaster<std::uint8_t>& forbidden) const override {
+    const std::vector<Vec2> band = {{kKeepWestEdge - 60.0, 4999500.0},
+                                    {kKeepWestEdge - 60.0, 5000000.0}};
+    burn_buffered_lines_on({&band}, {120.0}, lattice, forbidden, 1);
+  }
+  nlohmann::json encode(const MethodPlan&, detail::PlanObjects&) const override { return {}; }
+  void decode(const nlohmann::json&, detail::PlanObjects&, MethodPlan&) const override {}
+};
+
+TEST_F(AreaRun, ShapesKeepOutOfWhatTheMethodsBeforeThemKeepOut) {
+  const AreaKeepWestMethod keep_west;
+  auto west_points = [](const WorldPlan& plan, double margin) {
+    int west = 0;
+    for (const PlacedStroke& s : detail::areas_plan(plan)->areas.at(0).pattern.strokes)
+      for (const Vec2 p : s.points) west += p.x < kKeepWestEdge + 0.5 * s.width - margin;
+    return west;
+  };
+  Warnings warnings;
+  PlanOptions options;
+  options.methods = {&detail::area_method()};
+  const WorldPlan alone = plan_world(config("alone"), options, warnings);
+  EXPECT_GT(west_points(alone, 0.0), 20);  // without it, the vines fill the west half too
+  options.methods = {&keep_west, &detail::area_method()};
+  const WorldPlan kept = plan_world(config("kept"), options, warnings);
+  // Up to a canvas cell's diagonal, the avoidance lattice's resolution.
+  EXPECT_EQ(west_points(kept, std::sqrt(2.0)), 0);
+  EXPECT_GT(detail::areas_plan(kept)->areas.at(0).pattern.strokes.size(), 5u);
 }
 
 TEST_F(AreaRun, RowsRaiseTheTerrainByTheirHeightDetailAndPaintTheirSplat) {
@@ -612,15 +658,15 @@ TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
 
 TEST(AreaCompass, BearingsAreClockwiseFromNorthInZeroTo360) {
   const double pi = std::numbers::pi;
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi / 2.0), 0.0);  // +y: north
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(0.0), 90.0);      // +x: east
-  EXPECT_DOUBLE_EQ(detail::compass_degrees(pi), 270.0);
+  EXPECT_DOUBLE_EQ(compass_degrees(pi / 2.0), 0.0);  // +y: north
+  EXPECT_DOUBLE_EQ(compass_degrees(0.0), 90.0);      // +x: east
+  EXPECT_DOUBLE_EQ(compass_degrees(pi), 270.0);
   // Just past north counter-clockwise: fmod leaves a tiny negative whose + 360 rounds to 360.
-  const double just_past = detail::compass_degrees(std::nextafter(pi / 2.0, 4.0));
+  const double just_past = compass_degrees(std::nextafter(pi / 2.0, 4.0));
   EXPECT_GE(just_past, 0.0);
   EXPECT_LT(just_past, 360.0);
   for (double deg : {0.0, 30.0, 90.0, 181.5, 359.0})
-    EXPECT_NEAR(detail::compass_degrees(detail::angle_from_compass(deg)), deg, 1e-9);
+    EXPECT_NEAR(compass_degrees(angle_from_compass(deg)), deg, 1e-9);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
+#include "core/split_mix.hpp"
 #include "core/warnings.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/ingest.hpp"
@@ -214,9 +215,9 @@ TEST_F(SmallWorld, SeedsGiveDifferentValidResults) {
   EXPECT_EQ(other.pattern_violations, 0);
   EXPECT_FALSE(bytes(dir_ / "a/placements/roads_1.json") ==
                bytes(dir_ / "b/placements/roads_1.json"));
-  EXPECT_NE(detail::feature_seed(11, 11, 1), detail::feature_seed(11, 11, 2));
-  EXPECT_NE(detail::feature_seed(11, 11, 1), detail::feature_seed(12, 11, 1));
-  EXPECT_EQ(detail::feature_seed(11, 11, 1), detail::feature_seed(11, 11, 1));
+  EXPECT_NE(feature_seed(11, 11, 1), feature_seed(11, 11, 2));
+  EXPECT_NE(feature_seed(11, 11, 1), feature_seed(12, 11, 1));
+  EXPECT_EQ(feature_seed(11, 11, 1), feature_seed(11, 11, 1));
 }
 
 TEST_F(SmallWorld, AFeatureWithoutRoomFailsNamingItsFid) {

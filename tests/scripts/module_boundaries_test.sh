@@ -1,23 +1,38 @@
 #!/usr/bin/env bash
-# A module never includes another module's detail/ headers (DESIGN.md, "Module boundaries"):
-# every `#include "<module>/.../detail/<header>"` in src/<other module>/ is an error, but for the
-# includes listed below, which wait for a public home (docs/methods.md, "Homes").
+# Module boundaries (DESIGN.md, "Module boundaries"; docs/methods.md), each include of src/ an
+# error when it breaks one:
+#   - a module includes another module's detail/ headers (`<module>/.../detail/<header>`);
+#   - a file outside src/pipeline includes a method's glue (`pipeline/methods/...`): the
+#     commands reach the methods through public pipeline headers (pipeline/area_output.hpp...);
+#   - a method's glue includes another method's (`pipeline/methods/<other>/...`): methods read
+#     each other's work through the seam only (SynthesisMethod::keep_out).
 #   module_boundaries_test.sh SOURCE_DIR
+# SOURCE_DIR holds src/; tests/scripts/module_boundaries_selftest.sh runs it on trees that break
+# each rule.
 set -euo pipefail
 cd "$1/src"
-# "<including file> <included header's file name>": the area and grow glue that `terraweave area`
-# and `terraweave grow` share with the run's methods, until the methods' folders expose it.
-allowed="commands/area_command.cpp area_canvas.hpp
-commands/area_command.cpp area_lead.hpp
-commands/area_command.cpp area_output.hpp
-commands/grow_command.cpp grow_region.hpp"
 status=0
+violation() {
+  echo "module_boundaries: src/$1:$2 includes $3, $4" >&2
+  status=1
+}
 while IFS=: read -r file line text; do
   included=$(sed -E 's/.*#include "([^"]+)".*/\1/' <<<"$text")
-  [[ ${included%%/*} == "${file%%/*}" ]] && continue  # its own module's
-  if ! grep -qxF "$file ${included##*/}" <<<"$allowed"; then
-    echo "module_boundaries: src/$file:$line includes $included, another module's detail/" >&2
-    status=1
+  module=${file%%/*}
+  if [[ $included == */detail/* && ${included%%/*} != "$module" ]]; then
+    violation "$file" "$line" "$included" "another module's detail/"
   fi
-done < <(grep -rnE '#include "[^"]*/detail/' --include='*.cpp' --include='*.hpp' .  | sed 's|^\./||')
+  if [[ $included == pipeline/methods/* ]]; then
+    if [[ $module != pipeline ]]; then
+      violation "$file" "$line" "$included" "a method's glue, internal to src/pipeline"
+    elif [[ $file == pipeline/methods/* ]]; then
+      including_method=$(cut -d/ -f3 <<<"$file")
+      included_method=$(cut -d/ -f3 <<<"$included")
+      if [[ $including_method != "$included_method" ]]; then
+        violation "$file" "$line" "$included" "another method's glue"
+      fi
+    fi
+  fi
+done < <(grep -rnE '#include "[^"]*(/detail/|pipeline/methods/)' --include='*.cpp' --include='*.hpp' . |
+  sed 's|^\./||')
 exit $status

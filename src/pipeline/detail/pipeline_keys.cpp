@@ -1,82 +1,32 @@
 #include "pipeline/detail/pipeline_keys.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
-#include "network/growth.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/grow_config.hpp"
+#include "pipeline/detail/key_forms.hpp"
+#include "pipeline/detail/method_keys.hpp"
 #include "terrain/features.hpp"
 
 namespace tw::detail {
 
 namespace {
 
-// The forms a key's value may take (the table below reads as the docs' key tables).
-ValueForm number(double lo = -std::numeric_limits<double>::infinity(),
-                 double hi = std::numeric_limits<double>::infinity()) {
-  return {.type = ValueType::number, .minimum = lo, .maximum = hi};
-}
-ValueForm positive(double hi = std::numeric_limits<double>::infinity()) {
-  return {.type = ValueType::number, .minimum = 0.0, .maximum = hi, .exclusive_minimum = true};
-}
-ValueForm non_negative(double hi = std::numeric_limits<double>::infinity()) {
-  return number(0.0, hi);
-}
-ValueForm integer(double lo, double hi = std::numeric_limits<double>::infinity()) {
-  return {.type = ValueType::integer, .minimum = lo, .maximum = hi};
-}
-ValueForm uint64() {
-  return integer(0.0);
-}
-ValueForm boolean() {
-  return {.type = ValueType::boolean};
-}
-ValueForm string() {
-  return {.type = ValueType::string};
-}
-ValueForm path() {
-  return {.type = ValueType::path};
-}
-ValueForm choice(std::vector<std::string_view> values) {
-  return {.type = ValueType::choice, .values = std::move(values)};
-}
-ValueForm block(std::string_view name) {
-  return {.type = ValueType::block, .block = name};
-}
-ValueForm of(ValueType type) {
-  return {.type = type};
-}
+using namespace key_forms;
 
-KeyDefault no_default() {
-  return {};
-}
-KeyDefault def(double value) {
-  return {.kind = KeyDefault::Kind::number, .number = value};
-}
-KeyDefault def_bool(bool value) {
-  return {.kind = KeyDefault::Kind::boolean, .boolean = value};
-}
-KeyDefault def_text(std::string_view text) {
-  return {.kind = KeyDefault::Kind::text, .text = text};
-}
-
-constexpr bool required = true;
-
-const std::vector<std::string_view> kBackends{"cpu", "opencl", "auto"};
 const std::vector<std::string_view> kEngines{"unreal", "unity", "godot", "terrain3d"};
 
-std::vector<KeyBlock> make_blocks() {
+std::vector<KeyBlock> table_blocks() {
   const RoadProfile road;
   const RiverProfile river;
   const RidgeProfile ridge;
   const LineRepair repair;
-  const GrowSettings grow;
   const GenerateConfig generate;
   const OutputConfig output;
-  const SynthesisConfig synthesis;
   const PipelineConfig pipeline;
   const double W = kMaxFeatureWidth;
   const double H = kMaxAbsHeight;
@@ -107,13 +57,6 @@ std::vector<KeyBlock> make_blocks() {
            {"existing",
             {{.type = ValueType::block_list, .block = "existing"}},
             "avoidance inputs: features no synthesis may cover"},
-           {"synthesis_resolution",
-            {positive()},
-            "metres per cell of the synthesis canvas",
-            def(pipeline.synthesis_resolution)},
-           {"synthesis_order",
-            {of(ValueType::string_list)},
-            "the order of synthesis; every class with synthesis once"},
            {"region",
             {{.type = ValueType::number_list, .count = 4}},
             "[min_x, min_y, max_x, max_y]: output only this rectangle (metres)"},
@@ -253,12 +196,7 @@ std::vector<KeyBlock> make_blocks() {
             {block("road_profile"), block("river_profile"), block("ridge_profile")},
             "the terrain profile; keys depend on kind"},
            {"conform", {block("conform")}, "rivers and ridges: move lines onto the DEM"},
-           {"synthesis", {block("synthesis")}, "pattern synthesis along the class"},
            {"repair", {block("repair")}, "this class's repair, over the pipeline's"},
-           {"grow", {block("grow")}, "grow the class's lines (FloralSurf, docs/ornaments.md)"},
-           {"network",
-            {block("network")},
-            "grow the class's lines as a curve network by example (docs/networks.md)"},
        }},
       {"road_profile",
        "profile of kind: road (trail).",
@@ -291,176 +229,6 @@ std::vector<KeyBlock> make_blocks() {
        {
            {"corridor", {positive()}, "metres either side of each line", no_default(), required},
        }},
-      {"synthesis",
-       "Pattern synthesis along every feature of the class (docs/patterns.md).",
-       {
-           {"exemplar",
-            {path(), of(ValueType::path_list)},
-            "RGBA images (OIIO)",
-            no_default(),
-            required},
-           {"choose",
-            {choice({"seed", "best", "mix"})},
-            "how several exemplars are used",
-            def_text("seed")},
-           {"switch_cost",
-            {integer(0, 1 << 20)},
-            "choose: mix only: colour units per switch",
-            def(synthesis.switch_cost)},
-           {"bind",
-            {{.type = ValueType::block_list, .block = "binding", .count = 1}},
-            "choose: mix only: pieces bound to exemplars"},
-           {"width",
-            {positive(W), choice({"feature"})},
-            "ribbon width in metres, or feature; default: from the exemplar"},
-           {"delta", {positive()}, "piece length in metres; default: from the exemplar"},
-           {"scale", {positive()}, "exemplar texels per metre", def(synthesis.scale)},
-           {"stitch", {boolean()}, "the paper's seam stitching", def_bool(synthesis.stitch)},
-           {"empty_pieces",
-            {boolean()},
-            "a piece with no valid position stays transparent",
-            def_bool(synthesis.empty_pieces)},
-           {"min_coverage",
-            {{.type = ValueType::number,
-              .minimum = 0.0,
-              .maximum = 1.0,
-              .exclusive_maximum = true}},
-            "opaque fraction of each piece at a valid position; default: from the exemplar"},
-           {"objective",
-            {choice({"pattern", "paper"})},
-            "what the DP minimizes",
-            def_text("pattern")},
-           {"coverage_weight",
-            {non_negative()},
-            "objective: pattern's coverage weight",
-            def(synthesis.coverage_weight)},
-           {"alpha",
-            {choice({"binary", "continuous"})},
-            "how the matching cost reads alpha",
-            def_text("binary")},
-           {"feather", {non_negative()}, "metres of blending at each seam", def(synthesis.feather)},
-           {"seed", {uint64()}, "the class seed; default: the pipeline's"},
-           {"backend", {choice(kBackends)}, "default: the pipeline's"},
-           {"height_detail",
-            {non_negative()},
-            "factor on the height channel",
-            def(synthesis.height_detail)},
-           {"channels",
-            {of(ValueType::channels)},
-            "exemplar channel -> height or splat.<material>"},
-       }},
-      {"binding",
-       "choose: mix: a rule binding pieces to one exemplar.",
-       {
-           {"exemplar",
-            {string(), integer(0)},
-            "one of the class's exemplar paths or its index",
-            no_default(),
-            required},
-           {"where", {string()}, "OGR SQL on the class's layer"},
-           {"tags", {of(ValueType::tags)}, "OSM-style selection"},
-           {"near_junction", {non_negative(W)}, "metres from a junction"},
-       }},
-      {"grow",
-       "Grow the class's lines over a region (FloralSurf, docs/ornaments.md).",
-       {
-           {"element", {path()}, "element set (samples/ornaments/*.json)", no_default(), required},
-           {"region",
-            {{.type = ValueType::number_list, .count = 4}, block("grow_region")},
-            "[minx, miny, maxx, maxy] or {source, layer, where}; default: the class's source"},
-           {"resolution", {positive()}, "metres between mesh vertices; default: the DEM's"},
-           {"seed", {uint64()}, "default: the pipeline's"},
-           {"alignment", {choice({"growth", "contour"})}, "element direction", def_text("growth")},
-           {"first_fit", {boolean()}, "the greedy variant", def_bool(grow.first_fit)},
-           {"trials", {integer(1, 1000)}, "candidates per growth point", def(grow.trials)},
-           {"max_ornaments",
-            {integer(1, 100000)},
-            "ornaments started at most",
-            def(grow.max_ornaments)},
-           {"max_elements",
-            {integer(1, 10000000)},
-            "elements placed at most",
-            def(grow.max_elements)},
-           {"coverage_radius", {positive()}, "metres for the reported coverage"},
-           {"clearance", {non_negative()}, "metres between unrelated lines"},
-       }},
-      {"network",
-       "Grow the class's lines as a curve network in the style of an exemplar (docs/networks.md).",
-       {
-           {"exemplar",
-            {path()},
-            "the exemplar network: path[:layer] of lines or polygons, or an .svg",
-            no_default(),
-            required},
-           {"exemplar_where", {string()}, "OGR SQL on the exemplar's layer"},
-           {"exemplar_region", {path()}, "polygons cutting the exemplar from a larger map"},
-           {"scale", {positive()}, "metres per SVG unit"},
-           {"region",
-            {{.type = ValueType::number_list, .count = 4}, block("grow_region")},
-            "[minx, miny, maxx, maxy] or {source, layer, where} in the heightfield's CRS",
-            no_default(),
-            required},
-           {"partial", {path()}, "lines already drawn, kept exactly and completed"},
-           {"seed", {uint64()}, "default: the pipeline's"},
-           {"lead_bearing",
-            {{.type = ValueType::number,
-              .minimum = 0.0,
-              .maximum = 360.0,
-              .exclusive_maximum = true}},
-            "compass degrees the exemplar's main bearing is turned to"},
-           {"clearance", {non_negative()}, "metres between curves; 0: 6 % of the median edge"},
-           {"snap",
-            {non_negative()},
-            "metres within which a growing end is pulled onto the network; 0: 35 % of the "
-            "median edge"},
-           {"candidates",
-            {integer(1, 1000)},
-            "pieces tried per open end",
-            def(NetworkGrowthOptions{}.candidates)},
-           {"method",
-            {choice({kNetworkMethodNames.begin(), kNetworkMethodNames.end()})},
-            "growth, quilt, or automatic: both, and growth from the exemplar's long strokes, and "
-            "the one meeting the most quality targets (growth with `partial`)",
-            def_text("automatic")},
-           {"avoid",
-            {boolean()},
-            "keep off the existing features and the classes placed before",
-            def_bool(true)},
-       }},
-      {"grow_region",
-       "The polygons grown over.",
-       {
-           {"source", {path()}, "any vector data set OGR reads", no_default(), required},
-           {"layer", {string()}, "layer name"},
-           {"where", {string()}, "OGR SQL attribute filter"},
-       }},
-      {"area_class",
-       "A kind: area class: polygons filled with a structured shape-pattern "
-       "(docs/shape-patterns.md).",
-       {
-           {"kind", {choice({"area"})}, "area", no_default(), required},
-           {"source", {path()}, "polygons, any vector data set OGR reads", no_default(), required},
-           {"layer", {string()}, "layer name"},
-           {"where", {string()}, "OGR SQL attribute filter"},
-           {"tags", {of(ValueType::tags)}, "OSM-style selection"},
-           {"sketch", {path()}, "strokes in [0,1]^2", no_default(), required},
-           {"shapes_from", {path()}, "a second sketch whose shapes go on the first one's rows"},
-           {"scale", {positive()}, "metres per sketch unit"},
-           {"lead",
-            {choice({"long_axis", "nearest_road", "contours"}), block("lead")},
-            "direction of the sketch's x axis"},
-           {"jitter", {number(0.0, 1.0)}, "fraction of each allowed displacement"},
-           {"materials", {of(ValueType::map_string)}, "sketch stroke material -> splat material"},
-           {"height",
-            {{.type = ValueType::map_number, .minimum = -100.0, .maximum = 100.0}},
-            "sketch stroke material -> metres"},
-           {"seed", {uint64()}, "default: the pipeline's"},
-       }},
-      {"lead",
-       "A fixed direction.",
-       {
-           {"bearing", {number()}, "compass bearing in degrees", no_default(), required},
-       }},
       {"existing",
        "Features no synthesis may cover.",
        {
@@ -471,6 +239,36 @@ std::vector<KeyBlock> make_blocks() {
            {"width", {positive(W)}, "metres; required for lines"},
        }},
   };
+}
+
+KeyBlock& block_named(std::vector<KeyBlock>& blocks, std::string_view name) {
+  for (KeyBlock& b : blocks)
+    if (b.name == name) return b;
+  throw std::logic_error("no pipeline key block '" + std::string(name) + "'");
+}
+
+// The table's own blocks with the methods' keys and blocks in their places: each key after the
+// one it names, the methods' blocks before `existing`, in the methods' order.
+std::vector<KeyBlock> make_blocks() {
+  std::vector<KeyBlock> blocks = table_blocks();
+  std::vector<KeyBlock> methods_blocks;
+  for (const MethodKeys& method : builtin_method_keys()) {
+    for (const PlacedKey& placed : method.keys) {
+      std::vector<KeySpec>& keys = block_named(blocks, placed.block).keys;
+      const auto after = std::find_if(keys.begin(), keys.end(),
+                                      [&](const KeySpec& k) { return k.name == placed.after; });
+      if (after == keys.end())
+        throw std::logic_error("pipeline key '" + std::string(placed.key.name) + "' follows '" +
+                               std::string(placed.after) + "', which " + std::string(placed.block) +
+                               " lacks");
+      keys.insert(std::next(after), placed.key);
+    }
+    methods_blocks.insert(methods_blocks.end(), method.blocks.begin(), method.blocks.end());
+  }
+  const auto existing = std::find_if(blocks.begin(), blocks.end(),
+                                     [](const KeyBlock& b) { return b.name == "existing"; });
+  blocks.insert(existing, methods_blocks.begin(), methods_blocks.end());
+  return blocks;
 }
 
 }  // namespace

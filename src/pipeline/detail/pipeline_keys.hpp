@@ -2,7 +2,9 @@
 // The one table of a pipeline file's keys: every mapping (a "block") with the keys it allows,
 // each key's type, range, allowed values, default and meaning. The reader's MapReaders take
 // their allowed keys (and some ranges) from it, and `terraweave schema` writes the JSON Schema
-// of docs/pipeline.schema.json from it (pipeline/schema.hpp), so the two cannot disagree.
+// of docs/pipeline.schema.json from it (pipeline/schema.hpp), so the two cannot disagree. Each
+// synthesis method describes its own keys next to its glue (detail/method_keys.hpp); the table
+// holds them in their places.
 #include <limits>
 #include <optional>
 #include <string_view>

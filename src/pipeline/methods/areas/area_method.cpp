@@ -5,14 +5,13 @@
 #include "core/error.hpp"
 #include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
+#include "pipeline/area_output.hpp"
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/tile_cache.hpp"
-#include "pipeline/methods/areas/area_output.hpp"
 #include "pipeline/methods/areas/areas.hpp"
 #include "pipeline/methods/areas/instance_heights.hpp"
-#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "raster/footprint.hpp"
 #include "raster/stroke_coverage.hpp"
 #include "terrain/pattern_layers.hpp"
@@ -109,11 +108,18 @@ class AreaMethod final : public SynthesisMethod {
     // The whole heightfield, also with a region: a close-up's polygons get the leads of the
     // full run, and polygons beyond the region keep theirs.
     HeightSampler heights(context.source);
-    const PatternsPlan* patterns = patterns_plan(context.plan);
-    const PatternRun* run = patterns && patterns->run ? patterns->run.get() : nullptr;
+    // The shapes avoid what the methods before this one keep out (the curve patterns).
+    std::vector<const MethodPlan*> before;
+    for (const MethodPlan& e : context.plan.methods) {
+      if (&e == &entry) break;
+      before.push_back(&e);
+    }
+    const KeepOut keep_out = [&](const GridSpec& lattice, SparseRaster<std::uint8_t>& forbidden) {
+      for (const MethodPlan* e : before) e->method->keep_out(*e, lattice, forbidden);
+    };
     areas.run = std::make_shared<AreaRun>(
         synthesize_areas(context.config, *areas.polygons, context.lines, *context.ribbons,
-                         *context.existing, run, heights, context.warnings));
+                         *context.existing, keep_out, heights, context.warnings));
   }
 
   void collect(MethodContext& context, MethodPlan& entry) const override {

@@ -6,8 +6,9 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
-#include "pipeline/methods/areas/area_canvas.hpp"
-#include "pipeline/methods/areas/area_lead.hpp"
+#include "core/split_mix.hpp"
+#include "pipeline/area_canvas.hpp"
+#include "pipeline/area_lead.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 
@@ -58,12 +59,10 @@ AvoidanceInputs fixed_avoidance(const std::vector<std::vector<LineFeature>>& lin
 }
 
 // Everything the polygon's shapes avoid, on its sparse canvas.
-SparseAvoidance area_avoidance(const AvoidanceInputs& fixed, const PatternRun* patterns,
+SparseAvoidance area_avoidance(const AvoidanceInputs& fixed, const KeepOut& keep_out,
                                const StrokeSet& earlier, AreaCanvas&& canvas) {
   burn_avoidance(fixed, canvas.grid, canvas.forbidden);
-  if (patterns)
-    for (const FeaturePattern& p : patterns->patterns)
-      if (p.on_ground) add_on_lattice(p.opaque, p.canvas, canvas.forbidden, canvas.grid);
+  if (keep_out) keep_out(canvas.grid, canvas.forbidden);
   burn_buffered_lines_on(earlier.lines, earlier.widths, canvas.grid, canvas.forbidden, 1);
   return finish_canvas(std::move(canvas));
 }
@@ -159,7 +158,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
                          const std::vector<std::vector<PolygonFeature>>& polygons,
                          const std::vector<std::vector<LineFeature>>& lines,
                          const FeatureRibbons& ribbons, const ExistingFeatures& existing,
-                         const PatternRun* patterns, HeightSampler& heights, Warnings& warnings) {
+                         const KeepOut& keep_out, HeightSampler& heights, Warnings& warnings) {
   AreaRun run;
   const AvoidanceInputs fixed = fixed_avoidance(lines, ribbons, existing);
   std::vector<const LineFeature*> roads;
@@ -218,7 +217,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       require_area_memory(hierarchy, polygon, params, config.synthesis_resolution, margin, label);
       AreaCanvas canvas = area_canvas(polygon, config.synthesis_resolution, margin);
       const std::int64_t canvas_cells = canvas.allocated_cells;
-      const SparseAvoidance avoidance = area_avoidance(fixed, patterns, earlier, std::move(canvas));
+      const SparseAvoidance avoidance = area_avoidance(fixed, keep_out, earlier, std::move(canvas));
       PlannedArea planned;
       planned.area_class = ai;
       planned.fid = f.fid;

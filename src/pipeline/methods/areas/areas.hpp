@@ -4,8 +4,11 @@
 // an avoidance map of the synthesis lattice over the polygon's box: existing features, every
 // line feature's footprint, junction discs, the curve patterns' opaque coverage and the strokes
 // of the areas before it.
+#include <cstdint>
+#include <functional>
 #include <vector>
 
+#include "core/grid.hpp"
 #include "core/warnings.hpp"
 #include "geo/features.hpp"
 #include "geo/height_sampler.hpp"
@@ -13,8 +16,8 @@
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
-#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
+#include "raster/sparse_raster.hpp"
 #include "sketch/hierarchy.hpp"
 
 namespace tw::detail {
@@ -41,12 +44,16 @@ struct AreaRun {
   std::vector<AreaClassReport> reports;
 };
 
-// `patterns` may be null (no curve synthesis); `heights` is read for lead: contours only.
+// What the methods before the areas keep them out of (SynthesisMethod::keep_out: the curve
+// patterns' coverage), burnt over a canvas's lattice; empty: nothing.
+using KeepOut = std::function<void(const GridSpec& lattice, SparseRaster<std::uint8_t>& forbidden)>;
+
+// `heights` is read for lead: contours only.
 // Throws tw::Error naming the class and FID when a stroke touches a forbidden pixel (a bug).
 AreaRun synthesize_areas(const PipelineConfig& config,
                          const std::vector<std::vector<PolygonFeature>>& polygons,
                          const std::vector<std::vector<LineFeature>>& lines,
                          const FeatureRibbons& ribbons, const ExistingFeatures& existing,
-                         const PatternRun* patterns, HeightSampler& heights, Warnings& warnings);
+                         const KeepOut& keep_out, HeightSampler& heights, Warnings& warnings);
 
 }  // namespace tw::detail

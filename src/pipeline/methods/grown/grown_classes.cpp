@@ -10,7 +10,7 @@
 #include "core/log.hpp"
 #include "geo/height_sampler.hpp"
 #include "ornament/crossings.hpp"
-#include "pipeline/methods/grown/grow_region.hpp"
+#include "pipeline/grow_region.hpp"
 
 namespace tw::detail {
 

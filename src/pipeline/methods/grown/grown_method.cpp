@@ -7,7 +7,7 @@
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
-#include "pipeline/methods/grown/grow_region.hpp"
+#include "pipeline/grow_region.hpp"
 #include "pipeline/methods/grown/grown_classes.hpp"
 
 namespace tw::detail {

@@ -158,6 +158,15 @@ class PatternMethod final : public SynthesisMethod {
         config, context.lines, *context.ribbons, *context.existing, pattern_options));
   }
 
+  // The areas' shapes avoid the patterns' opaque coverage on the ground.
+  void keep_out(const MethodPlan& entry, const GridSpec& lattice,
+                SparseRaster<std::uint8_t>& forbidden) const override {
+    const PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
+    if (!patterns.run) return;
+    for (const FeaturePattern& p : patterns.run->patterns)
+      if (p.on_ground) add_on_lattice(p.opaque, p.canvas, forbidden, lattice);
+  }
+
   void collect(MethodContext& context, MethodPlan& entry) const override {
     PatternsPlan& patterns = payload_as<PatternsPlan>(entry);
     if (!patterns.run) return;

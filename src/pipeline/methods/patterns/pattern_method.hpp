@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pipeline/config.hpp"
+#include "pipeline/detail/method_keys.hpp"
 #include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -56,6 +57,8 @@ struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
 };
 
 const SynthesisMethod& pattern_method();
+// Its keys of a pipeline file (detail/method_keys.hpp).
+MethodKeys pattern_keys();
 
 // The plan's patterns entry; null when it has none (a plan made by hand).
 const PatternsPlan* patterns_plan(const WorldPlan& plan);

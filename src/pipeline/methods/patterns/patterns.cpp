@@ -69,13 +69,6 @@ std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
 
 }  // namespace
 
-std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid) {
-  std::uint64_t h = split_mix64(run_seed);
-  h = split_mix64(h ^ class_seed);
-  h = split_mix64(h ^ std::uint64_t(fid));
-  return h == 0 ? 1 : h;
-}
-
 Exemplar load_exemplar_with_height(const fs::path& path, bool continuous_alpha) {
   ExemplarOptions options;
   options.continuous_alpha = continuous_alpha;

@@ -26,10 +26,6 @@
 
 namespace tw::detail {
 
-// The feature's synthesis seed: splitmix64 over (run seed, class seed, FID), never 0 (0 would
-// ask the synthesizer for the seedless global optimum).
-std::uint64_t feature_seed(std::uint64_t run_seed, std::uint64_t class_seed, std::int64_t fid);
-
 // Loads an exemplar and, when NAME_height.tif lies beside NAME.png, its height channel.
 Exemplar load_exemplar_with_height(const std::filesystem::path& path, bool continuous_alpha);
 

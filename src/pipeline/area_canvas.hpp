@@ -11,7 +11,7 @@
 #include "raster/sparse_raster.hpp"
 #include "sketch/area_synthesis.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 // Cells per side of a canvas tile: small, so a thin diagonal polygon allocates a band about
 // its own width.
@@ -40,4 +40,4 @@ SparseAvoidance finish_canvas(AreaCanvas&& canvas);
 // independent check of the synthesis's test, burnt only on the canvas's forbidden tiles.
 std::int64_t forbidden_touched(const AreaPattern& pattern, const SparseAvoidance& avoidance);
 
-}  // namespace tw::detail
+}  // namespace tw

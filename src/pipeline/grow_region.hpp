@@ -16,7 +16,7 @@
 #include "raster/avoidance.hpp"
 #include "raster/polygon.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 // The heat method factors a sparse matrix of the mesh's vertices: past a few million that
 // takes minutes and gigabytes, so the region must be cut or coarsened.
@@ -74,4 +74,4 @@ struct OrnamentLayer {
 void write_ornament_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
                                const std::vector<OrnamentLayer>& layers);
 
-}  // namespace tw::detail
+}  // namespace tw

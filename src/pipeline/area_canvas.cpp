@@ -1,4 +1,4 @@
-#include "pipeline/methods/areas/area_canvas.hpp"
+#include "pipeline/area_canvas.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "core/grid_limits.hpp"
 #include "raster/rasterize.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 namespace {
 
@@ -147,4 +147,4 @@ std::int64_t forbidden_touched(const AreaPattern& pattern, const SparseAvoidance
   return count;
 }
 
-}  // namespace tw::detail
+}  // namespace tw

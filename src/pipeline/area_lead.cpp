@@ -1,4 +1,4 @@
-#include "pipeline/methods/areas/area_lead.hpp"
+#include "pipeline/area_lead.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "core/boost_geometry.hpp"
 #include "raster/rasterize.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 namespace {
 
@@ -127,4 +127,4 @@ std::optional<double> contour_angle(const Polygon& polygon, HeightSampler& heigh
   return folded_angle({-std::sin(gradient), std::cos(gradient)});
 }
 
-}  // namespace tw::detail
+}  // namespace tw

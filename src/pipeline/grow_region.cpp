@@ -1,4 +1,4 @@
-#include "pipeline/methods/grown/grow_region.hpp"
+#include "pipeline/grow_region.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -15,7 +15,7 @@
 #include "pipeline/detail/grow_config.hpp"
 #include "raster/rasterize.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 GrowthParams growth_params(const GrowSettings& s) {
   GrowthParams params;
@@ -116,7 +116,7 @@ FootprintIndex footprints_of(const AvoidanceInputs& avoided) {
 
 double grown_kind_width(const std::string& kind) {
   FeatureClassConfig c;
-  apply_grown_defaults(kind, c);
+  detail::apply_grown_defaults(kind, c);
   return c.width;
 }
 
@@ -153,4 +153,4 @@ void write_ornament_geopackage(const std::filesystem::path& path, const std::str
   }
 }
 
-}  // namespace tw::detail
+}  // namespace tw

@@ -8,7 +8,7 @@
 #include "geo/height_sampler.hpp"
 #include "raster/polygon.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 // A compass bearing in degrees, in [0, 360) (clockwise from north), of the angle `radians`
 // counter-clockwise from +x; and back. One convention for reports, instances and `lead.bearing`.
@@ -26,4 +26,4 @@ std::optional<double> nearest_line_angle(const Polygon& polygon,
 // is flat (mean gradient below 0.1 %) or over nodata.
 std::optional<double> contour_angle(const Polygon& polygon, HeightSampler& heights);
 
-}  // namespace tw::detail
+}  // namespace tw

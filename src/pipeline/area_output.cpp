@@ -1,4 +1,4 @@
-#include "pipeline/methods/areas/area_output.hpp"
+#include "pipeline/area_output.hpp"
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -15,10 +15,10 @@
 #include "core/progress.hpp"
 #include "geo/geopackage.hpp"
 #include "image/image_io.hpp"
-#include "pipeline/methods/areas/area_lead.hpp"
+#include "pipeline/area_lead.hpp"
 #include "raster/rasterize.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 namespace {
 
@@ -199,4 +199,4 @@ void write_area_preview(const std::filesystem::path& path, const std::vector<Pol
   write_rgb8_image(path.string(), grid.width, grid.height, rgb.data(), path.string());
 }
 
-}  // namespace tw::detail
+}  // namespace tw

@@ -8,7 +8,7 @@
 #include "raster/polygon.hpp"
 #include "sketch/area_synthesis.hpp"
 
-namespace tw::detail {
+namespace tw {
 
 struct AreaResult {
   std::string area_class;  // the class (a run's `kind: area` class, or the sketch's name)
@@ -40,4 +40,4 @@ void write_area_preview(const std::filesystem::path& path, const std::vector<Pol
                         const AvoidanceInputs& avoided, const std::vector<AreaResult>& results,
                         double resolution);
 
-}  // namespace tw::detail
+}  // namespace tw
