@@ -1,9 +1,9 @@
 // Fuzz target: a plan object's bytes (docs/distributed.md) decoded as the plan's report, its
-// terrain parameters, its lines and its ribbons, the way load_plan decodes verified objects: as a
-// binary object's body (pipeline/detail/plan_binary.hpp, the plan's own objects) and as CBOR (a
-// method's entries). A bad object is a tw::Error or a json::exception (which load_plan turns into
-// an error naming the plan and key); anything else that escapes, a crash or a sanitizer report is
-// a finding.
+// terrain parameters, its lines, its ribbons and the patterns method's patterns and exemplars, the
+// way load_plan decodes verified objects: as a binary object's body
+// (pipeline/detail/plan_binary.hpp) and as CBOR (the other methods' entries). A bad object is a
+// tw::Error or a json::exception (which load_plan turns into an error naming the plan and key);
+// anything else that escapes, a crash or a sanitizer report is a finding.
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -14,6 +14,7 @@
 #include "fuzz_support.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_ribbons.hpp"
+#include "pipeline/methods/patterns/pattern_method.hpp"
 
 namespace {
 
@@ -51,6 +52,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     std::vector<std::vector<tw::Ribbon>> ribbons;
     tw::detail::ribbons_from_bytes(bytes, ribbons, nullptr, "fuzz");
+  } catch (const tw::Error&) {
+  }
+  try {  // the patterns method's objects (pattern_method.hpp)
+    tw::detail::PlannedPattern pattern;
+    tw::detail::pattern_from_bytes(bytes, pattern, "fuzz");
+  } catch (const tw::Error&) {
+  }
+  try {
+    tw::Exemplar exemplar;
+    tw::detail::exemplar_from_bytes(bytes, exemplar, "fuzz");
   } catch (const tw::Error&) {
   }
   nlohmann::json object;

@@ -2,6 +2,7 @@
 #include <bit>
 #include <cmath>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -18,8 +19,8 @@ namespace tw {
 
 namespace {
 
-// The parameters checked (tw::Error naming the first bad one) and the CRS as WKT.
-std::string checked_crs_wkt(const GeneratedTerrain& params, const std::string& name) {
+// The parameters other than the CRS checked (tw::Error naming the first bad one).
+void check_generated_params(const GeneratedTerrain& params, const std::string& name) {
   if (params.width <= 0 || params.height <= 0) {
     fail("{}: size must be positive, got {} x {}", name, params.width, params.height);
   }
@@ -45,6 +46,11 @@ std::string checked_crs_wkt(const GeneratedTerrain& params, const std::string& n
         params.relief <= kMaxGeneratedRelief)) {
     fail("{}: relief must be in [0, {}] metres, got {}", name, kMaxGeneratedRelief, params.relief);
   }
+}
+
+// The parameters checked (tw::Error naming the first bad one) and the CRS as WKT.
+std::string checked_crs_wkt(const GeneratedTerrain& params, const std::string& name) {
+  check_generated_params(params, name);
   detail::ensure_gdal_registered();
   detail::QuietGdalErrors quiet;
   OGRSpatialReference srs;
@@ -87,11 +93,10 @@ std::string generated_name(const GeneratedTerrain& params) {
 
 class GeneratedSource final : public HeightfieldSource {
  public:
-  GeneratedSource(const GeneratedTerrain& params, std::int64_t copied_cells)
+  GeneratedSource(const GeneratedTerrain& params, std::string crs_wkt, std::int64_t copied_cells)
       : HeightfieldSource({params.width, params.height, params.origin_x, params.origin_y,
                            params.pixel_size, params.pixel_size},
-                          checked_crs_wkt(params, generated_name(params)), std::nullopt,
-                          generated_name(params)),
+                          std::move(crs_wkt), std::nullopt, generated_name(params)),
         params_(params),
         copied_cells_(copied_cells) {}
 
@@ -153,9 +158,17 @@ std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTer
   return detail::open_generated_source(params, detail::kGeneratedCopiedCells);
 }
 
+std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params,
+                                                              std::string checked_crs_wkt) {
+  check_generated_params(params, generated_name(params));
+  return std::make_unique<GeneratedSource>(params, std::move(checked_crs_wkt),
+                                           detail::kGeneratedCopiedCells);
+}
+
 std::unique_ptr<HeightfieldSource> detail::open_generated_source(const GeneratedTerrain& params,
                                                                  std::int64_t copied_cells) {
-  return std::make_unique<GeneratedSource>(params, copied_cells);
+  return std::make_unique<GeneratedSource>(params, checked_crs_wkt(params, generated_name(params)),
+                                           copied_cells);
 }
 
 std::int64_t detail::generated_cells(const HeightfieldSource& source) {

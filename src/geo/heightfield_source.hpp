@@ -58,6 +58,11 @@ std::unique_ptr<HeightfieldSource> open_heightfield(const std::string& path,
 // generate_heightfield window by window (a window of a generated world is the same window of
 // the world, by construction of the noise). Validates the parameters as generate_heightfield.
 std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params);
+// The same with the WKT that params.crs was found to be before (a plan's own, checked against
+// the plan's hash): the other parameters are checked, PROJ is not asked again (its database
+// lookup was 3 % of a render-tile, issue #23 item 4).
+std::unique_ptr<HeightfieldSource> open_generated_heightfield(const GeneratedTerrain& params,
+                                                              std::string checked_crs_wkt);
 
 // A heightfield already in memory; `heightfield` (or `height`) must outlive the source.
 std::unique_ptr<HeightfieldSource> in_memory_heightfield(const Heightfield& heightfield);

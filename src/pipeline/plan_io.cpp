@@ -296,8 +296,11 @@ WorldPlan read_plan(const fs::path& dir, const std::vector<const SynthesisMethod
     }
     if (plan.heights.file)
       plan.heights.reader = open_planned_heightfield(*plan.heights.file, where);
+    // A generated world's CRS is the plan's own (plan.crs_wkt came from it when planning).
     if (plan.heights.generated)
-      plan.heights.reader = open_generated_heightfield(*plan.heights.generated);
+      plan.heights.reader = plan.crs_wkt.empty()
+                                ? open_generated_heightfield(*plan.heights.generated)
+                                : open_generated_heightfield(*plan.heights.generated, plan.crs_wkt);
     if (tile && (*tile < 0 || std::size_t(*tile) >= plan.tiles.size()))
       fail("--tile {}: the plan has {} tiles (0 to {})", *tile, plan.tiles.size(),
            int(plan.tiles.size()) - 1);

@@ -33,8 +33,9 @@ inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // job.json, a mix's report fields (issue #24); 7: a network class's report (`network`); 8: one
 // entry per synthesis method (`methods`: name, index, the method's own entry) in place of
 // area_names, exemplars, patterns and files.areas/grown/index.patterns/index.areas; 9: the
-// plan's own objects and the methods' indexes as binary objects (.bin) in place of CBOR.
-inline constexpr int kPlanVersion = 9;
+// plan's own objects and the methods' indexes as binary objects (.bin) in place of CBOR; 10:
+// the patterns' exemplars and patterns (with their placements) as binary objects too.
+inline constexpr int kPlanVersion = 10;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

@@ -131,6 +131,23 @@ TEST(HeightfieldSource, GeneratedWindowsAreTheGeneratedWorld) {
   EXPECT_DOUBLE_EQ(window.grid.origin_y, params.origin_y - 20 * 7.5);
 }
 
+// A plan's generated world opens with the WKT the plan holds (no PROJ lookup): the same cells
+// and that WKT, and its other parameters are still checked.
+TEST(HeightfieldSource, AGeneratedWorldWithItsCheckedCrsIsTheSameWorld) {
+  GeneratedTerrain params;
+  params.width = 120;
+  params.height = 80;
+  params.seed = 9;
+  const auto looked_up = open_generated_heightfield(params);
+  const auto given = open_generated_heightfield(params, looked_up->crs_wkt());
+  EXPECT_FALSE(looked_up->crs_wkt().empty());
+  EXPECT_EQ(given->crs_wkt(), looked_up->crs_wkt());
+  const Window all = Window::whole(looked_up->grid());
+  EXPECT_TRUE(same_bits(looked_up->read(all), all, given->read(all)));
+  params.pixel_size = -1.0;
+  EXPECT_THROW(open_generated_heightfield(params, looked_up->crs_wkt()), Error);
+}
+
 // A tile's render and its report facts ask a generated world for the same window: it is
 // computed once (the source keeps the last window) and each caller gets its own copy.
 TEST(HeightfieldSource, TheSameGeneratedWindowAgainIsTheSameCopy) {

@@ -26,6 +26,7 @@
 #include "pipeline/synthesis_job.hpp"
 #include "raster/footprint.hpp"
 #include "raster/window_index.hpp"
+#include "synth/placements_io.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -592,6 +593,73 @@ TEST(PlanBinary, ValuesComeBackExactlyAndBadBytesAreOneClearError) {
     FAIL() << "short ribbons were read";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("plan P: ribbons: "));
+  }
+}
+
+// The patterns method's objects (plan version 10): a pattern comes back with its synthesis as
+// its placements file holds it (a mix's atlas columns and exemplars included), the values the
+// file does not hold are not kept, and a placement outside the mix is refused by name.
+TEST(PlanBinary, APatternComesBackAsItsPlacementsFileHoldsIt) {
+  detail::PlannedPattern pattern;
+  pattern.class_index = 2;
+  pattern.exemplar_index = 1;
+  pattern.window = {3, 4, 50, 60};
+  pattern.feather = 0.25;
+  pattern.targets.push_back({3, true, 0, false});
+  Synthesis& s = pattern.synthesis;
+  s.column = 7;
+  s.total_cost = 123;
+  s.objective_cost = 456;  // not in a placements file
+  s.mean_seam_cost = 0.1;
+  s.valid_counts = {4, 5};
+  s.mix = MixLayout{{0, 70}, {60, 40}, {56, 50}, 10};
+  s.pieces_per_exemplar = {1, 1};
+  s.exemplar_switches = 1;
+  for (int i = 0; i < 2; ++i) {
+    Placement& p = s.placements.emplace_back();
+    p.ux = 70 * i + 3;
+    p.uy = -2;
+    p.exemplar = i;
+    p.origin = {500000.125 + i, 5000000.3};
+    p.along = {std::sqrt(0.5), std::sqrt(0.5)};
+    p.across = {-std::sqrt(0.5), std::sqrt(0.5)};
+    p.scale = 1.0 / 3.0;
+    p.stitch = {0.5f, 1.75f};
+  }
+  const std::string bytes = detail::pattern_to_bytes(pattern);
+  detail::PlannedPattern back;
+  detail::pattern_from_bytes(bytes, back, "plan P: pattern");
+  EXPECT_EQ(back.class_index, 2u);
+  EXPECT_EQ(back.window, pattern.window);
+  EXPECT_EQ(back.feather, 0.25);
+  ASSERT_EQ(back.targets.size(), 1u);
+  EXPECT_TRUE(back.targets[0].to_height);
+  EXPECT_EQ(back.synthesis.objective_cost, 0);
+  Synthesis expected = s;
+  expected.objective_cost = 0;
+  EXPECT_EQ(placements_to_json(back.synthesis, ""), placements_to_json(expected, ""));
+  ASSERT_EQ(back.synthesis.placements.size(), 2u);
+  EXPECT_EQ(back.synthesis.placements[1].ux, 73);
+  EXPECT_EQ(back.synthesis.placements[1].exemplar, 1);
+  EXPECT_EQ(back.synthesis.placements[0].scale, 1.0 / 3.0);
+  EXPECT_EQ(detail::pattern_to_bytes(back), bytes);
+
+  // The last placement's exemplar, 77 bytes before the end (ux, uy: 8 bytes; then exemplar,
+  // empty, three Vec2, scale and the stitch's count and two floats: 85 bytes), made 5.
+  std::string outside = bytes;
+  const std::int32_t five = 5;
+  std::memcpy(outside.data() + outside.size() - 77, &five, sizeof five);
+  try {
+    detail::pattern_from_bytes(outside, back, "plan P: pattern");
+    FAIL() << "a placement outside the mix was read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("plan P: pattern"));
+  }
+  try {
+    detail::pattern_from_bytes(bytes.substr(0, bytes.size() - 1), back, "plan P: pattern");
+    FAIL() << "a short pattern was read";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("plan P: pattern: "));
   }
 }
 

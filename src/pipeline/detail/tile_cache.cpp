@@ -205,9 +205,10 @@ TileCache::TileCache(const WorldPlan& plan, const WriteOptions& output, std::opt
     entries_[plan.terrain.input_index[i]].push_back(i);
   for (const auto& class_ribbons : plan.ribbons)
     for (const Ribbon& r : class_ribbons) ribbons_.push_back(ribbon_hash(r));
-  for (const MethodPlan& entry : plan.methods)
-    methods_.push_back(entry.method->renders() ? entry.method->item_hashes(plan, entry)
-                                               : std::vector<ContentHash>{});
+  // The methods' item hashes wait for the first tile that meets one of the method's items: a
+  // render-tile away from every pattern hashes none (the patterns' placements as JSON text were
+  // 1-2 % of a render-tile, issue #23 item 4).
+  methods_.resize(plan.methods.size());
 }
 
 TileKey TileCache::key(const TileSpec& tile) const {
@@ -252,7 +253,9 @@ TileKey TileCache::key(const TileSpec& tile) const {
     const MethodPlan& entry = plan_.methods[m];
     if (!entry.method->renders()) continue;
     f.text(entry.method->name());
-    for (const std::size_t i : items_meeting(entry.index, window)) f.hash(methods_[m][i]);
+    const std::vector<std::size_t> items = items_meeting(entry.index, window);
+    if (!items.empty() && !methods_[m]) methods_[m] = entry.method->item_hashes(plan_, entry);
+    for (const std::size_t i : items) f.hash((*methods_[m])[i]);
   }
   key.features = f.digest();
 

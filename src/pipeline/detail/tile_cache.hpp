@@ -35,7 +35,8 @@ struct TileKey {
 
 class TileCache {
  public:
-  // Hashes every feature, ribbon and method item of `plan` once (a tile then hashes their hashes);
+  // Hashes every feature and ribbon of `plan` once, a method's items when a tile first meets one
+  // (a tile then hashes their hashes; not thread-safe);
   // `output`: the writer's options the tile's files depend on. No `dir`: keys only.
   TileCache(const WorldPlan& plan, const WriteOptions& output,
             std::optional<std::filesystem::path> dir, Warnings& warnings);
@@ -74,7 +75,8 @@ class TileCache {
   ContentHash config_;                                     // what every tile shares
   std::vector<ContentHash> terrain_, ribbons_;             // by plan index
   std::vector<std::vector<std::size_t>> entries_;  // terrain plan entries per terrain feature
-  std::vector<std::vector<ContentHash>> methods_;          // per plan.methods entry, by item
+  // Per plan.methods entry, by item; hashed when a tile first meets one of its items (key()).
+  mutable std::vector<std::optional<std::vector<ContentHash>>> methods_;
 };
 
 // The parts of a key that the methods' item hashes share (SynthesisMethod::item_hashes).

@@ -33,6 +33,9 @@ using nlohmann::json;
 TW_FIELDS(CostTexels, F(width) F(height) F(rgba) F(binary_alpha))
 TW_FIELDS(Exemplar, F(width) F(height) F(channel_names) F(texels) F(cost) F(path))
 TW_FIELDS(PatternTarget, F(exemplar_channel) F(to_height) F(material) F(is_alpha))
+TW_FIELDS(Placement,
+          F(ux) F(uy) F(exemplar) F(empty) F(origin) F(along) F(across) F(scale) F(stitch))
+TW_FIELDS(MixLayout, F(x0) F(width) F(height) F(gap))
 #undef F
 #undef TW_FIELDS
 
@@ -122,6 +125,22 @@ void pattern_fields(Io& io, PlannedPattern& p) {
   io("feather", p.feather);
   io("height_detail", p.height_detail);
   io("targets", p.targets);
+}
+
+// What a placements file holds of a synthesis (synth/placements_io), the fields a plan keeps.
+template <class Io>
+void placements_file_fields(Io& io, Synthesis& s) {
+  io("column", s.column);
+  io("closed", s.closed);
+  io("backend", s.backend);
+  io("total_cost", s.total_cost);
+  io("mean_seam_cost", s.mean_seam_cost);
+  io("mean_seam_cost_stitched", s.mean_seam_cost_stitched);
+  io("valid_counts", s.valid_counts);
+  io("mix", s.mix);
+  io("pieces_per_exemplar", s.pieces_per_exemplar);
+  io("exemplar_switches", s.exemplar_switches);
+  io("placements", s.placements);
 }
 
 class PatternMethod final : public SynthesisMethod {
@@ -328,14 +347,15 @@ class PatternMethod final : public SynthesisMethod {
     out["pattern_violations"] = report.pattern_violations;
   }
 
-  // The exemplars (texels) as objects, with their source's hash when it is a file; each pattern
-  // as an object and its placements as the placements file of synth/placements_io.
+  // The exemplars (texels) as binary objects, with their source's hash when it is a file; each
+  // pattern as a binary object holding its synthesis as its placements file does
+  // (pattern_to_bytes). Bytes, not a JSON tree: decoding them was 6 % of a render-tile.
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {
     const PatternsPlan& plan = payload_as<PatternsPlan>(entry);
     json exemplars = json::array();
     for (std::size_t i = 0; i < plan.exemplars.size(); ++i) {
       const Exemplar& e = plan.texels(i);
-      json item = objects.put_cbor(detail::encode(e));
+      json item = objects.put_binary(to_bytes(e));
       item["path"] = e.path;
       std::error_code ec;  // the source's hash, when it is a file (a generated exemplar is not)
       item["source_xxh3_128"] =
@@ -343,19 +363,8 @@ class PatternMethod final : public SynthesisMethod {
       exemplars.push_back(std::move(item));
     }
     json patterns = json::array();
-    const fs::path scratch =
-        objects.dir() / "objects" / temporary_beside("placements.json").filename();
-    for (const PlannedPattern& p : plan.patterns) {
-      JsonWriter writer;
-      pattern_fields(writer, const_cast<PlannedPattern&>(p));
-      fs::create_directories(scratch.parent_path());
-      save_placements(p.synthesis, plan.exemplars.at(p.exemplar_index).path, scratch.string());
-      json item = objects.put_cbor(writer.value);
-      item["placements"] = objects.put(read_file_bytes(scratch), ".json");
-      patterns.push_back(std::move(item));
-    }
-    std::error_code ec;
-    fs::remove(scratch, ec);
+    for (const PlannedPattern& p : plan.patterns)
+      patterns.push_back(objects.put_binary(pattern_to_bytes(p)));
     return {{"exemplars", exemplars}, {"patterns", patterns}};
   }
 
@@ -365,23 +374,14 @@ class PatternMethod final : public SynthesisMethod {
     const json& exemplars = value.at("exemplars");
     for (std::size_t i = 0; i < exemplars.size(); ++i) {
       const std::string key = fmt::format("methods.patterns.exemplars[{}]", i);
-      detail::decode(objects.get_cbor(exemplars[i], key), plan.exemplars.emplace_back(),
-                     where + ": " + key);
+      from_bytes(objects.get_binary(exemplars[i], key).body(), plan.exemplars.emplace_back(),
+                 where + ": " + key);
     }
-    const fs::path scratch = fs::temp_directory_path() / temporary_beside("placements.json");
     const json& patterns = value.at("patterns");
     for (std::size_t i = 0; i < patterns.size(); ++i) {
-      const json& item = patterns[i];
       const std::string key = fmt::format("methods.patterns.patterns[{}]", i);
       PlannedPattern& p = plan.patterns.emplace_back();
-      const json fields_json = json::from_cbor(objects.get(item, key));
-      JsonReader pattern_reader(fields_json, where + ": " + key);
-      pattern_fields(pattern_reader, p);
-      // Through the one placements reader (its checks, its messages), from verified bytes.
-      write_file_atomic(scratch, objects.get(item.at("placements"), key + ".placements"));
-      p.synthesis = load_placements(scratch.string());
-      std::error_code ec;
-      fs::remove(scratch, ec);
+      pattern_from_bytes(objects.get_binary(patterns[i], key).body(), p, where + ": " + key);
       if (p.exemplar_index >= plan.exemplars.size())
         fail("{}: {}.exemplar_index {} of {} exemplars", where, key, p.exemplar_index,
              plan.exemplars.size());
@@ -390,6 +390,43 @@ class PatternMethod final : public SynthesisMethod {
 };
 
 }  // namespace
+
+std::string pattern_to_bytes(const PlannedPattern& pattern) {
+  // The synthesis as its placements file holds it (read back from that file's text, as plans
+  // before version 10 stored it): the same values as a plan of then decoded.
+  PlannedPattern p = pattern;
+  p.synthesis = placements_from_json(placements_to_json(pattern.synthesis, ""), "(plan)");
+  BinaryWriter writer;
+  pattern_fields(writer, p);
+  placements_file_fields(writer, p.synthesis);
+  return std::move(writer.bytes);
+}
+
+void pattern_from_bytes(std::string_view bytes, PlannedPattern& p, const std::string& where) {
+  BinaryReader reader(bytes, where);
+  pattern_fields(reader, p);
+  Synthesis& s = p.synthesis;
+  placements_file_fields(reader, s);
+  reader.finish();
+  // What the placements reader checks of a mix, which the renderer relies on.
+  if (s.mix) {
+    const MixLayout& mix = *s.mix;
+    if (mix.x0.empty() || mix.width.size() != mix.x0.size() || mix.height.size() != mix.x0.size())
+      fail("{}: its mix needs one x0, width and height per exemplar", where);
+    for (const Placement& placement : s.placements)
+      if (placement.exemplar < 0 || placement.exemplar >= mix.count())
+        fail("{}: placement exemplar {} is not one of the mix's {} exemplars", where,
+             placement.exemplar, mix.count());
+  }
+}
+
+void exemplar_from_bytes(std::string_view bytes, Exemplar& exemplar, const std::string& where) {
+  from_bytes(bytes, exemplar, where);
+}
+
+std::string exemplar_to_bytes(const Exemplar& exemplar) {
+  return to_bytes(exemplar);
+}
 
 const Exemplar& PatternsPlan::texels(std::size_t index) const {
   const std::lock_guard lock(*texels_mutex_);

@@ -6,6 +6,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "pipeline/config.hpp"
@@ -59,6 +61,16 @@ struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
 const SynthesisMethod& pattern_method();
 // Its keys of a pipeline file (detail/method_keys.hpp).
 MethodKeys pattern_keys();
+
+// A planned pattern as the bytes of its plan object (plan version 10, plan_binary.hpp) and back:
+// its fields, then its synthesis as its placements file holds it (synth/placements_io: the
+// other values of a Synthesis, its timings and costs of the objective, are not kept). Throws
+// tw::Error naming `where` on bytes that are not one pattern.
+std::string pattern_to_bytes(const PlannedPattern& pattern);
+void pattern_from_bytes(std::string_view bytes, PlannedPattern& pattern, const std::string& where);
+// An exemplar (texels and costs) the same way.
+std::string exemplar_to_bytes(const Exemplar& exemplar);
+void exemplar_from_bytes(std::string_view bytes, Exemplar& exemplar, const std::string& where);
 
 // The plan's patterns entry; null when it has none (a plan made by hand).
 const PatternsPlan* patterns_plan(const WorldPlan& plan);
