@@ -242,8 +242,8 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   EXPECT_EQ(saved_b["suggestions"], a["suggestions"]) << "--save: where, not what";
   EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
   // The page's method choice: over a region without drawn lines (south of the stroke, clear of
-  // the road) growth and quilting answer differently, and naming none is automatic (one of the
-  // two). Quilting a region with drawn lines is refused (completing is growth from their ends),
+  // the road) growth and quilting answer differently, and naming none is automatic (which may
+  // also choose the layout, docs/networks.md "Layout"). Quilting a region with drawn lines is refused (completing is growth from their ends),
   // as is a method of another name.
   const std::string empty_south =
       "'[[500080, 4999900], [500200, 4999930]]' "
@@ -268,7 +268,7 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   ASSERT_GT(quilted.size(), 0u);
   EXPECT_NE(grown, quilted) << "method";
   EXPECT_EQ(chosen, south["automatic"]["body"]["suggestions"]) << "no method: automatic";
-  EXPECT_TRUE(chosen == grown || chosen == quilted) << "automatic: one of the two";
+  EXPECT_GT(chosen.size(), 0u) << "automatic";
   const nlohmann::json over_stroke = completions("quilt,grow", stroke_region);
   EXPECT_EQ(over_stroke["quilt"]["status"], 400);
   EXPECT_THAT(over_stroke["quilt"]["body"]["error"].get<std::string>(),
