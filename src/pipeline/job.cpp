@@ -22,7 +22,6 @@
 #include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/detail/tile_stats.hpp"
-#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 
@@ -255,10 +254,10 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
   if (options.synthesis_tasks)
     syntheses =
         detail::plan_synthesis_tasks(config, plan, options.backend, cache, plan_dir, warnings);
-  // The methods after the patterns (the areas avoid the curve patterns) plan in complete-plan,
-  // after the tasks; with no synthesis to wait for, the plan is complete here.
+  // The methods after the one whose syntheses are tasks plan in complete-plan, after the tasks
+  // (they may avoid its placements); with no synthesis to wait for, the plan is complete here.
   if (syntheses && syntheses->at("features").empty()) {
-    detail::plan_after(config, plan, detail::pattern_method(), warnings);
+    detail::plan_after(config, plan, detail::tasks_method(plan), warnings);
     index_plan(plan);
   }
   plan.report.warnings = warnings.list();
@@ -291,7 +290,7 @@ PlannedJob plan_job(const PipelineConfig& config, const PlanJobOptions& options)
       {"backend", options.backend ? json(*options.backend) : json()},
       {"plan_seconds", seconds_since(started)},
       // What complete-plan must find: without these, a deleted syntheses.json would read as
-      // "no syntheses" and finish would commit a world without its patterns (issue #24).
+      // "no syntheses" and finish would commit a world without its syntheses (issue #24).
       {"synthesis_tasks", pending},
       {"syntheses_complete", pending == 0},
       // syntheses.json is checked against it (detail::read_syntheses).

@@ -70,6 +70,12 @@ ExistingFeatures existing_features(const WorldPlan& plan) {
   return {plan.existing.polygons, plan.existing.lines, plan.existing.line_widths};
 }
 
+const SynthesisMethod& tasks_method(const WorldPlan& plan) {
+  for (const MethodPlan& entry : plan.methods)
+    if (entry.method && entry.method->makes_tasks()) return *entry.method;
+  fail("plan: no method of the plan makes synthesis tasks");
+}
+
 std::vector<StageTiming> plan_after(const PipelineConfig& config, WorldPlan& plan,
                                     const SynthesisMethod& after, Warnings& warnings) {
   const auto first = std::find_if(plan.methods.begin(), plan.methods.end(),

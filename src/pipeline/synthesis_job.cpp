@@ -12,24 +12,19 @@
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
 #include "pipeline/detail/job_files.hpp"
-#include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/synthesis_defaults.hpp"
-#include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan_io.hpp"
 
 namespace tw {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using Scope = detail::PatternOptions::Scope;
 
 namespace {
 
-fs::path syntheses_path(const fs::path& plan_dir) {
-  return plan_dir / "syntheses.json";
-}
+using detail::syntheses_path;
+
 fs::path results_dir(const fs::path& plan_dir) {
   return plan_dir / "synthesis-results";
 }
@@ -43,15 +38,13 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-detail::PatternRun synthesize(const PipelineConfig& config, const WorldPlan& plan,
-                              const detail::PatternOptions& options) {
-  return detail::synthesize_patterns(config, plan.lines, detail::synthesis_ribbons(plan),
-                                     detail::existing_features(plan), options);
-}
-
 }  // namespace
 
 namespace detail {
+
+fs::path syntheses_path(const fs::path& plan_dir) {
+  return plan_dir / "syntheses.json";
+}
 
 std::string syntheses_hash(json list) {
   list.erase("plan");
@@ -135,35 +128,11 @@ json plan_synthesis_tasks(const PipelineConfig& config, const WorldPlan& plan,
                           const std::optional<std::string>& backend,
                           const std::optional<fs::path>& cache, const fs::path& plan_dir,
                           Warnings& warnings) {
-  SynthesisCache statuses(cache, warnings);
-  PatternOptions options;
-  options.backend = backend;
-  options.cache = &statuses;
-  options.scope = Scope::keys;
   // The keys of the syntheses plan_world would run: with the exemplars' width and delta where the
   // pipeline gives none (the tasks read the pipeline so too).
-  const PatternRun run = synthesize(with_exemplar_defaults(config), plan, options);
-  json features = json::array();
-  std::vector<int> waves;
-  for (std::size_t i = 0; i < run.patterns.size(); ++i) {
-    const FeaturePattern& p = run.patterns[i];
-    const bool task = !p.cache.reused;
-    int wave = -1;  // tasks only: one more than the deepest task it waits for
-    if (task) {
-      wave = 0;
-      for (const std::size_t a : p.after) wave = std::max(wave, waves[a] + 1);
-    }
-    waves.push_back(wave);
-    features.push_back({{"index", i},
-                        {"name", p.name},
-                        {"class", config.features[p.class_index].name},
-                        {"fid", plan.lines[p.class_index][p.feature_index].fid},
-                        {"key", p.key.hex()},
-                        {"cache", {{"reused", p.cache.reused}, {"why", p.cache.why}}},
-                        {"after", p.after},
-                        {"task", task},
-                        {"wave", task ? json(wave) : json()}});
-  }
+  const PipelineConfig defaults = with_exemplar_defaults(config);
+  MethodTasks tasks{defaults, backend, cache, plan_dir, warnings};
+  const json features = tasks_method(plan).plan_tasks(plan, tasks);
   return {{"format", kSynthesesFormat},
           {"version", kPlanVersion},
           {"store", (cache ? *cache : plan_dir / "syntheses").string()},
@@ -211,59 +180,6 @@ void require_complete_plan(const fs::path& plan_dir, const std::string& plan) {
 
 }  // namespace detail
 
-namespace {
-
-// A synthesis whose key is not the plan's: what it reads changed after planning. An exemplar is
-// named by its file (the most common case: an exemplar image edited or replaced).
-[[noreturn]] void key_changed(const fs::path& plan_dir, const PipelineConfig& config,
-                              const detail::FeaturePattern& pattern, std::size_t index) {
-  const FeatureClassConfig& c = config.features.at(pattern.class_index);
-  std::string changed;
-  for (const fs::path& path : c.synthesis->exemplars) {
-    std::error_code ec;
-    const auto written = fs::last_write_time(path, ec);
-    const auto planned = fs::last_write_time(plan_dir / "plan.json", ec);
-    if (!ec && written > planned) changed += (changed.empty() ? "" : ", ") + path.string();
-  }
-  const std::string what_to_do = "plan again (" + detail::plan_again(plan_dir) + ")";
-  if (!changed.empty())
-    fail("{}: feature {} ({}): features.{}.synthesis.exemplars {} changed after planning; {}",
-         syntheses_path(plan_dir).string(), index, pattern.name, c.name, changed, what_to_do);
-  fail(
-      "{}: feature {} ({}): what its synthesis reads (its line, features.{}.synthesis keys, "
-      "exemplars, the earlier features it avoids) is not what was planned; {}",
-      syntheses_path(plan_dir).string(), index, pattern.name, c.name, what_to_do);
-}
-
-// The store's entries read back: one found corrupt fails the job (a run rebuilds it; a job must
-// not), naming the entry's file, the feature and the command that makes it again.
-detail::PatternRun synthesize_from_store(const PipelineConfig& config, const WorldPlan& plan,
-                                         const detail::PatternOptions& options,
-                                         const Warnings& warnings, const json& list,
-                                         const fs::path& plan_dir) {
-  try {
-    return synthesize(config, plan, options);
-  } catch (const Error&) {
-    for (const Warning& w : warnings.list()) {
-      if (w.code != "cache_corrupt") continue;
-      std::string index = "N";
-      for (const json& f : list.at("features"))
-        if (w.fid && f.value("fid", std::int64_t(-1)) == *w.fid &&
-            "features." + f.value("class", std::string()) == w.subject)
-          index = f.at("index").dump();
-      std::string message = w.message;
-      if (message.ends_with(": rebuilt")) message.resize(message.size() - 9);
-      fail(
-          "{}: FID {}: synthesis store {}; delete that file and synthesize the feature again "
-          "(terraweave synth-feature {} --feature {})",
-          w.subject, w.fid.value_or(-1), message, plan_dir.string(), index);
-    }
-    throw;
-  }
-}
-
-}  // namespace
-
 SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature) {
   test_pause_point("synth-feature");
   const auto started = std::chrono::steady_clock::now();
@@ -287,24 +203,12 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
   const WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;  // a store entry of a dependency that is corrupt: an error below
-  detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);
-  detail::PatternOptions options;
-  options.backend = job_backend(job);
-  options.cache = &store;
-  options.scope = Scope::one;
-  options.feature = std::size_t(feature);
-  options.after = entry.at("after").get<std::vector<std::size_t>>();
-  detail::PatternRun run = synthesize_from_store(config, plan, options, warnings, list, plan_dir);
-  if (run.patterns.empty())
-    fail("{}: feature {} ({}) is not in the plan's features any more; plan again ({})",
-         syntheses_path(plan_dir).string(), feature, result.name, detail::plan_again(plan_dir));
-  if (run.patterns.back().key.hex() != entry.at("key").get<std::string>())
-    key_changed(plan_dir, config, run.patterns.back(), std::size_t(feature));
-  const std::vector<std::uint8_t> report =
-      json::to_cbor(detail::encode(run.patterns.back().report));
+  MethodTasks tasks{config, job_backend(job), fs::path(list.at("store").get<std::string>()),
+                    plan_dir, warnings};
+  const std::string report =
+      detail::tasks_method(plan).run_task(plan, tasks, list, std::size_t(feature));
   // Last: a report names a stored synthesis.
-  write_file_atomic(results_dir(plan_dir) / (entry.at("key").get<std::string>() + ".cbor"),
-                    std::string(report.begin(), report.end()));
+  write_file_atomic(results_dir(plan_dir) / (entry.at("key").get<std::string>() + ".cbor"), report);
   result.synthesized = true;
   result.seconds = seconds_since(started);
   return result;
@@ -386,47 +290,26 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
   const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
   WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;
-  detail::SynthesisCache store(fs::path(list.at("store").get<std::string>()), warnings);
-  detail::PatternOptions options;
-  options.backend = job_backend(job);
-  options.cache = &store;
-  options.scope = Scope::cached;
-  detail::PatternRun run = synthesize_from_store(config, plan, options, warnings, list, plan_dir);
+  MethodTasks tasks{config, job_backend(job), fs::path(list.at("store").get<std::string>()),
+                    plan_dir, warnings};
   const json& features = list.at("features");
-  if (run.patterns.size() != features.size())
-    fail("{}: {} syntheses, the plan has {}", syntheses_path(plan_dir).string(), features.size(),
-         run.patterns.size());
-  double seconds = 0.0;  // the tasks' own, summed (on any number of workers)
-  for (std::size_t i = 0; i < features.size(); ++i) {
-    detail::FeaturePattern& p = run.patterns[i];
-    const json& entry = features[i];
-    const std::string key = entry.at("key").get<std::string>();
-    if (p.key.hex() != key) key_changed(plan_dir, config, p, i);
-    // As the plan found the cache; a task's synthesis reports what it did.
-    p.cache = {entry.at("cache").at("reused").get<bool>(),
-               entry.at("cache").at("why").get<std::string>(), key};
-    if (!entry.at("task").get<bool>()) continue;
-    const fs::path report = results_dir(plan_dir) / (key + ".cbor");
-    if (!fs::is_regular_file(report, ec))
-      fail("{}: not synthesized: no {} (terraweave synth-feature {} --feature {})", p.name,
-           report.string(), plan_dir.string(), i);
-    const std::string bytes = read_file_bytes(report);
-    try {
-      detail::decode(json::from_cbor(bytes), p.report, report.string());
-    } catch (const json::exception& e) {
-      fail("{}: not a synthesis report ({})", report.string(), e.what());
-    }
-    seconds += p.report.avoidance_seconds + p.report.synthesis_seconds + p.report.render_seconds;
-  }
-  // The syntheses into the patterns' entry; the methods after it (the areas, which avoid the
+  // A task's result, stored by synth-feature under its key.
+  const auto result = [&](std::size_t i) {
+    const fs::path file =
+        results_dir(plan_dir) / (features[i].at("key").get<std::string>() + ".cbor");
+    if (!fs::is_regular_file(file, ec))
+      fail("{}: not synthesized: no {} (terraweave synth-feature {} --feature {})",
+           features[i].at("name").get<std::string>(), file.string(), plan_dir.string(), i);
+    return MethodTaskResult{file.string(), read_file_bytes(file)};
+  };
+  // The syntheses into their method's entry; the methods after it (the areas, which avoid the
   // curve patterns) plan here, after every synthesis, as plan_world orders them.
+  const SynthesisMethod& method = detail::tasks_method(plan);
+  MethodPlan* entry = find_method_plan(plan, method.name());
+  const double seconds = method.complete_tasks(plan, *entry, tasks, list, result);
   Warnings synthesis_warnings;
-  detail::PatternsPlan* patterns = detail::patterns_plan(plan);
-  if (!patterns) fail("plan: no patterns entry to complete");
-  patterns->run = std::make_shared<detail::PatternRun>(std::move(run));
-  plan.report.stages.push_back({"synthesis", seconds});
-  for (const StageTiming& t :
-       detail::plan_after(config, plan, detail::pattern_method(), synthesis_warnings))
+  plan.report.stages.push_back({method.stage_name(), seconds});
+  for (const StageTiming& t : detail::plan_after(config, plan, method, synthesis_warnings))
     plan.report.stages.push_back(t);
   if ((strict || config.strict) && !synthesis_warnings.list().empty())
     fail("strict: {} (the synthesis); nothing completed",

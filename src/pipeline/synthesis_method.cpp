@@ -17,6 +17,23 @@ nlohmann::json SynthesisMethod::report(const WorldPlan& /*plan*/,
   return nullptr;
 }
 
+nlohmann::json SynthesisMethod::plan_tasks(const WorldPlan& /*plan*/,
+                                           MethodTasks& /*tasks*/) const {
+  return nlohmann::json::array();
+}
+
+std::string SynthesisMethod::run_task(const WorldPlan& /*plan*/, MethodTasks& /*tasks*/,
+                                      const nlohmann::json& /*list*/, std::size_t index) const {
+  fail("method '{}' makes no synthesis tasks (task {})", name(), index);
+}
+
+double SynthesisMethod::complete_tasks(
+    WorldPlan& /*plan*/, MethodPlan& /*entry*/, MethodTasks& /*tasks*/,
+    const nlohmann::json& /*list*/,
+    const std::function<MethodTaskResult(std::size_t)>& /*result*/) const {
+  fail("method '{}' makes no synthesis tasks to complete", name());
+}
+
 const std::vector<const SynthesisMethod*>& builtin_synthesis_methods() {
   static const std::vector<const SynthesisMethod*> methods = {
       &detail::grown_method(), &detail::network_method(), &detail::pattern_method(),

@@ -6,7 +6,9 @@
 // how its entry travels in a plan folder. plan_world, render_tile, the tile cache and the plan
 // codec loop over the methods; none of them names one.
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +66,27 @@ struct MethodOutputs {
   OutputFolder& transaction;  // stages every file (the manifest hashes what it staged)
   RunReport& report;          // completed with what the outputs name (placements files)
   std::vector<MethodTileFact> tile_facts;  // its fact of every tile, in tile order
+};
+
+// What a method's synthesis tasks see (terraweave plan --synthesis tasks, synth-feature,
+// complete-plan: pipeline/synthesis_job.hpp). The protocol (syntheses.json, its dependency
+// graph and waves, the results' files, the completion's journal) is the pipeline's; what a task
+// is, how it runs and how its results enter the plan are the method's.
+struct MethodTasks {
+  const PipelineConfig& config;  // with the exemplars' defaults
+  std::optional<std::string> backend;
+  // The synthesis store: the cache when planning (none: nothing is reused), else syntheses.json's
+  // `store`.
+  std::optional<std::filesystem::path> store;
+  std::filesystem::path plan_dir;
+  Warnings& warnings;
+};
+
+// A task's stored result (SynthesisMethod::complete_tasks): its file, as messages name it, and
+// its bytes.
+struct MethodTaskResult {
+  std::string file;
+  std::string bytes;
 };
 
 class SynthesisMethod {
@@ -151,6 +174,24 @@ class SynthesisMethod {
   // features, top-level keys), called for every method once the rest is there.
   virtual void report_json(const RunReport& /*report*/, const PipelineConfig& /*config*/,
                            nlohmann::json& /*json*/) const {}
+
+  // Whether its placements can be made as synthesis tasks apart from the plan (then the
+  // placements methods after it plan in complete-plan, after every task).
+  virtual bool makes_tasks() const { return false; }
+  // The tasks its entry splits into, for syntheses.json's `features`: one object per synthesis,
+  // in synthesis order, with at least `index`, `name`, `key`, `after` (the earlier ones it
+  // waits for), `task` (false: reused from the store) and `wave`.
+  virtual nlohmann::json plan_tasks(const WorldPlan& plan, MethodTasks& tasks) const;
+  // Runs the task at `index` of `list` (syntheses.json) on the stored plan; returns its result,
+  // which the pipeline stores under the task's key.
+  virtual std::string run_task(const WorldPlan& plan, MethodTasks& tasks,
+                               const nlohmann::json& list, std::size_t index) const;
+  // Puts every synthesis of `list` into its entry (`result(i)`: the stored result of task i;
+  // it throws when the task has not run),
+  // as plan() would have; returns the tasks' own seconds, summed.
+  virtual double complete_tasks(WorldPlan& plan, MethodPlan& entry, MethodTasks& tasks,
+                                const nlohmann::json& list,
+                                const std::function<MethodTaskResult(std::size_t)>& result) const;
 
   // Its entry in plan.json (objects through `objects`), and back.
   virtual nlohmann::json encode(const MethodPlan& entry, detail::PlanObjects& objects) const = 0;

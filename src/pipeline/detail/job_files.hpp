@@ -37,6 +37,9 @@ StagedPlan stage_plan(const WorldPlan& plan, const std::filesystem::path& dir);
 std::set<std::string> plan_objects(const nlohmann::json& plan_json);
 void delete_unused_objects(const std::filesystem::path& dir, const std::set<std::string>& used);
 
+// syntheses.json, the synthesis task list, in a plan folder.
+std::filesystem::path syntheses_path(const std::filesystem::path& plan_dir);
+
 // Checks syntheses.json's dependency graph: every `after` names a feature of the list
 // synthesized before it (no unknown index, no self-dependency, no cycle). Throws tw::Error
 // naming `file` and the feature.

@@ -1,11 +1,10 @@
 #pragma once
-// A plan's syntheses made apart from plan_world (pipeline/synthesis_job.hpp): the inputs of
-// synthesize_patterns as a WorldPlan holds them, the steps that put the results into it, and
-// the areas, which avoid the curve patterns and so are synthesized after all of them.
+// A plan's syntheses made apart from plan_world (pipeline/synthesis_job.hpp): what a stored
+// plan holds of the placements methods' inputs, and the methods after the one whose syntheses
+// were tasks, which plan after all of them.
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
-#include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
 
@@ -15,14 +14,10 @@ namespace tw::detail {
 FeatureRibbons synthesis_ribbons(const WorldPlan& plan);
 ExistingFeatures existing_features(const WorldPlan& plan);
 
-// The syntheses' reports and cache statuses into plan.report, the patterns as the renderer needs
-// them into the plan's patterns entry (methods/patterns/pattern_method.hpp), their exemplars and
-// splat materials (the patterns method's collect does the same in plan_world). Throws tw::Error
-// naming the class and the channel when an exemplar lacks a mapped channel. A grown class whose
-// synthesis dressed none of its lines warns (`grown_undressed`), so that
-// --strict fails it.
-void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
-                  Warnings& warnings);
+// The method whose placements are made as synthesis tasks (SynthesisMethod::makes_tasks): the
+// first of the plan's entries, in method order, whose method makes them. Throws tw::Error when
+// none does.
+const SynthesisMethod& tasks_method(const WorldPlan& plan);
 
 // What plan_world does after the method `after` when that method's placements were made apart
 // (the feature syntheses as tasks, pipeline/synthesis_job.hpp), on a plan read back from its

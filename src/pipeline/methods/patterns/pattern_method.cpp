@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/patterns/pattern_tasks.hpp"
 #include "raster/footprint.hpp"
 #include "raster/sparse_raster.hpp"
 #include "synth/pattern_canvas.hpp"
@@ -184,6 +185,20 @@ class PatternMethod final : public SynthesisMethod {
     if (!patterns.run) return;
     for (const FeaturePattern& p : patterns.run->patterns)
       if (p.on_ground) add_on_lattice(p.opaque, p.canvas, forbidden, lattice);
+  }
+
+  bool makes_tasks() const override { return true; }
+  nlohmann::json plan_tasks(const WorldPlan& plan, MethodTasks& tasks) const override {
+    return plan_pattern_tasks(plan, tasks);
+  }
+  std::string run_task(const WorldPlan& plan, MethodTasks& tasks, const nlohmann::json& list,
+                       std::size_t index) const override {
+    return run_pattern_task(plan, tasks, list, index);
+  }
+  double complete_tasks(WorldPlan& plan, MethodPlan& entry, MethodTasks& tasks,
+                        const nlohmann::json& list,
+                        const std::function<MethodTaskResult(std::size_t)>& result) const override {
+    return complete_pattern_tasks(plan, payload_as<PatternsPlan>(entry), tasks, list, result);
   }
 
   void collect(MethodContext& context, MethodPlan& entry) const override {

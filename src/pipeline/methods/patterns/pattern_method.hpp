@@ -76,4 +76,12 @@ void exemplar_from_bytes(std::string_view bytes, Exemplar& exemplar, const std::
 const PatternsPlan* patterns_plan(const WorldPlan& plan);
 PatternsPlan* patterns_plan(WorldPlan& plan);
 
+// The syntheses' reports and cache statuses into plan.report, the patterns as the renderer needs
+// them into the plan's patterns entry, their exemplars and splat materials (the method's
+// collect). Throws tw::Error naming the class and the channel when an exemplar lacks a mapped
+// channel. A grown class whose synthesis dressed none of its lines warns (`grown_undressed`),
+// so that --strict fails it.
+void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
+                  Warnings& warnings);
+
 }  // namespace tw::detail
