@@ -243,8 +243,8 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
   // The page's method choice: over a region without drawn lines (south of the stroke, clear of
   // the road) growth and quilting answer differently, and naming none is automatic (which may
-  // also choose the layout, docs/networks.md "Layout"). Quilting a region with drawn lines is refused (completing is growth from their ends),
-  // as is a method of another name.
+  // also choose the layout, docs/networks.md "Layout"). Quilting a region with drawn lines is
+  // refused (completing is growth from their ends), as is a method of another name.
   const std::string empty_south =
       "'[[500080, 4999900], [500200, 4999930]]' "
       "'[[500300, 4999530], [500620, 4999530], [500620, 4999660], [500300, 4999660]]' ";
