@@ -5,7 +5,11 @@
 // OpenCL time goes (device time per kernel from profiling events). Prints numbers only.
 //
 // usage: bench_synth_opencl [--quick | --cases] [--rows R] [--group G] [--per-item K]
+//                           [--texels DIR | --save-texels DIR]
 //   --quick: fewer rows and sizes; --cases: the two exemplars only (R rows each, default 3);
+//   --save-texels: write the two exemplars' cost texels to DIR/<name>.texels and stop;
+//   --texels: read them from there instead of decoding the PNGs (a machine that has no image
+//   libraries: bench/device/bundle.sh);
 //   --group / --per-item: the row kernel's work-group size and positions per work-item
 //   (OpenCLRowOptions; results are identical for every choice). bench/device/run.sh runs it
 //   on every OpenCL device.
@@ -16,6 +20,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -79,7 +85,44 @@ CostTexels generated_chain(int width, int height) {
   return t;
 }
 
+// DIR/<stem>.texels: "TWTX", then width, height, binary_alpha and the packed texels, as
+// little-endian 32-bit words (the bench's own exchange file; x86-64 and ARM hosts alike).
+std::filesystem::path texels_path(const std::string& dir, const std::string& name) {
+  return std::filesystem::path(dir) / (std::filesystem::path(name).stem().string() + ".texels");
+}
+
+void save_texels(const CostTexels& texels, const std::filesystem::path& path) {
+  std::FILE* out = std::fopen(path.c_str(), "wb");
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  const std::uint32_t header[4] = {0x58545754u, std::uint32_t(texels.width),
+                                   std::uint32_t(texels.height), texels.binary_alpha ? 1u : 0u};
+  const bool ok = std::fwrite(header, sizeof header, 1, out) == 1 &&
+                  std::fwrite(texels.rgba.data(), 4, texels.rgba.size(), out) == texels.rgba.size();
+  if (std::fclose(out) != 0 || !ok) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::optional<CostTexels> read_texels(const std::filesystem::path& path) {
+  std::FILE* in = std::fopen(path.c_str(), "rb");
+  if (!in) return std::nullopt;
+  std::uint32_t header[4] = {};
+  CostTexels texels;
+  bool ok = std::fread(header, sizeof header, 1, in) == 1 && header[0] == 0x58545754u &&
+            header[1] > 0 && header[2] > 0 && header[1] * std::uint64_t(header[2]) < (1u << 26);
+  if (ok) {
+    texels = {int(header[1]), int(header[2]), std::vector<std::uint32_t>(header[1] * header[2]),
+              header[3] != 0};
+    ok = std::fread(texels.rgba.data(), 4, texels.rgba.size(), in) == texels.rgba.size();
+  }
+  std::fclose(in);
+  if (!ok) throw std::runtime_error("not a texels file: " + path.string());
+  return texels;
+}
+
+std::string texels_dir;  // --texels DIR
+
 CostTexels exemplar_texels(const std::string& name, int width, int height) {
+  if (!texels_dir.empty())
+    if (auto texels = read_texels(texels_path(texels_dir, name))) return *texels;
   const std::filesystem::path path =
       std::filesystem::path(TERRAWEAVE_SOURCE_DIR) / "samples/exemplars" / name;
   if (std::filesystem::exists(path)) return load_exemplar(path.string()).cost;
@@ -121,6 +164,7 @@ int main(int argc, char** argv) {
   const bool cases_only = argc > 1 && std::strcmp(argv[1], "--cases") == 0;
   const bool quick = cases_only || (argc > 1 && std::strcmp(argv[1], "--quick") == 0);
   int case_rows = 3;
+  std::string save_dir;
   detail::OpenCLRowOptions row_options;
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--rows"))
@@ -129,6 +173,18 @@ int main(int argc, char** argv) {
       row_options.group_size = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--per-item"))
       row_options.per_item = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--texels"))
+      texels_dir = argv[++i];
+    else if (!std::strcmp(argv[i], "--save-texels"))
+      save_dir = argv[++i];
+  }
+  if (!save_dir.empty()) {
+    std::filesystem::create_directories(save_dir);
+    save_texels(exemplar_texels("chain_199x82.png", 199, 82),
+                texels_path(save_dir, "chain_199x82.png"));
+    save_texels(exemplar_texels("braid_325x64.png", 325, 64),
+                texels_path(save_dir, "braid_325x64.png"));
+    return 0;
   }
   tw::set_log_level(spdlog::level::warn);
   std::string why;
