@@ -153,16 +153,23 @@ cl::Kernel& OpenCLBackend::kernel(const std::string& family, const std::string& 
   return kernels_.emplace(name, made).first->second;
 }
 
+cl_int OpenCLBackend::try_enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel,
+                                  const std::string& name, std::size_t items,
+                                  std::size_t local_size, const std::vector<cl::Event>* wait) {
+  cl::Event done;
+  const cl_int status =
+      queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items, local_size)),
+                                 cl::NDRange(local_size), wait, &done);
+  if (status == CL_SUCCESS) resident_->pending.emplace_back(name, done);
+  return status;
+}
+
 cl::Event OpenCLBackend::enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel,
                                  const std::string& name, std::size_t items, std::size_t local_size,
                                  const std::vector<cl::Event>* wait) {
-  cl::Event done;
-  check_cl(
-      queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(round_up(items, local_size)),
-                                 cl::NDRange(local_size), wait, &done),
-      ("clEnqueueNDRangeKernel " + name).c_str());
-  resident_->pending.emplace_back(name, done);
-  return done;
+  check_cl(try_enqueue(queue, kernel, name, items, local_size, wait),
+           ("clEnqueueNDRangeKernel " + name).c_str());
+  return resident_->pending.back().second;
 }
 
 void OpenCLBackend::launch(cl::Kernel& kernel, const std::string& name, std::size_t items,

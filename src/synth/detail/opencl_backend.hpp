@@ -77,6 +77,10 @@ class OpenCLBackend final : public Backend {
   cl::Event enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name,
                     std::size_t items, std::size_t local_size,
                     const std::vector<cl::Event>* wait = nullptr);
+  // The same, returning the status of clEnqueueNDRangeKernel instead of failing on it.
+  cl_int try_enqueue(const cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name,
+                     std::size_t items, std::size_t local_size,
+                     const std::vector<cl::Event>* wait = nullptr);
   void launch(cl::Kernel& kernel, const std::string& name, std::size_t items,
               std::size_t local_size);
   // The exemplar on the device, uploaded only when it differs from the last one.

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "core/error.hpp"
+#include "core/log.hpp"
 #include "synth/detail/cost.hpp"
 #include "synth/detail/edge_bound.hpp"
 #include "synth/detail/mask_groups.hpp"
@@ -183,8 +184,13 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   set_args(gather, r.cost[r.cost_in].get(), slot_position, cl_int(previous), slot_cost);
   enqueue(queue, gather, "gather_slot_costs", std::size_t(previous), kColumnGroup);
 
-  // The tile of left columns of a work-group must fit in local memory.
-  int per_item = row_options_.per_item, group_size = row_options_.group_size;
+  cl::Kernel& row = kernel("row_update", "update_table_row");
+  // The launch shape: the options', or the narrower one the device left us last time; no wider
+  // than the kernel's work-group limit on this device, its tile of left columns in local memory.
+  int per_item = r.narrowed_per_item ? r.narrowed_per_item : row_options_.per_item;
+  int group_size = r.narrowed_group_size ? r.narrowed_group_size : row_options_.group_size;
+  group_size = std::min<int>(
+      group_size, int(row.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(context_.device())));
   const std::size_t column_bytes = std::size_t(C) * 4;
   while (per_item > 1 && std::size_t(group_size * per_item) * column_bytes > r.local_memory)
     --per_item;
@@ -194,29 +200,46 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
         "OpenCL backend: a column of C = {} samples does not fit in the device's {} bytes of local "
         "memory",
         C, r.local_memory);
-  const std::size_t tile = std::size_t(group_size * per_item);
-  const std::size_t work_groups = (std::size_t(current) + tile - 1) / tile;
 
   const cl::Buffer& cost_out = r.cost[1 - r.cost_in].reserve(context, std::size_t(current) * 8);
   const cl::Buffer& argmin_out = r.argmin.reserve(context, std::size_t(current) * 4);
-  cl::Kernel& row = kernel("row_update", "update_table_row");
-  set_args(row, slot_cost, slot_position, upload(context, queue, r.slot_of, r.slot_of_host),
-           cl_int(previous), upload(context, queue, r.group_begin, r.group_begin_host),
-           upload(context, queue, r.bucket_begin, r.bucket_begin_host),
-           upload(context, queue, r.scan_group, r.scan_group_host),
-           upload(context, queue, r.group_min, r.group_min_host),
-           upload(context, queue, r.group_masks, r.group_masks_host), cl_int(scan_stride),
-           prepared.right.samples.get(), prepared.right.masks.get(), prepared.right.sums.get(),
-           prepared.right.blocks.get(), prepared.left.samples.get(), prepared.left.masks.get(),
-           prepared.left.sums.get(), prepared.left.blocks.get(),
-           upload(context, queue, r.left_group, r.left_group_host), cl_int(current), cl_int(C),
-           cl_int(prepared.binary_alpha ? 1 : 0), cl_int(kGamma),
-           cl_long(mismatch_cost(prepared.binary_alpha)),
-           cl_long(mismatch_extra(prepared.binary_alpha)), cl_int(per_item),
-           cl_int(row_options_.prune ? 1 : 0), cl::Local(tile * column_bytes), cost_out,
-           argmin_out);
-  enqueue(queue, row, "update_table_row", work_groups * std::size_t(group_size),
-          std::size_t(group_size));
+  // A shape the device still refuses for its resources (the H200's driver answers
+  // CL_OUT_OF_RESOURCES to tiles its queries allow, docs/performance.md) is tried again narrower,
+  // and the narrower one kept: every shape gives the same costs and argmins (OpenCLRowOptions).
+  for (;;) {
+    const std::size_t tile = std::size_t(group_size * per_item);
+    const std::size_t work_groups = (std::size_t(current) + tile - 1) / tile;
+    set_args(row, slot_cost, slot_position, upload(context, queue, r.slot_of, r.slot_of_host),
+             cl_int(previous), upload(context, queue, r.group_begin, r.group_begin_host),
+             upload(context, queue, r.bucket_begin, r.bucket_begin_host),
+             upload(context, queue, r.scan_group, r.scan_group_host),
+             upload(context, queue, r.group_min, r.group_min_host),
+             upload(context, queue, r.group_masks, r.group_masks_host), cl_int(scan_stride),
+             prepared.right.samples.get(), prepared.right.masks.get(), prepared.right.sums.get(),
+             prepared.right.blocks.get(), prepared.left.samples.get(), prepared.left.masks.get(),
+             prepared.left.sums.get(), prepared.left.blocks.get(),
+             upload(context, queue, r.left_group, r.left_group_host), cl_int(current), cl_int(C),
+             cl_int(prepared.binary_alpha ? 1 : 0), cl_int(kGamma),
+             cl_long(mismatch_cost(prepared.binary_alpha)),
+             cl_long(mismatch_extra(prepared.binary_alpha)), cl_int(per_item),
+             cl_int(row_options_.prune ? 1 : 0), cl::Local(tile * column_bytes), cost_out,
+             argmin_out);
+    const cl_int status =
+        try_enqueue(queue, row, "update_table_row", work_groups * std::size_t(group_size),
+                    std::size_t(group_size));
+    if (status == CL_SUCCESS) break;
+    if (status != CL_OUT_OF_RESOURCES || tile == 1)
+      check_cl(status, "clEnqueueNDRangeKernel update_table_row");
+    if (per_item > 1)
+      --per_item;
+    else
+      group_size = (group_size + 1) / 2;
+    r.narrowed_group_size = group_size;
+    r.narrowed_per_item = per_item;
+    logger().info(
+        "OpenCL row kernel refused for resources: narrowed to {} work-items x {} positions",
+        group_size, per_item);
+  }
   check_cl(queue.enqueueReadBuffer(cost_out, CL_FALSE, 0, std::size_t(current) * 8, cost.data()),
            "clEnqueueReadBuffer (costs)");
   check_cl(queue.enqueueReadBuffer(argmin_out, CL_TRUE, 0, std::size_t(current) * 4, argmin.data()),

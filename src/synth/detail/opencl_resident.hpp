@@ -97,6 +97,8 @@ struct ResidentRows {
   std::vector<cl_ulong> opacity_copy;
   std::int64_t texel_version = 0;  // counts uploads
   std::size_t local_memory = 0;    // CL_DEVICE_LOCAL_MEM_SIZE
+  // The row kernel's launch shape once the device refused a wider one (0: not narrowed).
+  int narrowed_group_size = 0, narrowed_per_item = 0;
 
   PreparedRow prepared[2];
   int current = 0;  // prepared[current]: this row; the other: the next one
