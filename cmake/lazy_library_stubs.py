@@ -44,6 +44,12 @@ def undefined_symbols(nm, files, dynamic=False):
     return names
 
 
+def program_symbols(nm, files):
+    out = subprocess.run([nm, "--defined-only"] + files, check=True, capture_output=True,
+                         text=True).stdout
+    return {line.split()[-1] for line in out.splitlines() if len(line.split()) >= 3}
+
+
 def soname(objdump, library):
     out = subprocess.run([objdump, "-p", library], check=True, capture_output=True,
                          text=True).stdout
@@ -104,7 +110,10 @@ def assembly(prefix, library_soname, names):
 
 def generate(args):
     library = defined_symbols(args.nm, args.library)
-    imported = sorted(undefined_symbols(args.nm, args.files) & library.keys())
+    # What one object leaves undefined and another defines (a C++ template instantiation the
+    # library happens to export too) is the program's own, not the library's.
+    imported = sorted((undefined_symbols(args.nm, args.files) & library.keys()) -
+                      program_symbols(args.nm, args.files))
     data = [name for name in imported if library[name] not in FUNCTION_TYPES]
     if data:
         sys.exit(f"lazy_library_stubs: the program uses {len(data)} data symbol(s) of "
