@@ -73,6 +73,25 @@ set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# With TERRAWEAVE_LAZY_GDAL the program names neither libgdal nor cpp-httplib for
+# dpkg-shlibdeps to find (it loads them on first use): the packages that hold this build's
+# files are named here.
+if(TERRAWEAVE_LAZY_GDAL)
+  get_target_property(_tw_gdal_file GDAL::GDAL LOCATION)
+  set(_tw_lazy_depends)
+  foreach(_tw_file IN ITEMS "${_tw_gdal_file}" "${TW_HTTPLIB_FILE}")
+    if(NOT _tw_file)
+      continue()
+    endif()
+    file(REAL_PATH "${_tw_file}" _tw_file)
+    execute_process(COMMAND dpkg-query -S "${_tw_file}" OUTPUT_VARIABLE _tw_owner
+      ERROR_QUIET RESULT_VARIABLE _tw_query)
+    if(_tw_query EQUAL 0 AND _tw_owner MATCHES "^([^:, ]+)")
+      list(APPEND _tw_lazy_depends "${CMAKE_MATCH_1}")
+    endif()
+  endforeach()
+  list(JOIN _tw_lazy_depends ", " CPACK_DEBIAN_PACKAGE_DEPENDS)
+endif()
 # The OpenCL loader (a shlibdeps dependency) finds no device without an ICD; PoCL runs the
 # kernels on the CPU. Building against the library needs the -dev packages of its dependencies.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "pocl-opencl-icd | opencl-icd")

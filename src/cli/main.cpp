@@ -28,6 +28,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 
+#include "cli/gdal_loader.hpp"
 #include "cli/view_server.hpp"
 #include "commands/big_world.hpp"
 #include "commands/diff.hpp"
@@ -301,7 +302,7 @@ int main(int argc, char** argv) {
 namespace {
 
 int cli_main(int argc, char** argv) {
-  CPLSetErrorHandler(log_gdal_message);
+  tw::set_gdal_error_handler(log_gdal_message);
   CLI::App app{"terraweave: terrain features for procedural worlds"};
   app.require_subcommand(1);
   app.set_version_flag("--version", tw::version_line());

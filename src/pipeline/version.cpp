@@ -4,15 +4,19 @@
 #include <OpenImageIO/oiioversion.h>
 #include <fmt/format.h>
 #include <gdal.h>
+#include <gdal_version.h>
 #include <ogr_srs_api.h>
 #include <GeographicLib/Constants.hpp>
 
 namespace tw {
 
+// The versions built against, as for GeographicLib and OpenImageIO: asking GDAL its own would
+// load it (the program loads GDAL on first use, docs/performance.md) in every command and in
+// every cache key, which hold this line. libgdal's SONAME pins the version's ABI.
 std::string version_line() {
   return fmt::format("terraweave {} (GDAL {}, GeographicLib {}, OpenImageIO {})",
-                     kTerraweaveVersion, GDALVersionInfo("RELEASE_NAME"),
-                     GEOGRAPHICLIB_VERSION_STRING, OIIO_VERSION_STRING);
+                     kTerraweaveVersion, GDAL_RELEASE_NAME, GEOGRAPHICLIB_VERSION_STRING,
+                     OIIO_VERSION_STRING);
 }
 
 std::map<std::string, std::string> library_versions() {

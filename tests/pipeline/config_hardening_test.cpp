@@ -89,6 +89,22 @@ TEST(PipelineConfigHardening, NonUtf8TextAndOutOfRangeNumbersAreLocatedErrors) {
               HasSubstr("p.yaml:6:13: resolution:"));
 }
 
+// Our own check (not GDAL's CPLIsUTF8: reading a pipeline loads no GDAL, docs/performance.md):
+// well-formed UTF-8 as JSON requires it, so overlong forms, surrogates, code points above
+// U+10FFFF and a sequence cut short are refused with their line.
+TEST(PipelineConfigHardening, TheUtf8CheckFollowsRfc3629) {
+  const std::string good = std::string(kMinimal) + "# \xe2\x82\xac \xf0\x9f\x8c\x8d \xc3\xa3\n";
+  EXPECT_EQ(parse_pipeline(good, "p.yaml", "/base", {}).seed, 7u);
+  for (const char* bad : {"\xc0\xaf", "\xe0\x80\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80",
+                          "\xf5\x80\x80\x80", "\xe2\x82", "\x80"}) {
+    const std::string text = std::string(kMinimal) + "# a" + bad + "\n";
+    EXPECT_EQ(parse_error(text),
+              "p.yaml:6: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
+              "LATIN1 -t UTF-8)")
+        << bad;
+  }
+}
+
 TEST(PipelineConfigHardening, AnEmptySetValueIsAnError) {
   EXPECT_EQ(error_of([] { parse_override("seed="); }),
             "--set seed=: empty value (for an empty string write seed=\"\")");

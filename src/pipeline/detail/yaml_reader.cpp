@@ -6,7 +6,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <cpl_string.h>
 #include <yaml-cpp/eventhandler.h>
 
 #include "core/error.hpp"
@@ -155,15 +154,54 @@ YamlSource::YamlSource(std::string file_label, fs::path base_dir, std::vector<Ov
       overrides_(std::move(overrides)),
       variables_(std::move(variables)) {}
 
+namespace {
+
+// Well-formed UTF-8 (RFC 3629: no overlong form, no surrogate, nothing above U+10FFFF), what
+// JSON accepts. Not GDAL's CPLIsUTF8: reading a pipeline must not load GDAL (the program loads
+// it on first use, docs/performance.md, and a generated world's render-tile needs none).
+bool is_utf8(std::string_view text) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned lead = byte(i);
+    if (lead < 0x80) {
+      ++i;
+      continue;
+    }
+    // The sequence's length and the range of its second byte (which rules out overlong forms,
+    // surrogates and code points above U+10FFFF); later bytes are 0x80-0xBF.
+    std::size_t length = 0;
+    unsigned low = 0x80, high = 0xBF;
+    if (lead >= 0xC2 && lead <= 0xDF)
+      length = 2;
+    else if (lead >= 0xE0 && lead <= 0xEF) {
+      length = 3;
+      if (lead == 0xE0) low = 0xA0;
+      if (lead == 0xED) high = 0x9F;
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+      length = 4;
+      if (lead == 0xF0) low = 0x90;
+      if (lead == 0xF4) high = 0x8F;
+    } else
+      return false;
+    if (i + length > text.size() || byte(i + 1) < low || byte(i + 1) > high) return false;
+    for (std::size_t k = 2; k < length; ++k)
+      if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return false;
+    i += length;
+  }
+  return true;
+}
+
+}  // namespace
+
 // YAML is UTF-8 text, and every value ends up in report.json (JSON, UTF-8 only): a Latin-1
 // byte must stop here with its line, not later as nlohmann's "invalid UTF-8 byte" with no file.
-// GDAL's CPLIsUTF8 decides; the line is found by checking line by line.
+// The line is found by checking line by line.
 void require_utf8(std::string_view text, const std::string& label) {
-  if (CPLIsUTF8(text.data(), int(std::min<std::size_t>(text.size(), INT32_MAX)))) return;
+  if (is_utf8(text)) return;
   std::size_t line_start = 0;
   for (int line = 1;; ++line) {
     const std::size_t end = std::min(text.find('\n', line_start), text.size());
-    if (!CPLIsUTF8(text.data() + line_start, int(end - line_start)))
+    if (!is_utf8(text.substr(line_start, end - line_start)))
       tw::fail(
           "{}:{}: not UTF-8 text (a pipeline is UTF-8; convert the file, e.g. iconv -f "
           "LATIN1 -t UTF-8)",
