@@ -14,8 +14,9 @@ if [ "${1:-}" = "--build" ]; then
   shift
 fi
 
+# python3: cmake/lazy_library_stubs.py writes the stubs that load GDAL on first use.
 packages=(
-  build-essential cmake ninja-build pkg-config git time
+  build-essential cmake ninja-build pkg-config git time python3
   libgdal-dev
   libgeographiclib-dev
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd
