@@ -88,6 +88,9 @@ constexpr double kLayoutStrokeFraction = 0.4;
 constexpr double kLayoutShare = 0.25;
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
+// How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
+// met fewer targets over three seeds: long links break cells).
+constexpr double kCornerReach = 1.5;
 
 // Where a candidate ends.
 struct Ending {
@@ -555,12 +558,24 @@ class Grower {
           if (!at_start && !at_end) return false;
           continue;
         }
-        if (!kept) continue;
         // Segments meeting at a joint (its edges, the edge a T-junction splits) are exempt.
         const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
         bool at_joint = false;
         for (Vec2 j : joints) at_joint = at_joint || distance_to_segment(j, ea, eb) <= eps;
-        if (!at_joint && bg::distance(trimmed, v.first) < clearance_) return false;
+        if (at_joint) continue;
+        if (kept && bg::distance(trimmed, v.first) < clearance_) return false;
+        // The other way round: the candidate's part near a joint is exempt only from the lines
+        // meeting there and from what lies within the clearance of the joint, not from another
+        // line's corner farther off that it would graze (a grown piece leaving a junction 6 m
+        // from a free end passed 5.8 m from it with a clearance of 6). Copies of exemplar lines
+        // (`own_clearance` false) keep the exemplar's own spacing.
+        Vec2 va = ea, vb = eb;
+        bool stored_kept = true;
+        for (Vec2 j : joints) stored_kept = stored_kept && outside_disc(va, vb, j, clearance_);
+        if (own_clearance && stored_kept &&
+            bg::distance(s, BgSegment(to_bg(va), to_bg(vb))) < clearance_ &&
+            !edge_meets(v.second, joints))
+          return false;
       }
     }
     // Nodes without edges yet (seeds whose stubs are still to be retried) are in no segment
@@ -595,6 +610,16 @@ class Grower {
       return false;
     }
     return true;
+  }
+
+  // Whether edge `id` ends at one of `joints` or passes through it (the edge a T splits).
+  bool edge_meets(int id, const std::vector<Vec2>& joints) const {
+    const double eps = 1e-7 * median_;
+    const std::vector<Vec2>& pts = out_.edges[std::size_t(id)].points;
+    for (Vec2 j : joints)
+      for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+        if (distance_to_segment(j, pts[k], pts[k + 1]) <= eps) return true;
+    return false;
   }
 
   // Trims ab to its part outside the disc (j, r); false when nothing is left.
@@ -737,7 +762,7 @@ class Grower {
         if (alive_[std::size_t(i)]) edge = i;
       const NetworkEdge& e = out_.edges[std::size_t(edge)];
       if (link_ahead(n, leaving(e.points, e.from == n) + kPi, 1.5 * median_, edge)) continue;
-      trim_from(n);
+      trim_from(n, median_);
     }
     close_corners();  // a junction that lost a line to the trimming or the rules
   }
@@ -809,10 +834,11 @@ class Grower {
     return true;
   }
 
-  // A dangling end removed with its edge, and the chain behind it up to the last junction.
-  void trim_from(int n) {
+  // A dangling end removed with its edge, and the chain behind it up to the last junction (at
+  // most `at_most` metres of line).
+  void trim_from(int n, double at_most) {
     double trimmed = 0.0;
-    while (degree_[std::size_t(n)] == 1 && !out_.on_boundary[std::size_t(n)] && trimmed < median_) {
+    while (degree_[std::size_t(n)] == 1 && !out_.on_boundary[std::size_t(n)] && trimmed < at_most) {
       int edge = -1;
       for (int i : incident_[std::size_t(n)])
         if (alive_[std::size_t(i)]) edge = i;
@@ -1245,9 +1271,36 @@ class Grower {
         h[k] = leaving(e.points, e.from == int(n));
       }
       if (std::abs(wrap(h[0] - h[1] - kPi)) < kCornerTurn) continue;  // nearly straight
-      for (int k = 0; k < 2; ++k)
-        if (link_ahead(int(n), h[k] + kPi, 1.5 * median_, edges[std::size_t(1 - k)])) break;
+      bool closed = false;
+      for (int k = 0; k < 2 && !closed; ++k)
+        closed = link_ahead(int(n), h[k] + kPi, kCornerReach * median_, edges[std::size_t(1 - k)]);
+      // Else straight on to the region's boundary when nothing lies between (the corner becomes a
+      // T whose third edge leaves the region, as lines cut by the region do).
+      for (int k = 0; k < 2 && !closed; ++k)
+        closed = link_to_boundary(int(n), h[k] + kPi, kCornerReach * median_);
     }
+  }
+
+  // A straight link from node n along `heading` to the region's boundary within `reach`, when
+  // no line lies between and it is valid: the node becomes a junction.
+  bool link_to_boundary(int n, double heading, double reach) {
+    const Vec2 p = out_.nodes[std::size_t(n)];
+    std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+    const auto wall = first_boundary_hit(ray);
+    if (!wall) return false;
+    truncate(ray, *wall);
+    if (first_edge_hit(ray) || polyline_length(ray) < min_piece_) return false;
+    ray.back() = ray.back() +
+                 (ray.front() - ray.back()) * std::min(0.5, 1e-9 * median_ / polyline_length(ray));
+    if (!valid(ray, false)) return false;
+    const int end = add_node(ray.back());
+    out_.on_boundary[std::size_t(end)] = 1;
+    NetworkEdge link;
+    link.from = n;
+    link.to = end;
+    link.points = std::move(ray);
+    add_edge(std::move(link));
+    return true;
   }
 
   // Dangling ends beyond the exemplar's rate: joined onto the network straight ahead when a
@@ -1304,6 +1357,11 @@ class Grower {
         --dangling;
       }
     }
+    // An exemplar without a single dangling end (closed cells: counties, hedged fields): the
+    // ends left are pruned back to their junction whatever their length (a junction turned
+    // into a bend is less unlike such an exemplar than a dead end).
+    if (dangling_target_ > 0.0) return;
+    for (int n : ends) trim_from(n, INFINITY);
   }
 
   // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
