@@ -61,6 +61,9 @@ JunctionSearch update_junctions(const JunctionSearch& previous, const std::vecto
   std::vector<Extent> reach;
   for (std::size_t i = 0; i < curves.size(); ++i) {
     if (!changed[i]) continue;
+    // A point that is not finite has no box: the whole search names it, as without a cache.
+    if (!std::all_of(curves[i].points.begin(), curves[i].points.end(), is_finite))
+      return search_junctions(curves, out.tolerance_m);
     reach.push_back(grown(previous.boxes[i], t));
     reach.push_back(grown(out.boxes[i], t));
   }

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+
+#include "core/error.hpp"
 
 namespace tw {
 namespace {
@@ -97,6 +100,13 @@ TEST(JunctionSearch, AJunctionMergedWithAMovedEndIsFoundWhole) {
   EXPECT_EQ(merged.junctions[0].members.size(), 3u);
   for (Vec2& p : curves[2].points) p += Vec2{1.0, 1.0};
   expect_same_search(update_junctions(merged, curves, changed), far);
+}
+
+TEST(JunctionSearch, AChangedCurveThatIsNotFiniteIsTheWholeSearchsError) {
+  std::vector<Curve> curves{{{{0, 0}, {10, 0}}, false}, {{{5, -5}, {5, 5}}, false}};
+  const JunctionSearch first = search_junctions(curves, 0.5);
+  curves[1].points[1].y = std::nan("");
+  EXPECT_THROW(update_junctions(first, curves, {false, true}), Error);
 }
 
 TEST(JunctionSearch, ACountThatDiffersSearchesEveryCurve) {
