@@ -33,11 +33,17 @@ std::vector<std::vector<LineFeature>> six_roads() {
 const detail::RibbonOptions kRibbonCacheOptions{{{"roads", 5.0, false, 8.0}}, 0.5};
 const GridSpec kRibbonCacheGrid{300, 100, -100.0, 200.0, 4.0, 4.0};
 
+// What a cached ribbons stage made and searched, and the junctions it found.
+struct CachedStageCounts {
+  int made = 0;
+  std::size_t searched = 0;
+  std::size_t junctions = 0;
+};
+
 // The stage through a fresh RibbonCache over `cache` (a new run's), checked against the stage
-// without a cache; `made` and `searched`: what the cached stage made and searched.
-void expect_cached_stage_is_clean(const fs::path& cache,
-                                  const std::vector<std::vector<LineFeature>>& lines, int& made,
-                                  std::size_t& searched, std::size_t& junctions) {
+// without a cache.
+CachedStageCounts expect_cached_stage_is_clean(const fs::path& cache,
+                                               const std::vector<std::vector<LineFeature>>& lines) {
   Warnings cached_warnings, clean_warnings;
   detail::RibbonCache ribbon_cache(cache, cached_warnings);
   const detail::FeatureRibbons cached = detail::make_feature_ribbons(
@@ -50,45 +56,40 @@ void expect_cached_stage_is_clean(const fs::path& cache,
   EXPECT_EQ(cached.synthesis_junction_discs, clean.synthesis_junction_discs);
   EXPECT_EQ(cached.synthesis_junctions, clean.synthesis_junctions);
   EXPECT_EQ(cached_warnings.size(), clean_warnings.size());
-  made = ribbon_cache.ribbons_made();
-  searched = ribbon_cache.curves_searched();
-  junctions = clean.junction_discs.size();
+  return {ribbon_cache.ribbons_made(), ribbon_cache.curves_searched(), clean.junction_discs.size()};
 }
 
 TEST(RibbonCache, AMovedLineGainsAndLosesAJunctionAndTheStageIsACleanOnes) {
   test::TempDir dir;
   std::vector<std::vector<LineFeature>> lines = six_roads();
-  int made = 0;
-  std::size_t searched = 0, junctions = 0;
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
-  EXPECT_EQ(made, 6);
-  EXPECT_EQ(searched, 12u);  // every curve, at both tolerances
-  EXPECT_EQ(junctions, 2u);  // r0 x r1, r3 x r4
+  CachedStageCounts counts = expect_cached_stage_is_clean(dir.path(), lines);
+  EXPECT_EQ(counts.made, 6);
+  EXPECT_EQ(counts.searched, 12u);  // every curve, at both tolerances
+  EXPECT_EQ(counts.junctions, 2u);  // r0 x r1, r3 x r4
 
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
-  EXPECT_EQ(made, 0);
-  EXPECT_EQ(searched, 0u);  // the latest search's curves: its junctions as found
+  counts = expect_cached_stage_is_clean(dir.path(), lines);
+  EXPECT_EQ(counts.made, 0);
+  EXPECT_EQ(counts.searched, 0u);  // the latest search's curves: its junctions as found
 
   for (Vec2& p : lines[0][2].points) p.y -= 5.0;  // r2 now ends on r0: a T-junction
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
-  EXPECT_EQ(made, 1);
-  EXPECT_EQ(searched, 4u);  // r0 and r2 at both tolerances: not r1 (its crossing is 30 m away)
-  EXPECT_EQ(junctions, 3u);
+  counts = expect_cached_stage_is_clean(dir.path(), lines);
+  EXPECT_EQ(counts.made, 1);
+  // r0 and r2 at both tolerances: not r1 (its crossing with r0 is 30 m away), not r3-r5.
+  EXPECT_EQ(counts.searched, 4u);
+  EXPECT_EQ(counts.junctions, 3u);
 
   for (Vec2& p : lines[0][2].points) p.y += 5.0;  // back where it was: its first ribbon, reused
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
-  EXPECT_EQ(made, 0);
-  EXPECT_EQ(searched, 4u);
-  EXPECT_EQ(junctions, 2u);
+  counts = expect_cached_stage_is_clean(dir.path(), lines);
+  EXPECT_EQ(counts.made, 0);
+  EXPECT_EQ(counts.searched, 4u);
+  EXPECT_EQ(counts.junctions, 2u);
 }
 
 // A corrupt latest search is the warning cache_corrupt and a search of every curve.
 TEST(RibbonCache, ACorruptJunctionSearchIsAWarningAndSearchedWhole) {
   test::TempDir dir;
   std::vector<std::vector<LineFeature>> lines = six_roads();
-  int made = 0;
-  std::size_t searched = 0, junctions = 0;
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
+  expect_cached_stage_is_clean(dir.path(), lines);
   for (const auto& entry : fs::directory_iterator(dir / "plan" / "junctions")) {
     fs::permissions(entry.path(), fs::perms::owner_write, fs::perm_options::add);
     std::ofstream(entry.path(), std::ios::binary | std::ios::trunc) << "TWCACHE1 and less";
@@ -104,8 +105,7 @@ TEST(RibbonCache, ACorruptJunctionSearchIsAWarningAndSearchedWhole) {
     EXPECT_EQ(w.code, "cache_corrupt");
     EXPECT_EQ(w.subject, "plan.junctions");
   }
-  expect_cached_stage_is_clean(dir.path(), lines, made, searched, junctions);
-  EXPECT_EQ(searched, 0u);  // whole again
+  EXPECT_EQ(expect_cached_stage_is_clean(dir.path(), lines).searched, 0u);  // whole again
 }
 
 }  // namespace
