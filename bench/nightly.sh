@@ -9,7 +9,10 @@
 # of the moved world (bytes of every tile file). Never fails on time. Usage:
 #   bench/nightly.sh   (env SIZE=4096 PIXEL=4 TILE=512 STRIDE=8 ROAD=FID MOVE=12 CHECK=1,
 #                       TERRAWEAVE=build/src/terraweave, WORK=/tmp/terraweave-nightly)
-# ROAD defaults to STRIDE (a synthesized road); ROAD=1 moves a plain one.
+# ROAD defaults to STRIDE (a synthesized road); ROAD=1 moves a plain one. REPEAT=N: then moves
+# the road another MOVE m and reruns on the same cache N more times (the ratios swing by a point
+# with the load: docs/performance.md), printing each; the tiles rebuilt and CHECK are then the
+# last rerun's.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -48,6 +51,16 @@ if [ "$move" != 0 ]; then  # MOVE=0: rerun with nothing changed
     "UPDATE roads SET geom = ST_Translate(geom, 0, $move, 0) WHERE fid = $road" >/dev/null || exit 1
 fi
 timed rerun -- "$bin" -q run world.yaml --cache cache --out out_rerun
+for ((i = 1; i <= ${REPEAT:-0}; i++)); do
+  ogrinfo -q world.gpkg -sql \
+    "UPDATE roads SET geom = ST_Translate(geom, 0, $move, 0) WHERE fid = $road" >/dev/null || exit 1
+  timed "repeat$i" -- "$bin" -q run world.yaml --cache cache --out out_rerun_$i
+  echo "repeat $i: CPU seconds $(cat "repeat$i.cpus"), ratio to the clean run" \
+    "$(awk -v r="$(cat "repeat$i.cpus")" -v c="$(cat clean.cpus)" 'BEGIN { printf "%.3f", r / c }')"
+done
+if [ "${REPEAT:-0}" -gt 0 ]; then  # the checks below look at the last rerun
+  rm -rf out_rerun && mv "out_rerun_${REPEAT}" out_rerun
+fi
 if [ "${CHECK:-1}" = 1 ]; then
   timed moved_clean -- "$bin" -q run world.yaml --out out_moved
 fi

@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_stage_cache.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
+#include "pipeline/detail/ribbon_cache.hpp"
 #include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
@@ -194,14 +195,14 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   plan_methods(MethodStage::lines, context, clock);
 
   clock.start("ribbons");
-  // Cached under what they read (detail/plan_stage_cache.hpp), as the terrain plan below.
+  // Through the cache per feature (detail/ribbon_cache.hpp): a moved road makes its own ribbon
+  // and searches the junctions near it alone.
   const detail::RibbonOptions ribbon_options = detail::ribbon_options(config);
-  CacheStatus ribbons_status;
-  detail::FeatureRibbons ribbons = detail::cached_stage<detail::FeatureRibbons>(
-      cache_dir, "ribbons", detail::ribbons_key(ribbon_options, lines, heightfield.grid), warnings,
-      ribbons_status, [&](Warnings& w) {
-        return detail::make_feature_ribbons(ribbon_options, lines, heightfield.grid, w);
-      });
+  std::optional<detail::RibbonCache> ribbon_cache;
+  if (cache_dir) ribbon_cache.emplace(*cache_dir, warnings);
+  detail::FeatureRibbons ribbons =
+      detail::make_feature_ribbons(ribbon_options, lines, heightfield.grid, warnings,
+                                   ribbon_cache ? ribbon_cache->steps() : detail::RibbonSteps{});
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {

@@ -115,7 +115,22 @@ struct UnionFind {
 
 }  // namespace
 
+bool junction_precedes(const Junction& a, const Junction& b) {
+  const auto& ma = a.members.front();
+  const auto& mb = b.members.front();
+  if (ma.curve != mb.curve) return ma.curve < mb.curve;
+  if (ma.arc_length != mb.arc_length) return ma.arc_length < mb.arc_length;
+  return a.position.x != b.position.x ? a.position.x < b.position.x : a.position.y < b.position.y;
+}
+
 std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m) {
+  std::vector<Extent> extents;
+  return find_junctions(curves, tolerance_m, extents);
+}
+
+std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m,
+                                     std::vector<Extent>& extents) {
+  extents.clear();
   if (!(tolerance_m >= 0.0) || !std::isfinite(tolerance_m))
     fail("find_junctions: tolerance {} m must be >= 0", tolerance_m);
   std::vector<Segment> segments;
@@ -237,13 +252,17 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
   std::vector<std::vector<std::size_t>> by_root(candidates.size());
   for (std::size_t i = 0; i < candidates.size(); ++i) by_root[groups.find(i)].push_back(i);
 
-  std::vector<Junction> junctions;
+  std::vector<std::pair<Junction, Extent>> junctions;
   for (const auto& ids : by_root) {
     if (ids.empty()) continue;
     Junction j;
+    Extent extent;
     std::vector<JunctionMember> all;
     for (const std::size_t id : ids) {
-      j.position += candidates[id].position;
+      const Vec2 p = candidates[id].position;
+      j.position += p;
+      extent.min = {std::min(extent.min.x, p.x), std::min(extent.min.y, p.y)};
+      extent.max = {std::max(extent.max.x, p.x), std::max(extent.max.y, p.y)};
       all.insert(all.end(), candidates[id].members.begin(), candidates[id].members.end());
     }
     j.position = j.position / double(ids.size());
@@ -263,16 +282,16 @@ std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double to
     const auto through = std::count_if(j.members.begin(), j.members.end(),
                                        [](const JunctionMember& m) { return !m.at_endpoint; });
     j.crossing = through >= 2;
-    junctions.push_back(std::move(j));
+    junctions.emplace_back(std::move(j), extent);
   }
-  std::sort(junctions.begin(), junctions.end(), [](const Junction& a, const Junction& b) {
-    const auto& ma = a.members.front();
-    const auto& mb = b.members.front();
-    if (ma.curve != mb.curve) return ma.curve < mb.curve;
-    if (ma.arc_length != mb.arc_length) return ma.arc_length < mb.arc_length;
-    return a.position.x != b.position.x ? a.position.x < b.position.x : a.position.y < b.position.y;
-  });
-  return junctions;
+  std::sort(junctions.begin(), junctions.end(),
+            [](const auto& a, const auto& b) { return junction_precedes(a.first, b.first); });
+  std::vector<Junction> out;
+  for (auto& [j, extent] : junctions) {
+    out.push_back(std::move(j));
+    extents.push_back(extent);
+  }
+  return out;
 }
 
 std::vector<Junction> at_grade(const std::vector<Junction>& junctions,

@@ -2,6 +2,7 @@
 // Where curves meet: shared endpoints, T-junctions and crossings. See docs/junctions.md for what
 // the rest of the pipeline does with them.
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "geo/structure.hpp"
@@ -34,6 +35,22 @@ struct Junction {
 // (by first member). Throws tw::Error if tolerance_m < 0 or a point is not finite (names the
 // curve).
 std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m);
+
+// An axis-aligned box, metres (empty: min above max).
+struct Extent {
+  Vec2 min{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec2 max{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  friend bool operator==(const Extent&, const Extent&) = default;
+};
+
+// find_junctions, with each junction's extent in `extents`: the box of the meeting points merged
+// into it, what a search over changed curves alone needs (junction_search.hpp).
+std::vector<Junction> find_junctions(const std::vector<Curve>& curves, double tolerance_m,
+                                     std::vector<Extent>& extents);
+
+// The order find_junctions returns junctions in: by first member (curve, arc length), then
+// position.
+bool junction_precedes(const Junction& a, const Junction& b);
 
 // What a curve is, vertically: on the ground or a bridge / tunnel, and its layer.
 struct CurveLevel {

@@ -12,14 +12,11 @@ namespace tw::detail {
 
 namespace fs = std::filesystem;
 
-TW_DEFINE_PLAN_FIELDS(FeatureRibbons,
-                      TW_FIELD(delta) TW_FIELD(lengths) TW_FIELD(ribbons) TW_FIELD(junction_discs)
-                          TW_FIELD(synthesis_junction_discs) TW_FIELD(synthesis_junctions))
-
 namespace {
 
-// 1: the value and its warnings, plan_binary bytes.
-constexpr std::uint64_t kPlanStageCacheFormat = 1;
+// 1: the value and its warnings, plan_binary bytes. 2: the ribbons per feature and the latest
+// junction search (detail/ribbon_cache.hpp), no longer the ribbons stage whole.
+constexpr std::uint64_t kPlanStageCacheFormat = 2;
 
 // Every file GDAL reads for the dataset at `path`: a change to any of them may change the
 // heights. Just the path when GDAL cannot open it (the ingest has said why already).
@@ -38,17 +35,17 @@ std::vector<std::string> dataset_files(const fs::path& path) {
   return files;
 }
 
-Hasher stage_hasher(const char* stage) {
-  Hasher h;
-  h.text("terraweave.plan").text(stage).u64(kPlanStageCacheFormat).text(version_line());
-  return h;
-}
-
 fs::path entry_path(const fs::path& dir, const std::string& stage, const ContentHash& key) {
   return dir / "plan" / stage / (key.hex() + ".twc");
 }
 
 }  // namespace
+
+Hasher plan_stage_hasher(const char* stage) {
+  Hasher h;
+  h.text("terraweave.plan").text(stage).u64(kPlanStageCacheFormat).text(version_line());
+  return h;
+}
 
 ContentHash heights_identity(const HeightfieldInput& input, const Heightfield& heightfield) {
   Hasher h;
@@ -69,23 +66,11 @@ ContentHash heights_identity(const HeightfieldInput& input, const Heightfield& h
 ContentHash terrain_plan_key(const ContentHash& heights,
                              const std::vector<TerrainFeature>& features,
                              const TerrainParams& params) {
-  return stage_hasher("terrain")
+  return plan_stage_hasher("terrain")
       .hash(heights)
       .text(to_bytes(features))
       .text(to_bytes(params))
       .digest();
-}
-
-ContentHash ribbons_key(const RibbonOptions& options,
-                        const std::vector<std::vector<LineFeature>>& lines, const GridSpec& grid) {
-  Hasher h = stage_hasher("ribbons");
-  h.u64(options.classes.size());
-  for (const RibbonClass& c : options.classes) {
-    h.text(c.name).real(c.delta).boolean(c.grown);
-    h.boolean(c.synthesis_width.has_value()).real(c.synthesis_width.value_or(0.0));
-  }
-  h.real(options.synthesis_cell).text(to_bytes(lines)).text(to_bytes(grid));
-  return h.digest();
 }
 
 CachedHeightsAlong::CachedHeightsAlong(const std::optional<fs::path>& dir,

@@ -1,9 +1,9 @@
 #pragma once
-// Plan stages in the run cache (docs/cache.md, "Plan stages", issue #23 item 2): the ribbons
-// (pieces and junctions of every feature) and the terrain plan (every feature's profile, read
-// from the heights along it: a generated world computes its noise there) were half of a rerun
-// where nothing changed. Each is kept under the hash of exactly what it reads, with the
-// program version and the entry format; the warnings it gave are kept with it and replayed.
+// Plan stages in the run cache (docs/cache.md, "Plan stages", issue #23 item 2): the terrain
+// plan (every feature's profile, read from the heights along it: a generated world computes its
+// noise there) was half of a rerun where nothing changed. It is kept under the hash of exactly
+// what it reads, with the program version and the entry format; the warnings it gave are kept
+// with it and replayed. (The ribbons are kept per feature: detail/ribbon_cache.hpp.)
 //   DIR/plan/<stage>/<key>.twc   sections "key", "value" (plan_binary bytes), "warnings"
 #include <filesystem>
 #include <optional>
@@ -22,8 +22,8 @@
 
 namespace tw::detail {
 
-// The ribbons stage's result as bytes (plan_stage_cache.cpp).
-TW_PLAN_FIELDS(FeatureRibbons);
+// A hasher that begins every plan-stage key: the stage, the entry format, the program version.
+Hasher plan_stage_hasher(const char* stage);
 
 // What the heights of a run are, as a key: the generated world's parameters, or the bytes of
 // the DEM and of every file GDAL reads with it (.aux.xml, world file, a VRT's sources) with
@@ -35,10 +35,6 @@ ContentHash heights_identity(const HeightfieldInput& input, const Heightfield& h
 ContentHash terrain_plan_key(const ContentHash& heights,
                              const std::vector<TerrainFeature>& features,
                              const TerrainParams& params);
-
-// The key of make_feature_ribbons(options, lines, grid).
-ContentHash ribbons_key(const RibbonOptions& options,
-                        const std::vector<std::vector<LineFeature>>& lines, const GridSpec& grid);
 
 // The heights along each feature that a terrain plan read (HeightsAlong), kept per centreline
 // and step under the heights' identity (DIR/plan/heights_along/<heights>.twc): when the terrain

@@ -5,13 +5,13 @@
 
 #include "core/log.hpp"
 #include "raster/junction_discs.hpp"
-#include "ribbon/junctions.hpp"
 
 namespace tw::detail {
 
 FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
                                     const std::vector<std::vector<LineFeature>>& lines,
-                                    const GridSpec& grid, Warnings& warnings) {
+                                    const GridSpec& grid, Warnings& warnings,
+                                    const RibbonSteps& steps) {
   FeatureRibbons out;
   std::vector<Curve> curves;
   std::vector<CurveLevel> levels;  // bridges, tunnels and layers meet nothing they pass
@@ -39,7 +39,7 @@ FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
         ++short_lines;
         ribbons.push_back({curve, line.width, delta, line.closed, {}});
       } else {
-        ribbons.push_back(make_ribbon(curve, {line.width, delta, 0.0}));
+        ribbons.push_back(steps.ribbon(curve, {line.width, delta, 0.0}));
       }
       curves.push_back(curve);
       levels.push_back({line.structure, line.layer});
@@ -57,7 +57,7 @@ FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
   // Meeting points closer than a pixel are one junction; the disc covers the widest member
   // plus a pixel of margin.
   const double pixel = std::max(grid.pixel_width, grid.pixel_height);
-  const std::vector<Junction> junctions = at_grade(find_junctions(curves, pixel), levels);
+  const std::vector<Junction> junctions = at_grade(steps.junctions(curves, pixel), levels);
   std::vector<double> radii;
   for (const Junction& j : junctions) {
     std::vector<double> member_widths;
@@ -66,7 +66,7 @@ FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
   }
   out.junction_discs = junction_discs(junctions, radii);
   const double cell = options.synthesis_cell;
-  const std::vector<Junction> synthesis_junctions = at_grade(find_junctions(curves, cell), levels);
+  const std::vector<Junction> synthesis_junctions = at_grade(steps.junctions(curves, cell), levels);
   std::vector<double> synthesis_radii;
   for (const Junction& j : synthesis_junctions) {
     std::vector<double> member_widths;

@@ -1,6 +1,7 @@
 #pragma once
 // The middle stages of a run, between ingest and the layers: ribbons and junctions, the
 // features as the terrain module sees them.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "geo/features.hpp"
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
+#include "ribbon/junctions.hpp"
 #include "ribbon/ribbon.hpp"
 #include "terrain/height_ops.hpp"
 
@@ -42,12 +44,23 @@ struct RibbonOptions {
   double synthesis_cell = 1.0;       // `synthesis_resolution`: the canvas junctions' tolerance
 };
 
+// How the ribbons stage makes one feature's ribbon and finds the junctions at a tolerance: by
+// default directly; a run with a cache takes them from it (detail/ribbon_cache.hpp).
+struct RibbonSteps {
+  std::function<Ribbon(const Curve&, const RibbonParams&)> ribbon = make_ribbon;
+  std::function<std::vector<Junction>(const std::vector<Curve>&, double tolerance_m)> junctions =
+      [](const std::vector<Curve>& curves, double tolerance_m) {
+        return find_junctions(curves, tolerance_m);
+      };
+};
+
 // Slices every feature into pieces of its class's delta and finds the junctions between all
 // features. A feature shorter than one piece gets no pieces and a "shorter_than_delta" warning
 // (a grown class's only a count in the log; the run reports them in grow.short_lines).
 FeatureRibbons make_feature_ribbons(const RibbonOptions& options,
                                     const std::vector<std::vector<LineFeature>>& lines,
-                                    const GridSpec& grid, Warnings& warnings);
+                                    const GridSpec& grid, Warnings& warnings,
+                                    const RibbonSteps& steps = {});
 
 // What the terrain stages (conformance, the terrain plan, the earthwork report) read of each
 // feature class (terrain_options, detail/stage_options.hpp).
