@@ -196,7 +196,7 @@ int main(int argc, char** argv) {
   std::printf("OpenCL device: %s\n", context->device_name().c_str());
   detail::OpenCLBackend opencl(*context, row_options);
   std::printf("row kernel: %d work-items per group, %d positions per work-item\n",
-              row_options.group_size, row_options.per_item);
+              opencl.row_options().group_size, opencl.row_options().per_item);
   auto cpu = detail::make_cpu_backend();
   {  // first use compiles the kernels (PoCL caches them in ~/.cache/pocl): not timed
     const CostTexels warm = generated_chain(40, 20);

@@ -64,6 +64,21 @@ TEST(OpenCLRowKernel, EveryWorkGroupSplitAndPruningOffGiveTheDefinition) {
   }
 }
 
+TEST(OpenCLRowKernel, TheDefaultSplitIsTheDevicesAndGivesTheDefinition) {
+  TW_REQUIRE_OPENCL(context);
+  const ChainRow chain;
+  std::vector<std::int64_t> previous(chain.indices.size(), 0);
+  Row naive, row;
+  detail::update_table_row_naive(previous, chain.right, chain.left, naive.cost, naive.argmin);
+  detail::OpenCLBackend backend(*context, {});
+  const bool gpu = context->device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU;
+  EXPECT_EQ(backend.row_options().per_item, gpu ? 1 : 4);
+  EXPECT_EQ(backend.row_options().group_size, 16);
+  backend.update_table_row(previous, chain.right, chain.left, row.cost, row.argmin);
+  EXPECT_EQ(row.cost, naive.cost);
+  EXPECT_EQ(row.argmin, naive.argmin);
+}
+
 TEST(OpenCLRowKernel, ManyTiesAndContinuousAlphaUnderEverySplit) {
   TW_REQUIRE_OPENCL(context);
   std::mt19937 rng(9);

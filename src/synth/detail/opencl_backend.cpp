@@ -115,9 +115,12 @@ void check_cl(cl_int status, const char* what) {
 
 OpenCLBackend::OpenCLBackend(OpenCLContext context, OpenCLRowOptions row)
     : context_(std::move(context)), row_options_(row), resident_(std::make_unique<ResidentRows>()) {
-  if (row_options_.group_size < 1 || row_options_.per_item < 1)
-    fail("OpenCL backend: row work-group size {} and positions per work-item {} must be >= 1",
+  if (row_options_.group_size < 1 || row_options_.per_item < 0)
+    fail("OpenCL backend: row work-group size {} must be >= 1 and positions per work-item {} >= 0",
          row_options_.group_size, row_options_.per_item);
+  if (row_options_.per_item == 0)
+    row_options_.per_item =
+        context_.device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU ? 1 : 4;
   cl_int status = CL_SUCCESS;
   resident_->extract_queue =
       cl::CommandQueue(context_.context(), context_.device(), CL_QUEUE_PROFILING_ENABLE, &status);

@@ -34,8 +34,11 @@ struct KernelTiming {
 // How the row kernel splits the work; results are the same bytes for every choice.
 struct OpenCLRowOptions {
   int group_size = 16;  // work-items per work-group (small groups balance the pruned walks)
-  int per_item = 4;     // consecutive current positions per work-item (neighbour guesses)
-  bool prune = true;    // false: every pair, every sample (the definition, for tests)
+  // Consecutive current positions per work-item (neighbour guesses); 0: the device's, 4 on a
+  // CPU device (PoCL's threads gain from the guesses), 1 on a GPU (an H200: a braid row 18 → 11
+  // ms, docs/synthesis.md "On a GPU").
+  int per_item = 0;
+  bool prune = true;  // false: every pair, every sample (the definition, for tests)
 };
 
 struct ResidentRows;  // synth/detail/opencl_resident.hpp
@@ -69,6 +72,8 @@ class OpenCLBackend final : public Backend {
   const std::map<std::string, KernelTiming>& timings() const;
   void reset_timings();
   const OpenCLContext& context() const { return context_; }
+  // The row kernel's split as asked, with the device's positions per work-item filled in.
+  const OpenCLRowOptions& row_options() const { return row_options_; }
 
  private:
   cl::Kernel& kernel(const std::string& family, const std::string& name);
