@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geo/features.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/method_keys.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -43,6 +44,8 @@ struct AreasPlan : MethodPayloadOf<AreasPlan> {
 const SynthesisMethod& area_method();
 // Its keys of a pipeline file (detail/method_keys.hpp).
 MethodKeys area_keys();
+// Its reading of them (detail/method_config.hpp; area_config.cpp).
+MethodReader area_reader();
 
 // The plan's areas entry; null when it has none (a plan made by hand).
 const AreasPlan* areas_plan(const WorldPlan& plan);

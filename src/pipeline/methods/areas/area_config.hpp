@@ -6,6 +6,7 @@
 
 #include "pipeline/area_config.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw::detail {
