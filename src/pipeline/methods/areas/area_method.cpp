@@ -85,13 +85,13 @@ class AreaMethod final : public SynthesisMethod {
 
   std::string validate_stage() const override { return "sketches"; }
   void validate(const PipelineConfig& config, Warnings& warnings) const override {
-    check_area_sketches(config, warnings);
+    check_area_sketches(config.areas, warnings);
   }
 
   void ingest(MethodContext& context, MethodPlan& entry) const override {
     payload_as<AreasPlan>(entry).polygons =
         std::make_shared<const std::vector<std::vector<PolygonFeature>>>(
-            load_area_polygons(context.config, context.heightfield, context.warnings));
+            load_area_polygons(context.config.areas, context.heightfield, context.warnings));
   }
 
   // The polygons its shape-patterns fill: the lines methods (networks) keep out of them.

@@ -130,16 +130,14 @@ SupportHierarchy area_hierarchy(const AreaClassConfig& a) {
   }
 }
 
-void check_area_sketches(const PipelineConfig& config, Warnings& warnings) {
-  for (const AreaClassConfig& a : config.areas)
-    stroke_materials(a, area_hierarchy(a).sketch, warnings);
+void check_area_sketches(const std::vector<AreaClassConfig>& areas, Warnings& warnings) {
+  for (const AreaClassConfig& a : areas) stroke_materials(a, area_hierarchy(a).sketch, warnings);
 }
 
-std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
-                                                            const Heightfield& heightfield,
-                                                            Warnings& warnings) {
+std::vector<std::vector<PolygonFeature>> load_area_polygons(
+    const std::vector<AreaClassConfig>& areas, const Heightfield& heightfield, Warnings& warnings) {
   std::vector<std::vector<PolygonFeature>> out;
-  for (const AreaClassConfig& a : config.areas) {
+  for (const AreaClassConfig& a : areas) {
     const std::string key = "features." + a.name;
     try {
       out.push_back(
