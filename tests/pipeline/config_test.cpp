@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/detail/region.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -529,10 +530,10 @@ TEST(PipelineConfig, NullOverrideRemovesAKeyOrDropsAClass) {
   const PipelineConfig no_roads = parse(kLinesAndArea, {{"features.roads", "null"}});
   ASSERT_EQ(no_roads.features.size(), 1u);
   EXPECT_EQ(no_roads.features[0].name, "rivers");
-  EXPECT_EQ(no_roads.areas.size(), 1u);
+  EXPECT_EQ(detail::area_classes(no_roads).size(), 1u);
   const PipelineConfig no_vines = parse(kLinesAndArea, {{"features.vines", "~"}});
   EXPECT_EQ(no_vines.features.size(), 2u);
-  EXPECT_TRUE(no_vines.areas.empty());
+  EXPECT_TRUE(detail::area_classes(no_vines).empty());
 
   // A nested key goes back to its default.
   const PipelineConfig drawn = parse(kLinesAndArea, {{"features.rivers.conform", "null"}});

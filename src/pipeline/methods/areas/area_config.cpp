@@ -111,11 +111,18 @@ namespace {
 
 void read_area_class_into(const YamlSource& src, const YAML::Node& node, const std::string& path,
                           const std::string& name, PipelineConfig& config) {
-  config.areas.push_back(
-      read_area_class(area_class_reader(src, node, path), name, config.seed, config.inputs));
+  AreaClassConfig area =
+      read_area_class(area_class_reader(src, node, path), name, config.seed, config.inputs);
+  method_options<AreaOptions>(config, kAreasMethodName).classes.push_back(std::move(area));
 }
 
 }  // namespace
+
+const std::vector<AreaClassConfig>& area_classes(const PipelineConfig& config) {
+  static const std::vector<AreaClassConfig> none;
+  const AreaOptions* options = method_options<AreaOptions>(config, kAreasMethodName);
+  return options ? options->classes : none;
+}
 
 MethodReader area_reader() {
   MethodReader reader;

@@ -18,6 +18,18 @@ MapReader area_class_reader(const YamlSource& src, const YAML::Node& node, const
 // classes' reader and its messages).
 bool is_area_class(const YAML::Node& node);
 
+// The areas method's name (SynthesisMethod::name()), under which the config keeps its options.
+inline constexpr const char* kAreasMethodName = "areas";
+
+// The areas' options in the config (PipelineConfig::methods): their `kind: area` classes, in
+// file order, synthesized after the line classes' patterns, each avoiding the areas before it.
+struct AreaOptions : MethodOptionsOf<AreaOptions> {
+  std::vector<AreaClassConfig> classes;
+};
+
+// The config's area classes (none when it has none).
+const std::vector<AreaClassConfig>& area_classes(const PipelineConfig& config);
+
 // Throws tw::Error naming the file, line and key of the first bad value; files go to `inputs`.
 AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
                                 std::uint64_t default_seed, std::vector<InputFile>& inputs);

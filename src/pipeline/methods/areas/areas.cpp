@@ -165,8 +165,9 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       for (const LineFeature& line : lines[c]) roads.push_back(&line);
   StrokeSet earlier;
   const double pixel = std::min(heights.grid().pixel_width, heights.grid().pixel_height);
-  for (std::size_t ai = 0; ai < config.areas.size(); ++ai) {
-    const AreaClassConfig& a = config.areas[ai];
+  const std::vector<AreaClassConfig>& classes = area_classes(config);
+  for (std::size_t ai = 0; ai < classes.size(); ++ai) {
+    const AreaClassConfig& a = classes[ai];
     const std::string key = "features." + a.name;
     const SupportHierarchy hierarchy = area_hierarchy(a);
     const std::vector<AreaMaterial> materials = stroke_materials(a, hierarchy.sketch, warnings);

@@ -15,6 +15,7 @@
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/plan.hpp"
 #include "raster/sparse_raster.hpp"
