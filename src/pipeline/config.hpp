@@ -251,8 +251,8 @@ struct PipelineConfig {
   OutputConfig output;
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
-  // The methods' own options, in the order their readers made them (the areas' classes:
-  // methods/areas/area_config.hpp area_classes); method_options finds one.
+  // The methods' own options, in the order their readers made them (the `kind: area` classes
+  // are the areas method's); method_options finds one.
   std::vector<MethodConfigPart> methods;
   std::vector<ExistingConfig> existing;
   AvoidanceConfig avoidance;

@@ -26,7 +26,7 @@ struct AreaTarget {
 
 // One polygon's shape-pattern as the renderer and the area outputs need it.
 struct PlannedArea {
-  std::size_t area_class = 0;  // in config.areas / AreasPlan::names
+  std::size_t area_class = 0;  // in area_classes(config) / AreasPlan::names
   std::int64_t fid = 0;
   AreaPattern pattern;              // instances and strokes in world metres
   std::vector<AreaTarget> targets;  // every stroke material of the pattern, in config order
@@ -34,7 +34,7 @@ struct PlannedArea {
 };
 
 struct AreasPlan : MethodPayloadOf<AreasPlan> {
-  std::vector<std::string> names;  // of config.areas, in order (PlannedArea::area_class)
+  std::vector<std::string> names;  // of area_classes(config), in order (PlannedArea::area_class)
   std::vector<PlannedArea> areas;
   // Until collected: the polygons read with the plan's ingest, and what the synthesis returned.
   std::shared_ptr<const std::vector<std::vector<PolygonFeature>>> polygons;
