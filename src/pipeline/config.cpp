@@ -12,9 +12,8 @@
 #include "geo/features.hpp"
 #include "geo/input_guard.hpp"
 #include "geo/osm_tags.hpp"
-#include "pipeline/detail/area_config.hpp"
-#include "pipeline/detail/grow_config.hpp"
-#include "pipeline/detail/network_config.hpp"
+#include "pipeline/detail/config_values.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/resolved_config.hpp"
 #include "pipeline/detail/tag_config.hpp"
 #include "pipeline/detail/yaml_file.hpp"
@@ -23,8 +22,11 @@
 namespace tw {
 
 namespace fs = std::filesystem;
+using detail::input_file;
 using detail::MapReader;
+using detail::read_backend;
 using detail::read_one_of;
+using detail::read_width;
 using detail::YamlSource;
 
 namespace {
@@ -35,14 +37,6 @@ bool is_identifier(const std::string& name) {
     return letter(c) || std::isdigit((unsigned char)c) || c == '-';
   };
   return !name.empty() && letter(name[0]) && std::all_of(name.begin() + 1, name.end(), other);
-}
-
-// m.file(key), recorded as an input of `kind`.
-fs::path input_file(const MapReader& m, const std::string& key, InputFile::Kind kind,
-                    std::vector<InputFile>& inputs) {
-  const fs::path path = m.file(key);
-  inputs.push_back({path, kind, m.source().named_at(m.get(key), m.path(key))});
-  return path;
 }
 
 // `repair` (top level or per class): each key overrides `base`.
@@ -61,22 +55,18 @@ MapReader repair_reader(const MapReader& parent) {
   return MapReader(parent.source(), parent.get("repair"), parent.path("repair"), "repair");
 }
 
-// A width in metres: positive and at most the key table's maximum (kMaxFeatureWidth,
-// geo/features.hpp).
-double read_width(const MapReader& m, const std::string& key) {
-  const double width = m.positive(key);
-  const double limit = detail::numeric_form(m.spec(key)).maximum;
-  if (width > limit) {
-    m.source().fail(m.get(key), m.path(key),
-                    fmt::format("must be at most {:g} m, got {:g}", limit, width));
-  }
-  return width;
+const std::vector<detail::MethodReader>& readers() {
+  return detail::builtin_method_readers();
 }
 
-// The kind as written: a line kind, or a grown one (detail/grow_config.hpp).
+// The kind as written: a line kind, or one a method adds (the grown kinds).
 std::string read_kind_name(const MapReader& m) {
-  static const std::vector<std::string> kinds{"road", "river", "ridge", "hedge",
-                                              "wall", "trail", "ditch"};
+  static const std::vector<std::string> kinds = [] {
+    std::vector<std::string> all{"road", "river", "ridge"};
+    for (const detail::MethodReader& reader : readers())
+      all.insert(all.end(), reader.kinds.begin(), reader.kinds.end());
+    return all;
+  }();
   return kinds[read_one_of(m, "kind", "kind", kinds, std::nullopt)];
 }
 
@@ -84,16 +74,10 @@ FeatureKind kind_of(const std::string& name) {
   if (name == "road") return FeatureKind::road;
   if (name == "river") return FeatureKind::river;
   if (name == "ridge") return FeatureKind::ridge;
-  return detail::terrain_kind_of(name);
-}
-
-std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback) {
-  static const std::vector<std::string> backends{"cpu", "opencl", "auto"};
-  // Callers pass "auto" or an already validated backend as the fallback.
-  const auto fallback_index =
-      std::size_t(std::find(backends.begin(), backends.end(), fallback) - backends.begin());
-  return backends[read_one_of(m, key, "backend", backends,
-                              std::min<std::size_t>(fallback_index, 2))];
+  for (const detail::MethodReader& reader : readers())
+    if (std::find(reader.kinds.begin(), reader.kinds.end(), name) != reader.kinds.end())
+      return reader.terrain_kind(name);
+  fail("kind '{}': no method adds it", name);  // read_kind_name lets only known kinds through
 }
 
 GenerateConfig read_generate(const MapReader& m) {
@@ -172,144 +156,6 @@ void read_profile(const detail::YamlSource& src, const YAML::Node& node, const s
   }
 }
 
-// A colour unit is a 0..255 channel difference: more than this would only overflow costs.
-constexpr int kMaxSwitchCost = 1 << 20;
-
-// `bind: [{exemplar: PATH-or-index, where, tags, near_junction}]` (choose: mix). The exemplar is
-// an index into the list or one of its paths (resolved as the list's are).
-std::vector<ExemplarBinding> read_bindings(const MapReader& m,
-                                           const std::vector<fs::path>& exemplars) {
-  const YAML::Node list = m.get("bind");
-  const std::string list_key = m.path("bind");
-  if (!list.IsSequence() || list.size() == 0)
-    m.source().fail(list, list_key, "expected a list of {exemplar, where, tags, near_junction}");
-  std::vector<ExemplarBinding> out;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string key = list_key + "." + std::to_string(i);
-    const MapReader r(m.source(), list[i], key, "binding");
-    ExemplarBinding& b = out.emplace_back();
-    b.key = key;
-    const YAML::Node e = r.get("exemplar");
-    const std::string value = detail::read_string(m.source(), e, r.path("exemplar"));
-    const bool is_index = !value.empty() && std::all_of(value.begin(), value.end(), [](char ch) {
-      return std::isdigit((unsigned char)ch);
-    });
-    if (is_index) {
-      b.exemplar = std::size_t(detail::read_uint64(m.source(), e, r.path("exemplar")));
-      if (b.exemplar >= exemplars.size()) {
-        m.source().fail(e, r.path("exemplar"),
-                        fmt::format("exemplar {} of a list of {} (indices start at 0)", b.exemplar,
-                                    exemplars.size()));
-      }
-    } else {
-      const fs::path path = m.source().resolve(value, r.path("exemplar"));
-      const auto it = std::find(exemplars.begin(), exemplars.end(), path);
-      if (it == exemplars.end()) {
-        std::vector<std::string> names;
-        for (const fs::path& p : exemplars) names.push_back(p.filename().string());
-        m.source().fail(e, r.path("exemplar"),
-                        fmt::format("'{}' is not one of the class's exemplars ({})", value,
-                                    fmt::join(names, ", ")));
-      }
-      b.exemplar = std::size_t(it - exemplars.begin());
-    }
-    b.where = r.string_or("where", "");
-    if (r.has("tags")) b.tags = detail::read_tags(r);
-    b.near_junction = r.non_negative_or("near_junction", 0.0);
-    if (b.near_junction > kMaxFeatureWidth) {
-      m.source().fail(
-          r.get("near_junction"), r.path("near_junction"),
-          fmt::format("must be at most {:g} m, got {:g}", kMaxFeatureWidth, b.near_junction));
-    }
-    if (b.where.empty() && b.tags.empty() && b.near_junction <= 0.0) {
-      m.source().fail(list[i], key,
-                      "a binding needs where, tags or near_junction (else it binds every piece; "
-                      "list only that exemplar instead)");
-    }
-  }
-  return out;
-}
-
-SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
-                               std::vector<InputFile>& inputs) {
-  SynthesisConfig s;
-  const YAML::Node exemplar = m.get("exemplar");
-  if (exemplar.IsSequence()) {
-    if (exemplar.size() == 0) m.source().fail(exemplar, m.path("exemplar"), "empty list");
-    for (std::size_t i = 0; i < exemplar.size(); ++i) {
-      const std::string key = m.path("exemplar") + "." + std::to_string(i);
-      const std::string value = detail::read_string(m.source(), exemplar[i], key);
-      if (value.empty()) m.source().fail(exemplar[i], key, "empty path");
-      s.exemplars.push_back(m.source().resolve(value, key));
-      inputs.push_back(
-          {s.exemplars.back(), InputFile::Kind::exemplar, m.source().named_at(exemplar[i], key)});
-    }
-  } else {
-    s.exemplars.push_back(input_file(m, "exemplar", InputFile::Kind::exemplar, inputs));
-  }
-  if (m.has("delta")) s.delta = m.positive("delta");
-  s.scale = m.positive_or("scale", s.scale);
-  s.stitch = m.bool_or("stitch", s.stitch);
-  if (m.has("width") && m.get("width").IsScalar() && m.get("width").Scalar() == "feature")
-    s.width_of_feature = true;
-  else if (m.has("width"))
-    s.width = read_width(m, "width");
-  s.empty_pieces = m.bool_or("empty_pieces", s.empty_pieces);
-  s.seed =
-      m.has("seed") ? detail::read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
-  if (m.has("backend")) s.backend = read_backend(m, "backend", "auto");
-  s.height_detail = m.non_negative_or("height_detail", s.height_detail);
-  if (m.has("min_coverage")) s.min_coverage = m.non_negative_or("min_coverage", 0.0);
-  s.feather = m.non_negative_or("feather", s.feather);
-  if (s.min_coverage && *s.min_coverage >= 1.0) {
-    m.source().fail(
-        m.get("min_coverage"), m.path("min_coverage"),
-        fmt::format("must be below 1 (a fraction of each piece), got {}", *s.min_coverage));
-  }
-  s.objective = read_one_of(m, "objective", "objective", {"pattern", "paper"}) == 1
-                    ? Objective::paper
-                    : Objective::pattern;
-  s.coverage_weight = m.non_negative_or("coverage_weight", s.coverage_weight);
-  s.continuous_alpha = read_one_of(m, "alpha", "alpha", {"binary", "continuous"}) == 1;
-  static const ExemplarChoice choices[] = {ExemplarChoice::by_seed, ExemplarChoice::best,
-                                           ExemplarChoice::mix};
-  s.choice = choices[read_one_of(m, "choose", "choice", {"seed", "best", "mix"})];
-  for (const char* key : {"switch_cost", "bind"}) {
-    if (m.has(key) && s.choice != ExemplarChoice::mix)
-      m.source().fail(m.get(key), m.path(key), "only with choose: mix");
-  }
-  if (m.has("switch_cost")) {
-    const int cost = m.int_or("switch_cost", 0);
-    if (cost < 0 || cost > kMaxSwitchCost) {
-      m.source().fail(m.get("switch_cost"), m.path("switch_cost"),
-                      fmt::format("must be in [0, {}] colour units, got {}", kMaxSwitchCost, cost));
-    }
-    s.switch_cost = cost;
-  }
-  if (m.has("bind")) s.bind = read_bindings(m, s.exemplars);
-  if (m.has("channels")) {
-    const YAML::Node channels = m.get("channels");
-    const std::string key = m.path("channels");
-    if (!channels.IsMap() || channels.size() == 0) {
-      m.source().fail(channels, key, "expected a mapping of exemplar channels to outputs");
-    }
-    for (const auto& entry : channels) {
-      std::string channel = detail::read_string(m.source(), entry.first, key);
-      const std::string entry_key = key + "." + channel;
-      const std::string target = detail::read_string(m.source(), entry.second, entry_key);
-      const bool splat = target.rfind("splat.", 0) == 0 && target.size() > 6;
-      if (target != "height" && !splat) {
-        m.source().fail(
-            entry.second, entry_key,
-            fmt::format("unknown output '{}', expected height or splat.<material>", target));
-      }
-      if (channel == "alpha") channel = "A";
-      s.channels.push_back({channel, target});
-    }
-  }
-  return s;
-}
-
 // Without `kind`, the tag keys decide it (highway: road, waterway: river, natural: ridge).
 FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& tags) {
   std::string kind;
@@ -329,47 +175,18 @@ FeatureKind kind_from_tags(const MapReader& m, const std::vector<TagSelection>& 
                   "no tag key implies a kind (highway, waterway or natural); give kind");
 }
 
-// A `network:` block (docs/networks.md, "In pipelines"): the class's lines are grown, so it
-// reads no features (no tags, widths or grow: block).
-void read_network_block(const MapReader& m, const std::string& kind_name, std::uint64_t seed,
-                        FeatureClassConfig& f, std::vector<InputFile>& inputs) {
-  // The block itself first: a network: that is not a mapping is named as such.
-  const MapReader block(m.source(), m.get("network"), m.path("network"), "network");
-  for (const char* key : {"grow", "source", "tags", "width_attribute"})
-    if (m.has(key))
-      m.source().fail(m.get(key), m.path(key),
-                      fmt::format("a network class grows its lines: it takes no {} key", key));
-  if (kind_name.empty())
-    m.source().fail(m.node(), m.key_path(),
-                    "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
-  f.network = detail::read_network(block, seed, inputs);
-}
-
 FeatureClassConfig read_feature_class(const MapReader& m, const std::string& name,
                                       std::uint64_t seed, const LineRepair& repair,
                                       std::vector<InputFile>& inputs) {
   FeatureClassConfig f;
   f.name = name;
   const std::string kind_name = m.has("kind") ? read_kind_name(m) : "";
-  if (m.has("network")) read_network_block(m, kind_name, seed, f, inputs);
-  if (detail::is_grown_kind(kind_name) && !m.has("grow") && !f.network) {
-    m.source().fail(m.get("kind"), m.path("kind"),
-                    fmt::format("a {} class grows its lines: give a grow: block with at least "
-                                "an element set (grow: {{ element: ... }})",
-                                kind_name));
-  }
-  if (m.has("grow")) {
-    f.grow = detail::read_grow(MapReader(m.source(), m.get("grow"), m.path("grow"), "grow"),
-                               kind_name.empty() ? "road" : kind_name, seed, inputs);
-    if (m.has("tags") || m.has("width_attribute")) {
-      const std::string key = m.has("tags") ? "tags" : "width_attribute";
-      m.source().fail(m.get(key), m.path(key),
-                      "a grown class has no features to read tags or widths from");
-    }
-  }
-  // A grown class reads its source as the region's polygons, and needs none with grow.region.
-  if ((!f.grow && !f.network) || m.has("source") ||
-      (f.grow && !f.grow->region_box && f.grow->region_source.empty()))
+  detail::ClassReading r{m, kind_name, seed, inputs, f};
+  // The methods that make a class's lines read their blocks first (a network's, a grown
+  // class's): such a class reads its source only as the method says (a grown class's region).
+  for (const detail::MethodReader& reader : readers())
+    if (reader.read_lines) reader.read_lines(r);
+  if (!r.lines_made || m.has("source") || r.reads_source)
     f.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   f.layer = m.string_or("layer", "");
   f.where = m.string_or("where", "");
@@ -379,9 +196,9 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   } else {
     f.kind = f.tags.empty() ? kind_of(read_kind_name(m)) : kind_from_tags(m, f.tags);
   }
-  if (f.grow || f.network) {
-    if (f.grow) f.grow->kind = kind_name;  // never empty: without tags, `kind` is required
-    detail::apply_grown_defaults(kind_name, f);
+  if (r.lines_made) {
+    for (const detail::MethodReader& reader : readers())
+      if (reader.kind_defaults) reader.kind_defaults(kind_name, f);
     if (m.has("width")) f.width = read_width(m, "width");
     if (f.width <= 0.0) f.width = read_width(m, "width");  // road, river, ridge + grow: required
   } else {
@@ -392,7 +209,7 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
   }
   if (m.has("profile")) read_profile(m.source(), m.get("profile"), m.path("profile"), f);
   if (m.has("conform")) {
-    if (f.grow || f.network) {
+    if (r.lines_made) {
       m.source().fail(m.get("conform"), m.path("conform"),
                       "grown lines are drawn on the surface already; conform applies to lines "
                       "read from a source");
@@ -406,21 +223,8 @@ FeatureClassConfig read_feature_class(const MapReader& m, const std::string& nam
     f.conform_corridor = conform.positive("corridor");
   }
   f.repair = m.has("repair") ? read_repair(repair_reader(m), repair) : repair;
-  if (m.has("synthesis")) {
-    f.synthesis = read_synthesis(
-        MapReader(m.source(), m.get("synthesis"), m.path("synthesis"), "synthesis"), seed, inputs);
-    // A network's or a grown class's lines are grown: there is no layer of them for a where or
-    // tags rule to ask (a grown class's source holds its region's polygons, whose FIDs are not
-    // the lines').
-    for (std::size_t i = 0; (f.network || f.grow) && i < f.synthesis->bind.size(); ++i)
-      if (!f.synthesis->bind[i].where.empty() || !f.synthesis->bind[i].tags.empty())
-        m.source().fail(m.get("synthesis")["bind"][i], f.synthesis->bind[i].key,
-                        f.network ? "a network class's lines are grown and have no attributes for "
-                                    "where or tags to select; bind them by near_junction"
-                                  : "a grown class's lines have no attributes for where or tags "
-                                    "to select (its source is the region's polygons); bind them "
-                                    "by near_junction");
-  }
+  for (const detail::MethodReader& reader : readers())
+    if (reader.read_class) reader.read_class(r);
   return f;
 }
 
@@ -438,7 +242,7 @@ ExistingConfig read_existing(const MapReader& m, std::vector<InputFile>& inputs)
 // Area classes are painted after every line class (docs/pipeline.md, "Areas") and take no part
 // in the order, so naming one is refused with what to do instead.
 void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& features,
-                      const std::vector<AreaClassConfig>& areas) {
+                      const std::map<std::string, std::string>& own_classes) {
   if (!root.has("precedence")) return;
   const YAML::Node list = root.get("precedence");
   const std::string list_path = root.path("precedence");
@@ -451,14 +255,9 @@ void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& fe
     const std::string name = detail::read_string(root.source(), list[i], key);
     auto it = std::find_if(features.begin(), features.end(),
                            [&](const FeatureClassConfig& f) { return f.name == name; });
-    const bool is_area = std::any_of(areas.begin(), areas.end(),
-                                     [&](const AreaClassConfig& a) { return a.name == name; });
-    if (is_area) {
+    if (const auto own = own_classes.find(name); own != own_classes.end()) {
       root.source().fail(list[i], key,
-                         fmt::format("'{}' is an area class (kind: area): areas are painted after "
-                                     "every line class and are not ordered; remove it from "
-                                     "precedence",
-                                     name));
+                         fmt::format("'{}' is {}; remove it from precedence", name, own->second));
     }
     if (it == features.end()) {
       const bool repeated =
@@ -480,45 +279,6 @@ void apply_precedence(const MapReader& root, std::vector<FeatureClassConfig>& fe
         fmt::format("feature class '{}' is missing from the list", features.front().name));
   }
   features = std::move(ordered);
-}
-
-// `synthesis_order`: each class with synthesis exactly once; default precedence order.
-void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
-  std::vector<std::string> with_synthesis;
-  for (const auto& f : c.features) {
-    if (f.synthesis) with_synthesis.push_back(f.name);
-  }
-  if (!root.has("synthesis_order")) {
-    c.synthesis_order = with_synthesis;
-    return;
-  }
-  const YAML::Node list = root.get("synthesis_order");
-  const std::string list_path = root.path("synthesis_order");
-  if (!list.IsSequence()) root.source().fail(list, list_path, "expected a list of feature classes");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string key = list_path + "." + std::to_string(i);
-    const std::string name = detail::read_string(root.source(), list[i], key);
-    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) !=
-        c.synthesis_order.end()) {
-      root.source().fail(list[i], key, fmt::format("'{}' is listed twice", name));
-    }
-    if (std::find(with_synthesis.begin(), with_synthesis.end(), name) == with_synthesis.end()) {
-      const std::string hint = detail::closest_match(name, with_synthesis);
-      root.source().fail(
-          list[i], key,
-          fmt::format("'{}' is not a feature class with synthesis{}", name,
-                      hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
-    }
-    c.synthesis_order.push_back(name);
-  }
-  for (const std::string& name : with_synthesis) {
-    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) ==
-        c.synthesis_order.end()) {
-      root.source().fail(
-          list, list_path,
-          fmt::format("feature class '{}' (with synthesis) is missing from the list", name));
-    }
-  }
 }
 
 // region: [min_x, min_y, max_x, max_y] in metres, each min below its max.
@@ -717,6 +477,8 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
   if (root.has("repair")) c.repair = read_repair(repair_reader(root), c.repair);
   if (root.has("export")) c.exports = read_exports(src, root.get("export"));
   const YAML::Node features = root.get("features");
+  // The classes a method reads as its own (the areas), and what precedence says of each.
+  std::map<std::string, std::string> own_classes;
   if (!features.IsMap())
     src.fail(features, "features", "expected a mapping of class names to classes");
   for (const auto& entry : features) {
@@ -728,21 +490,23 @@ PipelineConfig read_pipeline(const YamlSource& src, const YAML::Node& tree) {
                "a class name must start with a letter or '_' and hold only letters, digits, '_' "
                "and '-'");
     }
-    if (detail::is_area_class(entry.second)) {
-      c.areas.push_back(detail::read_area_class(detail::area_class_reader(src, entry.second, path),
-                                                name, c.seed, c.inputs));
+    const auto own = std::find_if(readers().begin(), readers().end(), [&](const auto& reader) {
+      return reader.takes_class && reader.takes_class(entry.second);
+    });
+    if (own != readers().end()) {
+      own->read_own_class(src, entry.second, path, name, c);
+      own_classes[name] = own->own_class_note;
       continue;
     }
     c.features.push_back(read_feature_class(MapReader(src, entry.second, path, "line_class"), name,
                                             c.seed, c.repair, c.inputs));
   }
-  if (c.features.empty() && c.areas.empty())
+  if (c.features.empty() && own_classes.empty())
     src.fail(root.get("features"), "features", "no feature classes");
-  apply_precedence(root, c.features, c.areas);
-  if (root.has("synthesis_resolution")) {
-    c.synthesis_resolution = root.positive("synthesis_resolution");
-  }
-  read_synthesis_order(root, c);
+  apply_precedence(root, c.features, own_classes);
+  detail::RootReading after_classes{root, c};
+  for (const detail::MethodReader& reader : readers())
+    if (reader.read_root) reader.read_root(after_classes);
   if (root.has("existing")) {
     const YAML::Node list = root.get("existing");
     if (!list.IsSequence()) src.fail(list, "existing", "expected a list of {source, layer}");

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include <string>
@@ -15,7 +16,6 @@
 #include "geo/heightfield.hpp"
 #include "layers/export.hpp"
 #include "layers/write.hpp"
-#include "pipeline/area_config.hpp"
 #include "pipeline/grow_config.hpp"
 #include "pipeline/network_config.hpp"
 #include "synth/feature_synthesis.hpp"
@@ -205,6 +205,39 @@ struct Override {
   std::string value;
 };
 
+// A synthesis method's own options, read by its reader (detail/method_config.hpp) and kept in
+// the config opaquely, as the plan keeps the method's entry (pipeline/method_plan.hpp): a type of
+// the method's own (MethodOptionsOf does the copying).
+struct MethodOptions {
+  virtual ~MethodOptions() = default;
+  virtual std::unique_ptr<MethodOptions> clone() const = 0;
+};
+
+template <class Derived>
+struct MethodOptionsOf : MethodOptions {
+  std::unique_ptr<MethodOptions> clone() const override {
+    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
+  }
+};
+
+// One method's options in the config: a value type (copying a config copies them).
+struct MethodConfigPart {
+  std::string method;  // the method's name (SynthesisMethod::name())
+  std::unique_ptr<MethodOptions> options;
+
+  MethodConfigPart() = default;
+  MethodConfigPart(std::string m, std::unique_ptr<MethodOptions> o)
+      : method(std::move(m)), options(std::move(o)) {}
+  MethodConfigPart(const MethodConfigPart& other)
+      : method(other.method), options(other.options ? other.options->clone() : nullptr) {}
+  MethodConfigPart& operator=(const MethodConfigPart& other) {
+    if (this != &other) *this = MethodConfigPart(other);
+    return *this;
+  }
+  MethodConfigPart(MethodConfigPart&&) noexcept = default;
+  MethodConfigPart& operator=(MethodConfigPart&&) noexcept = default;
+};
+
 struct PipelineConfig {
   std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
   int version = 1;
@@ -218,9 +251,9 @@ struct PipelineConfig {
   OutputConfig output;
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
-  // `kind: area` classes (pipeline/area_config.hpp), in file order: synthesized after the
-  // line classes' patterns, each avoiding the areas before it.
-  std::vector<AreaClassConfig> areas;
+  // The methods' own options, in the order their readers made them (the `kind: area` classes
+  // are the areas method's); method_options finds one.
+  std::vector<MethodConfigPart> methods;
   std::vector<ExistingConfig> existing;
   AvoidanceConfig avoidance;
   // Synthesis canvas cell size in metres, independent of `resolution` (placements never
@@ -243,6 +276,25 @@ struct PipelineConfig {
   std::vector<Override> overrides;
   std::string resolved_json;
 };
+
+// The options of method `method` in `config` as its own type T; null when the config has none
+// (or, for a method that names another's type, of another type).
+template <class T>
+const T* method_options(const PipelineConfig& config, const std::string& method) {
+  for (const MethodConfigPart& part : config.methods)
+    if (part.method == method) return dynamic_cast<const T*>(part.options.get());
+  return nullptr;
+}
+
+// The same, added (default T) when missing: a method's reader fills its options with it.
+template <class T>
+T& method_options(PipelineConfig& config, const std::string& method) {
+  for (MethodConfigPart& part : config.methods)
+    if (T* found = part.method == method ? dynamic_cast<T*>(part.options.get()) : nullptr)
+      return *found;
+  config.methods.emplace_back(method, std::make_unique<T>());
+  return static_cast<T&>(*config.methods.back().options);
+}
 
 // A variables file (`--vars FILE`, docs/pipeline.md): a YAML mapping of name: value. Every
 // `${name}` in a value of the pipeline file is replaced by its value, before the overrides.

@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "geo/geopackage.hpp"
 #include "ornament/surface.hpp"
-#include "pipeline/detail/grow_config.hpp"
+#include "pipeline/methods/grown/grown_config.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

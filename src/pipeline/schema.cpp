@@ -98,7 +98,7 @@ json fragment(const ValueForm& form) {
               {"minProperties", 1},
               {"additionalProperties", {{"type", "string"}, {"pattern", "^(height|splat\\..+)$"}}}};
     case ValueType::feature_classes:
-      // `kind: area` decides which reader takes the class (detail/area_config.hpp).
+      // `kind: area` decides which reader takes the class (MethodReader::takes_class).
       return {{"type", "object"},
               {"minProperties", 1},
               {"propertyNames", {{"pattern", "^[A-Za-z_][A-Za-z0-9_-]*$"}}},

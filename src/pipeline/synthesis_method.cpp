@@ -49,6 +49,12 @@ const std::vector<MethodKeys>& builtin_method_keys() {
   return keys;
 }
 
+const std::vector<MethodReader>& builtin_method_readers() {
+  static const std::vector<MethodReader> readers = {network_reader(), grown_reader(),
+                                                    pattern_reader(), area_reader()};
+  return readers;
+}
+
 }  // namespace detail
 
 const std::vector<const SynthesisMethod*>& methods_or_builtin(

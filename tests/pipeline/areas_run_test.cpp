@@ -18,6 +18,7 @@
 #include "layers/layer_set.hpp"
 #include "pipeline/area_lead.hpp"
 #include "pipeline/job.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
@@ -646,14 +647,15 @@ TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
       "version: 1\nfeatures:\n  vines: { kind: area, source: f.gpkg, sketch: s.geojson, "
       "materials: { vine: row }, height: { vine: 0.3, post: -0.1 } }\n",
       "t.yaml", ".");
-  ASSERT_EQ(c.areas.size(), 1u);
+  const std::vector<AreaClassConfig>& areas = detail::area_classes(c);
+  ASSERT_EQ(areas.size(), 1u);
   EXPECT_TRUE(c.features.empty());
-  ASSERT_EQ(c.areas[0].materials.size(), 2u);
-  EXPECT_EQ(c.areas[0].materials[0].splat, "row");
-  EXPECT_DOUBLE_EQ(c.areas[0].materials[0].height, 0.3);
-  EXPECT_EQ(c.areas[0].materials[1].stroke, "post");
-  EXPECT_DOUBLE_EQ(c.areas[0].materials[1].height, -0.1);
-  EXPECT_EQ(c.areas[0].lead, AreaLead::long_axis);
+  ASSERT_EQ(areas[0].materials.size(), 2u);
+  EXPECT_EQ(areas[0].materials[0].splat, "row");
+  EXPECT_DOUBLE_EQ(areas[0].materials[0].height, 0.3);
+  EXPECT_EQ(areas[0].materials[1].stroke, "post");
+  EXPECT_DOUBLE_EQ(areas[0].materials[1].height, -0.1);
+  EXPECT_EQ(areas[0].lead, AreaLead::long_axis);
 }
 
 TEST(AreaCompass, BearingsAreClockwiseFromNorthInZeroTo360) {

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/detail/region.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -483,6 +484,43 @@ TEST(PipelineConfig, AnAreaClassInPrecedenceSaysWhyAndWhatToDo) {
   EXPECT_THAT(error, Not(HasSubstr("is not a feature class")));
 }
 
+// The methods read their blocks through the seam (detail/method_config.hpp), a network block
+// before a grown class's: a hedge class with `network:` is a network class and needs no grow:
+// block, and it starts from the hedge's width and profile (the grown kinds' defaults).
+TEST(PipelineConfig, TheMethodsReadTheirBlocksANetworkBeforeAGrownKind) {
+  const PipelineConfig c = parse(std::string(kMinimal) + R"(  hedges:
+    kind: hedge
+    network: { exemplar: drawn.svg, region: [0, 0, 100, 100] }
+    synthesis: { exemplar: hedge.png, choose: mix, bind: [{exemplar: 0, near_junction: 2}] }
+synthesis_order: [hedges]
+synthesis_resolution: 0.5
+)");
+  ASSERT_EQ(c.features.size(), 2u);
+  const FeatureClassConfig& hedges = c.features[1];
+  ASSERT_TRUE(hedges.network);
+  EXPECT_FALSE(hedges.grow);
+  EXPECT_TRUE(hedges.source.empty());
+  EXPECT_EQ(hedges.kind, FeatureKind::ridge);
+  EXPECT_EQ(hedges.width, 2.0);
+  EXPECT_EQ(hedges.ridge.height, 1.5);
+  ASSERT_TRUE(hedges.synthesis);
+  EXPECT_EQ(hedges.synthesis->bind.size(), 1u);
+  EXPECT_EQ(c.synthesis_order, std::vector<std::string>{"hedges"});
+  EXPECT_EQ(c.synthesis_resolution, 0.5);
+  // Without the block, the hedge kind is the grown method's, which asks for its grow: block.
+  EXPECT_THAT(error_of(std::string(kMinimal) + "  hedges: { kind: hedge }\n"),
+              HasSubstr("features.hedges.kind: a hedge class grows its lines: give a grow: block"));
+  // A bind rule by attributes on the network's lines is refused with the network's reason.
+  EXPECT_THAT(error_of(std::string(kMinimal) + R"(  hedges:
+    kind: hedge
+    network: { exemplar: drawn.svg, region: [0, 0, 100, 100] }
+    synthesis: { exemplar: hedge.png, choose: mix, bind: [{exemplar: 0, where: "a = 1"}] }
+)"),
+              HasSubstr("features.hedges.synthesis.bind.0: a network class's lines are grown and "
+                        "have no attributes for where or tags to select; bind them by "
+                        "near_junction"));
+}
+
 TEST(PipelineConfig, NullOverrideRemovesAKeyOrDropsAClass) {
   const PipelineConfig all = parse(kLinesAndArea);
   ASSERT_EQ(all.features.size(), 2u);
@@ -492,10 +530,10 @@ TEST(PipelineConfig, NullOverrideRemovesAKeyOrDropsAClass) {
   const PipelineConfig no_roads = parse(kLinesAndArea, {{"features.roads", "null"}});
   ASSERT_EQ(no_roads.features.size(), 1u);
   EXPECT_EQ(no_roads.features[0].name, "rivers");
-  EXPECT_EQ(no_roads.areas.size(), 1u);
+  EXPECT_EQ(detail::area_classes(no_roads).size(), 1u);
   const PipelineConfig no_vines = parse(kLinesAndArea, {{"features.vines", "~"}});
   EXPECT_EQ(no_vines.features.size(), 2u);
-  EXPECT_TRUE(no_vines.areas.empty());
+  EXPECT_TRUE(detail::area_classes(no_vines).empty());
 
   // A nested key goes back to its default.
   const PipelineConfig drawn = parse(kLinesAndArea, {{"features.rivers.conform", "null"}});

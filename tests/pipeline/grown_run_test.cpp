@@ -526,7 +526,7 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
   reports[1].grow.emplace();
   reports[2].grow.emplace();
   try {
-    detail::check_grown_lines(config, {}, lines, grown, {}, reports);
+    detail::check_grown_lines(config.features, {}, lines, grown, {}, reports);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("grow: 2 grown crossings (1 between grown lines, 1 with "
@@ -540,12 +540,12 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
   // Apart, and meeting only end to end: no error, zero counts.
   grown[0].lines[2] = line({{60, 20}, {95.9, 20}});
   grown[1].lines[0] = line({{20, 51.6}, {40, 51.6}});
-  EXPECT_NO_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports));
+  EXPECT_NO_THROW(detail::check_grown_lines(config.features, {}, lines, grown, {}, reports));
   EXPECT_EQ(reports[1].grow->crossings.feature, 0);
   EXPECT_EQ(reports[2].grow->crossings.grown, 0);
   // A hedge across another in its class is a crossing, not a joint.
   grown[0].lines.push_back(line({{30, 40}, {30, 60}}));
-  EXPECT_THROW(detail::check_grown_lines(config, {}, lines, grown, {}, reports), Error);
+  EXPECT_THROW(detail::check_grown_lines(config.features, {}, lines, grown, {}, reports), Error);
   EXPECT_EQ(reports[1].grow->crossings.grown, 1);
 }
 

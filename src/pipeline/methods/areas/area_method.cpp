@@ -74,10 +74,10 @@ json areas_json(const RunReport& report) {
 
 class AreaMethod final : public SynthesisMethod {
  public:
-  std::string name() const override { return "areas"; }
+  std::string name() const override { return kAreasMethodName; }
   MethodStage stage() const override { return MethodStage::placements; }
   bool serves(const PipelineConfig& config, const PlanOptions& options) const override {
-    return options.synthesize && !config.areas.empty();
+    return options.synthesize && !area_classes(config).empty();
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<AreasPlan>();
@@ -85,13 +85,13 @@ class AreaMethod final : public SynthesisMethod {
 
   std::string validate_stage() const override { return "sketches"; }
   void validate(const PipelineConfig& config, Warnings& warnings) const override {
-    check_area_sketches(config, warnings);
+    check_area_sketches(area_classes(config), warnings);
   }
 
   void ingest(MethodContext& context, MethodPlan& entry) const override {
     payload_as<AreasPlan>(entry).polygons =
-        std::make_shared<const std::vector<std::vector<PolygonFeature>>>(
-            load_area_polygons(context.config, context.heightfield, context.warnings));
+        std::make_shared<const std::vector<std::vector<PolygonFeature>>>(load_area_polygons(
+            area_classes(context.config), context.heightfield, context.warnings));
   }
 
   // The polygons its shape-patterns fill: the lines methods (networks) keep out of them.
@@ -256,7 +256,7 @@ void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
   if (!entry) fail("plan: no areas entry to add {} areas to", run.areas.size());
   entry->names.clear();
   entry->areas.clear();
-  for (const AreaClassConfig& a : config.areas) entry->names.push_back(a.name);
+  for (const AreaClassConfig& a : area_classes(config)) entry->names.push_back(a.name);
   for (std::size_t i = 0; i < run.areas.size(); ++i) {
     PlannedArea& area = run.areas[i];
     std::vector<Vec2> points;

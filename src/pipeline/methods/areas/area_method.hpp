@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geo/features.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/method_keys.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -25,7 +26,7 @@ struct AreaTarget {
 
 // One polygon's shape-pattern as the renderer and the area outputs need it.
 struct PlannedArea {
-  std::size_t area_class = 0;  // in config.areas / AreasPlan::names
+  std::size_t area_class = 0;  // in area_classes(config) / AreasPlan::names
   std::int64_t fid = 0;
   AreaPattern pattern;              // instances and strokes in world metres
   std::vector<AreaTarget> targets;  // every stroke material of the pattern, in config order
@@ -33,7 +34,7 @@ struct PlannedArea {
 };
 
 struct AreasPlan : MethodPayloadOf<AreasPlan> {
-  std::vector<std::string> names;  // of config.areas, in order (PlannedArea::area_class)
+  std::vector<std::string> names;  // of area_classes(config), in order (PlannedArea::area_class)
   std::vector<PlannedArea> areas;
   // Until collected: the polygons read with the plan's ingest, and what the synthesis returned.
   std::shared_ptr<const std::vector<std::vector<PolygonFeature>>> polygons;
@@ -43,6 +44,8 @@ struct AreasPlan : MethodPayloadOf<AreasPlan> {
 const SynthesisMethod& area_method();
 // Its keys of a pipeline file (detail/method_keys.hpp).
 MethodKeys area_keys();
+// Its reading of them (detail/method_config.hpp; area_config.cpp).
+MethodReader area_reader();
 
 // The plan's areas entry; null when it has none (a plan made by hand).
 const AreasPlan* areas_plan(const WorldPlan& plan);

@@ -130,16 +130,14 @@ SupportHierarchy area_hierarchy(const AreaClassConfig& a) {
   }
 }
 
-void check_area_sketches(const PipelineConfig& config, Warnings& warnings) {
-  for (const AreaClassConfig& a : config.areas)
-    stroke_materials(a, area_hierarchy(a).sketch, warnings);
+void check_area_sketches(const std::vector<AreaClassConfig>& areas, Warnings& warnings) {
+  for (const AreaClassConfig& a : areas) stroke_materials(a, area_hierarchy(a).sketch, warnings);
 }
 
-std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
-                                                            const Heightfield& heightfield,
-                                                            Warnings& warnings) {
+std::vector<std::vector<PolygonFeature>> load_area_polygons(
+    const std::vector<AreaClassConfig>& areas, const Heightfield& heightfield, Warnings& warnings) {
   std::vector<std::vector<PolygonFeature>> out;
-  for (const AreaClassConfig& a : config.areas) {
+  for (const AreaClassConfig& a : areas) {
     const std::string key = "features." + a.name;
     try {
       out.push_back(
@@ -167,8 +165,9 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       for (const LineFeature& line : lines[c]) roads.push_back(&line);
   StrokeSet earlier;
   const double pixel = std::min(heights.grid().pixel_width, heights.grid().pixel_height);
-  for (std::size_t ai = 0; ai < config.areas.size(); ++ai) {
-    const AreaClassConfig& a = config.areas[ai];
+  const std::vector<AreaClassConfig>& classes = area_classes(config);
+  for (std::size_t ai = 0; ai < classes.size(); ++ai) {
+    const AreaClassConfig& a = classes[ai];
     const std::string key = "features." + a.name;
     const SupportHierarchy hierarchy = area_hierarchy(a);
     const std::vector<AreaMaterial> materials = stroke_materials(a, hierarchy.sketch, warnings);

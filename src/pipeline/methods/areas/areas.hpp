@@ -15,6 +15,7 @@
 #include "pipeline/config.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/stages.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/plan.hpp"
 #include "raster/sparse_raster.hpp"
@@ -22,11 +23,10 @@
 
 namespace tw::detail {
 
-// The polygons of each area class (config.areas order), read on the heightfield's grid (clipped
-// to it, repaired with warnings naming the FID). Errors name features.<class>.
-std::vector<std::vector<PolygonFeature>> load_area_polygons(const PipelineConfig& config,
-                                                            const Heightfield& heightfield,
-                                                            Warnings& warnings);
+// The polygons of each area class (in order), read on the heightfield's grid (clipped to it,
+// repaired with warnings naming the FID). Errors name features.<class>.
+std::vector<std::vector<PolygonFeature>> load_area_polygons(
+    const std::vector<AreaClassConfig>& areas, const Heightfield& heightfield, Warnings& warnings);
 
 // The class's sketch (and its `shapes_from` donor) loaded and analysed: the Support Structure
 // Hierarchy it is synthesized from. Throws tw::Error naming features.<class>, the sketch file
@@ -36,7 +36,7 @@ SupportHierarchy area_hierarchy(const AreaClassConfig& area);
 // What `terraweave validate` checks of the areas without synthesizing them: every class's
 // sketches analysed (area_hierarchy's errors), its `materials` and `height` keys matched against
 // the sketch's stroke materials (a warning for each the sketch lacks).
-void check_area_sketches(const PipelineConfig& config, Warnings& warnings);
+void check_area_sketches(const std::vector<AreaClassConfig>& areas, Warnings& warnings);
 
 struct AreaRun {
   std::vector<PlannedArea> areas;                // targets' `material` still unresolved (0)

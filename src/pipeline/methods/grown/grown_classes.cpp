@@ -87,7 +87,7 @@ std::optional<ForbiddenCells> nodata_around(const HeightfieldSource& source, con
 
 // What the lines of class `c` keep off, exactly: the existing features, the lines read and the
 // lines grown before (each buffered by half its width); `names` gets what each id is.
-FootprintIndex keep_off_footprints(const PipelineConfig& config, std::size_t c,
+FootprintIndex keep_off_footprints(const std::vector<FeatureClassConfig>& classes, std::size_t c,
                                    const ExistingFeatures& existing,
                                    const std::vector<std::vector<LineFeature>>& lines,
                                    bool grown_ones, std::vector<std::string>* names) {
@@ -100,14 +100,14 @@ FootprintIndex keep_off_footprints(const PipelineConfig& config, std::size_t c,
     index.add_line(existing.lines[i], 0.5 * existing.line_widths[i]);
     if (names) names->push_back(fmt::format("existing line {}", i + 1));
   }
-  for (std::size_t other = 0; other < config.features.size(); ++other) {
-    const bool grown = bool(config.features[other].grow);
+  for (std::size_t other = 0; other < classes.size(); ++other) {
+    const bool grown = bool(classes[other].grow);
     if (other == c || (grown && (!grown_ones || other > c))) continue;
     for (const LineFeature& line : lines[other]) {
       std::vector<Vec2> points = line.points;
       if (line.closed && !points.empty()) points.push_back(points.front());
       index.add_line(points, 0.5 * line.width);
-      if (names) names->push_back(fmt::format("{} FID {}", config.features[other].name, line.fid));
+      if (names) names->push_back(fmt::format("{} FID {}", classes[other].name, line.fid));
     }
   }
   return index;
@@ -115,20 +115,21 @@ FootprintIndex keep_off_footprints(const PipelineConfig& config, std::size_t c,
 
 }  // namespace
 
-void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& existing,
+void check_grown_lines(const std::vector<FeatureClassConfig>& classes,
+                       const ExistingFeatures& existing,
                        const std::vector<std::vector<LineFeature>>& lines,
                        const std::vector<GrownClass>& grown,
                        const std::map<std::size_t, std::optional<ForbiddenCells>>& cells,
                        std::vector<FeatureClassReport>& reports) {
   std::vector<std::string> feature_names, set_names;
   const FootprintIndex features =
-      keep_off_footprints(config, config.features.size(), existing, lines, false, &feature_names);
+      keep_off_footprints(classes, classes.size(), existing, lines, false, &feature_names);
   std::vector<GrownLineSet> sets;
   for (const GrownClass& g : grown) {
     const auto found = cells.find(g.class_index);
     const ForbiddenCells* c = found != cells.end() && found->second ? &*found->second : nullptr;
-    sets.push_back({&g.lines, 0.5 * config.features[g.class_index].width, c});
-    set_names.push_back(config.features[g.class_index].name);
+    sets.push_back({&g.lines, 0.5 * classes[g.class_index].width, c});
+    set_names.push_back(classes[g.class_index].name);
   }
   const CrossingCheck check = check_crossings(sets, features);
   for (std::size_t s = 0; s < grown.size(); ++s) {
@@ -145,7 +146,8 @@ void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& exi
       check.total.total(), check.total.grown, check.total.feature, check.total.forbidden, first);
 }
 
-std::vector<GrownClass> grow_classes(const PipelineConfig& config, const HeightfieldSource& source,
+std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& classes,
+                                     const HeightfieldSource& source,
                                      const Heightfield& heightfield,
                                      const ExistingFeatures& existing,
                                      std::vector<std::vector<LineFeature>>& lines,
@@ -155,10 +157,10 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
   std::map<std::size_t, std::optional<ForbiddenCells>> forbidden_cells;  // by class
   // Every class's mesh is bounded before any class grows: a later class's resolution fails
   // the run at once, not after the classes before it.
-  for (const FeatureClassConfig& fc : config.features)
+  for (const FeatureClassConfig& fc : classes)
     if (fc.grow) mesh_grid(heightfield.grid, fc.grow->settings.resolution, "features." + fc.name);
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const FeatureClassConfig& fc = config.features[c];
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    const FeatureClassConfig& fc = classes[c];
     if (!fc.grow) continue;
     const GrowConfig& g = *fc.grow;
     const std::string key = "features." + fc.name;
@@ -193,8 +195,8 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
       avoided.lines.push_back(existing.lines[i]);
       avoided.line_widths.push_back(existing.line_widths[i] + fc.width);
     }
-    for (std::size_t other = 0; other < config.features.size(); ++other) {
-      if (other == c || (config.features[other].grow && other > c)) continue;
+    for (std::size_t other = 0; other < classes.size(); ++other) {
+      if (other == c || (classes[other].grow && other > c)) continue;
       for (const LineFeature& line : lines[other]) {
         avoided.lines.push_back(line.points);
         if (line.closed && !line.points.empty())
@@ -205,7 +207,7 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
     // The same footprints, exactly, on the candidates' vector lines: a footprint narrower than
     // the mesh's vertex spacing slips through the mask above.
     const FootprintIndex footprints =
-        keep_off_footprints(config, c, existing, lines, true, nullptr);
+        keep_off_footprints(classes, c, existing, lines, true, nullptr);
     const std::optional<ForbiddenCells>& cells = forbidden_cells[c] =
         nodata_around(source, heightfield.grid, region, mesh);
     const KeepOff keep_off{&footprints, 0.5 * fc.width, cells ? &*cells : nullptr};
@@ -246,7 +248,7 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
         key, r.ornaments, r.elements, r.lines, window.width, window.height, result.growth_ms / 1000,
         r.coverage_radius_m, r.coverage);
   }
-  check_grown_lines(config, existing, lines, out, forbidden_cells, reports);
+  check_grown_lines(classes, existing, lines, out, forbidden_cells, reports);
   return out;
 }
 

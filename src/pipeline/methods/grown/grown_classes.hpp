@@ -22,7 +22,8 @@ namespace tw::detail {
 // Fills lines[c] of every grown class c (FID n: the n-th line grown, from 1), its report's
 // `grow` and the plan's GrownClass. Deterministic with each class's grow.seed. Throws
 // tw::Error naming features.<class> (and the file or key) on a bad element set or region.
-std::vector<GrownClass> grow_classes(const PipelineConfig& config, const HeightfieldSource& source,
+std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& classes,
+                                     const HeightfieldSource& source,
                                      const Heightfield& heightfield,
                                      const ExistingFeatures& existing,
                                      std::vector<std::vector<LineFeature>>& lines,
@@ -33,7 +34,8 @@ std::vector<GrownClass> grow_classes(const PipelineConfig& config, const Heightf
 // existing features, and each grown class's nodata cells (by class index; none if absent).
 // Fills each grown class's report `grow.crossings`; throws tw::Error counting them and naming
 // the first few lines when any is non-zero (a growth bug: the run fails, nothing is written).
-void check_grown_lines(const PipelineConfig& config, const ExistingFeatures& existing,
+void check_grown_lines(const std::vector<FeatureClassConfig>& classes,
+                       const ExistingFeatures& existing,
                        const std::vector<std::vector<LineFeature>>& lines,
                        const std::vector<GrownClass>& grown,
                        const std::map<std::size_t, std::optional<ForbiddenCells>>& cells,

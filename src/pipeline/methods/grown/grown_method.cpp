@@ -46,8 +46,8 @@ class GrownMethod final : public SynthesisMethod {
   void plan(MethodContext& context, MethodPlan& entry) const override {
     RunReport& report = context.plan.report;
     payload_as<GrownPlan>(entry).classes =
-        grow_classes(context.config, context.source, context.heightfield, *context.existing,
-                     context.lines, report.classes, context.warnings);
+        grow_classes(context.config.features, context.source, context.heightfield,
+                     *context.existing, context.lines, report.classes, context.warnings);
     for (const FeatureClassReport& c : report.classes)
       if (c.grow)
         report.grown_crossings +=

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ornament/grow.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/method_keys.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -28,6 +29,8 @@ struct GrownPlan : MethodPayloadOf<GrownPlan> {
 const SynthesisMethod& grown_method();
 // Its keys of a pipeline file (detail/method_keys.hpp).
 MethodKeys grown_keys();
+// Its reading of them (detail/method_config.hpp; grown_config.cpp).
+MethodReader grown_reader();
 
 // The plan's grown classes; null when it has no grown entry (a plan made by hand).
 const GrownPlan* grown_plan(const WorldPlan& plan);

@@ -40,13 +40,13 @@ std::vector<Polygon> region_of(const NetworkClassConfig& n, const Heightfield& h
 // area classes': their shape-patterns come later and fill them) and the lines of the classes before
 // `c`, each widened by this class's width (so that the footprints do not overlap), on a grid over
 // the region of at most 4096 cells a side and no finer than a metre.
-ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
+ForbiddenMask forbidden_mask(const std::vector<FeatureClassConfig>& classes, std::size_t c,
                              const std::vector<Polygon>& region, const ExistingFeatures& existing,
                              const std::vector<Polygon>& reserved,
                              const std::vector<std::vector<LineFeature>>& lines) {
   ForbiddenMask mask;
   mask.grid = forbidden_mask_grid(region);
-  const double own = config.features[c].width;
+  const double own = classes[c].width;
   std::vector<std::vector<Vec2>> avoided = existing.lines;
   std::vector<double> widths;
   for (double w : existing.line_widths) widths.push_back(w + own);
@@ -57,8 +57,8 @@ ForbiddenMask forbidden_mask(const PipelineConfig& config, std::size_t c,
       widths.push_back(line.width + own);
     }
   // Classes after `c` that are read (not grown) are there already too.
-  for (std::size_t other = c + 1; other < config.features.size(); ++other) {
-    if (config.features[other].grow || config.features[other].network) continue;
+  for (std::size_t other = c + 1; other < classes.size(); ++other) {
+    if (classes[other].grow || classes[other].network) continue;
     for (const LineFeature& line : lines[other]) {
       avoided.push_back(line.points);
       if (line.closed && !line.points.empty()) avoided.back().push_back(line.points.front());
@@ -95,14 +95,14 @@ Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>&
 
 }  // namespace
 
-void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
-                          const Heightfield& heightfield, const ExistingFeatures& existing,
-                          const std::vector<Polygon>& reserved,
+void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
+                          const HeightfieldSource& source, const Heightfield& heightfield,
+                          const ExistingFeatures& existing, const std::vector<Polygon>& reserved,
                           std::vector<std::vector<LineFeature>>& lines,
                           std::vector<FeatureClassReport>& reports, Warnings& warnings) {
   HeightSampler sampler(source);
-  for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const FeatureClassConfig& fc = config.features[c];
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    const FeatureClassConfig& fc = classes[c];
     if (!fc.network) continue;
     const NetworkClassConfig& n = *fc.network;
     const std::string key = "features." + fc.name + ".network";
@@ -133,7 +133,7 @@ void grow_network_classes(const PipelineConfig& config, const HeightfieldSource&
     if (!n.partial.empty())
       partial = partial_network(n, region, heightfield, key + ".partial", warnings);
     std::optional<ForbiddenMask> forbidden;
-    if (n.avoid) forbidden = forbidden_mask(config, c, region, existing, reserved, lines);
+    if (n.avoid) forbidden = forbidden_mask(classes, c, region, existing, reserved, lines);
     forbid_nodata_cells(forbidden, region, source.grid(),
                         [&](const Window& w) { return source.read(w); });
     NetworkGrowthOptions options;

@@ -19,9 +19,9 @@ namespace tw::detail {
 // themselves: the area classes') where the class avoids. Deterministic with
 // each class's network.seed. Throws tw::Error naming features.<class>.network.<key> on a bad
 // exemplar, region or partial network, and on any crossing the GEOS check finds.
-void grow_network_classes(const PipelineConfig& config, const HeightfieldSource& source,
-                          const Heightfield& heightfield, const ExistingFeatures& existing,
-                          const std::vector<Polygon>& reserved,
+void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
+                          const HeightfieldSource& source, const Heightfield& heightfield,
+                          const ExistingFeatures& existing, const std::vector<Polygon>& reserved,
                           std::vector<std::vector<LineFeature>>& lines,
                           std::vector<FeatureClassReport>& reports, Warnings& warnings);
 

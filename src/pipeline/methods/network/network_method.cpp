@@ -33,9 +33,9 @@ class NetworkMethod final : public SynthesisMethod {
   // After the grown classes, off everything before them; once, in the plan, so that every tile
   // and worker sees the same lines.
   void plan(MethodContext& context, MethodPlan& /*entry*/) const override {
-    grow_network_classes(context.config, context.source, context.heightfield, *context.existing,
-                         context.reserved, context.lines, context.plan.report.classes,
-                         context.warnings);
+    grow_network_classes(context.config.features, context.source, context.heightfield,
+                         *context.existing, context.reserved, context.lines,
+                         context.plan.report.classes, context.warnings);
   }
 
   // Per network class its `network`.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pipeline/config.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/method_keys.hpp"
 #include "pipeline/methods/patterns/patterns.hpp"
 #include "pipeline/plan.hpp"
@@ -61,6 +62,8 @@ struct PatternsPlan : MethodPayloadOf<PatternsPlan> {
 const SynthesisMethod& pattern_method();
 // Its keys of a pipeline file (detail/method_keys.hpp).
 MethodKeys pattern_keys();
+// Its reading of them (detail/method_config.hpp; pattern_config.cpp).
+MethodReader pattern_reader();
 
 // A planned pattern as the bytes of its plan object (plan version 10, plan_binary.hpp) and back:
 // its fields, then its synthesis as its placements file holds it (synth/placements_io: the

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pipeline/config.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw::detail {
@@ -13,5 +14,9 @@ namespace tw::detail {
 // value; the exemplar, region and partial files go to `inputs`.
 NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
                                 std::vector<InputFile>& inputs);
+
+// A line class's `network:` block, if there (MethodReader::read_lines): the class's lines are
+// grown, so it reads no features (no tags, widths or grow: block) and needs a kind.
+void read_network_lines(ClassReading& r);
 
 }  // namespace tw::detail

@@ -1,4 +1,4 @@
-#include "pipeline/detail/grow_config.hpp"
+#include "pipeline/methods/grown/grown_config.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -116,6 +116,40 @@ GrowConfig read_grow(const MapReader& m, const std::string& kind, std::uint64_t 
   if (m.has("coverage_radius")) s.coverage_radius = m.positive("coverage_radius");
   if (m.has("clearance")) s.clearance = m.non_negative_or("clearance", 0.0);
   return g;
+}
+
+void read_grown_lines(ClassReading& r) {
+  const MapReader& m = r.m;
+  if (is_grown_kind(r.kind_name) && !m.has("grow") && !r.lines_made) {
+    m.source().fail(m.get("kind"), m.path("kind"),
+                    fmt::format("a {} class grows its lines: give a grow: block with at least "
+                                "an element set (grow: {{ element: ... }})",
+                                r.kind_name));
+  }
+  if (!m.has("grow")) return;
+  // Without tags, `kind` is required, so the kind stays "road" only in a class that fails.
+  r.f.grow = read_grow(MapReader(m.source(), m.get("grow"), m.path("grow"), "grow"),
+                       r.kind_name.empty() ? "road" : r.kind_name, r.seed, r.inputs);
+  if (m.has("tags") || m.has("width_attribute")) {
+    const std::string key = m.has("tags") ? "tags" : "width_attribute";
+    m.source().fail(m.get(key), m.path(key),
+                    "a grown class has no features to read tags or widths from");
+  }
+  r.lines_made = true;
+  // Its source holds the region's polygons, needed unless grow.region gives the region.
+  r.reads_source = !r.f.grow->region_box && r.f.grow->region_source.empty();
+  r.lines_without_attributes =
+      "a grown class's lines have no attributes for where or tags to select (its source is the "
+      "region's polygons)";
+}
+
+MethodReader grown_reader() {
+  MethodReader reader;
+  reader.kinds = grown_kinds();
+  reader.terrain_kind = terrain_kind_of;
+  reader.kind_defaults = apply_grown_defaults;
+  reader.read_lines = read_grown_lines;
+  return reader;
 }
 
 }  // namespace tw::detail

@@ -1,4 +1,4 @@
-#include "pipeline/detail/network_config.hpp"
+#include "pipeline/methods/network/network_config.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +77,31 @@ NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
                     "ends (use growth or automatic)");
   n.avoid = m.bool_or("avoid", true);
   return n;
+}
+
+void read_network_lines(ClassReading& r) {
+  const MapReader& m = r.m;
+  if (!m.has("network")) return;
+  // The block itself first: a network: that is not a mapping is named as such.
+  const MapReader block(m.source(), m.get("network"), m.path("network"), "network");
+  for (const char* key : {"grow", "source", "tags", "width_attribute"})
+    if (m.has(key))
+      m.source().fail(m.get(key), m.path(key),
+                      fmt::format("a network class grows its lines: it takes no {} key", key));
+  if (r.kind_name.empty())
+    m.source().fail(m.node(), m.key_path(),
+                    "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
+  r.f.network = read_network(block, r.seed, r.inputs);
+  r.lines_made = true;
+  r.reads_source = false;
+  r.lines_without_attributes =
+      "a network class's lines are grown and have no attributes for where or tags to select";
+}
+
+MethodReader network_reader() {
+  MethodReader reader;
+  reader.read_lines = read_network_lines;
+  return reader;
 }
 
 }  // namespace tw::detail

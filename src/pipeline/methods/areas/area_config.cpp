@@ -1,24 +1,16 @@
-#include "pipeline/detail/area_config.hpp"
+#include "pipeline/methods/areas/area_config.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "core/error.hpp"
+#include "pipeline/detail/config_values.hpp"
 #include "pipeline/detail/tag_config.hpp"
 
 namespace tw::detail {
 
-namespace fs = std::filesystem;
-
 namespace {
-
-fs::path input(const MapReader& m, const std::string& key, InputFile::Kind kind,
-               std::vector<InputFile>& inputs) {
-  const fs::path path = m.file(key);
-  inputs.push_back({path, kind, m.source().named_at(m.get(key), m.path(key))});
-  return path;
-}
 
 // lead: long_axis | nearest_road | contours | { bearing: DEG }
 void read_lead(const MapReader& m, AreaClassConfig& a) {
@@ -94,14 +86,14 @@ AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
                                 std::uint64_t default_seed, std::vector<InputFile>& inputs) {
   AreaClassConfig a;
   a.name = name;
-  a.source = input(m, "source", InputFile::Kind::vector, inputs);
+  a.source = input_file(m, "source", InputFile::Kind::vector, inputs);
   a.layer = m.string_or("layer", "");
   // `tags` (OSM-style, ANDed with `where`) read as the SQL they select.
   a.where = selection_where(m.has("tags") ? read_tags(m) : std::vector<TagSelection>{},
                             m.string_or("where", ""));
-  a.sketch = input(m, "sketch", InputFile::Kind::vector, inputs);
+  a.sketch = input_file(m, "sketch", InputFile::Kind::vector, inputs);
   if (m.has("shapes_from"))
-    a.shapes_from = input(m, "shapes_from", InputFile::Kind::vector, inputs);
+    a.shapes_from = input_file(m, "shapes_from", InputFile::Kind::vector, inputs);
   a.scale = m.positive_or("scale", a.scale);
   read_lead(m, a);
   a.jitter = m.non_negative_or("jitter", a.jitter);
@@ -113,6 +105,32 @@ AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
   a.seed = m.has("seed") ? read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
   read_materials(m, a);
   return a;
+}
+
+namespace {
+
+void read_area_class_into(const YamlSource& src, const YAML::Node& node, const std::string& path,
+                          const std::string& name, PipelineConfig& config) {
+  AreaClassConfig area =
+      read_area_class(area_class_reader(src, node, path), name, config.seed, config.inputs);
+  method_options<AreaOptions>(config, kAreasMethodName).classes.push_back(std::move(area));
+}
+
+}  // namespace
+
+const std::vector<AreaClassConfig>& area_classes(const PipelineConfig& config) {
+  static const std::vector<AreaClassConfig> none;
+  const AreaOptions* options = method_options<AreaOptions>(config, kAreasMethodName);
+  return options ? options->classes : none;
+}
+
+MethodReader area_reader() {
+  MethodReader reader;
+  reader.takes_class = is_area_class;
+  reader.read_own_class = read_area_class_into;
+  reader.own_class_note =
+      "an area class (kind: area): areas are painted after every line class and are not ordered";
+  return reader;
 }
 
 }  // namespace tw::detail

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pipeline/config.hpp"
+#include "pipeline/detail/method_config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
 
 namespace tw::detail {
@@ -23,5 +24,9 @@ void apply_grown_defaults(const std::string& grown_kind, FeatureClassConfig& f);
 // key of the first bad value; the element set and a region source go to `inputs`.
 GrowConfig read_grow(const MapReader& m, const std::string& kind, std::uint64_t default_seed,
                      std::vector<InputFile>& inputs);
+
+// A line class's `grow:` block, if there (MethodReader::read_lines), after a network block: a
+// class of a grown kind needs one unless another method makes its lines.
+void read_grown_lines(ClassReading& r);
 
 }  // namespace tw::detail

@@ -1,0 +1,24 @@
+#pragma once
+// Values of a pipeline file that the config's reader (config.cpp) and the synthesis methods'
+// readers (detail/method_config.hpp) read alike.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pipeline/config.hpp"
+#include "pipeline/detail/yaml_reader.hpp"
+
+namespace tw::detail {
+
+// m.file(key), recorded as an input of `kind` (named where the key stands).
+std::filesystem::path input_file(const MapReader& m, const std::string& key, InputFile::Kind kind,
+                                 std::vector<InputFile>& inputs);
+
+// A width in metres: positive and at most the key table's maximum (kMaxFeatureWidth,
+// geo/features.hpp).
+double read_width(const MapReader& m, const std::string& key);
+
+// cpu | opencl | auto; `fallback` is "auto" or an already validated backend.
+std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback);
+
+}  // namespace tw::detail
