@@ -4,7 +4,7 @@
 // half, (c) the naive baseline (random exemplar patches), and the dangling ends per km; writes
 // docs/images/network_<name>.png (exemplar | output | baseline) with --images DIR.
 //   build/bench/bench_network_quality [--images docs/images] [--seed N]
-//                                     [--method automatic|growth|quilt]
+//                                     [--method automatic|growth|quilt|layout]
 // NETWORK_VERBOSE=1 also prints, per exemplar, degree histograms, bent edges, mean lengths and
 // areas of the exemplar, the output and the baseline, and the growth counters.
 #include <algorithm>
@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--method")) {
       if (std::find(kNetworkMethodNames.begin(), kNetworkMethodNames.end(), argv[i + 1]) ==
           kNetworkMethodNames.end()) {
-        std::fprintf(stderr, "--method %s: expected automatic, growth or quilt\n", argv[i + 1]);
+        std::fprintf(stderr, "--method %s: expected automatic, growth, quilt or layout\n",
+                     argv[i + 1]);
         return 2;
       }
       method = network_method_named(argv[i + 1]);

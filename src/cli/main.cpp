@@ -629,8 +629,9 @@ int cli_main(int argc, char** argv) {
             [&network_args](const std::string& name) {
               network_args.growth.method = tw::network_method_named(name);
             },
-            "growth, quilt, or automatic (default): both, and the one closer to the exemplar's "
-            "statistics; completing lines is growth (quilt refused)")
+            "growth, quilt, layout (growth from the exemplar's long strokes), or automatic "
+            "(default): each, and the one closer to the exemplar's statistics; completing lines "
+            "is growth (quilt and layout refused)")
         ->check(CLI::IsMember(std::vector<std::string>(tw::kNetworkMethodNames.begin(),
                                                        tw::kNetworkMethodNames.end())));
     mode->add_option("--out", network_args.out, "folder for network.gpkg, preview.png")

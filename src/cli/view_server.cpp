@@ -49,7 +49,12 @@ NetworkMethod method_of(const json& body) {
   const auto known = name.is_string()
                          ? std::find(names.begin(), names.end(), name.get<std::string>())
                          : names.end();
-  if (known == names.end()) fail("key method: {} is none of automatic, growth, quilt", name.dump());
+  if (known == names.end()) {
+    std::string listed;
+    for (std::string_view known_name : names)
+      listed += (listed.empty() ? "" : ", ") + std::string(known_name);
+    fail("key method: {} is none of {}", name.dump(), listed);
+  }
   return NetworkMethod(known - names.begin());
 }
 
@@ -110,7 +115,7 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
       response.set_content(page, "text/html; charset=utf-8");
     });
     // {lines: [[[x, y], ...], ...], region: [[x, y], ...], method: "automatic" | "growth" |
-    // "quilt" (absent: automatic)} -> {suggestions: [...]}
+    // "quilt" | "layout" (absent: automatic)} -> {suggestions: [...]}
     server.Post("/complete", [&](const httplib::Request& request, httplib::Response& response) {
       answer(request, response, [&](const json& body) {
         NetworkLines drawn;

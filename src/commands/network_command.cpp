@@ -139,11 +139,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   if (c.mode != "synthesize" && c.mode != "complete" && c.mode != "clone")
     fail("network: unknown mode '{}' (synthesize, complete, clone)", c.mode);
   if (c.out.empty()) fail("{}: --out is required", cmd);
-  if (c.mode == "complete" && c.growth.method == NetworkMethod::quilt)
+  if (c.mode == "complete" && !network_method_completes(c.growth.method))
     fail(
-        "{}: --method quilt cannot complete a drawing: completing is growth from its ends (use "
+        "{}: --method {} cannot complete a drawing: completing is growth from its ends (use "
         "growth or automatic)",
-        cmd);
+        cmd, network_method_name(c.growth.method));
   std::vector<std::filesystem::path> inputs;
   for (const std::string& s : {c.exemplar, c.partial, c.map})
     if (!s.empty()) inputs.push_back(split_source(s).first);
@@ -202,11 +202,11 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
                                "--map (in --target-region)", warnings);
   else if (kept_lines)  // the user's drawing: kept exactly, never crossing itself
     partial = partial_network(*kept_lines, region, "--partial", c.partial, warnings);
-  if (partial && c.mode == "clone" && c.growth.method == NetworkMethod::quilt)
+  if (partial && c.mode == "clone" && !network_method_completes(c.growth.method))
     fail(
-        "{}: --method quilt: --target-region {} holds {} lines of --map, and completing them is "
+        "{}: --method {}: --target-region {} holds {} lines of --map, and completing them is "
         "growth from their ends (use growth or automatic, or a target without lines)",
-        cmd, c.target_region, kept_lines->lines.size());
+        cmd, network_method_name(c.growth.method), c.target_region, kept_lines->lines.size());
   std::optional<ForbiddenMask> forbidden;
   if (!c.avoid.empty()) forbidden = forbidden_mask(c, region, exemplar_lines.crs_wkt, warnings);
 
@@ -266,10 +266,11 @@ std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const N
   // is cut there: the cut is no dangling end to grow from); what lies outside is not touched.
   const NetworkLines inside = cut_network_lines(drawn, region);
   std::optional<Network> partial;
-  if (!inside.lines.empty() && options.method == NetworkMethod::quilt)
+  if (!inside.lines.empty() && !network_method_completes(options.method))
     fail(
-        "method quilt cannot complete a drawing (the region holds drawn lines): completing is "
-        "growth from their ends (use growth or automatic)");
+        "method {} cannot complete a drawing (the region holds drawn lines): completing is "
+        "growth from their ends (use growth or automatic)",
+        network_method_name(options.method));
   if (!inside.lines.empty())
     partial = partial_network(inside, region, "drawing", "(lines numbered from 1)", warnings);
   const Network grown =

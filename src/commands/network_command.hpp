@@ -49,9 +49,9 @@ Network read_network_exemplar(const NetworkSource& source, double snap, Warnings
 // Suggestions completing `drawn` (lines in the map's metric CRS, FIDs numbering them in
 // messages) over `region`, off `forbidden` cells (the run's avoidance layer): the drawing's parts
 // inside the region are kept exactly and grown from, as `network complete` does; GEOS checks the
-// result, by options.method (quilt only where the region holds no drawn line). Throws tw::Error
-// (lines crossing each other, a degenerate or too large region, quilt asked to complete drawn
-// lines) with nothing else done.
+// result, by options.method (quilt and layout only where the region holds no drawn line). Throws
+// tw::Error (lines crossing each other, a degenerate or too large region, quilt or layout asked
+// to complete drawn lines) with nothing else done.
 std::vector<std::vector<Vec2>> complete_drawing(const Network& exemplar, const NetworkLines& drawn,
                                                 const std::vector<Polygon>& region,
                                                 const ForbiddenMask* forbidden,

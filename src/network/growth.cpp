@@ -159,11 +159,12 @@ class Grower {
 
   enum class Mode { grow, quilt, layout };
   Network run(Mode mode) {
+    report_.quilted = mode == Mode::quilt;
     if (mode == Mode::quilt) {
       quilt();
       drain();  // a partial network's open ends, when quilting was asked for anyway
     } else {
-      if (mode == Mode::layout) lay_out_long_strokes();
+      if (mode == Mode::layout) report_.laid_out = lay_out_long_strokes();
       drain();
       seed_lattice();
       retry_failed();
@@ -1518,7 +1519,9 @@ Network grow_network(const Network& exemplar, const std::vector<Polygon>& region
   };
   NetworkGrowthReport local;
   if (options.method != NetworkMethod::automatic || partial)
-    return make(options.method == NetworkMethod::quilt ? Mode::quilt : Mode::grow,
+    return make(options.method == NetworkMethod::quilt    ? Mode::quilt
+                : options.method == NetworkMethod::layout ? Mode::layout
+                                                          : Mode::grow,
                 report ? *report : local);
   // Growth, the quilt and, when the exemplar has long strokes, growth from their layout; the
   // one meeting the most targets on the exemplar's statistics (ties: the closer, then the
@@ -1537,11 +1540,8 @@ Network grow_network(const Network& exemplar, const std::vector<Polygon>& region
     NetworkGrowthReport counters;
     Network candidate = make(modes[m], counters);
     const StyleScore score = style.score(candidate);
-    if (m == 0 || score.better_than(best_score)) {
+    if (m == 0 || score.better_than(best_score))
       best = std::move(candidate), best_score = score, best_report = counters;
-      best_report.quilted = modes[m] == Mode::quilt;
-      best_report.laid_out = modes[m] == Mode::layout;
-    }
   }
   if (report) *report = best_report;
   return best;

@@ -21,21 +21,32 @@ namespace tw {
 
 // How a network is made (docs/networks.md): `quilt`, exemplar blocks chosen by how their lines
 // agree in the overlaps and stitched across the seams ("Quilting"); `grow`, whole exemplar pieces
-// attached at a frontier of open ends ("Growth"). `automatic`: over an empty region both, and
-// growth from the exemplar's laid-out long strokes ("Layout"), and the one meeting the most
-// quality targets on the exemplar's statistics; growth to complete a partial network (it
-// grows from the drawn ends).
-enum class NetworkMethod { automatic, grow, quilt };
+// attached at a frontier of open ends ("Growth"); `layout`, the exemplar's long strokes copied
+// first and growth from their junctions ("Layout"; growth alone when it has none).
+// `automatic`: over an empty region each of them, and the one meeting the most quality targets
+// on the exemplar's statistics; growth to complete a partial network (it grows from the drawn
+// ends).
+enum class NetworkMethod { automatic, grow, quilt, layout };
 
 // The methods as the command's `--method` and the pipeline key `network.method` name them, in
 // the enum's order.
-inline constexpr std::array<std::string_view, 3> kNetworkMethodNames = {"automatic", "growth",
-                                                                        "quilt"};
+inline constexpr std::array<std::string_view, 4> kNetworkMethodNames = {"automatic", "growth",
+                                                                        "quilt", "layout"};
 // The method named so; anything else is `automatic` (names are checked where they are read).
 inline NetworkMethod network_method_named(std::string_view name) {
   for (std::size_t i = 0; i < kNetworkMethodNames.size(); ++i)
     if (kNetworkMethodNames[i] == name) return NetworkMethod(i);
   return NetworkMethod::automatic;
+}
+
+inline std::string_view network_method_name(NetworkMethod method) {
+  return kNetworkMethodNames[std::size_t(method)];
+}
+
+// Whether a method completes a partial network: growth, and `automatic` (growth there). The quilt
+// and the layout lay out the whole region and are refused where lines are drawn, naming the key.
+inline bool network_method_completes(NetworkMethod method) {
+  return method == NetworkMethod::automatic || method == NetworkMethod::grow;
 }
 
 struct NetworkGrowthOptions {
@@ -72,8 +83,8 @@ void forbid_nodata_cells(std::optional<ForbiddenMask>& mask, const std::vector<P
 struct NetworkGrowthReport {
   int seeds = 0, stubs = 0, placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0, pruned = 0;
-  bool quilted = false;   // `automatic` chose the quilt
-  bool laid_out = false;  // `automatic` chose growth from the exemplar's long strokes
+  bool quilted = false;   // the network is the quilt (asked for, or `automatic` chose it)
+  bool laid_out = false;  // the exemplar's long strokes were laid out (asked for, or chosen)
 };
 
 // The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as

@@ -23,8 +23,8 @@ struct NetworkClassConfig {
   double clearance = 0.0;              // metres; 0: the exemplar's own (6 % of its median edge)
   double snap = 0.0;                   // metres; 0: 35 % of the median edge
   int candidates = 12;
-  // automatic, growth or quilt (docs/networks.md, "Which method"); quilt is refused with
-  // `partial` (completing a drawing is growth).
+  // automatic, growth, quilt or layout (docs/networks.md, "Which method"); quilt and layout are
+  // refused with `partial` (completing a drawing is growth).
   std::string method = "automatic";
   // Off the existing features and the lines of the classes before it (and their widths).
   bool avoid = true;

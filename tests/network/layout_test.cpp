@@ -77,5 +77,38 @@ TEST(NetworkLayout, TerraceWallsKeepTheirDegreesAndCells) {
   }
 }
 
+// `layout` asked for by name (`--method layout`, `network.method: layout`) is the candidate
+// `automatic` keeps on the terraces, byte for byte, not growth's network, and the same bytes
+// twice; on an exemplar without long strokes (the crocodile cells) it is growth, byte for byte.
+TEST(NetworkLayout, AskedByNameItIsTheCandidateAutomaticKeeps) {
+  const auto same_bytes = [](const Network& a, const Network& b) {
+    if (a.nodes != b.nodes || a.edges.size() != b.edges.size()) return false;
+    for (std::size_t i = 0; i < a.edges.size(); ++i)
+      if (a.edges[i].points != b.edges[i].points) return false;
+    return true;
+  };
+  const auto [ex, region, automatic] = laid_out("terraces");
+  const NetworkGrowthOptions layout{.seed = 1, .method = NetworkMethod::layout};
+  NetworkGrowthReport report;
+  const Network named = grow_network(ex, region, nullptr, nullptr, layout, &report);
+  EXPECT_TRUE(report.laid_out);
+  EXPECT_FALSE(report.quilted);
+  EXPECT_TRUE(same_bytes(named, automatic));
+  EXPECT_TRUE(same_bytes(named, grow_network(ex, region, nullptr, nullptr, layout)));
+  const Network grown =
+      grow_network(ex, region, nullptr, nullptr, {.seed = 1, .method = NetworkMethod::grow});
+  EXPECT_FALSE(same_bytes(named, grown));
+  EXPECT_LT(layout_distance(ex, named, kFaceArea), layout_distance(ex, grown, kFaceArea));
+
+  const Network cells = layout_exemplar("crocodile");
+  const auto cells_region = layout_region(cells);
+  NetworkGrowthReport cells_report;
+  const Network cells_named =
+      grow_network(cells, cells_region, nullptr, nullptr, layout, &cells_report);
+  EXPECT_FALSE(cells_report.laid_out);
+  EXPECT_TRUE(same_bytes(cells_named, grow_network(cells, cells_region, nullptr, nullptr,
+                                                   {.seed = 1, .method = NetworkMethod::grow})));
+}
+
 }  // namespace
 }  // namespace tw

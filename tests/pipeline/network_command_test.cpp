@@ -380,14 +380,21 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
       {"clone --map " + exemplar + " --source-region " + (dir / "flat.geojson").string() +
            " --target-region " + region,
        "flat.geojson: FID 3: a degenerate (zero-area) polygon"},
-      // Completing lines is growth (docs/networks.md, "Which method"): the quilt is refused,
-      // for a drawing and for a clone's target that holds some of the map's lines.
+      // Completing lines is growth (docs/networks.md, "Which method"): the quilt and the layout
+      // are refused, for a drawing and for a clone's target that holds some of the map's lines.
       {"complete --method quilt --exemplar " + exemplar + " --partial " +
            (dir / "one.geojson").string() + " --region " + region,
        "network complete: --method quilt cannot complete a drawing"},
       {"clone --method quilt --map " + exemplar + " --source-region 500000,4000000,500350,4000480" +
            " --target-region 500350,4000000,500950,4000480",
        "--target-region 500350,4000000,500950,4000480 holds"},
+      {"complete --method layout --exemplar " + exemplar + " --partial " +
+           (dir / "one.geojson").string() + " --region " + region,
+       "network complete: --method layout cannot complete a drawing"},
+      {"clone --method layout --map " + exemplar +
+           " --source-region 500000,4000000,500350,4000480" +
+           " --target-region 500350,4000000,500950,4000480",
+       "network clone: --method layout: --target-region 500350,4000000,500950,4000480 holds"},
   };
   for (const auto& c : cases) {
     const CommandResult r = network(c.args + " --out " + out);

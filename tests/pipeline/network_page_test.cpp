@@ -242,9 +242,9 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   EXPECT_EQ(saved_b["suggestions"], a["suggestions"]) << "--save: where, not what";
   EXPECT_TRUE(fs::equivalent(saved_b["saved"].get<std::string>(), dir / "sub_b.gpkg")) << "--save";
   // The page's method choice: over a region without drawn lines (south of the stroke, clear of
-  // the road) growth and quilting answer differently, and naming none is automatic (which may
-  // also choose the layout, docs/networks.md "Layout"). Quilting a region with drawn lines is
-  // refused (completing is growth from their ends), as is a method of another name.
+  // the road) growth, quilting and the layout answer differently, and naming none is automatic
+  // (which chooses among them). Quilting or laying out a region with drawn lines is refused
+  // (completing is growth from their ends), as is a method of another name.
   const std::string empty_south =
       "'[[500080, 4999900], [500200, 4999930]]' "
       "'[[500300, 4999530], [500620, 4999530], [500620, 4999660], [500300, 4999660]]' ";
@@ -256,27 +256,32 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
     EXPECT_FALSE(answer.is_discarded()) << r.output;
     return answer.is_discarded() ? nlohmann::json::object() : answer["completions"];
   };
-  const nlohmann::json south = completions("growth,quilt,automatic,-", empty_south);
-  for (const char* method : {"growth", "quilt", "automatic", "-"})
+  const nlohmann::json south = completions("growth,quilt,layout,automatic,-", empty_south);
+  for (const char* method : {"growth", "quilt", "layout", "automatic", "-"})
     ASSERT_EQ(south[method]["status"], 200) << method;
   const nlohmann::json& grown = south["growth"]["body"]["suggestions"];
   const nlohmann::json& quilted = south["quilt"]["body"]["suggestions"];
+  const nlohmann::json& laid_out = south["layout"]["body"]["suggestions"];
   const nlohmann::json& chosen = south["-"]["body"]["suggestions"];
-  std::printf("method growth %zu, quilt %zu, none named %zu suggestions\n", grown.size(),
-              quilted.size(), chosen.size());
+  std::printf("method growth %zu, quilt %zu, layout %zu, none named %zu suggestions\n",
+              grown.size(), quilted.size(), laid_out.size(), chosen.size());
   ASSERT_GT(grown.size(), 0u);
   ASSERT_GT(quilted.size(), 0u);
+  ASSERT_GT(laid_out.size(), 0u);
   EXPECT_NE(grown, quilted) << "method";
+  EXPECT_NE(grown, laid_out) << "method";
   EXPECT_EQ(chosen, south["automatic"]["body"]["suggestions"]) << "no method: automatic";
   EXPECT_GT(chosen.size(), 0u) << "automatic";
-  const nlohmann::json over_stroke = completions("quilt,grow", stroke_region);
-  EXPECT_EQ(over_stroke["quilt"]["status"], 400);
-  EXPECT_THAT(over_stroke["quilt"]["body"]["error"].get<std::string>(),
-              ::testing::HasSubstr("method quilt cannot complete a drawing (the region holds "
-                                   "drawn lines)"));
+  const nlohmann::json over_stroke = completions("quilt,layout,grow", stroke_region);
+  for (const char* method : {"quilt", "layout"}) {
+    EXPECT_EQ(over_stroke[method]["status"], 400) << method;
+    EXPECT_THAT(over_stroke[method]["body"]["error"].get<std::string>(),
+                ::testing::HasSubstr("method " + std::string(method) +
+                                     " cannot complete a drawing (the region holds drawn lines)"));
+  }
   EXPECT_EQ(over_stroke["grow"]["status"], 400);
   EXPECT_EQ(over_stroke["grow"]["body"]["error"],
-            "key method: \"grow\" is none of automatic, growth, quilt");
+            "key method: \"grow\" is none of automatic, growth, quilt, layout");
 
   // A drawing in another CRS than the run's is not shown: the page says why.
   write_layer(dir / "lon_lat.gpkg", "lines", {{"LINESTRING (3 45, 3.1 45.1)"}}, "EPSG:4326");

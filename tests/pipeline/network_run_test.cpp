@@ -656,15 +656,18 @@ TEST(NetworkRun, ErrorsNameTheKey) {
               HasSubstr("features.lanes.network.colour"));
   EXPECT_THAT(message({{"features.lanes.network.method", "quilts"}}),
               HasSubstr("features.lanes.network.method: unknown method 'quilts', expected "
-                        "automatic, growth or quilt (did you mean 'quilt'?)"));
-  // Completing a drawing is growth (docs/networks.md, "Which method"): the quilt is refused.
+                        "automatic, growth, quilt or layout (did you mean 'quilt'?)"));
+  // Completing a drawing is growth (docs/networks.md, "Which method"): the quilt and the layout
+  // are refused.
   test::write_layer(dir / "drawn.gpkg", "drawn", {{"LINESTRING (291100 9114200, 291300 9114210)"}},
                     "EPSG:31985");
-  const std::string refused =
-      message({{"features.lanes.network.partial", (dir / "drawn.gpkg").string() + ":drawn"},
-               {"features.lanes.network.method", "quilt"}});
-  EXPECT_THAT(refused, HasSubstr("features.lanes.network.method"));
-  EXPECT_THAT(refused, HasSubstr("quilt cannot complete `partial`"));
+  for (const std::string method : {"quilt", "layout"}) {
+    const std::string refused =
+        message({{"features.lanes.network.partial", (dir / "drawn.gpkg").string() + ":drawn"},
+                 {"features.lanes.network.method", method}});
+    EXPECT_THAT(refused, HasSubstr("features.lanes.network.method"));
+    EXPECT_THAT(refused, HasSubstr(method + " cannot complete `partial`"));
+  }
 }
 
 }  // namespace

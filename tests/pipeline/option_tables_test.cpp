@@ -633,7 +633,8 @@ TEST_F(OptionTables, Network) {
            row("--region", "-q network synthesize --seed 4 --out out" + fields, region,
                "--region 500000,4000000,500500,4000500"),
            row("--snap", synth + " --exemplar @d/gappy.geojson", "--snap 0.01", "--snap 6"),
-           row("--method", synth + fields, "--method growth", "--method quilt")}),
+           row("--method", synth + fields, "--method growth", "--method quilt"),
+           row("--method", synth + fields, "--method growth", "--method layout")}),
       batch);
   const std::string complete = "-q network complete" + region + " --seed 4 --out out";
   const std::string drawn = " --partial @d/drawn.geojson";
@@ -652,8 +653,10 @@ TEST_F(OptionTables, Network) {
            row("--partial", complete + fields, drawn, "--partial @d/drawn2.geojson"),
            row("--snap", complete + drawn + " --exemplar @d/gappy.geojson", "--snap 0.01",
                "--snap 6"),
-           // Completing a drawing is growth: the quilt is refused.
+           // Completing a drawing is growth: the quilt and the layout are refused.
            row("--method", complete + drawn + fields, "--method growth", "--method quilt",
+               Expect::changes, "", 0, 1),
+           row("--method", complete + drawn + fields, "--method growth", "--method layout",
                Expect::changes, "", 0, 1)}),
       batch);
   const std::string target = " --target-region 500700,4000000,501300,4000480";
@@ -677,7 +680,8 @@ TEST_F(OptionTables, Network) {
                "--target-region 500700,4000000,501100,4000480"),
            row("--snap", clone + target + source + " --map @d/gappy.geojson", "--snap 0.01",
                "--snap 6"),
-           row("--method", clone + target + source + map, "--method growth", "--method quilt")}),
+           row("--method", clone + target + source + map, "--method growth", "--method quilt"),
+           row("--method", clone + target + source + map, "--method growth", "--method layout")}),
       batch);
 }
 

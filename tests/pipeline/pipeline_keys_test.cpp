@@ -549,6 +549,8 @@ TEST_F(PipelineKeys, Network) {
            {n + "region=[500020, 5000020, 500620, 5000620]", n + "avoid=false"}},
           {"candidates", {n + "candidates=2"}},
           {"method", {n + "method=quilt"}, {n + "method=growth"}},
+          // The grid's tracks laid out first, then growth between them.
+          {"method", {n + "method=layout"}, {n + "method=growth"}},
           {"avoid"},
       });
 }

@@ -24,8 +24,8 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 <button id="draw" class="on" title="draw strokes with the pointer">draw</button>
 <button id="region" title="drag a box: the region to complete">region</button>
 <button id="area" title="draw a loop: the region to complete">region by lasso</button>
-<select id="method" title="how the region is completed: growth from the drawn ends, quilting of exemplar blocks (a region without drawn lines), or automatic (the closer to the exemplar's style; growth where lines are drawn)">
-<option>automatic</option><option>growth</option><option>quilt</option></select>
+<select id="method" title="how the region is completed: growth from the drawn ends, quilting of exemplar blocks or growth from the exemplar's laid-out long strokes (a region without drawn lines), or automatic (the closest to the exemplar's style; growth where lines are drawn)">
+<option>automatic</option><option>growth</option><option>quilt</option><option>layout</option></select>
 <button id="complete" title="ask for suggestions in the region">complete</button>
 <button id="pick" title="click a suggestion to accept it">accept one</button>
 <button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>

@@ -71,10 +71,11 @@ NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
                     fmt::format("must be in [1, 1000], got {}", n.candidates));
   const std::vector<std::string> methods(kNetworkMethodNames.begin(), kNetworkMethodNames.end());
   n.method = methods[read_one_of(m, "method", "method", methods)];
-  if (n.method == "quilt" && !n.partial.empty())
+  if (!network_method_completes(network_method_named(n.method)) && !n.partial.empty())
     m.source().fail(m.get("method"), m.path("method"),
-                    "quilt cannot complete `partial`: completing a drawing is growth from its "
-                    "ends (use growth or automatic)");
+                    fmt::format("{} cannot complete `partial`: completing a drawing is growth "
+                                "from its ends (use growth or automatic)",
+                                n.method));
   n.avoid = m.bool_or("avoid", true);
   return n;
 }

@@ -55,8 +55,8 @@ MethodKeys network_keys() {
                 def(NetworkGrowthOptions{}.candidates)},
                {"method",
                 {choice({kNetworkMethodNames.begin(), kNetworkMethodNames.end()})},
-                "growth, quilt, or automatic: both, and growth from the exemplar's long strokes, "
-                "and the one meeting the most quality targets (growth with `partial`)",
+                "growth, quilt, layout (growth from the exemplar's long strokes), or automatic: "
+                "each, and the one meeting the most quality targets (growth with `partial`)",
                 def_text("automatic")},
                {"avoid",
                 {boolean()},
