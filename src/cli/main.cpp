@@ -152,10 +152,20 @@ int complete_plan_command(const std::string& plan, bool strict) {
   return 0;
 }
 
+// The end of a one-shot command whose files are closed and renamed: stdout and stderr flushed
+// (a failed flush is exit code 1), then _Exit, skipping the static destructors and the joins of
+// OpenEXR's and TBB's idle worker threads (a render-tile's last milliseconds of wall time on a
+// loaded machine, docs/performance.md). Not for a command that may leave work to destructors.
+[[noreturn]] void exit_after_files_committed(int code) {
+  if (std::fflush(nullptr) != 0 && code == 0) code = 1;
+  std::_Exit(code);
+}
+
 int render_tile_command(const std::string& plan, int tile) {
   const tw::TileJobResult result = tw::render_job_tile(tw::find_plan_dir(plan), tile);
   std::printf("tile %d: %zu files in %.3f s\n", result.tile, result.files.size(), result.seconds);
-  return 0;
+  // render_job_tile returned: its files are renamed into place and its result written last.
+  exit_after_files_committed(0);
 }
 
 int finish_command(const std::string& plan) {

@@ -1,6 +1,7 @@
 #include "core/file_io.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <system_error>
+#include <utility>
 
 #include "core/error.hpp"
 
@@ -39,6 +41,48 @@ std::string read_file_bytes(const fs::path& path) {
   if (error != 0) fail("cannot read {}: {}", path.string(), std::strerror(error));
   bytes.resize(done);
   return bytes;
+}
+
+MappedFile::MappedFile(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail("{}: a folder, not a file", path.string());
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail("cannot read {}: {}", path.string(), std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int error = errno;
+    ::close(fd);
+    fail("cannot read {}: {}", path.string(), std::strerror(error));
+  }
+  if (st.st_size > 0) {  // mmap refuses a length of 0: an empty file is an empty view
+    // MAP_POPULATE maps every page in the one call instead of one fault per 16 pages.
+    void* data =
+        ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    if (data == MAP_FAILED) {
+      const int error = errno;
+      ::close(fd);
+      fail("cannot read {}: {}", path.string(), std::strerror(error));
+    }
+    data_ = static_cast<const char*>(data);
+    size_ = std::size_t(st.st_size);
+  }
+  ::close(fd);  // the mapping keeps the file
+}
+
+MappedFile::~MappedFile() {
+  if (data_) ::munmap(const_cast<char*>(data_), size_);
+}
+
+MappedFile::MappedFile(MappedFile&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+
+MappedFile& MappedFile::operator=(MappedFile&& other) noexcept {
+  if (this != &other) {
+    if (data_) ::munmap(const_cast<char*>(data_), size_);
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+  }
+  return *this;
 }
 
 fs::path temporary_beside(const fs::path& path) {

@@ -338,10 +338,13 @@ TileJobResult render_job_tile(const fs::path& plan_dir, int tile) {
   TileJobResult result;
   result.tile = tile;
   json files = json::array();
-  // The files were just written: hashed from the page cache in 1 MiB chunks (the same XXH3-128
-  // as content_hash of their bytes), not read into memory whole.
+  // With a cache, the tile cache hashed each file as it kept it (or checked the entry it
+  // reused): those digests, not a second read. Without one, the files were just written: hashed
+  // from the page cache in 1 MiB chunks (the same XXH3-128 as content_hash of their bytes).
   for (const auto& [relative, staged] : outcome.staged) {
-    const FileDigest digest = file_digest(dir / relative);
+    const auto cached = outcome.digests.find(relative);
+    const FileDigest digest =
+        cached != outcome.digests.end() ? cached->second : file_digest(dir / relative);
     result.files.push_back(relative);
     files.push_back({{"file", relative.generic_string()},
                      {"bytes", digest.bytes},

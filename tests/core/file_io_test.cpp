@@ -1,4 +1,5 @@
-// write_file_atomic's failures say why (issue #24: a full disk gave an empty reason).
+// write_file_atomic's failures say why (issue #24: a full disk gave an empty reason); a
+// MappedFile holds the bytes read_file_bytes reads.
 #include "core/file_io.hpp"
 
 #include <sys/resource.h>
@@ -70,6 +71,39 @@ TEST(FileIo, AFolderThatCannotBeMadeNamesItAndTheReason) {
     EXPECT_THAT(e.what(), HasSubstr("cannot create " + (dir / "blocker").string() + ": "));
     EXPECT_GT(std::string(e.what()).size(),
               ("cannot create " + (dir / "blocker").string() + ": ").size());
+  }
+}
+
+// A mapping of several pages (and a partial last one) holds the file's bytes, moves with them,
+// and outlives the file's replacement by rename (write_file_atomic) and its removal.
+TEST(FileIo, AMappedFileHoldsTheBytesReadFileBytesReads) {
+  test::TempDir dir;
+  std::string bytes(3 * 4096 + 123, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = char(i * 7 + i / 4096);
+  write_file_atomic(dir / "object.bin", bytes);
+  MappedFile mapped(dir / "object.bin");
+  EXPECT_EQ(mapped.bytes(), read_file_bytes(dir / "object.bin"));
+  EXPECT_EQ(mapped.bytes(), bytes);
+  write_file_atomic(dir / "object.bin", "replaced");
+  EXPECT_EQ(mapped.bytes(), bytes);  // the old file, still mapped
+  fs::remove(dir / "object.bin");
+  MappedFile moved(std::move(mapped));
+  EXPECT_EQ(moved.bytes(), bytes);
+  EXPECT_TRUE(mapped.bytes().empty());  // NOLINT(bugprone-use-after-move): moved from, empty
+  write_file_atomic(dir / "empty.bin", "");
+  moved = MappedFile(dir / "empty.bin");
+  EXPECT_TRUE(moved.bytes().empty());
+}
+
+TEST(FileIo, AFileThatCannotBeMappedNamesItAndTheReason) {
+  test::TempDir dir;
+  for (const fs::path& path : {dir / "missing.bin", dir.path()}) {
+    try {
+      MappedFile mapped(path);
+      ADD_FAILURE() << "mapped " << path;
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr(path.string()));
+    }
   }
 }
 

@@ -179,5 +179,29 @@ TEST_F(JobKill, FinishKilledAtEveryCallThenRerunGivesTheSameRun) {
   EXPECT_GT(points, 10);
 }
 
+// render-tile ends with _Exit once its files are renamed and its result written (no static
+// destructors, no joins of idle worker threads: src/cli/main.cpp): its line still reaches a
+// redirected (fully buffered) stdout, its files and result are there and no temporary is left.
+TEST_F(JobKill, RenderTileExitsAtOnceWithItsLinePrintedAndNoTemporaryLeft) {
+  must(
+      "plan pipeline.yaml --out out --set output.tiles.size=48 --set "
+      "features.roads.synthesis=null");
+  const CommandResult r =
+      run_command("cd '" + dir.path().string() + "' && '" + terraweave_binary().string() +
+                  "' -q render-tile out --tile 0 > tile.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(read_file(dir / "tile.txt"),
+              ::testing::MatchesRegex("tile 0: [1-9][0-9]* files in .* s\n"));
+  int results = 0, tile_files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "out")) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp-"), std::string::npos) << entry.path();
+    results += name == "tile-0.json";
+    tile_files += name.starts_with("height_x0_y0.");
+  }
+  EXPECT_EQ(results, 1);
+  EXPECT_EQ(tile_files, 1);
+}
+
 }  // namespace
 }  // namespace tw::test

@@ -257,6 +257,29 @@ TEST_F(PlanFolder, ThePlanNamesTheDemAndATileReadsOnlyItsWindow) {
   }
 }
 
+// With a cache, a tile's result takes its files' digests from the tile cache (hashed as it
+// kept them, or checked as it reused them) instead of reading the files again: they must be the
+// digests of the files on disk, rendered and reused alike.
+TEST_F(PlanFolder, WithACacheATilesResultHoldsTheDigestsOfItsFilesOnDisk) {
+  PlanJobOptions options;
+  options.output_dir = dir_ / "out";
+  options.cache_dir = dir_ / "cache";
+  const PlannedJob job = plan_job(config_, options);
+  for (const bool reused : {false, true}) {
+    render_job_tile(job.plan_dir, 4);
+    const nlohmann::json result = nlohmann::json::parse(
+        read_file_bytes(job.plan_dir / ("results-" + job.plan) / "tile-4.json"));
+    EXPECT_EQ(result["cache"]["reused"], reused);
+    ASSERT_FALSE(result["files"].empty());
+    for (const nlohmann::json& file : result["files"]) {
+      const std::string bytes =
+          read_file_bytes(job.plan_dir / ("tiles-" + job.plan) / file["file"].get<std::string>());
+      EXPECT_EQ(file["bytes"], bytes.size()) << file["file"];
+      EXPECT_EQ(file["xxh3_128"], content_hash(bytes)) << file["file"];
+    }
+  }
+}
+
 TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
   PlanJobOptions options;
   options.output_dir = dir_ / "out";

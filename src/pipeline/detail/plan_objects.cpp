@@ -47,15 +47,40 @@ json PlanObjects::put_binary(std::string_view body) const {
 }
 
 std::string_view PlanObjects::Binary::body() const {
-  return std::string_view(bytes).substr(kBinaryHeader);
+  return file.bytes().substr(kBinaryHeader);
 }
 
+namespace {
+
+// The checks of an entry before its file is read: its fields, and a name under objects/.
+std::string plan_object_file(const json& entry, const std::string& where) {
+  if (!entry.is_object() || !entry.contains("file") || !entry.contains("xxh3_128"))
+    fail("{}: expected {{file, xxh3_128}}", where);
+  const std::string file = entry["file"].get<std::string>();
+  if (file.find("..") != std::string::npos || !file.starts_with("objects/"))
+    fail("{}: file {} is not under objects/", where, file);
+  return file;
+}
+
+void check_plan_object_hash(std::string_view bytes, const json& entry, const fs::path& path,
+                            const std::string& where) {
+  if (content_hash(bytes) != entry["xxh3_128"].get<std::string>())
+    fail("{}: {} does not match its content hash (corrupt, or changed after planning)", where,
+         path.string());
+}
+
+}  // namespace
+
 PlanObjects::Binary PlanObjects::get_binary(const json& entry, const std::string& key) const {
-  Binary object{get(entry, key)};
+  const std::string where = fmt::format("plan {}: {}", dir_.string(), key);
+  const fs::path path = dir_ / plan_object_file(entry, where);
+  Binary object{MappedFile(path)};
+  const std::string_view bytes = object.file.bytes();
+  check_plan_object_hash(bytes, entry, path, where);
   std::uint32_t version = 0;
-  if (object.bytes.size() >= kBinaryHeader)
-    std::memcpy(&version, object.bytes.data() + kBinaryMagic.size(), sizeof version);
-  if (object.bytes.size() < kBinaryHeader || !object.bytes.starts_with(kBinaryMagic) ||
+  if (bytes.size() >= kBinaryHeader)
+    std::memcpy(&version, bytes.data() + kBinaryMagic.size(), sizeof version);
+  if (bytes.size() < kBinaryHeader || !bytes.starts_with(kBinaryMagic) ||
       version != std::uint32_t(kPlanVersion))
     fail("plan {}: {}: {} is not a version {} binary object (plan again)", dir_.string(), key,
          entry["file"].get<std::string>(), kPlanVersion);
@@ -64,15 +89,9 @@ PlanObjects::Binary PlanObjects::get_binary(const json& entry, const std::string
 
 std::string PlanObjects::get(const json& entry, const std::string& key) const {
   const std::string where = fmt::format("plan {}: {}", dir_.string(), key);
-  if (!entry.is_object() || !entry.contains("file") || !entry.contains("xxh3_128"))
-    fail("{}: expected {{file, xxh3_128}}", where);
-  const std::string file = entry["file"].get<std::string>();
-  if (file.find("..") != std::string::npos || !file.starts_with("objects/"))
-    fail("{}: file {} is not under objects/", where, file);
-  std::string bytes = read_file_bytes(dir_ / file);
-  if (content_hash(bytes) != entry["xxh3_128"].get<std::string>())
-    fail("{}: {} does not match its content hash (corrupt, or changed after planning)", where,
-         (dir_ / file).string());
+  const fs::path path = dir_ / plan_object_file(entry, where);
+  std::string bytes = read_file_bytes(path);
+  check_plan_object_hash(bytes, entry, path, where);
   return bytes;
 }
 

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/file_io.hpp"
+
 namespace tw::detail {
 
 class PlanObjects {
@@ -26,10 +28,11 @@ class PlanObjects {
   // hash or it is not under objects/.
   std::string get(const nlohmann::json& entry, const std::string& key) const;
   nlohmann::json get_cbor(const nlohmann::json& entry, const std::string& key) const;
-  // A binary object's bytes; body() is what follows the header (refused, naming `key`, when the
-  // header is not this version's).
+  // A binary object's bytes, mapped (core/file_io.hpp: objects are written once, by rename);
+  // body() is what follows the header (refused, naming `key`, when the header is not this
+  // version's) and lives as long as the Binary.
   struct Binary {
-    std::string bytes;
+    MappedFile file;
     std::string_view body() const;
   };
   Binary get_binary(const nlohmann::json& entry, const std::string& key) const;
