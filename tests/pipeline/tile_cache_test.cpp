@@ -4,17 +4,23 @@
 // geometry); every other tile's files come from the cache (hard links); the files equal a run
 // without cache byte for byte; a corrupt tile entry is detected and rebuilt. A tile's key holds
 // the profile samples it can read: a changed sample reaches exactly the tiles whose render it
-// changes, and a partner's tiles far from a moved junction are reused.
+// changes, and a partner's tiles far from a moved junction are reused. A reused tile's cache
+// files are read through for their hash only when their stat facts differ from the entry's or
+// were recorded within the racy window; a file edited behind the cache's back is caught.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "cache_world.hpp"
 #include "core/output_folder.hpp"
 #include "layers/write.hpp"
+#include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/plan.hpp"
 #include "test_support.hpp"
@@ -34,6 +40,7 @@ avoidance: { max_distance: 12 }
 
 struct TiledRun {
   std::map<std::pair<int, int>, CacheStatus> tiles;  // by (ix, iy)
+  std::map<std::pair<int, int>, int> files_hashed;   // Outcome::files_hashed, by (ix, iy)
   std::vector<Warning> warnings;
   std::size_t count = 0;
 };
@@ -96,21 +103,30 @@ class TileCacheRun : public ::testing::Test {
     OutputFolder folder(out);
     TiledRun result;
     for (const TileSpec& tile : plan.tiles) {
-      result.tiles[{tile.ix, tile.iy}] =
-          tile_cache
-              .render_or_reuse(
-                  tile, folder, out,
-                  [&](LayerSet& layers, OutputStager& stager, std::map<std::string, std::string>&) {
-                    write_layer_set(layers, out / "tiles" / tile_file_stem("tile", tile), stager,
-                                    write_options);
-                  })
-              .status;
+      const detail::TileCache::Outcome outcome = tile_cache.render_or_reuse(
+          tile, folder, out,
+          [&](LayerSet& layers, OutputStager& stager, std::map<std::string, std::string>&) {
+            write_layer_set(layers, out / "tiles" / tile_file_stem("tile", tile), stager,
+                            write_options);
+          });
+      result.tiles[{tile.ix, tile.iy}] = outcome.status;
+      result.files_hashed[{tile.ix, tile.iy}] = outcome.files_hashed;
     }
     folder.commit();
     tiles_ = plan.tiles;
     result.warnings = warnings.list();
     result.count = plan.tiles.size();
     return result;
+  }
+
+  static int total_hashed(const TiledRun& run) {
+    int total = 0;
+    for (const auto& [at, hashed] : run.files_hashed) total += hashed;
+    return total;
+  }
+
+  fs::path entry_path(const TiledRun& run, std::pair<int, int> at) const {
+    return dir_ / "cache/tiles" / (run.tiles.at(at).key + ".twc");
   }
 
   static std::set<std::pair<int, int>> rebuilt(const TiledRun& run) {
@@ -141,7 +157,93 @@ TEST_F(TileCacheRun, UnchangedRerunCopiesEveryTile) {
     EXPECT_EQ(status.why, "unchanged");
     EXPECT_EQ(status.key, first.tiles.at(at).key);
   }
+  // The facts recorded on storing vouch for every file at once: none is read.
+  EXPECT_EQ(total_hashed(second), 0);
   expect_same_files("first", "second");
+}
+
+// A cache file edited in place through its output link (the same size, a new modification
+// time): its facts differ from the entry's, so it is read through, and the hash mismatch
+// rebuilds the tile. The tile's other files pass the quick check unread.
+TEST_F(TileCacheRun, ACacheFileEditedBehindTheCachesBackIsReadAndCaught) {
+  const TiledRun first = run("first");
+  const fs::path edited = dir_ / "first/tiles/tile_x1_y1/height.exr";
+  ASSERT_TRUE(fs::exists(edited));
+  const auto before = fs::last_write_time(edited);
+  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
+  {
+    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
+    file.seekg(std::streamoff(fs::file_size(edited) - 10));
+    const char byte = char(file.get());
+    file.seekp(std::streamoff(fs::file_size(edited) - 10));
+    file.put(char(byte ^ 0x5a));
+    ASSERT_TRUE(file.good());
+  }
+  ASSERT_NE(fs::last_write_time(edited), before);
+  const TiledRun second = run("second");
+  EXPECT_EQ(rebuilt(second), (std::set<std::pair<int, int>>{{1, 1}}));
+  EXPECT_EQ(second.tiles.at({1, 1}).why, "corrupt entry");
+  ASSERT_EQ(second.warnings.size(), 1u);
+  EXPECT_EQ(second.warnings[0].code, "cache_corrupt");
+  EXPECT_THAT(second.warnings[0].message, HasSubstr("content hash mismatch"));
+  EXPECT_EQ(second.files_hashed.at({1, 1}), 1);  // the edited file; the others unread
+  EXPECT_EQ(total_hashed(second), 1);
+  run("clean", false);
+  expect_same_files("second", "clean");
+}
+
+// Facts recorded within the racy window of their files' modification time (git's rule: a
+// write just after they were taken could leave the same time) do not vouch for the files: the
+// tile's files are read through, the tile reused, and the facts recorded again, now trusted.
+TEST_F(TileCacheRun, FactsRecordedWithinTheRacyWindowAreNotTrusted) {
+  const TiledRun first = run("first");
+  const fs::path entry = entry_path(first, {2, 2});
+  detail::CacheRead read = detail::read_cache_entry(entry);
+  ASSERT_EQ(read.state, detail::CacheRead::State::ok);
+  // The entry as if written when its files were last modified.
+  std::int64_t earliest = std::numeric_limits<std::int64_t>::max();
+  int files = 0;
+  for (const auto& [section, text] : read.sections) {
+    if (!section.starts_with("stat:")) continue;
+    std::istringstream fields(text);
+    std::uint64_t bytes = 0;
+    std::int64_t mtime_ns = 0;
+    ASSERT_TRUE(fields >> bytes >> mtime_ns) << text;
+    earliest = std::min(earliest, mtime_ns);
+    ++files;
+  }
+  ASSERT_EQ(files, 6);  // height, splat, avoidance as EXR and GeoTIFF
+  ASSERT_TRUE(read.sections.contains("stat_time"));
+  ASSERT_GT(std::stoll(read.sections.at("stat_time")), earliest);  // settled: not racy
+  read.sections["stat_time"] = std::to_string(earliest);
+  detail::write_cache_entry(entry, read.sections);
+
+  const TiledRun second = run("second");
+  EXPECT_TRUE(rebuilt(second).empty());
+  EXPECT_TRUE(second.warnings.empty());
+  EXPECT_EQ(second.files_hashed.at({2, 2}), 6);
+  EXPECT_EQ(total_hashed(second), 6);
+  const TiledRun third = run("third");
+  EXPECT_TRUE(rebuilt(third).empty());
+  EXPECT_EQ(total_hashed(third), 0);
+  expect_same_files("first", "third");
+}
+
+// A cache file whose time changed with its bytes the same is read through once, reused, and
+// its new facts recorded: the next run reads nothing.
+TEST_F(TileCacheRun, AFileWhoseTimeChangedIsReadOnceAndItsFactsRecordedAgain) {
+  run("first");
+  const fs::path touched = dir_ / "first/tiles/tile_x3_y0/height.tif";
+  ASSERT_TRUE(fs::exists(touched));
+  fs::last_write_time(touched, fs::last_write_time(touched) - std::chrono::hours(1));
+  const TiledRun second = run("second");
+  EXPECT_TRUE(rebuilt(second).empty());
+  EXPECT_TRUE(second.warnings.empty());
+  EXPECT_EQ(second.files_hashed.at({3, 0}), 1);
+  EXPECT_EQ(total_hashed(second), 1);
+  const TiledRun third = run("third");
+  EXPECT_EQ(total_hashed(third), 0);
+  expect_same_files("first", "third");
 }
 
 TEST_F(TileCacheRun, OneChangedRoadRebuildsTheTilesItsFootprintReaches) {

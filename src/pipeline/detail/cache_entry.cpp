@@ -2,9 +2,11 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -22,6 +24,13 @@ namespace {
 
 constexpr char kMagic[8] = {'T', 'W', 'C', 'A', 'C', 'H', 'E', '1'};
 constexpr std::size_t kHeaderBytes = 8 + 8 + 16;
+constexpr std::int64_t kNanosPerSecond = 1'000'000'000;
+// The coarsest timestamp the quick check allows for (FAT's 2 s; Linux file systems keep
+// nanoseconds, from a clock a few milliseconds coarse).
+constexpr std::int64_t kRacyWindowNs = 2 * kNanosPerSecond;
+// How far before now a cache file's time is set when it is kept or marked used: out of the racy
+// window of the entry recorded next.
+constexpr std::int64_t kSettledAgeNs = kRacyWindowNs + kNanosPerSecond;
 
 void put_u64(std::string& out, std::uint64_t v) {
   for (int i = 0; i < 8; ++i) out.push_back(char(v >> (8 * i)));
@@ -142,29 +151,57 @@ CacheRead read_cache_entry(const fs::path& path) {
   return read;
 }
 
-CacheRead::State check_cache_file(const fs::path& path, const FileDigest& expected,
-                                  std::string& problem) {
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) {
-    if (ec == std::errc::no_such_file_or_directory) return CacheRead::State::absent;
-    problem = ec.message();
-    return CacheRead::State::corrupt;
+std::optional<CacheFileStat> stat_cache_file(const fs::path& path) {
+  struct ::stat st {};
+  if (::stat(path.c_str(), &st) != 0) return std::nullopt;
+  return CacheFileStat{std::uint64_t(st.st_size),
+                       std::int64_t(st.st_mtim.tv_sec) * kNanosPerSecond + st.st_mtim.tv_nsec,
+                       std::uint64_t(st.st_ino), std::uint64_t(st.st_dev)};
+}
+
+std::int64_t cache_clock_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+bool is_racy(const RecordedStat& recorded) {
+  return recorded.stat.mtime_ns >= recorded.recorded_ns - kRacyWindowNs;
+}
+
+CacheFileCheck check_cache_file(const fs::path& path, const FileDigest& expected,
+                                const std::optional<RecordedStat>& recorded) {
+  CacheFileCheck check;
+  errno = 0;
+  const std::optional<CacheFileStat> now = stat_cache_file(path);
+  if (!now) {
+    if (errno == ENOENT) return check;  // absent
+    check.state = CacheRead::State::corrupt;
+    check.problem = std::strerror(errno);
+    return check;
   }
-  if (size != expected.bytes) {
-    problem = fmt::format("{} bytes, the entry says {}", size, expected.bytes);
-    return CacheRead::State::corrupt;
+  check.stat = *now;
+  check.state = CacheRead::State::corrupt;
+  if (now->bytes != expected.bytes) {
+    check.problem = fmt::format("{} bytes, the entry says {}", now->bytes, expected.bytes);
+    return check;
   }
+  if (recorded && recorded->stat == *now && !is_racy(*recorded)) {
+    check.state = CacheRead::State::ok;
+    return check;
+  }
+  check.hashed = true;
   try {
     if (file_digest(path).xxh3_128 != expected.xxh3_128) {
-      problem = "content hash mismatch (edited through an output file linked to it?)";
-      return CacheRead::State::corrupt;
+      check.problem = "content hash mismatch (edited through an output file linked to it?)";
+      return check;
     }
   } catch (const Error& e) {
-    problem = e.what();
-    return CacheRead::State::corrupt;
+    check.problem = e.what();
+    return check;
   }
-  return CacheRead::State::ok;
+  check.state = CacheRead::State::ok;
+  return check;
 }
 
 void place_cache_file(const fs::path& path, const fs::path& target) {
@@ -182,6 +219,13 @@ void place_cache_file(const fs::path& path, const fs::path& target) {
 void touch_cache_entry(const fs::path& path) {
   std::error_code ignored;
   fs::last_write_time(path, fs::file_time_type::clock::now(), ignored);
+}
+
+void settle_cache_file(const fs::path& path) {
+  const std::int64_t settled = cache_clock_ns() - kSettledAgeNs;
+  const ::timespec times[2] = {
+      {0, UTIME_OMIT}, {::time_t(settled / kNanosPerSecond), long(settled % kNanosPerSecond)}};
+  ::utimensat(AT_FDCWD, path.c_str(), times, 0);  // errors ignored, as documented
 }
 
 void prepare_cache_dir(const fs::path& dir) {

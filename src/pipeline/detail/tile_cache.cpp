@@ -1,9 +1,11 @@
 #include "pipeline/detail/tile_cache.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <span>
+#include <string_view>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
@@ -23,10 +25,17 @@ namespace {
 // 2: the instance heights fact; 3: every writer option in the key (the GeoTIFFs' metadata
 // carries the seed: issue #24); 4: EXR codecs and pixel types chosen per layer; 5: the files
 // kept whole under tiles/files (hard-linked into the output), the entry holding their digests.
-// 6: a feature's planned profiles in part, the samples the tile can read.
-constexpr std::uint64_t kTileCacheFormat = 6;
+// 6: a feature's planned profiles in part, the samples the tile can read. 7: each file's stat
+// facts and when they were taken, for the quick check before reuse.
+constexpr std::uint64_t kTileCacheFormat = 7;
 constexpr const char* kFilePrefix = "file:";  // a file's "<xxh3-128 hex> <bytes>"
 constexpr const char* kFactPrefix = "fact:";  // numbers the run reports about the tile
+// Its cache file's "<bytes> <mtime ns> <inode> <device>" (CacheFileStat), by the file's name.
+constexpr const char* kStatPrefix = "stat:";
+constexpr const char* kStatTime = "stat_time";  // when the facts were taken (ns since the epoch)
+// A reused cache file's time is set again (settle_cache_file) only when older than this: pruning
+// counts in days, and every new time means the entry's facts are written again.
+constexpr std::int64_t kMarkUsedAfterNs = 24LL * 3600 * 1'000'000'000;
 
 void hash_optional(Hasher& h, const std::optional<double>& v) {
   h.boolean(v.has_value()).real(v.value_or(0.0));
@@ -141,6 +150,38 @@ std::optional<FileDigest> parse_digest(const std::string& text) {
 // A tile file's bytes under the cache: tiles/files/<xxh3-128>.twc.
 fs::path cache_file_path(const fs::path& dir, const FileDigest& digest) {
   return dir / "tiles" / "files" / (digest.xxh3_128 + ".twc");
+}
+
+std::string stat_text(const CacheFileStat& stat) {
+  return fmt::format("{} {} {} {}", stat.bytes, stat.mtime_ns, stat.inode, stat.device);
+}
+
+// Reads the whole of `text` as one integer; false for anything else.
+template <typename Integer>
+bool parse_whole(std::string_view text, Integer& value) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+// The facts recorded for the tile file `name` (stat_text and kStatTime); nullopt when the entry
+// holds none or malformed ones: the file is then read through.
+std::optional<RecordedStat> recorded_stat(const CacheSections& sections, const std::string& name) {
+  const auto text = sections.find(kStatPrefix + name);
+  const auto time = sections.find(kStatTime);
+  if (text == sections.end() || time == sections.end()) return std::nullopt;
+  RecordedStat recorded;
+  std::string_view rest = text->second;
+  const auto field = [&rest](auto& value) {
+    const std::size_t space = rest.find(' ');
+    const bool ok = parse_whole(rest.substr(0, space), value);
+    rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+    return ok;
+  };
+  CacheFileStat& stat = recorded.stat;
+  if (!field(stat.bytes) || !field(stat.mtime_ns) || !field(stat.inode) || !field(stat.device) ||
+      !rest.empty() || !parse_whole(time->second, recorded.recorded_ns))
+    return std::nullopt;
+  return recorded;
 }
 
 }  // namespace
@@ -267,7 +308,7 @@ TileKey TileCache::key(const TileSpec& tile) const {
 }
 
 std::optional<CacheSections> TileCache::find(const std::string& name, const TileKey& key,
-                                             CacheStatus& status) {
+                                             CacheStatus& status, int& files_hashed) {
   const ContentHash combined = key.combined();
   status = {false, "no cache", combined.hex()};
   if (!dir_) return std::nullopt;
@@ -277,27 +318,51 @@ std::optional<CacheSections> TileCache::find(const std::string& name, const Tile
     const auto k = read.sections.find("key");
     if (k != read.sections.end() && k->second == combined.hex()) {
       // Every file checked before any is placed: a tile is reused whole or rebuilt whole.
+      std::map<std::string, std::pair<fs::path, CacheFileStat>> checked;  // by file name
+      bool record = false;  // facts to record again: a file read through, or marked used
       for (const auto& [section, text] : read.sections) {
         if (!section.starts_with(kFilePrefix)) continue;
+        const std::string file_name = section.substr(std::strlen(kFilePrefix));
         const std::optional<FileDigest> digest = parse_digest(text);
         if (!digest) {
           read.state = CacheRead::State::corrupt;
-          read.problem = "malformed digest of " + section.substr(std::strlen(kFilePrefix));
+          read.problem = "malformed digest of " + file_name;
           break;
         }
         const fs::path file = cache_file_path(*dir_, *digest);
-        std::string problem;
-        const CacheRead::State state = check_cache_file(file, *digest, problem);
-        if (state == CacheRead::State::ok) continue;
-        read.state = state;  // absent: pruned, the tile is "new"
-        if (state == CacheRead::State::corrupt) {
+        const CacheFileCheck check =
+            check_cache_file(file, *digest, recorded_stat(read.sections, file_name));
+        files_hashed += check.hashed;
+        if (check.state == CacheRead::State::ok) {
+          checked[file_name] = {file, check.stat};
+          record |= check.hashed;
+          continue;
+        }
+        read.state = check.state;  // absent: pruned, the tile is "new"
+        if (check.state == CacheRead::State::corrupt) {
           path = file;
-          read.problem = problem;
+          read.problem = check.problem;
         }
         break;
       }
       if (read.state == CacheRead::State::ok) {
-        touch_cache_entry(path);
+        // Used now (pruning by age keeps it); a file's time only when a day old.
+        const std::int64_t now = cache_clock_ns();
+        for (auto& [file_name, checked_file] : checked) {
+          auto& [file, stat] = checked_file;
+          if (now - stat.mtime_ns <= kMarkUsedAfterNs) continue;
+          settle_cache_file(file);
+          if (const std::optional<CacheFileStat> settled = stat_cache_file(file)) stat = *settled;
+          record = true;
+        }
+        if (record) {  // the entry written again: its time is now
+          for (const auto& [file_name, checked_file] : checked)
+            read.sections[kStatPrefix + file_name] = stat_text(checked_file.second);
+          read.sections[kStatTime] = std::to_string(cache_clock_ns());
+          folder_->write(path, read.sections);
+        } else {
+          touch_cache_entry(path);
+        }
         status.reused = true;
         status.why = "unchanged";
         return std::move(read.sections);
@@ -333,6 +398,16 @@ void TileCache::store(const std::string& name, const TileKey& key, const CacheSe
   const ContentHash combined = key.combined();
   CacheSections sections = files;
   sections["key"] = combined.hex();
+  // The kept files' facts, once all are kept (two files of the same bytes are one cache file),
+  // their time set out of the racy window first: the next run trusts them unread.
+  for (const auto& [section, text] : files) {
+    if (!section.starts_with(kFilePrefix)) continue;
+    const fs::path file = cache_file_path(*dir_, *parse_digest(text));
+    settle_cache_file(file);
+    if (const std::optional<CacheFileStat> stat = stat_cache_file(file))
+      sections[kStatPrefix + section.substr(std::strlen(kFilePrefix))] = stat_text(*stat);
+  }
+  sections[kStatTime] = std::to_string(cache_clock_ns());
   folder_->write(*dir_ / "tiles" / (combined.hex() + ".twc"), sections);
   folder_->write(*dir_ / "tiles" / "last" / (name + ".twc"),
                  {{"heightfield", key.heightfield.hex()},
@@ -345,7 +420,7 @@ TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager
   const std::string name = tile_file_stem("tile", tile);
   const TileKey key = this->key(tile);
   Outcome outcome;
-  if (std::optional<CacheSections> cached = find(name, key, outcome.status)) {
+  if (std::optional<CacheSections> cached = find(name, key, outcome.status, outcome.files_hashed)) {
     for (const auto& [section, bytes] : *cached) {
       if (section.rfind(kFactPrefix, 0) == 0) {
         outcome.facts[section.substr(std::strlen(kFactPrefix))] = bytes;
@@ -359,11 +434,11 @@ TileCache::Outcome TileCache::render_or_reuse(const TileSpec& tile, OutputStager
       std::error_code ignored;
       fs::remove(staged, ignored);
       place_cache_file(cache_file_path(*dir_, digest), staged);
-      touch_cache_entry(cache_file_path(*dir_, digest));
       outcome.staged.push_back({relative, staged});
       outcome.digests[relative] = digest;
     }
-    logger().debug("{}: reused from the cache ({})", name, outcome.status.key);
+    logger().debug("{}: reused from the cache ({}; {} of {} files read for their hash)", name,
+                   outcome.status.key, outcome.files_hashed, outcome.staged.size());
     return outcome;
   }
   RecordingStager stager(output, output_dir);

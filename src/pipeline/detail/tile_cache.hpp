@@ -8,7 +8,7 @@
 // patterns (placements, ribbon, exemplar bytes, render options) — and the render and output
 // values with the program version. Entries hold the digests of the tile's files, which are kept
 // whole, read-only, as <dir>/tiles/files/<xxh3-128>.twc and hard-linked into the output on
-// reuse after a check of their hash: <dir>/tiles/<key>.twc.
+// reuse after a check (their stat facts as recorded, else their hash): <dir>/tiles/<key>.twc.
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -52,6 +52,9 @@ class TileCache {
     std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged;
     std::map<std::string, std::string> facts;
     std::map<std::filesystem::path, FileDigest> digests;  // by name under the output folder
+    // How many of the tile's cache files the check before a reuse read through for their hash
+    // (the quick check, their stat facts as recorded, did not vouch for them: docs/cache.md).
+    int files_hashed = 0;
   };
   using Writer =
       std::function<void(LayerSet&, OutputStager&, std::map<std::string, std::string>& facts)>;
@@ -65,15 +68,15 @@ class TileCache {
 
  private:
   std::optional<CacheSections> find(const std::string& name, const TileKey& key,
-                                    CacheStatus& status);
+                                    CacheStatus& status, int& files_hashed);
   void store(const std::string& name, const TileKey& key, const CacheSections& files);
 
   const WorldPlan& plan_;
   std::optional<std::filesystem::path> dir_;
   Warnings& warnings_;
-  std::unique_ptr<CacheFolder> folder_;                    // with dir_: locked and written through
-  ContentHash config_;                                     // what every tile shares
-  std::vector<ContentHash> terrain_, ribbons_;             // by plan index
+  std::unique_ptr<CacheFolder> folder_;            // with dir_: locked and written through
+  ContentHash config_;                             // what every tile shares
+  std::vector<ContentHash> terrain_, ribbons_;     // by plan index
   std::vector<std::vector<std::size_t>> entries_;  // terrain plan entries per terrain feature
   // Per plan.methods entry, by item; hashed when a tile first meets one of its items (key()).
   mutable std::vector<std::optional<std::vector<ContentHash>>> methods_;
