@@ -777,11 +777,7 @@ int cli_main(int argc, char** argv) {
       for (CLI::App* mode : network_modes)
         if (mode->parsed()) network_args.mode = mode->get_name();
       const tw::NetworkCommandResult r = tw::run_network_command(network_args);
-      std::printf(
-          "%d suggested edges, %d kept, %d nodes (exemplar: %d edges) in %.0f ms; %d seeds, %d "
-          "T-junctions, %d snapped onto nodes; 0 crossings\n",
-          r.suggested_edges, r.kept_edges, r.nodes, r.exemplar_edges, r.growth_ms, r.growth.seeds,
-          r.growth.t_junctions, r.growth.snapped);
+      std::printf("%s\n", tw::network_command_summary(r).c_str());
       return 0;
     }
     if (make_world->parsed()) {

@@ -227,6 +227,7 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   if (check.total() != 0)
     fail("{}: {} crossings, {} outside the region, {} through avoided cells (a growth bug): {}",
          cmd, check.crossings, check.outside, check.forbidden, check.first);
+  result.method = c.growth.method;
   result.exemplar_edges = int(exemplar.edges.size());
   result.nodes = int(grown.nodes.size());
   for (const NetworkEdge& e : grown.edges) (e.kept ? result.kept_edges : result.suggested_edges)++;
@@ -243,9 +244,19 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
                       forbidden ? &*forbidden : nullptr}},
                     1024);
   transaction.commit();
-  logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms", cmd,
-                result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms);
+  logger().info("{}: {} suggested edges, {} kept, {} nodes in {:.0f} ms by {}", cmd,
+                result.suggested_edges, result.kept_edges, result.nodes, result.growth_ms,
+                chosen_network_method(result.growth));
   return result;
+}
+
+std::string network_command_summary(const NetworkCommandResult& r) {
+  return fmt::format(
+      "{} suggested edges, {} kept, {} nodes (exemplar: {} edges) in {:.0f} ms; method {}, chose "
+      "{}; {} seeds, {} T-junctions, {} snapped onto nodes; 0 crossings",
+      r.suggested_edges, r.kept_edges, r.nodes, r.exemplar_edges, r.growth_ms,
+      network_method_name(r.method), chosen_network_method(r.growth), r.growth.seeds,
+      r.growth.t_junctions, r.growth.snapped);
 }
 
 }  // namespace tw

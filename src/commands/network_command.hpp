@@ -33,12 +33,18 @@ struct NetworkCommand {
 
 struct NetworkCommandResult {
   int exemplar_edges = 0, kept_edges = 0, suggested_edges = 0, nodes = 0;
+  NetworkMethod method =
+      NetworkMethod::automatic;  // as asked; chosen_network_method(growth) made it
   NetworkGrowthReport growth;
   double growth_ms = 0.0;
 };
 
 // Throws tw::Error naming the file, key or FID at fault; writes every file or none.
 NetworkCommandResult run_network_command(const NetworkCommand& command);
+
+// The line the CLI prints: the counts, the time and the method asked and chosen ("method
+// automatic, chose layout").
+std::string network_command_summary(const NetworkCommandResult& result);
 
 // The interactive loop (`terraweave view RUN --serve --exemplar ...`, docs/networks.md,
 // "Drawing"): the same reading and growth as the command, called per request.

@@ -87,6 +87,15 @@ struct NetworkGrowthReport {
   bool laid_out = false;  // the exemplar's long strokes were laid out (asked for, or chosen)
 };
 
+// The method that made a grown network, as kNetworkMethodNames names it: `quilt`, `layout`, or
+// `growth` (also `layout` on an exemplar without long strokes, which is growth byte for byte);
+// never `automatic`: what it kept. Reported by the command and in report.json (issue #20).
+inline std::string_view chosen_network_method(const NetworkGrowthReport& report) {
+  return network_method_name(report.quilted    ? NetworkMethod::quilt
+                             : report.laid_out ? NetworkMethod::layout
+                                               : NetworkMethod::grow);
+}
+
 // The network grown over `region` (polygons, holes allowed). `partial`, when given, is kept as
 // drawn (its edges come out with kept = true and their points unchanged) and completed: growth
 // starts from its dangling ends. Throws tw::Error for an exemplar without junctions or pieces,

@@ -87,7 +87,8 @@ struct GrowthReport {
 
 // A network class's growth (docs/networks.md, "In pipelines"; network/growth.hpp's counts).
 struct NetworkClassReport {
-  std::string exemplar;                         // "path[:layer]" or the .svg
+  std::string exemplar;        // "path[:layer]" or the .svg
+  std::string method, chosen;  // network.method as asked; what made the lines (never automatic)
   int exemplar_edges = 0, lines = 0, kept = 0;  // kept: the partial drawing's edges
   int placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0, pruned = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0;
@@ -100,7 +101,7 @@ struct FeatureClassReport {
   double delta_m = 0.0;
   std::vector<FeatureReport> features;  // in reading order (a multi-part FID repeats)
   double ingest_seconds = 0.0;
-  std::optional<GrowthReport> grow;  // grown classes only
+  std::optional<GrowthReport> grow;           // grown classes only
   std::optional<NetworkClassReport> network;  // network classes only
 };
 

@@ -48,6 +48,7 @@ LaidOut laid_out(const std::string& kind) {
   NetworkGrowthReport report;
   l.out = grow_network(l.ex, l.region, nullptr, nullptr, {.seed = 1}, &report);
   EXPECT_TRUE(report.laid_out) << kind;
+  EXPECT_EQ(chosen_network_method(report), "layout") << kind;
   EXPECT_EQ(check_network(l.out, l.region, nullptr).total(), 0) << kind;
   return l;
 }
@@ -106,6 +107,7 @@ TEST(NetworkLayout, AskedByNameItIsTheCandidateAutomaticKeeps) {
   const Network cells_named =
       grow_network(cells, cells_region, nullptr, nullptr, layout, &cells_report);
   EXPECT_FALSE(cells_report.laid_out);
+  EXPECT_EQ(chosen_network_method(cells_report), "growth");  // growth, byte for byte
   EXPECT_TRUE(same_bytes(cells_named, grow_network(cells, cells_region, nullptr, nullptr,
                                                    {.seed = 1, .method = NetworkMethod::grow})));
 }

@@ -60,6 +60,7 @@ TEST(NetworkQuilt, AutomaticKeepsTheQuiltWhereItIsCloser) {
   NetworkGrowthReport report;
   const Network automatic = grow_network(ex, region, nullptr, nullptr, {.seed = 1}, &report);
   EXPECT_TRUE(report.quilted);
+  EXPECT_EQ(chosen_network_method(report), "quilt");
   const Network quilt =
       grow_network(ex, region, nullptr, nullptr, {.seed = 1, .method = NetworkMethod::quilt});
   ASSERT_EQ(automatic.edges.size(), quilt.edges.size());
@@ -71,6 +72,7 @@ TEST(NetworkQuilt, AutomaticKeepsTheQuiltWhereItIsCloser) {
   NetworkGrowthReport completed;
   grow_network(ex, region, nullptr, &partial, {.seed = 1}, &completed);
   EXPECT_FALSE(completed.quilted);
+  EXPECT_EQ(chosen_network_method(completed), "growth");
   EXPECT_GT(completed.stubs, 0);  // grown from the drawn ends
 }
 

@@ -8,11 +8,14 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <memory>
 
 #include "commands/network_command.hpp"
 #include "core/error.hpp"
+#include "network/example_networks.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -141,6 +144,36 @@ TEST_F(NetworkCommandTest, SynthesizeWritesLinesThatNeverCrossInsideTheRegionSam
   EXPECT_EQ(read_file(dir / "a/preview.png"), read_file(dir / "b/preview.png"));
 }
 
+// The summary says which method made the network (issue #20): on the terraces `automatic` keeps
+// the layout (tests/network/layout_test.cpp, same exemplar, region and seed); `--method growth`
+// is growth.
+TEST_F(NetworkCommandTest, TheSummaryNamesTheMethodAskedAndTheOneChosen) {
+  const NetworkLines terraces = example_network("terraces", 400.0, 3);
+  Warnings warnings;
+  const Network noded = build_planar_network(terraces, 1e-3, "exemplar", warnings);
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : noded.nodes) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  std::vector<std::string> coordinates;
+  for (const auto& line : terraces.lines) {
+    std::string text;
+    for (Vec2 p : line) text += fmt::format("{}[{},{}]", text.empty() ? "[" : ",", p.x, p.y);
+    coordinates.push_back(text + "]");
+  }
+  std::ofstream(dir / "terraces.geojson") << lines_geojson(coordinates);
+  const std::string args = "synthesize --exemplar " + (dir / "terraces.geojson").string() +
+                           fmt::format(" --region={},{},{},{}", lo.x, lo.y, hi.x, hi.y) +
+                           " --snap 0.001 --seed 1 --out ";
+  const CommandResult automatic = network(args + (dir / "automatic").string());
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.output;
+  EXPECT_THAT(automatic.output, HasSubstr("; method automatic, chose layout;"));
+  const CommandResult grown = network(args + (dir / "growth").string() + " --method growth");
+  ASSERT_EQ(grown.exit_code, 0) << grown.output;
+  EXPECT_THAT(grown.output, HasSubstr("; method growth, chose growth;"));
+}
+
 TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget) {
   std::ofstream(dir / "drawn.geojson")
       << lines_geojson({"[[500050.125,4000300.5],[500450.25,4000302.75]]",
@@ -149,6 +182,7 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
       network("complete --exemplar " + exemplar + " --partial " + (dir / "drawn.geojson").string() +
               " --region " + region + " --out " + (dir / "c").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("; method automatic, chose growth;"));  // completing is growth
   const Layer kept = read_layer(dir / "c/network.gpkg", "kept");
   ASSERT_EQ(kept.lines.size(), 2u);
   EXPECT_EQ(kept.lines[0].front(), (std::pair{500050.125, 4000300.5}));

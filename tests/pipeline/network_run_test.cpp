@@ -183,6 +183,9 @@ TEST(NetworkRun, LanesAreTheClassLinesInTheRegionOffTheRoadsAndInTheLayers) {
   EXPECT_GE(network["exemplar_edges"].get<int>(), 5);
   EXPECT_GT(network["placed"].get<int>(), 0);
   EXPECT_EQ(network["kept"].get<int>(), 0);
+  // Which method made the lanes (issue #20): `automatic` as asked, and the one it kept.
+  EXPECT_EQ(network["method"], "automatic");
+  EXPECT_EQ(network["chosen"], "layout");
   EXPECT_GE(painted, samples * 95 / 100);
   EXPECT_GE(masked, samples * 95 / 100);
 }
@@ -406,6 +409,8 @@ TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
                                     {}, warnings);
   const auto& lanes = plan.lines.at(2);
   const auto& report = *plan.report.classes.at(2).network;
+  EXPECT_EQ(report.method, "automatic");
+  EXPECT_EQ(report.chosen, "growth");  // completing a drawing is growth
   // The T splits the first line (3 edges), and lanes grown onto them split them further.
   EXPECT_GE(report.kept, 3);
   EXPECT_GT(int(lanes.size()), report.kept);

@@ -58,9 +58,9 @@ TW_FIELDS(GrowthReport, F(kind) F(element) F(ornaments) F(elements) F(lines) F(r
                             F(rejected_forbidden) F(rejected_untraceable) F(rejected_footprint)
                                 F(crossings) F(coverage) F(coverage_radius_m) F(mesh_width)
                                     F(mesh_height) F(short_lines) F(synthesis))
-TW_FIELDS(NetworkClassReport, F(exemplar) F(exemplar_edges) F(lines) F(kept) F(placed) F(snapped)
-                                  F(t_junctions) F(boundary_ends) F(pruned) F(rejected_crossing)
-                                      F(rejected_region) F(rejected_forbidden))
+TW_FIELDS(NetworkClassReport, F(exemplar) F(method) F(chosen) F(exemplar_edges) F(lines) F(kept)
+                                  F(placed) F(snapped) F(t_junctions) F(boundary_ends) F(pruned)
+                                      F(rejected_crossing) F(rejected_region) F(rejected_forbidden))
 TW_FIELDS(FeatureClassReport,
           F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds) F(grow) F(network))
 TW_FIELDS(AreaFeatureReport,

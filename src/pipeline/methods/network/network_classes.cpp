@@ -172,6 +172,8 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
     }
     NetworkClassReport& r = reports[c].network.emplace();
     r.exemplar = n.exemplar;
+    r.method = network_method_name(options.method);
+    r.chosen = chosen_network_method(report);
     r.exemplar_edges = int(exemplar.edges.size());
     r.lines = int(lines[c].size());
     r.kept = int(std::count_if(grown.edges.begin(), grown.edges.end(),
@@ -187,8 +189,8 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
     if (lines[c].empty())
       warnings.add("empty_class", "features." + fc.name, std::nullopt,
                    "the network grew no line in its region");
-    logger().info("{}: {} lines ({} placed, {} snapped, {} T-junctions) in {:.0f} ms", key,
-                  lines[c].size(), report.placed, report.snapped, report.t_junctions, ms);
+    logger().info("{}: {} lines ({} placed, {} snapped, {} T-junctions) in {:.0f} ms by {}", key,
+                  lines[c].size(), report.placed, report.snapped, report.t_junctions, ms, r.chosen);
   }
 }
 

@@ -47,6 +47,8 @@ class NetworkMethod final : public SynthesisMethod {
       if (c.network) {
         const NetworkClassReport& n = *c.network;
         entry["network"] = {{"exemplar", n.exemplar},
+                            {"method", n.method},
+                            {"chosen", n.chosen},
                             {"exemplar_edges", n.exemplar_edges},
                             {"lines", n.lines},
                             {"kept", n.kept},
