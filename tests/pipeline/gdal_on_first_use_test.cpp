@@ -77,11 +77,14 @@ std::string lazy_gdal_file_under(const fs::path& root, const std::string& name) 
   return "";
 }
 
-// Every path under `root`, relative, sorted (recursive_directory_iterator's order is not).
+// Every file under `root`, relative, sorted (recursive_directory_iterator's order is not). Not
+// the folders: render-tile creates the plan's tile folders before it writes (kept for the next
+// tiles), which are no temporaries; a staging folder holds files (its .terraweave/lock link).
 std::vector<std::string> lazy_gdal_listing(const fs::path& root) {
   std::vector<std::string> paths;
   for (const auto& entry : fs::recursive_directory_iterator(root))
-    paths.push_back(entry.path().lexically_relative(root).generic_string());
+    if (!entry.is_directory())
+      paths.push_back(entry.path().lexically_relative(root).generic_string());
   std::sort(paths.begin(), paths.end());
   return paths;
 }
@@ -156,13 +159,13 @@ TEST_F(GdalOnFirstUse, AMissingLibgdalAfterStagingBeganLeavesNothingBehind) {
   ASSERT_EQ(plan.exit_code, 0) << plan.output;
   const std::string missing = "TERRAWEAVE_GDAL_LIBRARY=" + (dir_ / "none/libgdal.so").string();
   const auto expect_missing_gdal_leaves_nothing = [&](const std::string& command) {
-    const std::vector<std::string> before = lazy_gdal_listing(dir_);
+    const std::vector<std::string> before = lazy_gdal_listing(dir_.path());
     const test::CommandResult run = terraweave(command, missing);
     EXPECT_EQ(run.exit_code, 1) << command;
     EXPECT_THAT(run.output,
                 StartsWith("terraweave: error: GDAL is needed here but could not load "));
     EXPECT_EQ(test::lines_of(run.output).size(), 1u) << run.output;
-    EXPECT_EQ(lazy_gdal_listing(dir_), before) << command;
+    EXPECT_EQ(lazy_gdal_listing(dir_.path()), before) << command;
   };
   expect_missing_gdal_leaves_nothing("render-tile out --tile 0");
   const test::CommandResult tile = terraweave("render-tile out --tile 0");
