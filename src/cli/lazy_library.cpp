@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/staging_registry.hpp"
+
 namespace tw {
 namespace {
 
@@ -17,6 +19,8 @@ namespace {
                "its library's path\n",
                library.what, what, name, why != nullptr ? why : "unknown reason", library.variable);
   std::fflush(stderr);
+  // _exit skips the stagers' destructors: what they were writing goes here instead.
+  remove_registered_staging();
   _exit(1);
 }
 

@@ -27,7 +27,8 @@ struct LazyLibrary {
 // name, stores its address in the slot for the next calls and returns it. A library or a name
 // that cannot be found is one error line and exit code 1, as every tw::Error: the first call can
 // come from any thread and any frame (a destructor, a worker), where an exception could not be
-// relied on to reach main.
+// relied on to reach main. The exit skips destructors, so it first removes what the stagers
+// registered (core/staging_registry.hpp): no temporary is left behind.
 void* resolve_lazy(LazyLibrary& library, unsigned index);
 
 }  // namespace tw

@@ -19,6 +19,7 @@
 #include <set>
 
 #include "core/error.hpp"
+#include "core/staging_registry.hpp"
 
 namespace tw {
 
@@ -441,7 +442,10 @@ std::unique_ptr<OutputFolder> OutputFolder::lock_if_used(const fs::path& dir) {
 
 OutputFolder::~OutputFolder() {
   std::error_code ignored;
-  if (!staging_.empty()) fs::remove_all(staging_, ignored);
+  if (!staging_.empty()) {
+    fs::remove_all(staging_, ignored);
+    unregister_staging(staging_);
+  }
   if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
@@ -461,6 +465,7 @@ void OutputFolder::prepare_staging() {
       fs::create_hard_link(meta_ / "lock", staging / kMeta / "lock", ec);
       if (!ec) {
         staging_ = staging;
+        register_staging(staging_);
         mode_ = Mode::swap;
         return;
       }
@@ -470,6 +475,7 @@ void OutputFolder::prepare_staging() {
   }
   staging_ = meta_ / ("staging-" + token_);
   fs::create_directories(staging_, ec);
+  register_staging(staging_);  // before the check: a partial folder goes too
   if (ec) fail("cannot create {}: {}", staging_.string(), ec.message());
   mode_ = Mode::in_place;
 }
@@ -546,6 +552,7 @@ void OutputFolder::commit_swap() {
     fs::rename(staging_, real_, ec);
     if (ec) fail("cannot move {} into place: {}", real_.string(), ec.message());
   }
+  unregister_staging(staging_);
   staging_.clear();
   pause();  // the new run is the folder's
   retire_previous(previous, real_);
@@ -566,6 +573,7 @@ void OutputFolder::commit_in_place() {
   std::error_code ec;
   fs::rename(staging_, journal, ec);
   if (ec) fail("cannot rename {}: {}", staging_.string(), ec.message());
+  unregister_staging(staging_);
   staging_.clear();
   pause();  // commit:2
   roll_forward(real_, journal, pause);

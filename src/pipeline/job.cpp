@@ -12,6 +12,7 @@
 #include "core/file_io.hpp"
 #include "core/log.hpp"
 #include "core/output_folder.hpp"
+#include "core/staging_registry.hpp"
 #include "geo/input_guard.hpp"
 #include "layers/layer_set.hpp"
 #include "layers/write.hpp"
@@ -48,6 +49,7 @@ class TileStager final : public OutputStager {
     fs::create_directories(final_path.parent_path(), ec);
     if (ec) fail("cannot create {}: {}", final_path.parent_path().string(), ec.message());
     staged_.push_back({temporary_beside(final_path), final_path});
+    register_staging(staged_.back().first);
     return staged_.back().first;
   }
   void commit() {
@@ -55,6 +57,7 @@ class TileStager final : public OutputStager {
       std::error_code ec;
       fs::rename(temporary, final_path, ec);
       if (ec) fail("cannot write {}: {}", final_path.string(), ec.message());
+      unregister_staging(temporary);
     }
     staged_.clear();
   }
@@ -62,6 +65,7 @@ class TileStager final : public OutputStager {
     for (const auto& entry : staged_) {
       std::error_code ignored;
       fs::remove(entry.first, ignored);
+      unregister_staging(entry.first);
     }
   }
 

@@ -1,14 +1,17 @@
 // The program loads GDAL on its first GDAL call (TERRAWEAVE_LAZY_GDAL, src/cli/gdal_loader.hpp,
 // docs/performance.md "GDAL on first use"): a generated world's render-tile never loads libgdal
 // (LD_DEBUG=files names every shared object the dynamic loader opens), a DEM run loads it and
-// writes what it wrote with libgdal loaded at start, and a missing libgdal is one error line.
+// writes what it wrote with libgdal loaded at start, and a missing libgdal is one error line
+// that leaves nothing behind, even when it comes after the command began staging its outputs.
 // Skipped in a build that links GDAL as usual (TW_TEST_LAZY_GDAL: libgdal's file).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "cache_world.hpp"
 #include "test_support.hpp"
@@ -74,6 +77,18 @@ std::string lazy_gdal_file_under(const fs::path& root, const std::string& name) 
   return "";
 }
 
+// Every file under `root`, relative, sorted (recursive_directory_iterator's order is not). Not
+// the folders: render-tile creates the plan's tile folders before it writes (kept for the next
+// tiles), which are no temporaries; a staging folder holds files (its .terraweave/lock link).
+std::vector<std::string> lazy_gdal_listing(const fs::path& root) {
+  std::vector<std::string> paths;
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    if (!entry.is_directory())
+      paths.push_back(entry.path().lexically_relative(root).generic_string());
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
 TEST_F(GdalOnFirstUse, RenderTileOfAGeneratedWorldLoadsNoGdal) {
   const test::CommandResult plan = terraweave("plan generated.yaml --out out", "LD_DEBUG=files");
   ASSERT_EQ(plan.exit_code, 0) << plan.output.substr(0, 3000);
@@ -126,6 +141,40 @@ TEST_F(GdalOnFirstUse, AMissingLibgdalIsOneErrorLine) {
   EXPECT_THAT(run.output, HasSubstr("none/libgdal.so"));
   EXPECT_THAT(run.output, HasSubstr("TERRAWEAVE_GDAL_LIBRARY"));
   EXPECT_EQ(test::lines_of(run.output).size(), 1u) << run.output;
+}
+
+// libgdal fails to load after the command staged files: the error line, exit code 1, and the
+// folder as before (lazy_library's _exit skips the stagers' destructors, so it removes their
+// temporaries itself). A tile with GeoTIFF twins calls GDAL first for height.tif, after
+// height.exr was staged beside its final name; finish first calls it after it staged the
+// tiles' files into the output folder's staging folder, beside the folder.
+TEST_F(GdalOnFirstUse, AMissingLibgdalAfterStagingBeganLeavesNothingBehind) {
+  std::string twins = test::read_file(dir_ / "generated.yaml");
+  const std::size_t off = twins.find("geotiff: false");
+  ASSERT_NE(off, std::string::npos);
+  twins.replace(off, std::string("geotiff: false").size(), "geotiff: true");
+  std::ofstream(dir_ / "twins.yaml") << twins;
+  const test::CommandResult plan =
+      terraweave("plan twins.yaml --out out --set output.tiles.size=48");  // one tile
+  ASSERT_EQ(plan.exit_code, 0) << plan.output;
+  const std::string missing = "TERRAWEAVE_GDAL_LIBRARY=" + (dir_ / "none/libgdal.so").string();
+  const auto expect_missing_gdal_leaves_nothing = [&](const std::string& command) {
+    const std::vector<std::string> before = lazy_gdal_listing(dir_.path());
+    const test::CommandResult run = terraweave(command, missing);
+    EXPECT_EQ(run.exit_code, 1) << command;
+    EXPECT_THAT(run.output,
+                StartsWith("terraweave: error: GDAL is needed here but could not load "));
+    EXPECT_EQ(test::lines_of(run.output).size(), 1u) << run.output;
+    EXPECT_EQ(lazy_gdal_listing(dir_.path()), before) << command;
+  };
+  expect_missing_gdal_leaves_nothing("render-tile out --tile 0");
+  const test::CommandResult tile = terraweave("render-tile out --tile 0");
+  ASSERT_EQ(tile.exit_code, 0) << tile.output;
+  expect_missing_gdal_leaves_nothing("finish out");
+  // With libgdal, the finish still completes the run.
+  const test::CommandResult finish = terraweave("finish out");
+  ASSERT_EQ(finish.exit_code, 0) << finish.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out/report.json"));
 }
 
 }  // namespace
