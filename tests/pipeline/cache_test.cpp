@@ -16,6 +16,7 @@
 
 #include "cache_world.hpp"
 #include "core/error.hpp"
+#include "file_edit.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/plan_stage_cache.hpp"
 #include "pipeline/run.hpp"
@@ -349,15 +350,7 @@ TEST_F(CacheRun, AnOutputEditedInPlaceNeverReachesALaterRun) {
   run("clean", false, kTiled);
   const fs::path edited = dir_ / "out/tiles/height_x1_y0.exr";
   ASSERT_TRUE(fs::exists(edited));
-  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
-  {
-    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
-    file.seekg(std::streamoff(fs::file_size(edited) - 10));
-    const char byte = char(file.get());
-    file.seekp(std::streamoff(fs::file_size(edited) - 10));
-    file.put(char(byte ^ 0x5a));
-    ASSERT_TRUE(file.good());
-  }
+  test::flip_byte_in_place(edited, 10);
   ASSERT_NE(test::read_file(edited), test::read_file(dir_ / "clean/tiles/height_x1_y0.exr"));
   const RunReport report = run("out", true, kTiled);
   int corrupt = 0;

@@ -19,6 +19,7 @@
 
 #include "cache_world.hpp"
 #include "core/output_folder.hpp"
+#include "file_edit.hpp"
 #include "layers/write.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/tile_cache.hpp"
@@ -170,15 +171,7 @@ TEST_F(TileCacheRun, ACacheFileEditedBehindTheCachesBackIsReadAndCaught) {
   const fs::path edited = dir_ / "first/tiles/tile_x1_y1/height.exr";
   ASSERT_TRUE(fs::exists(edited));
   const auto before = fs::last_write_time(edited);
-  fs::permissions(edited, fs::perms::owner_write, fs::perm_options::add);
-  {
-    std::fstream file(edited, std::ios::in | std::ios::out | std::ios::binary);
-    file.seekg(std::streamoff(fs::file_size(edited) - 10));
-    const char byte = char(file.get());
-    file.seekp(std::streamoff(fs::file_size(edited) - 10));
-    file.put(char(byte ^ 0x5a));
-    ASSERT_TRUE(file.good());
-  }
+  test::flip_byte_in_place(edited, 10);
   ASSERT_NE(fs::last_write_time(edited), before);
   const TiledRun second = run("second");
   EXPECT_EQ(rebuilt(second), (std::set<std::pair<int, int>>{{1, 1}}));
