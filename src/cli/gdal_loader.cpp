@@ -11,13 +11,7 @@
 
 #include "cli/lazy_library.hpp"
 
-extern "C" {
-extern void* tw_gdal_slots[];
-extern const char* const tw_gdal_names[];
-extern const std::size_t tw_gdal_count;
-extern const char tw_gdal_soname[];
-void* tw_gdal_resolve(unsigned index);
-}
+TW_LAZY_LIBRARY_TABLES(tw_gdal)
 
 namespace tw {
 namespace {

@@ -6,13 +6,7 @@
 
 #include "cli/lazy_library.hpp"
 
-extern "C" {
-extern void* tw_httplib_slots[];
-extern const char* const tw_httplib_names[];
-extern const std::size_t tw_httplib_count;
-extern const char tw_httplib_soname[];
-void* tw_httplib_resolve(unsigned index);
-}
+TW_LAZY_LIBRARY_TABLES(tw_httplib)
 
 namespace tw {
 namespace {

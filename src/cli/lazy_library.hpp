@@ -32,3 +32,14 @@ struct LazyLibrary {
 void* resolve_lazy(LazyLibrary& library, unsigned index);
 
 }  // namespace tw
+
+// Declares what the stubs of library `prefix` define (their tables) and call (the resolver, which
+// the library's loader defines with resolve_lazy).
+#define TW_LAZY_LIBRARY_TABLES(prefix)       \
+  extern "C" {                               \
+  extern void* prefix##_slots[];             \
+  extern const char* const prefix##_names[]; \
+  extern const std::size_t prefix##_count;   \
+  extern const char prefix##_soname[];       \
+  void* prefix##_resolve(unsigned index);    \
+  }
