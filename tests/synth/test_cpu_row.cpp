@@ -9,6 +9,7 @@
 #include "synth/detail/cost.hpp"
 #include "synth/detail/cpu_backend.hpp"
 #include "synth/detail/edge_bound.hpp"
+#include "synth/detail/mask_groups.hpp"
 
 namespace tw::detail {
 namespace {
@@ -203,6 +204,37 @@ TEST(CpuRow, BilinearReadsTexelCentresExactlyAndBlendsBetween) {
   EXPECT_EQ(sample_bilinear(t, 256, 0), t.rgba[1]);
   EXPECT_EQ(sample_bilinear(t, 128, 0), pack_rgba(100, 50, 25, 255));
   EXPECT_EQ(sample_bilinear(t, -256, 0), 0u);  // outside: transparent black
+}
+
+// The visiting order of the pruned row, built in two halves (the masks' runs, then the costs):
+// groups in increasing lowest P, members in increasing (P, v), look-ups by mask.
+TEST(CpuRow, MaskGroupsOrderRunsByLowestCostAndMembersByCostThenPosition) {
+  const std::vector<std::uint64_t> masks = {0b01, 0b10, 0b01, 0b11, 0b10, 0b01};
+  const std::vector<std::int64_t> cost = {5, 3, 5, 9, 1, 2};
+  const MaskRuns runs = mask_runs(masks.data(), 6, 1);
+  EXPECT_EQ(runs.run_of, (std::vector<std::int32_t>{0, 1, 0, 2, 1, 0}));
+  EXPECT_EQ(runs.run_size, (std::vector<std::int32_t>{3, 2, 1}));
+  const std::uint64_t absent = 0b100, none = 0;
+  EXPECT_EQ(run_with_mask(runs, &masks[3]), 2);
+  EXPECT_EQ(run_with_mask(runs, &absent), -1);
+  EXPECT_EQ(run_with_mask(runs, &none), -1);
+
+  const MaskGroups groups = group_by_mask(cost, masks.data(), 1);
+  EXPECT_EQ(groups.position, (std::vector<std::int32_t>{4, 1, 5, 0, 2, 3}));
+  EXPECT_EQ(groups.group_begin, (std::vector<std::int32_t>{0, 2, 5, 6}));
+  EXPECT_EQ(groups.group_masks, (std::vector<std::uint64_t>{0b10, 0b01, 0b11}));
+  EXPECT_EQ(groups.groups_by_mask, (std::vector<std::int32_t>{1, 0, 2}));
+  EXPECT_EQ(group_with_mask(groups, &masks[0]), 1);
+  EXPECT_EQ(group_with_mask(groups, &absent), -1);
+  const MaskGroups from_runs = group_runs_by_cost(runs, cost);
+  EXPECT_EQ(from_runs.position, groups.position);
+  EXPECT_EQ(from_runs.group_begin, groups.group_begin);
+
+  // Two words per mask compare word by word, the first word first.
+  const std::vector<std::uint64_t> wide = {1, 0, 0, 5, 1, 0};
+  const MaskRuns wide_runs = mask_runs(wide.data(), 3, 2);
+  EXPECT_EQ(wide_runs.run_of, (std::vector<std::int32_t>{1, 0, 1}));
+  EXPECT_EQ(run_with_mask(wide_runs, &wide[2]), 0);
 }
 
 }  // namespace

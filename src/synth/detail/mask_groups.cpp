@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/error.hpp"
+
 namespace tw::detail {
 namespace {
 
@@ -12,51 +14,83 @@ bool mask_less(const std::uint64_t* a, const std::uint64_t* b, int words) {
 
 }  // namespace
 
-MaskGroups group_by_mask(const std::vector<std::int64_t>& previous_cost, const std::uint64_t* masks,
-                         int words) {
+MaskRuns mask_runs(const std::uint64_t* masks, int count, int words) {
+  auto mask = [&](std::int32_t v) { return masks + std::size_t(v) * words; };
+  std::vector<std::int32_t> by_mask(static_cast<std::size_t>(count));
+  std::iota(by_mask.begin(), by_mask.end(), 0);
+  std::sort(by_mask.begin(), by_mask.end(),
+            [&](std::int32_t a, std::int32_t b) { return mask_less(mask(a), mask(b), words); });
+  MaskRuns out;
+  out.words = words;
+  out.run_of.resize(by_mask.size());
+  for (int i = 0; i < count; ++i) {
+    const std::int32_t v = by_mask[std::size_t(i)];
+    if (i == 0 || !std::equal(mask(v), mask(v) + words, mask(by_mask[std::size_t(i) - 1]))) {
+      out.run_size.push_back(0);
+      out.run_masks.insert(out.run_masks.end(), mask(v), mask(v) + words);
+    }
+    out.run_of[std::size_t(v)] = out.runs() - 1;
+    ++out.run_size.back();
+  }
+  return out;
+}
+
+int run_with_mask(const MaskRuns& runs, const std::uint64_t* key) {
+  const int words = runs.words;
+  auto run_mask = [&](int run) { return runs.run_masks.data() + std::size_t(run) * words; };
+  int low = 0, high = runs.runs();  // the first run whose mask is not less than key
+  while (low < high) {
+    const int middle = low + (high - low) / 2;
+    if (mask_less(run_mask(middle), key, words))
+      low = middle + 1;
+    else
+      high = middle;
+  }
+  if (low == runs.runs() || !std::equal(key, key + words, run_mask(low))) return -1;
+  return low;
+}
+
+MaskGroups group_runs_by_cost(const MaskRuns& runs,
+                              const std::vector<std::int64_t>& previous_cost) {
   const int previous = int(previous_cost.size());
+  if (runs.run_of.size() != previous_cost.size())
+    fail("mask groups: {} positions in the mask runs for {} costs", runs.run_of.size(),
+         previous_cost.size());
   std::vector<std::int32_t> order(static_cast<std::size_t>(previous));  // rank -> v
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
     return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
   });
-  auto mask = [&](int rank) { return masks + std::size_t(order[std::size_t(rank)]) * words; };
-  std::vector<std::int32_t> ranks(order.size());
-  std::iota(ranks.begin(), ranks.end(), 0);
-  std::sort(ranks.begin(), ranks.end(), [&](std::int32_t a, std::int32_t b) {
-    if (mask_less(mask(a), mask(b), words)) return true;
-    if (mask_less(mask(b), mask(a), words)) return false;
-    return a < b;
-  });
-  // Runs of equal masks, each starting at its lowest rank; then groups by that rank.
-  std::vector<std::int32_t> run_begin;
-  for (int i = 0; i < previous; ++i)
-    if (i == 0 || !std::equal(mask(ranks[i]), mask(ranks[i]) + words, mask(ranks[i - 1])))
-      run_begin.push_back(i);
-  const int groups = int(run_begin.size());
-  run_begin.push_back(previous);
-  std::vector<std::int32_t> by_min_rank(static_cast<std::size_t>(groups));
-  std::iota(by_min_rank.begin(), by_min_rank.end(), 0);
-  std::sort(by_min_rank.begin(), by_min_rank.end(),
-            [&](int a, int b) { return ranks[run_begin[a]] < ranks[run_begin[b]]; });
-
+  // Groups are the runs, numbered in increasing lowest rank; members in increasing rank.
+  const int words = runs.words;
   MaskGroups out;
   out.words = words;
-  out.position.reserve(order.size());
-  out.group_begin.reserve(std::size_t(groups) + 1);
-  out.groups_by_mask.assign(std::size_t(groups), 0);
-  out.group_masks.reserve(std::size_t(groups) * words);
-  for (int g = 0; g < groups; ++g) {
-    const int run = by_min_rank[std::size_t(g)];
-    out.groups_by_mask[std::size_t(run)] = g;  // runs are in mask order
-    out.group_begin.push_back(std::int32_t(out.position.size()));
-    out.group_masks.insert(out.group_masks.end(), mask(ranks[run_begin[run]]),
-                           mask(ranks[run_begin[run]]) + words);
-    for (int i = run_begin[run]; i < run_begin[run + 1]; ++i)
-      out.position.push_back(order[ranks[i]]);
+  out.groups_by_mask.assign(std::size_t(runs.runs()), -1);
+  out.group_begin.reserve(std::size_t(runs.runs()) + 1);
+  out.group_masks.reserve(runs.run_masks.size());
+  std::int32_t next_begin = 0;
+  for (std::int32_t v : order) {
+    const std::int32_t run = runs.run_of[std::size_t(v)];
+    if (out.groups_by_mask[std::size_t(run)] >= 0) continue;
+    out.groups_by_mask[std::size_t(run)] = std::int32_t(out.group_begin.size());
+    out.group_begin.push_back(next_begin);
+    next_begin += runs.run_size[std::size_t(run)];
+    const std::uint64_t* mask = runs.run_masks.data() + std::size_t(run) * words;
+    out.group_masks.insert(out.group_masks.end(), mask, mask + words);
   }
+  std::vector<std::int32_t> fill = out.group_begin;
   out.group_begin.push_back(previous);
+  out.position.resize(order.size());
+  for (std::int32_t v : order) {
+    const std::int32_t g = out.groups_by_mask[std::size_t(runs.run_of[std::size_t(v)])];
+    out.position[std::size_t(fill[std::size_t(g)]++)] = v;
+  }
   return out;
+}
+
+MaskGroups group_by_mask(const std::vector<std::int64_t>& previous_cost, const std::uint64_t* masks,
+                         int words) {
+  return group_runs_by_cost(mask_runs(masks, int(previous_cost.size()), words), previous_cost);
 }
 
 int group_with_mask(const MaskGroups& groups, const std::uint64_t* key) {

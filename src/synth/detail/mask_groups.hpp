@@ -21,6 +21,25 @@ struct MaskGroups {
 MaskGroups group_by_mask(const std::vector<std::int64_t>& previous_cost, const std::uint64_t* masks,
                          int words);
 
+// The half of group_by_mask that does not depend on the costs: the previous positions' runs of
+// equal masks, in increasing mask. A device backend finds them for the next row while this
+// row's kernel runs, so that only group_runs_by_cost waits for the costs.
+struct MaskRuns {
+  std::vector<std::int32_t> run_of;      // v -> run
+  std::vector<std::int32_t> run_size;    // positions per run
+  std::vector<std::uint64_t> run_masks;  // `words` per run
+  int words = 0;
+  int runs() const { return int(run_size.size()); }
+};
+
+MaskRuns mask_runs(const std::uint64_t* masks, int count, int words);
+
+// The run whose mask equals `key` (`words` words), or -1; its group is groups_by_mask[run].
+int run_with_mask(const MaskRuns& runs, const std::uint64_t* key);
+
+// group_by_mask(previous_cost, masks, words) given mask_runs(masks, previous_cost.size(), words).
+MaskGroups group_runs_by_cost(const MaskRuns& runs, const std::vector<std::int64_t>& previous_cost);
+
 // The group whose mask equals `key` (`words` words), or -1.
 int group_with_mask(const MaskGroups& groups, const std::uint64_t* key);
 
