@@ -151,11 +151,20 @@ RowTiming time_dp(detail::Backend& backend, const detail::DpInput& input) {
   return out;
 }
 
-void print_kernel_times(const detail::OpenCLBackend& backend, int rows) {
+// Device time per kernel, then where the rest of the update's wall time goes: the host-side
+// gap (update wall minus the row kernel's device time) and the host's phases of a row.
+void print_kernel_times(const detail::OpenCLBackend& backend, int rows, double update_ms_per_row) {
+  const double per_row = 1.0 / std::max(1, rows);
+  double row_kernel_ms = 0;
   for (const auto& [name, timing] : backend.timings()) {
     std::printf("    %-24s %9.2f ms/row device time (%lld launches)\n", name.c_str(),
-                timing.milliseconds / std::max(1, rows), (long long)timing.launches);
+                timing.milliseconds * per_row, (long long)timing.launches);
+    if (name == "update_table_row") row_kernel_ms = timing.milliseconds * per_row;
   }
+  std::printf("    host-side gap: update %.2f - update_table_row %.2f = %.2f ms/row\n",
+              update_ms_per_row, row_kernel_ms, update_ms_per_row - row_kernel_ms);
+  for (const auto& [phase, ms] : backend.host_timings())
+    std::printf("      host %-34s %7.2f ms/row wall\n", phase.c_str(), ms * per_row);
 }
 
 }  // namespace
@@ -226,7 +235,7 @@ int main(int argc, char** argv) {
         " optimum: %s\n",
         c.paper_ms, cl.ms_per_row / c.paper_ms, ref.ms_per_row / c.paper_ms,
         cl.ms_per_row / ref.ms_per_row, cl.cost == ref.cost ? "yes" : "NO");
-    print_kernel_times(opencl, rows);
+    print_kernel_times(opencl, rows, cl.update_ms_per_row);
   }
 
   if (cases_only) return 0;

@@ -135,9 +135,14 @@ const std::map<std::string, KernelTiming>& OpenCLBackend::timings() const {
   return resident_->timings;
 }
 
+const std::map<std::string, double>& OpenCLBackend::host_timings() const {
+  return resident_->host_ms;
+}
+
 void OpenCLBackend::reset_timings() {
   resident_->harvest(true);
   resident_->timings.clear();
+  resident_->host_ms.clear();
 }
 
 std::string OpenCLBackend::name() const {

@@ -70,6 +70,9 @@ class OpenCLBackend final : public Backend {
 
   // Per kernel name, the device time since construction or the last reset_timings().
   const std::map<std::string, KernelTiming>& timings() const;
+  // Per phase of the row pipeline, the host's wall time in milliseconds (since construction or
+  // the last reset_timings()): what a row costs besides its kernels' device time.
+  const std::map<std::string, double>& host_timings() const;
   void reset_timings();
   const OpenCLContext& context() const { return context_; }
   // The row kernel's split as asked, with the device's positions per work-item filled in.
@@ -97,9 +100,13 @@ class OpenCLBackend final : public Backend {
   void upload_row(PreparedRow& prepared, const ColumnSet& right, const ColumnSet& left);
   void enqueue_stats(const cl::CommandQueue& queue, PreparedRow& prepared,
                      std::vector<cl::Event> extracted);
-  // The row update on prepared edges: the slot order, the kernel, the costs and argmins.
+  // The row update on prepared edges: the slot order, the kernel, the costs and argmins. While
+  // the kernel runs, the host finds the mask runs of `ahead` (the next row's prepared edges).
   void run_row(PreparedRow& prepared, const std::vector<std::int64_t>& previous_cost,
-               std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin);
+               std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+               PreparedRow* ahead = nullptr);
+  // The cost-independent half of a row's visiting order, once its masks are read.
+  void find_mask_runs(PreparedRow& prepared);
 
   OpenCLContext context_;
   OpenCLRowOptions row_options_;

@@ -27,6 +27,13 @@ int mask_words(int column) {
   return (column + 63) / 64;
 }
 
+// Adds the wall time since `lap` to host[phase] and restarts `lap` (OpenCLBackend::host_timings).
+void add_lap(std::map<std::string, double>& host, const char* phase, Clock::time_point& lap) {
+  const Clock::time_point now = Clock::now();
+  host[phase] += std::chrono::duration<double, std::milli>(now - lap).count();
+  lap = now;
+}
+
 }  // namespace
 
 void OpenCLBackend::prepare_row(PreparedRow& prepared, const CostTexels& texels,
@@ -40,6 +47,7 @@ void OpenCLBackend::prepare_row(PreparedRow& prepared, const CostTexels& texels,
   const cl::Buffer& texel = texel_buffer(texels);
   ResidentRows& r = *resident_;
   prepared.filled = true;
+  prepared.runs_found = false;
   prepared.column = space.column;
   prepared.binary_alpha = texels.binary_alpha;
   prepared.texels = r.texel_version;
@@ -82,6 +90,7 @@ void OpenCLBackend::upload_row(PreparedRow& prepared, const ColumnSet& right,
   const cl::Context& context = context_.context();
   const cl::CommandQueue& queue = context_.queue();
   prepared.filled = false;  // not the edges of any RowEdges
+  prepared.runs_found = false;
   prepared.column = left.column;
   prepared.binary_alpha = left.binary_alpha;
   prepared.ready.clear();
@@ -115,10 +124,25 @@ void OpenCLBackend::enqueue_stats(const cl::CommandQueue& queue, PreparedRow& pr
   }
 }
 
-void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_t>& previous_cost,
-                            std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin) {
-  ResidentRows& r = *resident_;
+void OpenCLBackend::find_mask_runs(PreparedRow& prepared) {
+  if (prepared.runs_found) return;
   check_cl(cl::Event::waitForEvents(prepared.ready), "waiting for the row's columns");
+  const int words = mask_words(prepared.column);
+  prepared.right_runs = mask_runs(prepared.right.host_masks.data(), prepared.right.count, words);
+  prepared.left_run.resize(std::size_t(prepared.left.count));
+  for (int j = 0; j < prepared.left.count; ++j)
+    prepared.left_run[std::size_t(j)] = run_with_mask(
+        prepared.right_runs, prepared.left.host_masks.data() + std::size_t(j) * words);
+  prepared.runs_found = true;
+}
+
+void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_t>& previous_cost,
+                            std::vector<std::int64_t>& cost, std::vector<std::int32_t>& argmin,
+                            PreparedRow* ahead) {
+  ResidentRows& r = *resident_;
+  Clock::time_point lap = Clock::now();
+  check_cl(cl::Event::waitForEvents(prepared.ready), "waiting for the row's columns");
+  add_lap(r.host_ms, "wait for the row's columns", lap);
   const int C = prepared.column, words = mask_words(C);
   const int previous = prepared.right.count, current = prepared.left.count;
   if (std::size_t(previous) != previous_cost.size())
@@ -129,7 +153,9 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   if (current == 0 || previous == 0) return;
 
   // The visiting order (the CPU backend's, synth/detail/mask_groups.hpp).
-  const MaskGroups groups = group_by_mask(previous_cost, prepared.right.host_masks.data(), words);
+  find_mask_runs(prepared);
+  add_lap(r.host_ms, "mask runs (not overlapped)", lap);
+  const MaskGroups groups = group_runs_by_cost(prepared.right_runs, previous_cost);
   r.slot_position_host.assign(groups.position.begin(), groups.position.end());
   r.group_begin_host.assign(groups.group_begin.begin(), groups.group_begin.end());
   r.slot_of_host.resize(std::size_t(previous));
@@ -168,9 +194,11 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
           groups.group_masks[std::size_t(g) * words + w];
   }
   r.left_group_host.resize(std::size_t(current));
-  for (int j = 0; j < current; ++j)
-    r.left_group_host[std::size_t(j)] =
-        group_with_mask(groups, prepared.left.host_masks.data() + std::size_t(j) * words);
+  for (int j = 0; j < current; ++j) {
+    const std::int32_t run = prepared.left_run[std::size_t(j)];
+    r.left_group_host[std::size_t(j)] = run < 0 ? -1 : groups.groups_by_mask[std::size_t(run)];
+  }
+  add_lap(r.host_ms, "visiting order", lap);
 
   const cl::Context& context = context_.context();
   const cl::CommandQueue& queue = context_.queue();
@@ -242,11 +270,28 @@ void OpenCLBackend::run_row(PreparedRow& prepared, const std::vector<std::int64_
   }
   check_cl(queue.enqueueReadBuffer(cost_out, CL_FALSE, 0, std::size_t(current) * 8, cost.data()),
            "clEnqueueReadBuffer (costs)");
-  check_cl(queue.enqueueReadBuffer(argmin_out, CL_TRUE, 0, std::size_t(current) * 4, argmin.data()),
+  cl::Event results;
+  check_cl(queue.enqueueReadBuffer(argmin_out, CL_FALSE, 0, std::size_t(current) * 4, argmin.data(),
+                                   nullptr, &results),
            "clEnqueueReadBuffer (argmins)");
+  check_cl(queue.flush(), "clFlush (row update)");
+  add_lap(r.host_ms, "uploads and launches", lap);
+  // The next row's masks are usually read by now (its extraction was enqueued before this
+  // row's visiting order was made); when they are not, the next row finds its runs itself
+  // rather than this one waiting for them (a CPU device runs both queues on the same cores).
+  if (ahead && ahead->filled && !ahead->runs_found &&
+      std::all_of(ahead->ready.begin(), ahead->ready.end(), [](const cl::Event& read) {
+        return read.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>() == CL_COMPLETE;
+      })) {
+    find_mask_runs(*ahead);
+    add_lap(r.host_ms, "next row's mask runs (overlapped)", lap);
+  }
+  check_cl(results.wait(), "waiting for the row's costs and argmins");
+  add_lap(r.host_ms, "wait for costs and argmins", lap);
   r.last_cost = cost;
   r.cost_in = 1 - r.cost_in;
   r.cost_resident = true;
+  add_lap(r.host_ms, "keep the cost row", lap);
 }
 
 void OpenCLBackend::update_table_row(const std::vector<std::int64_t>& previous_cost,
@@ -286,13 +331,17 @@ void OpenCLBackend::dp_row(const CostTexels& texels, const PositionSpace& space,
   // The next row's columns are extracted on the other queue while this row's update runs
   // (its buffers were last read by the previous row's update, which has completed).
   PreparedRow& following = r.prepared[1 - r.current];
+  Clock::time_point lap = update_start;
   if (next)
     prepare_row(following, texels, space, *next);
   else
     following.filled = false;
-  run_row(current, previous_cost, cost, argmin);
+  add_lap(r.host_ms, "enqueue the next row's extraction", lap);
+  run_row(current, previous_cost, cost, argmin, next ? &following : nullptr);
   r.current = 1 - r.current;
+  lap = Clock::now();
   r.harvest(false);
+  add_lap(r.host_ms, "profiling events", lap);
   times.update_ms = ms_since(update_start);
 }
 

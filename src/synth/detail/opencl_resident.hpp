@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "synth/detail/mask_groups.hpp"
 #include "synth/detail/opencl_backend.hpp"
 
 namespace tw::detail {
@@ -76,6 +77,11 @@ struct PreparedRow {
   DeviceBuffer fx, fy;
   DeviceColumns right, left;
   std::vector<cl::Event> ready;  // the mask reads, after every kernel of the extraction
+  // What the row's visiting order needs from the masks alone (not from the costs): found once
+  // the masks are read, while the previous row's kernel runs (OpenCLBackend::find_mask_runs).
+  bool runs_found = false;
+  MaskRuns right_runs;
+  std::vector<std::int32_t> left_run;  // per current position, its run in right_runs or -1
 
   bool holds(const RowEdges& edges, const PositionSpace& at, std::int64_t version) const {
     return filled && texels == version && space.width == at.width && space.height == at.height &&
@@ -118,6 +124,7 @@ struct ResidentRows {
 
   std::map<std::string, KernelTiming> timings;
   std::vector<std::pair<std::string, cl::Event>> pending;  // kernels not yet added to timings
+  std::map<std::string, double> host_ms;                   // OpenCLBackend::host_timings()
 
   // Adds the device time of the completed kernels among `pending` (all of them when `wait`).
   void harvest(bool wait) {
