@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include <tbb/parallel_sort.h>
+
 #include "core/error.hpp"
 
 namespace tw::detail {
@@ -18,8 +20,10 @@ MaskRuns mask_runs(const std::uint64_t* masks, int count, int words) {
   auto mask = [&](std::int32_t v) { return masks + std::size_t(v) * words; };
   std::vector<std::int32_t> by_mask(static_cast<std::size_t>(count));
   std::iota(by_mask.begin(), by_mask.end(), 0);
-  std::sort(by_mask.begin(), by_mask.end(),
-            [&](std::int32_t a, std::int32_t b) { return mask_less(mask(a), mask(b), words); });
+  // Only the runs count, not the order within them: any sort gives the same runs.
+  tbb::parallel_sort(by_mask.begin(), by_mask.end(), [&](std::int32_t a, std::int32_t b) {
+    return mask_less(mask(a), mask(b), words);
+  });
   MaskRuns out;
   out.words = words;
   out.run_of.resize(by_mask.size());
@@ -58,7 +62,9 @@ MaskGroups group_runs_by_cost(const MaskRuns& runs,
          previous_cost.size());
   std::vector<std::int32_t> order(static_cast<std::size_t>(previous));  // rank -> v
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+  // (P, v) is a total order: the parallel sort gives the one result (on the device backend's
+  // path between two row kernels, so its time is the host's part of a row).
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
     return previous_cost[a] != previous_cost[b] ? previous_cost[a] < previous_cost[b] : a < b;
   });
   // Groups are the runs, numbered in increasing lowest rank; members in increasing rank.
