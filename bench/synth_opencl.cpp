@@ -2,7 +2,9 @@
 // paper's exemplar sizes (199x82 and 325x64, from samples/exemplars/), time versus the number
 // of pieces N and versus the exemplar width W (the paper's performance figure), ratios to the
 // paper's GTX 580 figures (30 ms and 650 ms per row) and to the CPU backend, and where the
-// OpenCL time goes (device time per kernel from profiling events). Prints numbers only.
+// OpenCL time goes (device time per kernel from profiling events; the host-side gap, the row
+// update's wall time less its kernel's device time, and the host's phases of a row). Prints
+// numbers only.
 //
 // usage: bench_synth_opencl [--quick | --cases] [--rows R] [--group G] [--per-item K]
 //                           [--texels DIR | --save-texels DIR]

@@ -7,7 +7,8 @@
 // from row to row (they only grow), and the cost row of one update is the input of the next;
 // the host sends only the visiting order of the pruned walk (synth/detail/mask_groups.hpp)
 // and reads back the costs (to sort them) and the argmins. The columns of row i + 1 are
-// extracted on a second queue while row i's update runs.
+// extracted on a second queue while row i's update runs, and the host groups their masks
+// (mask_runs) while row i's kernel runs: only the sort by cost waits for row i's costs.
 // Backtracking stays on the host (synth/detail/dp.cpp): it follows one argmin per row, a
 // strictly sequential chain of N dependent reads with nothing to parallelize.
 #include <cstdint>
