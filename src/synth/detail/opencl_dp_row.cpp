@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <map>
+#include <string>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
