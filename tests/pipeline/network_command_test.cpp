@@ -19,6 +19,7 @@
 #include "commands/network_command.hpp"
 #include "core/error.hpp"
 #include "network/example_networks.hpp"
+#include "pipeline/version.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -203,7 +204,7 @@ TEST_F(NetworkCommandTest, TheSummaryNamesTheMethodAskedAndTheOneChosen) {
   EXPECT_EQ(chose_layout["TERRAWEAVE_SEED"], "1");
   EXPECT_EQ(chose_layout["TERRAWEAVE_EXEMPLAR"], (dir / "terraces.geojson").string());
   EXPECT_EQ(chose_layout["TERRAWEAVE_REGION"], fmt::format("{},{},{},{}", lo.x, lo.y, hi.x, hi.y));
-  EXPECT_EQ(chose_layout["TERRAWEAVE_VERSION"], "0.1.0");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_VERSION"], kTerraweaveVersion);
   EXPECT_EQ(chose_layout.count("TERRAWEAVE_PARTIAL"), 0u);
   EXPECT_EQ(chose_layout["TERRAWEAVE_KEPT_EDGES"], "0");
   // The counts are the summary's: "N suggested edges, 0 kept, M nodes ... ; S seeds, ...".
