@@ -115,7 +115,8 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
       response.set_content(page, "text/html; charset=utf-8");
     });
     // {lines: [[[x, y], ...], ...], region: [[x, y], ...], method: "automatic" | "growth" |
-    // "quilt" | "layout" (absent: automatic)} -> {suggestions: [...]}
+    // "quilt" | "layout" (absent: automatic)} -> {suggestions: [...], method: as asked, chosen:
+    // the one that made them (chosen_network_method: never automatic)}
     server.Post("/complete", [&](const httplib::Request& request, httplib::Response& response) {
       answer(request, response, [&](const json& body) {
         NetworkLines drawn;
@@ -131,8 +132,12 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
         growth.seed = body.value("seed", o.seed);
         growth.method = method_of(body);
         std::lock_guard lock(one_at_a_time);
-        return json{{"suggestions",
-                     to_json(complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth))}};
+        NetworkGrowthReport report;
+        const auto suggestions =
+            complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth, &report);
+        return json{{"suggestions", to_json(suggestions)},
+                    {"method", std::string(network_method_name(growth.method))},
+                    {"chosen", std::string(chosen_network_method(report))}};
       });
     });
     // The drawing saved at --save, when there is one: {lines, origins} as saved (empty lists

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 #include "commands/detail/vector_inputs.hpp"
 #include "core/atomic_output.hpp"
@@ -21,6 +22,7 @@
 #include "network/exemplar.hpp"
 #include "network/partial.hpp"
 #include "network/preview.hpp"
+#include "pipeline/version.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {
@@ -76,14 +78,47 @@ ForbiddenMask forbidden_mask(const NetworkCommand& c, const std::vector<Polygon>
   return mask;
 }
 
+// What made network.gpkg, on each of its layers (docs/networks.md, "Outputs"): the command, its
+// inputs as given, the method asked and the one chosen, the seed and the summary's counts (not
+// its time: the same seed writes the same bytes).
+std::vector<std::pair<std::string, std::string>> network_provenance(const NetworkCommand& c,
+                                                                    const NetworkCommandResult& r) {
+  std::vector<std::pair<std::string, std::string>> items = {
+      {"TERRAWEAVE_VERSION", kTerraweaveVersion},
+      {"TERRAWEAVE_COMMAND", "network " + c.mode},
+      {"TERRAWEAVE_NETWORK_METHOD", std::string(network_method_name(r.method))},
+      {"TERRAWEAVE_NETWORK_CHOSEN", std::string(chosen_network_method(r.growth))},
+      {"TERRAWEAVE_SEED", std::to_string(c.growth.seed)}};
+  const std::pair<const char*, const std::string*> inputs[] = {
+      {"TERRAWEAVE_EXEMPLAR", &c.exemplar},
+      {"TERRAWEAVE_PARTIAL", &c.partial},
+      {"TERRAWEAVE_MAP", &c.map},
+      {"TERRAWEAVE_REGION", &c.region},
+      {"TERRAWEAVE_SOURCE_REGION", &c.source_region},
+      {"TERRAWEAVE_TARGET_REGION", &c.target_region}};
+  for (const auto& [name, value] : inputs)
+    if (!value->empty()) items.emplace_back(name, *value);
+  const std::pair<const char*, int> counts[] = {{"TERRAWEAVE_SUGGESTED_EDGES", r.suggested_edges},
+                                                {"TERRAWEAVE_KEPT_EDGES", r.kept_edges},
+                                                {"TERRAWEAVE_NODES", r.nodes},
+                                                {"TERRAWEAVE_EXEMPLAR_EDGES", r.exemplar_edges},
+                                                {"TERRAWEAVE_SEEDS", r.growth.seeds},
+                                                {"TERRAWEAVE_T_JUNCTIONS", r.growth.t_junctions},
+                                                {"TERRAWEAVE_SNAPPED", r.growth.snapped}};
+  for (const auto& [name, count] : counts) items.emplace_back(name, std::to_string(count));
+  return items;
+}
+
 void write_geopackage(const std::filesystem::path& path, const std::string& crs_wkt,
-                      const Network& grown, const NetworkLines* kept) {
+                      const Network& grown, const NetworkLines* kept,
+                      const std::vector<std::pair<std::string, std::string>>& provenance) {
   GeoPackageWriter gpkg = create_geopackage(path, crs_wkt);
   const std::vector<int> degree = grown.degrees();
   {
     OGRLayer* layer = &gpkg.create_layer("suggestions", wkbLineString);
     gpkg.add_fields(*layer,
                     {{"from_node", OFTInteger}, {"to_node", OFTInteger}, {"length_m", OFTReal}});
+    gpkg.set_metadata(*layer, provenance);
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     GIntBig fid = 1;
     for (const NetworkEdge& e : grown.edges) {
@@ -103,6 +138,7 @@ void write_geopackage(const std::filesystem::path& path, const std::string& crs_
   {
     OGRLayer* layer = &gpkg.create_layer("nodes", wkbPoint);
     gpkg.add_fields(*layer, {{"degree", OFTInteger}, {"on_boundary", OFTInteger}});
+    gpkg.set_metadata(*layer, provenance);
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t n = 0; n < grown.nodes.size(); ++n) {
       OGRFeature f(layer->GetLayerDefn());
@@ -118,6 +154,7 @@ void write_geopackage(const std::filesystem::path& path, const std::string& crs_
   if (kept) {
     OGRLayer* layer = &gpkg.create_layer("kept", wkbLineString);
     gpkg.add_fields(*layer, {{"source_fid", OFTInteger64}});
+    gpkg.set_metadata(*layer, provenance);
     if (layer->StartTransaction() != OGRERR_NONE) fail("{}: cannot write", path.string());
     for (std::size_t i = 0; i < kept->lines.size(); ++i) {
       OGRFeature f(layer->GetLayerDefn());
@@ -234,7 +271,7 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
 
   OutputTransaction transaction;
   write_geopackage(transaction.stage(c.out / "network.gpkg"), exemplar_lines.crs_wkt, grown,
-                   kept_lines ? &*kept_lines : nullptr);
+                   kept_lines ? &*kept_lines : nullptr, network_provenance(c, result));
   Network kept_view, suggested_view;
   for (const NetworkEdge& e : grown.edges) (e.kept ? kept_view : suggested_view).edges.push_back(e);
   kept_view.nodes = suggested_view.nodes = grown.nodes;

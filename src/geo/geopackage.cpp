@@ -47,6 +47,13 @@ void GeoPackageWriter::add_fields(
   }
 }
 
+void GeoPackageWriter::set_metadata(OGRLayer& layer,
+                                    const std::vector<std::pair<std::string, std::string>>& items) {
+  for (const auto& [name, value] : items)
+    if (layer.SetMetadataItem(name.c_str(), value.c_str()) != CE_None)
+      fail("{}: cannot set metadata {} on layer '{}'", path_.string(), name, layer.GetName());
+}
+
 GeoPackageWriter create_geopackage(const std::filesystem::path& path, const std::string& crs) {
   return GeoPackageWriter(path, crs);
 }

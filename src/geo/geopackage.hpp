@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 class GDALDataset;
 class OGRLayer;
@@ -28,6 +29,10 @@ class GeoPackageWriter {
   // Adds the fields to a layer of this package, in order.
   void add_fields(OGRLayer& layer,
                   std::initializer_list<std::pair<const char*, OGRFieldType>> fields);
+  // Name=value items on a layer of this package (GDAL keeps them in gpkg_metadata, referenced
+  // from gpkg_metadata_reference with scope 'table'): what made its features, for whoever opens
+  // the file later (ogrinfo, QGIS, a pipeline).
+  void set_metadata(OGRLayer& layer, const std::vector<std::pair<std::string, std::string>>& items);
 
  private:
   friend GeoPackageWriter create_geopackage(const std::filesystem::path&, const std::string&);

@@ -1,21 +1,25 @@
 // `terraweave network synthesize|complete|clone` through the CLI (issue #20, docs/networks.md):
-// the GeoPackage holds suggestions that GEOS finds crossing nothing and inside the region, the
+// the GeoPackage holds suggestions that GEOS finds crossing nothing and inside the region, and
+// names in its layers' metadata the command, its inputs and the method asked and chosen; the
 // partial drawing comes back exactly, the same seed gives the same bytes, and every bad input is
 // one line naming the file, key or FID with nothing written.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cpl_string.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 
 #include "commands/network_command.hpp"
 #include "core/error.hpp"
 #include "network/example_networks.hpp"
+#include "pipeline/version.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -76,6 +80,23 @@ Layer read_layer(const fs::path& gpkg, const char* name) {
     for (int i = 0; i < ls->getNumPoints(); ++i) line.push_back({ls->getX(i), ls->getY(i)});
   }
   return out;
+}
+
+// The metadata items of a layer of network.gpkg, read back through GDAL (empty: no such layer).
+std::map<std::string, std::string> network_layer_metadata(const fs::path& gpkg, const char* name) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(gpkg.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
+                                                    nullptr, nullptr, nullptr));
+  std::map<std::string, std::string> items;
+  OGRLayer* layer = ds ? ds->GetLayerByName(name) : nullptr;
+  if (!layer) return items;
+  for (const char* const* item = layer->GetMetadata(); item && *item; ++item) {
+    char* key = nullptr;
+    const char* value = CPLParseNameValue(*item, &key);
+    if (key && value) items[key] = value;
+    CPLFree(key);
+  }
+  return items;
 }
 
 // GEOS: pairs of suggested lines meeting where neither ends.
@@ -172,6 +193,33 @@ TEST_F(NetworkCommandTest, TheSummaryNamesTheMethodAskedAndTheOneChosen) {
   const CommandResult grown = network(args + (dir / "growth").string() + " --method growth");
   ASSERT_EQ(grown.exit_code, 0) << grown.output;
   EXPECT_THAT(grown.output, HasSubstr("; method growth, chose growth;"));
+
+  // network.gpkg says the same to whoever opens it later: on each of its layers, the command,
+  // the method asked and chosen, the seed, the exemplar, the version and the summary's counts.
+  std::map<std::string, std::string> chose_layout =
+      network_layer_metadata(dir / "automatic/network.gpkg", "suggestions");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_COMMAND"], "network synthesize");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_NETWORK_METHOD"], "automatic");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_NETWORK_CHOSEN"], "layout");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_SEED"], "1");
+  EXPECT_EQ(chose_layout["TERRAWEAVE_EXEMPLAR"], (dir / "terraces.geojson").string());
+  EXPECT_EQ(chose_layout["TERRAWEAVE_REGION"], fmt::format("{},{},{},{}", lo.x, lo.y, hi.x, hi.y));
+  EXPECT_EQ(chose_layout["TERRAWEAVE_VERSION"], kTerraweaveVersion);
+  EXPECT_EQ(chose_layout.count("TERRAWEAVE_PARTIAL"), 0u);
+  EXPECT_EQ(chose_layout["TERRAWEAVE_KEPT_EDGES"], "0");
+  // The counts are the summary's: "N suggested edges, 0 kept, M nodes ... ; S seeds, ...".
+  EXPECT_THAT(automatic.output,
+              HasSubstr(chose_layout["TERRAWEAVE_SUGGESTED_EDGES"] + " suggested edges, 0 kept, " +
+                        chose_layout["TERRAWEAVE_NODES"] + " nodes"));
+  EXPECT_THAT(automatic.output,
+              HasSubstr("; " + chose_layout["TERRAWEAVE_SEEDS"] + " seeds, " +
+                        chose_layout["TERRAWEAVE_T_JUNCTIONS"] + " T-junctions, " +
+                        chose_layout["TERRAWEAVE_SNAPPED"] + " snapped onto nodes"));
+  EXPECT_EQ(network_layer_metadata(dir / "automatic/network.gpkg", "nodes"), chose_layout);
+  const std::map<std::string, std::string> growth =
+      network_layer_metadata(dir / "growth/network.gpkg", "suggestions");
+  EXPECT_EQ(growth.at("TERRAWEAVE_NETWORK_METHOD"), "growth");
+  EXPECT_EQ(growth.at("TERRAWEAVE_NETWORK_CHOSEN"), "growth");
 }
 
 TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget) {
@@ -183,6 +231,14 @@ TEST_F(NetworkCommandTest, CompleteKeepsTheDrawingExactlyAndCloneGrowsTheTarget)
               " --region " + region + " --out " + (dir / "c").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("; method automatic, chose growth;"));  // completing is growth
+  const std::map<std::string, std::string> completed =
+      network_layer_metadata(dir / "c/network.gpkg", "kept");
+  EXPECT_EQ(completed.at("TERRAWEAVE_COMMAND"), "network complete");
+  EXPECT_EQ(completed.at("TERRAWEAVE_NETWORK_METHOD"), "automatic");
+  EXPECT_EQ(completed.at("TERRAWEAVE_NETWORK_CHOSEN"), "growth");
+  EXPECT_EQ(completed.at("TERRAWEAVE_PARTIAL"), (dir / "drawn.geojson").string());
+  EXPECT_THAT(r.output,
+              HasSubstr(" suggested edges, " + completed.at("TERRAWEAVE_KEPT_EDGES") + " kept, "));
   const Layer kept = read_layer(dir / "c/network.gpkg", "kept");
   ASSERT_EQ(kept.lines.size(), 2u);
   EXPECT_EQ(kept.lines[0].front(), (std::pair{500050.125, 4000300.5}));

@@ -242,9 +242,9 @@ def main():
         page.click("complete")
         page.wait("+document.body.dataset.completed === 1")
         first = page.eval("window.__network.suggestions.length")
-        error = page.eval("document.getElementById('status').textContent")
+        first_status = page.eval("document.getElementById('status').textContent")
         if first < 3:
-            sys.exit(f"first completion: {first} suggestions ({error})")
+            sys.exit(f"first completion: {first} suggestions ({first_status})")
 
         # One by a click on the middle of the longest suggestion's first segment.
         page.click("pick")
@@ -297,6 +297,7 @@ def main():
             "after_reject": rejected,
             "second_suggestions": second,
             "second_region_points": region,
+            "first_status": first_status,
             "second_status": second_status,
             "server_pid": server.pid,
             "view_page": view_page,

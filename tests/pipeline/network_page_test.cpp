@@ -63,6 +63,10 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   EXPECT_EQ(r["after_reject"], 0);
   EXPECT_EQ(r["second_region_points"], 8);  // the second region: a loop, not a box
   EXPECT_GT(r["second_suggestions"].get<int>(), 0) << r["second_status"];
+  // The status line names the method that completed the drawing: automatic (the page's default)
+  // grows from the drawn ends.
+  EXPECT_EQ(r["first_status"], std::to_string(r["first_suggestions"].get<int>()) +
+                                   " suggestions, completed by growth (automatic chose it)");
   const auto& lines = r["lines"];
   ASSERT_EQ(lines.size(), r["after_lasso"].get<std::size_t>() + r["second_suggestions"].get<int>());
   EXPECT_TRUE(fs::equivalent(r["saved"].get<std::string>(), dir / "drawn_network.gpkg"));
@@ -272,6 +276,22 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   EXPECT_NE(grown, laid_out) << "method";
   EXPECT_EQ(chosen, south["automatic"]["body"]["suggestions"]) << "no method: automatic";
   EXPECT_GT(chosen.size(), 0u) << "automatic";
+  // Each answer names the method asked and the one that made its suggestions (the page's status
+  // line shows both): a method named makes them itself; automatic picks one of the three, and
+  // its suggestions are that method's own.
+  for (const char* method : {"growth", "quilt", "layout"}) {
+    EXPECT_EQ(south[method]["body"]["method"], method);
+    EXPECT_EQ(south[method]["body"]["chosen"], method);
+  }
+  for (const char* unnamed : {"automatic", "-"}) {
+    EXPECT_EQ(south[unnamed]["body"]["method"], "automatic") << unnamed;
+    const nlohmann::json& automatic_chose = south[unnamed]["body"]["chosen"];
+    ASSERT_TRUE(automatic_chose == "growth" || automatic_chose == "quilt" ||
+                automatic_chose == "layout")
+        << automatic_chose;
+    EXPECT_EQ(chosen, south[automatic_chose.get<std::string>()]["body"]["suggestions"])
+        << "automatic chose " << automatic_chose;
+  }
   const nlohmann::json over_stroke = completions("quilt,layout,grow", stroke_region);
   for (const char* method : {"quilt", "layout"}) {
     EXPECT_EQ(over_stroke[method]["status"], 400) << method;

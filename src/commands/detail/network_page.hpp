@@ -2,10 +2,12 @@
 // The drawing page of `terraweave view RUN --serve --exemplar ...` (docs/networks.md, "Drawing"):
 // @DATA@ becomes the run's map as JSON (its colours as RGB rows north first, its grid and CRS,
 // its feature lines, where the drawing is saved). The page draws strokes in map coordinates,
-// asks the server (POST /complete) to complete a region by the method chosen, lets the user accept
-// the suggestions (all, one by a click, or those inside a lasso) or reject them, undo the last
-// stroke or accept (Ctrl+Z), and saves (POST /save). On loading it shows the drawing saved before
-// (GET /drawing) as accepted lines; a stroke's ends within a few pixels of a line are joined to it.
+// asks the server (POST /complete) to complete a region by the method chosen and names in its
+// status line the method that made the suggestions ("completed by layout (automatic chose it)"),
+// lets the user accept the suggestions (all, one by a click, or those inside a lasso) or reject
+// them, undo the last stroke or accept (Ctrl+Z), and saves (POST /save). On loading it shows the
+// drawing saved before (GET /drawing) as accepted lines; a stroke's ends within a few pixels of a
+// line are joined to it.
 // window.__network exposes the state (lines, suggestions, the map's transform) for the tests.
 namespace tw::detail {
 
@@ -244,7 +246,8 @@ document.getElementById('complete').onclick = async () => {
     const a = await post('complete', {lines: S.lines, region: S.region,
                                       method: document.getElementById('method').value});
     S.suggestions = a.suggestions;
-    status(`${a.suggestions.length} suggestions`);
+    const asked = a.method === a.chosen ? '' : ` (${a.method} chose it)`;
+    status(`${a.suggestions.length} suggestions, completed by ${a.chosen}${asked}`);
   } catch (err) { status(err.message); }
   document.body.dataset.completed = (+document.body.dataset.completed || 0) + 1;
   redraw();
