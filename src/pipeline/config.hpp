@@ -69,15 +69,16 @@ struct SynthesisConfig {
   // (SynthParams::switch_cost), and the rules binding stretches to exemplars, first match wins.
   int switch_cost = 0;
   std::vector<ExemplarBinding> bind;
-  // Piece length, metres; absent: from the exemplar (with_exemplar_defaults).
+  // Piece length, metres; absent: from the exemplar (the patterns method's resolve_defaults).
   std::optional<double> delta;
   double scale = 8.0;  // exemplar texels per metre of ribbon
   // Ribbon width of the synthesis in metres (s * width texels of the exemplar span it); absent:
-  // from the exemplar (with_exemplar_defaults); `width: feature`: each feature's width
-  // (attribute or the class's `width`).
+  // from the exemplar (the patterns method's resolve_defaults); `width: feature`: each feature's
+  // width (attribute or the class's `width`).
   std::optional<double> width;
   bool width_of_feature = false;
-  // Set by with_exemplar_defaults where width / delta were derived from the exemplar.
+  // Set by the patterns method's resolve_defaults where width / delta were derived from the
+  // exemplar.
   bool width_from_exemplar = false, delta_from_exemplar = false;
   bool stitch = true;
   // A piece with no valid position (a junction disc, an earlier pattern) stays empty; false:

@@ -18,7 +18,6 @@
 #include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/stage_options.hpp"
 #include "pipeline/detail/stages.hpp"
-#include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/synthesis_method.hpp"
 #include "raster/footprint.hpp"
 #include "terrain/splat.hpp"
@@ -134,9 +133,11 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
 
   clock.start("ingest");
   const std::optional<fs::path> cache_dir = options.cache_dir ? options.cache_dir : given.cache_dir;
-  detail::check_inputs(given.inputs, cache_dir);
-  // Synthesis width and delta from the exemplars where a class gives none.
-  const PipelineConfig config = detail::with_exemplar_defaults(given);
+  const std::vector<const SynthesisMethod*>& methods = methods_or_builtin(options.methods);
+  detail::check_inputs(given.inputs, cache_dir, methods);
+  // Each method's defaults from its inputs (the patterns: synthesis width and delta from the
+  // exemplars where a class gives none).
+  const PipelineConfig config = with_method_defaults(given, methods);
   // Each stage takes its own options, taken from the config here (detail/stage_options.hpp).
   const detail::HeightfieldInput dem_input = detail::heightfield_input(config);
   const detail::TerrainOptions terrain_options = detail::terrain_options(config);
@@ -146,7 +147,6 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // No pixel is read here: ingest, conformance, the terrain plan and every tile read the
   // windows they touch. A region is a window of the world's grid (detail/region.hpp).
   const Heightfield heightfield = source->without_pixels();
-  const std::vector<const SynthesisMethod*>& methods = methods_or_builtin(options.methods);
   std::vector<std::vector<LineFeature>> lines;
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();

@@ -13,8 +13,8 @@
 #include "core/output_folder.hpp"
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
-#include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/plan_io.hpp"
+#include "pipeline/synthesis_method.hpp"
 
 namespace tw {
 
@@ -128,9 +128,9 @@ json plan_synthesis_tasks(const PipelineConfig& config, const WorldPlan& plan,
                           const std::optional<std::string>& backend,
                           const std::optional<fs::path>& cache, const fs::path& plan_dir,
                           Warnings& warnings) {
-  // The keys of the syntheses plan_world would run: with the exemplars' width and delta where the
-  // pipeline gives none (the tasks read the pipeline so too).
-  const PipelineConfig defaults = with_exemplar_defaults(config);
+  // The keys of the syntheses plan_world would run: with the methods' defaults (the exemplars'
+  // width and delta where the pipeline gives none; the tasks read the pipeline so too).
+  const PipelineConfig defaults = with_method_defaults(config);
   MethodTasks tasks{defaults, backend, cache, plan_dir, warnings};
   const json features = tasks_method(plan).plan_tasks(plan, tasks);
   return {{"format", kSynthesesFormat},
@@ -199,8 +199,8 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   result.name = entry.at("name").get<std::string>();
   if (!entry.at("task").get<bool>()) return result;  // reused from the cache by the plan
 
-  // With the exemplars' width and delta where the pipeline gives none, as the plan read it.
-  const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
+  // With the methods' defaults (the exemplars' width and delta), as the plan read it.
+  const PipelineConfig config = with_method_defaults(detail::job_config(job));
   const WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;  // a store entry of a dependency that is corrupt: an error below
   MethodTasks tasks{config, job_backend(job), fs::path(list.at("store").get<std::string>()),
@@ -287,7 +287,7 @@ PlannedJob complete_job_plan(const fs::path& plan_dir, bool strict) {
          syntheses_path(plan_dir).string(), list.value("plan", ""), hash,
          detail::plan_again(plan_dir));
   }
-  const PipelineConfig config = detail::with_exemplar_defaults(detail::job_config(job));
+  const PipelineConfig config = with_method_defaults(detail::job_config(job));
   WorldPlan plan = load_plan(plan_dir);
   Warnings warnings;
   MethodTasks tasks{config, job_backend(job), fs::path(list.at("store").get<std::string>()),

@@ -62,6 +62,13 @@ const std::vector<const SynthesisMethod*>& methods_or_builtin(
   return methods.empty() ? builtin_synthesis_methods() : methods;
 }
 
+PipelineConfig with_method_defaults(PipelineConfig config,
+                                    const std::vector<const SynthesisMethod*>& methods) {
+  for (const SynthesisMethod* method : methods_or_builtin(methods))
+    method->resolve_defaults(config);
+  return config;
+}
+
 std::string method_name(const MethodPlan& entry) {
   return entry.method ? entry.method->name() : std::string();
 }

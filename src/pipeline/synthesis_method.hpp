@@ -26,6 +26,7 @@ class OutputFolder;
 namespace detail {
 struct ExistingFeatures;
 struct FeatureRibbons;
+class InputCheck;
 class PlanObjects;
 }  // namespace detail
 
@@ -36,7 +37,7 @@ enum class MethodStage { lines, placements };
 
 // What a method sees while planning; the pointers fill in as plan_world goes on.
 struct MethodContext {
-  const PipelineConfig& config;  // with the exemplars' defaults
+  const PipelineConfig& config;  // with the methods' defaults (resolve_defaults)
   const PlanOptions& options;
   const HeightfieldSource& source;
   const Heightfield& heightfield;  // the world's, without pixels
@@ -73,7 +74,7 @@ struct MethodOutputs {
 // graph and waves, the results' files, the completion's journal) is the pipeline's; what a task
 // is, how it runs and how its results enter the plan are the method's.
 struct MethodTasks {
-  const PipelineConfig& config;  // with the exemplars' defaults
+  const PipelineConfig& config;  // with the methods' defaults (resolve_defaults)
   std::optional<std::string> backend;
   // The synthesis store: the cache when planning (none: nothing is reused), else syntheses.json's
   // `store`.
@@ -105,6 +106,20 @@ class SynthesisMethod {
   virtual std::string class_source(const FeatureClassConfig& /*c*/) const { return {}; }
   // An empty entry: what a plan without its classes holds.
   virtual std::unique_ptr<MethodPayload> empty_payload() const = 0;
+
+  // Before any stage reads the config: fills in the defaults of its options that come from its
+  // inputs (the patterns: a class's synthesis width and delta from its exemplars), so that every
+  // reader after it (the stages' options, the synthesis tasks and keys) sees them resolved.
+  // Called for every method, in method order (with_method_defaults, below).
+  virtual void resolve_defaults(PipelineConfig& /*config*/) const {}
+  // Checks one of the config's inputs (PipelineConfig::inputs) before any stage starts, if it is
+  // its own (the patterns: an exemplar image; grown: an element set); the file exists. Throws
+  // tw::Error "<input.named_at>: ..." when it cannot be used; false: not its own (the pipeline
+  // opens raster and vector data itself). `check` (detail/input_check.hpp) holds what the
+  // checks share, the run cache among it.
+  virtual bool check_input(const InputFile& /*input*/, detail::InputCheck& /*check*/) const {
+    return false;
+  }
 
   // Reads its own inputs with the plan's ingest (warnings in the ingest's order). Called for
   // every method, before conformance; context.existing is not there yet.
@@ -207,6 +222,11 @@ const std::vector<const SynthesisMethod*>& builtin_synthesis_methods();
 // `methods`, or the built-in ones when it is empty.
 const std::vector<const SynthesisMethod*>& methods_or_builtin(
     const std::vector<const SynthesisMethod*>& methods);
+
+// The config with every method's defaults resolved (SynthesisMethod::resolve_defaults), in the
+// methods' order (empty: the built-in ones): what plan_world and the synthesis tasks read.
+PipelineConfig with_method_defaults(PipelineConfig config,
+                                    const std::vector<const SynthesisMethod*>& methods = {});
 
 // The entry of the method named `name` in the plan; null when the plan has none.
 const MethodPlan* find_method_plan(const WorldPlan& plan, const std::string& name);

@@ -14,6 +14,7 @@
 #include "core/output_folder.hpp"
 #include "layers/layer_set.hpp"
 #include "pipeline/config.hpp"
+#include "pipeline/detail/input_check.hpp"
 #include "pipeline/detail/job_outputs.hpp"
 #include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/detail/plan_objects.hpp"
@@ -23,6 +24,8 @@
 #include "pipeline/plan_io.hpp"
 #include "pipeline/synthesis_method.hpp"
 #include "raster/footprint.hpp"
+#include "synth/exemplar.hpp"
+#include "synth/exemplar_stats.hpp"
 #include "terrain/splat.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
@@ -331,6 +334,76 @@ TEST_F(SynthesisMethods, AFifthMethodsTileFactsOutputsAndReportFieldsGoThroughTh
     EXPECT_FALSE(stamp_only.contains(key)) << key;
   EXPECT_FALSE(stamp_only.at("timings").contains("synthesis"));
   EXPECT_FALSE(detail::report_to_json(report, config()).at("classes").at(0).contains("stamped"));
+}
+
+// A method that only resolves a default of its own (the seed, here) and records the inputs it
+// is asked to check, claiming none: what the pipeline asks of every method before any stage.
+class InputsRecorderMethod final : public SynthesisMethod {
+ public:
+  std::string name() const override { return "inputs_recorder"; }
+  MethodStage stage() const override { return MethodStage::placements; }
+  bool serves(const PipelineConfig&, const PlanOptions&) const override { return false; }
+  std::unique_ptr<MethodPayload> empty_payload() const override {
+    return std::make_unique<StampPlan>();
+  }
+  void resolve_defaults(PipelineConfig& config) const override { config.seed += 100; }
+  bool check_input(const InputFile& input, detail::InputCheck&) const override {
+    checked.push_back(input.path.filename().string());
+    return false;
+  }
+  void plan(MethodContext&, MethodPlan&) const override {}
+  json encode(const MethodPlan&, detail::PlanObjects&) const override { return {}; }
+  void decode(const json&, detail::PlanObjects&, MethodPlan&) const override {}
+
+  mutable std::vector<std::string> checked;
+};
+
+TEST_F(SynthesisMethods, DefaultsAndInputChecksGoThroughTheMethods) {
+  // Without a synthesis class, the built-in methods leave the config as it is.
+  const PipelineConfig plain = with_method_defaults(config());
+  EXPECT_EQ(plain.seed, 3u);
+  ASSERT_EQ(plain.features.size(), 1u);
+  EXPECT_FALSE(plain.features[0].synthesis.has_value());
+
+  // With one, the patterns method sets its width and delta from the exemplar, flagged so.
+  test::crop_raster(test::source_dir() / "samples/exemplars/cobble_edging_200x56.png",
+                    dir_ / "cobble.png", "PNG", 60, 56);
+  const PipelineConfig given =
+      parse_pipeline(std::string(kWorld) + "    synthesis: { exemplar: cobble.png, scale: 5 }\n",
+                     "world.yaml", dir_.path(), {});
+  ASSERT_TRUE(given.features[0].synthesis.has_value());
+  EXPECT_FALSE(given.features[0].synthesis->width.has_value());
+  EXPECT_FALSE(given.features[0].synthesis->delta.has_value());
+  const ExemplarStats stats = exemplar_stats(load_exemplar((dir_ / "cobble.png").string()));
+  const PipelineConfig resolved = with_method_defaults(given);
+  const SynthesisConfig& s = *resolved.features[0].synthesis;
+  ASSERT_TRUE(s.width && s.delta);
+  EXPECT_DOUBLE_EQ(*s.width, suggested_width(stats, 5.0));
+  EXPECT_DOUBLE_EQ(*s.delta, suggested_delta(stats, 5.0));
+  EXPECT_TRUE(s.width_from_exemplar);
+  EXPECT_TRUE(s.delta_from_exemplar);
+  EXPECT_EQ(resolved.seed, 3u);
+
+  // The pipeline names no method: a list without the patterns resolves only its own defaults,
+  // and each of the config's inputs is offered to its methods before the pipeline opens it.
+  const InputsRecorderMethod recorder;
+  const PipelineConfig recorded = with_method_defaults(given, {&recorder});
+  EXPECT_EQ(recorded.seed, 103u);
+  EXPECT_FALSE(recorded.features[0].synthesis->delta.has_value());
+  detail::check_inputs(given.inputs, std::nullopt, {&recorder});
+  EXPECT_EQ(recorder.checked, (std::vector<std::string>{"dem.tif", "map.gpkg", "cobble.png"}));
+  // The built-in patterns method checks the exemplar, at its key.
+  write_file_atomic(dir_ / "cobble.png", "not a PNG");
+  try {
+    detail::check_inputs(given.inputs, std::nullopt);
+    ADD_FAILURE() << "a broken exemplar passed the check";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("world.yaml:11:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(
+                  "features.roads.synthesis.exemplar: cannot be used as an exemplar"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 
 #include <gdal_priv.h>
 
+#include <algorithm>
+
 #include "core/error.hpp"
-#include "ornament/element.hpp"
-#include "pipeline/detail/exemplar_memo.hpp"
-#include "pipeline/methods/patterns/patterns.hpp"
+#include "pipeline/synthesis_method.hpp"
 
 namespace tw::detail {
 namespace {
@@ -36,43 +36,28 @@ void check_gdal_input(const InputFile& input) {
 
 }  // namespace
 
+CacheFolder& InputCheck::cache_folder() {
+  if (!folder_) folder_ = std::make_unique<CacheFolder>(*cache_dir_, unwritable_);
+  return *folder_;
+}
+
 void check_inputs(const std::vector<InputFile>& inputs,
-                  const std::optional<std::filesystem::path>& cache_dir) {
+                  const std::optional<std::filesystem::path>& cache_dir,
+                  const std::vector<const SynthesisMethod*>& methods) {
   GDALAllRegister();
-  // Only when an exemplar is remembered now. A folder it cannot write is warned about once by
-  // the run's synthesis and tile caches, which use the same folder: not here as well.
-  Warnings unwritable;
-  std::unique_ptr<CacheFolder> folder;
+  InputCheck check(cache_dir);
+  const std::vector<const SynthesisMethod*>& all = methods_or_builtin(methods);
   for (const InputFile& input : inputs) {
     VSIStatBufL stat;
     if (VSIStatL(input.path.c_str(), &stat) != 0) {
       fail("{}: {}: file does not exist", input.named_at, input.path.string());
     }
-    if (input.kind == InputFile::Kind::ornament) {
-      try {
-        read_element_set(input.path);
-      } catch (const Error& e) {
-        fail("{}: cannot be used as an element set: {}", input.named_at, e.what());
-      }
+    if (std::any_of(all.begin(), all.end(),
+                    [&](const SynthesisMethod* m) { return m->check_input(input, check); }))
       continue;
-    }
-    if (input.kind != InputFile::Kind::exemplar) {
+    // A method's input that no method given checks (a list without it) only has to exist.
+    if (input.kind == InputFile::Kind::raster || input.kind == InputFile::Kind::vector)
       check_gdal_input(input);
-      continue;
-    }
-    // One validated before with these bytes (and height twin) is not decoded again.
-    const std::optional<ContentHash> hash =
-        cache_dir ? std::optional(exemplar_file_hash(input.path)) : std::nullopt;
-    if (hash && remembered_exemplar(*cache_dir, *hash, input.path)) continue;
-    Exemplar exemplar;
-    try {
-      exemplar = load_exemplar_with_height(input.path, false);
-    } catch (const Error& e) {
-      fail("{}: cannot be used as an exemplar: {}", input.named_at, e.what());
-    }
-    if (!hash) continue;
-    if (!folder) folder = std::make_unique<CacheFolder>(*cache_dir, unwritable);
-    remember_exemplar(*folder, *cache_dir, *hash, exemplar);
   }
 }
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "pipeline/detail/synthesis_defaults.hpp"
+#include "pipeline/detail/piece_length.hpp"
 #include "pipeline/version.hpp"
 
 namespace tw::detail {
@@ -23,7 +23,7 @@ RibbonOptions ribbon_options(const PipelineConfig& config) {
   for (const FeatureClassConfig& feature_class : config.features) {
     RibbonClass& c = options.classes.emplace_back();
     c.name = feature_class.name;
-    c.delta = class_delta(feature_class);
+    c.delta = class_piece_length(feature_class);
     c.grown = feature_class.grow.has_value();
     if (feature_class.synthesis) c.synthesis_width = feature_class.synthesis->width;
   }

@@ -35,7 +35,7 @@ struct FeatureRibbons {
 // detail/stage_options.hpp).
 struct RibbonClass {
   std::string name;
-  double delta = 0.0;  // piece length, metres: the synthesis delta or its default (class_delta)
+  double delta = 0.0;  // piece length, metres (class_piece_length, detail/piece_length.hpp)
   bool grown = false;  // `grow:` lines: short ones are counted, not warned about
   std::optional<double> synthesis_width;  // the synthesis ribbon's own width, metres
 };

@@ -6,9 +6,9 @@
 #include "core/log.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/exemplar_memo.hpp"
+#include "pipeline/detail/piece_length.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/polygons_hash.hpp"
-#include "pipeline/detail/synthesis_defaults.hpp"
 #include "pipeline/version.hpp"
 #include "raster/footprint.hpp"
 #include "synth/feature_synthesis.hpp"
@@ -148,7 +148,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   c.u64(config.seed).real(config.synthesis_resolution).u64(feature_seed);
   c.u64(s.exemplars.size());
   for (const fs::path& path : s.exemplars) c.text(path.string());
-  c.u64(std::uint64_t(s.choice)).real(class_delta(feature_class)).real(s.scale);
+  c.u64(std::uint64_t(s.choice)).real(class_piece_length(feature_class)).real(s.scale);
   c.boolean(s.width.has_value()).real(s.width.value_or(0.0));
   c.boolean(s.stitch).boolean(s.empty_pieces).boolean(s.continuous_alpha);
   c.boolean(s.min_coverage.has_value()).real(s.min_coverage.value_or(0.0));

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "core/error.hpp"
 #include "core/output_folder.hpp"
+#include "ornament/element.hpp"
 #include "pipeline/detail/ingest.hpp"
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
@@ -39,6 +41,16 @@ class GrownMethod final : public SynthesisMethod {
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<GrownPlan>();
+  }
+  // Its element sets (`grow.element`), read whole.
+  bool check_input(const InputFile& input, InputCheck& /*check*/) const override {
+    if (input.kind != InputFile::Kind::ornament) return false;
+    try {
+      read_element_set(input.path);
+    } catch (const Error& e) {
+      fail("{}: cannot be used as an element set: {}", input.named_at, e.what());
+    }
+    return true;
   }
 
   // Grown lines avoid the lines read and the existing features; everything after treats them

@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/patterns/pattern_inputs.hpp"
 #include "pipeline/methods/patterns/pattern_tasks.hpp"
 #include "raster/footprint.hpp"
 #include "raster/sparse_raster.hpp"
@@ -154,6 +155,12 @@ class PatternMethod final : public SynthesisMethod {
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<PatternsPlan>();
+  }
+  void resolve_defaults(PipelineConfig& config) const override {
+    resolve_exemplar_defaults(config);
+  }
+  bool check_input(const InputFile& input, InputCheck& check) const override {
+    return check_exemplar_input(input, check);
   }
 
   void plan(MethodContext& context, MethodPlan& entry) const override {

@@ -8,8 +8,8 @@
 #include "core/progress.hpp"
 #include "core/split_mix.hpp"
 #include "pipeline/detail/bindings.hpp"
+#include "pipeline/detail/piece_length.hpp"
 #include "pipeline/detail/synthesis_cache.hpp"
-#include "pipeline/detail/synthesis_defaults.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/pattern_canvas.hpp"
@@ -118,7 +118,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         width = std::max(width, it->synthesis->width.value_or(line.width));
       std::vector<const Exemplar*> exemplars;
       for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
-      plan.mix = mix_exemplars(exemplars, mix_gap(it->synthesis->scale, class_delta(*it), width));
+      plan.mix =
+          mix_exemplars(exemplars, mix_gap(it->synthesis->scale, class_piece_length(*it), width));
       plan.mix_index = run.exemplars.size();
       run.exemplars.push_back(plan.mix->atlas);
     }

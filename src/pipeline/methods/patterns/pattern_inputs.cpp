@@ -1,19 +1,17 @@
-#include "pipeline/detail/synthesis_defaults.hpp"
+#include "pipeline/methods/patterns/pattern_inputs.hpp"
 
 #include <algorithm>
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "pipeline/detail/exemplar_memo.hpp"
+#include "pipeline/methods/patterns/patterns.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/exemplar_stats.hpp"
 
 namespace tw::detail {
 
-namespace {
-constexpr double kRibbonDelta = 4.0;  // metres: classes without synthesis
-}  // namespace
-
-PipelineConfig with_exemplar_defaults(PipelineConfig config) {
+void resolve_exemplar_defaults(PipelineConfig& config) {
   for (FeatureClassConfig& feature_class : config.features) {
     if (!feature_class.synthesis) continue;
     SynthesisConfig& s = *feature_class.synthesis;
@@ -41,14 +39,23 @@ PipelineConfig with_exemplar_defaults(PipelineConfig config) {
                                           : "given",
                   *s.delta, s.delta_from_exemplar ? "from the exemplar" : "given");
   }
-  return config;
 }
 
-double class_delta(const FeatureClassConfig& feature_class) {
-  if (!feature_class.synthesis) return kRibbonDelta;
-  if (!feature_class.synthesis->delta)
-    fail("features.{}.synthesis: delta not resolved (with_exemplar_defaults)", feature_class.name);
-  return *feature_class.synthesis->delta;
+bool check_exemplar_input(const InputFile& input, InputCheck& check) {
+  if (input.kind != InputFile::Kind::exemplar) return false;
+  // One validated before with these bytes (and height twin) is not decoded again.
+  const std::optional<std::filesystem::path>& cache_dir = check.cache_dir();
+  const std::optional<ContentHash> hash =
+      cache_dir ? std::optional(exemplar_file_hash(input.path)) : std::nullopt;
+  if (hash && remembered_exemplar(*cache_dir, *hash, input.path)) return true;
+  Exemplar exemplar;
+  try {
+    exemplar = load_exemplar_with_height(input.path, false);
+  } catch (const Error& e) {
+    fail("{}: cannot be used as an exemplar: {}", input.named_at, e.what());
+  }
+  if (hash) remember_exemplar(check.cache_folder(), *cache_dir, *hash, exemplar);
+  return true;
 }
 
 }  // namespace tw::detail
