@@ -132,15 +132,32 @@ std::string warning_subject(const LineClassSpec& spec) {
   return spec.subject.empty() ? spec.name : spec.subject;
 }
 
+// Repairs one piece in place, through spec.repair_memo where there is one; adds what it
+// changed to `counts`. Returns false when the piece is to be dropped.
+bool repair_piece(detail::ClippedLine& piece, const LineClassSpec& spec, LineRepairCounts& counts) {
+  if (!spec.repair_memo)
+    return detail::repair_line(piece.points, piece.closed, spec.repair, counts);
+  const ContentHash key = line_repair_key(piece.points, piece.closed, spec.repair);
+  std::optional<RepairedPiece> repaired = spec.repair_memo.lookup(key);
+  if (!repaired) {
+    repaired.emplace();
+    repaired->points = piece.points;
+    detail::repair_line(repaired->points, piece.closed, spec.repair, repaired->counts);
+    spec.repair_memo.store(key, *repaired);
+  }
+  piece.points = std::move(repaired->points);
+  counts.add(repaired->counts);
+  return !piece.points.empty();
+}
+
 // Judges the clipped pieces of one feature: repairs each, drops those left without length,
 // and says once what changed.
 void repair_pieces(std::vector<detail::ClippedLine>& pieces, const LineClassSpec& spec,
                    const OpenVectorLayer& layer, std::int64_t fid, Warnings& warnings) {
-  detail::RepairCounts counts;
+  LineRepairCounts counts;
   try {
-    std::erase_if(pieces, [&](detail::ClippedLine& piece) {
-      return !detail::repair_line(piece.points, piece.closed, spec.repair, counts);
-    });
+    std::erase_if(pieces,
+                  [&](detail::ClippedLine& piece) { return !repair_piece(piece, spec, counts); });
   } catch (const Error& e) {
     fail("{}: FID {}: {}", layer.label, fid, e.what());
   }

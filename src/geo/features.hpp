@@ -8,6 +8,7 @@
 #include "core/vec2.hpp"
 #include "core/warnings.hpp"
 #include "geo/heightfield.hpp"
+#include "geo/line_repair_memo.hpp"
 #include "geo/structure.hpp"
 
 namespace tw {
@@ -55,6 +56,9 @@ struct LineClassSpec {
   // (the reach of the stages beyond the width, e.g. banks and falloff).
   double clip_margin = 0.0;
   LineRepair repair;
+  // Where set, each piece's repair is looked up under line_repair_key and stored there when
+  // computed (the run cache's, docs/cache.md); the lines and warnings are those of a repair.
+  LineRepairMemo repair_memo;
 };
 
 // Reads LineString/MultiLineString features (each part becomes a LineFeature with the same

@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_stage_cache.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/region.hpp"
+#include "pipeline/detail/repair_cache.hpp"
 #include "pipeline/detail/ribbon_cache.hpp"
 #include "pipeline/detail/stage_clock.hpp"
 #include "pipeline/detail/stage_options.hpp"
@@ -148,15 +149,20 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // windows they touch. A region is a window of the world's grid (detail/region.hpp).
   const Heightfield heightfield = source->without_pixels();
   std::vector<std::vector<LineFeature>> lines;
+  // Each line's pieces repaired once: a rerun repairs only the lines that changed
+  // (detail/repair_cache.hpp).
+  std::optional<detail::RepairCache> repair_cache;
+  if (cache_dir) repair_cache.emplace(*cache_dir, warnings);
+  const LineRepairMemo repair_memo = repair_cache ? repair_cache->memo() : LineRepairMemo{};
   for (const FeatureClassConfig& feature_class : config.features) {
     const auto started = std::chrono::steady_clock::now();
     // A class whose lines a method makes gets them from its stage, below.
     const auto maker = std::find_if(methods.begin(), methods.end(), [&](const SynthesisMethod* m) {
       return m->makes_lines_of(feature_class);
     });
-    lines.push_back(maker != methods.end()
-                        ? std::vector<LineFeature>{}
-                        : detail::load_feature_class(feature_class, heightfield, warnings));
+    lines.push_back(maker != methods.end() ? std::vector<LineFeature>{}
+                                           : detail::load_feature_class(feature_class, heightfield,
+                                                                        warnings, repair_memo));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
@@ -178,7 +184,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   // Before anything is built on the lines: ribbons, synthesis and terrain use the moved ones.
   const auto moves = detail::conform_lines(terrain_options, *source, lines, warnings);
   detail::ExistingFeatures existing =
-      detail::load_existing(config.existing, heightfield, config.repair, warnings);
+      detail::load_existing(config.existing, heightfield, config.repair, warnings, repair_memo);
   plan.grid = heightfield.grid;
   plan.output_window = config.region
                            ? detail::region_window(plan.grid, *config.region, heightfield.source)

@@ -4,9 +4,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "core/error.hpp"
 #include "geo/detail/line_repair.hpp"
 #include "geo/features.hpp"
+#include "geo/line_repair_memo.hpp"
 #include "geo_test_data.hpp"
 #include "test_support.hpp"
 
@@ -165,8 +168,99 @@ TEST_F(LineRepairs, ClosedRingKeepsItsFirstVertexAndLosesItsSpike) {
   EXPECT_THAT(warnings.list()[0].message, HasSubstr("removed 2 spikes"));
 }
 
+// An in-memory memo that counts its lookups and stores.
+struct CountingMemo {
+  std::map<ContentHash, RepairedPiece> entries;
+  int lookups = 0, stores = 0;
+
+  LineRepairMemo memo() {
+    return {[this](const ContentHash& key) -> std::optional<RepairedPiece> {
+              ++lookups;
+              const auto found = entries.find(key);
+              if (found == entries.end()) return std::nullopt;
+              return found->second;
+            },
+            [this](const ContentHash& key, const RepairedPiece& repaired) {
+              ++stores;
+              entries[key] = repaired;
+            }};
+  }
+};
+
+// A memo's hit gives the lines and warnings of a fresh repair (one line repaired with a warning,
+// one clean, one crossing itself, one dropped as zero-length); a changed point or option misses.
+TEST_F(LineRepairs, AMemoHitGivesTheLinesAndWarningsOfAFreshRepair) {
+  const std::vector<TestFeature> features = {
+      {3,
+       "LINESTRING (500100 4999500,500200 4999500,500200.004 4999500,500300 4999500,"
+       "500300 4999580,500300.5 4999500.5,500400 4999500,500500 4999500,500500.6 4999500,"
+       "500500.6 4999500.4,500500.3 4999500.4,500500.3 4999499.8,500700 4999499.8)"},
+      {4, "LINESTRING (500100 4999800,500900 4999800)"},
+      {5,
+       "LINESTRING (500100 4999200,500400 4999200,500400 4999100,500300 4999100,"
+       "500300 4999300)"},
+      {6, "MULTILINESTRING ((500100 4999900,500500 4999900),(500600 4999900,500600.001 4999900))"}};
+  LineClassSpec spec = spec_for(features);
+  Warnings fresh_warnings;
+  const std::vector<LineFeature> fresh = read_line_features(spec, grid, fresh_warnings);
+  ASSERT_EQ(fresh_warnings.size(), 2u);  // FID 3 repaired, FID 6's stub dropped
+
+  CountingMemo memo;
+  spec.repair_memo = memo.memo();
+  auto expect_as_fresh = [&](const std::vector<LineFeature>& lines, const Warnings& raised) {
+    ASSERT_EQ(lines.size(), fresh.size());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      EXPECT_EQ(lines[i].fid, fresh[i].fid);
+      EXPECT_EQ(lines[i].points, fresh[i].points) << "FID " << lines[i].fid;
+      EXPECT_EQ(lines[i].closed, fresh[i].closed);
+    }
+    ASSERT_EQ(raised.size(), fresh_warnings.size());
+    for (std::size_t i = 0; i < raised.size(); ++i) {
+      EXPECT_EQ(raised.list()[i].code, fresh_warnings.list()[i].code);
+      EXPECT_EQ(raised.list()[i].fid, fresh_warnings.list()[i].fid);
+      EXPECT_EQ(raised.list()[i].message, fresh_warnings.list()[i].message);
+    }
+  };
+  Warnings stored_warnings;
+  expect_as_fresh(read_line_features(spec, grid, stored_warnings), stored_warnings);
+  EXPECT_EQ(memo.stores, 5);  // one per piece
+  Warnings hit_warnings;
+  expect_as_fresh(read_line_features(spec, grid, hit_warnings), hit_warnings);
+  EXPECT_EQ(memo.lookups, 10);
+  EXPECT_EQ(memo.stores, 5);  // every piece was found
+
+  // The memo's entry is what the reader uses: a different stored repair comes back.
+  RepairedPiece& clean_line =
+      memo.entries.at(line_repair_key({{500100, 4999800}, {500900, 4999800}}, false, spec.repair));
+  clean_line.points = {{500100, 4999800}, {500500, 4999810}, {500900, 4999800}};
+  clean_line.counts.spikes = 1;
+  Warnings edited;
+  const std::vector<LineFeature> from_edited = read_line_features(spec, grid, edited);
+  EXPECT_EQ(from_edited[1].points, clean_line.points);
+  ASSERT_EQ(edited.size(), 3u);
+  EXPECT_EQ(edited.list()[1].fid, 4);
+  EXPECT_THAT(edited.list()[1].message, HasSubstr("removed 1 spike"));
+
+  // A moved point misses for its piece alone; a changed option misses for every piece.
+  spec = spec_for(
+      {features[0], {4, "LINESTRING (500100 4999800,500900 4999801)"}, features[2], features[3]});
+  spec.repair_memo = memo.memo();
+  Warnings moved_warnings;
+  read_line_features(spec, grid, moved_warnings);
+  EXPECT_EQ(memo.stores, 6);
+  spec.repair.min_loop = 1.0;
+  EXPECT_NE(line_repair_key({{0, 0}, {1, 0}}, false, spec.repair),
+            line_repair_key({{0, 0}, {1, 0}}, false, LineRepair{}));
+  Warnings option_warnings;
+  read_line_features(spec, grid, option_warnings);
+  EXPECT_EQ(memo.stores, 11);
+  ASSERT_FALSE(option_warnings.list().empty());  // the 1.4 m loop is longer than min_loop now
+  EXPECT_THAT(option_warnings.list()[0].message,
+              HasSubstr("removed 1 duplicate vertex and 1 spike"));
+}
+
 TEST(RepairMessage, SaysWhatChangedInOneLine) {
-  detail::RepairCounts counts;
+  LineRepairCounts counts;
   counts.spikes = 1;
   counts.loops = {0.8};
   EXPECT_EQ(detail::describe(counts), "removed 1 spike and 1 loop of 0.8 m");

@@ -450,6 +450,8 @@ TEST_F(CacheRun, PlanStagesAreReusedUnderTheirKeysAndRebuiltWhenTheirInputsChang
   const std::size_t ribbons = plan_stage_entries(cache, "ribbon").size();
   ASSERT_GE(ribbons, 4u);  // one per road long enough for pieces
   ASSERT_EQ(plan_stage_entries(cache, "junctions").size(), 2u);  // the pixel, the synthesis cell
+  const std::size_t repairs = plan_stage_entries(cache, "repair").size();
+  ASSERT_EQ(repairs, 5u);  // one per road's piece
   const detail::CacheRead read = detail::read_cache_entry(terrain[0]);
   ASSERT_EQ(read.state, detail::CacheRead::State::ok);
   detail::CacheSections raised = read.sections;
@@ -479,6 +481,7 @@ TEST_F(CacheRun, PlanStagesAreReusedUnderTheirKeysAndRebuiltWhenTheirInputsChang
   EXPECT_EQ(plan_stage_entries(cache, "terrain").size(), 3u);
   EXPECT_EQ(plan_stage_entries(cache, "ribbon").size(), ribbons + 1);
   EXPECT_EQ(plan_stage_entries(cache, "junctions").size(), 2u);
+  EXPECT_EQ(plan_stage_entries(cache, "repair").size(), repairs + 1);
 }
 
 // A corrupt plan-stage entry (here a feature's ribbon) is the warning cache_corrupt naming it, is

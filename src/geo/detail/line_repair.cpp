@@ -27,7 +27,7 @@ bool is_spike(Vec2 a, Vec2 b, Vec2 c, double cos_limit) {
 // they are) and every vertex where the line doubles back goes, as does any duplicate that
 // removing it leaves behind.
 void remove_duplicates_and_spikes(std::vector<Vec2>& points, const LineRepair& options,
-                                  RepairCounts& counts) {
+                                  LineRepairCounts& counts) {
   const double cos_limit = std::cos(options.spike_angle * std::numbers::pi / 180.0);
   std::vector<Vec2> kept;
   kept.reserve(points.size());
@@ -151,7 +151,7 @@ std::vector<Vec2> cut_loops(const std::vector<Vec2>& points, const std::vector<L
 
 }  // namespace
 
-std::string describe(const RepairCounts& counts) {
+std::string describe(const LineRepairCounts& counts) {
   std::vector<std::string> parts;
   auto plural = [](int n, const char* one, const char* many) {
     return fmt::format("{} {}", n, n == 1 ? one : many);
@@ -184,7 +184,7 @@ std::string describe(const RepairCounts& counts) {
 }
 
 bool repair_line(std::vector<Vec2>& points, bool closed, const LineRepair& options,
-                 RepairCounts& counts) {
+                 LineRepairCounts& counts) {
   // A ring is repaired as a line from its first vertex back to it.
   if (closed && !points.empty()) points.push_back(points.front());
   const std::size_t minimum = closed ? 4 : 2;

@@ -271,9 +271,9 @@ CacheFolder::CacheFolder(const fs::path& dir, Warnings& warnings) : warnings_(wa
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) == 0) {
     std::error_code ec;
     // plan/ribbons: the ribbons stage whole, as format 1 kept it (its killed writes too).
-    for (const char* sub :
-         {"synthesis", "synthesis/last", "tiles", "tiles/last", "tiles/files", "exemplars",
-          "plan/terrain", "plan/ribbon", "plan/junctions", "plan/ribbons", "plan/heights_along"}) {
+    for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last", "tiles/files",
+                            "exemplars", "plan/terrain", "plan/ribbon", "plan/junctions",
+                            "plan/ribbons", "plan/heights_along", "plan/repair"}) {
       for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code removed;
         if (is_cache_temporary(it->path()) && fs::remove(it->path(), removed)) ++swept_;

@@ -54,7 +54,8 @@ Heightfield load_heightfield(const HeightfieldInput& input, Warnings& warnings) 
 }
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
-                                            const Heightfield& heightfield, Warnings& warnings) {
+                                            const Heightfield& heightfield, Warnings& warnings,
+                                            const LineRepairMemo& repair_memo) {
   LineClassSpec spec;
   spec.name = config.name;
   spec.subject = "features." + config.name;
@@ -65,6 +66,7 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
   spec.clip_margin =
       clip_margin(config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height));
   spec.repair = config.repair;
+  spec.repair_memo = repair_memo;
   std::vector<LineFeature> lines;
   try {
     lines = read_line_features(spec, heightfield, warnings);
@@ -84,7 +86,7 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
 
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
                                const Heightfield& heightfield, const LineRepair& repair,
-                               Warnings& warnings) {
+                               Warnings& warnings, const LineRepairMemo& repair_memo) {
   ExistingFeatures out;
   for (std::size_t i = 0; i < existing.size(); ++i) {
     const ExistingConfig& e = existing[i];
@@ -98,6 +100,7 @@ ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
         spec.source = source;
         spec.default_width = e.width;
         spec.repair = repair;
+        spec.repair_memo = repair_memo;
         for (LineFeature& line : read_line_features(spec, heightfield, warnings)) {
           if (line.closed && !line.points.empty()) line.points.push_back(line.points.front());
           out.lines.push_back(std::move(line.points));

@@ -41,10 +41,12 @@ GeneratedTerrain generated_terrain(const HeightfieldInput& input);
 // layer, a where clause matching nothing, or a layer beside the DEM) is a warning
 // ("empty_class"), not an error: a pipeline retargeted to another region still runs. Lines are
 // clipped to the heightfield plus the halo the later stages reach, then repaired with
-// config.repair (read_line_features). Throws geo's per-feature errors, prefixed with the key
+// config.repair (read_line_features), through `repair_memo` where set (the run cache's,
+// detail/repair_cache.hpp). Throws geo's per-feature errors, prefixed with the key
 // ("features.roads: map.gpkg:roads: FID 2: ...").
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
-                                            const Heightfield& heightfield, Warnings& warnings);
+                                            const Heightfield& heightfield, Warnings& warnings,
+                                            const LineRepairMemo& repair_memo = {});
 
 struct ExistingFeatures {
   std::vector<Polygon> polygons;
@@ -56,6 +58,6 @@ struct ExistingFeatures {
 // polygons (invalid ones made valid). Warnings and errors name `existing.<index>`.
 ExistingFeatures load_existing(const std::vector<ExistingConfig>& existing,
                                const Heightfield& heightfield, const LineRepair& repair,
-                               Warnings& warnings);
+                               Warnings& warnings, const LineRepairMemo& repair_memo = {});
 
 }  // namespace tw::detail
