@@ -3,19 +3,10 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
-#include "core/staging_registry.hpp"
 
 namespace tw {
 
 namespace fs = std::filesystem;
-
-OutputTransaction::~OutputTransaction() {
-  std::error_code ignored;
-  for (const auto& e : staged_) {
-    fs::remove(e.temporary, ignored);
-    unregister_staging(e.temporary);
-  }
-}
 
 fs::path OutputTransaction::stage(const fs::path& final_path) {
   std::error_code ec;
@@ -25,20 +16,19 @@ fs::path OutputTransaction::stage(const fs::path& final_path) {
   fs::path temporary = final_path;
   temporary.replace_filename("." + final_path.stem().string() + ".tmp" +
                              std::to_string(::getpid()) + final_path.extension().string());
-  staged_.push_back({temporary, final_path});
-  register_staging(temporary);
+  staged_.push_back({StagedPath(temporary), final_path});
   return temporary;
 }
 
 void OutputTransaction::commit() {
   for (const auto& e : staged_) {
-    if (!fs::exists(e.temporary)) fail("output {} was never written", e.final.string());
+    if (!fs::exists(e.temporary.path())) fail("output {} was never written", e.final.string());
   }
-  for (const auto& e : staged_) {
+  for (auto& e : staged_) {
     std::error_code ec;
-    fs::rename(e.temporary, e.final, ec);
+    fs::rename(e.temporary.path(), e.final, ec);
     if (ec) fail("cannot move {} into place: {}", e.final.string(), ec.message());
-    unregister_staging(e.temporary);
+    e.temporary.release();
     committed_.push_back(e.final);
   }
   staged_.clear();

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/staging_registry.hpp"
+
 namespace tw {
 
 // What a writer needs: where to write instead of the final path.
@@ -19,7 +21,6 @@ class OutputStager {
 class OutputTransaction final : public OutputStager {
  public:
   OutputTransaction() = default;
-  ~OutputTransaction() override;
   OutputTransaction(const OutputTransaction&) = delete;
   OutputTransaction& operator=(const OutputTransaction&) = delete;
 
@@ -32,7 +33,7 @@ class OutputTransaction final : public OutputStager {
 
  private:
   struct Entry {
-    std::filesystem::path temporary;
+    StagedPath temporary;  // removed with the transaction unless committed
     std::filesystem::path final;
   };
   std::vector<Entry> staged_;

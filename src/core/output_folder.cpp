@@ -19,7 +19,6 @@
 #include <set>
 
 #include "core/error.hpp"
-#include "core/staging_registry.hpp"
 
 namespace tw {
 
@@ -441,11 +440,7 @@ std::unique_ptr<OutputFolder> OutputFolder::lock_if_used(const fs::path& dir) {
 }
 
 OutputFolder::~OutputFolder() {
-  std::error_code ignored;
-  if (!staging_.empty()) {
-    fs::remove_all(staging_, ignored);
-    unregister_staging(staging_);
-  }
+  staging_.remove();  // while the lock is held
   if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
@@ -464,8 +459,7 @@ void OutputFolder::prepare_staging() {
     if (fs::create_directories(staging / kMeta, ec) && !ec) {
       fs::create_hard_link(meta_ / "lock", staging / kMeta / "lock", ec);
       if (!ec) {
-        staging_ = staging;
-        register_staging(staging_);
+        staging_ = StagedPath(staging);
         mode_ = Mode::swap;
         return;
       }
@@ -473,10 +467,9 @@ void OutputFolder::prepare_staging() {
     std::error_code ignored;
     fs::remove_all(staging, ignored);
   }
-  staging_ = meta_ / ("staging-" + token_);
-  fs::create_directories(staging_, ec);
-  register_staging(staging_);  // before the check: a partial folder goes too
-  if (ec) fail("cannot create {}: {}", staging_.string(), ec.message());
+  staging_ = StagedPath(meta_ / ("staging-" + token_));  // first: a partial folder goes too
+  fs::create_directories(staging_.path(), ec);
+  if (ec) fail("cannot create {}: {}", staging_.path().string(), ec.message());
   mode_ = Mode::in_place;
 }
 
@@ -494,15 +487,16 @@ fs::path OutputFolder::stage(const fs::path& final_path) {
   test_pause_point(fmt::format("stage:{}", staged_.size()));
   prepare_staging();
   std::error_code ec;
-  fs::create_directories((staging_ / relative).parent_path(), ec);
-  if (ec) fail("cannot create {}: {}", (staging_ / relative).parent_path().string(), ec.message());
+  fs::create_directories((staging_.path() / relative).parent_path(), ec);
+  if (ec)
+    fail("cannot create {}: {}", (staging_.path() / relative).parent_path().string(), ec.message());
   staged_.push_back(relative);
-  return staging_ / relative;
+  return staging_.path() / relative;
 }
 
 std::vector<std::pair<fs::path, fs::path>> OutputFolder::staged_files() const {
   std::vector<std::pair<fs::path, fs::path>> files;
-  for (const fs::path& relative : staged_) files.emplace_back(relative, staging_ / relative);
+  for (const fs::path& relative : staged_) files.emplace_back(relative, staging_.path() / relative);
   return files;
 }
 
@@ -511,7 +505,7 @@ void OutputFolder::commit() {
   prepare_staging();
   std::error_code ec;
   for (const fs::path& relative : staged_) {
-    if (!fs::is_regular_file(staging_ / relative, ec)) {
+    if (!fs::is_regular_file(staging_.path() / relative, ec)) {
       fail("output {} was never written", (dir_ / relative).string());
     }
   }
@@ -529,18 +523,18 @@ void OutputFolder::commit_swap() {
   int step = 1;
   const auto pause = [&step] { test_pause_point(fmt::format("commit:{}", step++)); };
   const Names outputs(staged_.begin(), staged_.end());
-  write_manifest(staging_ / kMeta / "outputs", token_, outputs);
+  write_manifest(staging_.path() / kMeta / "outputs", token_, outputs);
   Names skip = read_manifest(meta_ / "outputs").outputs;
   skip.insert(outputs.begin(), outputs.end());
-  carry(real_, staging_, skip, fs::path());
+  carry(real_, staging_.path(), skip, fs::path());
   pause();  // commit:1, complete beside the folder
   static const bool no_exchange = std::getenv("TERRAWEAVE_TEST_NO_EXCHANGE") != nullptr;
   int swapped = no_exchange ? -1
-                            : ::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, real_.c_str(),
-                                          RENAME_EXCHANGE);
+                            : ::renameat2(AT_FDCWD, staging_.path().c_str(), AT_FDCWD,
+                                          real_.c_str(), RENAME_EXCHANGE);
   const int error = errno;
   std::error_code ec;
-  fs::path previous = staging_;  // after the exchange, the previous folder is there
+  fs::path previous = staging_.path();  // after the exchange, the previous folder is there
   if (swapped != 0) {
     if (!no_exchange && error != EINVAL && error != ENOSYS && error != EOPNOTSUPP)
       fail("cannot swap {} into place: {}", real_.string(), std::strerror(error));
@@ -549,11 +543,10 @@ void OutputFolder::commit_swap() {
     fs::rename(real_, previous, ec);
     if (ec) fail("cannot move {} aside: {}", real_.string(), ec.message());
     pause();  // commit:2, no folder (the next command puts the new one in place)
-    fs::rename(staging_, real_, ec);
+    fs::rename(staging_.path(), real_, ec);
     if (ec) fail("cannot move {} into place: {}", real_.string(), ec.message());
   }
-  unregister_staging(staging_);
-  staging_.clear();
+  staging_.release();
   pause();  // the new run is the folder's
   retire_previous(previous, real_);
   pause();
@@ -566,15 +559,14 @@ void OutputFolder::commit_in_place() {
   const auto pause = [&step] { test_pause_point(fmt::format("commit:{}", step++)); };
   const Names outputs(staged_.begin(), staged_.end());
   const Manifest previous = read_manifest(meta_ / "outputs");
-  write_manifest(staging_ / kMeta / "previous-outputs", previous.token, previous.outputs);
-  write_manifest(staging_ / kMeta / "outputs", token_, outputs);
+  write_manifest(staging_.path() / kMeta / "previous-outputs", previous.token, previous.outputs);
+  write_manifest(staging_.path() / kMeta / "outputs", token_, outputs);
   pause();  // commit:1
   const fs::path journal = meta_ / ("commit-" + token_);
   std::error_code ec;
-  fs::rename(staging_, journal, ec);
-  if (ec) fail("cannot rename {}: {}", staging_.string(), ec.message());
-  unregister_staging(staging_);
-  staging_.clear();
+  fs::rename(staging_.path(), journal, ec);
+  if (ec) fail("cannot rename {}: {}", staging_.path().string(), ec.message());
+  staging_.release();
   pause();  // commit:2
   roll_forward(real_, journal, pause);
   pause();

@@ -67,7 +67,7 @@ class OutputFolder final : public OutputStager {
   std::filesystem::path meta_;  // real_/.terraweave
   std::string token_;           // <pid>-<random>: names this run's entries
   Mode mode_ = Mode::undecided;
-  std::filesystem::path staging_;  // this run's folder until committed (empty: none)
+  StagedPath staging_;  // this run's folder until committed (empty: none)
   int lock_fd_ = -1;
   std::vector<std::filesystem::path> staged_;  // relative to dir_
   std::vector<std::filesystem::path> committed_;

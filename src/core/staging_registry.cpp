@@ -2,6 +2,7 @@
 
 #include <mutex>
 #include <set>
+#include <utility>
 
 namespace tw {
 
@@ -20,8 +21,6 @@ StagingRegistry& staging_registry() {
   return *registry;
 }
 
-}  // namespace
-
 void register_staging(const fs::path& path) {
   StagingRegistry& registry = staging_registry();
   const std::lock_guard lock(registry.mutex);
@@ -35,6 +34,8 @@ void unregister_staging(const fs::path& path) {
   if (it != registry.paths.end()) registry.paths.erase(it);
 }
 
+}  // namespace
+
 void remove_registered_staging() noexcept {
   StagingRegistry& registry = staging_registry();
   const std::lock_guard lock(registry.mutex);
@@ -43,6 +44,37 @@ void remove_registered_staging() noexcept {
     fs::remove_all(path, ignored);
   }
   registry.paths.clear();
+}
+
+StagedPath::StagedPath(fs::path path) : path_(std::move(path)) {
+  register_staging(path_);
+}
+
+StagedPath::~StagedPath() {
+  remove();
+}
+
+StagedPath::StagedPath(StagedPath&& other) noexcept : path_(std::exchange(other.path_, {})) {}
+
+StagedPath& StagedPath::operator=(StagedPath&& other) noexcept {
+  if (this != &other) {
+    remove();
+    path_ = std::exchange(other.path_, {});
+  }
+  return *this;
+}
+
+void StagedPath::release() noexcept {
+  if (path_.empty()) return;
+  unregister_staging(path_);
+  path_.clear();
+}
+
+void StagedPath::remove() noexcept {
+  if (path_.empty()) return;
+  std::error_code ignored;
+  fs::remove_all(path_, ignored);
+  release();
 }
 
 }  // namespace tw

@@ -48,29 +48,25 @@ class TileStager final : public OutputStager {
     std::error_code ec;
     fs::create_directories(final_path.parent_path(), ec);
     if (ec) fail("cannot create {}: {}", final_path.parent_path().string(), ec.message());
-    staged_.push_back({temporary_beside(final_path), final_path});
-    register_staging(staged_.back().first);
-    return staged_.back().first;
+    staged_.push_back({StagedPath(temporary_beside(final_path)), final_path});
+    return staged_.back().temporary.path();
   }
   void commit() {
-    for (const auto& [temporary, final_path] : staged_) {
+    for (auto& [temporary, final_path] : staged_) {
       std::error_code ec;
-      fs::rename(temporary, final_path, ec);
+      fs::rename(temporary.path(), final_path, ec);
       if (ec) fail("cannot write {}: {}", final_path.string(), ec.message());
-      unregister_staging(temporary);
+      temporary.release();
     }
     staged_.clear();
   }
-  ~TileStager() override {
-    for (const auto& entry : staged_) {
-      std::error_code ignored;
-      fs::remove(entry.first, ignored);
-      unregister_staging(entry.first);
-    }
-  }
 
  private:
-  std::vector<std::pair<fs::path, fs::path>> staged_;
+  struct Entry {
+    StagedPath temporary;  // removed with the stager unless committed
+    fs::path final_path;
+  };
+  std::vector<Entry> staged_;
 };
 
 fs::path tiles_dir(const fs::path& plan_dir, const std::string& plan) {

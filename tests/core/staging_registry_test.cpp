@@ -1,5 +1,5 @@
-// What remove_registered_staging removes (core/staging_registry.hpp): the registered files and
-// folders, not an unregistered one, and the stagers register their temporaries.
+// What remove_registered_staging removes (core/staging_registry.hpp): the files and folders
+// that StagedPaths hold, not a released one, and the stagers register their temporaries.
 #include "core/staging_registry.hpp"
 
 #include <gtest/gtest.h>
@@ -24,10 +24,10 @@ TEST(StagingRegistry, RemovesTheRegisteredPathsOnly) {
   fs::create_directories(folder / "inner");
   std::ofstream(folder / "inner/a") << "x";
   std::ofstream(kept) << "x";
-  register_staging(file);
-  register_staging(folder);
-  register_staging(kept);
-  unregister_staging(kept);  // renamed into place: no longer a temporary
+  const StagedPath staged_file(file);
+  const StagedPath staged_folder(folder);
+  StagedPath staged_kept(kept);
+  staged_kept.release();  // renamed into place: no longer a temporary
   remove_registered_staging();
   EXPECT_FALSE(fs::exists(file));
   EXPECT_FALSE(fs::exists(folder));
@@ -51,6 +51,63 @@ TEST(StagingRegistry, TheStagersRegisterTheirTemporariesUntilCommitted) {
   second.commit();
   remove_registered_staging();
   EXPECT_TRUE(fs::exists(dir.path() / "c.txt"));
+}
+
+TEST(StagedPath, ARemovedOrReleasedPathIsNoLongerRegistered) {
+  test::TempDir dir;
+  const fs::path file = dir.path() / "file.tmp";
+  {
+    std::ofstream(file) << "x";
+    const StagedPath staged(file);
+  }
+  EXPECT_FALSE(fs::exists(file));  // the destructor removed it...
+  std::ofstream(file) << "x";
+  remove_registered_staging();
+  EXPECT_TRUE(fs::exists(file));  // ...and unregistered it
+  StagedPath released(file);
+  released.release();
+  EXPECT_TRUE(released.empty());
+  remove_registered_staging();
+  EXPECT_TRUE(fs::exists(file));
+}
+
+TEST(StagedPath, AMovedFromOneNeitherRemovesNorUnregisters) {
+  test::TempDir dir;
+  const fs::path file = dir.path() / "file.tmp";
+  std::ofstream(file) << "x";
+  StagedPath moved_to;
+  {
+    StagedPath original(file);
+    moved_to = std::move(original);
+  }
+  EXPECT_EQ(moved_to.path(), file);
+  EXPECT_TRUE(fs::exists(file));
+  remove_registered_staging();
+  EXPECT_FALSE(fs::exists(file));  // still registered, once
+}
+
+TEST(StagedPath, TwoHoldersOfOnePathUnregisterOnceEach) {
+  test::TempDir dir;
+  const fs::path file = dir.path() / "file.tmp";
+  std::ofstream(file) << "x";
+  StagedPath first(file);
+  const StagedPath second(file);
+  first.release();
+  remove_registered_staging();
+  EXPECT_FALSE(fs::exists(file));  // second still held it
+}
+
+TEST(StagedPath, AssigningOverAHeldPathRemovesIt) {
+  test::TempDir dir;
+  const fs::path old_file = dir.path() / "old.tmp";
+  const fs::path new_file = dir.path() / "new.tmp";
+  std::ofstream(old_file) << "x";
+  std::ofstream(new_file) << "x";
+  StagedPath staged(old_file);
+  staged = StagedPath(new_file);
+  EXPECT_FALSE(fs::exists(old_file));
+  EXPECT_TRUE(fs::exists(new_file));
+  staged.release();
 }
 
 }  // namespace
