@@ -116,6 +116,12 @@ void CachedHeightsAlong::store() const {
   folder.write(*path_, used_);
 }
 
+void warn_corrupt_plan_entry(Warnings& warnings, const std::string& stage, const fs::path& path,
+                             const std::string& problem) {
+  warnings.add("cache_corrupt", "plan." + stage, std::nullopt,
+               fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), problem));
+}
+
 std::optional<StageEntry> find_stage_entry(const fs::path& dir, const std::string& stage,
                                            const ContentHash& key, Warnings& warnings,
                                            CacheStatus& status) {
@@ -144,9 +150,7 @@ std::optional<StageEntry> find_stage_entry(const fs::path& dir, const std::strin
 
 void stage_entry_corrupt(const fs::path& dir, const std::string& stage, const ContentHash& key,
                          const std::string& problem, Warnings& warnings, CacheStatus& status) {
-  warnings.add("cache_corrupt", "plan." + stage, std::nullopt,
-               fmt::format("cache entry {} is corrupt ({}): rebuilt",
-                           entry_path(dir, stage, key).string(), problem));
+  warn_corrupt_plan_entry(warnings, stage, entry_path(dir, stage, key), problem);
   status.reused = false;
   status.why = "corrupt entry";
 }

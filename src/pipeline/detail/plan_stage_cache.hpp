@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/content_hash.hpp"
+#include "core/error.hpp"
 #include "core/warnings.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/cache_status.hpp"
@@ -24,6 +25,35 @@ namespace tw::detail {
 
 // A hasher that begins every plan-stage key: the stage, the entry format, the program version.
 Hasher plan_stage_hasher(const char* stage);
+
+// A corrupt entry of the plan's caches: the warning `cache_corrupt`, subject plan.<stage>; the
+// caller makes the value again and replaces the entry.
+void warn_corrupt_plan_entry(Warnings& warnings, const std::string& stage,
+                             const std::filesystem::path& path, const std::string& problem);
+
+// The value of a one-value plan entry (DIR/plan/<stage>/<key>.twc, sections `key` and `value`:
+// a ribbon, a line repair), touched as used (pruning by age keeps it); nullopt when there is
+// none, or after warn_corrupt_plan_entry when it is corrupt or holds another key.
+template <class T>
+std::optional<T> read_plan_value(const std::filesystem::path& path, const std::string& key,
+                                 const std::string& stage, Warnings& warnings) {
+  CacheRead read = read_cache_entry(path);
+  if (read.state == CacheRead::State::ok) {
+    try {
+      if (read.sections["key"] != key) fail("key mismatch");
+      T found;
+      from_bytes(read.sections["value"], found, path.string());
+      touch_cache_entry(path);
+      return found;
+    } catch (const Error& e) {
+      read.state = CacheRead::State::corrupt;
+      read.problem = e.what();
+    }
+  }
+  if (read.state == CacheRead::State::corrupt)
+    warn_corrupt_plan_entry(warnings, stage, path, read.problem);
+  return std::nullopt;
+}
 
 // What the heights of a run are, as a key: the generated world's parameters, or the bytes of
 // the DEM and of every file GDAL reads with it (.aux.xml, world file, a VRT's sources) with

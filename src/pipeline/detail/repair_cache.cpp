@@ -1,7 +1,5 @@
 #include "pipeline/detail/repair_cache.hpp"
 
-#include <fmt/format.h>
-
 #include "core/error.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_stage_cache.hpp"
@@ -31,26 +29,8 @@ LineRepairMemo RepairCache::memo() {
   LineRepairMemo memo;
   memo.lookup = [this](const ContentHash& piece) -> std::optional<RepairedPiece> {
     const std::string key = repair_entry_key(piece);
-    const fs::path path = dir_ / "plan" / "repair" / (key + ".twc");
-    CacheRead read = read_cache_entry(path);
-    if (read.state == CacheRead::State::ok) {
-      try {
-        if (read.sections["key"] != key) fail("key mismatch");
-        RepairedPiece found;
-        from_bytes(read.sections["value"], found, path.string());
-        touch_cache_entry(path);  // used now: pruning by age keeps it
-        return found;
-      } catch (const Error& e) {
-        read.state = CacheRead::State::corrupt;
-        read.problem = e.what();
-      }
-    }
-    if (read.state == CacheRead::State::corrupt) {
-      warnings_.add(
-          "cache_corrupt", "plan.repair", std::nullopt,
-          fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), read.problem));
-    }
-    return std::nullopt;
+    return read_plan_value<RepairedPiece>(dir_ / "plan" / "repair" / (key + ".twc"), key, "repair",
+                                          warnings_);
   };
   memo.store = [this](const ContentHash& piece, const RepairedPiece& repaired) {
     const std::string key = repair_entry_key(piece);

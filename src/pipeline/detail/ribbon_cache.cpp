@@ -1,7 +1,5 @@
 #include "pipeline/detail/ribbon_cache.hpp"
 
-#include <fmt/format.h>
-
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
 #include "pipeline/detail/plan_fields.hpp"
@@ -36,12 +34,6 @@ RibbonSteps RibbonCache::steps() {
   return steps;
 }
 
-void RibbonCache::corrupt(const fs::path& path, const std::string& stage,
-                          const std::string& problem) {
-  warnings_.add("cache_corrupt", "plan." + stage, std::nullopt,
-                fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), problem));
-}
-
 Ribbon RibbonCache::ribbon(const Curve& centerline, const RibbonParams& params) {
   const std::string key = plan_stage_hasher("ribbon")
                               .points(centerline.points)
@@ -52,20 +44,8 @@ Ribbon RibbonCache::ribbon(const Curve& centerline, const RibbonParams& params) 
                               .digest()
                               .hex();
   const fs::path path = dir_ / "plan" / "ribbon" / (key + ".twc");
-  CacheRead read = read_cache_entry(path);
-  if (read.state == CacheRead::State::ok) {
-    try {
-      if (read.sections["key"] != key) fail("key mismatch");
-      Ribbon found;
-      from_bytes(read.sections["value"], found, path.string());
-      touch_cache_entry(path);  // used now: pruning by age keeps it
-      return found;
-    } catch (const Error& e) {
-      read.state = CacheRead::State::corrupt;
-      read.problem = e.what();
-    }
-  }
-  if (read.state == CacheRead::State::corrupt) corrupt(path, "ribbon", read.problem);
+  if (std::optional<Ribbon> found = read_plan_value<Ribbon>(path, key, "ribbon", warnings_))
+    return std::move(*found);
   Ribbon made = make_ribbon(centerline, params);
   ++ribbons_made_;
   folder_.write(path, {{"key", key}, {"value", to_bytes(made)}});
@@ -93,7 +73,8 @@ std::vector<Junction> RibbonCache::junctions(const std::vector<Curve>& curves, d
       read.problem = e.what();
     }
   }
-  if (read.state == CacheRead::State::corrupt) corrupt(path, "junctions", read.problem);
+  if (read.state == CacheRead::State::corrupt)
+    warn_corrupt_plan_entry(warnings_, "junctions", path, read.problem);
   if (read.state == CacheRead::State::ok && latest_hashes == hashes) {
     touch_cache_entry(path);
     return std::move(latest.junctions);

@@ -34,8 +34,6 @@ class RibbonCache {
  private:
   Ribbon ribbon(const Curve& centerline, const RibbonParams& params);
   std::vector<Junction> junctions(const std::vector<Curve>& curves, double tolerance_m);
-  void corrupt(const std::filesystem::path& path, const std::string& stage,
-               const std::string& problem);
 
   std::filesystem::path dir_;
   Warnings& warnings_;
