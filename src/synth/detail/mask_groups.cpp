@@ -14,6 +14,22 @@ bool mask_less(const std::uint64_t* a, const std::uint64_t* b, int words) {
   return std::lexicographical_compare(a, a + words, b, b + words);
 }
 
+// The index i in [0, count) whose mask_at(i) equals `key`, the masks in increasing order; -1
+// when none does.
+template <class MaskAt>
+int index_of_mask(int count, MaskAt mask_at, const std::uint64_t* key, int words) {
+  int low = 0, high = count;  // the first index whose mask is not less than key
+  while (low < high) {
+    const int middle = low + (high - low) / 2;
+    if (mask_less(mask_at(middle), key, words))
+      low = middle + 1;
+    else
+      high = middle;
+  }
+  if (low == count || !std::equal(key, key + words, mask_at(low))) return -1;
+  return low;
+}
+
 }  // namespace
 
 MaskRuns mask_runs(const std::uint64_t* masks, int count, int words) {
@@ -40,18 +56,9 @@ MaskRuns mask_runs(const std::uint64_t* masks, int count, int words) {
 }
 
 int run_with_mask(const MaskRuns& runs, const std::uint64_t* key) {
-  const int words = runs.words;
-  auto run_mask = [&](int run) { return runs.run_masks.data() + std::size_t(run) * words; };
-  int low = 0, high = runs.runs();  // the first run whose mask is not less than key
-  while (low < high) {
-    const int middle = low + (high - low) / 2;
-    if (mask_less(run_mask(middle), key, words))
-      low = middle + 1;
-    else
-      high = middle;
-  }
-  if (low == runs.runs() || !std::equal(key, key + words, run_mask(low))) return -1;
-  return low;
+  return index_of_mask(
+      runs.runs(), [&](int run) { return runs.run_masks.data() + std::size_t(run) * runs.words; },
+      key, runs.words);
 }
 
 MaskGroups group_runs_by_cost(const MaskRuns& runs,
@@ -100,14 +107,14 @@ MaskGroups group_by_mask(const std::vector<std::int64_t>& previous_cost, const s
 }
 
 int group_with_mask(const MaskGroups& groups, const std::uint64_t* key) {
-  const int words = groups.words;
-  auto group_mask = [&](int g) { return groups.group_masks.data() + std::size_t(g) * words; };
-  const auto it =
-      std::lower_bound(groups.groups_by_mask.begin(), groups.groups_by_mask.end(), 0,
-                       [&](std::int32_t g, int) { return mask_less(group_mask(g), key, words); });
-  if (it == groups.groups_by_mask.end() || !std::equal(key, key + words, group_mask(*it)))
-    return -1;
-  return *it;
+  auto group_mask = [&](int g) {
+    return groups.group_masks.data() + std::size_t(g) * groups.words;
+  };
+  // groups_by_mask lists the groups in increasing mask.
+  const int found = index_of_mask(
+      int(groups.groups_by_mask.size()),
+      [&](int i) { return group_mask(groups.groups_by_mask[std::size_t(i)]); }, key, groups.words);
+  return found < 0 ? -1 : groups.groups_by_mask[std::size_t(found)];
 }
 
 }  // namespace tw::detail
