@@ -88,45 +88,62 @@ bool canvases_overlap(const GridSpec& a, const GridSpec& b) {
   return a.origin_x < bx1 && b.origin_x < ax1 && ay0 < b.origin_y && by0 < a.origin_y;
 }
 
+FeatureAvoidance feature_avoidance(const Curve& curve, const Ribbon& ribbon, const GridSpec& canvas,
+                                   const AvoidanceInputs& fixed,
+                                   const std::vector<EarlierPattern>& earlier,
+                                   const FeatureSynthesisOptions& options) {
+  FeatureAvoidance out;
+  out.ribbon = ribbon;
+  const auto started = std::chrono::steady_clock::now();
+  std::vector<TileIndex> tiles = canvas_tiles(out.ribbon, canvas, options.canvas_tile);
+  out.forbidden = forbidden_on(tiles, canvas, fixed, earlier, options.canvas_tile);
+  if (curve.closed) {
+    out.start = start_in_the_clear(curve, out.ribbon, canvas, out.forbidden);
+    out.ribbon = make_ribbon(*out.start, options.ribbon);
+    // The rotated ribbon's pieces differ: it may read a tile more.
+    std::vector<TileIndex> more = canvas_tiles(out.ribbon, canvas, options.canvas_tile);
+    more.erase(std::remove_if(more.begin(), more.end(),
+                              [&](TileIndex t) { return out.forbidden.has_tile(t); }),
+               more.end());
+    if (!more.empty()) {
+      tiles.insert(tiles.end(), more.begin(), more.end());
+      out.forbidden = forbidden_on(tiles, canvas, fixed, earlier, options.canvas_tile);
+    }
+  }
+  add_foldovers(out.ribbon, canvas, out.forbidden);
+  out.seconds = seconds_since(started);
+  return out;
+}
+
 FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
                                           const std::vector<const Exemplar*>& exemplars,
                                           const Curve& curve, const Ribbon& ribbon,
                                           const GridSpec& canvas, const AvoidanceInputs& fixed,
                                           const std::vector<EarlierPattern>& earlier,
                                           const FeatureSynthesisOptions& options) {
+  return synthesize_feature(backends, exemplars,
+                            feature_avoidance(curve, ribbon, canvas, fixed, earlier, options),
+                            canvas, options);
+}
+
+FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
+                                          const std::vector<const Exemplar*>& exemplars,
+                                          FeatureAvoidance avoidance, const GridSpec& canvas,
+                                          const FeatureSynthesisOptions& options) {
   const SynthParams& params = options.params;
   const std::string& label = params.feature_label;
   FeatureSynthesisResult out;
   FeatureSynthesisReport& report = out.report;
   report.seed = params.seed;
-  out.ribbon = ribbon;
-
-  // Avoidance on the feature's canvas (a halo of a cell beyond the pieces), on the tiles the
-  // synthesis reads.
-  auto started = std::chrono::steady_clock::now();
-  std::vector<TileIndex> tiles = canvas_tiles(out.ribbon, canvas, options.canvas_tile);
-  SparseRaster<std::uint8_t> forbidden =
-      forbidden_on(tiles, canvas, fixed, earlier, options.canvas_tile);
-  if (curve.closed) {
-    out.start = start_in_the_clear(curve, out.ribbon, canvas, forbidden);
-    out.ribbon = make_ribbon(*out.start, options.ribbon);
-    // The rotated ribbon's pieces differ: it may read a tile more.
-    std::vector<TileIndex> more = canvas_tiles(out.ribbon, canvas, options.canvas_tile);
-    more.erase(std::remove_if(more.begin(), more.end(),
-                              [&](TileIndex t) { return forbidden.has_tile(t); }),
-               more.end());
-    if (!more.empty()) {
-      tiles.insert(tiles.end(), more.begin(), more.end());
-      forbidden = forbidden_on(tiles, canvas, fixed, earlier, options.canvas_tile);
-    }
-  }
+  out.ribbon = std::move(avoidance.ribbon);
+  out.start = std::move(avoidance.start);
+  const SparseRaster<std::uint8_t>& forbidden = avoidance.forbidden;
   const Ribbon& synthesized = out.ribbon;
-  add_foldovers(synthesized, canvas, forbidden);
-  report.avoidance_seconds = seconds_since(started);
+  report.avoidance_seconds = avoidance.seconds;
 
   // Synthesis: by seed one exemplar, every exemplar and the lowest Omega / N, or one DP over
   // the atlas of them all.
-  started = std::chrono::steady_clock::now();
+  auto started = std::chrono::steady_clock::now();
   const MixedExemplar* mix = options.choice == ExemplarChoice::mix ? options.mix : nullptr;
   if (options.choice == ExemplarChoice::mix) {
     if (!mix) {

@@ -121,6 +121,24 @@ struct FeatureSynthesisResult {
   FeatureSynthesisReport report;      // without `placements` (the caller names the file)
 };
 
+// What a feature's DP reads besides its exemplars and parameters (the pipeline hashes it to
+// reuse a synthesis whose avoidance changed only where the DP does not look: docs/cache.md).
+struct FeatureAvoidance {
+  Ribbon ribbon;               // as synthesized: a closed curve's starts in the clear
+  std::optional<Curve> start;  // a closed curve's rotated centreline (start_in_the_clear)
+  // On the canvas tiles the ribbon's pieces read (a halo of a cell beyond them): `fixed`, the
+  // overlapping earlier patterns' opaque coverage and the ribbon's own fold-overs.
+  SparseRaster<std::uint8_t> forbidden;
+  double seconds = 0.0;  // spent making it
+};
+
+// The avoidance on `canvas` of `ribbon` (made from `curve`; a closed one is rotated to start in
+// the clear, options.ribbon), as synthesize_feature computes it.
+FeatureAvoidance feature_avoidance(const Curve& curve, const Ribbon& ribbon, const GridSpec& canvas,
+                                   const AvoidanceInputs& fixed,
+                                   const std::vector<EarlierPattern>& earlier,
+                                   const FeatureSynthesisOptions& options);
+
 // Synthesizes `ribbon` (made from `curve`) on `canvas` (synthesis_canvas) with one of
 // `exemplars` (by seed), the best of them or a mix of them all (placements in atlas columns),
 // avoiding `fixed` (include_foldovers false), every `earlier` pattern whose canvas overlaps and the
@@ -132,6 +150,11 @@ FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
                                           const Curve& curve, const Ribbon& ribbon,
                                           const GridSpec& canvas, const AvoidanceInputs& fixed,
                                           const std::vector<EarlierPattern>& earlier,
+                                          const FeatureSynthesisOptions& options);
+// The same on an avoidance feature_avoidance made.
+FeatureSynthesisResult synthesize_feature(SynthesisBackends& backends,
+                                          const std::vector<const Exemplar*>& exemplars,
+                                          FeatureAvoidance avoidance, const GridSpec& canvas,
                                           const FeatureSynthesisOptions& options);
 
 }  // namespace tw

@@ -102,15 +102,138 @@ TEST_F(CacheRun, OneChangedRoadRebuildsExactlyWhatItReaches) {
   run("before");
   write_roads(dir_ / "roads.gpkg", roads_with_r1_moved());
   run("after");
-  const std::set<int> expected = expected_rebuilds(roads(), roads_with_r1_moved());
-  EXPECT_EQ(rebuilt("after"), expected);
+  // The keys that change: R1, R2 and R4 (R1's canvas now overlaps R4's).
+  EXPECT_EQ(expected_rebuilds(roads(), roads_with_r1_moved()), (std::set<int>{1, 2, 4}));
   const auto status = statuses("after");
   EXPECT_EQ(status.at(1)["why"], "geometry changed");
   EXPECT_EQ(status.at(2)["why"], "avoidance changed");  // the junction disc moved
-  EXPECT_EQ(status.at(4)["why"], "earlier feature changed");
+  // R1's coverage stays off the pixels R4's DP reads: the finer check reuses it.
+  EXPECT_EQ(status.at(4)["status"], "reused");
+  EXPECT_EQ(status.at(4)["why"], "earlier feature changed, mask the same");
   EXPECT_EQ(status.at(3)["why"], "unchanged");
+  EXPECT_EQ(rebuilt("after"), (std::set<int>{1, 2}));
   run("clean", false);
   expect_same_outputs("after", "clean");
+}
+
+// --- The finer check (issue #23 item 2): keyed by what the DP reads -----------------------------
+// F1 runs diagonally; F2 lies inside F1's canvas box, 100 m or more from F1's line: their
+// canvases overlap, F1's coverage never reaches F2's.
+std::vector<Line> diagonal_roads() {
+  return {{{50, 50}, {300, 300}}, {{200, 80}, {290, 80}}};
+}
+// F1's far end moved: its key changes, and so F2's earlier part; F2's DP reads the same.
+std::vector<Line> diagonal_far_end_moved() {
+  std::vector<Line> lines = diagonal_roads();
+  lines[0][1] = {300, 310};
+  return lines;
+}
+// F1's start moved so that it passes 1.5 m west of F2's west end (no crossing): its coverage
+// now lies on F2's canvas.
+std::vector<Line> diagonal_passing_f2() {
+  std::vector<Line> lines = diagonal_roads();
+  lines[0][0] = {180, 40};
+  return lines;
+}
+
+TEST_F(CacheRun, AnEarlierChangeOffTheMaskItReadsReusesTheSynthesis) {
+  ASSERT_TRUE(crossings(diagonal_far_end_moved()).empty());
+  write_roads(dir_ / "roads.gpkg", diagonal_roads());
+  run("before");
+  write_roads(dir_ / "roads.gpkg", diagonal_far_end_moved());
+  run("after");
+  const auto status = statuses("after");
+  EXPECT_EQ(status.at(1)["why"], "geometry changed");
+  EXPECT_EQ(status.at(2)["status"], "reused");
+  EXPECT_EQ(status.at(2)["why"], "earlier feature changed, mask the same");
+  EXPECT_NE(status.at(2)["key"], statuses("before").at(2)["key"]);  // the coarse key missed
+  EXPECT_EQ(rebuilt("after"), std::set<int>{1});
+  run("clean", false);
+  expect_same_outputs("after", "clean");  // F2's placements and tiles included
+  run("again");                           // kept under its new key: found by that alone
+  EXPECT_EQ(statuses("again").at(2)["why"], "unchanged");
+  EXPECT_EQ(rebuilt("again"), std::set<int>{});
+}
+
+TEST_F(CacheRun, AnEarlierChangeOnTheMaskItReadsResynthesizes) {
+  ASSERT_TRUE(crossings(diagonal_passing_f2()).empty());
+  write_roads(dir_ / "roads.gpkg", diagonal_roads());
+  run("before");
+  write_roads(dir_ / "roads.gpkg", diagonal_passing_f2());
+  run("after");
+  const auto status = statuses("after");
+  EXPECT_EQ(status.at(2)["status"], "rebuilt");
+  EXPECT_EQ(status.at(2)["why"], "earlier feature changed");
+  EXPECT_EQ(rebuilt("after"), (std::set<int>{1, 2}));
+  run("clean", false);
+  expect_same_outputs("after", "clean");
+}
+
+// F1 is an L along the west and north edges: its canvas box holds the whole world, but the DP
+// reads only the canvas tiles (256 cells) its pieces meet. F2 and F3 cross in the middle,
+// 200 m from F1's line, on a tile F1 does not read: the junction disc's box meets F1's canvas.
+std::vector<Line> l_and_a_crossing(double f2_x) {
+  return {{{50, 50}, {50, 600}, {600, 600}}, {{f2_x, 180}, {f2_x, 260}}, {{390, 220}, {470, 220}}};
+}
+
+TEST_F(CacheRun, AnAvoidanceChangeOffTheTilesItReadsReusesTheSynthesis) {
+  write_roads(dir_ / "roads.gpkg", l_and_a_crossing(430));
+  run("before");
+  write_roads(dir_ / "roads.gpkg", l_and_a_crossing(432));  // the crossing moves 2 m east
+  run("after");
+  const auto status = statuses("after");
+  EXPECT_EQ(status.at(1)["status"], "reused");
+  EXPECT_EQ(status.at(1)["why"], "avoidance changed, mask the same");
+  EXPECT_EQ(status.at(2)["why"], "geometry changed");
+  EXPECT_EQ(status.at(3)["why"], "avoidance changed");  // the disc moved on its own pixels
+  EXPECT_EQ(rebuilt("after"), (std::set<int>{2, 3}));
+  run("clean", false);
+  expect_same_outputs("after", "clean");
+}
+
+// The index the finer check reads, corrupt, and an entry of an older layout (no input hash)
+// reached through it: each a warning, and the synthesis rebuilt.
+TEST_F(CacheRun, ACorruptInputIndexOrAnEntryWithoutItsInputHashIsAWarningAndRebuilt) {
+  const auto corrupt_warnings = [](const RunReport& report) {
+    std::vector<std::string> messages;
+    for (const Warning& w : report.warnings)
+      if (w.code == "cache_corrupt") messages.push_back(w.message);
+    return messages;
+  };
+  const auto fill_then_move_f1 = [&] {  // F2 would be reused by the finer check
+    fs::remove_all(dir_ / "cache");
+    write_roads(dir_ / "roads.gpkg", diagonal_roads());
+    run("before");
+    write_roads(dir_ / "roads.gpkg", diagonal_far_end_moved());
+  };
+  fill_then_move_f1();
+  for (const auto& e : fs::directory_iterator(dir_ / "cache/synthesis/inputs"))
+    fs::resize_file(e.path(), fs::file_size(e.path()) - 3);
+  const std::vector<std::string> truncated = corrupt_warnings(run("truncated"));
+  ASSERT_EQ(truncated.size(), 1u);  // F2's record (F1's geometry changed: not looked up)
+  EXPECT_THAT(truncated[0], HasSubstr("synthesis/inputs/"));
+  EXPECT_EQ(statuses("truncated").at(2)["why"], "corrupt entry");
+  EXPECT_EQ(rebuilt("truncated"), (std::set<int>{1, 2}));
+
+  fill_then_move_f1();
+  const fs::path entry =
+      dir_ / "cache/synthesis" / (statuses("before").at(2)["key"].get<std::string>() + ".twc");
+  detail::CacheRead read = detail::read_cache_entry(entry);
+  ASSERT_EQ(read.state, detail::CacheRead::State::ok);
+  nlohmann::json meta = nlohmann::json::parse(read.sections.at("meta"));
+  ASSERT_TRUE(meta.contains("input"));
+  meta.erase("input");  // as format 2 wrote it, with a valid checksum
+  read.sections["meta"] = meta.dump();
+  detail::write_cache_entry(entry, read.sections);
+  const std::vector<std::string> old = corrupt_warnings(run("old"));
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_THAT(old[0], HasSubstr(entry.string()));
+  EXPECT_EQ(statuses("old").at(2)["why"], "corrupt entry");
+  EXPECT_EQ(rebuilt("old"), (std::set<int>{1, 2}));
+
+  run("clean", false);
+  expect_same_outputs("truncated", "clean");
+  expect_same_outputs("old", "clean");
 }
 
 // report.json without what may differ between two runs of the same inputs: timings, cache

@@ -1,5 +1,8 @@
 #include "pipeline/detail/synthesis_cache.hpp"
 
+#include <algorithm>
+#include <span>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
@@ -23,8 +26,11 @@ namespace {
 
 // Bumped whenever an entry's layout or meaning changes: old entries then miss. 2: the whole
 // report (coverage, objective, ...) in a section of its own (issue #24: a reused synthesis
-// reported zeros).
-constexpr std::uint64_t kSynthesisCacheFormat = 2;
+// reported zeros). 3: the input hash in the meta, and the index by it (the finer check).
+constexpr std::uint64_t kSynthesisCacheFormat = 3;
+
+// The reasons the finer check can overrule: nothing the DP reads need have changed.
+constexpr const char* kFinerCheckWhys[] = {"avoidance changed", "earlier feature changed"};
 
 std::string encode_opaque(const SparseRaster<std::uint8_t>& opaque) {
   std::string out;
@@ -96,6 +102,28 @@ std::string why_changed(const SynthesisKey& now, const json& before) {
 }
 
 }  // namespace
+
+ContentHash synthesis_input_hash(const FeatureAvoidance& avoidance,
+                                 const std::vector<Vec2>& junctions) {
+  const SparseRaster<std::uint8_t>& forbidden = avoidance.forbidden;
+  std::vector<TileIndex> tiles = forbidden.tiles();  // canonical: row-major
+  std::sort(tiles.begin(), tiles.end(),
+            [](TileIndex a, TileIndex b) { return std::pair(a.ty, a.tx) < std::pair(b.ty, b.tx); });
+  Hasher h;
+  h.text("terraweave.synthesis.input");
+  h.u64(std::uint64_t(forbidden.width()))
+      .u64(std::uint64_t(forbidden.height()))
+      .u64(std::uint64_t(forbidden.tile_size()))
+      .u64(tiles.size());
+  for (const TileIndex t : tiles) {
+    const std::vector<std::uint8_t>& cells = forbidden.tile(t)->pixels;
+    h.i64(t.tx).i64(t.ty).bytes(std::as_bytes(std::span(cells)));
+  }
+  h.boolean(avoidance.start.has_value());
+  if (avoidance.start) h.points(avoidance.start->points);
+  h.points(junctions);
+  return h.digest();
+}
 
 ContentHash SynthesisKey::combined() const {
   return Hasher()
@@ -204,19 +232,37 @@ fs::path SynthesisCache::last_path(const std::string& name) const {
   return *dir_ / "synthesis" / "last" / (Hasher().text(name).digest().hex() + ".twc");
 }
 
-std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, std::int64_t fid,
-                                                    const std::string& name,
-                                                    const SynthesisKey& key, CacheStatus& status) {
-  const ContentHash combined = key.combined();
-  status = {false, "no cache", combined.hex()};
-  if (!dir_) return std::nullopt;
-  const fs::path path = entry_path(combined);
+fs::path SynthesisCache::input_path(const SynthesisKey& key, const ContentHash& input) const {
+  const ContentHash index = Hasher()
+                                .text("terraweave.synthesis.by-input")
+                                .hash(key.geometry)
+                                .hash(key.config)
+                                .hash(key.exemplar)
+                                .hash(input)
+                                .digest();
+  return *dir_ / "synthesis" / "inputs" / (index.hex() + ".twc");
+}
+
+void SynthesisCache::warn_corrupt(const std::string& subject, std::int64_t fid,
+                                  const fs::path& path, const std::string& problem,
+                                  CacheStatus& status) {
+  warnings_.add("cache_corrupt", subject, fid,
+                fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), problem));
+  status.why = "corrupt entry";
+}
+
+std::optional<CachedSynthesis> SynthesisCache::read_entry(const fs::path& path,
+                                                          const ContentHash& combined,
+                                                          const std::optional<ContentHash>& input,
+                                                          const std::string& subject,
+                                                          std::int64_t fid, CacheStatus& status) {
   CacheRead read = read_cache_entry(path);
   if (read.state == CacheRead::State::ok) {
     try {
       CachedSynthesis cached;
       const json meta = json::parse(read.sections.at("meta"));
       if (meta.at("key").get<std::string>() != combined.hex()) fail("key mismatch");
+      if (input && meta.at("input").get<std::string>() != input->hex()) fail("input mismatch");
       cached.synthesis =
           placements_from_json(read.sections.at("placements"), path.string(), nullptr);
       cached.synthesis.backend = meta.at("backend").get<std::string>();
@@ -238,22 +284,32 @@ std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, 
       if (r.canvas_width != canvas.width || r.canvas_height != canvas.height)
         fail("report canvas {}x{}", r.canvas_width, r.canvas_height);
       touch_cache_entry(path);
-      status.reused = true;
-      status.why = "unchanged";
       return cached;
     } catch (const std::exception& e) {  // a valid checksum over bytes we cannot use
       read.state = CacheRead::State::corrupt;
       read.problem = fmt::format("unreadable content ({})", single_line(e.what()));
     }
   }
-  if (read.state == CacheRead::State::corrupt) {
-    warnings_.add(
-        "cache_corrupt", subject, fid,
-        fmt::format("cache entry {} is corrupt ({}): rebuilt", path.string(), read.problem));
-    status.why = "corrupt entry";
-    return std::nullopt;
-  }
+  if (read.state == CacheRead::State::corrupt)
+    warn_corrupt(subject, fid, path, read.problem, status);
+  return std::nullopt;
+}
+
+std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, std::int64_t fid,
+                                                    const std::string& name,
+                                                    const SynthesisKey& key, CacheStatus& status) {
+  const ContentHash combined = key.combined();
+  status = {false, "no cache", combined.hex()};
+  if (!dir_) return std::nullopt;
   status.why = "new";
+  std::optional<CachedSynthesis> cached =
+      read_entry(entry_path(combined), combined, std::nullopt, subject, fid, status);
+  if (cached) {
+    status.reused = true;
+    status.why = "unchanged";
+    return cached;
+  }
+  if (status.why == "corrupt entry") return std::nullopt;
   const CacheRead last = read_cache_entry(last_path(name));
   if (last.state == CacheRead::State::ok) {
     try {
@@ -265,13 +321,50 @@ std::optional<CachedSynthesis> SynthesisCache::find(const std::string& subject, 
   return std::nullopt;
 }
 
+bool SynthesisCache::finer_check_may_reuse(const CacheStatus& status) {
+  return std::find(std::begin(kFinerCheckWhys), std::end(kFinerCheckWhys), status.why) !=
+         std::end(kFinerCheckWhys);
+}
+
+std::optional<CachedSynthesis> SynthesisCache::find_by_input(const std::string& subject,
+                                                             std::int64_t fid,
+                                                             const SynthesisKey& key,
+                                                             const ContentHash& input,
+                                                             CacheStatus& status) {
+  if (!dir_) return std::nullopt;
+  const fs::path index = input_path(key, input);
+  CacheRead read = read_cache_entry(index);
+  if (read.state == CacheRead::State::absent) return std::nullopt;
+  std::optional<ContentHash> entry;
+  if (read.state == CacheRead::State::ok) {
+    try {
+      entry = ContentHash::from_hex(read.sections.at("entry"));
+    } catch (const std::exception& e) {
+      read.problem = fmt::format("unreadable content ({})", single_line(e.what()));
+    }
+  }
+  if (!entry) {
+    warn_corrupt(subject, fid, index, read.problem, status);
+    return std::nullopt;
+  }
+  const std::string why = status.why;
+  std::optional<CachedSynthesis> cached =
+      read_entry(entry_path(*entry), *entry, input, subject, fid, status);
+  if (!cached) return std::nullopt;  // pruned (status as it was) or corrupt
+  status.reused = true;
+  status.why = why + ", mask the same";
+  return cached;
+}
+
 void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
-                           const Synthesis& synthesis, std::size_t exemplar_slot,
-                           const Curve* start, const SparseRaster<std::uint8_t>& opaque,
+                           const ContentHash& input, const Synthesis& synthesis,
+                           std::size_t exemplar_slot, const Curve* start,
+                           const SparseRaster<std::uint8_t>& opaque,
                            const FeatureSynthesisReport& report) {
   if (!dir_) return;
   const ContentHash combined = key.combined();
   json meta = {{"key", combined.hex()},
+               {"input", input.hex()},
                {"feature", name},
                {"backend", synthesis.backend},
                {"exemplar_slot", exemplar_slot},
@@ -290,6 +383,7 @@ void SynthesisCache::store(const std::string& name, const SynthesisKey& key,
                   {"placements", placements_to_json(synthesis, report.exemplar)},
                   {"opaque", encode_opaque(opaque)},
                   {"report", std::string(report_cbor.begin(), report_cbor.end())}});
+  folder_->write(input_path(key, input), {{"entry", combined.hex()}});
   folder_->write(last_path(name), {{"name", name}, {"parts", encode_parts(key)}});
 }
 

@@ -7,6 +7,13 @@
 // (their opaque coverage is what it avoids; their keys stand for everything they read in turn).
 // Entries are content-addressed: <dir>/synthesis/<key>.twc; the last key seen per feature,
 // with its parts, lies in <dir>/synthesis/last/ so that a rebuild can say why.
+//
+// The finer check: the avoidance and earlier parts stand for more than the DP reads (a box
+// that meets the canvas, an earlier feature whose coverage moved elsewhere). Each entry also
+// records its input hash, of what the DP did read (synthesis_input_hash), and an index
+// <dir>/synthesis/inputs/<input key>.twc names the entry by geometry, config, exemplar and that
+// hash. A key that misses in its avoidance or earlier part only is looked up there
+// (find_by_input) once the avoidance is made: an equal input hash reuses the placements.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -25,6 +32,7 @@
 #include "raster/avoidance.hpp"
 #include "raster/sparse_raster.hpp"
 #include "ribbon/curve.hpp"
+#include "synth/feature_synthesis.hpp"
 #include "synth/synthesize.hpp"
 
 namespace tw::detail {
@@ -49,6 +57,12 @@ struct CachedSynthesis {
   FeatureSynthesisReport report;      // as when it was built (timings: 0)
 };
 
+// The hash of what a feature's DP reads besides its exemplars and parameters (those are the
+// key's config and exemplar parts, its ribbon the geometry part): the forbidden mask on the
+// tiles it reads, the closed curve's start, and a mix's junctions.
+ContentHash synthesis_input_hash(const FeatureAvoidance& avoidance,
+                                 const std::vector<Vec2>& junctions);
+
 class SynthesisCache {
  public:
   // No `dir`: keys are computed (report.json shows them) but nothing is read or written.
@@ -68,9 +82,20 @@ class SynthesisCache {
   std::optional<CachedSynthesis> find(const std::string& subject, std::int64_t fid,
                                       const std::string& name, const SynthesisKey& key,
                                       CacheStatus& status);
-  // Stores a result under `key` and records it as `name`'s last key (no-op without a dir).
-  void store(const std::string& name, const SynthesisKey& key, const Synthesis& synthesis,
-             std::size_t exemplar_slot, const Curve* start,
+  // After find missed with `status`: whether the miss may go through the finer check (only
+  // the avoidance or earlier part changed).
+  static bool finer_check_may_reuse(const CacheStatus& status);
+  // The finer check: the entry of the same geometry, config and exemplar whose DP read what
+  // `input` (synthesis_input_hash) stands for, or nullopt. Reused: `status` says why with the
+  // reason find gave ("avoidance changed, mask the same"); else it is left as it was, unless
+  // the index record or its entry is corrupt (a warning `cache_corrupt`, "corrupt entry").
+  std::optional<CachedSynthesis> find_by_input(const std::string& subject, std::int64_t fid,
+                                               const SynthesisKey& key, const ContentHash& input,
+                                               CacheStatus& status);
+  // Stores a result under `key` with the hash of its DP's input, indexes it by that hash and
+  // records it as `name`'s last key (no-op without a dir).
+  void store(const std::string& name, const SynthesisKey& key, const ContentHash& input,
+             const Synthesis& synthesis, std::size_t exemplar_slot, const Curve* start,
              const SparseRaster<std::uint8_t>& opaque, const FeatureSynthesisReport& report);
 
   // The exemplar at `path` as the input check remembered it (detail/exemplar_memo.hpp): size
@@ -79,7 +104,17 @@ class SynthesisCache {
 
  private:
   ContentHash exemplar_hash(const std::filesystem::path& path);
+  // The entry at `path` if its meta names `combined` (and `input`, when given); a corrupt one
+  // warns and sets `status` to "corrupt entry".
+  std::optional<CachedSynthesis> read_entry(const std::filesystem::path& path,
+                                            const ContentHash& combined,
+                                            const std::optional<ContentHash>& input,
+                                            const std::string& subject, std::int64_t fid,
+                                            CacheStatus& status);
+  void warn_corrupt(const std::string& subject, std::int64_t fid, const std::filesystem::path& path,
+                    const std::string& problem, CacheStatus& status);
   std::filesystem::path entry_path(const ContentHash& key) const;
+  std::filesystem::path input_path(const SynthesisKey& key, const ContentHash& input) const;
   std::filesystem::path last_path(const std::string& name) const;
 
   std::optional<std::filesystem::path> dir_;

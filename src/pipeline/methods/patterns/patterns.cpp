@@ -106,9 +106,9 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       std::optional<Exemplar> known =
           options.cache && !mix ? options.cache->remembered(path) : std::nullopt;
       if (known) run.unread[run.exemplars.size()] = it->synthesis->continuous_alpha;
-      run.exemplars.push_back(known ? std::move(*known)
-                                    : load_exemplar_with_height(path,
-                                                                it->synthesis->continuous_alpha));
+      run.exemplars.push_back(
+          known ? std::move(*known)
+                : load_exemplar_with_height(path, it->synthesis->continuous_alpha));
     }
     if (it->synthesis->choice == ExemplarChoice::mix) {
       plan.matches = binding_matches(*it, lines[plan.class_index]);
@@ -237,14 +237,13 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         run.patterns.push_back(std::move(pattern));
         continue;
       }
-      if (cached) {
-        if (cached->start)
-          pattern.ribbon = make_ribbon(*cached->start, {width, *synthesis.delta, 0.0});
-        pattern.synthesis = std::move(cached->synthesis);
-        pattern.exemplar_index =
-            plan.mix ? plan.mix_index : plan.exemplars.at(cached->exemplar_slot);
-        pattern.opaque = std::move(cached->opaque);
-        pattern.report = std::move(cached->report);
+      // A synthesis from the cache, as if synthesized here.
+      const auto reuse = [&](CachedSynthesis& entry) {
+        if (entry.start) pattern.ribbon = make_ribbon(*entry.start, {width, *synthesis.delta, 0.0});
+        pattern.synthesis = std::move(entry.synthesis);
+        pattern.exemplar_index = plan.mix ? plan.mix_index : plan.exemplars.at(entry.exemplar_slot);
+        pattern.opaque = std::move(entry.opaque);
+        pattern.report = std::move(entry.report);
         if (plan.mix) {
           // The cached report holds the list already: set, not appended to.
           pattern.report.mix_exemplars.clear();
@@ -254,8 +253,12 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
           pattern.report.exemplar_switches = pattern.synthesis.exemplar_switches;
           pattern.report.switch_cost = synthesis.switch_cost;
         }
-        logger().info("{}: reused from the cache ({})", label, pattern.cache.key);
+        logger().info("{}: reused from the cache ({}: {})", label, pattern.cache.key,
+                      pattern.cache.why);
         run.patterns.push_back(std::move(pattern));
+      };
+      if (cached) {
+        reuse(*cached);
         continue;
       }
       FeatureSynthesisOptions feature_options;
@@ -272,20 +275,36 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
         feature_options.bindings = std::move(bindings);
         feature_options.junctions = std::move(junctions);
       }
-      std::vector<const Exemplar*> exemplars;
-      for (const std::size_t e : plan.exemplars)
-        exemplars.push_back(&read_texels(run.exemplars, run.unread, e));
       std::vector<EarlierPattern> earlier;
       for (const FeaturePattern& p : run.patterns)
         if (p.synthesized) earlier.push_back({&p.canvas, &p.opaque});
-      FeatureSynthesisResult result = synthesize_feature(backends, exemplars, curve, pattern.ribbon,
-                                                         canvas, fixed, earlier, feature_options);
+      FeatureAvoidance avoidance =
+          feature_avoidance(curve, pattern.ribbon, canvas, fixed, earlier, feature_options);
+      // The finer check: a key that changed only in what the avoidance might be is reused when
+      // the DP would read the same (docs/cache.md, "A feature's synthesis").
+      const ContentHash input = synthesis_input_hash(avoidance, feature_options.junctions);
+      if (!the_one && SynthesisCache::finer_check_may_reuse(pattern.cache))
+        cached = cache.find_by_input("features." + feature_class.name, line.fid, key, input,
+                                     pattern.cache);
+      if (cached) {  // kept under the new key too: the next run finds it by that alone
+        cache.store(pattern.name, key, input, cached->synthesis, cached->exemplar_slot,
+                    cached->start ? &*cached->start : nullptr, cached->opaque, cached->report);
+        reuse(*cached);
+        run.patterns.back().report.avoidance_seconds = avoidance.seconds;
+        progress.advance();
+        continue;
+      }
+      std::vector<const Exemplar*> exemplars;
+      for (const std::size_t e : plan.exemplars)
+        exemplars.push_back(&read_texels(run.exemplars, run.unread, e));
+      FeatureSynthesisResult result =
+          synthesize_feature(backends, exemplars, std::move(avoidance), canvas, feature_options);
       pattern.ribbon = std::move(result.ribbon);
       pattern.synthesis = std::move(result.synthesis);
       pattern.exemplar_index = plan.mix ? plan.mix_index : plan.exemplars[result.exemplar_slot];
       pattern.opaque = std::move(result.opaque);
       pattern.report = std::move(result.report);
-      cache.store(pattern.name, key, pattern.synthesis, result.exemplar_slot,
+      cache.store(pattern.name, key, input, pattern.synthesis, result.exemplar_slot,
                   result.start ? &*result.start : nullptr, pattern.opaque, pattern.report);
       run.patterns.push_back(std::move(pattern));
       progress.advance();
