@@ -6,7 +6,8 @@ namespace tw {
 
 struct CacheStatus {
   bool reused = false;
-  // Reused: "unchanged". Rebuilt: "no cache" (run without --cache), "new" (no entry under this
+  // Reused: "unchanged", or "avoidance changed, mask the same" / "earlier feature changed, mask
+  // the same" (the finer check: the DP would read the same). Rebuilt: "no cache" (run without --cache), "new" (no entry under this
   // key, and none for this feature or tile before), "corrupt entry", or the first part of the
   // key that differs from the last run's: "geometry changed", "config changed",
   // "exemplar changed", "avoidance changed", "earlier feature changed" (features); "heightfield
