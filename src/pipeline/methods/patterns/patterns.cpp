@@ -291,7 +291,6 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
                     cached->start ? &*cached->start : nullptr, cached->opaque, cached->report);
         reuse(*cached);
         run.patterns.back().report.avoidance_seconds = avoidance.seconds;
-        progress.advance();
         continue;
       }
       std::vector<const Exemplar*> exemplars;
