@@ -142,6 +142,7 @@ bool repair_piece(detail::ClippedLine& piece, const LineClassSpec& spec, LineRep
   if (!repaired) {
     repaired.emplace();
     repaired->points = piece.points;
+    // A dropped piece is stored as no points: repair_line empties them when it returns false.
     detail::repair_line(repaired->points, piece.closed, spec.repair, repaired->counts);
     spec.repair_memo.store(key, *repaired);
   }

@@ -259,6 +259,22 @@ TEST_F(LineRepairs, AMemoHitGivesTheLinesAndWarningsOfAFreshRepair) {
               HasSubstr("removed 1 duplicate vertex and 1 spike"));
 }
 
+// The repair memo stores a dropped piece as no points: repair_line must leave none behind when
+// it says "drop", for an open line and for a ring.
+TEST(RepairLine, ADroppedPieceIsLeftWithNoPoints) {
+  LineRepairCounts counts;
+  std::vector<Vec2> open = {{10, 10}, {10.004, 10}, {10, 10.003}};
+  EXPECT_FALSE(detail::repair_line(open, false, LineRepair{}, counts));
+  EXPECT_TRUE(open.empty());
+  std::vector<Vec2> ring = {{5, 5}, {5.002, 5}, {5.002, 5.002}};
+  EXPECT_FALSE(detail::repair_line(ring, true, LineRepair{}, counts));
+  EXPECT_TRUE(ring.empty());
+  EXPECT_EQ(counts.zero_length_parts, 2);
+  std::vector<Vec2> kept = {{0, 0}, {3, 0}};
+  EXPECT_TRUE(detail::repair_line(kept, false, LineRepair{}, counts));
+  EXPECT_EQ(kept.size(), 2u);
+}
+
 TEST(RepairMessage, SaysWhatChangedInOneLine) {
   LineRepairCounts counts;
   counts.spikes = 1;

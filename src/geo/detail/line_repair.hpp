@@ -15,8 +15,9 @@ namespace tw::detail {
 std::string describe(const LineRepairCounts& counts);
 
 // Repairs `points` in place (a closed ring does not repeat its first point; its first vertex
-// stays). Returns false when nothing with length is left (the piece is to be dropped). Throws
-// tw::Error when GEOS cannot node a line that meets itself.
+// stays). Returns false when nothing with length is left (the piece is to be dropped); `points`
+// is then empty, which the repair memo relies on to store a dropped piece as no points (it keeps
+// the points, not the verdict). Throws tw::Error when GEOS cannot node a line that meets itself.
 bool repair_line(std::vector<Vec2>& points, bool closed, const LineRepair& options,
                  LineRepairCounts& counts);
 
