@@ -106,9 +106,9 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       std::optional<Exemplar> known =
           options.cache && !mix ? options.cache->remembered(path) : std::nullopt;
       if (known) run.unread[run.exemplars.size()] = it->synthesis->continuous_alpha;
-      run.exemplars.push_back(
-          known ? std::move(*known)
-                : load_exemplar_with_height(path, it->synthesis->continuous_alpha));
+      run.exemplars.push_back(known ? std::move(*known)
+                                    : load_exemplar_with_height(path,
+                                                                it->synthesis->continuous_alpha));
     }
     if (it->synthesis->choice == ExemplarChoice::mix) {
       plan.matches = binding_matches(*it, lines[plan.class_index]);
