@@ -254,7 +254,8 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
   options.cache_dir = dir_ / "cache";
   run_pipeline(config(), options);
   run_pipeline(config(), options);
-  for (const auto& f : first_class_features()) EXPECT_EQ(f["cache"]["why"], "unchanged");
+  for (const auto& f : first_class_features())
+    EXPECT_EQ(f["cache"]["why"], "unchanged");
   run_pipeline(config({{"features.roads.synthesis.switch_cost", "40"}}), options);
   for (const auto& f : first_class_features()) {
     EXPECT_EQ(f["cache"]["status"], "rebuilt");
