@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/log.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/run.hpp"
 
 namespace fs = std::filesystem;
@@ -36,21 +37,23 @@ double peak_rss_mb() {
 void print_report(const std::string& name, const tw::RunReport& report) {
   std::printf("%s: grid %d x %d, total %.2f s, peak RSS %.0f MB, violations %lld\n", name.c_str(),
               report.grid.width, report.grid.height, report.total_seconds, peak_rss_mb(),
-              static_cast<long long>(report.pattern_violations));
+              static_cast<long long>(tw::detail::pattern_violations(report)));
   for (const auto& s : report.stages) std::printf("  %-10s %8.2f s\n", s.stage.c_str(), s.seconds);
-  for (const auto& c : report.classes) {
+  for (std::size_t ci = 0; ci < report.classes.size(); ++ci) {
+    const auto& c = report.classes[ci];
     int pieces = 0, features = 0;
     double length = 0, synth = 0, valid = 0, seam = 0, stitched = 0;
-    for (const auto& f : c.features) {
+    for (std::size_t i = 0; i < c.features.size(); ++i) {
+      const auto& f = c.features[i];
       length += f.length_m;
-      if (!f.synthesis) continue;
+      const tw::FeatureSynthesisReport* s = tw::detail::synthesis_report(report, ci, i);
+      if (!s) continue;
       ++features;
       pieces += f.pieces;
-      synth += f.synthesis->avoidance_seconds + f.synthesis->synthesis_seconds +
-               f.synthesis->render_seconds;
-      valid += f.synthesis->mean_valid_positions * f.pieces;
-      seam += f.synthesis->mean_seam_cost * f.pieces;
-      stitched += f.synthesis->mean_seam_cost_stitched * f.pieces;
+      synth += s->avoidance_seconds + s->synthesis_seconds + s->render_seconds;
+      valid += s->mean_valid_positions * f.pieces;
+      seam += s->mean_seam_cost * f.pieces;
+      stitched += s->mean_seam_cost_stitched * f.pieces;
     }
     std::printf("  class %-8s %6.1f km", c.name.c_str(), length / 1000.0);
     if (features > 0) {

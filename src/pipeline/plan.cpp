@@ -212,8 +212,6 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.classes[c].delta_m = ribbons.delta[c];
     for (std::size_t i = 0; i < lines[c].size(); ++i) {
-      if (report.classes[c].grow && ribbons.ribbons[c][i].pieces.empty())
-        ++report.classes[c].grow->short_lines;
       FeatureReport& feature = report.classes[c].features.emplace_back();
       feature.fid = lines[c][i].fid;
       feature.length_m = ribbons.lengths[c][i];

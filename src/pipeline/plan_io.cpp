@@ -1,6 +1,7 @@
 #include "pipeline/plan_io.hpp"
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <system_error>
 #include <utility>
@@ -48,23 +49,12 @@ void get_value(const detail::PlanObjects& objects, const json& files, const std:
 }
 
 // The report's timings move out of its object into plan.json, outside the plan's hash: two plans
-// of the same inputs are the same plan, with the same object names.
+// of the same inputs are the same plan, with the same object names. The methods' parts are
+// stored by their methods (encode_report), their timings taken out by them too.
 json take_timings(RunReport& report) {
   json classes = json::array();
-  for (FeatureClassReport& c : report.classes) {
-    json features = json::array();
-    for (FeatureReport& f : c.features) {
-      json entry;
-      if (f.synthesis) {
-        entry = {f.synthesis->avoidance_seconds, f.synthesis->synthesis_seconds,
-                 f.synthesis->render_seconds};
-        f.synthesis->avoidance_seconds = f.synthesis->synthesis_seconds =
-            f.synthesis->render_seconds = 0.0;
-      }
-      features.push_back(std::move(entry));
-    }
-    classes.push_back({{"ingest", std::exchange(c.ingest_seconds, 0.0)}, {"features", features}});
-  }
+  for (FeatureClassReport& c : report.classes)
+    classes.push_back({{"ingest", std::exchange(c.ingest_seconds, 0.0)}});
   json timings = {{"stages", encode(report.stages)},
                   {"total", std::exchange(report.total_seconds, 0.0)},
                   {"classes", classes}};
@@ -76,17 +66,16 @@ void restore_timings(const json& timings, RunReport& report, const std::string& 
   decode(timings.at("stages"), report.stages, where + ": timings.stages");
   report.total_seconds = timings.at("total").get<double>();
   const json& classes = timings.at("classes");
-  for (std::size_t c = 0; c < report.classes.size() && c < classes.size(); ++c) {
+  for (std::size_t c = 0; c < report.classes.size() && c < classes.size(); ++c)
     report.classes[c].ingest_seconds = classes[c].at("ingest").get<double>();
-    const json& features = classes[c].at("features");
-    for (std::size_t f = 0; f < report.classes[c].features.size() && f < features.size(); ++f) {
-      auto& synthesis = report.classes[c].features[f].synthesis;
-      if (!synthesis || !features[f].is_array() || features[f].size() != 3) continue;
-      synthesis->avoidance_seconds = features[f][0].get<double>();
-      synthesis->synthesis_seconds = features[f][1].get<double>();
-      synthesis->render_seconds = features[f][2].get<double>();
-    }
-  }
+}
+
+// The method of a part of the run's report, among the plan's entries.
+const SynthesisMethod& report_part_method(const WorldPlan& plan, const MethodReportPart& part) {
+  const MethodPlan* entry = find_method_plan(plan, part.method);
+  if (!entry)
+    fail("plan: the report has a part of method '{}', which the plan has no entry of", part.method);
+  return *entry->method;
 }
 
 // The DEM a plan names, refused when its bytes are not the ones planned (hashing streams the
@@ -150,14 +139,27 @@ StagedPlan stage_plan(const WorldPlan& plan, const fs::path& dir) {
     files["index"] = store.put_binary(index.bytes);
   }
   RunReport report = plan.report;
-  const json timings = take_timings(report);
+  json timings = take_timings(report);
+  // Every method's part of the report, stored by the method (its timings apart, by name).
+  std::map<std::string, json> report_parts;
+  for (MethodReportPart& part : report.method_parts) {
+    const SynthesisMethod& method = report_part_method(plan, part);
+    if (json seconds = method.take_report_timings(*part.part); !seconds.is_null())
+      timings["methods"][part.method] = std::move(seconds);
+    report_parts[part.method] = method.encode_report(*part.part, store);
+  }
+  report.method_parts.clear();
   files["report"] = store.put_binary(detail::to_bytes(report));
-  // Every method's entry, in the methods' order: its name, its index and what it encodes.
+  // Every method's entry, in the methods' order: its name, its index, what it encodes and its
+  // part of the report (null: none).
   json methods = json::array();
-  for (const MethodPlan& entry : plan.methods)
+  for (const MethodPlan& entry : plan.methods) {
+    const auto part = report_parts.find(entry.method->name());
     methods.push_back({{"name", entry.method->name()},
                        {"index", store.put_binary(detail::to_bytes(entry.index))},
-                       {"entry", entry.method->encode(entry, store)}});
+                       {"entry", entry.method->encode(entry, store)},
+                       {"report", part != report_parts.end() ? part->second : json()}});
+  }
   // A DEM file travels as its path, options and the hash of its bytes (render-tile reads its
   // windows from it; the hash keeps the plan content-addressed); a generated world as its
   // parameters; heights held in memory (a plan made by hand) as a raster on the plan's grid.
@@ -357,6 +359,13 @@ WorldPlan read_plan(const fs::path& dir, const std::vector<const SynthesisMethod
       detail::from_bytes(objects.get_binary(entries[i].at("index"), key + ".index").body(),
                          entry.index, where + ": " + key + ".index");
       (*method)->decode(entries[i].at("entry"), objects, entry);
+      const json& part = entries[i].at("report");
+      if (tile || part.is_null()) continue;  // a tile's render reads no report
+      std::unique_ptr<MethodPayload> decoded = (*method)->decode_report(part, objects);
+      const json* seconds = doc.contains("timings") ? &doc["timings"] : nullptr;
+      if (seconds && seconds->contains("methods") && (*seconds)["methods"].contains(name))
+        (*method)->restore_report_timings((*seconds)["methods"][name], *decoded);
+      plan.report.method_parts.emplace_back(name, std::move(decoded));
     }
   } catch (const json::exception& e) {
     fail("{}: {}", where, e.what());

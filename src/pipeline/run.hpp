@@ -13,7 +13,7 @@
 #include "core/warnings.hpp"
 #include "pipeline/cache_status.hpp"
 #include "pipeline/config.hpp"
-#include "synth/feature_synthesis.hpp"
+#include "pipeline/method_report.hpp"
 
 namespace tw {
 
@@ -41,8 +41,6 @@ struct FeatureReport {
   double length_m = 0.0;  // in the grid's metric CRS
   double width_m = 0.0;
   int pieces = 0;  // ribbon pieces of length delta (0 when shorter than one piece)
-  std::optional<FeatureSynthesisReport> synthesis;
-  std::optional<CacheStatus> cache;  // with synthesis: reused or rebuilt, and why
   Structure structure = Structure::ground;
   int layer = 0;
   // A bridge's or tunnel's deck height at its start and end (metres; straight between).
@@ -55,45 +53,6 @@ struct FeatureReport {
   double grade_max = 0.0;
 };
 
-// A grown class (docs/pipeline.md, "Grown classes"): what the space filling placed, the
-// candidates it refused by reason, and the coverage (the fraction of the region's allowed mesh
-// vertices within coverage_radius_m, geodesic, of a line).
-// A grown class's `synthesis:` over its lines (of those synthesized): `dressed` have a pattern on
-// some piece, `no_room` had every piece blocked and are left bare (not an error).
-struct GrownSynthesisReport {
-  int dressed = 0, no_room = 0;
-};
-
-// Grown lines that cross (docs/ornaments.md, "Crossings"): checked exactly on the lines
-// written; 0, or the run fails.
-struct GrownCrossings {
-  std::int64_t grown = 0;      // pairs of grown lines (crossing in a class, overlapping across)
-  std::int64_t feature = 0;    // (grown line, feature read) footprints overlapping
-  std::int64_t forbidden = 0;  // grown lines through a nodata cell
-};
-
-struct GrowthReport {
-  std::string kind;     // hedge, wall, trail, ditch (or the line kind given with grow:)
-  std::string element;  // the element set
-  int ornaments = 0, elements = 0, lines = 0;
-  int rejected_crossing = 0, rejected_forbidden = 0, rejected_untraceable = 0;
-  int rejected_footprint = 0;  // candidates onto a footprint, exactly (vector space)
-  GrownCrossings crossings;
-  double coverage = 0.0, coverage_radius_m = 0.0;
-  int mesh_width = 0, mesh_height = 0;  // vertices (the time is the stage `grow`'s)
-  int short_lines = 0;  // lines shorter than one piece (delta): no ribbon, no pattern
-  std::optional<GrownSynthesisReport> synthesis;  // the class has `synthesis:`
-};
-
-// A network class's growth (docs/networks.md, "In pipelines"; network/growth.hpp's counts).
-struct NetworkClassReport {
-  std::string exemplar;        // "path[:layer]" or the .svg
-  std::string method, chosen;  // network.method as asked; what made the lines (never automatic)
-  int exemplar_edges = 0, lines = 0, kept = 0;  // kept: the partial drawing's edges
-  int placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0, pruned = 0;
-  int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0;
-};
-
 struct FeatureClassReport {
   std::string name;
   FeatureKind kind = FeatureKind::road;
@@ -101,33 +60,6 @@ struct FeatureClassReport {
   double delta_m = 0.0;
   std::vector<FeatureReport> features;  // in reading order (a multi-part FID repeats)
   double ingest_seconds = 0.0;
-  std::optional<GrowthReport> grow;           // grown classes only
-  std::optional<NetworkClassReport> network;  // network classes only
-};
-
-// One polygon of a `kind: area` class (docs/shape-patterns.md): what was placed, the candidates
-// left out by reason, and the pixels its strokes cover that the avoidance map forbids (0: the
-// synthesis kept off them, checked independently on the canvas).
-struct AreaFeatureReport {
-  std::int64_t fid = 0;
-  double area_m2 = 0.0;
-  double lead_bearing_deg = 0.0;  // compass bearing of the sketch's +x axis
-  std::uint64_t seed = 0;
-  int shapes = 0, strokes = 0;
-  int outside = 0, forbidden = 0, overlapping = 0;
-  std::int64_t forbidden_touched = 0;
-  int on_nodata = 0;  // shapes left out: their instance stood on nodata heights
-  // Cells of the polygon's avoidance canvas allocated at its peak: they follow the polygon's
-  // area (and a band along its boundary), not its box.
-  std::int64_t canvas_cells = 0;
-};
-
-struct AreaClassReport {
-  std::string name;
-  std::string source;  // path:layer
-  std::string sketch;
-  std::string lead;                         // bearing, long_axis, nearest_road or contours
-  std::vector<AreaFeatureReport> features;  // in reading order (a multi-part FID repeats)
 };
 
 // One tile of the output (docs/tiles.md): its place, how long its render and write took, and
@@ -160,7 +92,7 @@ struct FileRecord {
 using HeightRange = std::optional<std::array<float, 2>>;
 
 // A synthesis method's own part of report.json (`methods.<method>`), as JSON text
-// (SynthesisMethod::report); the built-in methods report in RunReport's fields instead.
+// (SynthesisMethod::report).
 struct MethodReport {
   std::string method;
   std::string json;
@@ -173,12 +105,12 @@ struct RunReport {
   std::uint64_t seed = 0;
   std::vector<StageTiming> stages;
   std::vector<FeatureClassReport> classes;
-  std::vector<AreaClassReport> areas;          // `kind: area` classes, in config order
+  // What the methods report of their classes, features and the run (method_report<T>): one
+  // part per method that reports, of its own type; the method writes it into report.json.
+  std::vector<MethodReportPart> method_parts;
   std::vector<MethodReport> method_reports;    // in method order, those that report one
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
-  std::int64_t pattern_violations = 0;         // sum over features (0, or the run fails)
-  std::int64_t grown_crossings = 0;            // sum over grown classes (0, or the run fails)
   double total_seconds = 0.0;
   std::vector<Warning> warnings;  // in the order they were raised (report.json `warnings`)
   TilesReport tiles;

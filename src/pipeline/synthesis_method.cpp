@@ -17,6 +17,20 @@ nlohmann::json SynthesisMethod::report(const WorldPlan& /*plan*/,
   return nullptr;
 }
 
+nlohmann::json SynthesisMethod::encode_report(const MethodPayload& /*part*/,
+                                              detail::PlanObjects& /*objects*/) const {
+  fail("method '{}' has a part of the run's report but no codec for it", name());
+}
+
+std::unique_ptr<MethodPayload> SynthesisMethod::decode_report(
+    const nlohmann::json& /*value*/, detail::PlanObjects& /*objects*/) const {
+  fail("method '{}' has a part of the run's report but no codec for it", name());
+}
+
+nlohmann::json SynthesisMethod::take_report_timings(MethodPayload& /*part*/) const {
+  return nullptr;
+}
+
 nlohmann::json SynthesisMethod::plan_tasks(const WorldPlan& /*plan*/,
                                            MethodTasks& /*tasks*/) const {
   return nlohmann::json::array();

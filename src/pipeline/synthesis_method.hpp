@@ -182,13 +182,24 @@ class SynthesisMethod {
   virtual void write_outputs(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/,
                              MethodOutputs& /*outputs*/) const {}
 
-  // Its own part of report.json (`methods.<name>`); null: none (the built-in methods report in
-  // RunReport's fields, which report_json writes into their places).
+  // Its own part of report.json (`methods.<name>`) as JSON; null: none.
   virtual nlohmann::json report(const WorldPlan& plan, const MethodPlan& entry) const;
   // Writes its fields of `report` into their places in report.json `json` (the classes, their
-  // features, top-level keys), called for every method once the rest is there.
+  // features, top-level keys: the built-in methods from their part of the report,
+  // RunReport::method_parts), called for every method once the rest is there.
   virtual void report_json(const RunReport& /*report*/, const PipelineConfig& /*config*/,
                            nlohmann::json& /*json*/) const {}
+  // Its part of the run's report (RunReport::method_parts: what plan() put there, of its own
+  // type) in the plan folder (objects through `objects`), and back. What changes from one run of
+  // the same inputs to the next stays outside the plan's hash: take_report_timings moves it out
+  // of the part (null: nothing), restore_report_timings puts it back.
+  virtual nlohmann::json encode_report(const MethodPayload& part,
+                                       detail::PlanObjects& objects) const;
+  virtual std::unique_ptr<MethodPayload> decode_report(const nlohmann::json& value,
+                                                       detail::PlanObjects& objects) const;
+  virtual nlohmann::json take_report_timings(MethodPayload& part) const;
+  virtual void restore_report_timings(const nlohmann::json& /*timings*/,
+                                      MethodPayload& /*part*/) const {}
 
   // Whether its placements can be made as synthesis tasks apart from the plan (then the
   // placements methods after it plan in complete-plan, after every task).

@@ -20,6 +20,7 @@
 #include "pipeline/job.hpp"
 #include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
+#include "pipeline/methods/areas/area_report.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
@@ -127,7 +128,7 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
   Warnings warnings;
   const WorldPlan plan = plan_world(config("p"), {}, warnings);
   ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 2u);
-  const AreaFeatureReport& vines = plan.report.areas.at(0).features.at(0);
+  const detail::AreaFeatureReport& vines = detail::area_reports(plan.report).at(0).features.at(0);
   EXPECT_NEAR(vines.lead_bearing_deg, 30.0, 1e-6);  // along the road
   EXPECT_GT(vines.shapes, 20);
   EXPECT_GT(vines.forbidden, 0);  // the road crosses the field: candidates on it left out
@@ -143,7 +144,7 @@ TEST_F(AreaRun, ShapesKeepOffTheRoadAndFollowItsDirection) {
     }
   EXPECT_GT(left, 0);
   EXPECT_GT(right, 0);
-  const AreaFeatureReport& orchard = plan.report.areas.at(1).features.at(0);
+  const detail::AreaFeatureReport& orchard = detail::area_reports(plan.report).at(1).features.at(0);
   EXPECT_NEAR(orchard.lead_bearing_deg, 90.0, 1e-9);
   EXPECT_GT(orchard.shapes, 10);
   EXPECT_EQ(orchard.forbidden_touched, 0);
@@ -253,7 +254,8 @@ TEST_F(AreaRun, OutputsAreTheSameBytesAtAnyThreadCountAndInTheManifest) {
       nlohmann::json::parse(test::read_file(dir_ / "a/instances.json"));
   ASSERT_EQ(int(instances.size()), shapes);
   EXPECT_EQ(instances[0]["class"], "vines");
-  EXPECT_EQ(a.areas.at(1).features.at(0).shapes, report["areas"][1]["shapes"].get<int>());
+  EXPECT_EQ(detail::area_reports(a).at(1).features.at(0).shapes,
+            report["areas"][1]["shapes"].get<int>());
 }
 
 TEST_F(AreaRun, ARenderFromTheSavedPlanIsTheSameBytes) {
@@ -342,7 +344,7 @@ TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
   write_file_atomic(file, distributed_world((dir_ / "local").string()));
   const PipelineConfig config = load_pipeline(file, {});
   const RunReport local = run_pipeline(config, {});
-  ASSERT_EQ(local.areas.size(), 2u);
+  ASSERT_EQ(detail::area_reports(local).size(), 2u);
 
   PlanJobOptions options;
   options.output_dir = dir_ / "inline";
@@ -359,7 +361,7 @@ TEST_F(AreaRun, SynthesisAsTasksGivesTheAreasOfAnInlineRunBitForBit) {
   const WorldPlan plan = load_plan(job.plan_dir);
   ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 2u);
   EXPECT_FALSE(detail::patterns_plan(plan)->patterns.empty());
-  EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
+  EXPECT_EQ(detail::area_reports(plan.report).at(0).features.at(0).forbidden_touched, 0);
   for (std::size_t t = 0; t < complete.tiles; ++t) render_job_tile(job.plan_dir, int(t));
   finish_job(job.plan_dir);
 
@@ -445,7 +447,7 @@ features:
                                                "strip.yaml", dir.path());
   Warnings warnings;
   const WorldPlan plan = plan_world(config, {}, warnings);
-  const AreaFeatureReport& strip = plan.report.areas.at(0).features.at(0);
+  const detail::AreaFeatureReport& strip = detail::area_reports(plan.report).at(0).features.at(0);
   const double area = strip.area_m2;  // 1 m cells: cells and square metres alike
   EXPECT_NEAR(area, 2.0 * 10.0 * distance(a, b), 1.0);
   const double box = (b.x - a.x + 2.0 * std::abs(n.x)) * (b.y - a.y + 2.0 * std::abs(n.y));
@@ -478,7 +480,7 @@ features:
                   samples.string(), (dir / "out").string(),
                   (test::source_dir() / "tests/data/lux_remich_2169.geojson").string());
   const RunReport report = run_pipeline(parse_pipeline(pipeline, "remich.yaml", dir.path()), {});
-  const AreaFeatureReport& canton = report.areas.at(0).features.at(0);
+  const detail::AreaFeatureReport& canton = detail::area_reports(report).at(0).features.at(0);
   EXPECT_GT(canton.on_nodata, 0);
   EXPECT_GT(canton.shapes, 100);
   bool warned = false;
@@ -527,7 +529,7 @@ features:
                                                "c.yaml", dir.path());
   Warnings warnings;
   const WorldPlan plan = plan_world(config, {}, warnings);
-  const double bearing = plan.report.areas.at(0).features.at(0).lead_bearing_deg;
+  const double bearing = detail::area_reports(plan.report).at(0).features.at(0).lead_bearing_deg;
   // The long axis (east-west, 90 degrees) and the road would say otherwise.
   EXPECT_LT(std::min(std::abs(bearing), std::abs(bearing - 180.0)), 0.5) << bearing;
   ASSERT_FALSE(detail::areas_plan(plan)->areas.at(0).pattern.strokes.empty());
@@ -584,7 +586,7 @@ features:
       plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path()), {}, warnings);
   ASSERT_EQ(detail::areas_plan(plan)->areas.size(), 1u);
   EXPECT_GT(detail::areas_plan(plan)->areas[0].pattern.instances.size(), 5u);
-  EXPECT_EQ(plan.report.areas.at(0).features.at(0).forbidden_touched, 0);
+  EXPECT_EQ(detail::area_reports(plan.report).at(0).features.at(0).forbidden_touched, 0);
   Warnings none_warnings;
   const WorldPlan none =
       plan_world(parse_pipeline(pipeline, "osm_areas.yaml", dir.path(),

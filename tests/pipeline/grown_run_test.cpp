@@ -21,6 +21,7 @@
 #include "layers/layer_set.hpp"
 #include "pipeline/methods/grown/grown_classes.hpp"
 #include "pipeline/methods/grown/grown_method.hpp"
+#include "pipeline/methods/grown/grown_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -139,10 +140,12 @@ TEST_F(GrownRun, LinesInOrnamentsGpkgKeepOffTheRoadAndEachOther) {
     const auto c = std::find_if(report.classes.begin(), report.classes.end(),
                                 [&](const FeatureClassReport& r) { return r.name == name; });
     ASSERT_NE(c, report.classes.end()) << name;
-    ASSERT_TRUE(c->grow) << name;
-    EXPECT_EQ(int(lines.size()), c->grow->lines) << name;
-    EXPECT_GE(c->grow->elements, 3) << name;
-    EXPECT_GT(c->grow->coverage, 0.1) << name;
+    const detail::GrowthReport* grow =
+        detail::growth_report(report, std::size_t(c - report.classes.begin()));
+    ASSERT_TRUE(grow) << name;
+    EXPECT_EQ(int(lines.size()), grow->lines) << name;
+    EXPECT_GE(grow->elements, 3) << name;
+    EXPECT_GT(grow->coverage, 0.1) << name;
     // The class's features are the grown lines, FID for FID.
     ASSERT_EQ(c->features.size(), lines.size()) << name;
     for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -248,7 +251,9 @@ TEST_F(GrownRun, SameSeedSameBytesOtherSeedOtherLinesAndThePlanKeepsThem) {
     EXPECT_EQ(detail::grown_plan(loaded)->classes[i].lines.back().name,
               detail::grown_plan(plan)->classes[i].lines.back().name);
   }
-  EXPECT_EQ(loaded.report.classes.at(1).grow->elements, plan.report.classes.at(1).grow->elements);
+  ASSERT_TRUE(detail::growth_report(loaded.report, 1));
+  EXPECT_EQ(detail::growth_report(loaded.report, 1)->elements,
+            detail::growth_report(plan.report, 1)->elements);
 }
 
 TEST(GrownConfig, DefaultsByKindAndErrorsNameTheKey) {
@@ -393,7 +398,8 @@ features:
                                        samples);
   const PipelineConfig config = parse_pipeline(yaml, "crossings.yaml", dir.path());
   const RunReport report = run_pipeline(config);
-  EXPECT_EQ(report.grown_crossings, 0);
+  ASSERT_TRUE(method_report<detail::GrownReport>(report));
+  EXPECT_EQ(method_report<detail::GrownReport>(report)->crossings, 0);
   const nlohmann::json json = nlohmann::json::parse(test::read_file(dir / "out/report.json"));
   EXPECT_EQ(json["grown_crossings"].get<int>(), 0);
   int footprint_rejections = 0;
@@ -522,9 +528,9 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
                     line({{60, 20}, {98.1, 20}})};
   // Ditches: FID 1 1.4 m from hedge FID 1 (1 m + 0.5 m overlap), FID 2 1.6 m (apart).
   grown[1].lines = {line({{20, 51.4}, {40, 51.4}}), line({{20, 48.4}, {40, 48.4}})};
-  std::vector<FeatureClassReport> reports(3);
-  reports[1].grow.emplace();
-  reports[2].grow.emplace();
+  std::vector<std::optional<detail::GrowthReport>> reports(3);
+  reports[1].emplace();
+  reports[2].emplace();
   try {
     detail::check_grown_lines(config.features, {}, lines, grown, {}, reports);
     FAIL() << "no error";
@@ -534,19 +540,19 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
     EXPECT_THAT(e.what(), HasSubstr("hedges FID 3 overlaps the footprint of roads FID 4"));
     EXPECT_THAT(e.what(), HasSubstr("ditches FID 1 overlaps hedges FID 1"));
   }
-  EXPECT_EQ(reports[1].grow->crossings.feature, 1);
-  EXPECT_EQ(reports[1].grow->crossings.grown, 0);
-  EXPECT_EQ(reports[2].grow->crossings.grown, 1);  // a pair counts in the later class
+  EXPECT_EQ(reports[1]->crossings.feature, 1);
+  EXPECT_EQ(reports[1]->crossings.grown, 0);
+  EXPECT_EQ(reports[2]->crossings.grown, 1);  // a pair counts in the later class
   // Apart, and meeting only end to end: no error, zero counts.
   grown[0].lines[2] = line({{60, 20}, {95.9, 20}});
   grown[1].lines[0] = line({{20, 51.6}, {40, 51.6}});
   EXPECT_NO_THROW(detail::check_grown_lines(config.features, {}, lines, grown, {}, reports));
-  EXPECT_EQ(reports[1].grow->crossings.feature, 0);
-  EXPECT_EQ(reports[2].grow->crossings.grown, 0);
+  EXPECT_EQ(reports[1]->crossings.feature, 0);
+  EXPECT_EQ(reports[2]->crossings.grown, 0);
   // A hedge across another in its class is a crossing, not a joint.
   grown[0].lines.push_back(line({{30, 40}, {30, 60}}));
   EXPECT_THROW(detail::check_grown_lines(config.features, {}, lines, grown, {}, reports), Error);
-  EXPECT_EQ(reports[1].grow->crossings.grown, 1);
+  EXPECT_EQ(reports[1]->crossings.grown, 1);
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include "core/error.hpp"
 #include "core/warnings.hpp"
 #include "layers/write.hpp"
+#include "pipeline/methods/grown/grown_report.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
@@ -76,29 +78,32 @@ const Raster<float>& band_of(const ExrContents& exr, const std::string& channel)
 
 TEST_F(GrownSynthesis, HedgePatternLiesAlongTheGrownLinesOffTheRoadsPattern) {
   const RunReport report = run("a");
-  EXPECT_EQ(report.pattern_violations, 0);
+  EXPECT_EQ(detail::pattern_violations(report), 0);
   const FeatureClassReport& hedges = report.classes.at(1);
-  ASSERT_TRUE(hedges.grow && hedges.grow->synthesis);
-  const GrownSynthesisReport& dressed = *hedges.grow->synthesis;
-  std::printf("hedges: %d lines, %d dressed, %d no room, %d short\n", hedges.grow->lines,
-              dressed.dressed, dressed.no_room, hedges.grow->short_lines);
-  EXPECT_GE(hedges.grow->lines, 10);
-  EXPECT_GT(dressed.dressed, hedges.grow->lines / 2);
-  EXPECT_EQ(dressed.dressed + dressed.no_room + hedges.grow->short_lines, hedges.grow->lines);
-  for (const FeatureReport& f : hedges.features) {
+  const detail::GrowthReport* grow = detail::growth_report(report, 1);
+  ASSERT_TRUE(grow && detail::grown_synthesis_report(report, 1));
+  const detail::GrownSynthesisReport& dressed = *detail::grown_synthesis_report(report, 1);
+  std::printf("hedges: %d lines, %d dressed, %d no room, %d short\n", grow->lines, dressed.dressed,
+              dressed.no_room, grow->short_lines);
+  EXPECT_GE(grow->lines, 10);
+  EXPECT_GT(dressed.dressed, grow->lines / 2);
+  EXPECT_EQ(dressed.dressed + dressed.no_room + grow->short_lines, grow->lines);
+  for (std::size_t i = 0; i < hedges.features.size(); ++i) {
+    const FeatureReport& f = hedges.features[i];
+    const FeatureSynthesisReport* synthesis = detail::synthesis_report(report, 1, i);
     if (f.pieces == 0) {
-      EXPECT_FALSE(f.synthesis) << f.fid;
+      EXPECT_FALSE(synthesis) << f.fid;
       continue;
     }
-    ASSERT_TRUE(f.synthesis) << f.fid;
-    EXPECT_EQ(f.synthesis->violations, 0) << f.fid;
-    EXPECT_THAT(f.synthesis->exemplar, ::testing::EndsWith("hedge.png"));
+    ASSERT_TRUE(synthesis) << f.fid;
+    EXPECT_EQ(synthesis->violations, 0) << f.fid;
+    EXPECT_THAT(synthesis->exemplar, ::testing::EndsWith("hedge.png"));
   }
   for (const Warning& w : report.warnings) EXPECT_NE(w.code, "shorter_than_delta") << w.message;
   const nlohmann::json json = report_of("a");
   EXPECT_EQ(json["pattern_violations"], 0);
   EXPECT_EQ(json["classes"][1]["grow"]["synthesis"]["dressed"].get<int>(), dressed.dressed);
-  EXPECT_EQ(json["classes"][1]["grow"]["short_lines"].get<int>(), hedges.grow->short_lines);
+  EXPECT_EQ(json["classes"][1]["grow"]["short_lines"].get<int>(), grow->short_lines);
 
   // The hedge channel is non-zero along the dressed lines: at most of their vertices, within a
   // pixel (the pattern is about 2.5 m wide on a 2 m grid; junction discs leave joints bare).
@@ -112,9 +117,8 @@ TEST_F(GrownSynthesis, HedgePatternLiesAlongTheGrownLinesOffTheRoadsPattern) {
   const GridSpec& grid = plan.grid;
   int on = 0, vertices = 0;
   for (std::size_t i = 0; i < plan.lines.at(1).size(); ++i) {
-    if (!hedges.features[i].synthesis ||
-        hedges.features[i].synthesis->empty_pieces == hedges.features[i].pieces)
-      continue;
+    const FeatureSynthesisReport* synthesis = detail::synthesis_report(report, 1, i);
+    if (!synthesis || synthesis->empty_pieces == hedges.features[i].pieces) continue;
     for (const Vec2 p : plan.lines[1][i].points) {
       const int col = int((p.x - grid.origin_x) / grid.pixel_width);
       const int row = int((grid.origin_y - p.y) / grid.pixel_height);
@@ -160,20 +164,21 @@ TEST_F(GrownSynthesis, SameBytesTwiceAndOnOpenCl) {
 TEST_F(GrownSynthesis, ShortLinesAndLinesWithoutRoomAreCountedNotErrors) {
   // Pieces of 15 m: the shorter grown lines hold none.
   const RunReport long_pieces = run("long", {{"features.hedges.synthesis.delta", "15"}});
-  const GrowthReport& g = *long_pieces.classes.at(1).grow;
+  const detail::GrowthReport& g = *detail::growth_report(long_pieces, 1);
+  const detail::GrownSynthesisReport& gs = *detail::grown_synthesis_report(long_pieces, 1);
   EXPECT_GT(g.short_lines, 0);
-  EXPECT_EQ(g.synthesis->dressed + g.synthesis->no_room + g.short_lines, g.lines);
+  EXPECT_EQ(gs.dressed + gs.no_room + g.short_lines, g.lines);
   for (const Warning& w : long_pieces.warnings) EXPECT_NE(w.code, "shorter_than_delta");
   // Ribbons 8 m wide, four times the hedge: later lines find their pieces under the patterns of
   // the lines grown beside them (and the road's), and some have no room at all: left bare.
   const RunReport too_wide = run("wide", {{"features.hedges.synthesis.width", "8"}});
-  const GrowthReport& w = *too_wide.classes.at(1).grow;
-  EXPECT_EQ(w.synthesis->dressed + w.synthesis->no_room + w.short_lines, w.lines);
-  EXPECT_GT(w.synthesis->no_room, 0);
-  EXPECT_EQ(report_of("wide")["classes"][1]["grow"]["synthesis"]["no_room"].get<int>(),
-            w.synthesis->no_room);
+  const detail::GrowthReport& w = *detail::growth_report(too_wide, 1);
+  const detail::GrownSynthesisReport& ws = *detail::grown_synthesis_report(too_wide, 1);
+  EXPECT_EQ(ws.dressed + ws.no_room + w.short_lines, w.lines);
+  EXPECT_GT(ws.no_room, 0);
+  EXPECT_EQ(report_of("wide")["classes"][1]["grow"]["synthesis"]["no_room"].get<int>(), ws.no_room);
   // A read line class without room still fails (patterns_test); a grown one only counts it.
-  EXPECT_EQ(too_wide.pattern_violations, 0);
+  EXPECT_EQ(detail::pattern_violations(too_wide), 0);
 }
 
 // Issue #24 item 8: a grown class none of whose lines took its pattern is a warning
@@ -182,15 +187,15 @@ TEST_F(GrownSynthesis, AClassWithNoLineDressedWarnsAndFailsUnderStrict) {
   // Every piece must be 99 % opaque: the hedge exemplar's fringes leave no position valid.
   const std::vector<Override> none_fit = {{"features.hedges.synthesis.min_coverage", "0.99"}};
   const RunReport report = run("bare", none_fit);
-  const GrowthReport& g = *report.classes.at(1).grow;
-  EXPECT_EQ(g.synthesis->dressed, 0);
-  ASSERT_GT(g.synthesis->no_room, 0);
+  const detail::GrownSynthesisReport& g = *detail::grown_synthesis_report(report, 1);
+  EXPECT_EQ(g.dressed, 0);
+  ASSERT_GT(g.no_room, 0);
   const auto warning = std::find_if(report.warnings.begin(), report.warnings.end(),
                                     [](const Warning& w) { return w.code == "grown_undressed"; });
   ASSERT_NE(warning, report.warnings.end());
   EXPECT_EQ(warning->subject, "features.hedges");
-  EXPECT_THAT(warning->message, ::testing::HasSubstr(fmt::format("dressed 0 of {} grown lines",
-                                                                 g.synthesis->no_room)));
+  EXPECT_THAT(warning->message,
+              ::testing::HasSubstr(fmt::format("dressed 0 of {} grown lines", g.no_room)));
   RunOptions strict;
   strict.strict = true;
   try {

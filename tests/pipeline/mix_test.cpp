@@ -12,7 +12,8 @@
 #include "core/segment_distance.hpp"
 #include "core/warnings.hpp"
 #include "pipeline/config.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
+#include "pipeline/methods/patterns/synthesis_cache.hpp"
 #include "pipeline/run.hpp"
 #include "ribbon/ribbon.hpp"
 #include "synth/placements_io.hpp"
@@ -164,7 +165,7 @@ Vec2 crossing_point() {
 
 TEST_F(MixWorld, BoundStretchesAndJunctionsUseTheirExemplarAndTheReportCountsThem) {
   const RunReport run = run_pipeline(config());
-  EXPECT_EQ(run.pattern_violations, 0);
+  EXPECT_EQ(detail::pattern_violations(run), 0);
   const nlohmann::json json = report();
   const auto& features = json["classes"][0]["features"];
   ASSERT_EQ(features.size(), 2u);

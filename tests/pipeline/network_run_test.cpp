@@ -21,6 +21,7 @@
 
 #include "cache_world.hpp"
 #include "core/error.hpp"
+#include "pipeline/methods/network/network_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/run.hpp"
@@ -408,7 +409,8 @@ TEST(NetworkRun, APartialDrawingIsKeptAndCompleted) {
                                                       (dir / "drawn.gpkg").string() + ":drawn"}}),
                                     {}, warnings);
   const auto& lanes = plan.lines.at(2);
-  const auto& report = *plan.report.classes.at(2).network;
+  ASSERT_TRUE(detail::network_class_report(plan.report, 2));
+  const auto& report = *detail::network_class_report(plan.report, 2);
   EXPECT_EQ(report.method, "automatic");
   EXPECT_EQ(report.chosen, "growth");  // completing a drawing is growth
   // The T splits the first line (3 edges), and lanes grown onto them split them further.
@@ -482,7 +484,8 @@ TEST(NetworkRun, APartialDrawingInAnotherCrsIsReprojected) {
                                                       (dir / "drawn.gpkg").string() + ":drawn"}}),
                                     {}, warnings);
   const auto& lanes = plan.lines.at(2);
-  EXPECT_GE(plan.report.classes.at(2).network->kept, 3);
+  ASSERT_TRUE(detail::network_class_report(plan.report, 2));
+  EXPECT_GE(detail::network_class_report(plan.report, 2)->kept, 3);
   for (const Vec2 p : drawn) {
     double nearest = INFINITY;
     for (const LineFeature& l : lanes)

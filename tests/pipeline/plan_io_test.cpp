@@ -19,8 +19,10 @@
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_ribbons.hpp"
+#include "pipeline/detail/report_json.hpp"
 #include "pipeline/job.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/synthesis_job.hpp"
@@ -151,6 +153,34 @@ TEST_F(PlanFolder, SavingALoadedPlanWritesTheSameFiles) {
     kept += fs::exists(dir_ / "b/objects" / entry.path().filename());
   }
   EXPECT_EQ(kept + 1, objects);  // only the settings object changed
+}
+
+// The methods' parts of the report (RunReport::method_parts) travel in the plan folder through
+// their methods: the same report.json from a loaded plan, timings included, and the patterns'
+// per-feature seconds outside the plan's hash.
+TEST_F(PlanFolder, TheMethodsReportPartsComeBackWithTheirTimingsOutsideTheHash) {
+  WorldPlan original = plan();
+  const detail::PatternsReport* patterns = method_report<detail::PatternsReport>(original.report);
+  ASSERT_TRUE(patterns);
+  ASSERT_TRUE(detail::synthesis_report(original.report, 0, 0));
+  const std::string hash = save_plan(original, dir_ / "a");
+  const WorldPlan loaded = load_plan(dir_ / "a");
+  ASSERT_EQ(loaded.report.method_parts.size(), original.report.method_parts.size());
+  EXPECT_EQ(detail::report_to_json(loaded.report, config_).dump(),
+            detail::report_to_json(original.report, config_).dump());
+  const FeatureSynthesisReport& before = *detail::synthesis_report(original.report, 0, 0);
+  const FeatureSynthesisReport& after = *detail::synthesis_report(loaded.report, 0, 0);
+  EXPECT_GT(before.avoidance_seconds + before.synthesis_seconds + before.render_seconds, 0.0);
+  EXPECT_EQ(after.synthesis_seconds, before.synthesis_seconds);
+  EXPECT_EQ(after.exemplar, before.exemplar);
+  // Other seconds: the same plan.
+  method_report<detail::PatternsReport>(original.report)
+      ->features[0][0]
+      ->synthesis.synthesis_seconds += 1.0;
+  EXPECT_EQ(save_plan(original, dir_ / "b"), hash);
+  // Another count: another plan.
+  ++method_report<detail::PatternsReport>(original.report)->features[0][0]->synthesis.empty_pieces;
+  EXPECT_NE(save_plan(original, dir_ / "c"), hash);
 }
 
 TEST_F(PlanFolder, AnObjectThatDoesNotMatchItsHashIsRefusedByName) {
@@ -332,7 +362,7 @@ TEST_F(PlanFolder, ThreeStepsEqualTheTilesAndRefuseMissingOrChangedTiles) {
   const nlohmann::json manifest = nlohmann::json::parse(read_file_bytes(dir_ / "out/report.json"));
   ASSERT_EQ(manifest["tiles"]["tiles"].size(), 9u);
   EXPECT_EQ(manifest["tiles"]["tiles"][4]["index"], 4);
-  EXPECT_EQ(report.pattern_violations, 0);
+  EXPECT_EQ(detail::pattern_violations(report), 0);
   EXPECT_FALSE(fs::exists(tiles));  // the tiles are the output folder's now
 }
 

@@ -14,6 +14,8 @@
 
 #include "core/error.hpp"
 #include "layers/write.hpp"
+#include "pipeline/methods/areas/area_report.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/run.hpp"
 #include "test_support.hpp"
@@ -257,10 +259,11 @@ TEST_F(TiledWorld, TheMosaicAndEveryTileEqualTheUntiledRunBitForBit) {
   ASSERT_NE(cobble, splat.channels.end());
   const auto& band = splat.bands[std::size_t(cobble - splat.channels.begin())].pixels;
   EXPECT_GT(std::count_if(band.begin(), band.end(), [](float v) { return v > 0.5f; }), 200);
-  for (const auto& f : untiled.classes[1].features) {
-    ASSERT_TRUE(f.synthesis);
-    EXPECT_EQ(file_bytes(dir_ / "untiled" / f.synthesis->placements),
-              file_bytes(dir_ / "tiled" / f.synthesis->placements));
+  for (std::size_t i = 0; i < untiled.classes[1].features.size(); ++i) {
+    const FeatureSynthesisReport* synthesis = detail::synthesis_report(untiled, 1, i);
+    ASSERT_TRUE(synthesis);
+    EXPECT_EQ(file_bytes(dir_ / "untiled" / synthesis->placements),
+              file_bytes(dir_ / "tiled" / synthesis->placements));
   }
   EXPECT_EQ(untiled.forbidden_pixels, tiled.forbidden_pixels);
   EXPECT_GT(untiled.forbidden_pixels, 0);
@@ -270,8 +273,8 @@ TEST_F(TiledWorld, TheMosaicAndEveryTileEqualTheUntiledRunBitForBit) {
   ASSERT_NE(rows, splat.channels.end());
   const auto& row_band = splat.bands[std::size_t(rows - splat.channels.begin())].pixels;
   EXPECT_GT(std::count_if(row_band.begin(), row_band.end(), [](float v) { return v > 0.1f; }), 100);
-  ASSERT_EQ(untiled.areas.size(), 1u);
-  EXPECT_GT(untiled.areas[0].features.at(0).shapes, 20);
+  ASSERT_EQ(detail::area_reports(untiled).size(), 1u);
+  EXPECT_GT(detail::area_reports(untiled)[0].features.at(0).shapes, 20);
   for (const char* file : {"areas.gpkg", "instances.csv", "instances.json"})
     EXPECT_EQ(file_bytes(dir_ / "untiled" / file), file_bytes(dir_ / "tiled" / file)) << file;
 
@@ -353,13 +356,13 @@ TEST_F(TiledWorld, ARegionIsTheSameBytesAsItsWindowOfTheWholeRun) {
     EXPECT_EQ(read_exr(dir_ / "region" / (layer + ".exr")).channels,
               read_exr(dir_ / "whole" / (layer + ".exr")).channels);
   }
-  const auto& roads = part.classes[1].features;
-  ASSERT_EQ(roads.size(), 3u);
-  ASSERT_TRUE(roads[0].synthesis);
-  EXPECT_FALSE(roads[1].synthesis);  // far from the region, and synthesized after road 1
-  EXPECT_FALSE(roads[2].synthesis);
-  EXPECT_EQ(file_bytes(dir_ / "region" / roads[0].synthesis->placements),
-            file_bytes(dir_ / "whole" / whole.classes[1].features[0].synthesis->placements));
+  ASSERT_EQ(part.classes[1].features.size(), 3u);
+  ASSERT_TRUE(detail::synthesis_report(part, 1, 0));
+  EXPECT_FALSE(detail::synthesis_report(part, 1, 1));  // far from the region, after road 1
+  EXPECT_FALSE(detail::synthesis_report(part, 1, 2));
+  ASSERT_TRUE(detail::synthesis_report(whole, 1, 0));
+  EXPECT_EQ(file_bytes(dir_ / "region" / detail::synthesis_report(part, 1, 0)->placements),
+            file_bytes(dir_ / "whole" / detail::synthesis_report(whole, 1, 0)->placements));
   const ExrContents splat = read_exr(dir_ / "region/splat.exr");
   const auto cobble = std::find(splat.channels.begin(), splat.channels.end(), "splat.cobble");
   ASSERT_NE(cobble, splat.channels.end());

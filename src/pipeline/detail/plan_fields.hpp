@@ -1,6 +1,7 @@
 #pragma once
 // The field lists of plan_codec.cpp, declared for the encode/decode templates (JSON values and
 // bytes).
+#include "pipeline/cache_status.hpp"
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/plan.hpp"
@@ -29,15 +30,10 @@ TW_PLAN_FIELDS(WindowIndex);
 TW_PLAN_FIELDS(AvoidanceInputs);
 TW_PLAN_FIELDS(Warning);
 TW_PLAN_FIELDS(StageTiming);
-TW_PLAN_FIELDS(FeatureSynthesisReport);
+TW_PLAN_FIELDS(CacheStatus);
 TW_PLAN_FIELDS(FeatureReport);
-TW_PLAN_FIELDS(GrownSynthesisReport);
-TW_PLAN_FIELDS(GrowthReport);
-TW_PLAN_FIELDS(NetworkClassReport);
 TW_PLAN_FIELDS(FeatureClassReport);
 TW_PLAN_FIELDS(MethodReport);
 TW_PLAN_FIELDS(RunReport);
-TW_PLAN_FIELDS(AreaFeatureReport);
-TW_PLAN_FIELDS(AreaClassReport);
 
 }  // namespace tw::detail

@@ -10,6 +10,7 @@
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/areas/area_report.hpp"
 #include "pipeline/methods/areas/areas.hpp"
 #include "pipeline/methods/areas/instance_heights.hpp"
 #include "raster/footprint.hpp"
@@ -33,6 +34,11 @@ TW_FIELDS(PlacedStroke, F(points) F(material) F(width) F(instance))
 TW_FIELDS(AreaPattern, F(instances) F(strokes) F(outside) F(forbidden) F(overlapping))
 TW_FIELDS(AreaTarget, F(stroke_material) F(material) F(height))
 TW_FIELDS(PlannedArea, F(area_class) F(fid) F(pattern) F(targets) F(window))
+TW_FIELDS(AreaFeatureReport,
+          F(fid) F(area_m2) F(lead_bearing_deg) F(seed) F(shapes) F(strokes) F(outside) F(forbidden)
+              F(overlapping) F(forbidden_touched) F(on_nodata) F(canvas_cells))
+TW_FIELDS(AreaClassReport, F(name) F(source) F(sketch) F(lead) F(features))
+TW_FIELDS(AreasReport, F(classes))
 #undef F
 #undef TW_FIELDS
 
@@ -41,7 +47,8 @@ namespace {
 // `kind: area` classes: per polygon, what was placed and what was left out, and why.
 json areas_json(const RunReport& report) {
   json areas = json::array();
-  for (const AreaClassReport& a : report.areas) {
+  const AreasReport* part = method_report<AreasReport>(report);
+  for (const AreaClassReport& a : part ? part->classes : std::vector<AreaClassReport>{}) {
     json features = json::array();
     int shapes = 0;
     std::int64_t touched = 0;
@@ -220,6 +227,17 @@ class AreaMethod final : public SynthesisMethod {
     out["areas"] = areas_json(report);
   }
 
+  json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
+    return objects.put_binary(to_bytes(dynamic_cast<const AreasReport&>(part)));
+  }
+  std::unique_ptr<MethodPayload> decode_report(const json& value,
+                                               PlanObjects& objects) const override {
+    auto part = std::make_unique<AreasReport>();
+    from_bytes(objects.get_binary(value, "methods.areas.report").body(), *part,
+               "plan " + (objects.dir() / "plan.json").string() + ": methods.areas.report");
+    return part;
+  }
+
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {
     const AreasPlan& areas = payload_as<AreasPlan>(entry);
     return {{"names", areas.names}, {"areas", objects.put_cbor(detail::encode(areas.areas))}};
@@ -279,7 +297,7 @@ void add_areas(const PipelineConfig& config, AreaRun run, WorldPlan& plan) {
     }
     entry->areas.push_back(std::move(area));
   }
-  plan.report.areas = std::move(run.reports);
+  method_report<AreasReport>(plan.report, kAreasMethodName).classes = std::move(run.reports);
 }
 
 }  // namespace tw::detail

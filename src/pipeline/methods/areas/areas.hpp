@@ -17,6 +17,7 @@
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
+#include "pipeline/methods/areas/area_report.hpp"
 #include "pipeline/plan.hpp"
 #include "raster/sparse_raster.hpp"
 #include "sketch/hierarchy.hpp"

@@ -120,7 +120,7 @@ void check_grown_lines(const std::vector<FeatureClassConfig>& classes,
                        const std::vector<std::vector<LineFeature>>& lines,
                        const std::vector<GrownClass>& grown,
                        const std::map<std::size_t, std::optional<ForbiddenCells>>& cells,
-                       std::vector<FeatureClassReport>& reports) {
+                       std::vector<std::optional<GrowthReport>>& reports) {
   std::vector<std::string> feature_names, set_names;
   const FootprintIndex features =
       keep_off_footprints(classes, classes.size(), existing, lines, false, &feature_names);
@@ -133,7 +133,7 @@ void check_grown_lines(const std::vector<FeatureClassConfig>& classes,
   }
   const CrossingCheck check = check_crossings(sets, features);
   for (std::size_t s = 0; s < grown.size(); ++s) {
-    GrowthReport& r = *reports[grown[s].class_index].grow;
+    GrowthReport& r = *reports[grown[s].class_index];
     r.crossings = {check.per_set[s].grown, check.per_set[s].feature, check.per_set[s].forbidden};
   }
   if (check.total.total() == 0) return;
@@ -151,7 +151,8 @@ std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& clas
                                      const Heightfield& heightfield,
                                      const ExistingFeatures& existing,
                                      std::vector<std::vector<LineFeature>>& lines,
-                                     std::vector<FeatureClassReport>& reports, Warnings& warnings) {
+                                     std::vector<std::optional<GrowthReport>>& reports,
+                                     Warnings& warnings) {
   std::vector<GrownClass> out;
   HeightSampler sampler(source);
   std::map<std::size_t, std::optional<ForbiddenCells>> forbidden_cells;  // by class
@@ -171,9 +172,7 @@ std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& clas
       fail("{}.grow.element: {}", key, error.what());
     }
     const std::vector<Polygon> region = region_of(fc, heightfield, key, warnings);
-    FeatureClassReport& report = reports[c];
-    report.source = g.element.string();
-    GrowthReport& r = report.grow.emplace();
+    GrowthReport& r = reports.at(c).emplace();
     r.kind = g.kind;
     r.element = g.element.string();
     GrownClass& grown = out.emplace_back();

@@ -9,8 +9,11 @@
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/stages.hpp"
 #include "pipeline/grow_region.hpp"
 #include "pipeline/methods/grown/grown_classes.hpp"
+#include "pipeline/methods/grown/grown_report.hpp"
+#include "ribbon/ribbon.hpp"
 
 namespace tw::detail {
 
@@ -21,6 +24,12 @@ using nlohmann::json;
 #define F TW_FIELD
 TW_FIELDS(GrownLine, F(ornament) F(element) F(name) F(material) F(points) F(heights))
 TW_FIELDS(GrownClass, F(class_index) F(kind) F(height_m) F(lines))
+TW_FIELDS(GrownCrossings, F(grown) F(feature) F(forbidden))
+TW_FIELDS(GrowthReport,
+          F(kind) F(element) F(ornaments) F(elements) F(lines) F(rejected_crossing)
+              F(rejected_forbidden) F(rejected_untraceable) F(rejected_footprint) F(crossings)
+                  F(coverage) F(coverage_radius_m) F(mesh_width) F(mesh_height) F(short_lines))
+TW_FIELDS(GrownReport, F(classes) F(crossings))
 #undef F
 #undef TW_FIELDS
 
@@ -37,7 +46,7 @@ class GrownMethod final : public SynthesisMethod {
   }
   bool makes_lines_of(const FeatureClassConfig& c) const override { return bool(c.grow); }
   std::string class_source(const FeatureClassConfig& c) const override {
-    return c.source.string() + ":" + c.layer;
+    return c.grow->element.string();
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<GrownPlan>();
@@ -56,14 +65,26 @@ class GrownMethod final : public SynthesisMethod {
   // Grown lines avoid the lines read and the existing features; everything after treats them
   // as the class's features.
   void plan(MethodContext& context, MethodPlan& entry) const override {
-    RunReport& report = context.plan.report;
+    GrownReport& report = method_report<GrownReport>(context.plan.report, name());
+    report = GrownReport{};
+    report.classes.resize(context.config.features.size());
     payload_as<GrownPlan>(entry).classes =
         grow_classes(context.config.features, context.source, context.heightfield,
                      *context.existing, context.lines, report.classes, context.warnings);
-    for (const FeatureClassReport& c : report.classes)
-      if (c.grow)
-        report.grown_crossings +=
-            c.grow->crossings.grown + c.grow->crossings.feature + c.grow->crossings.forbidden;
+    for (const std::optional<GrowthReport>& c : report.classes)
+      if (c) report.crossings += c->crossings.grown + c->crossings.feature + c->crossings.forbidden;
+  }
+
+  // Once the ribbons are cut: the grown lines shorter than one piece.
+  void collect(MethodContext& context, MethodPlan& /*entry*/) const override {
+    GrownReport* report = method_report<GrownReport>(context.plan.report);
+    if (!report || !context.ribbons) return;
+    for (std::size_t c = 0; c < report->classes.size(); ++c) {
+      if (!report->classes[c]) continue;
+      const auto& ribbons = context.ribbons->ribbons.at(c);
+      report->classes[c]->short_lines = int(std::count_if(
+          ribbons.begin(), ribbons.end(), [](const Ribbon& r) { return r.pieces.empty(); }));
+    }
   }
 
   std::string outputs_stage(const WorldPlan& /*plan*/, const MethodPlan& entry) const override {
@@ -83,36 +104,44 @@ class GrownMethod final : public SynthesisMethod {
   // Per grown class its `grow` (and `grown_kind`), and the crossings over every class.
   void report_json(const RunReport& report, const PipelineConfig& /*config*/,
                    json& out) const override {
-    for (std::size_t i = 0; i < report.classes.size(); ++i) {
-      const FeatureClassReport& c = report.classes[i];
+    const GrownReport* part = method_report<GrownReport>(report);
+    for (std::size_t i = 0; part && i < part->classes.size(); ++i) {
+      if (!part->classes[i]) continue;
+      const GrowthReport& g = *part->classes[i];
       json& entry = out["classes"][i];
-      if (c.grow) {
-        const GrowthReport& g = *c.grow;
-        entry["grown_kind"] = g.kind;  // `kind` stays the terrain profile's
-        entry["grow"] = {{"element", g.element},
-                         {"ornaments", g.ornaments},
-                         {"elements", g.elements},
-                         {"lines", g.lines},
-                         {"rejected",
-                          {{"crossing", g.rejected_crossing},
-                           {"forbidden", g.rejected_forbidden},
-                           {"untraceable", g.rejected_untraceable},
-                           {"footprint", g.rejected_footprint}}},
-                         {"crossings",
-                          {{"grown", g.crossings.grown},
-                           {"feature", g.crossings.feature},
-                           {"forbidden", g.crossings.forbidden}}},
-                         {"coverage", g.coverage},
-                         {"coverage_radius_m", g.coverage_radius_m},
-                         {"mesh", {g.mesh_width, g.mesh_height}},
-                         {"short_lines", g.short_lines},
-                         {"layer", "ornaments.gpkg:" + c.name}};
-        if (g.synthesis)
-          entry["grow"]["synthesis"] = {{"dressed", g.synthesis->dressed},
-                                        {"no_room", g.synthesis->no_room}};
-      }
+      entry["grown_kind"] = g.kind;  // `kind` stays the terrain profile's
+      json& grow = entry["grow"];    // its `synthesis` is the patterns'
+      grow.update({{"element", g.element},
+                   {"ornaments", g.ornaments},
+                   {"elements", g.elements},
+                   {"lines", g.lines},
+                   {"rejected",
+                    {{"crossing", g.rejected_crossing},
+                     {"forbidden", g.rejected_forbidden},
+                     {"untraceable", g.rejected_untraceable},
+                     {"footprint", g.rejected_footprint}}},
+                   {"crossings",
+                    {{"grown", g.crossings.grown},
+                     {"feature", g.crossings.feature},
+                     {"forbidden", g.crossings.forbidden}}},
+                   {"coverage", g.coverage},
+                   {"coverage_radius_m", g.coverage_radius_m},
+                   {"mesh", {g.mesh_width, g.mesh_height}},
+                   {"short_lines", g.short_lines},
+                   {"layer", "ornaments.gpkg:" + report.classes.at(i).name}});
     }
-    out["grown_crossings"] = report.grown_crossings;
+    out["grown_crossings"] = part ? part->crossings : 0;
+  }
+
+  json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
+    return objects.put_binary(to_bytes(dynamic_cast<const GrownReport&>(part)));
+  }
+  std::unique_ptr<MethodPayload> decode_report(const json& value,
+                                               PlanObjects& objects) const override {
+    auto part = std::make_unique<GrownReport>();
+    from_bytes(objects.get_binary(value, "methods.grown.report").body(), *part,
+               "plan " + (objects.dir() / "plan.json").string() + ": methods.grown.report");
+    return part;
   }
 
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {

@@ -99,7 +99,8 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
                           const HeightfieldSource& source, const Heightfield& heightfield,
                           const ExistingFeatures& existing, const std::vector<Polygon>& reserved,
                           std::vector<std::vector<LineFeature>>& lines,
-                          std::vector<FeatureClassReport>& reports, Warnings& warnings) {
+                          std::vector<std::optional<NetworkClassReport>>& reports,
+                          Warnings& warnings) {
   HeightSampler sampler(source);
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const FeatureClassConfig& fc = classes[c];
@@ -170,7 +171,7 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
       feature.width = fc.width;
       feature.source = n.exemplar;
     }
-    NetworkClassReport& r = reports[c].network.emplace();
+    NetworkClassReport& r = reports.at(c).emplace();
     r.exemplar = n.exemplar;
     r.method = network_method_name(options.method);
     r.chosen = chosen_network_method(report);

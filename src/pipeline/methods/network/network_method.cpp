@@ -4,11 +4,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pipeline/detail/plan_binary.hpp"
+#include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/methods/network/network_classes.hpp"
+#include "pipeline/methods/network/network_report.hpp"
 
 namespace tw::detail {
 
 using nlohmann::json;
+
+// The codec's field lists of its own types (detail/plan_codec.hpp).
+#define TW_FIELDS TW_DEFINE_PLAN_FIELDS
+#define F TW_FIELD
+TW_FIELDS(NetworkClassReport, F(exemplar) F(method) F(chosen) F(exemplar_edges) F(lines) F(kept)
+                                  F(placed) F(snapped) F(t_junctions) F(boundary_ends) F(pruned)
+                                      F(rejected_crossing) F(rejected_region) F(rejected_forbidden))
+TW_FIELDS(NetworkReport, F(classes))
+#undef F
+#undef TW_FIELDS
 
 namespace {
 
@@ -33,36 +46,48 @@ class NetworkMethod final : public SynthesisMethod {
   // After the grown classes, off everything before them; once, in the plan, so that every tile
   // and worker sees the same lines.
   void plan(MethodContext& context, MethodPlan& /*entry*/) const override {
+    NetworkReport& report = method_report<NetworkReport>(context.plan.report, name());
+    report = NetworkReport{};
+    report.classes.resize(context.config.features.size());
     grow_network_classes(context.config.features, context.source, context.heightfield,
-                         *context.existing, context.reserved, context.lines,
-                         context.plan.report.classes, context.warnings);
+                         *context.existing, context.reserved, context.lines, report.classes,
+                         context.warnings);
   }
 
   // Per network class its `network`.
   void report_json(const RunReport& report, const PipelineConfig& /*config*/,
                    json& out) const override {
-    for (std::size_t i = 0; i < report.classes.size(); ++i) {
-      const FeatureClassReport& c = report.classes[i];
-      json& entry = out["classes"][i];
-      if (c.network) {
-        const NetworkClassReport& n = *c.network;
-        entry["network"] = {{"exemplar", n.exemplar},
-                            {"method", n.method},
-                            {"chosen", n.chosen},
-                            {"exemplar_edges", n.exemplar_edges},
-                            {"lines", n.lines},
-                            {"kept", n.kept},
-                            {"placed", n.placed},
-                            {"snapped", n.snapped},
-                            {"t_junctions", n.t_junctions},
-                            {"boundary_ends", n.boundary_ends},
-                            {"pruned", n.pruned},
-                            {"rejected",
-                             {{"crossing", n.rejected_crossing},
-                              {"region", n.rejected_region},
-                              {"forbidden", n.rejected_forbidden}}}};
-      }
+    const NetworkReport* part = method_report<NetworkReport>(report);
+    for (std::size_t i = 0; part && i < part->classes.size(); ++i) {
+      if (!part->classes[i]) continue;
+      const NetworkClassReport& n = *part->classes[i];
+      out["classes"][i]["network"] = {{"exemplar", n.exemplar},
+                                      {"method", n.method},
+                                      {"chosen", n.chosen},
+                                      {"exemplar_edges", n.exemplar_edges},
+                                      {"lines", n.lines},
+                                      {"kept", n.kept},
+                                      {"placed", n.placed},
+                                      {"snapped", n.snapped},
+                                      {"t_junctions", n.t_junctions},
+                                      {"boundary_ends", n.boundary_ends},
+                                      {"pruned", n.pruned},
+                                      {"rejected",
+                                       {{"crossing", n.rejected_crossing},
+                                        {"region", n.rejected_region},
+                                        {"forbidden", n.rejected_forbidden}}}};
     }
+  }
+
+  json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
+    return objects.put_binary(to_bytes(dynamic_cast<const NetworkReport&>(part)));
+  }
+  std::unique_ptr<MethodPayload> decode_report(const json& value,
+                                               PlanObjects& objects) const override {
+    auto part = std::make_unique<NetworkReport>();
+    from_bytes(objects.get_binary(value, "methods.network.report").body(), *part,
+               "plan " + (objects.dir() / "plan.json").string() + ": methods.network.report");
+    return part;
   }
 
   json encode(const MethodPlan& /*entry*/, PlanObjects& /*objects*/) const override {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <span>
+#include <utility>
 
 #include "core/content_hash.hpp"
 #include "core/error.hpp"
@@ -12,10 +13,11 @@
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/methods/patterns/pattern_inputs.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/methods/patterns/pattern_tasks.hpp"
+#include "pipeline/methods/patterns/synthesis_cache.hpp"
 #include "raster/footprint.hpp"
 #include "raster/sparse_raster.hpp"
 #include "synth/pattern_canvas.hpp"
@@ -38,6 +40,18 @@ TW_FIELDS(PatternTarget, F(exemplar_channel) F(to_height) F(material) F(is_alpha
 TW_FIELDS(Placement,
           F(ux) F(uy) F(exemplar) F(empty) F(origin) F(along) F(across) F(scale) F(stitch))
 TW_FIELDS(MixLayout, F(x0) F(width) F(height) F(gap))
+TW_FIELDS(FeatureSynthesisReport,
+          F(exemplar) F(seed) F(backend) F(mean_valid_positions) F(omega) F(mean_seam_cost)
+              F(mean_seam_cost_stitched) F(violations) F(empty_pieces) F(canvas_width)
+                  F(canvas_height) F(avoidance_seconds) F(synthesis_seconds) F(render_seconds)
+                      F(placements) F(objective) F(min_coverage) F(min_coverage_from_exemplar)
+                          F(coverage_ratio) F(mean_coverage) F(natural_coverage)
+                              F(parametric_seam_cost) F(width_m) F(delta_m) F(width_from)
+                                  F(delta_from) F(mix_exemplars) F(pieces_per_exemplar)
+                                      F(exemplar_switches) F(switch_cost))
+TW_FIELDS(PatternFeatureReport, F(synthesis) F(cache))
+TW_FIELDS(GrownSynthesisReport, F(dressed) F(no_room))
+TW_FIELDS(PatternsReport, F(features) F(grown) F(violations))
 #undef F
 #undef TW_FIELDS
 
@@ -106,8 +120,8 @@ void plan_patterns(const PipelineConfig& config, PatternRun run, WorldPlan& plan
 }
 
 // The synthesis ribbon's width and delta in the feature's report, and where they came from.
-void record_geometry(const SynthesisConfig& s, FeatureReport& feature) {
-  FeatureSynthesisReport& r = *feature.synthesis;
+void record_geometry(const SynthesisConfig& s, const FeatureReport& feature,
+                     FeatureSynthesisReport& r) {
   r.width_m = s.width.value_or(feature.width_m);
   r.width_from = s.width_of_feature ? "feature" : s.width_from_exemplar ? "exemplar" : "config";
   r.delta_m = s.delta.value_or(0.0);
@@ -305,68 +319,113 @@ class PatternMethod final : public SynthesisMethod {
       saved.backend.clear();
       save_placements(saved, patterns.exemplars[p.exemplar_index].path,
                       outputs.transaction.stage(outputs.dir / file).string());
-      auto& synthesis = outputs.report.classes[p.class_index].features[p.feature_index].synthesis;
-      if (synthesis) synthesis->placements = file;
+      if (PatternsReport* report = method_report<PatternsReport>(outputs.report))
+        if (auto& feature = report->features.at(p.class_index).at(p.feature_index))
+          feature->synthesis.placements = file;
     }
   }
 
   // Per synthesized feature its `synthesis` and `cache`, its timings under
-  // `timings.synthesis`, and the violations over every feature.
+  // `timings.synthesis`, a grown class's `grow.synthesis`, and the violations over every
+  // feature.
   void report_json(const RunReport& report, const PipelineConfig& /*config*/,
                    json& out) const override {
+    const PatternsReport* part = method_report<PatternsReport>(report);
     json timings = json::array();
     for (std::size_t c = 0; c < report.classes.size(); ++c) {
       const FeatureClassReport& fc = report.classes[c];
+      if (part && c < part->grown.size() && part->grown[c])
+        out["classes"][c]["grow"]["synthesis"] = {{"dressed", part->grown[c]->dressed},
+                                                  {"no_room", part->grown[c]->no_room}};
       for (std::size_t i = 0; i < fc.features.size(); ++i) {
-        const FeatureReport& f = fc.features[i];
+        const PatternFeatureReport* f = part ? part->feature(c, i) : nullptr;
+        if (!f) continue;
         json& feature = out["classes"][c]["features"][i];
-        if (f.synthesis) {
-          const FeatureSynthesisReport& s = *f.synthesis;
-          feature["synthesis"] = {
-              {"exemplar", s.exemplar},
-              {"seed", s.seed},
-              {"backend", s.backend},
-              {"mean_valid_positions", s.mean_valid_positions},
-              {"omega", s.omega},
-              {"mean_seam_cost", s.mean_seam_cost},
-              {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
-              {"objective", s.objective},
-              {"min_coverage", s.min_coverage},
-              {"min_coverage_from", s.min_coverage_from_exemplar ? "exemplar" : "pipeline"},
-              {"coverage_ratio", s.coverage_ratio},
-              {"mean_coverage", s.mean_coverage},
-              {"natural_coverage", s.natural_coverage},
-              {"parametric_seam_cost", s.parametric_seam_cost},
-              {"width_m", s.width_m},
-              {"width_from", s.width_from},
-              {"delta_m", s.delta_m},
-              {"delta_from", s.delta_from},
-              {"empty_pieces", s.empty_pieces},
-              {"violations", s.violations},
-              {"canvas", {s.canvas_width, s.canvas_height}},
-              {"placements", s.placements}};
-          if (!s.mix_exemplars.empty()) {  // choose: mix
-            feature["synthesis"]["mix"] = {{"exemplars", s.mix_exemplars},
-                                           {"pieces_per_exemplar", s.pieces_per_exemplar},
-                                           {"switches", s.exemplar_switches},
-                                           {"switch_cost", s.switch_cost}};
-          }
+        const FeatureSynthesisReport& s = f->synthesis;
+        feature["synthesis"] = {
+            {"exemplar", s.exemplar},
+            {"seed", s.seed},
+            {"backend", s.backend},
+            {"mean_valid_positions", s.mean_valid_positions},
+            {"omega", s.omega},
+            {"mean_seam_cost", s.mean_seam_cost},
+            {"mean_seam_cost_stitched", s.mean_seam_cost_stitched},
+            {"objective", s.objective},
+            {"min_coverage", s.min_coverage},
+            {"min_coverage_from", s.min_coverage_from_exemplar ? "exemplar" : "pipeline"},
+            {"coverage_ratio", s.coverage_ratio},
+            {"mean_coverage", s.mean_coverage},
+            {"natural_coverage", s.natural_coverage},
+            {"parametric_seam_cost", s.parametric_seam_cost},
+            {"width_m", s.width_m},
+            {"width_from", s.width_from},
+            {"delta_m", s.delta_m},
+            {"delta_from", s.delta_from},
+            {"empty_pieces", s.empty_pieces},
+            {"violations", s.violations},
+            {"canvas", {s.canvas_width, s.canvas_height}},
+            {"placements", s.placements}};
+        if (!s.mix_exemplars.empty()) {  // choose: mix
+          feature["synthesis"]["mix"] = {{"exemplars", s.mix_exemplars},
+                                         {"pieces_per_exemplar", s.pieces_per_exemplar},
+                                         {"switches", s.exemplar_switches},
+                                         {"switch_cost", s.switch_cost}};
         }
-        if (f.cache) {
-          feature["cache"] = {{"status", f.cache->reused ? "reused" : "rebuilt"},
-                              {"why", f.cache->why},
-                              {"key", f.cache->key}};
-        }
-        if (!f.synthesis) continue;
+        feature["cache"] = {{"status", f->cache.reused ? "reused" : "rebuilt"},
+                            {"why", f->cache.why},
+                            {"key", f->cache.key}};
         timings.push_back({{"class", fc.name},
-                           {"fid", f.fid},
-                           {"avoidance", f.synthesis->avoidance_seconds},
-                           {"synthesis", f.synthesis->synthesis_seconds},
-                           {"render", f.synthesis->render_seconds}});
+                           {"fid", report.classes[c].features[i].fid},
+                           {"avoidance", s.avoidance_seconds},
+                           {"synthesis", s.synthesis_seconds},
+                           {"render", s.render_seconds}});
       }
     }
     out["timings"]["synthesis"] = std::move(timings);
-    out["pattern_violations"] = report.pattern_violations;
+    out["pattern_violations"] = part ? part->violations : 0;
+  }
+
+  // Its report: the features' timings apart, per class, per feature ([avoidance, synthesis,
+  // render] seconds; null: not synthesized).
+  json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
+    return objects.put_binary(to_bytes(dynamic_cast<const PatternsReport&>(part)));
+  }
+  std::unique_ptr<MethodPayload> decode_report(const json& value,
+                                               PlanObjects& objects) const override {
+    auto part = std::make_unique<PatternsReport>();
+    from_bytes(objects.get_binary(value, "methods.patterns.report").body(), *part,
+               "plan " + (objects.dir() / "plan.json").string() + ": methods.patterns.report");
+    return part;
+  }
+  json take_report_timings(MethodPayload& part) const override {
+    json classes = json::array();
+    for (auto& features : dynamic_cast<PatternsReport&>(part).features) {
+      json list = json::array();
+      for (auto& f : features) {
+        json seconds;
+        if (f) {
+          FeatureSynthesisReport& s = f->synthesis;
+          seconds = {std::exchange(s.avoidance_seconds, 0.0),
+                     std::exchange(s.synthesis_seconds, 0.0), std::exchange(s.render_seconds, 0.0)};
+        }
+        list.push_back(std::move(seconds));
+      }
+      classes.push_back(std::move(list));
+    }
+    return classes;
+  }
+  void restore_report_timings(const json& timings, MethodPayload& part) const override {
+    auto& features = dynamic_cast<PatternsReport&>(part).features;
+    for (std::size_t c = 0; c < features.size() && c < timings.size(); ++c) {
+      for (std::size_t i = 0; i < features[c].size() && i < timings[c].size(); ++i) {
+        const json& seconds = timings[c][i];
+        if (!features[c][i] || !seconds.is_array() || seconds.size() != 3) continue;
+        FeatureSynthesisReport& s = features[c][i]->synthesis;
+        s.avoidance_seconds = seconds[0].get<double>();
+        s.synthesis_seconds = seconds[1].get<double>();
+        s.render_seconds = seconds[2].get<double>();
+      }
+    }
   }
 
   // The exemplars (texels) as binary objects, with their source's hash when it is a file; each
@@ -472,32 +531,36 @@ PatternsPlan* patterns_plan(WorldPlan& plan) {
 
 void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& plan,
                   Warnings& warnings) {
-  for (std::size_t c = 0; c < config.features.size(); ++c)
-    if (config.features[c].synthesis && plan.report.classes[c].grow)
-      plan.report.classes[c].grow->synthesis.emplace();
+  PatternsReport& report = method_report<PatternsReport>(plan.report, "patterns");
+  report = PatternsReport{};
+  report.grown.resize(config.features.size());
+  for (std::size_t c = 0; c < config.features.size(); ++c) {
+    report.features.emplace_back(plan.report.classes[c].features.size());
+    if (config.features[c].synthesis && config.features[c].grow) report.grown[c].emplace();
+  }
   for (const FeaturePattern& p : patterns.patterns) {
     if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
-    FeatureClassReport& feature_class = plan.report.classes[p.class_index];
-    FeatureReport& feature = feature_class.features[p.feature_index];
+    PatternFeatureReport& feature = report.features.at(p.class_index).at(p.feature_index).emplace();
     feature.synthesis = p.report;
-    record_geometry(*config.features[p.class_index].synthesis, feature);
+    record_geometry(*config.features[p.class_index].synthesis,
+                    plan.report.classes[p.class_index].features[p.feature_index],
+                    feature.synthesis);
     feature.cache = p.cache;
-    plan.report.pattern_violations += p.report.violations;
-    if (feature_class.grow) {
+    report.violations += p.report.violations;
+    if (auto& grown = report.grown[p.class_index]) {
       const bool bare = std::size_t(p.report.empty_pieces) == p.synthesis.placements.size();
-      ++(bare ? feature_class.grow->synthesis->no_room : feature_class.grow->synthesis->dressed);
+      ++(bare ? grown->no_room : grown->dressed);
     }
   }
   // Bare lines are no error (short lines between joints), but a class none of whose lines
   // took its pattern is a setting that does not fit (too wide, too long pieces).
   for (std::size_t c = 0; c < config.features.size(); ++c) {
-    const auto& grow = plan.report.classes[c].grow;
-    if (!grow || !grow->synthesis || grow->synthesis->dressed > 0 || grow->synthesis->no_room == 0)
-      continue;
+    const auto& grown = report.grown[c];
+    if (!grown || grown->dressed > 0 || grown->no_room == 0) continue;
     warnings.add("grown_undressed", "features." + config.features[c].name, std::nullopt,
                  fmt::format("synthesis dressed 0 of {} grown lines: every piece had no room "
                              "(a narrower synthesis.width or a shorter delta may fit)",
-                             grow->synthesis->no_room));
+                             grown->no_room));
   }
   PatternsPlan* entry = patterns_plan(plan);
   if (!entry) fail("plan: no patterns entry to add {} patterns to", patterns.patterns.size());

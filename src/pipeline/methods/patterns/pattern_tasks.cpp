@@ -9,7 +9,8 @@
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
+#include "pipeline/methods/patterns/synthesis_cache.hpp"
 
 namespace tw::detail {
 

@@ -9,7 +9,7 @@
 #include "core/split_mix.hpp"
 #include "pipeline/detail/bindings.hpp"
 #include "pipeline/detail/piece_length.hpp"
-#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/methods/patterns/synthesis_cache.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/pattern_canvas.hpp"

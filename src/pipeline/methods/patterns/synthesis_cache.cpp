@@ -1,4 +1,4 @@
-#include "pipeline/detail/synthesis_cache.hpp"
+#include "pipeline/methods/patterns/synthesis_cache.hpp"
 
 #include <algorithm>
 #include <span>
@@ -12,6 +12,7 @@
 #include "pipeline/detail/piece_length.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/polygons_hash.hpp"
+#include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/version.hpp"
 #include "raster/footprint.hpp"
 #include "synth/feature_synthesis.hpp"
