@@ -1,4 +1,4 @@
-#include "pipeline/detail/bindings.hpp"
+#include "pipeline/methods/patterns/pattern_bindings.hpp"
 
 #include <algorithm>
 
