@@ -36,8 +36,9 @@ inline void check_pipeline(const PipelineConfig& config) {
     } else if (!(std::isfinite(c.width) && c.width >= 0.0)) {
       broken_promise("features.*.width (fallback of width_attribute)");
     }
-    if (c.synthesis) {
-      const SynthesisConfig& s = *c.synthesis;
+    if (const SynthesisConfig* synthesis =
+            method_options<SynthesisConfig>(c, kPatternsMethodName)) {
+      const SynthesisConfig& s = *synthesis;
       if (s.exemplars.empty()) broken_promise("synthesis: no exemplar");
       // delta and min_coverage are optional: absent, the exemplar's defaults apply later
       // (synthesis_defaults); given, they must be usable as they are.

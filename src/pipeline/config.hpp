@@ -17,6 +17,7 @@
 #include "layers/export.hpp"
 #include "layers/write.hpp"
 #include "pipeline/grow_config.hpp"
+#include "pipeline/method_options.hpp"
 #include "pipeline/network_config.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "terrain/features.hpp"
@@ -61,7 +62,11 @@ struct ExemplarBinding {
   std::string key;  // "features.roads.synthesis.bind.0", for messages
 };
 
-struct SynthesisConfig {
+// The patterns method's name (SynthesisMethod::name()): a line class's `synthesis:` block is its
+// options, method_options<SynthesisConfig>(feature_class, kPatternsMethodName).
+inline constexpr const char* kPatternsMethodName = "patterns";
+
+struct SynthesisConfig : MethodOptionsOf<SynthesisConfig> {
   // One or more; NAME_height.tif beside NAME.png, when present, is read as channel "height".
   std::vector<std::filesystem::path> exemplars;
   ExemplarChoice choice = ExemplarChoice::by_seed;
@@ -123,15 +128,33 @@ struct FeatureClassConfig {
   // `conform.corridor`: metres either side of each line within which it moves onto the DEM's
   // valley floor (rivers) or crest (ridges) before anything is built on it; 0 = as drawn.
   double conform_corridor = 0.0;
-  std::optional<SynthesisConfig> synthesis;
   LineRepair repair;  // the pipeline's `repair`, overridden key by key by the class's own
-  // `kind: hedge | wall | trail | ditch` or a `grow:` block: the lines are grown (FloralSurf,
-  // docs/ornaments.md) after ingest instead of read from `source`.
-  std::optional<GrowConfig> grow;
-  // A `network:` block: the lines are a curve network grown by example over a region
-  // (docs/networks.md, "In pipelines") after the grown classes, instead of read from `source`.
-  std::optional<NetworkClassConfig> network;
+  // The blocks of the class that methods own, in the order their readers made them: the
+  // patterns' `synthesis:` (SynthesisConfig), the grown ornaments' `grow:` (GrowConfig, also
+  // for `kind: hedge | wall | trail | ditch`) and the networks' `network:` (NetworkClassConfig);
+  // method_options finds one.
+  std::vector<MethodConfigPart> methods;
 };
+
+// The options of method `method` in line class `feature_class` as its own type T (the class's
+// `synthesis:` block: method_options<SynthesisConfig>(c, kPatternsMethodName)); null: none.
+template <class T>
+const T* method_options(const FeatureClassConfig& feature_class, const std::string& method) {
+  return find_method_options<T>(feature_class.methods, method);
+}
+
+// The same, added (default T) when missing: a method's reader fills its block with it.
+template <class T>
+T& method_options(FeatureClassConfig& feature_class, const std::string& method) {
+  return method_options_in<T>(feature_class.methods, method);
+}
+
+// Whether line class `feature_class` has a block of method `method`.
+inline bool has_method_options(const FeatureClassConfig& feature_class, const std::string& method) {
+  for (const MethodConfigPart& part : feature_class.methods)
+    if (part.method == method) return true;
+  return false;
+}
 
 // Avoidance input: polygons are burnt as they are, lines are buffered by `width`.
 struct ExistingConfig {
@@ -206,39 +229,6 @@ struct Override {
   std::string value;
 };
 
-// A synthesis method's own options, read by its reader (detail/method_config.hpp) and kept in
-// the config opaquely, as the plan keeps the method's entry (pipeline/method_plan.hpp): a type of
-// the method's own (MethodOptionsOf does the copying).
-struct MethodOptions {
-  virtual ~MethodOptions() = default;
-  virtual std::unique_ptr<MethodOptions> clone() const = 0;
-};
-
-template <class Derived>
-struct MethodOptionsOf : MethodOptions {
-  std::unique_ptr<MethodOptions> clone() const override {
-    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
-  }
-};
-
-// One method's options in the config: a value type (copying a config copies them).
-struct MethodConfigPart {
-  std::string method;  // the method's name (SynthesisMethod::name())
-  std::unique_ptr<MethodOptions> options;
-
-  MethodConfigPart() = default;
-  MethodConfigPart(std::string m, std::unique_ptr<MethodOptions> o)
-      : method(std::move(m)), options(std::move(o)) {}
-  MethodConfigPart(const MethodConfigPart& other)
-      : method(other.method), options(other.options ? other.options->clone() : nullptr) {}
-  MethodConfigPart& operator=(const MethodConfigPart& other) {
-    if (this != &other) *this = MethodConfigPart(other);
-    return *this;
-  }
-  MethodConfigPart(MethodConfigPart&&) noexcept = default;
-  MethodConfigPart& operator=(MethodConfigPart&&) noexcept = default;
-};
-
 struct PipelineConfig {
   std::filesystem::path file;  // the pipeline file itself ("" when parsed from text)
   int version = 1;
@@ -282,19 +272,13 @@ struct PipelineConfig {
 // (or, for a method that names another's type, of another type).
 template <class T>
 const T* method_options(const PipelineConfig& config, const std::string& method) {
-  for (const MethodConfigPart& part : config.methods)
-    if (part.method == method) return dynamic_cast<const T*>(part.options.get());
-  return nullptr;
+  return find_method_options<T>(config.methods, method);
 }
 
 // The same, added (default T) when missing: a method's reader fills its options with it.
 template <class T>
 T& method_options(PipelineConfig& config, const std::string& method) {
-  for (MethodConfigPart& part : config.methods)
-    if (T* found = part.method == method ? dynamic_cast<T*>(part.options.get()) : nullptr)
-      return *found;
-  config.methods.emplace_back(method, std::make_unique<T>());
-  return static_cast<T&>(*config.methods.back().options);
+  return method_options_in<T>(config.methods, method);
 }
 
 // A variables file (`--vars FILE`, docs/pipeline.md): a YAML mapping of name: value. Every

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "pipeline/method_options.hpp"
+
 namespace tw {
 
 // What `terraweave grow`'s options and a `grow:` block share.
@@ -22,8 +24,12 @@ struct GrowSettings {
   std::optional<double> clearance;  // metres between unrelated lines; absent: the set's own
 };
 
+// The grown ornaments method's name (SynthesisMethod::name()): a line class's `grow:` block is
+// its options, method_options<GrowConfig>(feature_class, kGrownMethodName).
+inline constexpr const char* kGrownMethodName = "grown";
+
 // A class's `grow:` block.
-struct GrowConfig {
+struct GrowConfig : MethodOptionsOf<GrowConfig> {
   // The class's `kind` as written: hedge, wall, trail, ditch (grown kinds: a ridge, ridge,
   // road and river profile) or road, river, ridge with a grow: block.
   std::string kind = "hedge";

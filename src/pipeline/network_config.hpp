@@ -6,9 +6,15 @@
 #include <optional>
 #include <string>
 
+#include "pipeline/method_options.hpp"
+
 namespace tw {
 
-struct NetworkClassConfig {
+// The network method's name (SynthesisMethod::name()): a line class's `network:` block is its
+// options, method_options<NetworkClassConfig>(feature_class, kNetworkMethodName).
+inline constexpr const char* kNetworkMethodName = "network";
+
+struct NetworkClassConfig : MethodOptionsOf<NetworkClassConfig> {
   std::string exemplar;         // "path[:layer]" of any OGR source, or an .svg file
   std::string exemplar_where;   // OGR SQL filter on the exemplar's layer
   std::string exemplar_region;  // polygons "path[:layer]" cutting the exemplar (a real map)

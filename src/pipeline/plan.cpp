@@ -160,9 +160,10 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
     const auto maker = std::find_if(methods.begin(), methods.end(), [&](const SynthesisMethod* m) {
       return m->makes_lines_of(feature_class);
     });
-    lines.push_back(maker != methods.end() ? std::vector<LineFeature>{}
-                                           : detail::load_feature_class(feature_class, heightfield,
-                                                                        warnings, repair_memo));
+    lines.push_back(maker != methods.end()
+                        ? std::vector<LineFeature>{}
+                        : detail::load_feature_class(feature_class, heightfield, warnings,
+                                                     repair_memo, methods));
     FeatureClassReport& class_report = report.classes.emplace_back();
     class_report.name = feature_class.name;
     class_report.kind = feature_class.kind;
@@ -203,7 +204,7 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   clock.start("ribbons");
   // Through the cache per feature (detail/ribbon_cache.hpp): a moved road makes its own ribbon
   // and searches the junctions near it alone.
-  const detail::RibbonOptions ribbon_options = detail::ribbon_options(config);
+  const detail::RibbonOptions ribbon_options = detail::ribbon_options(config, methods);
   std::optional<detail::RibbonCache> ribbon_cache;
   if (cache_dir) ribbon_cache.emplace(*cache_dir, warnings);
   detail::FeatureRibbons ribbons =

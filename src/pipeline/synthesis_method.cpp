@@ -2,6 +2,8 @@
 // and nowhere else in the pipeline.
 #include "pipeline/synthesis_method.hpp"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
@@ -81,6 +83,25 @@ PipelineConfig with_method_defaults(PipelineConfig config,
   for (const SynthesisMethod* method : methods_or_builtin(methods))
     method->resolve_defaults(config);
   return config;
+}
+
+RibbonNeeds class_ribbon_needs(const FeatureClassConfig& c,
+                               const std::vector<const SynthesisMethod*>& methods) {
+  RibbonNeeds needs;
+  for (const SynthesisMethod* method : methods_or_builtin(methods)) {
+    const RibbonNeeds its = method->ribbon_needs(c);
+    if (its.piece_length) needs.piece_length = its.piece_length;
+    if (its.synthesis_width) needs.synthesis_width = its.synthesis_width;
+    needs.counts_short_lines = needs.counts_short_lines || its.counts_short_lines;
+  }
+  return needs;
+}
+
+bool lines_made_by_a_method(const FeatureClassConfig& c,
+                            const std::vector<const SynthesisMethod*>& methods) {
+  const std::vector<const SynthesisMethod*>& all = methods_or_builtin(methods);
+  return std::any_of(all.begin(), all.end(),
+                     [&](const SynthesisMethod* method) { return method->makes_lines_of(c); });
 }
 
 std::string method_name(const MethodPlan& entry) {

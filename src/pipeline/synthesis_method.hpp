@@ -90,6 +90,15 @@ struct MethodTaskResult {
   std::string bytes;
 };
 
+// What the ribbons stage (and the ingest's clip halo) needs of a line class from the methods that
+// make its lines or synthesize on them (SynthesisMethod::ribbon_needs), so the stages read no
+// method's options.
+struct RibbonNeeds {
+  std::optional<double> piece_length;     // metres; absent: the ribbons' default
+  std::optional<double> synthesis_width;  // a synthesis ribbon of its own, metres
+  bool counts_short_lines = false;  // lines shorter than a piece are counted, not warned about
+};
+
 class SynthesisMethod {
  public:
   virtual ~SynthesisMethod() = default;
@@ -104,6 +113,9 @@ class SynthesisMethod {
   // and its report's source is class_source's.
   virtual bool makes_lines_of(const FeatureClassConfig& /*c*/) const { return false; }
   virtual std::string class_source(const FeatureClassConfig& /*c*/) const { return {}; }
+  // What the ribbons need of the class from it (the patterns: their piece length and ribbon
+  // width; grown: short lines counted); class_ribbon_needs gathers every method's.
+  virtual RibbonNeeds ribbon_needs(const FeatureClassConfig& /*c*/) const { return {}; }
   // An empty entry: what a plan without its classes holds.
   virtual std::unique_ptr<MethodPayload> empty_payload() const = 0;
 
@@ -238,6 +250,15 @@ const std::vector<const SynthesisMethod*>& methods_or_builtin(
 // methods' order (empty: the built-in ones): what plan_world and the synthesis tasks read.
 PipelineConfig with_method_defaults(PipelineConfig config,
                                     const std::vector<const SynthesisMethod*>& methods = {});
+
+// A class's ribbon needs from every method, in the methods' order (empty: the built-in ones): the
+// last one giving a value wins; short lines are counted when any method counts them.
+RibbonNeeds class_ribbon_needs(const FeatureClassConfig& c,
+                               const std::vector<const SynthesisMethod*>& methods = {});
+
+// Whether one of the methods (empty: the built-in ones) makes the class's lines.
+bool lines_made_by_a_method(const FeatureClassConfig& c,
+                            const std::vector<const SynthesisMethod*>& methods = {});
 
 // The entry of the method named `name` in the plan; null when the plan has none.
 const MethodPlan* find_method_plan(const WorldPlan& plan, const std::string& name);

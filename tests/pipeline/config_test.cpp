@@ -56,7 +56,7 @@ TEST(PipelineConfig, ReadsValuesAndFillsDefaults) {
   EXPECT_EQ(roads.kind, FeatureKind::road);
   EXPECT_DOUBLE_EQ(roads.width, 8.0);
   EXPECT_DOUBLE_EQ(roads.road.max_grade, RoadProfile{}.max_grade);
-  EXPECT_FALSE(roads.synthesis.has_value());
+  EXPECT_FALSE(has_method_options(roads, kPatternsMethodName));
   EXPECT_TRUE(c.existing.empty());
 }
 
@@ -99,15 +99,17 @@ existing:
   EXPECT_EQ(roads.where, "type = 'a'");
   EXPECT_DOUBLE_EQ(roads.road.max_grade, 0.05);
   EXPECT_DOUBLE_EQ(roads.road.smoothing, 30.0);
-  ASSERT_TRUE(roads.synthesis.has_value());
-  EXPECT_EQ(roads.synthesis->exemplars,
+  ASSERT_TRUE(has_method_options(roads, kPatternsMethodName));
+  EXPECT_EQ(method_options<SynthesisConfig>(roads, kPatternsMethodName)->exemplars,
             (std::vector<fs::path>{"/base/dir/a.png", "/base/dir/b.png"}));
-  EXPECT_DOUBLE_EQ(roads.synthesis->delta.value_or(0.0), 3.0);
-  EXPECT_FALSE(roads.synthesis->stitch);
-  EXPECT_EQ(roads.synthesis->seed, 3u);  // the pipeline's seed by default
-  EXPECT_EQ(roads.synthesis->backend, "opencl");
-  EXPECT_EQ(c.features[1].synthesis->seed, 99u);
-  EXPECT_EQ(c.features[1].synthesis->backend, "");
+  EXPECT_DOUBLE_EQ(method_options<SynthesisConfig>(roads, kPatternsMethodName)->delta.value_or(0.0),
+                   3.0);
+  EXPECT_FALSE(method_options<SynthesisConfig>(roads, kPatternsMethodName)->stitch);
+  EXPECT_EQ(method_options<SynthesisConfig>(roads, kPatternsMethodName)->seed,
+            3u);  // the pipeline's seed by default
+  EXPECT_EQ(method_options<SynthesisConfig>(roads, kPatternsMethodName)->backend, "opencl");
+  EXPECT_EQ(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->seed, 99u);
+  EXPECT_EQ(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->backend, "");
   EXPECT_DOUBLE_EQ(c.features[0].ridge.height, 12.0);
   EXPECT_DOUBLE_EQ(c.features[0].ridge.sharpness, 2.0);
   ASSERT_EQ(c.existing.size(), 2u);
@@ -237,30 +239,39 @@ features:
   const PipelineConfig c = parse(classes + "synthesis_resolution: 0.5\n");
   EXPECT_DOUBLE_EQ(c.synthesis_resolution, 0.5);
   EXPECT_EQ(c.synthesis_order, (std::vector<std::string>{"roads", "rivers"}));
-  const SynthesisConfig& s = *c.features[0].synthesis;
+  const SynthesisConfig& s = *method_options<SynthesisConfig>(c.features[0], kPatternsMethodName);
   EXPECT_EQ(s.choice, ExemplarChoice::best);
   EXPECT_DOUBLE_EQ(*s.width, 12.0);
   EXPECT_FALSE(s.empty_pieces);
   EXPECT_DOUBLE_EQ(s.height_detail, 0.5);
   EXPECT_DOUBLE_EQ(s.min_coverage.value_or(-1.0), 0.25);
-  EXPECT_FALSE(c.features[1].synthesis->min_coverage);  // from the exemplar
-  EXPECT_EQ(c.features[1].synthesis->objective, Objective::pattern);
+  EXPECT_FALSE(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)
+                   ->min_coverage);  // from the exemplar
+  EXPECT_EQ(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->objective,
+            Objective::pattern);
   EXPECT_TRUE(s.continuous_alpha);
   EXPECT_DOUBLE_EQ(s.feather, 3.0);
-  EXPECT_DOUBLE_EQ(c.features[1].synthesis->feather, 0.0);
-  EXPECT_FALSE(c.features[1].synthesis->continuous_alpha);
+  EXPECT_DOUBLE_EQ(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->feather,
+                   0.0);
+  EXPECT_FALSE(
+      method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->continuous_alpha);
   ASSERT_EQ(s.channels.size(), 2u);
   EXPECT_EQ(s.channels[0].channel, "A");
   EXPECT_EQ(s.channels[0].target, "splat.marking");
   EXPECT_EQ(s.channels[1].channel, "height");
-  EXPECT_TRUE(c.features[1].synthesis->channels.empty());
-  EXPECT_DOUBLE_EQ(c.features[1].synthesis->height_detail, 1.0);
-  EXPECT_FALSE(c.features[1].synthesis->width.has_value());  // from the exemplar (plan_world)
-  EXPECT_FALSE(c.features[1].synthesis->delta.has_value());
-  EXPECT_FALSE(c.features[1].synthesis->width_of_feature);
-  EXPECT_TRUE(parse(classes, {{"features.rivers.synthesis.width", "feature"}})
-                  .features[1]
-                  .synthesis->width_of_feature);
+  EXPECT_TRUE(
+      method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->channels.empty());
+  EXPECT_DOUBLE_EQ(
+      method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->height_detail, 1.0);
+  EXPECT_FALSE(method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)
+                   ->width.has_value());  // from the exemplar (plan_world)
+  EXPECT_FALSE(
+      method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->delta.has_value());
+  EXPECT_FALSE(
+      method_options<SynthesisConfig>(c.features[1], kPatternsMethodName)->width_of_feature);
+  PipelineConfig feature_width = parse(classes, {{"features.rivers.synthesis.width", "feature"}});
+  EXPECT_TRUE(method_options<SynthesisConfig>(feature_width.features[1], kPatternsMethodName)
+                  .width_of_feature);
   EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.width", "wide"}}),
               HasSubstr("features.rivers.synthesis.width: expected a number, got 'wide'"));
 
@@ -497,14 +508,14 @@ synthesis_resolution: 0.5
 )");
   ASSERT_EQ(c.features.size(), 2u);
   const FeatureClassConfig& hedges = c.features[1];
-  ASSERT_TRUE(hedges.network);
-  EXPECT_FALSE(hedges.grow);
+  ASSERT_TRUE(has_method_options(hedges, kNetworkMethodName));
+  EXPECT_FALSE(has_method_options(hedges, kGrownMethodName));
   EXPECT_TRUE(hedges.source.empty());
   EXPECT_EQ(hedges.kind, FeatureKind::ridge);
   EXPECT_EQ(hedges.width, 2.0);
   EXPECT_EQ(hedges.ridge.height, 1.5);
-  ASSERT_TRUE(hedges.synthesis);
-  EXPECT_EQ(hedges.synthesis->bind.size(), 1u);
+  ASSERT_TRUE(has_method_options(hedges, kPatternsMethodName));
+  EXPECT_EQ(method_options<SynthesisConfig>(hedges, kPatternsMethodName)->bind.size(), 1u);
   EXPECT_EQ(c.synthesis_order, std::vector<std::string>{"hedges"});
   EXPECT_EQ(c.synthesis_resolution, 0.5);
   // Without the block, the hedge kind is the grown method's, which asks for its grow: block.

@@ -272,12 +272,12 @@ TEST(GrownConfig, DefaultsByKindAndErrorsNameTheKey) {
       parse("{ kind: hedge, grow: { element: e.json, region: [0, 0, 9, 9] } }");
   ASSERT_EQ(hedge.features.size(), 1u);
   const FeatureClassConfig& h = hedge.features[0];
-  ASSERT_TRUE(h.grow);
+  ASSERT_TRUE(has_method_options(h, kGrownMethodName));
   EXPECT_EQ(h.kind, FeatureKind::ridge);
-  EXPECT_EQ(h.grow->kind, "hedge");
+  EXPECT_EQ(method_options<GrowConfig>(h, kGrownMethodName)->kind, "hedge");
   EXPECT_DOUBLE_EQ(h.width, 2.0);
   EXPECT_DOUBLE_EQ(h.ridge.height, 1.5);
-  EXPECT_EQ(h.grow->element, fs::path("/data/e.json"));
+  EXPECT_EQ(method_options<GrowConfig>(h, kGrownMethodName)->element, fs::path("/data/e.json"));
   EXPECT_TRUE(h.source.empty());  // the region is given: no source needed
   const FeatureClassConfig d =
       parse(
@@ -288,9 +288,9 @@ TEST(GrownConfig, DefaultsByKindAndErrorsNameTheKey) {
   EXPECT_DOUBLE_EQ(d.width, 3.0);
   EXPECT_DOUBLE_EQ(d.river.depth, 2.0);
   EXPECT_DOUBLE_EQ(d.river.bank_width, 0.5);  // the ditch's default, not the river's
-  EXPECT_TRUE(d.grow->settings.contour);
-  EXPECT_EQ(d.grow->settings.trials, 4);
-  EXPECT_EQ(d.grow->settings.clearance, 2.0);
+  EXPECT_TRUE(method_options<GrowConfig>(d, kGrownMethodName)->settings.contour);
+  EXPECT_EQ(method_options<GrowConfig>(d, kGrownMethodName)->settings.trials, 4);
+  EXPECT_EQ(method_options<GrowConfig>(d, kGrownMethodName)->settings.clearance, 2.0);
   EXPECT_EQ(parse("{ kind: trail, source: r.gpkg, grow: { element: e.json } }").features[0].kind,
             FeatureKind::road);
 
@@ -504,10 +504,10 @@ TEST(GrownCrossings, TheCheckCountsCrossingsAndFailsTheRunNamingTheLines) {
   config.features[0].name = "roads";
   config.features[1].name = "hedges";
   config.features[1].width = 2.0;
-  config.features[1].grow.emplace();
+  method_options<GrowConfig>(config.features[1], kGrownMethodName);
   config.features[2].name = "ditches";
   config.features[2].width = 1.0;
-  config.features[2].grow.emplace();
+  method_options<GrowConfig>(config.features[2], kGrownMethodName);
   std::vector<std::vector<LineFeature>> lines(3);
   LineFeature road;
   road.fid = 4;

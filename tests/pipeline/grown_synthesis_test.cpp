@@ -259,7 +259,10 @@ TEST_F(GrownSynthesis, MixRefusesWhereAndTagsRulesOnGrownLines) {
           << rule << (polygons ? " (polygons)" : " (box)");
     }
   // A near_junction rule is read (grown lines meet at junctions).
-  EXPECT_EQ(config("near_junction: 6", true).features.at(1).synthesis->bind.at(0).near_junction,
+  const PipelineConfig near = config("near_junction: 6", true);
+  EXPECT_EQ(method_options<SynthesisConfig>(near.features.at(1), kPatternsMethodName)
+                ->bind.at(0)
+                .near_junction,
             6.0);
 }
 

@@ -103,7 +103,7 @@ class MixWorld : public ::testing::Test {
 
 TEST_F(MixWorld, ConfigReadsChooseMixSwitchCostAndBindings) {
   const PipelineConfig c = config();
-  const SynthesisConfig& s = *c.features[0].synthesis;
+  const SynthesisConfig& s = *method_options<SynthesisConfig>(c.features[0], kPatternsMethodName);
   EXPECT_EQ(s.choice, ExemplarChoice::mix);
   EXPECT_EQ(s.switch_cost, 8);
   ASSERT_EQ(s.bind.size(), 2u);
@@ -117,7 +117,8 @@ TEST_F(MixWorld, ConfigReadsChooseMixSwitchCostAndBindings) {
   EXPECT_EQ(s.bind[1].key, "features.roads.synthesis.bind.1");
   const PipelineConfig w =
       config({{"features.roads.synthesis.bind", "[{exemplar: 0, where: \"surface = 'x'\"}]"}});
-  EXPECT_EQ(w.features[0].synthesis->bind[0].where, "surface = 'x'");
+  EXPECT_EQ(method_options<SynthesisConfig>(w.features[0], kPatternsMethodName)->bind[0].where,
+            "surface = 'x'");
 }
 
 TEST_F(MixWorld, ConfigErrorsNameTheKey) {
@@ -234,7 +235,8 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
   const ContentHash reference = key(base, rules, junctions);
   EXPECT_EQ(key(config(), rules, junctions), reference);  // deterministic
   PipelineConfig by_seed = base;
-  by_seed.features[0].synthesis->choice = ExemplarChoice::by_seed;
+  method_options<SynthesisConfig>(by_seed.features[0], kPatternsMethodName).choice =
+      ExemplarChoice::by_seed;
   EXPECT_NE(key(by_seed, rules, junctions), reference);
   EXPECT_NE(key(config({{"features.roads.synthesis.switch_cost", "9"}}), rules, junctions),
             reference);
@@ -254,8 +256,7 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
   options.cache_dir = dir_ / "cache";
   run_pipeline(config(), options);
   run_pipeline(config(), options);
-  for (const auto& f : first_class_features())
-    EXPECT_EQ(f["cache"]["why"], "unchanged");
+  for (const auto& f : first_class_features()) EXPECT_EQ(f["cache"]["why"], "unchanged");
   run_pipeline(config({{"features.roads.synthesis.switch_cost", "40"}}), options);
   for (const auto& f : first_class_features()) {
     EXPECT_EQ(f["cache"]["status"], "rebuilt");

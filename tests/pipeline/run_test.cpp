@@ -41,7 +41,7 @@ PipelineConfig demo_config(const fs::path& out) {
   PipelineConfig config =
       load_pipeline(test::source_dir() / "pipelines/demo.yaml",
                     {{"resolution", std::to_string(kResolution)}, {"output.dir", out.string()}});
-  for (FeatureClassConfig& c : config.features) c.synthesis.reset();
+  for (FeatureClassConfig& c : config.features) drop_method_options(c.methods, kPatternsMethodName);
   config.synthesis_order.clear();
   return config;
 }
@@ -312,10 +312,9 @@ TEST(PipelineRun, ValidateOnlyReadsAndWritesNothing) {
 // the DEM, for a geographic DEM as the docs promise (it was refused as an unknown CRS).
 TEST(PipelineRun, OutputCrsLocalIsATransverseMercatorOnTheDemsCentre) {
   test::TempDir out;
-  const PipelineConfig config = load_pipeline(test::source_dir() / "pipelines/luxembourg.yaml",
-                                              {{"output.dir", out.path().string()},
-                                               {"output.crs", "local"},
-                                               {"resolution", "500"}});
+  const PipelineConfig config = load_pipeline(
+      test::source_dir() / "pipelines/luxembourg.yaml",
+      {{"output.dir", out.path().string()}, {"output.crs", "local"}, {"resolution", "500"}});
   EXPECT_EQ(config.output.crs, "local");
   const RunReport report = run_pipeline(config);
   OGRSpatialReference srs;

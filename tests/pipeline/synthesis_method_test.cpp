@@ -363,7 +363,7 @@ TEST_F(SynthesisMethods, DefaultsAndInputChecksGoThroughTheMethods) {
   const PipelineConfig plain = with_method_defaults(config());
   EXPECT_EQ(plain.seed, 3u);
   ASSERT_EQ(plain.features.size(), 1u);
-  EXPECT_FALSE(plain.features[0].synthesis.has_value());
+  EXPECT_FALSE(has_method_options(plain.features[0], kPatternsMethodName));
 
   // With one, the patterns method sets its width and delta from the exemplar, flagged so.
   test::crop_raster(test::source_dir() / "samples/exemplars/cobble_edging_200x56.png",
@@ -371,12 +371,15 @@ TEST_F(SynthesisMethods, DefaultsAndInputChecksGoThroughTheMethods) {
   const PipelineConfig given =
       parse_pipeline(std::string(kWorld) + "    synthesis: { exemplar: cobble.png, scale: 5 }\n",
                      "world.yaml", dir_.path(), {});
-  ASSERT_TRUE(given.features[0].synthesis.has_value());
-  EXPECT_FALSE(given.features[0].synthesis->width.has_value());
-  EXPECT_FALSE(given.features[0].synthesis->delta.has_value());
+  ASSERT_TRUE(has_method_options(given.features[0], kPatternsMethodName));
+  EXPECT_FALSE(
+      method_options<SynthesisConfig>(given.features[0], kPatternsMethodName)->width.has_value());
+  EXPECT_FALSE(
+      method_options<SynthesisConfig>(given.features[0], kPatternsMethodName)->delta.has_value());
   const ExemplarStats stats = exemplar_stats(load_exemplar((dir_ / "cobble.png").string()));
   const PipelineConfig resolved = with_method_defaults(given);
-  const SynthesisConfig& s = *resolved.features[0].synthesis;
+  const SynthesisConfig& s =
+      *method_options<SynthesisConfig>(resolved.features[0], kPatternsMethodName);
   ASSERT_TRUE(s.width && s.delta);
   EXPECT_DOUBLE_EQ(*s.width, suggested_width(stats, 5.0));
   EXPECT_DOUBLE_EQ(*s.delta, suggested_delta(stats, 5.0));
@@ -389,7 +392,8 @@ TEST_F(SynthesisMethods, DefaultsAndInputChecksGoThroughTheMethods) {
   const InputsRecorderMethod recorder;
   const PipelineConfig recorded = with_method_defaults(given, {&recorder});
   EXPECT_EQ(recorded.seed, 103u);
-  EXPECT_FALSE(recorded.features[0].synthesis->delta.has_value());
+  EXPECT_FALSE(method_options<SynthesisConfig>(recorded.features[0], kPatternsMethodName)
+                   ->delta.has_value());
   detail::check_inputs(given.inputs, std::nullopt, {&recorder});
   EXPECT_EQ(recorder.checked, (std::vector<std::string>{"dem.tif", "map.gpkg", "cobble.png"}));
   // The built-in patterns method checks the exemplar, at its key.

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/log.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "terrain/features.hpp"
 
 namespace tw::detail {
@@ -12,16 +13,16 @@ namespace {
 // Metres beyond a feature's half width that the later stages reach (the terrain profile's
 // banks or shoulders and falloff, a wider synthesis ribbon) plus one cell: what the clip halo
 // must keep so a feature just off the heightfield still shapes its edge.
-double clip_margin(const FeatureClassConfig& config, double cell) {
+double clip_margin(const FeatureClassConfig& config, double cell,
+                   const std::vector<const SynthesisMethod*>& methods) {
   TerrainFeature profile;
   profile.kind = config.kind;
   profile.road = config.road;
   profile.river = config.river;
   profile.ridge = config.ridge;
   double margin = feature_reach(profile);  // width 0: the reach beyond the half width
-  if (config.synthesis && config.synthesis->width) {
-    margin = std::max(margin, 0.5 * *config.synthesis->width);
-  }
+  if (const std::optional<double> width = class_ribbon_needs(config, methods).synthesis_width)
+    margin = std::max(margin, 0.5 * *width);
   return margin + cell;
 }
 
@@ -55,7 +56,8 @@ Heightfield load_heightfield(const HeightfieldInput& input, Warnings& warnings) 
 
 std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
                                             const Heightfield& heightfield, Warnings& warnings,
-                                            const LineRepairMemo& repair_memo) {
+                                            const LineRepairMemo& repair_memo,
+                                            const std::vector<const SynthesisMethod*>& methods) {
   LineClassSpec spec;
   spec.name = config.name;
   spec.subject = "features." + config.name;
@@ -63,8 +65,8 @@ std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
   spec.width_attribute = config.width_attribute;
   spec.default_width = config.width;
   spec.osm_widths = !config.tags.empty();
-  spec.clip_margin =
-      clip_margin(config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height));
+  spec.clip_margin = clip_margin(
+      config, std::max(heightfield.grid.pixel_width, heightfield.grid.pixel_height), methods);
   spec.repair = config.repair;
   spec.repair_memo = repair_memo;
   std::vector<LineFeature> lines;

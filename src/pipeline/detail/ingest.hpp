@@ -14,6 +14,10 @@
 #include "pipeline/config.hpp"
 #include "raster/polygon.hpp"
 
+namespace tw {
+class SynthesisMethod;
+}  // namespace tw
+
 namespace tw::detail {
 
 // What the heightfield's ingest reads of the pipeline config (heightfield_input,
@@ -42,11 +46,13 @@ GeneratedTerrain generated_terrain(const HeightfieldInput& input);
 // ("empty_class"), not an error: a pipeline retargeted to another region still runs. Lines are
 // clipped to the heightfield plus the halo the later stages reach, then repaired with
 // config.repair (read_line_features), through `repair_memo` where set (the run cache's,
-// detail/repair_cache.hpp). Throws geo's per-feature errors, prefixed with the key
+// detail/repair_cache.hpp); the halo counts a synthesis ribbon's own width (class_ribbon_needs
+// of `methods`, empty: the built-in ones). Throws geo's per-feature errors, prefixed with the key
 // ("features.roads: map.gpkg:roads: FID 2: ...").
-std::vector<LineFeature> load_feature_class(const FeatureClassConfig& config,
-                                            const Heightfield& heightfield, Warnings& warnings,
-                                            const LineRepairMemo& repair_memo = {});
+std::vector<LineFeature> load_feature_class(
+    const FeatureClassConfig& config, const Heightfield& heightfield, Warnings& warnings,
+    const LineRepairMemo& repair_memo = {},
+    const std::vector<const SynthesisMethod*>& methods = {});
 
 struct ExistingFeatures {
   std::vector<Polygon> polygons;

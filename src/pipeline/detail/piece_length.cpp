@@ -1,6 +1,6 @@
 #include "pipeline/detail/piece_length.hpp"
 
-#include "core/error.hpp"
+#include "pipeline/synthesis_method.hpp"
 
 namespace tw::detail {
 
@@ -8,11 +8,9 @@ namespace {
 constexpr double kRibbonPieceLength = 4.0;  // metres: classes without synthesis
 }  // namespace
 
-double class_piece_length(const FeatureClassConfig& feature_class) {
-  if (!feature_class.synthesis) return kRibbonPieceLength;
-  if (!feature_class.synthesis->delta)
-    fail("features.{}.synthesis: delta not resolved (with_method_defaults)", feature_class.name);
-  return *feature_class.synthesis->delta;
+double class_piece_length(const FeatureClassConfig& feature_class,
+                          const std::vector<const SynthesisMethod*>& methods) {
+  return class_ribbon_needs(feature_class, methods).piece_length.value_or(kRibbonPieceLength);
 }
 
 }  // namespace tw::detail

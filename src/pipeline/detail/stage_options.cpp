@@ -3,6 +3,7 @@
 #include <string>
 
 #include "pipeline/detail/piece_length.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "pipeline/version.hpp"
 
 namespace tw::detail {
@@ -18,14 +19,16 @@ HeightfieldInput heightfield_input(const PipelineConfig& config) {
   return input;
 }
 
-RibbonOptions ribbon_options(const PipelineConfig& config) {
+RibbonOptions ribbon_options(const PipelineConfig& config,
+                             const std::vector<const SynthesisMethod*>& methods) {
   RibbonOptions options;
   for (const FeatureClassConfig& feature_class : config.features) {
     RibbonClass& c = options.classes.emplace_back();
     c.name = feature_class.name;
-    c.delta = class_piece_length(feature_class);
-    c.grown = feature_class.grow.has_value();
-    if (feature_class.synthesis) c.synthesis_width = feature_class.synthesis->width;
+    c.delta = class_piece_length(feature_class, methods);
+    const RibbonNeeds needs = class_ribbon_needs(feature_class, methods);
+    c.grown = needs.counts_short_lines;
+    c.synthesis_width = needs.synthesis_width;
   }
   options.synthesis_cell = config.synthesis_resolution;
   return options;

@@ -18,7 +18,7 @@ namespace {
 
 std::vector<Polygon> region_of(const FeatureClassConfig& c, const Heightfield& heightfield,
                                const std::string& key, Warnings& warnings) {
-  const GrowConfig& g = *c.grow;
+  const GrowConfig& g = *method_options<GrowConfig>(c, kGrownMethodName);
   if (g.region_box) return {box_polygon(*g.region_box)};
   const VectorSource source =
       g.region_source.empty()
@@ -101,7 +101,7 @@ FootprintIndex keep_off_footprints(const std::vector<FeatureClassConfig>& classe
     if (names) names->push_back(fmt::format("existing line {}", i + 1));
   }
   for (std::size_t other = 0; other < classes.size(); ++other) {
-    const bool grown = bool(classes[other].grow);
+    const bool grown = has_method_options(classes[other], kGrownMethodName);
     if (other == c || (grown && (!grown_ones || other > c))) continue;
     for (const LineFeature& line : lines[other]) {
       std::vector<Vec2> points = line.points;
@@ -159,11 +159,13 @@ std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& clas
   // Every class's mesh is bounded before any class grows: a later class's resolution fails
   // the run at once, not after the classes before it.
   for (const FeatureClassConfig& fc : classes)
-    if (fc.grow) mesh_grid(heightfield.grid, fc.grow->settings.resolution, "features." + fc.name);
+    if (const GrowConfig* g = method_options<GrowConfig>(fc, kGrownMethodName))
+      mesh_grid(heightfield.grid, g->settings.resolution, "features." + fc.name);
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const FeatureClassConfig& fc = classes[c];
-    if (!fc.grow) continue;
-    const GrowConfig& g = *fc.grow;
+    const GrowConfig* grow = method_options<GrowConfig>(fc, kGrownMethodName);
+    if (!grow) continue;
+    const GrowConfig& g = *grow;
     const std::string key = "features." + fc.name;
     ElementSet set;
     try {
@@ -195,7 +197,8 @@ std::vector<GrownClass> grow_classes(const std::vector<FeatureClassConfig>& clas
       avoided.line_widths.push_back(existing.line_widths[i] + fc.width);
     }
     for (std::size_t other = 0; other < classes.size(); ++other) {
-      if (other == c || (classes[other].grow && other > c)) continue;
+      if (other == c || (has_method_options(classes[other], kGrownMethodName) && other > c))
+        continue;
       for (const LineFeature& line : lines[other]) {
         avoided.lines.push_back(line.points);
         if (line.closed && !line.points.empty())

@@ -128,8 +128,9 @@ void read_grown_lines(ClassReading& r) {
   }
   if (!m.has("grow")) return;
   // Without tags, `kind` is required, so the kind stays "road" only in a class that fails.
-  r.f.grow = read_grow(MapReader(m.source(), m.get("grow"), m.path("grow"), "grow"),
-                       r.kind_name.empty() ? "road" : r.kind_name, r.seed, r.inputs);
+  GrowConfig& grow = method_options<GrowConfig>(r.f, kGrownMethodName);
+  grow = read_grow(MapReader(m.source(), m.get("grow"), m.path("grow"), "grow"),
+                   r.kind_name.empty() ? "road" : r.kind_name, r.seed, r.inputs);
   if (m.has("tags") || m.has("width_attribute")) {
     const std::string key = m.has("tags") ? "tags" : "width_attribute";
     m.source().fail(m.get(key), m.path(key),
@@ -137,7 +138,7 @@ void read_grown_lines(ClassReading& r) {
   }
   r.lines_made = true;
   // Its source holds the region's polygons, needed unless grow.region gives the region.
-  r.reads_source = !r.f.grow->region_box && r.f.grow->region_source.empty();
+  r.reads_source = !grow.region_box && grow.region_source.empty();
   r.lines_without_attributes =
       "a grown class's lines have no attributes for where or tags to select (its source is the "
       "region's polygons)";

@@ -37,16 +37,23 @@ namespace {
 
 class GrownMethod final : public SynthesisMethod {
  public:
-  std::string name() const override { return "grown"; }
+  std::string name() const override { return kGrownMethodName; }
   std::string stage_name() const override { return "grow"; }
   MethodStage stage() const override { return MethodStage::lines; }
   bool serves(const PipelineConfig& config, const PlanOptions& /*options*/) const override {
     return std::any_of(config.features.begin(), config.features.end(),
-                       [](const FeatureClassConfig& c) { return bool(c.grow); });
+                       [&](const FeatureClassConfig& c) { return makes_lines_of(c); });
   }
-  bool makes_lines_of(const FeatureClassConfig& c) const override { return bool(c.grow); }
+  bool makes_lines_of(const FeatureClassConfig& c) const override {
+    return has_method_options(c, kGrownMethodName);
+  }
+  // Its lines are many short ones between joints: those shorter than a piece are counted in
+  // its report (grow.short_lines), not warned about one by one.
+  RibbonNeeds ribbon_needs(const FeatureClassConfig& c) const override {
+    return {std::nullopt, std::nullopt, makes_lines_of(c)};
+  }
   std::string class_source(const FeatureClassConfig& c) const override {
-    return c.grow->element.string();
+    return method_options<GrowConfig>(c, kGrownMethodName)->element.string();
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<GrownPlan>();

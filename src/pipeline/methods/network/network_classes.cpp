@@ -11,6 +11,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/partial.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw::detail {
@@ -58,7 +59,7 @@ ForbiddenMask forbidden_mask(const std::vector<FeatureClassConfig>& classes, std
     }
   // Classes after `c` that are read (not grown) are there already too.
   for (std::size_t other = c + 1; other < classes.size(); ++other) {
-    if (classes[other].grow || classes[other].network) continue;
+    if (lines_made_by_a_method(classes[other])) continue;
     for (const LineFeature& line : lines[other]) {
       avoided.push_back(line.points);
       if (line.closed && !line.points.empty()) avoided.back().push_back(line.points.front());
@@ -104,8 +105,9 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
   HeightSampler sampler(source);
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const FeatureClassConfig& fc = classes[c];
-    if (!fc.network) continue;
-    const NetworkClassConfig& n = *fc.network;
+    const NetworkClassConfig* network = method_options<NetworkClassConfig>(fc, kNetworkMethodName);
+    if (!network) continue;
+    const NetworkClassConfig& n = *network;
     const std::string key = "features." + fc.name + ".network";
     NetworkLines exemplar_lines;
     Network exemplar;

@@ -92,7 +92,8 @@ void read_network_lines(ClassReading& r) {
   if (r.kind_name.empty())
     m.source().fail(m.node(), m.key_path(),
                     "a network class needs a kind (road, river, ridge, hedge, wall, trail, ditch)");
-  r.f.network = read_network(block, r.seed, r.inputs);
+  method_options<NetworkClassConfig>(r.f, kNetworkMethodName) =
+      read_network(block, r.seed, r.inputs);
   r.lines_made = true;
   r.reads_source = false;
   r.lines_without_attributes =

@@ -29,15 +29,17 @@ struct NetworkPlan : MethodPayloadOf<NetworkPlan> {};
 
 class NetworkMethod final : public SynthesisMethod {
  public:
-  std::string name() const override { return "network"; }
+  std::string name() const override { return kNetworkMethodName; }
   MethodStage stage() const override { return MethodStage::lines; }
   bool serves(const PipelineConfig& config, const PlanOptions& /*options*/) const override {
     return std::any_of(config.features.begin(), config.features.end(),
-                       [](const FeatureClassConfig& c) { return bool(c.network); });
+                       [&](const FeatureClassConfig& c) { return makes_lines_of(c); });
   }
-  bool makes_lines_of(const FeatureClassConfig& c) const override { return bool(c.network); }
+  bool makes_lines_of(const FeatureClassConfig& c) const override {
+    return has_method_options(c, kNetworkMethodName);
+  }
   std::string class_source(const FeatureClassConfig& c) const override {
-    return c.network->exemplar;
+    return method_options<NetworkClassConfig>(c, kNetworkMethodName)->exemplar;
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<NetworkPlan>();

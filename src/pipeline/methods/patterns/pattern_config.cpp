@@ -155,7 +155,7 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
 void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
   std::vector<std::string> with_synthesis;
   for (const auto& f : c.features) {
-    if (f.synthesis) with_synthesis.push_back(f.name);
+    if (has_method_options(f, kPatternsMethodName)) with_synthesis.push_back(f.name);
   }
   if (!root.has("synthesis_order")) {
     c.synthesis_order = with_synthesis;
@@ -196,14 +196,15 @@ void read_pattern_class(ClassReading& r) {
   const MapReader& m = r.m;
   if (!m.has("synthesis")) return;
   FeatureClassConfig& f = r.f;
-  f.synthesis =
+  SynthesisConfig& synthesis = method_options<SynthesisConfig>(f, kPatternsMethodName);
+  synthesis =
       read_synthesis(MapReader(m.source(), m.get("synthesis"), m.path("synthesis"), "synthesis"),
                      r.seed, r.inputs);
   // Lines a method made (a network's, a grown class's) have no layer for a where or tags rule to
   // ask (a grown class's source holds its region's polygons, whose FIDs are not the lines').
-  for (std::size_t i = 0; r.lines_made && i < f.synthesis->bind.size(); ++i)
-    if (!f.synthesis->bind[i].where.empty() || !f.synthesis->bind[i].tags.empty())
-      m.source().fail(m.get("synthesis")["bind"][i], f.synthesis->bind[i].key,
+  for (std::size_t i = 0; r.lines_made && i < synthesis.bind.size(); ++i)
+    if (!synthesis.bind[i].where.empty() || !synthesis.bind[i].tags.empty())
+      m.source().fail(m.get("synthesis")["bind"][i], synthesis.bind[i].key,
                       fmt::format("{}; bind them by near_junction", r.lines_without_attributes));
 }
 

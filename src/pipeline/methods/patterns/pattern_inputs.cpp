@@ -13,8 +13,10 @@ namespace tw::detail {
 
 void resolve_exemplar_defaults(PipelineConfig& config) {
   for (FeatureClassConfig& feature_class : config.features) {
-    if (!feature_class.synthesis) continue;
-    SynthesisConfig& s = *feature_class.synthesis;
+    SynthesisConfig* found =
+        find_method_options<SynthesisConfig>(feature_class.methods, kPatternsMethodName);
+    if (!found) continue;
+    SynthesisConfig& s = *found;
     const bool need_width = !s.width && !s.width_of_feature;
     if (!need_width && s.delta) continue;
     double width = 0.0, delta = 0.0;

@@ -58,7 +58,8 @@ TW_FIELDS(PatternsReport, F(features) F(grown) F(violations))
 namespace {
 
 std::vector<ChannelMapping> mappings_of(const FeatureClassConfig& c, const Exemplar& exemplar) {
-  if (!c.synthesis->channels.empty()) return c.synthesis->channels;
+  const SynthesisConfig& synthesis = *method_options<SynthesisConfig>(c, kPatternsMethodName);
+  if (!synthesis.channels.empty()) return synthesis.channels;
   std::vector<ChannelMapping> mappings = {{"A", "splat." + c.name + "_pattern"}};
   if (exemplar.channel_index("height") >= 0) mappings.push_back({"height", "height"});
   return mappings;
@@ -98,9 +99,10 @@ void plan_patterns(const PipelineConfig& config, PatternRun run, WorldPlan& plan
     planned.window = on_grid.width > 0 ? grow_window(on_grid, kCanvasHalo, plan.grid) : Window{};
     planned.ribbon = std::move(p.ribbon);
     planned.synthesis = std::move(p.synthesis);
-    planned.stitch = c.synthesis->stitch;
-    planned.feather = c.synthesis->feather;
-    planned.height_detail = float(c.synthesis->height_detail);
+    const SynthesisConfig& synthesis = *method_options<SynthesisConfig>(c, kPatternsMethodName);
+    planned.stitch = synthesis.stitch;
+    planned.feather = synthesis.feather;
+    planned.height_detail = float(synthesis.height_detail);
     if (planned.window.width == 0) continue;  // off the grid: no band is added
     for (const ChannelMapping& m : mappings_of(c, exemplar)) {
       PatternTarget& target = planned.targets.emplace_back();
@@ -161,7 +163,7 @@ void placements_file_fields(Io& io, Synthesis& s) {
 
 class PatternMethod final : public SynthesisMethod {
  public:
-  std::string name() const override { return "patterns"; }
+  std::string name() const override { return kPatternsMethodName; }
   std::string stage_name() const override { return "synthesis"; }
   MethodStage stage() const override { return MethodStage::placements; }
   bool serves(const PipelineConfig& config, const PlanOptions& options) const override {
@@ -172,6 +174,15 @@ class PatternMethod final : public SynthesisMethod {
   }
   void resolve_defaults(PipelineConfig& config) const override {
     resolve_exemplar_defaults(config);
+  }
+  // Its pieces are the ribbons' (one pattern piece per ribbon piece, `synthesis.delta`), on a
+  // ribbon of `synthesis.width` where it has its own.
+  RibbonNeeds ribbon_needs(const FeatureClassConfig& c) const override {
+    const SynthesisConfig* synthesis = method_options<SynthesisConfig>(c, kPatternsMethodName);
+    if (!synthesis) return {};
+    if (!synthesis->delta)
+      fail("features.{}.synthesis: delta not resolved (with_method_defaults)", c.name);
+    return {synthesis->delta, synthesis->width, false};
   }
   bool check_input(const InputFile& input, InputCheck& check) const override {
     return check_exemplar_input(input, check);
@@ -536,13 +547,15 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
   report.grown.resize(config.features.size());
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.features.emplace_back(plan.report.classes[c].features.size());
-    if (config.features[c].synthesis && config.features[c].grow) report.grown[c].emplace();
+    if (has_method_options(config.features[c], kPatternsMethodName) &&
+        has_method_options(config.features[c], kGrownMethodName)) report.grown[c].emplace();
   }
   for (const FeaturePattern& p : patterns.patterns) {
     if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
     PatternFeatureReport& feature = report.features.at(p.class_index).at(p.feature_index).emplace();
     feature.synthesis = p.report;
-    record_geometry(*config.features[p.class_index].synthesis,
+    record_geometry(
+        *method_options<SynthesisConfig>(config.features[p.class_index], kPatternsMethodName),
                     plan.report.classes[p.class_index].features[p.feature_index],
                     feature.synthesis);
     feature.cache = p.cache;

@@ -32,7 +32,7 @@ PatternRun synthesize(const PipelineConfig& config, const WorldPlan& plan,
                               const FeaturePattern& pattern, std::size_t index) {
   const FeatureClassConfig& c = config.features.at(pattern.class_index);
   std::string changed;
-  for (const fs::path& path : c.synthesis->exemplars) {
+  for (const fs::path& path : method_options<SynthesisConfig>(c, kPatternsMethodName)->exemplars) {
     std::error_code ec;
     const auto written = fs::last_write_time(path, ec);
     const auto planned = fs::last_write_time(plan_dir / "plan.json", ec);

@@ -7,9 +7,10 @@
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "core/split_mix.hpp"
-#include "pipeline/detail/bindings.hpp"
 #include "pipeline/detail/piece_length.hpp"
+#include "pipeline/methods/patterns/pattern_bindings.hpp"
 #include "pipeline/methods/patterns/synthesis_cache.hpp"
+#include "pipeline/synthesis_method.hpp"
 #include "raster/avoidance.hpp"
 #include "synth/feature_synthesis.hpp"
 #include "synth/pattern_canvas.hpp"
@@ -95,36 +96,36 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   for (const std::string& name : config.synthesis_order) {
     const auto it = std::find_if(config.features.begin(), config.features.end(),
                                  [&](const FeatureClassConfig& c) { return c.name == name; });
-    if (it == config.features.end() || !it->synthesis) {
-      fail("synthesis_order: '{}' is not a feature class with synthesis", name);
-    }
+    const SynthesisConfig* synthesis =
+        it == config.features.end() ? nullptr
+                                    : method_options<SynthesisConfig>(*it, kPatternsMethodName);
+    if (!synthesis) fail("synthesis_order: '{}' is not a feature class with synthesis", name);
     ClassPlan& plan = plans.emplace_back();
     plan.class_index = std::size_t(it - config.features.begin());
-    const bool mix = it->synthesis->choice == ExemplarChoice::mix;  // its atlas: texels now
-    for (const fs::path& path : it->synthesis->exemplars) {
+    const bool mix = synthesis->choice == ExemplarChoice::mix;  // its atlas: texels now
+    for (const fs::path& path : synthesis->exemplars) {
       plan.exemplars.push_back(run.exemplars.size());
       std::optional<Exemplar> known =
           options.cache && !mix ? options.cache->remembered(path) : std::nullopt;
-      if (known) run.unread[run.exemplars.size()] = it->synthesis->continuous_alpha;
-      run.exemplars.push_back(
-          known ? std::move(*known)
-                : load_exemplar_with_height(path, it->synthesis->continuous_alpha));
+      if (known) run.unread[run.exemplars.size()] = synthesis->continuous_alpha;
+      run.exemplars.push_back(known ? std::move(*known)
+                                    : load_exemplar_with_height(path, synthesis->continuous_alpha));
     }
-    if (it->synthesis->choice == ExemplarChoice::mix) {
+    if (synthesis->choice == ExemplarChoice::mix) {
       plan.matches = binding_matches(*it, lines[plan.class_index]);
       // One atlas for the class: its gap holds the widest feature's pieces (synthesize checks).
       double width = 0.0;
       for (const LineFeature& line : lines[plan.class_index])
-        width = std::max(width, it->synthesis->width.value_or(line.width));
+        width = std::max(width, synthesis->width.value_or(line.width));
       std::vector<const Exemplar*> exemplars;
       for (const std::size_t e : plan.exemplars) exemplars.push_back(&run.exemplars[e]);
       plan.mix =
-          mix_exemplars(exemplars, mix_gap(it->synthesis->scale, class_piece_length(*it), width));
+          mix_exemplars(exemplars, mix_gap(synthesis->scale, class_piece_length(*it), width));
       plan.mix_index = run.exemplars.size();
       run.exemplars.push_back(plan.mix->atlas);
     }
-    const std::string backend = options.backend.value_or(
-        it->synthesis->backend.empty() ? config.backend : it->synthesis->backend);
+    const std::string backend =
+        options.backend.value_or(synthesis->backend.empty() ? config.backend : synthesis->backend);
     plan.backend = parse_backend_kind(backend);
   }
 
@@ -150,7 +151,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       feature_count += ribbon.pieces.empty() ? 0 : 1;
   // The synthesis ribbon of a feature (synthesis.width, or the feature's own).
   const auto synthesis_ribbon = [&](const ClassPlan& plan, std::size_t f) {
-    const SynthesisConfig& synthesis = *config.features[plan.class_index].synthesis;
+    const SynthesisConfig& synthesis =
+        *method_options<SynthesisConfig>(config.features[plan.class_index], kPatternsMethodName);
     const LineFeature& line = lines[plan.class_index][f];
     return synthesis.width ? make_ribbon(Curve{line.points, line.closed},
                                          {*synthesis.width, *synthesis.delta, 0.0})
@@ -172,7 +174,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
   std::size_t feature_position = 0;  // among the features with pieces, synthesis order
   for (const ClassPlan& plan : plans) {
     const FeatureClassConfig& feature_class = config.features[plan.class_index];
-    const SynthesisConfig& synthesis = *feature_class.synthesis;
+    const SynthesisConfig& synthesis =
+        *method_options<SynthesisConfig>(feature_class, kPatternsMethodName);
     for (std::size_t f = 0; f < lines[plan.class_index].size(); ++f) {
       const LineFeature& line = lines[plan.class_index][f];
       if (ribbons.ribbons[plan.class_index][f].pieces.empty()) continue;
@@ -269,7 +272,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       // A grown class is many short lines between joints (junction discs) and the patterns
       // of its own earlier lines: one without room is left bare and counted (grow.synthesis).
       // So is a network class's line between two junctions.
-      feature_options.no_room_is_error = !feature_class.grow && !feature_class.network;
+      feature_options.no_room_is_error = !lines_made_by_a_method(feature_class);
       if (plan.mix) {
         feature_options.mix = &*plan.mix;
         feature_options.bindings = std::move(bindings);

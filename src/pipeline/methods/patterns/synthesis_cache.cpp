@@ -171,7 +171,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   for (const PieceBinding& b : bindings) g.boolean(b.line_matches);
   key.geometry = g.digest();
 
-  const SynthesisConfig& s = *feature_class.synthesis;
+  const SynthesisConfig& s = *method_options<SynthesisConfig>(feature_class, kPatternsMethodName);
   Hasher c;
   c.u64(kSynthesisCacheFormat).text(version_line());
   c.u64(config.seed).real(config.synthesis_resolution).u64(feature_seed);

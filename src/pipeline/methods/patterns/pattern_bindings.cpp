@@ -1,4 +1,4 @@
-#include "pipeline/detail/bindings.hpp"
+#include "pipeline/methods/patterns/pattern_bindings.hpp"
 
 #include <algorithm>
 
@@ -10,8 +10,10 @@ namespace tw::detail {
 std::vector<std::vector<std::uint8_t>> binding_matches(const FeatureClassConfig& feature_class,
                                                        const std::vector<LineFeature>& lines) {
   std::vector<std::vector<std::uint8_t>> matches;
-  if (!feature_class.synthesis) return matches;
-  for (const ExemplarBinding& rule : feature_class.synthesis->bind) {
+  const SynthesisConfig* synthesis =
+      method_options<SynthesisConfig>(feature_class, kPatternsMethodName);
+  if (!synthesis) return matches;
+  for (const ExemplarBinding& rule : synthesis->bind) {
     std::vector<std::uint8_t>& selected = matches.emplace_back(lines.size(), 1);
     const std::string where = selection_where(rule.tags, rule.where);
     if (where.empty()) continue;  // a junction rule on every line
