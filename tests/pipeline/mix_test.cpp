@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cache_world.hpp"
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/warnings.hpp"
@@ -16,6 +17,7 @@
 #include "pipeline/methods/patterns/synthesis_cache.hpp"
 #include "pipeline/run.hpp"
 #include "ribbon/ribbon.hpp"
+#include "synth/exemplar_mix.hpp"
 #include "synth/placements_io.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
@@ -251,6 +253,11 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
   EXPECT_NE(key(base, {{1, true, 0.0}, {2, true, kNear}}, junctions), reference);  // verdict
   EXPECT_NE(key(base, rules, {}), reference);
   EXPECT_NE(key(base, rules, {crossing_point() + Vec2{1.0, 0.0}}), reference);
+  EXPECT_NE(cache
+                .key(base, base.features[0], line, 7, canvas, AvoidanceInputs{}, {}, rules,
+                     junctions, 500)
+                .combined(),
+            reference);  // the atlas's gap
 
   RunOptions options;
   options.cache_dir = dir_ / "cache";
@@ -269,6 +276,43 @@ TEST_F(MixWorld, CacheKeyCoversChoiceSwitchCostAndBindings) {
     EXPECT_EQ(f["synthesis"]["mix"]["switch_cost"], 40);
     EXPECT_EQ(f["synthesis"]["mix"]["exemplars"].size(), 3u);
   }
+}
+
+// A mix's atlas keeps the class's widest line's pieces apart (mix_gap), and the placements are
+// atlas columns: a line made wider far from the others moves every exemplar of the atlas, so
+// every synthesis of the class is rebuilt, and the run equals one without a cache.
+TEST_F(MixWorld, AWiderLineElsewhereMovesTheAtlasAndRebuildsTheWholeClass) {
+  const auto write_map = [&](double far_width) {
+    test::VectorFeature asphalt("LINESTRING (500050 5000300, 500590 5000330)", 10.0);
+    asphalt.text = {{"surface", "asphalt"}};
+    test::VectorFeature sett("LINESTRING (500310 5000050, 500330 5000590)", 10.0);
+    sett.text = {{"surface", "sett"}};
+    // 270 m north of FID 1 and 60 m west of FID 2's end: no canvas of theirs reaches it.
+    test::VectorFeature far("LINESTRING (500050 5000600, 500250 5000600)", far_width);
+    far.text = {{"surface", "asphalt"}};
+    fs::remove(dir_ / "map.gpkg");
+    test::write_layer(dir_ / "map.gpkg", "roads", {asphalt, sett, far});
+  };
+  // Each line's own width, so that the widest line sets the atlas's gap (scale 4, delta 6).
+  ASSERT_NE(mix_gap(4.0, 6.0, 10.0), mix_gap(4.0, 6.0, 14.0));
+  const std::vector<Override> own_width = {{"features.roads.width_attribute", "width"},
+                                           {"features.roads.synthesis.width", "feature"}};
+  RunOptions cached;
+  cached.cache_dir = dir_ / "cache";
+  write_map(10.0);
+  run_pipeline(config(own_width), cached);
+  write_map(14.0);
+  run_pipeline(config(own_width), cached);
+  const nlohmann::json features = first_class_features();
+  ASSERT_EQ(features.size(), 3u);
+  for (const auto& f : features) {
+    EXPECT_EQ(f["cache"]["status"], "rebuilt") << f["fid"];
+    if (f["fid"] == 3) continue;  // its own width changed
+    EXPECT_EQ(f["cache"]["why"], "config changed") << f["fid"];
+  }
+  fs::rename(dir_ / "out", dir_ / "cached");
+  run_pipeline(config(own_width));
+  EXPECT_GT(test::expect_same_output_files(dir_ / "cached", dir_ / "out"), 5u);
 }
 
 }  // namespace

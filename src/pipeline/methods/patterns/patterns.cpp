@@ -212,8 +212,9 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
             f < ribbons.synthesis_junctions[plan.class_index].size())
           junctions = ribbons.synthesis_junctions[plan.class_index][f];
       }
-      const SynthesisKey key = cache.key(config, feature_class, line, report.seed, canvas, fixed,
-                                         earlier_keys, bindings, junctions);
+      const SynthesisKey key =
+          cache.key(config, feature_class, line, report.seed, canvas, fixed, earlier_keys, bindings,
+                    junctions, plan.mix ? plan.mix->layout.gap : 0);
       pattern.key = key.combined();
       for (std::size_t e = 0; e < earlier_keys.size(); ++e)
         if (canvases_overlap(earlier_keys[e].canvas, canvas)) pattern.after.push_back(e);

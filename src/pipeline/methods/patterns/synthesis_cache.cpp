@@ -159,7 +159,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
                                  const AvoidanceInputs& fixed,
                                  const std::vector<EarlierSynthesis>& earlier,
                                  const std::vector<PieceBinding>& bindings,
-                                 const std::vector<Vec2>& junctions) {
+                                 const std::vector<Vec2>& junctions, int atlas_gap) {
   SynthesisKey key;
   Hasher g;
   g.points(line.points)
@@ -183,7 +183,7 @@ SynthesisKey SynthesisCache::key(const PipelineConfig& config,
   c.boolean(s.min_coverage.has_value()).real(s.min_coverage.value_or(0.0));
   c.u64(std::uint64_t(s.objective)).real(s.coverage_weight);
   c.u64(s.seed);
-  c.i64(s.switch_cost).u64(s.bind.size());
+  c.i64(s.switch_cost).i64(atlas_gap).u64(s.bind.size());
   for (const ExemplarBinding& b : s.bind) {
     c.u64(b.exemplar).text(b.where).real(b.near_junction).u64(b.tags.size());
     for (const TagSelection& t : b.tags) {

@@ -69,13 +69,14 @@ class SynthesisCache {
   SynthesisCache(std::optional<std::filesystem::path> dir, Warnings& warnings);
 
   // A mix (choose: mix) adds its bind rules' verdicts on the line (`bindings`, to the geometry
-  // part: they are what its attributes say) and the junctions it meets (to the avoidance part,
-  // beside the junction discs).
+  // part: they are what its attributes say), the junctions it meets (to the avoidance part,
+  // beside the junction discs) and its atlas's gap (`atlas_gap`, to the config part: the
+  // placements are atlas columns, and the gap follows the class's widest line, not this one).
   SynthesisKey key(const PipelineConfig& config, const FeatureClassConfig& feature_class,
                    const LineFeature& line, std::uint64_t feature_seed, const GridSpec& canvas,
                    const AvoidanceInputs& fixed, const std::vector<EarlierSynthesis>& earlier,
                    const std::vector<PieceBinding>& bindings = {},
-                   const std::vector<Vec2>& junctions = {});
+                   const std::vector<Vec2>& junctions = {}, int atlas_gap = 0);
 
   // The entry under `key` for the feature `name` (placements name: class_fid[_part]), or
   // nullopt; `status` says which and why. A corrupt entry is a warning `cache_corrupt`.
