@@ -214,13 +214,27 @@ struct RegionConfig {
   double max_y = 0.0;
 };
 
+// A file read beside an input where it exists (an exemplar's NAME_height.tif twin), and what it
+// is in report.json's manifest (`inputs[].role`).
+struct CompanionFile {
+  std::filesystem::path path;
+  std::string role;
+};
+
 // A file a run opens, and where the pipeline names it, so that a missing or unreadable one is
-// reported at its key (check_inputs).
+// reported at its key (check_inputs). Raster and vector data the pipeline opens itself; a
+// method's own file (Kind::method) the method that reads it checks, which knows it by its role
+// (SynthesisMethod::check_input).
 struct InputFile {
-  enum class Kind { raster, vector, exemplar, ornament };  // ornament: an element set (JSON)
+  enum class Kind { raster, vector, method };
   std::filesystem::path path;
   Kind kind = Kind::raster;
   std::string named_at;  // "file:line:col: key.path" or "--set key=value: key.path"
+  // A method's input: what it is, set by the method's reader and written as its role in the
+  // manifest (the patterns' "exemplar", grown's "element_set"). Raster and vector data are the
+  // "heightfield" and "vector" there.
+  std::string role{};
+  std::vector<CompanionFile> companions{};  // in the manifest after it, those that exist
 };
 
 // One `--set key.path=value` (value parsed as a YAML scalar or flow collection).

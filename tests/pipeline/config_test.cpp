@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "pipeline/detail/manifest.hpp"
 #include "pipeline/detail/region.hpp"
 #include "pipeline/methods/areas/area_config.hpp"
 #include "test_support.hpp"
@@ -465,7 +466,10 @@ existing:
   EXPECT_EQ(c.inputs[1].named_at, "p.yaml:5:13: features.roads.source");
   EXPECT_EQ(c.inputs[1].kind, InputFile::Kind::vector);
   EXPECT_EQ(c.inputs[3].path, fs::path("/base/dir/b.png"));
-  EXPECT_EQ(c.inputs[3].kind, InputFile::Kind::exemplar);
+  EXPECT_EQ(c.inputs[3].kind, InputFile::Kind::method);
+  EXPECT_EQ(c.inputs[3].role, "exemplar");
+  ASSERT_EQ(c.inputs[3].companions.size(), 1u);
+  EXPECT_EQ(c.inputs[3].companions[0].path, fs::path("/base/dir/b_height.tif"));
   EXPECT_EQ(c.inputs[3].named_at, "p.yaml:8:36: features.roads.synthesis.exemplar.1");
   EXPECT_EQ(c.inputs[4].named_at, "p.yaml:10:15: existing.0.source");
 }
@@ -552,6 +556,45 @@ TEST(PipelineConfig, NullOverrideRemovesAKeyOrDropsAClass) {
 
   EXPECT_THAT(error_of(kLinesAndArea, {{"features.lakes", "null"}}),
               HasSubstr("--set features.lakes=null: there is no 'features.lakes' to remove"));
+}
+
+// The manifest names no method: an input is listed under the role its method's reader gave it
+// (the patterns' exemplar, grown's element set, or any method's own), then those of its
+// companions that exist (an exemplar's NAME_height.tif twin, here a's but not b's).
+TEST(PipelineConfig, AMethodsInputRolesAndCompanionsReachTheManifest) {
+  const test::TempDir dir;
+  for (const char* name : {"a.png", "a_height.tif", "b.png", "hedge.json", "c.dat", "c.idx"})
+    std::ofstream(dir / name) << name;
+  PipelineConfig c = parse_pipeline(R"(version: 1
+heightfield: dem.tif
+features:
+  roads:
+    source: map.gpkg
+    kind: road
+    width: 8
+    synthesis: { exemplar: [a.png, b.png] }
+  hedges: { kind: hedge, grow: { element: hedge.json, region: [0, 0, 100, 100] } }
+)",
+                                    "p.yaml", dir.path(), {});
+  c.inputs.push_back({dir / "c.dat",
+                      InputFile::Kind::method,
+                      "p.yaml:9:1: stamps",
+                      "stamp_set",
+                      {{dir / "c.idx", "stamp_index"}, {dir / "c_missing.idx", "stamp_index"}}});
+  std::vector<std::string> roles, names;
+  std::vector<std::uintmax_t> bytes;
+  for (const FileRecord& r : detail::record_inputs(c.inputs)) {
+    roles.push_back(r.role);
+    names.push_back(fs::path(r.path).filename().string());
+    bytes.push_back(r.bytes);
+  }
+  EXPECT_EQ(roles,
+            (std::vector<std::string>{"heightfield", "vector", "exemplar", "exemplar_height",
+                                      "exemplar", "element_set", "stamp_set", "stamp_index"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"dem.tif", "map.gpkg", "a.png", "a_height.tif",
+                                             "b.png", "hedge.json", "c.dat", "c.idx"}));
+  // Files that exist are hashed (a missing heightfield and source are listed without).
+  EXPECT_EQ(bytes, (std::vector<std::uintmax_t>{0, 0, 5, 12, 5, 10, 5, 5}));
 }
 
 }  // namespace

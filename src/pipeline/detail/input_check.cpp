@@ -56,8 +56,7 @@ void check_inputs(const std::vector<InputFile>& inputs,
                     [&](const SynthesisMethod* m) { return m->check_input(input, check); }))
       continue;
     // A method's input that no method given checks (a list without it) only has to exist.
-    if (input.kind == InputFile::Kind::raster || input.kind == InputFile::Kind::vector)
-      check_gdal_input(input);
+    if (input.kind != InputFile::Kind::method) check_gdal_input(input);
   }
 }
 

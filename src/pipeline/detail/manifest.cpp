@@ -15,16 +15,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* role_of(InputFile::Kind kind) {
-  switch (kind) {
+std::string role_of(const InputFile& input) {
+  switch (input.kind) {
     case InputFile::Kind::raster:
       return "heightfield";
     case InputFile::Kind::vector:
       return "vector";
-    case InputFile::Kind::exemplar:
-      return "exemplar";
-    case InputFile::Kind::ornament:
-      return "element_set";
+    case InputFile::Kind::method:
+      return input.role;
   }
   return "input";
 }
@@ -46,12 +44,12 @@ std::vector<FileRecord> record_inputs(const std::vector<InputFile>& inputs) {
   std::set<fs::path> seen;
   for (const InputFile& input : inputs) {
     if (!seen.insert(input.path).second) continue;
-    records.push_back(record(role_of(input.kind), input.path, input.path.string()));
-    if (input.kind != InputFile::Kind::exemplar) continue;
-    const fs::path twin = input.path.parent_path() / (input.path.stem().string() + "_height.tif");
-    std::error_code ec;
-    if (fs::exists(twin, ec) && seen.insert(twin).second)
-      records.push_back(record("exemplar_height", twin, twin.string()));
+    records.push_back(record(role_of(input), input.path, input.path.string()));
+    for (const CompanionFile& companion : input.companions) {
+      std::error_code ec;
+      if (fs::exists(companion.path, ec) && seen.insert(companion.path).second)
+        records.push_back(record(companion.role, companion.path, companion.path.string()));
+    }
   }
   return records;
 }

@@ -13,9 +13,10 @@
 
 namespace tw::detail {
 
-// Every input file of the pipeline once (a GeoPackage named by two classes is one entry), and
-// an exemplar's NAME_height.tif twin where it exists. A URL (--allow-network) is listed
-// without size or hash. `inputs`: the pipeline's (PipelineConfig::inputs).
+// Every input file of the pipeline once (a GeoPackage named by two classes is one entry), each
+// followed by its companions that exist (InputFile::companions: an exemplar's NAME_height.tif). A
+// URL (--allow-network) is listed without size or hash. `inputs`: the pipeline's
+// (PipelineConfig::inputs).
 std::vector<FileRecord> record_inputs(const std::vector<InputFile>& inputs);
 // Every file staged so far (report.json is staged last, after this). `known`: digests already
 // taken of staged files (by name under the folder; the tile cache hashes what it stores or

@@ -93,8 +93,8 @@ GrowConfig read_grow(const MapReader& m, const std::string& kind, std::uint64_t 
   GrowConfig g;
   g.kind = kind;
   g.element = m.file("element");
-  inputs.push_back({g.element, InputFile::Kind::ornament,
-                    m.source().named_at(m.get("element"), m.path("element"))});
+  inputs.push_back({g.element, InputFile::Kind::method,
+                    m.source().named_at(m.get("element"), m.path("element")), kElementSetRole});
   if (m.has("region")) read_region(m, g, inputs);
   GrowSettings& s = g.settings;
   if (m.has("resolution")) s.resolution = m.positive("resolution");

@@ -11,6 +11,9 @@
 
 namespace tw::detail {
 
+// What a grown class's element set is (InputFile::role, report.json's `inputs[].role`).
+inline constexpr const char* kElementSetRole = "element_set";
+
 // The line kinds whose features are grown, and the terrain kind of each: hedge and wall are
 // raised (ridge), a ditch is carved (river), a trail is graded (road).
 bool is_grown_kind(const std::string& kind);
@@ -21,7 +24,8 @@ FeatureKind terrain_kind_of(const std::string& grown_kind);
 void apply_grown_defaults(const std::string& grown_kind, FeatureClassConfig& f);
 
 // The `grow:` block `m` of a class of kind `kind`. Throws tw::Error naming the file, line and
-// key of the first bad value; the element set and a region source go to `inputs`.
+// key of the first bad value; the element set (role kElementSetRole) and a region source go to
+// `inputs`.
 GrowConfig read_grow(const MapReader& m, const std::string& kind, std::uint64_t default_seed,
                      std::vector<InputFile>& inputs);
 

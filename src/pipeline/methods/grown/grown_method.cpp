@@ -12,6 +12,7 @@
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/grow_region.hpp"
 #include "pipeline/methods/grown/grown_classes.hpp"
+#include "pipeline/methods/grown/grown_config.hpp"
 #include "pipeline/methods/grown/grown_report.hpp"
 #include "ribbon/ribbon.hpp"
 
@@ -60,7 +61,7 @@ class GrownMethod final : public SynthesisMethod {
   }
   // Its element sets (`grow.element`), read whole.
   bool check_input(const InputFile& input, InputCheck& /*check*/) const override {
-    if (input.kind != InputFile::Kind::ornament) return false;
+    if (input.kind != InputFile::Kind::method || input.role != kElementSetRole) return false;
     try {
       read_element_set(input.path);
     } catch (const Error& e) {

@@ -17,6 +17,16 @@ namespace {
 // A colour unit is a 0..255 channel difference: more than this would only overflow costs.
 constexpr int kMaxSwitchCost = 1 << 20;
 
+// An exemplar, as the manifest lists it and the patterns' check_input claims it.
+void add_exemplar_input(const fs::path& path, std::string named_at,
+                        std::vector<InputFile>& inputs) {
+  inputs.push_back({path,
+                    InputFile::Kind::method,
+                    std::move(named_at),
+                    kExemplarRole,
+                    {{exemplar_height_path(path), kExemplarHeightRole}}});
+}
+
 // `bind: [{exemplar: PATH-or-index, where, tags, near_junction}]` (choose: mix). The exemplar is
 // an index into the list or one of its paths (resolved as the list's are).
 std::vector<ExemplarBinding> read_bindings(const MapReader& m,
@@ -83,11 +93,12 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
       const std::string value = read_string(m.source(), exemplar[i], key);
       if (value.empty()) m.source().fail(exemplar[i], key, "empty path");
       s.exemplars.push_back(m.source().resolve(value, key));
-      inputs.push_back(
-          {s.exemplars.back(), InputFile::Kind::exemplar, m.source().named_at(exemplar[i], key)});
+      add_exemplar_input(s.exemplars.back(), m.source().named_at(exemplar[i], key), inputs);
     }
   } else {
-    s.exemplars.push_back(input_file(m, "exemplar", InputFile::Kind::exemplar, inputs));
+    s.exemplars.push_back(m.file("exemplar"));
+    add_exemplar_input(s.exemplars.back(),
+                       m.source().named_at(m.get("exemplar"), m.path("exemplar")), inputs);
   }
   if (m.has("delta")) s.delta = m.positive("delta");
   s.scale = m.positive_or("scale", s.scale);
@@ -191,6 +202,10 @@ void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
 }
 
 }  // namespace
+
+fs::path exemplar_height_path(const fs::path& exemplar) {
+  return exemplar.parent_path() / (exemplar.stem().string() + "_height.tif");
+}
 
 void read_pattern_class(ClassReading& r) {
   const MapReader& m = r.m;

@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "pipeline/detail/exemplar_memo.hpp"
+#include "pipeline/methods/patterns/pattern_config.hpp"
 #include "pipeline/methods/patterns/patterns.hpp"
 #include "synth/exemplar.hpp"
 #include "synth/exemplar_stats.hpp"
@@ -44,7 +45,7 @@ void resolve_exemplar_defaults(PipelineConfig& config) {
 }
 
 bool check_exemplar_input(const InputFile& input, InputCheck& check) {
-  if (input.kind != InputFile::Kind::exemplar) return false;
+  if (input.kind != InputFile::Kind::method || input.role != kExemplarRole) return false;
   // One validated before with these bytes (and height twin) is not decoded again.
   const std::optional<std::filesystem::path>& cache_dir = check.cache_dir();
   const std::optional<ContentHash> hash =

@@ -15,10 +15,10 @@ namespace tw::detail {
 // delta_from_exemplar. Errors name the class key and the exemplar.
 void resolve_exemplar_defaults(PipelineConfig& config);
 
-// Checks an exemplar input (InputFile::Kind::exemplar; false for any other): the image read
-// whole, with its NAME_height.tif twin when present; throws tw::Error "<named_at>: cannot be used
-// as an exemplar: <why>". With a run cache, an exemplar whose bytes were validated before is not
-// read again, and one validated now is remembered there (detail/exemplar_memo.hpp; a failed
+// Checks an exemplar input (a method input of role kExemplarRole; false for any other): the image
+// read whole, with its NAME_height.tif twin when present; throws tw::Error "<named_at>: cannot be
+// used as an exemplar: <why>". With a run cache, an exemplar whose bytes were validated before is
+// not read again, and one validated now is remembered there (detail/exemplar_memo.hpp; a failed
 // write only means it is read again next time).
 bool check_exemplar_input(const InputFile& input, InputCheck& check);
 

@@ -14,6 +14,7 @@
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/methods/patterns/pattern_config.hpp"
 #include "pipeline/methods/patterns/pattern_inputs.hpp"
 #include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/methods/patterns/pattern_tasks.hpp"
@@ -287,7 +288,7 @@ class PatternMethod final : public SynthesisMethod {
       if (it == exemplars.end()) {
         const Exemplar& exemplar = patterns.exemplars[p.exemplar_index];
         const fs::path path = exemplar.path;
-        const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
+        const fs::path height = exemplar_height_path(path);
         std::error_code ec;
         Hasher e;
         if (fs::is_regular_file(path, ec)) {
@@ -548,7 +549,8 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
   for (std::size_t c = 0; c < config.features.size(); ++c) {
     report.features.emplace_back(plan.report.classes[c].features.size());
     if (has_method_options(config.features[c], kPatternsMethodName) &&
-        has_method_options(config.features[c], kGrownMethodName)) report.grown[c].emplace();
+        has_method_options(config.features[c], kGrownMethodName))
+      report.grown[c].emplace();
   }
   for (const FeaturePattern& p : patterns.patterns) {
     if (!p.synthesized) continue;  // left out by a region (PatternOptions::wanted)
@@ -556,8 +558,7 @@ void add_patterns(const PipelineConfig& config, PatternRun patterns, WorldPlan& 
     feature.synthesis = p.report;
     record_geometry(
         *method_options<SynthesisConfig>(config.features[p.class_index], kPatternsMethodName),
-                    plan.report.classes[p.class_index].features[p.feature_index],
-                    feature.synthesis);
+        plan.report.classes[p.class_index].features[p.feature_index], feature.synthesis);
     feature.cache = p.cache;
     report.violations += p.report.violations;
     if (auto& grown = report.grown[p.class_index]) {

@@ -9,6 +9,7 @@
 #include "core/split_mix.hpp"
 #include "pipeline/detail/piece_length.hpp"
 #include "pipeline/methods/patterns/pattern_bindings.hpp"
+#include "pipeline/methods/patterns/pattern_config.hpp"
 #include "pipeline/methods/patterns/synthesis_cache.hpp"
 #include "pipeline/synthesis_method.hpp"
 #include "raster/avoidance.hpp"
@@ -73,7 +74,7 @@ std::vector<bool> needed_canvases(const std::vector<GridSpec>& canvases,
 Exemplar load_exemplar_with_height(const fs::path& path, bool continuous_alpha) {
   ExemplarOptions options;
   options.continuous_alpha = continuous_alpha;
-  const fs::path height = path.parent_path() / (path.stem().string() + "_height.tif");
+  const fs::path height = exemplar_height_path(path);
   if (fs::exists(height)) options.height_path = height.string();
   return load_exemplar(path.string(), options);
 }
