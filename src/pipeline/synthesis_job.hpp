@@ -16,7 +16,9 @@
 //                                  those that depend on no task, else 1 + their deepest task's)
 //   syntheses/                     the store of the syntheses (a synthesis cache folder,
 //                                  docs/cache.md) when the plan has no cache; else the cache
-//   synthesis-results/<key>.cbor   a synthesized feature's report, written last by its task
+//   synthesis-results/<key>.cbor   a synthesized feature's result (the method's: the patterns
+//                                  write their report and, when the finer check reused a stored
+//                                  synthesis, its cache status), written last by its task
 #include <filesystem>
 #include <string>
 

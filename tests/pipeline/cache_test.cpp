@@ -19,7 +19,9 @@
 #include "file_edit.hpp"
 #include "pipeline/detail/cache_entry.hpp"
 #include "pipeline/detail/plan_stage_cache.hpp"
+#include "pipeline/job.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/synthesis_job.hpp"
 #include "test_support.hpp"
 #include "test_world.hpp"
 
@@ -189,6 +191,58 @@ TEST_F(CacheRun, AnAvoidanceChangeOffTheTilesItReadsReusesTheSynthesis) {
   EXPECT_EQ(rebuilt("after"), (std::set<int>{2, 3}));
   run("clean", false);
   expect_same_outputs("after", "clean");
+}
+
+// The same in a job (docs/distributed.md): the plan finds F1's key missed in its avoidance part
+// only, so F1 is a task; the task makes F1's avoidance, finds the stored placements whose DP read
+// the same and reuses them (its result says why). The job's report lists a cached run's
+// statuses, its outputs are a clean run's bytes.
+TEST_F(CacheRun, ASynthesisTaskAppliesTheFinerCheckAsARunDoes) {
+  constexpr const char* kTiles = "output: { tiles: { size: 64, overlap: 4 } }\n";
+  // A file: job.json names it, and every task reads it again.
+  const fs::path file = dir_ / "cache.yaml";
+  std::ofstream(file) << kCachePipeline << kTiles;
+  const auto config = [&](const std::string& out) {
+    return load_pipeline(file, {{"output.dir", (dir_ / out).string()}});
+  };
+  write_roads(dir_ / "roads.gpkg", l_and_a_crossing(430));
+  run("before", true, kTiles);
+  fs::copy(dir_ / "cache", dir_ / "run-cache", fs::copy_options::recursive);
+  write_roads(dir_ / "roads.gpkg", l_and_a_crossing(432));
+
+  PlanJobOptions options;
+  options.output_dir = dir_ / "job";
+  options.cache_dir = dir_ / "cache";
+  options.synthesis_tasks = true;
+  const PlannedJob job = plan_job(config("job"), options);
+  const nlohmann::json syntheses =
+      nlohmann::json::parse(read_file(job.plan_dir / "syntheses.json"));
+  const nlohmann::json& f1 = syntheses["features"][0];
+  ASSERT_EQ(f1["fid"], 1);
+  EXPECT_EQ(f1["task"], true);  // the coarse key missed
+  EXPECT_EQ(f1["cache"]["why"], "avoidance changed");
+  EXPECT_EQ(job.syntheses, 3u);
+  for (std::size_t i = 0; i < syntheses["features"].size(); ++i)
+    synthesize_job_feature(job.plan_dir, int(i));
+  const nlohmann::json result = nlohmann::json::from_cbor(
+      read_file(job.plan_dir / "synthesis-results" / (f1["key"].get<std::string>() + ".cbor")));
+  EXPECT_EQ(result["cache"]["reused"], true);
+  EXPECT_EQ(result["cache"]["why"], "avoidance changed, mask the same");
+  const PlannedJob complete = complete_job_plan(job.plan_dir);
+  for (std::size_t t = 0; t < complete.tiles; ++t) render_job_tile(job.plan_dir, int(t));
+  finish_job(job.plan_dir);
+
+  const auto status = statuses("job");
+  EXPECT_EQ(status.at(1)["status"], "reused");
+  EXPECT_EQ(status.at(1)["why"], "avoidance changed, mask the same");
+  EXPECT_EQ(rebuilt("job"), (std::set<int>{2, 3}));
+  RunOptions cached;  // a run from the cache as the job found it
+  cached.cache_dir = dir_ / "run-cache";
+  run_pipeline(config("after"), cached);
+  EXPECT_EQ(status, statuses("after"));
+  expect_same_outputs("job", "after");
+  run_pipeline(config("clean"), {});  // the same file: the tiles name it
+  expect_same_outputs("job", "clean");
 }
 
 // The index the finer check reads, corrupt, and an entry of an older layout (no input hash)

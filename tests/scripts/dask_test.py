@@ -8,7 +8,8 @@ On distributed_support's roads world (five syntheses, nine tiles):
    every output is byte-identical to a local `terraweave run` (report.json: the same values but
    timings and cache statuses, which differ between no cache and a new one).
 2. One road changed, rerun with --cache on a copy of the local run's cache: the driver rebuilds
-   the same syntheses ({1, 2, 4}) and the same tiles as the local cached rerun, and every output,
+   the same syntheses ({1, 2}; R4's task reuses its synthesis by the finer check) and the same
+   tiles as the local cached rerun, and every output,
    report.json's statuses included, equals the local run's.
 The scheduler and workers are started and stopped here; nothing is left running.
 """

@@ -116,6 +116,9 @@ std::string run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const js
   options.scope = Scope::one;
   options.feature = index;
   options.after = entry.at("after").get<std::vector<std::size_t>>();
+  options.planned = {entry.at("cache").at("reused").get<bool>(),
+                     entry.at("cache").at("why").get<std::string>(),
+                     entry.at("key").get<std::string>()};
   PatternRun run = synthesize_from_store(plan, options, tasks, list);
   if (run.patterns.empty())
     fail("{}: feature {} ({}) is not in the plan's features any more; plan again ({})",
@@ -123,8 +126,13 @@ std::string run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const js
          plan_again(tasks.plan_dir));
   if (run.patterns.back().key.hex() != entry.at("key").get<std::string>())
     key_changed(tasks.plan_dir, tasks.config, run.patterns.back(), index);
-  const std::vector<std::uint8_t> report = json::to_cbor(encode(run.patterns.back().report));
-  return std::string(report.begin(), report.end());
+  // The report, and the cache status when the finer check reused a stored synthesis (the
+  // plan's status stands otherwise).
+  const FeaturePattern& pattern = run.patterns.back();
+  json result = {{"report", encode(pattern.report)}};
+  if (pattern.cache.reused) result["cache"] = {{"reused", true}, {"why", pattern.cache.why}};
+  const std::vector<std::uint8_t> bytes = json::to_cbor(result);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 double complete_pattern_tasks(const WorldPlan& plan, PatternsPlan& entry, MethodTasks& tasks,
@@ -152,7 +160,11 @@ double complete_pattern_tasks(const WorldPlan& plan, PatternsPlan& entry, Method
     if (!feature.at("task").get<bool>()) continue;
     const MethodTaskResult stored = result(i);
     try {
-      decode(json::from_cbor(stored.bytes), p.report, stored.file);
+      const json task = json::from_cbor(stored.bytes);
+      decode(task.at("report"), p.report, stored.file);
+      if (task.contains("cache"))  // reused by the finer check
+        p.cache = {task.at("cache").at("reused").get<bool>(),
+                   task.at("cache").at("why").get<std::string>(), key};
     } catch (const json::exception& e) {
       fail("{}: not a synthesis report ({})", stored.file, e.what());
     }

@@ -232,6 +232,8 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       if (!the_one)
         cached = cache.find("features." + feature_class.name, line.fid, pattern.name, key,
                             pattern.cache);
+      else  // its key missed when planned: the finer check below goes by why
+        pattern.cache = {options.planned.reused, options.planned.why, key.combined().hex()};
       if (!cached && (options.scope == Scope::cached || (one && !the_one))) {
         fail(
             "{}: its synthesis (feature {} of the plan, key {}) is not done yet (terraweave "
@@ -288,7 +290,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
       // The finer check: a key that changed only in what the avoidance might be is reused when
       // the DP would read the same (docs/cache.md, "A feature's synthesis").
       const ContentHash input = synthesis_input_hash(avoidance, feature_options.junctions);
-      if (!the_one && SynthesisCache::finer_check_may_reuse(pattern.cache))
+      if (SynthesisCache::finer_check_may_reuse(pattern.cache))
         cached = cache.find_by_input("features." + feature_class.name, line.fid, key, input,
                                      pattern.cache);
       if (cached) {  // kept under the new key too: the next run finds it by that alone

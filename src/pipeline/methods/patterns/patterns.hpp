@@ -6,8 +6,8 @@
 // features synthesized before it; then the patterns are rendered into the output grid.
 #include <cstdint>
 #include <deque>
-#include <map>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -82,6 +82,10 @@ struct PatternOptions {
   Scope scope = Scope::all;
   std::size_t feature = 0;
   std::vector<std::size_t> after;  // scope one: the features that `feature` depends on
+  // Scope one: `feature`'s cache status as the plan found it (syntheses.json). A miss in its
+  // avoidance or earlier part only goes through the finer check, as in a run: the task reuses
+  // the stored placements whose DP read the same (pattern.cache then says so).
+  CacheStatus planned;
   // Synthesizes only the features whose canvas it accepts, and the earlier ones whose canvases
   // overlap theirs (transitively: what their avoidance reads), so each has the placements of a
   // run of every feature (a `region`). Null: every feature.
