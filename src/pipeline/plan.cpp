@@ -262,9 +262,6 @@ WorldPlan plan_world(const PipelineConfig& given, const PlanOptions& options, Wa
   clock.start("plan");
   plan.splat_materials = splat_materials();
   for (MethodPlan& entry : plan.methods) entry.method->collect(context, entry);
-  for (const MethodPlan& entry : plan.methods)
-    if (const nlohmann::json part = entry.method->report(plan, entry); !part.is_null())
-      report.method_reports.push_back({entry.method->name(), part.dump()});
 
   plan.existing.polygons = std::move(existing.polygons);
   plan.existing.lines = std::move(existing.lines);

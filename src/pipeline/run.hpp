@@ -91,13 +91,6 @@ struct FileRecord {
 // The lowest and highest height that is not nodata (absent: every cell is nodata).
 using HeightRange = std::optional<std::array<float, 2>>;
 
-// A synthesis method's own part of report.json (`methods.<method>`), as JSON text
-// (SynthesisMethod::report).
-struct MethodReport {
-  std::string method;
-  std::string json;
-};
-
 struct RunReport {
   GridSpec grid;
   std::string crs_wkt;
@@ -108,7 +101,6 @@ struct RunReport {
   // What the methods report of their classes, features and the run (method_report<T>): one
   // part per method that reports, of its own type; the method writes it into report.json.
   std::vector<MethodReportPart> method_parts;
-  std::vector<MethodReport> method_reports;    // in method order, those that report one
   std::vector<std::filesystem::path> outputs;  // committed files (report.json last)
   std::int64_t forbidden_pixels = 0;           // in the avoidance layer
   double total_seconds = 0.0;

@@ -14,11 +14,6 @@
 
 namespace tw {
 
-nlohmann::json SynthesisMethod::report(const WorldPlan& /*plan*/,
-                                       const MethodPlan& /*entry*/) const {
-  return nullptr;
-}
-
 nlohmann::json SynthesisMethod::encode_report(const MethodPayload& /*part*/,
                                               detail::PlanObjects& /*objects*/) const {
   fail("method '{}' has a part of the run's report but no codec for it", name());

@@ -147,7 +147,8 @@ class SynthesisMethod {
   virtual std::string validate_stage() const { return {}; }
   virtual void validate(const PipelineConfig& /*config*/, Warnings& /*warnings*/) const {}
   // Plans its domain: the lines of its classes into context.lines (lines stage), or its
-  // placements into the entry; its report into context.plan.report.
+  // placements into the entry; its part of the report into context.plan.report (its own type,
+  // method_report<T>).
   virtual void plan(MethodContext& context, MethodPlan& entry) const = 0;
   // While the placements methods after it plan (before collect): what they keep out of, burnt
   // into `forbidden` over `lattice` (the patterns: their opaque coverage on the ground, which
@@ -194,11 +195,10 @@ class SynthesisMethod {
   virtual void write_outputs(const WorldPlan& /*plan*/, const MethodPlan& /*entry*/,
                              MethodOutputs& /*outputs*/) const {}
 
-  // Its own part of report.json (`methods.<name>`) as JSON; null: none.
-  virtual nlohmann::json report(const WorldPlan& plan, const MethodPlan& entry) const;
-  // Writes its fields of `report` into their places in report.json `json` (the classes, their
-  // features, top-level keys: the built-in methods from their part of the report,
-  // RunReport::method_parts), called for every method once the rest is there.
+  // Writes its part of the run's report (RunReport::method_parts, method_report<T>) into its
+  // places in report.json `json`: the built-in methods into the classes, their features and
+  // top-level keys; another method under `methods.<name>`. Called for every method, in method
+  // order, once the rest is there: the one way a method's report reaches report.json.
   virtual void report_json(const RunReport& /*report*/, const PipelineConfig& /*config*/,
                            nlohmann::json& /*json*/) const {}
   // Its part of the run's report (RunReport::method_parts: what plan() put there, of its own

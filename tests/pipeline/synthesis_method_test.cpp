@@ -20,6 +20,7 @@
 #include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/detail/tile_cache.hpp"
+#include "pipeline/method_report.hpp"
 #include "pipeline/plan.hpp"
 #include "pipeline/plan_io.hpp"
 #include "pipeline/synthesis_method.hpp"
@@ -44,6 +45,11 @@ struct StampPlan : MethodPayloadOf<StampPlan> {
   float raise = 0.0f;
 };
 
+// Its part of the run's report: how many squares it stamped.
+struct StampReport : MethodPayloadOf<StampReport> {
+  std::uint64_t squares = 0;
+};
+
 class StampMethod final : public SynthesisMethod {
  public:
   explicit StampMethod(int side, float raise) : side_(side), raise_(raise) {}
@@ -60,6 +66,7 @@ class StampMethod final : public SynthesisMethod {
     StampPlan& stamp = payload_as<StampPlan>(entry);
     stamp.squares = {{g.width / 2 - side_ / 2, g.height / 2 - side_ / 2, side_, side_}};
     stamp.raise = raise_;
+    method_report<StampReport>(context.plan.report, name()).squares = stamp.squares.size();
   }
   void collect(MethodContext& context, MethodPlan& entry) const override {
     std::vector<std::string>& materials = context.plan.splat_materials;
@@ -110,13 +117,22 @@ class StampMethod final : public SynthesisMethod {
     std::ofstream out(outputs.transaction.stage(outputs.dir / "stamp.txt"));
     for (const MethodTileFact& f : outputs.tile_facts) out << f.where << ": " << f.fact << "\n";
   }
-  json report(const WorldPlan&, const MethodPlan& entry) const override {
-    return {{"squares", payload_as<StampPlan>(entry).squares.size()}};
-  }
-  // Its field in every class of report.json.
+  // Its part under `methods.stamp` of report.json, and its field in every class.
   void report_json(const RunReport& report, const PipelineConfig&, json& out) const override {
+    if (const StampReport* part = method_report<StampReport>(report))
+      out["methods"][name()] = {{"squares", part->squares}};
     for (std::size_t c = 0; c < report.classes.size(); ++c)
       out["classes"][c]["stamped"] = report.classes[c].name;
+  }
+  // Its part in plan.json itself: a number needs no object of its own.
+  json encode_report(const MethodPayload& part, detail::PlanObjects&) const override {
+    return {{"squares", dynamic_cast<const StampReport&>(part).squares}};
+  }
+  std::unique_ptr<MethodPayload> decode_report(const json& value,
+                                               detail::PlanObjects&) const override {
+    auto part = std::make_unique<StampReport>();
+    part->squares = value.at("squares").get<std::uint64_t>();
+    return part;
   }
   json encode(const MethodPlan& entry, detail::PlanObjects& objects) const override {
     const StampPlan& stamp = payload_as<StampPlan>(entry);
@@ -267,8 +283,12 @@ TEST_F(SynthesisMethods, AFifthMethodReachesTheTileRenderTheCacheKeyThePlanFolde
     EXPECT_NE(std::string(e.what()).find("method 'stamp'"), std::string::npos) << e.what();
   }
 
-  // report.json: the method's own part under its name; none for the built-in methods.
-  const json report = detail::report_to_json(loaded.report, config());
+  // report.json: the method's own part (its type, back from the plan folder) under its name;
+  // none for the built-in methods.
+  const StampReport* part = method_report<StampReport>(loaded.report);
+  ASSERT_NE(part, nullptr);
+  EXPECT_EQ(part->squares, 1u);
+  const json report = detail::report_to_json(loaded.report, config(), with_stamp(stamp));
   EXPECT_EQ(report.at("methods").at("stamp").at("squares"), 1);
   EXPECT_FALSE(detail::report_to_json(bare.report, config()).contains("methods"));
 }
@@ -325,6 +345,7 @@ TEST_F(SynthesisMethods, AFifthMethodsTileFactsOutputsAndReportFieldsGoThroughTh
   // list without them has none of their keys.
   const json with_all = detail::report_to_json(report, config(), methods);
   EXPECT_EQ(with_all.at("classes").at(0).at("stamped"), "roads");
+  EXPECT_EQ(with_all.at("methods").at("stamp").at("squares"), 1);
   for (const char* key : {"areas", "pattern_violations", "grown_crossings"})
     EXPECT_TRUE(with_all.contains(key)) << key;
   EXPECT_TRUE(with_all.at("timings").contains("synthesis"));

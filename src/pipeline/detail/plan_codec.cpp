@@ -43,10 +43,9 @@ TW_FIELDS(CacheStatus, F(reused) F(why) F(key))
 TW_FIELDS(FeatureReport, F(fid) F(length_m) F(width_m) F(pieces) F(structure) F(layer) F(deck_m)
                              F(moved_max_m) F(moved_mean_m) F(cut_max_m) F(fill_max_m) F(grade_max))
 TW_FIELDS(FeatureClassReport, F(name) F(kind) F(source) F(delta_m) F(features) F(ingest_seconds))
-TW_FIELDS(MethodReport, F(method) F(json))
 // The methods' parts (RunReport::method_parts) are theirs to store (plan_io: encode_report).
 TW_FIELDS(RunReport, F(grid) F(crs_wkt) F(heightfield) F(seed) F(stages) F(classes)
-                         F(method_reports) F(forbidden_pixels) F(total_seconds) F(warnings))
+                         F(forbidden_pixels) F(total_seconds) F(warnings))
 
 // Avoidance inputs that a plan holds own their geometry: ribbons of synthesized features are
 // the plan's own (`patterns`), so pointers into them are never stored.

@@ -33,7 +33,6 @@ TW_PLAN_FIELDS(StageTiming);
 TW_PLAN_FIELDS(CacheStatus);
 TW_PLAN_FIELDS(FeatureReport);
 TW_PLAN_FIELDS(FeatureClassReport);
-TW_PLAN_FIELDS(MethodReport);
 TW_PLAN_FIELDS(RunReport);
 
 }  // namespace tw::detail

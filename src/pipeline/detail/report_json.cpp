@@ -153,12 +153,10 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
       {"warnings", warnings},
       {"timings", timings_json(report)},
   };
-  // The methods' fields in their places (their classes, features and keys), then a method's
-  // own part under its name (SynthesisMethod::report).
+  // The methods' parts in their places (their classes, features and keys; another method's
+  // own object under `methods.<name>`), written by each method (SynthesisMethod::report_json).
   for (const SynthesisMethod* method : methods_or_builtin(methods))
     method->report_json(report, config, j);
-  for (const MethodReport& m : report.method_reports)
-    j["methods"][m.method] = nlohmann::json::parse(m.json);
   return j;
 }
 
