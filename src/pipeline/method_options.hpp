@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/clone_ptr.hpp"
+
 namespace tw {
 
 struct MethodOptions {
@@ -17,28 +19,12 @@ struct MethodOptions {
 };
 
 template <class Derived>
-struct MethodOptionsOf : MethodOptions {
-  std::unique_ptr<MethodOptions> clone() const override {
-    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
-  }
-};
+using MethodOptionsOf = Cloneable<MethodOptions, Derived>;
 
 // One method's options: a value type (copying a config copies them).
 struct MethodConfigPart {
   std::string method;  // the method's name (SynthesisMethod::name())
-  std::unique_ptr<MethodOptions> options;
-
-  MethodConfigPart() = default;
-  MethodConfigPart(std::string m, std::unique_ptr<MethodOptions> o)
-      : method(std::move(m)), options(std::move(o)) {}
-  MethodConfigPart(const MethodConfigPart& other)
-      : method(other.method), options(other.options ? other.options->clone() : nullptr) {}
-  MethodConfigPart& operator=(const MethodConfigPart& other) {
-    if (this != &other) *this = MethodConfigPart(other);
-    return *this;
-  }
-  MethodConfigPart(MethodConfigPart&&) noexcept = default;
-  MethodConfigPart& operator=(MethodConfigPart&&) noexcept = default;
+  ClonePtr<MethodOptions> options;
 };
 
 // The options of method `method` among `parts` as its own type T; null when there are none (or,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/clone_ptr.hpp"
 #include "raster/window_index.hpp"
 
 namespace tw {
@@ -20,32 +21,14 @@ struct MethodPayload {
 };
 
 template <class Derived>
-struct MethodPayloadOf : MethodPayload {
-  std::unique_ptr<MethodPayload> clone() const override {
-    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
-  }
-};
+using MethodPayloadOf = Cloneable<MethodPayload, Derived>;
 
 // One method's entry in the plan: a value type (copying a plan copies its payloads).
 struct MethodPlan {
   const SynthesisMethod* method = nullptr;
-  std::unique_ptr<MethodPayload> payload;
+  ClonePtr<MethodPayload> payload;
   // The windows of its items (SynthesisMethod::windows), binned by index_plan.
   WindowIndex index;
-
-  MethodPlan() = default;
-  MethodPlan(const SynthesisMethod* m, std::unique_ptr<MethodPayload> p)
-      : method(m), payload(std::move(p)) {}
-  MethodPlan(const MethodPlan& other)
-      : method(other.method),
-        payload(other.payload ? other.payload->clone() : nullptr),
-        index(other.index) {}
-  MethodPlan& operator=(const MethodPlan& other) {
-    if (this != &other) *this = MethodPlan(other);
-    return *this;
-  }
-  MethodPlan(MethodPlan&&) noexcept = default;
-  MethodPlan& operator=(MethodPlan&&) noexcept = default;
 };
 
 // The method's name (its entry in plan.json); "" without a method.

@@ -16,19 +16,7 @@ namespace tw {
 // One method's part: a value type (copying a report copies its parts).
 struct MethodReportPart {
   std::string method;  // its method's name()
-  std::unique_ptr<MethodPayload> part;
-
-  MethodReportPart() = default;
-  MethodReportPart(std::string m, std::unique_ptr<MethodPayload> p)
-      : method(std::move(m)), part(std::move(p)) {}
-  MethodReportPart(const MethodReportPart& other)
-      : method(other.method), part(other.part ? other.part->clone() : nullptr) {}
-  MethodReportPart& operator=(const MethodReportPart& other) {
-    if (this != &other) *this = MethodReportPart(other);
-    return *this;
-  }
-  MethodReportPart(MethodReportPart&&) noexcept = default;
-  MethodReportPart& operator=(MethodReportPart&&) noexcept = default;
+  ClonePtr<MethodPayload> part;
 };
 
 // The part of type T (a method's own) among a report's `method_parts`; null when none.
