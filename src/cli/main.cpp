@@ -139,9 +139,10 @@ int plan_command(const PipelineArgs& args, tw::PlanJobOptions options) {
 int synth_feature_command(const std::string& plan, int feature) {
   const tw::SynthesisJobResult result =
       tw::synthesize_job_feature(tw::find_plan_dir(plan), feature);
+  const std::string what =
+      result.synthesized ? "synthesized" : "reused from the cache (" + result.why + ")";
   std::printf("feature %d (%s): %s in %.3f s\n", result.feature,
-              tw::single_line(result.name).c_str(),
-              result.synthesized ? "synthesized" : "reused from the cache", result.seconds);
+              tw::single_line(result.name).c_str(), tw::single_line(what).c_str(), result.seconds);
   return 0;
 }
 

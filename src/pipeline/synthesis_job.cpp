@@ -197,7 +197,10 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   SynthesisJobResult result;
   result.feature = feature;
   result.name = entry.at("name").get<std::string>();
-  if (!entry.at("task").get<bool>()) return result;  // reused from the cache by the plan
+  if (!entry.at("task").get<bool>()) {  // reused from the cache by the plan
+    result.why = entry.at("cache").at("why").get<std::string>();
+    return result;
+  }
 
   // With the methods' defaults (the exemplars' width and delta), as the plan read it.
   const PipelineConfig config = with_method_defaults(detail::job_config(job));
@@ -205,11 +208,13 @@ SynthesisJobResult synthesize_job_feature(const fs::path& plan_dir, int feature)
   Warnings warnings;  // a store entry of a dependency that is corrupt: an error below
   MethodTasks tasks{config, job_backend(job), fs::path(list.at("store").get<std::string>()),
                     plan_dir, warnings};
-  const std::string report =
+  const MethodTaskRun run =
       detail::tasks_method(plan).run_task(plan, tasks, list, std::size_t(feature));
   // Last: a report names a stored synthesis.
-  write_file_atomic(results_dir(plan_dir) / (entry.at("key").get<std::string>() + ".cbor"), report);
-  result.synthesized = true;
+  write_file_atomic(results_dir(plan_dir) / (entry.at("key").get<std::string>() + ".cbor"),
+                    run.result);
+  result.synthesized = !run.reused_why;
+  result.why = run.reused_why.value_or("");
   result.seconds = seconds_since(started);
   return result;
 }

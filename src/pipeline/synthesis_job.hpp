@@ -31,7 +31,8 @@ inline constexpr const char* kSynthesesFormat = "terraweave.syntheses";
 struct SynthesisJobResult {
   int feature = 0;
   std::string name;          // <class>_<fid>[_<part>]
-  bool synthesized = false;  // false: reused from the cache when the plan was made
+  bool synthesized = false;  // false: reused from the cache, when planned or by the task
+  std::string why;           // why it was reused (the cache status's why), when it was
   double seconds = 0.0;
 };
 

@@ -33,8 +33,8 @@ nlohmann::json SynthesisMethod::plan_tasks(const WorldPlan& /*plan*/,
   return nlohmann::json::array();
 }
 
-std::string SynthesisMethod::run_task(const WorldPlan& /*plan*/, MethodTasks& /*tasks*/,
-                                      const nlohmann::json& /*list*/, std::size_t index) const {
+MethodTaskRun SynthesisMethod::run_task(const WorldPlan& /*plan*/, MethodTasks& /*tasks*/,
+                                        const nlohmann::json& /*list*/, std::size_t index) const {
   fail("method '{}' makes no synthesis tasks (task {})", name(), index);
 }
 

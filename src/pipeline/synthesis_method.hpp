@@ -90,6 +90,14 @@ struct MethodTaskResult {
   std::string bytes;
 };
 
+// What a task run returns (SynthesisMethod::run_task): its result, which the pipeline stores
+// under the task's key, and why it reused a stored synthesis instead of running (the cache's
+// finer check: docs/cache.md), if it did.
+struct MethodTaskRun {
+  std::string result;
+  std::optional<std::string> reused_why;
+};
+
 // What the ribbons stage (and the ingest's clip halo) needs of a line class from the methods that
 // make its lines or synthesize on them (SynthesisMethod::ribbon_needs), so the stages read no
 // method's options.
@@ -220,10 +228,9 @@ class SynthesisMethod {
   // in synthesis order, with at least `index`, `name`, `key`, `after` (the earlier ones it
   // waits for), `task` (false: reused from the store) and `wave`.
   virtual nlohmann::json plan_tasks(const WorldPlan& plan, MethodTasks& tasks) const;
-  // Runs the task at `index` of `list` (syntheses.json) on the stored plan; returns its result,
-  // which the pipeline stores under the task's key.
-  virtual std::string run_task(const WorldPlan& plan, MethodTasks& tasks,
-                               const nlohmann::json& list, std::size_t index) const;
+  // Runs the task at `index` of `list` (syntheses.json) on the stored plan.
+  virtual MethodTaskRun run_task(const WorldPlan& plan, MethodTasks& tasks,
+                                 const nlohmann::json& list, std::size_t index) const;
   // Puts every synthesis of `list` into its entry (`result(i)`: the stored result of task i;
   // it throws when the task has not run),
   // as plan() would have; returns the tasks' own seconds, summed.

@@ -222,8 +222,20 @@ TEST_F(CacheRun, ASynthesisTaskAppliesTheFinerCheckAsARunDoes) {
   EXPECT_EQ(f1["task"], true);  // the coarse key missed
   EXPECT_EQ(f1["cache"]["why"], "avoidance changed");
   EXPECT_EQ(job.syntheses, 3u);
-  for (std::size_t i = 0; i < syntheses["features"].size(); ++i)
-    synthesize_job_feature(job.plan_dir, int(i));
+  for (std::size_t i = 0; i < syntheses["features"].size(); ++i) {
+    const SynthesisJobResult task = synthesize_job_feature(job.plan_dir, int(i));
+    const nlohmann::json& planned = syntheses["features"][i];
+    if (i == 0) {  // F1's task reused, and says why (synth-feature prints it)
+      EXPECT_FALSE(task.synthesized);
+      EXPECT_EQ(task.why, "avoidance changed, mask the same");
+    } else if (planned["task"] == true) {
+      EXPECT_TRUE(task.synthesized) << planned["name"];
+      EXPECT_EQ(task.why, "") << planned["name"];
+    } else {  // reused by the plan
+      EXPECT_FALSE(task.synthesized) << planned["name"];
+      EXPECT_EQ(task.why, planned["cache"]["why"]) << planned["name"];
+    }
+  }
   const nlohmann::json result = nlohmann::json::from_cbor(
       read_file(job.plan_dir / "synthesis-results" / (f1["key"].get<std::string>() + ".cbor")));
   EXPECT_EQ(result["cache"]["reused"], true);

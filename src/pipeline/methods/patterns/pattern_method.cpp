@@ -224,8 +224,8 @@ class PatternMethod final : public SynthesisMethod {
   nlohmann::json plan_tasks(const WorldPlan& plan, MethodTasks& tasks) const override {
     return plan_pattern_tasks(plan, tasks);
   }
-  std::string run_task(const WorldPlan& plan, MethodTasks& tasks, const nlohmann::json& list,
-                       std::size_t index) const override {
+  MethodTaskRun run_task(const WorldPlan& plan, MethodTasks& tasks, const nlohmann::json& list,
+                         std::size_t index) const override {
     return run_pattern_task(plan, tasks, list, index);
   }
   double complete_tasks(WorldPlan& plan, MethodPlan& entry, MethodTasks& tasks,

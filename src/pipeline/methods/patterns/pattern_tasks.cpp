@@ -106,8 +106,8 @@ json plan_pattern_tasks(const WorldPlan& plan, MethodTasks& tasks) {
   return features;
 }
 
-std::string run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const json& list,
-                             std::size_t index) {
+MethodTaskRun run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const json& list,
+                               std::size_t index) {
   const json& entry = list.at("features").at(index);
   SynthesisCache store(tasks.store, tasks.warnings);
   PatternOptions options;
@@ -130,9 +130,14 @@ std::string run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const js
   // plan's status stands otherwise).
   const FeaturePattern& pattern = run.patterns.back();
   json result = {{"report", encode(pattern.report)}};
-  if (pattern.cache.reused) result["cache"] = {{"reused", true}, {"why", pattern.cache.why}};
+  MethodTaskRun task;
+  if (pattern.cache.reused) {
+    result["cache"] = {{"reused", true}, {"why", pattern.cache.why}};
+    task.reused_why = pattern.cache.why;
+  }
   const std::vector<std::uint8_t> bytes = json::to_cbor(result);
-  return std::string(bytes.begin(), bytes.end());
+  task.result.assign(bytes.begin(), bytes.end());
+  return task;
 }
 
 double complete_pattern_tasks(const WorldPlan& plan, PatternsPlan& entry, MethodTasks& tasks,

@@ -21,13 +21,14 @@ nlohmann::json plan_pattern_tasks(const WorldPlan& plan, MethodTasks& tasks);
 
 // Synthesizes feature `index` of `list` into the store, unless the finer check (docs/cache.md)
 // finds a stored synthesis whose DP read the same; returns its result (CBOR: `report`, and
-// `cache` when it reused one). Throws tw::Error when its key is not the planned one (naming what
-// changed) or a store entry it reads is corrupt.
-std::string run_pattern_task(const WorldPlan& plan, MethodTasks& tasks, const nlohmann::json& list,
-                             std::size_t index);
+// `cache` when it reused one) and, then, why. Throws tw::Error when its key is not the planned one
+// (naming what changed) or a store entry it reads is corrupt.
+MethodTaskRun run_pattern_task(const WorldPlan& plan, MethodTasks& tasks,
+                               const nlohmann::json& list, std::size_t index);
 
 // Every feature's synthesis from the store, its cache status as planned (or as its task
-// reused it) and a task's report from `result`, into `entry` (collected later, as plan_world's). Returns the tasks' seconds.
+// reused it) and a task's report from `result`, into `entry` (collected later, as plan_world's).
+// Returns the tasks' seconds.
 double complete_pattern_tasks(const WorldPlan& plan, PatternsPlan& entry, MethodTasks& tasks,
                               const nlohmann::json& list,
                               const std::function<MethodTaskResult(std::size_t)>& result);
