@@ -269,16 +269,14 @@ CacheFolder::CacheFolder(const fs::path& dir, Warnings& warnings) : warnings_(wa
   // Alone (an exclusive lock granted at once): no other run writes here, so every temporary is
   // a killed run's. Then shared, as every run holds it.
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) == 0) {
+    // Every folder, not a list of them: a store added later (synthesis/inputs was missed) is
+    // swept too; only files named as temporaries are removed.
     std::error_code ec;
-    // plan/ribbons: the ribbons stage whole, as format 1 kept it (its killed writes too).
-    for (const char* sub : {"synthesis", "synthesis/last", "tiles", "tiles/last", "tiles/files",
-                            "exemplars", "plan/terrain", "plan/ribbon", "plan/junctions",
-                            "plan/ribbons", "plan/heights_along", "plan/repair"}) {
-      for (fs::directory_iterator it(dir / sub, ec), end; !ec && it != end; it.increment(ec)) {
-        std::error_code removed;
-        if (is_cache_temporary(it->path()) && fs::remove(it->path(), removed)) ++swept_;
-      }
-      ec.clear();
+    for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+      std::error_code removed;
+      if (it->is_regular_file(removed) && is_cache_temporary(it->path()) &&
+          fs::remove(it->path(), removed))
+        ++swept_;
     }
   }
   ::flock(lock_fd_, LOCK_SH);
