@@ -691,17 +691,31 @@ class Grower {
           {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
+    layout_frame_ = {origin, centre, lo - Vec2{ni * size.x, nj * size.y},
+                     hi + Vec2{ni * size.x, nj * size.y}};
     for (auto [i, j] : tiles) {
       const Vec2 tile{i * size.x, j * size.y};
       const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
+      for (const NetworkEdge& edge : exemplar_.edges)
+        for (std::size_t k = 0; k + 1 < edge.points.size(); ++k)
+          layout_lines_.insert(
+              BgSegment(to_bg(place(edge.points[k])), to_bg(place(edge.points[k + 1]))));
       std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
       for (std::size_t e : order) {
         const NetworkEdge& edge = exemplar_.edges[e];
         std::vector<Vec2> pts;
         for (Vec2 p : edge.points) pts.push_back(place(p));
         for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
-          const std::vector<Vec2> kept = part;
-          if (!place_line(std::move(part), clearance_)) continue;
+          std::vector<Vec2> kept = part;
+          if (!place_line(std::move(part), clearance_)) {
+            // An exemplar's dangling end (degree 1) the copy kept uncut.
+            const auto free_end = [&](int end, Vec2 p) {
+              return degree[std::size_t(end)] == 1 && p == place(exemplar_.nodes[std::size_t(end)]);
+            };
+            kept = with_free_ends_clear(std::move(kept), free_end(edge.from, kept.front()),
+                                        free_end(edge.to, kept.back()));
+            if (kept.empty() || !place_line(kept, clearance_)) continue;
+          }
           count_line(kept);
           for (int end : {edge.from, edge.to}) {
             const Vec2 p = place(exemplar_.nodes[std::size_t(end)]);
@@ -721,6 +735,49 @@ class Grower {
       }
     }
     return true;
+  }
+
+  // A copied line whose dangling ends (`front`, `back`) lie within the clearance of a line (an
+  // exemplar's line drawn a hair past another or stopping a hair short of it) with those ends
+  // moved along it until they keep the clearance: back when the line is long enough, else on
+  // beyond the line it crossed. The copy keeps the exemplar's dangling end, its crossing and its
+  // degrees, where dropping the line would leave a T the exemplar does not have. Empty when no
+  // move within three clearances keeps it.
+  std::vector<Vec2> with_free_ends_clear(std::vector<Vec2> pts, bool front, bool back) const {
+    const auto clear = [&](Vec2 p) {
+      std::vector<SegValue> near;
+      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+      return near.empty() || bg::distance(near[0].first, to_bg(p)) >= clearance_;
+    };
+    for (int end = 0; end < 2; ++end) {
+      const bool at_back = end == 1;
+      if (!(at_back ? back : front) || clear(at_back ? pts.back() : pts.front())) continue;
+      std::vector<Vec2> moved;
+      for (int step = 1; step <= 30 && moved.empty(); ++step)
+        for (double by : {-0.1 * step * clearance_, 0.1 * step * clearance_}) {
+          std::vector<Vec2> q = network_detail::moved_end(pts, at_back, by);
+          if (!q.empty() && clear(at_back ? q.back() : q.front())) {
+            moved = std::move(q);
+            break;
+          }
+        }
+      if (moved.empty()) return {};
+      pts = std::move(moved);
+    }
+    return pts;
+  }
+
+  // Whether p lies where the laid-out copies have no exemplar line within `reach`: the
+  // exemplar's own empty parts (beyond a radial network's outer ring) are copied too, not seeded.
+  bool in_layout_void(Vec2 p, double reach) const {
+    if (layout_lines_.empty()) return false;
+    const Vec2 q = rotate(p - layout_frame_.origin, -turn_) + layout_frame_.centre;
+    if (q.x < layout_frame_.lo.x || q.y < layout_frame_.lo.y || q.x > layout_frame_.hi.x ||
+        q.y > layout_frame_.hi.y)
+      return false;
+    std::vector<BgSegment> near;
+    layout_lines_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+    return near.empty() || bg::distance(near[0], to_bg(p)) >= reach;
   }
 
   // A placed line counted in the histograms growth steers by.
@@ -1209,7 +1266,7 @@ class Grower {
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < 0.75 * spacing) continue;
-      if (near_boundary(p)) continue;
+      if (near_boundary(p) || in_layout_void(p, 0.75 * spacing)) continue;
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
       const int node = add_node(p);
       ++report_.seeds;
@@ -1454,6 +1511,12 @@ class Grower {
   BgBox extent_;
   bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
   bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
+  // The layout's copies of the exemplar (every line, laid out or not) and the frame they cover
+  // (exemplar coordinates: p = origin + rotate(q - centre, turn_) for q in [lo, hi]).
+  bgi::rtree<BgSegment, bgi::quadratic<16>> layout_lines_;
+  struct LayoutFrame {
+    Vec2 origin, centre, lo, hi;
+  } layout_frame_;
   bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
 
   Network out_;

@@ -68,6 +68,42 @@ TEST(NetworkLayout, RadialKeepsItsJunctionAnglesAndCellsAroundOneCentre) {
     ASSERT_EQ(again.edges[i].points, out.edges[i].points);
 }
 
+// The exemplar's spokes end a hair past the outer ring and start a hair short of the first: its
+// dangling ends are copied (moved to keep the clearance) rather than dropped, which left
+// T-junctions the exemplar does not have; and its empty corners beyond the outer ring are
+// copied too, not seeded with growth. Degrees and junction angles within 1.5 x the halves at
+// three seeds (main: 8 x and 7 x beyond).
+TEST(NetworkLayout, RadialKeepsItsDanglingSpokeEndsAndEmptyCorners) {
+  const Network ex = layout_exemplar("radial");
+  const std::vector<Polygon> region = layout_region(ex);
+  const auto [a, b] = halves(ex);
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : ex.nodes) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const Vec2 centre = 0.5 * (lo + hi);
+  const double radius = 0.5 * (hi.x - lo.x);
+  for (std::uint64_t seed : {1, 2, 3}) {
+    NetworkGrowthReport report;
+    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
+    EXPECT_EQ(chosen_network_method(report), "layout") << seed;
+    EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
+    for (int p : {kDegree, kJunctionAngle}) {
+      const double own =
+          normalized_w1(property(network_stats(ex, a), p), property(network_stats(ex, b), p));
+      EXPECT_LE(layout_distance(ex, out, p), std::max(1.5 * own, 0.05))
+          << kNetworkProperties[p] << " seed " << seed;
+    }
+    int in_corners = 0;  // vertices well beyond the outer ring, towards the region's corners
+    for (const NetworkEdge& e : out.edges)
+      for (Vec2 p : e.points)
+        in_corners +=
+            std::abs(p.x - centre.x) > 0.8 * radius && std::abs(p.y - centre.y) > 0.8 * radius;
+    EXPECT_EQ(in_corners, 0) << seed;
+  }
+}
+
 TEST(NetworkLayout, TerraceWallsKeepTheirDegreesAndCells) {
   const auto [ex, region, out] = laid_out("terraces");
   const auto [a, b] = halves(ex);
