@@ -691,15 +691,13 @@ class Grower {
           {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
-    layout_frame_ = {origin, centre, lo - Vec2{ni * size.x, nj * size.y},
-                     hi + Vec2{ni * size.x, nj * size.y}};
+    layout_frame_ = {origin, centre, size, lo, hi, ni, nj};
+    for (const NetworkEdge& edge : exemplar_.edges)
+      for (std::size_t k = 0; k + 1 < edge.points.size(); ++k)
+        layout_lines_.insert(BgSegment(to_bg(edge.points[k]), to_bg(edge.points[k + 1])));
     for (auto [i, j] : tiles) {
       const Vec2 tile{i * size.x, j * size.y};
       const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
-      for (const NetworkEdge& edge : exemplar_.edges)
-        for (std::size_t k = 0; k + 1 < edge.points.size(); ++k)
-          layout_lines_.insert(
-              BgSegment(to_bg(place(edge.points[k])), to_bg(place(edge.points[k + 1]))));
       std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
       for (std::size_t e : order) {
         const NetworkEdge& edge = exemplar_.edges[e];
@@ -769,15 +767,26 @@ class Grower {
 
   // Whether p lies where the laid-out copies have no exemplar line within `reach`: the
   // exemplar's own empty parts (beyond a radial network's outer ring) are copied too, not seeded.
+  // Beyond the copies, false.
   bool in_layout_void(Vec2 p, double reach) const {
+    const LayoutFrame& f = layout_frame_;
     if (layout_lines_.empty()) return false;
-    const Vec2 q = rotate(p - layout_frame_.origin, -turn_) + layout_frame_.centre;
-    if (q.x < layout_frame_.lo.x || q.y < layout_frame_.lo.y || q.x > layout_frame_.hi.x ||
-        q.y > layout_frame_.hi.y)
+    const Vec2 q = rotate(p - f.origin, -turn_) + f.centre;  // in the exemplar's frame
+    const Vec2 copies = Vec2{f.ni * f.size.x, f.nj * f.size.y};
+    if (q.x < f.lo.x - copies.x || q.y < f.lo.y - copies.y || q.x > f.hi.x + copies.x ||
+        q.y > f.hi.y + copies.y)
       return false;
-    std::vector<BgSegment> near;
-    layout_lines_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
-    return near.empty() || bg::distance(near[0], to_bg(p)) >= reach;
+    // The copy p lies in and its neighbours (a line of the next copy may be nearer).
+    const int i0 = int(std::lround((q.x - f.centre.x) / f.size.x));
+    const int j0 = int(std::lround((q.y - f.centre.y) / f.size.y));
+    for (int j = std::max(j0 - 1, -f.nj); j <= std::min(j0 + 1, f.nj); ++j)
+      for (int i = std::max(i0 - 1, -f.ni); i <= std::min(i0 + 1, f.ni); ++i) {
+        const BgPoint in_copy = to_bg(q - Vec2{i * f.size.x, j * f.size.y});
+        std::vector<BgSegment> near;
+        layout_lines_.query(bgi::nearest(in_copy, 1), std::back_inserter(near));
+        if (!near.empty() && bg::distance(near[0], in_copy) < reach) return false;
+      }
+    return true;
   }
 
   // A placed line counted in the histograms growth steers by.
@@ -1511,11 +1520,13 @@ class Grower {
   BgBox extent_;
   bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
   bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
-  // The layout's copies of the exemplar (every line, laid out or not) and the frame they cover
-  // (exemplar coordinates: p = origin + rotate(q - centre, turn_) for q in [lo, hi]).
+  // The exemplar's lines (laid out or not) as the layout copies them: copy (i, j) of exemplar
+  // point q is at origin + rotate(q - centre + (i size.x, j size.y), turn_), |i| <= ni,
+  // |j| <= nj; lo, hi: the exemplar's extent.
   bgi::rtree<BgSegment, bgi::quadratic<16>> layout_lines_;
   struct LayoutFrame {
-    Vec2 origin, centre, lo, hi;
+    Vec2 origin, centre, size, lo, hi;
+    int ni = 0, nj = 0;
   } layout_frame_;
   bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
 
