@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/layout_copies.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
@@ -647,7 +648,9 @@ class Grower {
   // rigidly as one piece, repeated at the exemplar's extent to cover the region (a seeded shift
   // of at most half a median edge), committed under the same rules as quilted lines; each of
   // their junctions then gets stubs along the exemplar's other edges there, from which growth
-  // fills the cells. False when the exemplar has no such strokes.
+  // fills the cells. A copied dangling end too near a line is moved to keep the clearance, and
+  // the copies' empty parts get no lattice seed (layout_copies.hpp). False when the exemplar has
+  // no such strokes.
   bool lay_out_long_strokes() {
     const std::vector<double> skeleton = network_detail::long_stroke_edges(
         exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
@@ -691,10 +694,8 @@ class Grower {
           {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
-    layout_frame_ = {origin, centre, size, lo, hi, ni, nj};
-    for (const NetworkEdge& edge : exemplar_.edges)
-      for (std::size_t k = 0; k + 1 < edge.points.size(); ++k)
-        layout_lines_.insert(BgSegment(to_bg(edge.points[k]), to_bg(edge.points[k + 1])));
+    layout_copies_.emplace(
+        exemplar_, network_detail::LayoutFrame{origin, centre, size, lo, hi, turn_, ni, nj});
     for (auto [i, j] : tiles) {
       const Vec2 tile{i * size.x, j * size.y};
       const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
@@ -710,8 +711,9 @@ class Grower {
             const auto free_end = [&](int end, Vec2 p) {
               return degree[std::size_t(end)] == 1 && p == place(exemplar_.nodes[std::size_t(end)]);
             };
-            kept = with_free_ends_clear(std::move(kept), free_end(edge.from, kept.front()),
-                                        free_end(edge.to, kept.back()));
+            kept = network_detail::with_free_ends_clear(
+                std::move(kept), free_end(edge.from, kept.front()), free_end(edge.to, kept.back()),
+                clearance_, [&](Vec2 p) { return clear_of_lines(p); });
             if (kept.empty() || !place_line(kept, clearance_)) continue;
           }
           count_line(kept);
@@ -735,58 +737,11 @@ class Grower {
     return true;
   }
 
-  // A copied line whose dangling ends (`front`, `back`) lie within the clearance of a line (an
-  // exemplar's line drawn a hair past another or stopping a hair short of it) with those ends
-  // moved along it until they keep the clearance: back when the line is long enough, else on
-  // beyond the line it crossed. The copy keeps the exemplar's dangling end, its crossing and its
-  // degrees, where dropping the line would leave a T the exemplar does not have. Empty when no
-  // move within three clearances keeps it.
-  std::vector<Vec2> with_free_ends_clear(std::vector<Vec2> pts, bool front, bool back) const {
-    const auto clear = [&](Vec2 p) {
-      std::vector<SegValue> near;
-      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
-      return near.empty() || bg::distance(near[0].first, to_bg(p)) >= clearance_;
-    };
-    for (int end = 0; end < 2; ++end) {
-      const bool at_back = end == 1;
-      if (!(at_back ? back : front) || clear(at_back ? pts.back() : pts.front())) continue;
-      std::vector<Vec2> moved;
-      for (int step = 1; step <= 30 && moved.empty(); ++step)
-        for (double by : {-0.1 * step * clearance_, 0.1 * step * clearance_}) {
-          std::vector<Vec2> q = network_detail::moved_end(pts, at_back, by);
-          if (!q.empty() && clear(at_back ? q.back() : q.front())) {
-            moved = std::move(q);
-            break;
-          }
-        }
-      if (moved.empty()) return {};
-      pts = std::move(moved);
-    }
-    return pts;
-  }
-
-  // Whether p lies where the laid-out copies have no exemplar line within `reach`: the
-  // exemplar's own empty parts (beyond a radial network's outer ring) are copied too, not seeded.
-  // Beyond the copies, false.
-  bool in_layout_void(Vec2 p, double reach) const {
-    const LayoutFrame& f = layout_frame_;
-    if (layout_lines_.empty()) return false;
-    const Vec2 q = rotate(p - f.origin, -turn_) + f.centre;  // in the exemplar's frame
-    const Vec2 copies = Vec2{f.ni * f.size.x, f.nj * f.size.y};
-    if (q.x < f.lo.x - copies.x || q.y < f.lo.y - copies.y || q.x > f.hi.x + copies.x ||
-        q.y > f.hi.y + copies.y)
-      return false;
-    // The copy p lies in and its neighbours (a line of the next copy may be nearer).
-    const int i0 = int(std::lround((q.x - f.centre.x) / f.size.x));
-    const int j0 = int(std::lround((q.y - f.centre.y) / f.size.y));
-    for (int j = std::max(j0 - 1, -f.nj); j <= std::min(j0 + 1, f.nj); ++j)
-      for (int i = std::max(i0 - 1, -f.ni); i <= std::min(i0 + 1, f.ni); ++i) {
-        const BgPoint in_copy = to_bg(q - Vec2{i * f.size.x, j * f.size.y});
-        std::vector<BgSegment> near;
-        layout_lines_.query(bgi::nearest(in_copy, 1), std::back_inserter(near));
-        if (!near.empty() && bg::distance(near[0], in_copy) < reach) return false;
-      }
-    return true;
+  // Whether a new node at p would keep the clearance from every line.
+  bool clear_of_lines(Vec2 p) const {
+    std::vector<SegValue> near;
+    segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
+    return near.empty() || bg::distance(near[0].first, to_bg(p)) >= clearance_;
   }
 
   // A placed line counted in the histograms growth steers by.
@@ -874,10 +829,7 @@ class Grower {
     for (int k = 0; k < 2; ++k) {
       if (ends[k] >= 0) continue;
       // A new node keeps the clearance from every line (it may not lie on one).
-      const Vec2 p = k == 0 ? pts.front() : pts.back();
-      std::vector<SegValue> near;
-      segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
-      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < clearance_) return false;
+      if (!clear_of_lines(k == 0 ? pts.front() : pts.back())) return false;
     }
     if (ring && pts.size() < 4) return false;
     if (!valid(pts, true, false, joint_slack)) return false;
@@ -1275,7 +1227,8 @@ class Grower {
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < 0.75 * spacing) continue;
-      if (near_boundary(p) || in_layout_void(p, 0.75 * spacing)) continue;
+      if (near_boundary(p) || (layout_copies_ && layout_copies_->empty_near(p, 0.75 * spacing)))
+        continue;
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
       const int node = add_node(p);
       ++report_.seeds;
@@ -1520,14 +1473,8 @@ class Grower {
   BgBox extent_;
   bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
   bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
-  // The exemplar's lines (laid out or not) as the layout copies them: copy (i, j) of exemplar
-  // point q is at origin + rotate(q - centre + (i size.x, j size.y), turn_), |i| <= ni,
-  // |j| <= nj; lo, hi: the exemplar's extent.
-  bgi::rtree<BgSegment, bgi::quadratic<16>> layout_lines_;
-  struct LayoutFrame {
-    Vec2 origin, centre, size, lo, hi;
-    int ni = 0, nj = 0;
-  } layout_frame_;
+  // The layout's copies of the exemplar (their empty parts get no lattice seed).
+  std::optional<network_detail::LayoutCopies> layout_copies_;
   bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
 
   Network out_;

@@ -104,26 +104,4 @@ std::vector<double> long_stroke_edges(const Network& ex, double deflection, doub
   return is_long;
 }
 
-std::vector<Vec2> moved_end(std::vector<Vec2> pts, bool at_back, double by) {
-  if (!at_back) std::reverse(pts.begin(), pts.end());
-  if (by >= 0.0) {
-    const double heading = leaving_heading(pts, false) + std::numbers::pi;
-    pts.back() = pts.back() + Vec2{std::cos(heading), std::sin(heading)} * by;
-  } else {
-    double left = -by;
-    while (pts.size() >= 2) {
-      const double last = distance(pts[pts.size() - 2], pts.back());
-      if (last > left) {
-        pts.back() = lerp(pts.back(), pts[pts.size() - 2], left / last);
-        break;
-      }
-      left -= last;
-      pts.pop_back();
-    }
-    if (pts.size() < 2 || polyline_length(pts) <= 1e-9 * -by) return {};
-  }
-  if (!at_back) std::reverse(pts.begin(), pts.end());
-  return pts;
-}
-
 }  // namespace tw::network_detail

@@ -20,9 +20,4 @@ double leaving_heading(const std::vector<Vec2>& points, bool from_start);
 std::vector<double> long_stroke_edges(const Network& exemplar, double deflection,
                                       double min_fraction, double min_share);
 
-// A polyline with one end (the last point when `at_back`) moved along the line: `by` > 0
-// metres further straight ahead along its end segment, `by` < 0 metres back along the line
-// (empty when that leaves less than a hair).
-std::vector<Vec2> moved_end(std::vector<Vec2> points, bool at_back, double by);
-
 }  // namespace tw::network_detail
