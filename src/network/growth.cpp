@@ -705,6 +705,11 @@ class Grower {
         std::vector<Vec2> pts;
         for (Vec2 p : edge.points) pts.push_back(place(p));
         for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
+          // A line grazing the region's edge leaves a sliver cut at both ends: growth refuses
+          // pieces that short, and the layout does too.
+          if (polyline_length(part) < min_piece_ && near_boundary(part.front()) &&
+              near_boundary(part.back()))
+            continue;
           std::vector<Vec2> kept = part;
           if (!place_line(std::move(part), clearance_)) {
             // An exemplar's dangling end (degree 1) the copy kept uncut.
@@ -937,7 +942,7 @@ class Grower {
       const Piece& piece = pieces_[std::size_t(stub.own_piece)];
       std::vector<Vec2> pts;
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
-      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts))) {
+      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts), true)) {
         commit(stub, piece, std::move(*o));
         return;
       }
@@ -1015,7 +1020,11 @@ class Grower {
     return best;
   }
 
-  std::optional<Outcome> evaluate(const Stub& stub, const Piece& piece, std::vector<Vec2> pts) {
+  // `exemplar_copy`: the piece lies where the exemplar has it (a laid-out junction's own
+  // piece), so it keeps the exemplar's own spacing from the lines beside it, as the layout's
+  // copied lines do (valid's `own_clearance`).
+  std::optional<Outcome> evaluate(const Stub& stub, const Piece& piece, std::vector<Vec2> pts,
+                                  bool exemplar_copy = false) {
     Ending ending;
     std::optional<Hit> edge_hit = first_edge_hit(pts);
     std::optional<Hit> wall = first_boundary_hit(pts);
@@ -1096,7 +1105,7 @@ class Grower {
             (back - line.back()) *
                 std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
       }
-      if (!valid(line, joint)) continue;
+      if (!valid(line, joint, !exemplar_copy)) continue;
       return std::move(o);
     }
     return std::nullopt;
