@@ -81,6 +81,15 @@ struct Stub {
   int own_piece = -1;  // a laid-out junction's stub: the piece leaving it in the exemplar
 };
 
+// How near other lines a candidate may come (Grower::valid). `grown`: the clearance from every
+// line but within the clearance of its joints, both ways, and from its own other segments.
+// `copied`: a copy of an exemplar line (the quilt's, the layout's), whose ends may lie near its
+// own segments and whose part near a joint may pass another line's corner beyond the joint, as
+// in the exemplar. `laid_out`: a copy laid out where the exemplar has it around its joints (the
+// layout's lines, a laid-out junction's own piece): the lines meeting it at a joint are exempt
+// within the joint's clearance too.
+enum class Spacing { grown, copied, laid_out };
+
 // Below this angle (radians) a line does not end on an edge: the cell would be a sliver.
 constexpr double kMinMeetingAngle = 0.35;
 // The layout copies strokes at least this part of the exemplar's longer side long, when they
@@ -504,13 +513,13 @@ class Grower {
   // Whether the candidate may be placed: no crossing but at its joints (its start, and its end
   // when that is on the network), the clearance elsewhere, inside the region, off forbidden
   // cells.
-  // `own_clearance` false: a copy of an exemplar line, whose ends may lie near its own segments
-  // as they do in the exemplar (it is still checked to be simple).
+  // `spacing` (Spacing): how near other lines a copy of exemplar lines may come.
   // `joint_slack`: a crossing this close to a joint, with a segment that ends at that joint,
   // counts as meeting there (a line copied by a translation meets its continuation nearly
   // collinearly, where the rounding of the copy puts the crossing a hair off the node).
-  bool valid(const std::vector<Vec2>& pts, bool end_joint, bool own_clearance = true,
+  bool valid(const std::vector<Vec2>& pts, bool end_joint, Spacing spacing = Spacing::grown,
              double joint_slack = 0.0) {
+    const bool own_clearance = spacing == Spacing::grown;
     const Vec2 start = pts.front(), end = pts.back();
     const double eps = 1e-7 * median_;
     std::vector<SegValue> near;
@@ -565,12 +574,23 @@ class Grower {
         bool at_joint = false;
         for (Vec2 j : joints) at_joint = at_joint || distance_to_segment(j, ea, eb) <= eps;
         if (at_joint) continue;
-        if (kept && bg::distance(trimmed, v.first) < clearance_) return false;
+        // A laid-out line keeps the exemplar's spacing from the lines it meets at its joints:
+        // their part within the joint's clearance is exempt too, as the candidate's is (two
+        // lines meeting at right angles are just a clearance apart outside it).
+        Vec2 sa = ea, sb = eb;
+        bool stored_outside = true;
+        if (spacing == Spacing::laid_out && edge_meets(v.second, joints))
+          for (Vec2 j : joints)
+            if (distance_to_segment(j, sa, sb) < clearance_)
+              stored_outside = stored_outside && outside_disc(sa, sb, j, clearance_);
+        if (kept && stored_outside &&
+            bg::distance(trimmed, BgSegment(to_bg(sa), to_bg(sb))) < clearance_)
+          return false;
         // The other way round: the candidate's part near a joint is exempt only from the lines
         // meeting there and from what lies within the clearance of the joint, not from another
         // line's corner farther off that it would graze (a grown piece leaving a junction 6 m
         // from a free end passed 5.8 m from it with a clearance of 6). Copies of exemplar lines
-        // (`own_clearance` false) keep the exemplar's own spacing.
+        // (not `Spacing::grown`) keep the exemplar's own spacing.
         Vec2 va = ea, vb = eb;
         bool stored_kept = true;
         for (Vec2 j : joints) stored_kept = stored_kept && outside_disc(va, vb, j, clearance_);
@@ -660,8 +680,18 @@ class Grower {
     for (std::size_t e = 0; e < skeleton.size(); ++e)
       if (skeleton[e] > 0.0) order.push_back(e);
     if (order.empty()) return false;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return skeleton[a] > skeleton[b]; });
+    // An edge ending in a dangling end of the exemplar comes after those that do not: a drawn
+    // line ending a hair short of another (a near T) then has its end moved back to keep the
+    // clearance, instead of blocking the line it almost meets.
+    const std::vector<int> exemplar_degree = exemplar_.degrees();
+    const auto dangles = [&](std::size_t e) {
+      return exemplar_degree[std::size_t(exemplar_.edges[e].from)] == 1 ||
+             exemplar_degree[std::size_t(exemplar_.edges[e].to)] == 1;
+    };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      if (dangles(a) != dangles(b)) return dangles(b);
+      return skeleton[a] > skeleton[b];
+    });
     Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
     for (Vec2 p : exemplar_.nodes) {
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
@@ -711,7 +741,7 @@ class Grower {
               near_boundary(part.back()))
             continue;
           std::vector<Vec2> kept = part;
-          if (!place_line(std::move(part), clearance_)) {
+          if (!place_line(std::move(part), clearance_, Spacing::laid_out)) {
             // An exemplar's dangling end (degree 1) the copy kept uncut.
             const auto free_end = [&](int end, Vec2 p) {
               return degree[std::size_t(end)] == 1 && p == place(exemplar_.nodes[std::size_t(end)]);
@@ -719,7 +749,7 @@ class Grower {
             kept = network_detail::with_free_ends_clear(
                 std::move(kept), free_end(edge.from, kept.front()), free_end(edge.to, kept.back()),
                 clearance_, [&](Vec2 p) { return clear_of_lines(p); });
-            if (kept.empty() || !place_line(kept, clearance_)) continue;
+            if (kept.empty() || !place_line(kept, clearance_, Spacing::laid_out)) continue;
           }
           count_line(kept);
           for (int end : {edge.from, edge.to}) {
@@ -823,7 +853,8 @@ class Grower {
 
   // Commits a quilt line when it keeps the rules; its ends join the nodes already at their
   // exact places (the block's junctions, a stitched seam).
-  bool place_line(std::vector<Vec2> pts, double joint_slack = 0.0) {
+  bool place_line(std::vector<Vec2> pts, double joint_slack = 0.0,
+                  Spacing spacing = Spacing::copied) {
     if (pts.size() < 2 || polyline_length(pts) <= 1e-9 * median_) return false;
     const auto existing = [&](Vec2 p) {
       const auto it = node_at_.find({p.x, p.y});
@@ -837,7 +868,7 @@ class Grower {
       if (!clear_of_lines(k == 0 ? pts.front() : pts.back())) return false;
     }
     if (ring && pts.size() < 4) return false;
-    if (!valid(pts, true, false, joint_slack)) return false;
+    if (!valid(pts, true, spacing, joint_slack)) return false;
     for (int k = 0; k < 2; ++k) {
       if (ends[k] >= 0) continue;
       if (k == 1 && ring) {
@@ -942,7 +973,7 @@ class Grower {
       const Piece& piece = pieces_[std::size_t(stub.own_piece)];
       std::vector<Vec2> pts;
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
-      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts), true)) {
+      if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts), Spacing::laid_out)) {
         commit(stub, piece, std::move(*o));
         return;
       }
@@ -1020,11 +1051,10 @@ class Grower {
     return best;
   }
 
-  // `exemplar_copy`: the piece lies where the exemplar has it (a laid-out junction's own
-  // piece), so it keeps the exemplar's own spacing from the lines beside it, as the layout's
-  // copied lines do (valid's `own_clearance`).
+  // `spacing`: Spacing::laid_out for a laid-out junction's own piece, which lies where the
+  // exemplar has it beside the laid-out lines.
   std::optional<Outcome> evaluate(const Stub& stub, const Piece& piece, std::vector<Vec2> pts,
-                                  bool exemplar_copy = false) {
+                                  Spacing spacing = Spacing::grown) {
     Ending ending;
     std::optional<Hit> edge_hit = first_edge_hit(pts);
     std::optional<Hit> wall = first_boundary_hit(pts);
@@ -1105,7 +1135,7 @@ class Grower {
             (back - line.back()) *
                 std::min(0.5, 1e-9 * median_ / std::max(distance(back, line.back()), 1e-300));
       }
-      if (!valid(line, joint, !exemplar_copy)) continue;
+      if (!valid(line, joint, spacing)) continue;
       return std::move(o);
     }
     return std::nullopt;
