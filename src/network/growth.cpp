@@ -1078,6 +1078,15 @@ class Grower {
       const double da = distance(vec(a.first), end), db = distance(vec(b.first), end);
       return da != db ? da < db : a.second < b.second;
     });
+    if (spacing == Spacing::laid_out && ending.kind == Ending::Kind::free &&
+        piece.end_degree == 1) {
+      // A dangling end of the exemplar beside the laid-out lines stays one, as the layout's
+      // copied ends do (moved to keep the clearance when it must), rather than snapped onto a
+      // line the exemplar's end does not reach: drawn lines ending a hair short of another.
+      std::vector<Vec2> kept = network_detail::with_free_ends_clear(
+          pts, false, true, clearance_, [&](Vec2 p) { return clear_of_lines(p); });
+      if (!kept.empty()) variants.push_back({ending, std::move(kept), 1, -1});
+    }
     const double reach = ending.kind == Ending::Kind::free ? snap_ : 2.0 * clearance_;
     for (const NodeValue& n : close) {
       if (n.second == stub.node || distance(vec(n.first), end) > reach) continue;
