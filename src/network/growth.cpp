@@ -735,9 +735,10 @@ class Grower {
         std::vector<Vec2> pts;
         for (Vec2 p : edge.points) pts.push_back(place(p));
         for (std::vector<Vec2>& part : inside_parts(std::move(pts))) {
-          // A line grazing the region's edge leaves a sliver cut at both ends: growth refuses
-          // pieces that short, and the layout does too.
-          if (polyline_length(part) < min_piece_ && near_boundary(part.front()) &&
+          // A line grazing the region's edge (a corner of the exemplar's own edge, where a
+          // ramp turns into a wall, shifted just inside) leaves a part cut at both ends, shorter
+          // than a typical edge, turning sharply: not copied.
+          if (polyline_length(part) < median_ && near_boundary(part.front()) &&
               near_boundary(part.back()))
             continue;
           std::vector<Vec2> kept = part;

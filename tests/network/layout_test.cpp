@@ -6,11 +6,13 @@
 
 #include <cmath>
 
+#include "network/baseline.hpp"
 #include "network/check.hpp"
 #include "network/example_networks.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "test_support.hpp"
 
 namespace tw {
 namespace {
@@ -33,7 +35,8 @@ double layout_distance(const Network& ex, const Network& out, int p) {
   return normalized_w1(property(network_stats(ex), p), property(network_stats(out), p));
 }
 
-constexpr int kDegree = 0, kJunctionAngle = 3, kFaceArea = 4;
+constexpr int kDegree = 0, kEdgeLength = 1, kCurvature = 2, kJunctionAngle = 3, kFaceArea = 4,
+              kBearing = 5;
 
 // `automatic` over a region of the exemplar's size, seed 1: it chose the layout, and the
 // output keeps every rule.
@@ -111,6 +114,58 @@ TEST(NetworkLayout, TerraceWallsKeepTheirDegreesAndCells) {
     const double own =
         normalized_w1(property(network_stats(ex, a), p), property(network_stats(ex, b), p));
     EXPECT_LE(layout_distance(ex, out, p), std::max(1.5 * own, 0.05)) << kNetworkProperties[p];
+  }
+}
+
+// Issue #20's target for one property at one seed: within 1.5 x the exemplar's half-to-half
+// distance (or 0.05) and closer than the naive placement baseline.
+void expect_layout_target(const Network& ex, const Network& out, const Network& base, int p,
+                          std::uint64_t seed) {
+  const auto [a, b] = halves(ex);
+  const double own =
+      normalized_w1(property(network_stats(ex, a), p), property(network_stats(ex, b), p));
+  const double d = layout_distance(ex, out, p);
+  EXPECT_LE(d, std::max(1.5 * own, 0.05)) << kNetworkProperties[p] << " seed " << seed;
+  EXPECT_LT(d, layout_distance(ex, base, p)) << kNetworkProperties[p] << " seed " << seed;
+}
+
+// The terrace walls' ramps are straight in the exemplar: each laid-out junction takes its own
+// ramp (kept at the exemplar's spacing from the wall beside it, where growth's clearance test
+// refused it and a drawn, snapped and bent candidate came instead), and a wall grazing the
+// region's edge leaves no sliver (a sharply bent edge 11 m long). Curvature beats the placement
+// baseline at seeds 1-3 (before: 0.50 and 0.35 against 0.09 and 0.12 at seeds 1 and 2).
+TEST(NetworkLayout, TerraceRampsStayStraightAndCurvatureBeatsTheBaseline) {
+  const Network ex = layout_exemplar("terraces");
+  const std::vector<Polygon> region = layout_region(ex);
+  for (std::uint64_t seed : {1, 2, 3}) {
+    NetworkGrowthReport report;
+    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
+    EXPECT_EQ(chosen_network_method(report), "layout") << seed;
+    EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
+    expect_layout_target(ex, out, baseline_network(ex, region, seed), kCurvature, seed);
+  }
+}
+
+// The hand-drawn exemplar (tests/data/network_drawn.svg) has lines ending a hair short of
+// another (near T-junctions, dangling ends in its statistics): a long stroke that almost meets
+// a longer one gives way to it (its end moved back), the laid-out lines keep the exemplar's
+// spacing where they meet, and a copied junction's own piece keeps its dangling end instead of
+// snapping onto a line. Degrees, edge lengths and bearings meet the issue's target at seeds
+// 1-3 (before: bearings at no seed, degrees not at seed 3, edge lengths not at seeds 1 and 3).
+TEST(NetworkLayout, DrawnNearTJunctionsKeepTheirDegreesAndBearings) {
+  Warnings w;
+  const Network ex = build_planar_network(
+      read_network_lines({.source = (test::source_dir() / "tests/data/network_drawn.svg").string()},
+                         w),
+      1e-3, "drawn", w);
+  const std::vector<Polygon> region = layout_region(ex);
+  for (std::uint64_t seed : {1, 2, 3}) {
+    NetworkGrowthReport report;
+    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed}, &report);
+    EXPECT_EQ(chosen_network_method(report), "layout") << seed;
+    EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
+    const Network base = baseline_network(ex, region, seed);
+    for (int p : {kDegree, kEdgeLength, kBearing}) expect_layout_target(ex, out, base, p, seed);
   }
 }
 
