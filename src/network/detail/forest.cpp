@@ -1,11 +1,10 @@
 #include "network/detail/forest.hpp"
 
-#include <numbers>
-
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <numbers>
 
 #include "core/boost_geometry.hpp"
 #include "network/detail/skeleton.hpp"
