@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/forest.hpp"
 #include "network/detail/layout_copies.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
@@ -73,6 +74,9 @@ constexpr double kStrokeDeflection = 0.12;
 constexpr int kStrokeEdges = 8;
 // The weight of a piece's turn from its exemplar heading (0..1) in a candidate's cost.
 constexpr double kTurnWeight = 0.6;
+// A lattice seed goes where no line is nearer than this quantile of the exemplar's own distances
+// from its extent to its lines (at least 0.75 median edge length).
+constexpr double kSeedRoomQuantile = 0.9;
 
 struct Stub {
   int node = 0;
@@ -323,6 +327,17 @@ class Grower {
         if (degree[n] == 1 && !boundary(int(n))) ++dangling;
       for (const NetworkEdge& e : ex.edges) length += polyline_length(e.points);
       dangling_target_ = dangling / std::max(length, 1e-9);
+      // Where lines end free (a third of the nodes or more: a forest of trees), the gaps between
+      // them are the exemplar's style: a lattice seed needs as much room as most of its gaps.
+      // And where such trees cross rather than end on each other, a branch meeting a line goes
+      // on through it.
+      seed_room_ = 0.75 * median_;
+      if (3 * dangling >= exemplar_nodes_) {
+        seed_room_ = std::max(
+            seed_room_, network_detail::empty_space_quantile(ex, 0.5 * median_, kSeedRoomQuantile));
+        if (network_detail::lines_cross_more_than_they_end_on_lines(ex, kStrokeDeflection))
+          line_meeting_degree_ = 4;
+      }
     }
     for (int j : junctions_) {
       std::vector<double> h;
@@ -1114,13 +1129,13 @@ class Grower {
             if (e.points[j] == a && e.points[j + 1] == b) seg = int(j);
           std::vector<Vec2> bent = pts;
           bend_end(bent, foot);
-          variants.push_back(
-              {Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent), 3, -1});
+          variants.push_back({Ending{Ending::Kind::edge, -1, near[0].second, seg}, std::move(bent),
+                              line_meeting_degree_, -1});
         }
       }
     }
     const int plain_degree = ending.kind == Ending::Kind::free   ? piece.end_degree
-                             : ending.kind == Ending::Kind::edge ? 3
+                             : ending.kind == Ending::Kind::edge ? line_meeting_degree_
                                                                  : 0;
     variants.push_back({ending, pts, plain_degree, -1});
     for (Outcome& o : variants) {
@@ -1165,8 +1180,11 @@ class Grower {
       case Ending::Kind::edge:
         end = split_edge(o.how.edge, o.how.seg, pts.back());
         pts.back() = out_.nodes[std::size_t(end)];
-        planned_[std::size_t(end)] = 3;
+        planned_[std::size_t(end)] = line_meeting_degree_;
         ++report_.t_junctions;
+        // Where the exemplar's lines cross rather than end on each other, the line goes on
+        // through the line it met (an X-junction), when a piece fits beyond it.
+        if (line_meeting_degree_ == 4) push_stub(end, arrive);
         break;
       case Ending::Kind::boundary:
         end = add_node(pts.back());
@@ -1275,7 +1293,7 @@ class Grower {
       if (!inside_region(p) || forbidden_at(p, true)) continue;
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
-      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < 0.75 * spacing) continue;
+      if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < seed_room_) continue;
       if (near_boundary(p) || (layout_copies_ && layout_copies_->empty_near(p, 0.75 * spacing)))
         continue;
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
@@ -1505,6 +1523,8 @@ class Grower {
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
+  double seed_room_ = 0.0;       // seed_lattice: the room a seed needs (metres)
+  int line_meeting_degree_ = 3;  // a line ending on another makes a T (3) or crosses it (4)
   std::vector<double> length_edges_;
   std::array<double, 7> target_degree_{}, have_degree_{};
   std::array<double, 12> target_bearing_{}, have_bearing_{};
