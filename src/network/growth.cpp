@@ -92,6 +92,13 @@ constexpr double kCornerTurn = 0.5;
 // met fewer targets over three seeds: long links break cells).
 constexpr double kCornerReach = 1.5;
 
+// An edge turning less than this in all (radians) is straight; an exemplar whose edges are at
+// least kStraightShare straight gets straight output edges (Grower::straighten_edges).
+constexpr double kStraightTurning = 0.01;
+constexpr double kStraightShare = 0.9;
+// How far (radians) a straightened edge may leave its junctions off its old heading there.
+constexpr double kStraightenDeflection = 1.0;
+
 // Where a candidate ends.
 struct Ending {
   enum class Kind { free, node, edge, boundary } kind = Kind::free;
@@ -171,6 +178,7 @@ class Grower {
       close_corners();
     }
     close_dangling_ends();
+    straighten_edges();
     return finish();
   }
 
@@ -313,6 +321,12 @@ class Grower {
         if (degree[n] == 1 && !boundary(int(n))) ++dangling;
       for (const NetworkEdge& e : ex.edges) length += polyline_length(e.points);
       dangling_target_ = dangling / std::max(length, 1e-9);
+    }
+    {
+      std::size_t straight = 0;
+      for (const NetworkEdge& e : ex.edges)
+        straight += polyline_turning(e.points) < kStraightTurning;
+      straight_share_ = double(straight) / double(ex.edges.size());
     }
     for (int j : junctions_) {
       std::vector<double> h;
@@ -1365,6 +1379,128 @@ class Grower {
     for (int n : ends) trim_from(n, INFINITY);
   }
 
+  // ---- straight edges -------------------------------------------------------------------------
+  // An output edge as finish() will merge it: a chain of alive edges through nodes of degree 2.
+  struct Chain {
+    std::vector<int> edges;
+    int from = -1, to = -1;
+    std::vector<Vec2> points;
+  };
+  std::vector<int> alive_incident(int n) const {
+    std::vector<int> out;
+    for (int e : incident_[std::size_t(n)])
+      if (alive_[std::size_t(e)]) out.push_back(e);
+    return out;
+  }
+  bool passes_through(int n) const {
+    const std::vector<int> inc = alive_incident(n);
+    return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
+           !out_.edges[std::size_t(inc[1])].kept;
+  }
+  std::vector<Chain> chains() const {
+    std::vector<Chain> out;
+    std::vector<char> used(out_.edges.size(), 0);
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      if (passes_through(int(n))) continue;
+      for (int first : alive_incident(int(n))) {
+        if (used[std::size_t(first)] || out_.edges[std::size_t(first)].kept) continue;
+        Chain c;
+        c.from = int(n);
+        c.points.push_back(out_.nodes[n]);
+        int at = int(n), edge = first;
+        while (true) {
+          used[std::size_t(edge)] = 1;
+          c.edges.push_back(edge);
+          const NetworkEdge& e = out_.edges[std::size_t(edge)];
+          std::vector<Vec2> pts = e.points;
+          int next = e.to;
+          if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
+          c.points.insert(c.points.end(), pts.begin() + 1, pts.end());
+          at = next;
+          if (at == int(n) || !passes_through(at)) break;
+          const std::vector<int> inc = alive_incident(at);
+          edge = inc[0] == edge ? inc[1] : inc[0];
+          if (used[std::size_t(edge)]) break;
+        }
+        c.to = at;
+        out.push_back(std::move(c));
+      }
+    }
+    return out;
+  }
+
+  // Where the exemplar's edges are nearly all straight (a grid's tracks, fields split by straight
+  // hedges), the bends the output's edges pick up (a stroke's small deflections, snapped ends
+  // bent, corners merged) are replaced by the edge's chord when the chord is committed under the
+  // same rules as any line, leaves its junctions within kStraightenDeflection of the old
+  // headings and meets the other lines there at kMinMeetingAngle or more: kinks always, corners
+  // while the output holds a larger share of bent edges than the exemplar (its few bent edges
+  // are corners too: a frame's).
+  void straighten_edges() {
+    if (straight_share_ < kStraightShare) return;
+    std::vector<Chain> all = chains();
+    std::size_t bent = 0;
+    std::vector<std::size_t> kinks, corners;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const std::vector<Vec2>& p = all[i].points;
+      if (p.size() < 3 || all[i].from == all[i].to) continue;
+      double sharpest = 0.0;
+      for (std::size_t k = 1; k + 1 < p.size(); ++k)
+        sharpest =
+            std::max(sharpest, std::abs(wrap(heading(p[k + 1] - p[k]) - heading(p[k] - p[k - 1]))));
+      bent += polyline_turning(p) >= kStraightTurning;
+      (sharpest < kCornerTurn ? kinks : corners).push_back(i);
+    }
+    const double allowed = (1.0 - straight_share_) * double(all.size());
+    for (std::size_t i : kinks) {
+      const bool counted = polyline_turning(all[i].points) >= kStraightTurning;
+      if (straighten(all[i]) && counted) --bent;
+    }
+    for (std::size_t i : corners)
+      if (double(bent) > allowed + 0.5 && straighten(all[i])) --bent;
+  }
+
+  bool straighten(const Chain& c) {
+    const std::vector<Vec2> chord{c.points.front(), c.points.back()};
+    if (polyline_length(chord) < min_piece_) return false;
+    for (int end = 0; end < 2; ++end) {
+      const int n = end == 0 ? c.from : c.to;
+      const double old_heading = leaving(c.points, end == 0),
+                   new_heading = leaving(chord, end == 0);
+      if (std::abs(wrap(new_heading - old_heading)) > kStraightenDeflection) return false;
+      for (int other : alive_incident(n)) {
+        if (std::find(c.edges.begin(), c.edges.end(), other) != c.edges.end()) continue;
+        const NetworkEdge& e = out_.edges[std::size_t(other)];
+        if ((e.from == c.from && e.to == c.to) || (e.from == c.to && e.to == c.from)) return false;
+        const double h = leaving(e.points, e.from == n);
+        if (std::abs(wrap(h - new_heading)) < kMinMeetingAngle) return false;
+      }
+    }
+    for (int e : c.edges) index_edge(e, false);
+    if (!valid(chord, true)) {
+      for (int e : c.edges) index_edge(e, true);
+      return false;
+    }
+    for (int e : c.edges) {
+      alive_[std::size_t(e)] = 0;
+      --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+    }
+    // The nodes passed through are gone (a node without edges would count as a seed to avoid).
+    for (std::size_t k = 0; k + 1 < c.edges.size(); ++k) {
+      const NetworkEdge& e = out_.edges[std::size_t(c.edges[k])];
+      for (int n : {e.from, e.to})
+        if (n != c.from && n != c.to && degree_[std::size_t(n)] == 0)
+          nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(n)]), n});
+    }
+    NetworkEdge straight;
+    straight.from = c.from;
+    straight.to = c.to;
+    straight.points = chord;
+    add_edge(std::move(straight));
+    return true;
+  }
+
   // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
   Network finish() {
     const std::size_t nn = out_.nodes.size();
@@ -1448,6 +1584,7 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
+  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
   int exemplar_nodes_ = 0;
 
   BgMultiPolygon region_;
