@@ -1445,9 +1445,8 @@ class Grower {
       const std::vector<Vec2>& p = all[i].points;
       if (p.size() < 3 || all[i].from == all[i].to) continue;
       double sharpest = 0.0;
-      for (std::size_t k = 1; k + 1 < p.size(); ++k)
-        sharpest =
-            std::max(sharpest, std::abs(wrap(heading(p[k + 1] - p[k]) - heading(p[k] - p[k - 1]))));
+      for (std::size_t k = 1; k + 1 < p.size(); ++k)  // as polyline_turning (repeated points)
+        sharpest = std::max(sharpest, polyline_turning({p[k - 1], p[k], p[k + 1]}));
       bent += polyline_turning(p) >= kStraightTurning;
       (sharpest < kCornerTurn ? kinks : corners).push_back(i);
     }
@@ -1476,8 +1475,10 @@ class Grower {
         if (std::abs(wrap(h - new_heading)) < kMinMeetingAngle) return false;
       }
     }
+    // Under the rules the line it replaces kept: a copy of exemplar lines (quilt, layout) keeps
+    // the exemplar's own spacing near its junctions, a grown piece the clearance there too.
     for (int e : c.edges) index_edge(e, false);
-    if (!valid(chord, true)) {
+    if (!valid(chord, true) && (valid(c.points, true) || !valid(chord, true, false))) {
       for (int e : c.edges) index_edge(e, true);
       return false;
     }
