@@ -1438,25 +1438,76 @@ class Grower {
   // are corners too: a frame's).
   void straighten_edges() {
     if (straight_share_ < kStraightShare) return;
-    std::vector<Chain> all = chains();
+    const std::vector<Chain> before = chains();
     std::size_t bent = 0;
-    std::vector<std::size_t> kinks, corners;
-    for (std::size_t i = 0; i < all.size(); ++i) {
-      const std::vector<Vec2>& p = all[i].points;
-      if (p.size() < 3 || all[i].from == all[i].to) continue;
-      double sharpest = 0.0;
-      for (std::size_t k = 1; k + 1 < p.size(); ++k)  // as polyline_turning (repeated points)
-        sharpest = std::max(sharpest, polyline_turning({p[k - 1], p[k], p[k + 1]}));
-      bent += polyline_turning(p) >= kStraightTurning;
-      (sharpest < kCornerTurn ? kinks : corners).push_back(i);
+    for (const Chain& c : before) bent += polyline_turning(c.points) >= kStraightTurning;
+    const double allowed = (1.0 - straight_share_) * double(before.size());
+    // Dead ends the exemplar's rate still allows.
+    int dangling = 0;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n)
+      dangling += degree_[n] == 1 && !out_.on_boundary[n];
+    double length = 0.0;
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i]) length += polyline_length(out_.edges[i].points);
+    int ends_allowed = int(dangling_target_ * length) - dangling;
+    for (const Chain& c : before)
+      if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn &&
+          (straighten(c) || remove_corner(c, ends_allowed)))
+        --bent;
+    // Kinks always (the junctions a removed corner left are straight through now).
+    for (const Chain& c : chains())
+      if (sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0) straighten(c);
+  }
+  static double sharpest_turn(const std::vector<Vec2>& p) {
+    double sharpest = 0.0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)  // as polyline_turning (repeated points)
+      sharpest = std::max(sharpest, polyline_turning({p[k - 1], p[k], p[k + 1]}));
+    return sharpest;
+  }
+
+  // A corner its chord cannot replace is taken out whole, junction to junction, when each
+  // junction at its ends is left a junction still, a line going straight through (within a
+  // stroke's deflection) or a dead end the exemplar's rate allows (`ends_allowed`, spent).
+  bool remove_corner(const Chain& c, int& ends_allowed) {
+    if (c.from == c.to) return false;
+    int new_ends = 0;
+    for (int n : {c.from, c.to}) {
+      if (out_.on_boundary[std::size_t(n)]) continue;  // a cut end, gone with its line
+      std::vector<int> rest;
+      for (int e : alive_incident(n))
+        if (std::find(c.edges.begin(), c.edges.end(), e) == c.edges.end()) rest.push_back(e);
+      if (rest.size() >= 3) continue;
+      if (rest.size() == 1) {
+        ++new_ends;
+        continue;
+      }
+      if (rest.size() != 2) return false;
+      const NetworkEdge& a = out_.edges[std::size_t(rest[0])];
+      const NetworkEdge& b = out_.edges[std::size_t(rest[1])];
+      if (a.kept || b.kept) return false;
+      const double ha = leaving(a.points, a.from == n), hb = leaving(b.points, b.from == n);
+      if (std::abs(wrap(ha - hb - kPi)) > kStrokeDeflection) return false;
     }
-    const double allowed = (1.0 - straight_share_) * double(all.size());
-    for (std::size_t i : kinks) {
-      const bool counted = polyline_turning(all[i].points) >= kStraightTurning;
-      if (straighten(all[i]) && counted) --bent;
+    if (new_ends > ends_allowed) return false;
+    ends_allowed -= new_ends;
+    for (int e : c.edges) {
+      index_edge(e, false);
+      alive_[std::size_t(e)] = 0;
+      --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+      ++report_.pruned;
     }
-    for (std::size_t i : corners)
-      if (double(bent) > allowed + 0.5 && straighten(all[i])) --bent;
+    forget_passed_nodes(c);
+    return true;
+  }
+  // The nodes a chain passed through, left without edges, are no seeds to keep clear of.
+  void forget_passed_nodes(const Chain& c) {
+    for (int e : c.edges) {
+      const NetworkEdge& edge = out_.edges[std::size_t(e)];
+      for (int n : {edge.from, edge.to})
+        if (n != c.from && n != c.to && degree_[std::size_t(n)] == 0)
+          nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(n)]), n});
+    }
   }
 
   bool straighten(const Chain& c) {
@@ -1487,13 +1538,7 @@ class Grower {
       --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
       --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
     }
-    // The nodes passed through are gone (a node without edges would count as a seed to avoid).
-    for (std::size_t k = 0; k + 1 < c.edges.size(); ++k) {
-      const NetworkEdge& e = out_.edges[std::size_t(c.edges[k])];
-      for (int n : {e.from, e.to})
-        if (n != c.from && n != c.to && degree_[std::size_t(n)] == 0)
-          nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(n)]), n});
-    }
+    forget_passed_nodes(c);
     NetworkEdge straight;
     straight.from = c.from;
     straight.to = c.to;
