@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/border.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
@@ -99,6 +100,10 @@ constexpr double kStraightShare = 0.9;
 // How far (radians) a straightened edge may leave its junctions off its old heading there.
 constexpr double kStraightenDeflection = 1.0;
 
+// An exemplar whose lines come within the clearance of this share of its extent's perimeter
+// has a drawn frame: its border is that frame, not its outermost cells' sides (keep_whole_cells).
+constexpr double kFrameShare = 0.9;
+
 // Where a candidate ends.
 struct Ending {
   enum class Kind { free, node, edge, boundary } kind = Kind::free;
@@ -139,6 +144,7 @@ class Grower {
   }
 
   void add_partial(const Network& partial) {
+    completing_ = !partial.edges.empty();
     std::vector<int> id(partial.nodes.size());
     for (std::size_t n = 0; n < partial.nodes.size(); ++n) id[n] = add_node(partial.nodes[n]);
     for (const NetworkEdge& e : partial.edges) {
@@ -178,6 +184,7 @@ class Grower {
       close_corners();
     }
     close_dangling_ends();
+    keep_whole_cells();
     straighten_edges();
     return finish();
   }
@@ -321,6 +328,10 @@ class Grower {
         if (degree[n] == 1 && !boundary(int(n))) ++dangling;
       for (const NetworkEdge& e : ex.edges) length += polyline_length(e.points);
       dangling_target_ = dangling / std::max(length, 1e-9);
+      whole_cells_ = dangling == 0 &&
+                     std::none_of(ex.on_boundary.begin(), ex.on_boundary.end(),
+                                  [](char b) { return b != 0; }) &&
+                     !network_detail::has_drawn_frame(ex, clearance_, kFrameShare);
     }
     {
       std::size_t straight = 0;
@@ -1379,6 +1390,29 @@ class Grower {
     for (int n : ends) trim_from(n, INFINITY);
   }
 
+  // ---- whole cells at the border --------------------------------------------------------------
+  // An exemplar of closed cells, none cut (no dangling end, no end on a region's boundary: its
+  // outermost cells are whole and their outer sides are its border), gets the same border: the
+  // lines cut by the region's boundary are taken out back to their junctions, so that the
+  // outermost cells left are whole and their outer sides, merged through the nodes that lost the
+  // cut line, are the output's border.
+  void keep_whole_cells() {
+    if (!whole_cells_ || completing_) return;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      if (!out_.on_boundary[n] || degree_[n] != 1) continue;
+      const std::vector<int> inc = alive_incident(int(n));
+      if (inc.size() != 1 || out_.edges[std::size_t(inc[0])].kept) continue;
+      const NetworkEdge& e = out_.edges[std::size_t(inc[0])];
+      const int other = e.from == int(n) ? e.to : e.from;
+      index_edge(inc[0], false);
+      alive_[std::size_t(inc[0])] = 0;
+      --degree_[n];
+      --degree_[std::size_t(other)];
+      ++report_.pruned;
+      trim_from(other, INFINITY);
+    }
+  }
+
   // ---- straight edges -------------------------------------------------------------------------
   // An output edge as finish() will merge it: a chain of alive edges through nodes of degree 2.
   struct Chain {
@@ -1631,6 +1665,8 @@ class Grower {
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
   double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
+  bool whole_cells_ = false;     // the exemplar's cells are all closed, none cut (keep_whole_cells)
+  bool completing_ = false;      // a partial network is kept (add_partial)
   int exemplar_nodes_ = 0;
 
   BgMultiPolygon region_;
