@@ -16,7 +16,7 @@
 namespace tw {
 namespace {
 
-constexpr int kCurvature = 2;
+constexpr int kStraightCurvature = 2;
 
 std::vector<Polygon> straight_region(const Network& ex) {
   Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
@@ -44,13 +44,13 @@ TEST(NetworkStraight, AStraightExemplarsCurvatureIsMetOnTheGrid) {
   EXPECT_EQ(check_network(out, region, nullptr).total(), 0);
   EXPECT_LE(bent_share(out), bent_share(ex) + 1.0 / double(out.edges.size()));
   const auto [a, b] = halves(ex);
-  const double d_halves = normalized_w1(property(network_stats(ex, a), kCurvature),
-                                        property(network_stats(ex, b), kCurvature));
+  const double d_halves = normalized_w1(property(network_stats(ex, a), kStraightCurvature),
+                                        property(network_stats(ex, b), kStraightCurvature));
   const double d_base =
-      normalized_w1(property(network_stats(ex), kCurvature),
-                    property(network_stats(baseline_network(ex, region, 1)), kCurvature));
-  const double d_out = normalized_w1(property(network_stats(ex), kCurvature),
-                                     property(network_stats(out), kCurvature));
+      normalized_w1(property(network_stats(ex), kStraightCurvature),
+                    property(network_stats(baseline_network(ex, region, 1)), kStraightCurvature));
+  const double d_out = normalized_w1(property(network_stats(ex), kStraightCurvature),
+                                     property(network_stats(out), kStraightCurvature));
   EXPECT_LE(d_out, std::max(1.5 * d_halves, 0.05));
   EXPECT_LT(d_out, d_base);
 }
