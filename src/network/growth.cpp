@@ -861,14 +861,14 @@ class Grower {
   }
 
   // A dangling end removed with its edge, and the chain behind it up to the last junction (at
-  // most `at_most` metres of line).
-  void trim_from(int n, double at_most) {
+  // most `at_most` metres of line); the node where it stopped.
+  int trim_from(int n, double at_most) {
     double trimmed = 0.0;
     while (degree_[std::size_t(n)] == 1 && !out_.on_boundary[std::size_t(n)] && trimmed < at_most) {
       int edge = -1;
       for (int i : incident_[std::size_t(n)])
         if (alive_[std::size_t(i)]) edge = i;
-      if (edge < 0 || out_.edges[std::size_t(edge)].kept) return;
+      if (edge < 0 || out_.edges[std::size_t(edge)].kept) return n;
       const NetworkEdge& e = out_.edges[std::size_t(edge)];
       const int other = e.from == n ? e.to : e.from;
       trimmed += polyline_length(e.points);
@@ -879,6 +879,7 @@ class Grower {
       ++report_.pruned;
       n = other;
     }
+    return n;
   }
 
   // ---- growth ----------------------------------------------------------------------------------
@@ -1409,7 +1410,8 @@ class Grower {
       --degree_[n];
       --degree_[std::size_t(other)];
       ++report_.pruned;
-      trim_from(other, INFINITY);
+      border_node_.resize(out_.nodes.size(), 0);
+      border_node_[std::size_t(trim_from(other, INFINITY))] = 1;
     }
   }
 
@@ -1484,8 +1486,17 @@ class Grower {
     for (std::size_t i = 0; i < out_.edges.size(); ++i)
       if (alive_[i]) length += polyline_length(out_.edges[i].points);
     int ends_allowed = int(dangling_target_ * length) - dangling;
+    // The outermost cells' sides merged through the nodes that lost a cut line are the
+    // exemplar's own kind of bend (its border's): they are kept.
+    border_node_.resize(out_.nodes.size(), 0);
+    const auto on_border = [&](const Chain& c) {
+      for (int e : c.edges)
+        for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
+          if (n != c.from && n != c.to && border_node_[std::size_t(n)]) return true;
+      return false;
+    };
     for (const Chain& c : before)
-      if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn &&
+      if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn && !on_border(c) &&
           (straighten(c) || remove_corner(c, ends_allowed)))
         --bent;
     // Kinks always (the junctions a removed corner left are straight through now).
@@ -1664,9 +1675,10 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
-  bool whole_cells_ = false;     // the exemplar's cells are all closed, none cut (keep_whole_cells)
-  bool completing_ = false;      // a partial network is kept (add_partial)
+  double straight_share_ = 0.0;    // of the exemplar's edges, those turning under kStraightTurning
+  std::vector<char> border_node_;  // per node: it lost a line cut by the region (keep_whole_cells)
+  bool whole_cells_ = false;  // the exemplar's cells are all closed, none cut (keep_whole_cells)
+  bool completing_ = false;   // a partial network is kept (add_partial)
   int exemplar_nodes_ = 0;
 
   BgMultiPolygon region_;
