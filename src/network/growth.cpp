@@ -1510,31 +1510,24 @@ class Grower {
     return sharpest;
   }
 
-  // A corner its chord cannot replace is taken out whole, junction to junction, when each
-  // junction at its ends is left a junction still, a line going straight through (within a
-  // stroke's deflection) or a dead end the exemplar's rate allows (`ends_allowed`, spent).
-  bool remove_corner(const Chain& c, int& ends_allowed) {
-    if (c.from == c.to) return false;
-    int new_ends = 0;
-    for (int n : {c.from, c.to}) {
-      if (out_.on_boundary[std::size_t(n)]) continue;  // a cut end, gone with its line
-      std::vector<int> rest;
-      for (int e : alive_incident(n))
-        if (std::find(c.edges.begin(), c.edges.end(), e) == c.edges.end()) rest.push_back(e);
-      if (rest.size() >= 3) continue;
-      if (rest.size() == 1) {
-        ++new_ends;
-        continue;
-      }
-      if (rest.size() != 2) return false;
-      const NetworkEdge& a = out_.edges[std::size_t(rest[0])];
-      const NetworkEdge& b = out_.edges[std::size_t(rest[1])];
-      if (a.kept || b.kept) return false;
-      const double ha = leaving(a.points, a.from == n), hb = leaving(b.points, b.from == n);
-      if (std::abs(wrap(ha - hb - kPi)) > kStrokeDeflection) return false;
-    }
-    if (new_ends > ends_allowed) return false;
-    ends_allowed -= new_ends;
+  // How many dead ends taking chain `c` off leaves at its end node n (0 or 1), or -1 when that
+  // is not allowed: n is left a junction still, a line going straight through it (within a
+  // stroke's deflection) or a dead end; a cut end on the boundary goes with its line.
+  int ends_left_at(int n, const Chain& c) const {
+    if (out_.on_boundary[std::size_t(n)]) return 0;
+    std::vector<int> rest;
+    for (int e : alive_incident(n))
+      if (std::find(c.edges.begin(), c.edges.end(), e) == c.edges.end()) rest.push_back(e);
+    if (rest.size() >= 3) return 0;
+    if (rest.size() == 1) return 1;
+    if (rest.size() != 2) return -1;
+    const NetworkEdge& a = out_.edges[std::size_t(rest[0])];
+    const NetworkEdge& b = out_.edges[std::size_t(rest[1])];
+    if (a.kept || b.kept) return -1;
+    const double ha = leaving(a.points, a.from == n), hb = leaving(b.points, b.from == n);
+    return std::abs(wrap(ha - hb - kPi)) > kStrokeDeflection ? -1 : 0;
+  }
+  void take_off(const Chain& c) {
     for (int e : c.edges) {
       index_edge(e, false);
       alive_[std::size_t(e)] = 0;
@@ -1543,7 +1536,46 @@ class Grower {
       ++report_.pruned;
     }
     forget_passed_nodes(c);
-    return true;
+  }
+
+  // A corner its chord cannot replace is taken out whole, junction to junction, when both its
+  // end nodes allow it (ends_left_at) and the dead ends left are within the exemplar's rate
+  // (`ends_allowed`, spent); else one leg is taken off at the corner (the shorter first), the
+  // corner becoming a dead end, the other leg kept as it lies.
+  bool remove_corner(const Chain& c, int& ends_allowed) {
+    if (c.from == c.to) return false;
+    const int at_from = ends_left_at(c.from, c), at_to = ends_left_at(c.to, c);
+    if (at_from >= 0 && at_to >= 0 && at_from + at_to <= ends_allowed) {
+      ends_allowed -= at_from + at_to;
+      take_off(c);
+      return true;
+    }
+    const std::vector<Vec2>& p = c.points;
+    std::size_t corner = 0;
+    double sharpest = 0.0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      if (const double t = polyline_turning({p[k - 1], p[k], p[k + 1]}); t > sharpest)
+        sharpest = t, corner = k;
+    if (corner == 0) return false;
+    const double from_leg = polyline_length({p.begin(), p.begin() + long(corner) + 1});
+    for (int side : from_leg <= 0.5 * polyline_length(p) ? std::array{0, 1} : std::array{1, 0}) {
+      const int ends = (side == 0 ? at_from : at_to);
+      if (ends < 0 || ends + 1 > ends_allowed) continue;
+      std::vector<Vec2> kept = side == 0
+                                   ? std::vector<Vec2>(p.begin() + long(corner), p.end())
+                                   : std::vector<Vec2>(p.begin(), p.begin() + long(corner) + 1);
+      if (polyline_length(kept) < min_piece_ || sharpest_turn(kept) >= kCornerTurn) continue;
+      ends_allowed -= ends + 1;
+      take_off(c);
+      const int dead_end = add_node(p[corner]);
+      NetworkEdge e;
+      e.from = side == 0 ? dead_end : c.from;
+      e.to = side == 0 ? c.to : dead_end;
+      e.points = std::move(kept);
+      add_edge(std::move(e));
+      return true;
+    }
+    return false;
   }
   // The nodes a chain passed through, left without edges, are no seeds to keep clear of.
   void forget_passed_nodes(const Chain& c) {
