@@ -116,29 +116,6 @@ int main(int argc, char** argv) {
                    report.boundary_ends, report.rejected_crossing, report.rejected_region,
                    report.pruned);
     }
-    if (std::getenv("NETWORK_BENDS")) {
-      for (const Network* net : {&ex, &out}) {
-        int bent = 0, small = 0, big = 0;
-        double tsmall = 0, tbig = 0;
-        for (const NetworkEdge& e : net->edges) {
-          double turning = 0, mx = 0;
-          for (std::size_t k = 1; k + 1 < e.points.size(); ++k) {
-            const Vec2 a = e.points[k] - e.points[k - 1], b = e.points[k + 1] - e.points[k];
-            const double t = std::abs(std::atan2(cross(a, b), dot(a, b)));
-            turning += t;
-            mx = std::max(mx, t);
-          }
-          if (turning > 1e-6) {
-            ++bent;
-            if (mx > 0.5) ++big, tbig += turning / polyline_length(e.points);
-            else ++small, tsmall += turning / polyline_length(e.points);
-            if (net == &out && std::getenv("NETWORK_BENDS")[0] == '2')
-              std::fprintf(stderr, "    edge pts %zu len %.1f turning %.3f max %.3f\n", e.points.size(), polyline_length(e.points), turning, mx);
-          }
-        }
-        std::fprintf(stderr, "  %s: bent %d of %zu (small %d sum %.4f, corner %d sum %.4f)\n", net == &ex ? "exemplar" : "output", bent, net->edges.size(), small, tsmall, big, tbig);
-      }
-    }
     for (int p = 0; p < 6; ++p) {
       const double d_out = normalized_w1(property(se, p), property(so, p));
       const double d_half = normalized_w1(property(s1, p), property(s2, p));
