@@ -1416,11 +1416,14 @@ class Grower {
   }
 
   // ---- straight edges -------------------------------------------------------------------------
-  // An output edge as finish() will merge it: a chain of alive edges through nodes of degree 2.
+  // An output edge as the network is written: alive edges merged through the nodes where exactly
+  // two of them meet (neither kept), from every other node in order, then the cycles left; a kept
+  // edge alone, as drawn.
   struct Chain {
     std::vector<int> edges;
     int from = -1, to = -1;
     std::vector<Vec2> points;
+    bool kept = false;
   };
   std::vector<int> alive_incident(int n) const {
     std::vector<int> out;
@@ -1428,40 +1431,57 @@ class Grower {
       if (alive_[std::size_t(e)]) out.push_back(e);
     return out;
   }
-  bool passes_through(int n) const {
-    const std::vector<int> inc = alive_incident(n);
-    return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
-           !out_.edges[std::size_t(inc[1])].kept;
-  }
   std::vector<Chain> chains() const {
-    std::vector<Chain> out;
-    std::vector<char> used(out_.edges.size(), 0);
-    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
-      if (passes_through(int(n))) continue;
-      for (int first : alive_incident(int(n))) {
-        if (used[std::size_t(first)] || out_.edges[std::size_t(first)].kept) continue;
-        Chain c;
-        c.from = int(n);
-        c.points.push_back(out_.nodes[n]);
-        int at = int(n), edge = first;
-        while (true) {
-          used[std::size_t(edge)] = 1;
-          c.edges.push_back(edge);
-          const NetworkEdge& e = out_.edges[std::size_t(edge)];
-          std::vector<Vec2> pts = e.points;
-          int next = e.to;
-          if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
-          c.points.insert(c.points.end(), pts.begin() + 1, pts.end());
-          at = next;
-          if (at == int(n) || !passes_through(at)) break;
-          const std::vector<int> inc = alive_incident(at);
-          edge = inc[0] == edge ? inc[1] : inc[0];
-          if (used[std::size_t(edge)]) break;
-        }
-        c.to = at;
-        out.push_back(std::move(c));
+    const std::size_t nn = out_.nodes.size();
+    std::vector<std::vector<int>> incident(nn);
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i]) {
+        incident[std::size_t(out_.edges[i].from)].push_back(int(i));
+        incident[std::size_t(out_.edges[i].to)].push_back(int(i));
       }
-    }
+    const auto passes_through = [&](int n) {
+      const auto& inc = incident[std::size_t(n)];
+      return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
+             !out_.edges[std::size_t(inc[1])].kept;
+    };
+    std::vector<char> used(out_.edges.size(), 0);
+    std::vector<Chain> out;
+    const auto walk = [&](int start, int first) {
+      Chain c;
+      c.kept = out_.edges[std::size_t(first)].kept;
+      c.points.push_back(out_.nodes[std::size_t(start)]);
+      int at = start, edge = first;
+      while (true) {
+        used[std::size_t(edge)] = 1;
+        c.edges.push_back(edge);
+        const NetworkEdge& e = out_.edges[std::size_t(edge)];
+        std::vector<Vec2> pts = e.points;
+        int next = e.to;
+        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
+        c.points.insert(c.points.end(), pts.begin() + 1, pts.end());
+        at = next;
+        if (at == start || !passes_through(at) || e.kept) break;
+        const auto& inc = incident[std::size_t(at)];
+        const int other = inc[0] == edge ? inc[1] : inc[0];
+        if (used[std::size_t(other)]) break;
+        edge = other;
+      }
+      c.from = start;
+      c.to = at;
+      if (c.kept) {  // as drawn
+        const NetworkEdge& e = out_.edges[std::size_t(first)];
+        c.points = e.points;
+        c.from = e.from;
+        c.to = e.to;
+      }
+      out.push_back(std::move(c));
+    };
+    for (std::size_t n = 0; n < nn; ++n)
+      if (!passes_through(int(n)))
+        for (int e : incident[n])
+          if (!used[std::size_t(e)]) walk(int(n), e);
+    for (std::size_t e = 0; e < out_.edges.size(); ++e)
+      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
     return out;
   }
 
@@ -1474,7 +1494,8 @@ class Grower {
   // are corners too: a frame's).
   void straighten_edges() {
     if (straight_share_ < kStraightShare) return;
-    const std::vector<Chain> before = chains();
+    std::vector<Chain> before = chains();
+    std::erase_if(before, [](const Chain& c) { return c.kept; });  // as drawn
     std::size_t bent = 0;
     for (const Chain& c : before) bent += polyline_turning(c.points) >= kStraightTurning;
     const double allowed = (1.0 - straight_share_) * double(before.size());
@@ -1501,7 +1522,8 @@ class Grower {
         --bent;
     // Kinks always (the junctions a removed corner left are straight through now).
     for (const Chain& c : chains())
-      if (sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0) straighten(c);
+      if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
+        straighten(c);
   }
   static double sharpest_turn(const std::vector<Vec2>& p) {
     double sharpest = 0.0;
@@ -1624,22 +1646,10 @@ class Grower {
     return true;
   }
 
-  // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
+  // Alive edges, nodes of degree 2 between grown edges merged (chains), unused nodes dropped.
   Network finish() {
-    const std::size_t nn = out_.nodes.size();
-    std::vector<std::vector<int>> incident(nn);
-    for (std::size_t i = 0; i < out_.edges.size(); ++i)
-      if (alive_[i]) {
-        incident[std::size_t(out_.edges[i].from)].push_back(int(i));
-        incident[std::size_t(out_.edges[i].to)].push_back(int(i));
-      }
-    const auto mergeable = [&](int n) {
-      const auto& inc = incident[std::size_t(n)];
-      return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
-             !out_.edges[std::size_t(inc[1])].kept;
-    };
     Network net;
-    std::vector<int> id(nn, -1);
+    std::vector<int> id(out_.nodes.size(), -1);
     const auto keep = [&](int n) {
       if (id[std::size_t(n)] < 0) {
         id[std::size_t(n)] = int(net.nodes.size());
@@ -1648,38 +1658,13 @@ class Grower {
       }
       return id[std::size_t(n)];
     };
-    std::vector<char> used(out_.edges.size(), 0);
-    const auto walk = [&](int start, int first) {
-      NetworkEdge merged = out_.edges[std::size_t(first)];
-      merged.points.clear();
-      merged.points.push_back(out_.nodes[std::size_t(start)]);
-      int at = start, edge = first;
-      while (true) {
-        used[std::size_t(edge)] = 1;
-        const NetworkEdge& e = out_.edges[std::size_t(edge)];
-        std::vector<Vec2> pts = e.points;
-        int next = e.to;
-        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
-        merged.points.insert(merged.points.end(), pts.begin() + 1, pts.end());
-        at = next;
-        if (at == start || !mergeable(at) || e.kept) break;
-        const auto& inc = incident[std::size_t(at)];
-        const int other = inc[0] == edge ? inc[1] : inc[0];
-        if (used[std::size_t(other)]) break;
-        edge = other;
-      }
-      if (merged.kept) merged.points = out_.edges[std::size_t(first)].points;
-      merged.from =
-          keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
-      merged.to = keep(merged.kept ? out_.edges[std::size_t(first)].to : at);
+    for (Chain& c : chains()) {
+      NetworkEdge merged = out_.edges[std::size_t(c.edges.front())];
+      merged.points = std::move(c.points);
+      merged.from = keep(c.from);
+      merged.to = keep(c.to);
       net.edges.push_back(std::move(merged));
-    };
-    for (std::size_t n = 0; n < nn; ++n)
-      if (!mergeable(int(n)))
-        for (int e : incident[n])
-          if (!used[std::size_t(e)]) walk(int(n), e);
-    for (std::size_t e = 0; e < out_.edges.size(); ++e)
-      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
+    }
     return net;
   }
 
