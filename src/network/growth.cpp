@@ -14,6 +14,7 @@
 #include "core/split_mix.hpp"
 #include "network/detail/forest.hpp"
 #include "network/detail/layout_copies.hpp"
+#include "network/detail/border.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
@@ -106,6 +107,17 @@ constexpr double kCornerTurn = 0.5;
 // met fewer targets over three seeds: long links break cells).
 constexpr double kCornerReach = 1.5;
 
+// An edge turning less than this in all (radians) is straight; an exemplar whose edges are at
+// least kStraightShare straight gets straight output edges (Grower::straighten_edges).
+constexpr double kStraightTurning = 0.01;
+constexpr double kStraightShare = 0.9;
+// How far (radians) a straightened edge may leave its junctions off its old heading there.
+constexpr double kStraightenDeflection = 1.0;
+
+// An exemplar whose lines come within the clearance of this share of its extent's perimeter
+// has a drawn frame: its border is that frame, not its outermost cells' sides (keep_whole_cells).
+constexpr double kFrameShare = 0.9;
+
 // Where a candidate ends.
 struct Ending {
   enum class Kind { free, node, edge, boundary } kind = Kind::free;
@@ -146,6 +158,7 @@ class Grower {
   }
 
   void add_partial(const Network& partial) {
+    completing_ = !partial.edges.empty();
     std::vector<int> id(partial.nodes.size());
     for (std::size_t n = 0; n < partial.nodes.size(); ++n) id[n] = add_node(partial.nodes[n]);
     for (const NetworkEdge& e : partial.edges) {
@@ -185,6 +198,8 @@ class Grower {
       close_corners();
     }
     close_dangling_ends();
+    keep_whole_cells();
+    straighten_edges();
     return finish();
   }
 
@@ -338,6 +353,16 @@ class Grower {
         if (network_detail::lines_cross_more_than_they_end_on_lines(ex, kStrokeDeflection))
           line_meeting_degree_ = 4;
       }
+      whole_cells_ = dangling == 0 &&
+                     std::none_of(ex.on_boundary.begin(), ex.on_boundary.end(),
+                                  [](char b) { return b != 0; }) &&
+                     !network_detail::has_drawn_frame(ex, clearance_, kFrameShare);
+    }
+    {
+      std::size_t straight = 0;
+      for (const NetworkEdge& e : ex.edges)
+        straight += polyline_turning(e.points) < kStraightTurning;
+      straight_share_ = double(straight) / double(ex.edges.size());
     }
     for (int j : junctions_) {
       std::vector<double> h;
@@ -906,14 +931,14 @@ class Grower {
   }
 
   // A dangling end removed with its edge, and the chain behind it up to the last junction (at
-  // most `at_most` metres of line).
-  void trim_from(int n, double at_most) {
+  // most `at_most` metres of line); the node where it stopped.
+  int trim_from(int n, double at_most) {
     double trimmed = 0.0;
     while (degree_[std::size_t(n)] == 1 && !out_.on_boundary[std::size_t(n)] && trimmed < at_most) {
       int edge = -1;
       for (int i : incident_[std::size_t(n)])
         if (alive_[std::size_t(i)]) edge = i;
-      if (edge < 0 || out_.edges[std::size_t(edge)].kept) return;
+      if (edge < 0 || out_.edges[std::size_t(edge)].kept) return n;
       const NetworkEdge& e = out_.edges[std::size_t(edge)];
       const int other = e.from == n ? e.to : e.from;
       trimmed += polyline_length(e.points);
@@ -924,6 +949,7 @@ class Grower {
       ++report_.pruned;
       n = other;
     }
+    return n;
   }
 
   // ---- growth ----------------------------------------------------------------------------------
@@ -1451,8 +1477,47 @@ class Grower {
     for (int n : ends) trim_from(n, INFINITY);
   }
 
-  // Alive edges, nodes of degree 2 between grown edges merged, unused nodes dropped.
-  Network finish() {
+  // ---- whole cells at the border --------------------------------------------------------------
+  // An exemplar of closed cells, none cut (no dangling end, no end on a region's boundary: its
+  // outermost cells are whole and their outer sides are its border), gets the same border: the
+  // lines cut by the region's boundary are taken out back to their junctions, so that the
+  // outermost cells left are whole and their outer sides, merged through the nodes that lost the
+  // cut line, are the output's border.
+  void keep_whole_cells() {
+    if (!whole_cells_ || completing_) return;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n) {
+      if (!out_.on_boundary[n] || degree_[n] != 1) continue;
+      const std::vector<int> inc = alive_incident(int(n));
+      if (inc.size() != 1 || out_.edges[std::size_t(inc[0])].kept) continue;
+      const NetworkEdge& e = out_.edges[std::size_t(inc[0])];
+      const int other = e.from == int(n) ? e.to : e.from;
+      index_edge(inc[0], false);
+      alive_[std::size_t(inc[0])] = 0;
+      --degree_[n];
+      --degree_[std::size_t(other)];
+      ++report_.pruned;
+      border_node_.resize(out_.nodes.size(), 0);
+      border_node_[std::size_t(trim_from(other, INFINITY))] = 1;
+    }
+  }
+
+  // ---- straight edges -------------------------------------------------------------------------
+  // An output edge as the network is written: alive edges merged through the nodes where exactly
+  // two of them meet (neither kept), from every other node in order, then the cycles left; a kept
+  // edge alone, as drawn.
+  struct Chain {
+    std::vector<int> edges;
+    int from = -1, to = -1;
+    std::vector<Vec2> points;
+    bool kept = false;
+  };
+  std::vector<int> alive_incident(int n) const {
+    std::vector<int> out;
+    for (int e : incident_[std::size_t(n)])
+      if (alive_[std::size_t(e)]) out.push_back(e);
+    return out;
+  }
+  std::vector<Chain> chains() const {
     const std::size_t nn = out_.nodes.size();
     std::vector<std::vector<int>> incident(nn);
     for (std::size_t i = 0; i < out_.edges.size(); ++i)
@@ -1460,13 +1525,217 @@ class Grower {
         incident[std::size_t(out_.edges[i].from)].push_back(int(i));
         incident[std::size_t(out_.edges[i].to)].push_back(int(i));
       }
-    const auto mergeable = [&](int n) {
+    const auto passes_through = [&](int n) {
       const auto& inc = incident[std::size_t(n)];
       return inc.size() == 2 && inc[0] != inc[1] && !out_.edges[std::size_t(inc[0])].kept &&
              !out_.edges[std::size_t(inc[1])].kept;
     };
+    std::vector<char> used(out_.edges.size(), 0);
+    std::vector<Chain> out;
+    const auto walk = [&](int start, int first) {
+      Chain c;
+      c.kept = out_.edges[std::size_t(first)].kept;
+      c.points.push_back(out_.nodes[std::size_t(start)]);
+      int at = start, edge = first;
+      while (true) {
+        used[std::size_t(edge)] = 1;
+        c.edges.push_back(edge);
+        const NetworkEdge& e = out_.edges[std::size_t(edge)];
+        std::vector<Vec2> pts = e.points;
+        int next = e.to;
+        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
+        c.points.insert(c.points.end(), pts.begin() + 1, pts.end());
+        at = next;
+        if (at == start || !passes_through(at) || e.kept) break;
+        const auto& inc = incident[std::size_t(at)];
+        const int other = inc[0] == edge ? inc[1] : inc[0];
+        if (used[std::size_t(other)]) break;
+        edge = other;
+      }
+      c.from = start;
+      c.to = at;
+      if (c.kept) {  // as drawn
+        const NetworkEdge& e = out_.edges[std::size_t(first)];
+        c.points = e.points;
+        c.from = e.from;
+        c.to = e.to;
+      }
+      out.push_back(std::move(c));
+    };
+    for (std::size_t n = 0; n < nn; ++n)
+      if (!passes_through(int(n)))
+        for (int e : incident[n])
+          if (!used[std::size_t(e)]) walk(int(n), e);
+    for (std::size_t e = 0; e < out_.edges.size(); ++e)
+      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
+    return out;
+  }
+
+  // Where the exemplar's edges are nearly all straight (a grid's tracks, fields split by straight
+  // hedges), the bends the output's edges pick up (a stroke's small deflections, snapped ends
+  // bent, corners merged) are replaced by the edge's chord when the chord is committed under the
+  // same rules as any line, leaves its junctions within kStraightenDeflection of the old
+  // headings and meets the other lines there at kMinMeetingAngle or more: kinks always, corners
+  // while the output holds a larger share of bent edges than the exemplar (its few bent edges
+  // are corners too: a frame's).
+  void straighten_edges() {
+    if (straight_share_ < kStraightShare) return;
+    std::vector<Chain> before = chains();
+    std::erase_if(before, [](const Chain& c) { return c.kept; });  // as drawn
+    std::size_t bent = 0;
+    for (const Chain& c : before) bent += polyline_turning(c.points) >= kStraightTurning;
+    const double allowed = (1.0 - straight_share_) * double(before.size());
+    // Dead ends the exemplar's rate still allows.
+    int dangling = 0;
+    for (std::size_t n = 0; n < out_.nodes.size(); ++n)
+      dangling += degree_[n] == 1 && !out_.on_boundary[n];
+    double length = 0.0;
+    for (std::size_t i = 0; i < out_.edges.size(); ++i)
+      if (alive_[i]) length += polyline_length(out_.edges[i].points);
+    int ends_allowed = int(dangling_target_ * length) - dangling;
+    // The outermost cells' sides merged through the nodes that lost a cut line are the
+    // exemplar's own kind of bend (its border's): they are kept.
+    border_node_.resize(out_.nodes.size(), 0);
+    const auto on_border = [&](const Chain& c) {
+      for (int e : c.edges)
+        for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
+          if (n != c.from && n != c.to && border_node_[std::size_t(n)]) return true;
+      return false;
+    };
+    for (const Chain& c : before)
+      if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn && !on_border(c) &&
+          (straighten(c) || remove_corner(c, ends_allowed)))
+        --bent;
+    // Kinks always (the junctions a removed corner left are straight through now).
+    for (const Chain& c : chains())
+      if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
+        straighten(c);
+  }
+  static double sharpest_turn(const std::vector<Vec2>& p) {
+    double sharpest = 0.0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)  // as polyline_turning (repeated points)
+      sharpest = std::max(sharpest, polyline_turning({p[k - 1], p[k], p[k + 1]}));
+    return sharpest;
+  }
+
+  // How many dead ends taking chain `c` off leaves at its end node n (0 or 1), or -1 when that
+  // is not allowed: n is left a junction still, a line going straight through it (within a
+  // stroke's deflection) or a dead end; a cut end on the boundary goes with its line.
+  int ends_left_at(int n, const Chain& c) const {
+    if (out_.on_boundary[std::size_t(n)]) return 0;
+    std::vector<int> rest;
+    for (int e : alive_incident(n))
+      if (std::find(c.edges.begin(), c.edges.end(), e) == c.edges.end()) rest.push_back(e);
+    if (rest.size() >= 3) return 0;
+    if (rest.size() == 1) return 1;
+    if (rest.size() != 2) return -1;
+    const NetworkEdge& a = out_.edges[std::size_t(rest[0])];
+    const NetworkEdge& b = out_.edges[std::size_t(rest[1])];
+    if (a.kept || b.kept) return -1;
+    const double ha = leaving(a.points, a.from == n), hb = leaving(b.points, b.from == n);
+    return std::abs(wrap(ha - hb - kPi)) > kStrokeDeflection ? -1 : 0;
+  }
+  void take_off(const Chain& c) {
+    for (int e : c.edges) {
+      index_edge(e, false);
+      alive_[std::size_t(e)] = 0;
+      --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+      ++report_.pruned;
+    }
+    forget_passed_nodes(c);
+  }
+
+  // A corner its chord cannot replace is taken out whole, junction to junction, when both its
+  // end nodes allow it (ends_left_at) and the dead ends left are within the exemplar's rate
+  // (`ends_allowed`, spent); else one leg is taken off at the corner (the shorter first), the
+  // corner becoming a dead end, the other leg kept as it lies.
+  bool remove_corner(const Chain& c, int& ends_allowed) {
+    if (c.from == c.to) return false;
+    const int at_from = ends_left_at(c.from, c), at_to = ends_left_at(c.to, c);
+    if (at_from >= 0 && at_to >= 0 && at_from + at_to <= ends_allowed) {
+      ends_allowed -= at_from + at_to;
+      take_off(c);
+      return true;
+    }
+    const std::vector<Vec2>& p = c.points;
+    std::size_t corner = 0;
+    double sharpest = 0.0;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      if (const double t = polyline_turning({p[k - 1], p[k], p[k + 1]}); t > sharpest)
+        sharpest = t, corner = k;
+    if (corner == 0) return false;
+    const double from_leg = polyline_length({p.begin(), p.begin() + long(corner) + 1});
+    for (int side : from_leg <= 0.5 * polyline_length(p) ? std::array{0, 1} : std::array{1, 0}) {
+      const int ends = (side == 0 ? at_from : at_to);
+      if (ends < 0 || ends + 1 > ends_allowed) continue;
+      std::vector<Vec2> kept = side == 0
+                                   ? std::vector<Vec2>(p.begin() + long(corner), p.end())
+                                   : std::vector<Vec2>(p.begin(), p.begin() + long(corner) + 1);
+      if (polyline_length(kept) < min_piece_ || sharpest_turn(kept) >= kCornerTurn) continue;
+      ends_allowed -= ends + 1;
+      take_off(c);
+      const int dead_end = add_node(p[corner]);
+      NetworkEdge e;
+      e.from = side == 0 ? dead_end : c.from;
+      e.to = side == 0 ? c.to : dead_end;
+      e.points = std::move(kept);
+      add_edge(std::move(e));
+      return true;
+    }
+    return false;
+  }
+  // The nodes a chain passed through, left without edges, are no seeds to keep clear of.
+  void forget_passed_nodes(const Chain& c) {
+    for (int e : c.edges) {
+      const NetworkEdge& edge = out_.edges[std::size_t(e)];
+      for (int n : {edge.from, edge.to})
+        if (n != c.from && n != c.to && degree_[std::size_t(n)] == 0)
+          nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(n)]), n});
+    }
+  }
+
+  bool straighten(const Chain& c) {
+    const std::vector<Vec2> chord{c.points.front(), c.points.back()};
+    if (polyline_length(chord) < min_piece_) return false;
+    for (int end = 0; end < 2; ++end) {
+      const int n = end == 0 ? c.from : c.to;
+      const double old_heading = leaving(c.points, end == 0),
+                   new_heading = leaving(chord, end == 0);
+      if (std::abs(wrap(new_heading - old_heading)) > kStraightenDeflection) return false;
+      for (int other : alive_incident(n)) {
+        if (std::find(c.edges.begin(), c.edges.end(), other) != c.edges.end()) continue;
+        const NetworkEdge& e = out_.edges[std::size_t(other)];
+        if ((e.from == c.from && e.to == c.to) || (e.from == c.to && e.to == c.from)) return false;
+        const double h = leaving(e.points, e.from == n);
+        if (std::abs(wrap(h - new_heading)) < kMinMeetingAngle) return false;
+      }
+    }
+    // Under the rules the line it replaces kept: a copy of exemplar lines (quilt, layout) keeps
+    // the exemplar's own spacing near its junctions, a grown piece the clearance there too.
+    for (int e : c.edges) index_edge(e, false);
+    if (!valid(chord, true) && (valid(c.points, true) || !valid(chord, true, false))) {
+      for (int e : c.edges) index_edge(e, true);
+      return false;
+    }
+    for (int e : c.edges) {
+      alive_[std::size_t(e)] = 0;
+      --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+    }
+    forget_passed_nodes(c);
+    NetworkEdge straight;
+    straight.from = c.from;
+    straight.to = c.to;
+    straight.points = chord;
+    add_edge(std::move(straight));
+    return true;
+  }
+
+  // Alive edges, nodes of degree 2 between grown edges merged (chains), unused nodes dropped.
+  Network finish() {
     Network net;
-    std::vector<int> id(nn, -1);
+    std::vector<int> id(out_.nodes.size(), -1);
     const auto keep = [&](int n) {
       if (id[std::size_t(n)] < 0) {
         id[std::size_t(n)] = int(net.nodes.size());
@@ -1475,38 +1744,13 @@ class Grower {
       }
       return id[std::size_t(n)];
     };
-    std::vector<char> used(out_.edges.size(), 0);
-    const auto walk = [&](int start, int first) {
-      NetworkEdge merged = out_.edges[std::size_t(first)];
-      merged.points.clear();
-      merged.points.push_back(out_.nodes[std::size_t(start)]);
-      int at = start, edge = first;
-      while (true) {
-        used[std::size_t(edge)] = 1;
-        const NetworkEdge& e = out_.edges[std::size_t(edge)];
-        std::vector<Vec2> pts = e.points;
-        int next = e.to;
-        if (e.from != at) std::reverse(pts.begin(), pts.end()), next = e.from;
-        merged.points.insert(merged.points.end(), pts.begin() + 1, pts.end());
-        at = next;
-        if (at == start || !mergeable(at) || e.kept) break;
-        const auto& inc = incident[std::size_t(at)];
-        const int other = inc[0] == edge ? inc[1] : inc[0];
-        if (used[std::size_t(other)]) break;
-        edge = other;
-      }
-      if (merged.kept) merged.points = out_.edges[std::size_t(first)].points;
-      merged.from =
-          keep(out_.edges[std::size_t(first)].kept ? out_.edges[std::size_t(first)].from : start);
-      merged.to = keep(merged.kept ? out_.edges[std::size_t(first)].to : at);
+    for (Chain& c : chains()) {
+      NetworkEdge merged = out_.edges[std::size_t(c.edges.front())];
+      merged.points = std::move(c.points);
+      merged.from = keep(c.from);
+      merged.to = keep(c.to);
       net.edges.push_back(std::move(merged));
-    };
-    for (std::size_t n = 0; n < nn; ++n)
-      if (!mergeable(int(n)))
-        for (int e : incident[n])
-          if (!used[std::size_t(e)]) walk(int(n), e);
-    for (std::size_t e = 0; e < out_.edges.size(); ++e)
-      if (alive_[e] && !used[e]) walk(out_.edges[e].from, int(e));
+    }
     return net;
   }
 
@@ -1536,6 +1780,10 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
+  double straight_share_ = 0.0;    // of the exemplar's edges, those turning under kStraightTurning
+  std::vector<char> border_node_;  // per node: it lost a line cut by the region (keep_whole_cells)
+  bool whole_cells_ = false;  // the exemplar's cells are all closed, none cut (keep_whole_cells)
+  bool completing_ = false;   // a partial network is kept (add_partial)
   int exemplar_nodes_ = 0;
 
   BgMultiPolygon region_;

@@ -1,5 +1,7 @@
 #include "network/network.hpp"
 
+#include <cmath>
+
 namespace tw {
 
 std::vector<int> Network::degrees() const {
@@ -15,6 +17,15 @@ double polyline_length(const std::vector<Vec2>& points) {
   double sum = 0.0;
   for (std::size_t i = 1; i < points.size(); ++i) sum += distance(points[i - 1], points[i]);
   return sum;
+}
+
+double polyline_turning(const std::vector<Vec2>& points) {
+  double turning = 0.0;
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) {
+    const Vec2 a = points[k] - points[k - 1], b = points[k + 1] - points[k];
+    turning += std::abs(std::atan2(cross(a, b), dot(a, b)));
+  }
+  return turning;
 }
 
 double Network::total_length() const {

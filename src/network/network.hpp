@@ -27,5 +27,7 @@ struct Network {
 };
 
 double polyline_length(const std::vector<Vec2>& points);
+// Total absolute turning (radians) at the interior vertices: 0 for a straight line.
+double polyline_turning(const std::vector<Vec2>& points);
 
 }  // namespace tw

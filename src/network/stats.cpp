@@ -59,12 +59,7 @@ NetworkStats network_stats(const Network& net, std::optional<StatsWindow> window
     if (!inside(window, e.points[e.points.size() / 2]) && !inside(window, mid)) continue;
     s.length_m += length;
     if (!on_boundary(e.from) && !on_boundary(e.to)) s.edge_length.push_back(length);
-    double turning = 0.0;
-    for (std::size_t k = 1; k + 1 < e.points.size(); ++k) {
-      const Vec2 a = e.points[k] - e.points[k - 1], b = e.points[k + 1] - e.points[k];
-      turning += std::abs(std::atan2(cross(a, b), dot(a, b)));
-    }
-    if (length > 0.0) s.curvature.push_back(turning / length);
+    if (length > 0.0) s.curvature.push_back(polyline_turning(e.points) / length);
     const Vec2 chord = e.points.back() - e.points.front();
     if (length > 0.0 && !(chord == Vec2{})) {
       double bearing = std::atan2(chord.x, chord.y) * 180.0 / std::numbers::pi;  // from north
