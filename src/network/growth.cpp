@@ -1714,7 +1714,7 @@ class Grower {
     // Under the rules the line it replaces kept: a copy of exemplar lines (quilt, layout) keeps
     // the exemplar's own spacing near its junctions, a grown piece the clearance there too.
     for (int e : c.edges) index_edge(e, false);
-    if (!valid(chord, true) && (valid(c.points, true) || !valid(chord, true, false))) {
+    if (!valid(chord, true) && (valid(c.points, true) || !valid(chord, true, Spacing::laid_out))) {
       for (int e : c.edges) index_edge(e, true);
       return false;
     }
