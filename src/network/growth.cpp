@@ -65,6 +65,9 @@ struct Piece {
   // nearly straight): the vertex and the other edges' headings relative to the arrival there.
   std::vector<std::pair<std::size_t, double>> sides;
   double heading = 0.0;  // its start heading in the exemplar (radians)
+  // Its end is a dangling end within the snap radius of another exemplar line: a gap short of
+  // that line (a field boundary stopping at a track), not a line ending alone.
+  bool ends_at_line = false;
 };
 
 // A stroke continues across a junction onto the edge that deflects least, below this (radians).
@@ -91,6 +94,9 @@ constexpr double kCornerTurn = 0.5;
 // How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
 // met fewer targets over three seeds: long links break cells).
 constexpr double kCornerReach = 1.5;
+// The gap, in clearances, that a piece ending alone in the exemplar keeps from the line it
+// meets when it is kept dangling (three: a clear gap, not a near miss).
+constexpr double kDanglingGap = 3.0;
 
 // Where a candidate ends.
 struct Ending {
@@ -269,6 +275,7 @@ class Grower {
         const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
         p.arrival = wrap(arrive - h0);
         p.end_degree = degree[std::size_t(stroke_end)];
+        p.ends_at_line = p.end_degree == 1 && dangling_gap(ex, stroke_end, current) <= clearance_;
         for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
           if (edge != current ||
               ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
@@ -319,6 +326,19 @@ class Grower {
       for (const auto& [a, edge] : leaving_at[std::size_t(j)]) h.push_back(a + turn_);
       junction_headings_.push_back(std::move(h));
     }
+  }
+
+  // How far a dangling end of the exemplar is from its lines other than its own edge.
+  static double dangling_gap(const Network& ex, int node, int own_edge) {
+    const Vec2 p = ex.nodes[std::size_t(node)];
+    double gap = INFINITY;
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      if (int(i) == own_edge) continue;
+      const std::vector<Vec2>& pts = ex.edges[i].points;
+      for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+        gap = std::min(gap, distance_to_segment(p, pts[k], pts[k + 1]));
+    }
+    return gap;
   }
 
   // ---- the region ----------------------------------------------------------------------------
@@ -959,6 +979,19 @@ class Grower {
     commit(stub, *best_piece, std::move(*best));
   }
 
+  // Shortens a polyline by `by` metres at its end; false when nothing would be left.
+  static bool cut_back(std::vector<Vec2>& pts, double by) {
+    while (pts.size() >= 2) {
+      const double last = distance(pts[pts.size() - 2], pts.back());
+      if (last > by) {
+        pts.back() = pts.back() + (pts[pts.size() - 2] - pts.back()) * (by / last);
+        return true;
+      }
+      by -= last;
+      pts.pop_back();
+    }
+    return false;
+  }
   static void truncate(std::vector<Vec2>& pts, const Hit& hit) {
     pts.resize(hit.k + 1);
     if (!(pts.back() == hit.point)) pts.push_back(hit.point);
@@ -1056,6 +1089,19 @@ class Grower {
                              : ending.kind == Ending::Kind::edge ? 3
                                                                  : 0;
     variants.push_back({ending, pts, plain_degree, -1});
+    // A piece that stops a gap short of a line in the exemplar keeps its end free, a gap short
+    // of the line it meets or would be snapped onto, while the output has fewer dangling ends
+    // than the exemplar's share (the degree histogram; a grid's field boundaries with gaps).
+    if (piece.ends_at_line && ending.kind != Ending::Kind::boundary &&
+        excess(have_degree_, junction_count_, target_degree_, 1) <= 0.0) {
+      if (ending.kind == Ending::Kind::edge) {
+        std::vector<Vec2> short_of = pts;
+        if (cut_back(short_of, kDanglingGap * clearance_))
+          variants.insert(variants.begin(), {Ending{}, std::move(short_of), 1, -1});
+      } else {
+        std::rotate(variants.begin(), variants.end() - 1, variants.end());
+      }
+    }
     for (Outcome& o : variants) {
       auto& line = o.line;
       if (polyline_length(line) < min_piece_) continue;
