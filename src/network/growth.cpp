@@ -285,6 +285,7 @@ class Grower {
           p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
+        if (p.ends_at_line) gap_pieces_.push_back(int(pieces_.size()));
         piece_of_[2 * i + std::size_t(dir)] = int(pieces_.size());
         pieces_.push_back(std::move(p));
       }
@@ -296,6 +297,8 @@ class Grower {
       const int d = std::min(degree[n], 6);
       target_degree_[std::size_t(d)] += 1.0;
       if (degree[n] >= 3) junctions_.push_back(int(n));
+      if (degree[n] == 1 && dangling_gap(ex, int(n), leaving_at[n][0].second) <= clearance_)
+        gap_share_ += 1.0;
       ++exemplar_nodes_;
     }
     if (junctions_.empty())
@@ -304,6 +307,7 @@ class Grower {
     if (junctions_.empty()) fail("exemplar: no junction (every line ends alone)");
     length_per_junction_ = ex.total_length() / double(std::max<std::size_t>(1, junctions_.size()));
     for (double& v : target_degree_) v /= std::max(1, exemplar_nodes_);
+    gap_share_ /= std::max(1, exemplar_nodes_);
     double total = 0.0;
     for (const NetworkEdge& e : ex.edges) {
       const Vec2 c = rotate(e.points.back() - e.points.front(), turn_);
@@ -945,8 +949,14 @@ class Grower {
       }
     }
     const int candidates = retry ? 4 * options_.candidates : options_.candidates;
-    for (int c = 0; c < candidates; ++c) {
-      const Piece& piece = pieces_[std::size_t(rng_.below(pieces_.size()))];
+    // While the output is short of the exemplar's dangling ends a gap from a line, one more
+    // candidate is drawn among the pieces that end so (they are few: drawn among all, they
+    // seldom come up).
+    const bool short_of_gaps = !gap_pieces_.empty() && short_of_gap_ends();
+    for (int c = 0; c < candidates + int(short_of_gaps); ++c) {
+      const Piece& piece =
+          pieces_[std::size_t(c == candidates ? gap_pieces_[rng_.below(gap_pieces_.size())]
+                                              : rng_.below(pieces_.size()))];
       const double noise = 0.15 * rng_.uniform();
       std::vector<Vec2> pts;
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
@@ -979,6 +989,11 @@ class Grower {
     commit(stub, *best_piece, std::move(*best));
   }
 
+  // Whether one more end a gap short of a line keeps the output's share of them (per node
+  // counted in the degree histogram) within the exemplar's.
+  bool short_of_gap_ends() const {
+    return (gap_ends_ + 1.0) / (junction_count_ + 1.0) <= gap_share_;
+  }
   // Shortens a polyline by `by` metres at its end; false when nothing would be left.
   static bool cut_back(std::vector<Vec2>& pts, double by) {
     while (pts.size() >= 2) {
@@ -1090,10 +1105,9 @@ class Grower {
                                                                  : 0;
     variants.push_back({ending, pts, plain_degree, -1});
     // A piece that stops a gap short of a line in the exemplar keeps its end free, a gap short
-    // of the line it meets or would be snapped onto, while the output has fewer dangling ends
-    // than the exemplar's share (the degree histogram; a grid's field boundaries with gaps).
-    if (piece.ends_at_line && ending.kind != Ending::Kind::boundary &&
-        excess(have_degree_, junction_count_, target_degree_, 1) <= 0.0) {
+    // of the line it meets or would be snapped onto, while the output has fewer such ends than
+    // the exemplar's share of its nodes (a grid's field boundaries with gaps).
+    if (piece.ends_at_line && ending.kind != Ending::Kind::boundary && short_of_gap_ends()) {
       if (ending.kind == Ending::Kind::edge) {
         std::vector<Vec2> short_of = pts;
         if (cut_back(short_of, kDanglingGap * clearance_))
@@ -1161,6 +1175,7 @@ class Grower {
       have_degree_[std::size_t(std::min(o.degree, 6))] += 1.0;
       junction_count_ += 1.0;
     }
+    if (o.how.kind == Ending::Kind::free && o.degree == 1 && piece.ends_at_line) gap_ends_ += 1.0;
     have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
     have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
     placed_ += 1.0;
@@ -1479,7 +1494,11 @@ class Grower {
   SplitMix64 rng_;
 
   std::vector<Piece> pieces_;
-  std::vector<int> piece_of_;  // per exemplar edge and direction (2 i + dir): its piece or -1
+  // The exemplar's dangling ends within the clearance of another line, per node (its gaps),
+  // and how many of them the output has.
+  double gap_share_ = 0.0, gap_ends_ = 0.0;
+  std::vector<int> gap_pieces_;  // the pieces that end a gap short of a line (ends_at_line)
+  std::vector<int> piece_of_;    // per exemplar edge and direction (2 i + dir): its piece or -1
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
