@@ -97,6 +97,8 @@ constexpr double kCornerReach = 1.5;
 // The gap, in clearances, that a piece ending alone in the exemplar keeps from the line it
 // meets when it is kept dangling (three: a clear gap, not a near miss).
 constexpr double kDanglingGap = 3.0;
+// The weight of the bearings of the stubs a free end opens in a candidate's cost (opened_cost).
+constexpr double kOpenedWeight = 3.0;
 
 // Where a candidate ends.
 struct Ending {
@@ -912,6 +914,22 @@ class Grower {
     return cost;
   }
 
+  // The lines a free end's new junction will grow, by the bearing histogram: a piece whose
+  // junction opens stubs where the output already has more than the exemplar's share of edges
+  // costs more (the proportions of a grid's two orientations follow which junctions are made,
+  // not which piece a stub takes: every piece is turned to the stub's heading).
+  double opened_cost(const Outcome& o, const Piece& piece) const {
+    if (o.how.kind != Ending::Kind::free || piece.end_turns.empty()) return 0.0;
+    const double arrive = leaving(o.line, false) + kPi;
+    double cost = 0.0;
+    for (double turn : piece.end_turns) {
+      const double h = arrive + turn;
+      cost += excess(have_bearing_, placed_, target_bearing_,
+                     std::size_t(bearing_bin({std::cos(h), std::sin(h)})));
+    }
+    return kOpenedWeight * cost / double(piece.end_turns.size());
+  }
+
   // `retry`: a stub that found nothing the first time, tried again once the region is covered
   // with more candidates and a straight link onto the network ahead (a junction left short of
   // its degree would become a bend or a dangling end).
@@ -965,7 +983,7 @@ class Grower {
       // Turned as little as possible from how it lies in the exemplar: the exemplar's
       // anisotropy (rows of fields, walls along contours) carries over.
       const double turned = std::abs(wrap(stub.heading - (piece.heading + turn_))) / kPi;
-      o->cost = outcome_cost(*o) + kTurnWeight * turned + noise;
+      o->cost = outcome_cost(*o) + opened_cost(*o, piece) + kTurnWeight * turned + noise;
       if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
     }
     if (!best && !retry) {
