@@ -97,8 +97,11 @@ constexpr double kCornerReach = 1.5;
 // The gap, in clearances, that a piece ending alone in the exemplar keeps from the line it
 // meets when it is kept dangling (three: a clear gap, not a near miss).
 constexpr double kDanglingGap = 3.0;
-// The weight of the bearings of the stubs a free end opens in a candidate's cost (opened_cost).
+// The weight of the bearings of the stubs a free end opens in a candidate's cost (opened_cost),
+// and the share of the exemplar's edges in its two main 15° bearing bins from which it counts
+// (a grid's tracks and field boundaries: nearly all).
 constexpr double kOpenedWeight = 3.0;
+constexpr double kFewOrientations = 0.75;
 
 // Where a candidate ends.
 struct Ending {
@@ -316,6 +319,11 @@ class Grower {
       target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
     }
     for (double& v : target_bearing_) v /= std::max(1.0, total);
+    {
+      std::array<double, 12> sorted = target_bearing_;
+      std::sort(sorted.begin(), sorted.end(), std::greater<>());
+      few_orientations_ = sorted[0] + sorted[1] >= kFewOrientations;
+    }
     for (const Piece& p : pieces_) target_length_[std::size_t(p.length_bin)] += 1.0;
     for (double& v : target_length_) v /= double(pieces_.size());
     dangling_target_ = 0.0;
@@ -917,9 +925,12 @@ class Grower {
   // The lines a free end's new junction will grow, by the bearing histogram: a piece whose
   // junction opens stubs where the output already has more than the exemplar's share of edges
   // costs more (the proportions of a grid's two orientations follow which junctions are made,
-  // not which piece a stub takes: every piece is turned to the stub's heading).
+  // not which piece a stub takes: every piece is turned to the stub's heading). Only where the
+  // exemplar's edges run at few orientations: elsewhere it rewards bent pieces, whose ends
+  // point their stubs anywhere (the counties' curvature tripled).
   double opened_cost(const Outcome& o, const Piece& piece) const {
-    if (o.how.kind != Ending::Kind::free || piece.end_turns.empty()) return 0.0;
+    if (!few_orientations_ || o.how.kind != Ending::Kind::free || piece.end_turns.empty())
+      return 0.0;
     const double arrive = leaving(o.line, false) + kPi;
     double cost = 0.0;
     for (double turn : piece.end_turns) {
@@ -1515,8 +1526,9 @@ class Grower {
   // The exemplar's dangling ends within the clearance of another line, per node (its gaps),
   // and how many of them the output has.
   double gap_share_ = 0.0, gap_ends_ = 0.0;
-  std::vector<int> gap_pieces_;  // the pieces that end a gap short of a line (ends_at_line)
-  std::vector<int> piece_of_;    // per exemplar edge and direction (2 i + dir): its piece or -1
+  bool few_orientations_ = false;  // its edges run at few orientations (kFewOrientations)
+  std::vector<int> gap_pieces_;    // the pieces that end a gap short of a line (ends_at_line)
+  std::vector<int> piece_of_;      // per exemplar edge and direction (2 i + dir): its piece or -1
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
