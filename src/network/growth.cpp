@@ -455,16 +455,25 @@ class Grower {
     const int id = int(out_.edges.size());
     incident_[std::size_t(e.from)].push_back(id);
     if (e.to != e.from) incident_[std::size_t(e.to)].push_back(id);
+    count_edge_bearing(e.points, 1.0);
     out_.edges.push_back(std::move(e));
     alive_.push_back(1);
     index_edge(id, true);
     return id;
   }
+  // The output's edges by chord bearing, as the statistics count them (a T splits an edge in
+  // two, a stroke's junctions passed through split it): what opened_cost steers by.
+  void count_edge_bearing(const std::vector<Vec2>& pts, double count) {
+    if (pts.size() < 2 || pts.back() == pts.front()) return;
+    edge_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += count;
+    edge_count_ += count;
+  }
   // Splits edge `id` at `p` on its segment `seg`: the new node.
   int split_edge(int id, int seg, Vec2 p) {
     index_edge(id, false);
-    NetworkEdge& e = out_.edges[std::size_t(id)];
     const int node = add_node(p);
+    NetworkEdge& e = out_.edges[std::size_t(id)];
+    count_edge_bearing(e.points, -1.0);
     NetworkEdge second;
     second.from = node;
     second.to = e.to;
@@ -478,6 +487,7 @@ class Grower {
     auto& at_end = incident_[std::size_t(e.to)];
     at_end.erase(std::remove(at_end.begin(), at_end.end(), id), at_end.end());
     e.to = node;
+    count_edge_bearing(e.points, 1.0);
     incident_[std::size_t(node)].push_back(id);
     index_edge(id, true);
     if (second.points.size() < 2) second.points.push_back(p);
@@ -935,7 +945,7 @@ class Grower {
     double cost = 0.0;
     for (double turn : piece.end_turns) {
       const double h = arrive + turn;
-      cost += excess(have_bearing_, placed_, target_bearing_,
+      cost += excess(edge_bearing_, edge_count_, target_bearing_,
                      std::size_t(bearing_bin({std::cos(h), std::sin(h)})));
     }
     return kOpenedWeight * cost / double(piece.end_turns.size());
@@ -1534,7 +1544,8 @@ class Grower {
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
   std::vector<double> length_edges_;
   std::array<double, 7> target_degree_{}, have_degree_{};
-  std::array<double, 12> target_bearing_{}, have_bearing_{};
+  std::array<double, 12> target_bearing_{}, have_bearing_{}, edge_bearing_{};
+  double edge_count_ = 0.0;
   std::array<double, 12> target_length_{}, have_length_{};
   double grown_length_ = 0.0, length_per_junction_ = 1.0;
   double junctions() const {
