@@ -232,6 +232,7 @@ class Grower {
       turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
     }
     piece_of_.assign(2 * ex.edges.size(), -1);
+    const std::vector<char> at_line = dangling_at_line(ex, degree, clearance_);
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
       const NetworkEdge& e = ex.edges[i];
       for (int dir = 0; dir < 2; ++dir) {
@@ -280,7 +281,7 @@ class Grower {
         const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
         p.arrival = wrap(arrive - h0);
         p.end_degree = degree[std::size_t(stroke_end)];
-        p.ends_at_line = p.end_degree == 1 && dangling_gap(ex, stroke_end, current) <= clearance_;
+        p.ends_at_line = at_line[std::size_t(stroke_end)] != 0;
         for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
           if (edge != current ||
               ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
@@ -302,8 +303,7 @@ class Grower {
       const int d = std::min(degree[n], 6);
       target_degree_[std::size_t(d)] += 1.0;
       if (degree[n] >= 3) junctions_.push_back(int(n));
-      if (degree[n] == 1 && dangling_gap(ex, int(n), leaving_at[n][0].second) <= clearance_)
-        gap_share_ += 1.0;
+      if (at_line[n]) gap_share_ += 1.0;
       ++exemplar_nodes_;
     }
     if (junctions_.empty())
@@ -342,17 +342,30 @@ class Grower {
     }
   }
 
-  // How far a dangling end of the exemplar is from its lines other than its own edge.
-  static double dangling_gap(const Network& ex, int node, int own_edge) {
-    const Vec2 p = ex.nodes[std::size_t(node)];
-    double gap = INFINITY;
+  // Per exemplar node: whether it is a dangling end within `reach` of another of its lines (a
+  // gap short of that line, or a line touching it that the noding did not split).
+  static std::vector<char> dangling_at_line(const Network& ex, const std::vector<int>& degree,
+                                            double reach) {
+    std::vector<int> own(ex.nodes.size(), -1);
+    std::vector<SegValue> segments;
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
-      if (int(i) == own_edge) continue;
-      const std::vector<Vec2>& pts = ex.edges[i].points;
-      for (std::size_t k = 0; k + 1 < pts.size(); ++k)
-        gap = std::min(gap, distance_to_segment(p, pts[k], pts[k + 1]));
+      const NetworkEdge& e = ex.edges[i];
+      own[std::size_t(e.from)] = own[std::size_t(e.to)] = int(i);
+      for (std::size_t k = 0; k + 1 < e.points.size(); ++k)
+        segments.push_back({BgSegment(to_bg(e.points[k]), to_bg(e.points[k + 1])), int(i)});
     }
-    return gap;
+    const bgi::rtree<SegValue, bgi::quadratic<16>> index(segments);
+    std::vector<char> at_line(ex.nodes.size(), 0);
+    for (std::size_t n = 0; n < ex.nodes.size(); ++n) {
+      if (degree[n] != 1) continue;
+      const BgPoint p = to_bg(ex.nodes[n]);
+      std::vector<SegValue> nearest;
+      index.query(bgi::nearest(p, 1) &&
+                      bgi::satisfies([&](const SegValue& v) { return v.second != own[n]; }),
+                  std::back_inserter(nearest));
+      at_line[n] = !nearest.empty() && bg::distance(nearest[0].first, p) <= reach;
+    }
+    return at_line;
   }
 
   // ---- the region ----------------------------------------------------------------------------
