@@ -68,6 +68,9 @@ struct Piece {
   // nearly straight): the vertex and the other edges' headings relative to the arrival there.
   std::vector<std::pair<std::size_t, double>> sides;
   double heading = 0.0;  // its start heading in the exemplar (radians)
+  // Its end is a dangling end within the snap radius of another exemplar line: a gap short of
+  // that line (a field boundary stopping at a track), not a line ending alone.
+  bool ends_at_line = false;
 };
 
 // A stroke continues across a junction onto the edge that deflects least, below this (radians).
@@ -106,6 +109,14 @@ constexpr double kCornerTurn = 0.5;
 // How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
 // met fewer targets over three seeds: long links break cells).
 constexpr double kCornerReach = 1.5;
+// The gap, in clearances, that a piece ending alone in the exemplar keeps from the line it
+// meets when it is kept dangling (three: a clear gap, not a near miss).
+constexpr double kDanglingGap = 3.0;
+// The weight of the bearings of the stubs a free end opens in a candidate's cost (opened_cost),
+// and the share of the exemplar's edges in its two main 15° bearing bins from which it counts
+// (a grid's tracks and field boundaries: nearly all).
+constexpr double kOpenedWeight = 3.0;
+constexpr double kFewOrientations = 0.75;
 
 // An edge turning less than this in all (radians) is straight; an exemplar whose edges are at
 // least kStraightShare straight gets straight output edges (Grower::straighten_edges).
@@ -250,6 +261,7 @@ class Grower {
       turn_ = -(*options_.lead_bearing - main_bearing) * kPi / 180.0;
     }
     piece_of_.assign(2 * ex.edges.size(), -1);
+    const std::vector<char> at_line = dangling_at_line(ex, degree, clearance_);
     for (std::size_t i = 0; i < ex.edges.size(); ++i) {
       const NetworkEdge& e = ex.edges[i];
       for (int dir = 0; dir < 2; ++dir) {
@@ -298,6 +310,7 @@ class Grower {
         const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
         p.arrival = wrap(arrive - h0);
         p.end_degree = degree[std::size_t(stroke_end)];
+        p.ends_at_line = at_line[std::size_t(stroke_end)] != 0;
         for (const auto& [h, edge] : leaving_at[std::size_t(stroke_end)])
           if (edge != current ||
               ex.edges[std::size_t(current)].from == ex.edges[std::size_t(current)].to)
@@ -307,6 +320,7 @@ class Grower {
           p.end_turns.pop_back();
         p.length_bin = int(std::upper_bound(length_edges_.begin(), length_edges_.end(), p.length) -
                            length_edges_.begin());
+        if (p.ends_at_line) gap_pieces_.push_back(int(pieces_.size()));
         piece_of_[2 * i + std::size_t(dir)] = int(pieces_.size());
         pieces_.push_back(std::move(p));
       }
@@ -318,6 +332,7 @@ class Grower {
       const int d = std::min(degree[n], 6);
       target_degree_[std::size_t(d)] += 1.0;
       if (degree[n] >= 3) junctions_.push_back(int(n));
+      if (at_line[n]) gap_share_ += 1.0;
       ++exemplar_nodes_;
     }
     if (junctions_.empty())
@@ -326,12 +341,18 @@ class Grower {
     if (junctions_.empty()) fail("exemplar: no junction (every line ends alone)");
     length_per_junction_ = ex.total_length() / double(std::max<std::size_t>(1, junctions_.size()));
     for (double& v : target_degree_) v /= std::max(1, exemplar_nodes_);
+    gap_share_ /= std::max(1, exemplar_nodes_);
     double total = 0.0;
     for (const NetworkEdge& e : ex.edges) {
       const Vec2 c = rotate(e.points.back() - e.points.front(), turn_);
       target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
     }
     for (double& v : target_bearing_) v /= std::max(1.0, total);
+    {
+      std::array<double, 12> sorted = target_bearing_;
+      std::sort(sorted.begin(), sorted.end(), std::greater<>());
+      few_orientations_ = sorted[0] + sorted[1] >= kFewOrientations;
+    }
     for (const Piece& p : pieces_) target_length_[std::size_t(p.length_bin)] += 1.0;
     for (double& v : target_length_) v /= double(pieces_.size());
     dangling_target_ = 0.0;
@@ -369,6 +390,32 @@ class Grower {
       for (const auto& [a, edge] : leaving_at[std::size_t(j)]) h.push_back(a + turn_);
       junction_headings_.push_back(std::move(h));
     }
+  }
+
+  // Per exemplar node: whether it is a dangling end within `reach` of another of its lines (a
+  // gap short of that line, or a line touching it that the noding did not split).
+  static std::vector<char> dangling_at_line(const Network& ex, const std::vector<int>& degree,
+                                            double reach) {
+    std::vector<int> own(ex.nodes.size(), -1);
+    std::vector<SegValue> segments;
+    for (std::size_t i = 0; i < ex.edges.size(); ++i) {
+      const NetworkEdge& e = ex.edges[i];
+      own[std::size_t(e.from)] = own[std::size_t(e.to)] = int(i);
+      for (std::size_t k = 0; k + 1 < e.points.size(); ++k)
+        segments.push_back({BgSegment(to_bg(e.points[k]), to_bg(e.points[k + 1])), int(i)});
+    }
+    const bgi::rtree<SegValue, bgi::quadratic<16>> index(segments);
+    std::vector<char> at_line(ex.nodes.size(), 0);
+    for (std::size_t n = 0; n < ex.nodes.size(); ++n) {
+      if (degree[n] != 1) continue;
+      const BgPoint p = to_bg(ex.nodes[n]);
+      std::vector<SegValue> nearest;
+      index.query(bgi::nearest(p, 1) &&
+                      bgi::satisfies([&](const SegValue& v) { return v.second != own[n]; }),
+                  std::back_inserter(nearest));
+      at_line[n] = !nearest.empty() && bg::distance(nearest[0].first, p) <= reach;
+    }
+    return at_line;
   }
 
   // ---- the region ----------------------------------------------------------------------------
@@ -471,16 +518,25 @@ class Grower {
     const int id = int(out_.edges.size());
     incident_[std::size_t(e.from)].push_back(id);
     if (e.to != e.from) incident_[std::size_t(e.to)].push_back(id);
+    count_edge_bearing(e.points, 1.0);
     out_.edges.push_back(std::move(e));
     alive_.push_back(1);
     index_edge(id, true);
     return id;
   }
+  // The output's edges by chord bearing, as the statistics count them (a T splits an edge in
+  // two, a stroke's junctions passed through split it): what opened_cost steers by.
+  void count_edge_bearing(const std::vector<Vec2>& pts, double count) {
+    if (pts.size() < 2 || pts.back() == pts.front()) return;
+    edge_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += count;
+    edge_count_ += count;
+  }
   // Splits edge `id` at `p` on its segment `seg`: the new node.
   int split_edge(int id, int seg, Vec2 p) {
     index_edge(id, false);
-    NetworkEdge& e = out_.edges[std::size_t(id)];
     const int node = add_node(p);
+    NetworkEdge& e = out_.edges[std::size_t(id)];
+    count_edge_bearing(e.points, -1.0);
     NetworkEdge second;
     second.from = node;
     second.to = e.to;
@@ -494,6 +550,7 @@ class Grower {
     auto& at_end = incident_[std::size_t(e.to)];
     at_end.erase(std::remove(at_end.begin(), at_end.end(), id), at_end.end());
     e.to = node;
+    count_edge_bearing(e.points, 1.0);
     incident_[std::size_t(node)].push_back(id);
     index_edge(id, true);
     if (second.points.size() < 2) second.points.push_back(p);
@@ -984,6 +1041,25 @@ class Grower {
     return cost;
   }
 
+  // The lines a free end's new junction will grow, by the bearing histogram: a piece whose
+  // junction opens stubs where the output already has more than the exemplar's share of edges
+  // costs more (the proportions of a grid's two orientations follow which junctions are made,
+  // not which piece a stub takes: every piece is turned to the stub's heading). Only where the
+  // exemplar's edges run at few orientations: elsewhere it rewards bent pieces, whose ends
+  // point their stubs anywhere (the counties' curvature tripled).
+  double opened_cost(const Outcome& o, const Piece& piece) const {
+    if (!few_orientations_ || o.how.kind != Ending::Kind::free || piece.end_turns.empty())
+      return 0.0;
+    const double arrive = leaving(o.line, false) + kPi;
+    double cost = 0.0;
+    for (double turn : piece.end_turns) {
+      const double h = arrive + turn;
+      cost += excess(edge_bearing_, edge_count_, target_bearing_,
+                     std::size_t(bearing_bin({std::cos(h), std::sin(h)})));
+    }
+    return kOpenedWeight * cost / double(piece.end_turns.size());
+  }
+
   // `retry`: a stub that found nothing the first time, tried again once the region is covered
   // with more candidates and a straight link onto the network ahead (a junction left short of
   // its degree would become a bend or a dangling end).
@@ -1021,8 +1097,14 @@ class Grower {
       }
     }
     const int candidates = retry ? 4 * options_.candidates : options_.candidates;
-    for (int c = 0; c < candidates; ++c) {
-      const Piece& piece = pieces_[std::size_t(rng_.below(pieces_.size()))];
+    // While the output is short of the exemplar's dangling ends a gap from a line, one more
+    // candidate is drawn among the pieces that end so (they are few: drawn among all, they
+    // seldom come up).
+    const bool short_of_gaps = !gap_pieces_.empty() && short_of_gap_ends();
+    for (int c = 0; c < candidates + int(short_of_gaps); ++c) {
+      const Piece& piece =
+          pieces_[std::size_t(c == candidates ? gap_pieces_[rng_.below(gap_pieces_.size())]
+                                              : rng_.below(pieces_.size()))];
       const double noise = 0.15 * rng_.uniform();
       std::vector<Vec2> pts;
       for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
@@ -1031,7 +1113,7 @@ class Grower {
       // Turned as little as possible from how it lies in the exemplar: the exemplar's
       // anisotropy (rows of fields, walls along contours) carries over.
       const double turned = std::abs(wrap(stub.heading - (piece.heading + turn_))) / kPi;
-      o->cost = outcome_cost(*o) + kTurnWeight * turned + noise;
+      o->cost = outcome_cost(*o) + opened_cost(*o, piece) + kTurnWeight * turned + noise;
       if (!best || o->cost < best->cost) best = std::move(o), best_piece = &piece;
     }
     if (!best && !retry) {
@@ -1055,6 +1137,24 @@ class Grower {
     commit(stub, *best_piece, std::move(*best));
   }
 
+  // Whether one more end a gap short of a line keeps the output's share of them (per node
+  // counted in the degree histogram) within the exemplar's.
+  bool short_of_gap_ends() const {
+    return (gap_ends_ + 1.0) / (junction_count_ + 1.0) <= gap_share_;
+  }
+  // Shortens a polyline by `by` metres at its end; false when nothing would be left.
+  static bool cut_back(std::vector<Vec2>& pts, double by) {
+    while (pts.size() >= 2) {
+      const double last = distance(pts[pts.size() - 2], pts.back());
+      if (last > by) {
+        pts.back() = pts.back() + (pts[pts.size() - 2] - pts.back()) * (by / last);
+        return true;
+      }
+      by -= last;
+      pts.pop_back();
+    }
+    return false;
+  }
   static void truncate(std::vector<Vec2>& pts, const Hit& hit) {
     pts.resize(hit.k + 1);
     if (!(pts.back() == hit.point)) pts.push_back(hit.point);
@@ -1164,6 +1264,18 @@ class Grower {
                              : ending.kind == Ending::Kind::edge ? line_meeting_degree_
                                                                  : 0;
     variants.push_back({ending, pts, plain_degree, -1});
+    // A piece that stops a gap short of a line in the exemplar keeps its end free, a gap short
+    // of the line it meets or would be snapped onto, while the output has fewer such ends than
+    // the exemplar's share of its nodes (a grid's field boundaries with gaps).
+    if (piece.ends_at_line && ending.kind != Ending::Kind::boundary && short_of_gap_ends()) {
+      if (ending.kind == Ending::Kind::edge) {
+        std::vector<Vec2> short_of = pts;
+        if (cut_back(short_of, kDanglingGap * clearance_))
+          variants.insert(variants.begin(), {Ending{}, std::move(short_of), 1, -1});
+      } else {
+        std::rotate(variants.begin(), variants.end() - 1, variants.end());
+      }
+    }
     for (Outcome& o : variants) {
       auto& line = o.line;
       if (polyline_length(line) < min_piece_) continue;
@@ -1226,6 +1338,7 @@ class Grower {
       have_degree_[std::size_t(std::min(o.degree, 6))] += 1.0;
       junction_count_ += 1.0;
     }
+    if (o.how.kind == Ending::Kind::free && o.degree == 1 && piece.ends_at_line) gap_ends_ += 1.0;
     have_bearing_[std::size_t(bearing_bin(pts.back() - pts.front()))] += 1.0;
     have_length_[std::size_t(length_bin(polyline_length(pts)))] += 1.0;
     placed_ += 1.0;
@@ -1763,7 +1876,12 @@ class Grower {
   SplitMix64 rng_;
 
   std::vector<Piece> pieces_;
-  std::vector<int> piece_of_;  // per exemplar edge and direction (2 i + dir): its piece or -1
+  // The exemplar's dangling ends within the clearance of another line, per node (its gaps),
+  // and how many of them the output has.
+  double gap_share_ = 0.0, gap_ends_ = 0.0;
+  bool few_orientations_ = false;  // its edges run at few orientations (kFewOrientations)
+  std::vector<int> gap_pieces_;    // the pieces that end a gap short of a line (ends_at_line)
+  std::vector<int> piece_of_;      // per exemplar edge and direction (2 i + dir): its piece or -1
   std::vector<int> junctions_;
   std::vector<std::vector<double>> junction_headings_;
   double median_ = 1.0, clearance_ = 0.0, snap_ = 0.0, min_piece_ = 0.0, turn_ = 0.0;
@@ -1771,7 +1889,8 @@ class Grower {
   int line_meeting_degree_ = 3;  // a line ending on another makes a T (3) or crosses it (4)
   std::vector<double> length_edges_;
   std::array<double, 7> target_degree_{}, have_degree_{};
-  std::array<double, 12> target_bearing_{}, have_bearing_{};
+  std::array<double, 12> target_bearing_{}, have_bearing_{}, edge_bearing_{};
+  double edge_count_ = 0.0;
   std::array<double, 12> target_length_{}, have_length_{};
   double grown_length_ = 0.0, length_per_junction_ = 1.0;
   double junctions() const {
