@@ -23,6 +23,9 @@ constexpr double kBlockFraction = 0.6;
 constexpr double kOverlapFraction = 0.18;
 // Seam ends are joined when their lines cross the seam within this angle of each other.
 constexpr double kStitchCos = 0.64;  // cos 50°
+// A part of a line with both ends on seams, shorter than this fraction of the stitch radius, is
+// a sliver.
+constexpr double kSliverFraction = 1.0;
 
 Vec2 rotate(Vec2 v, double a) {
   const double c = std::cos(a), s = std::sin(a);
@@ -309,8 +312,15 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
                             (i + 1 < nx && std::abs(p.x - c1.x) <= eps) ||
                             (j > 0 && std::abs(p.y - c0.y) <= eps) ||
                             (j + 1 < ny && std::abs(p.y - c1.y) <= eps);
-          if (q.seam_end[end]) ends.push_back({int(out.size()), end, j * nx + i});
         }
+        // A sliver between two seams (a line grazing a cell's corner) is left out: stitched, it
+        // would join its neighbours by a kink or close a tiny ring with another sliver; without
+        // it they meet across the gap as any two seam ends do.
+        if (q.seam_end[0] && q.seam_end[1] &&
+            polyline_length(q.points) < kSliverFraction * settings.stitch)
+          continue;
+        for (int end = 0; end < 2; ++end)
+          if (q.seam_end[end]) ends.push_back({int(out.size()), end, j * nx + i});
         out.push_back(std::move(q));
       }
     }
