@@ -128,6 +128,8 @@ constexpr double kStraightenDeflection = 1.0;
 // An exemplar whose lines come within the clearance of this share of its extent's perimeter
 // has a drawn frame: its border is that frame, not its outermost cells' sides (keep_whole_cells).
 constexpr double kFrameShare = 0.9;
+// A quilt's seam end left alone is linked onto a line within this many median edge lengths.
+constexpr double kSeamReach = 1.5;
 
 // Where a candidate ends.
 struct Ending {
@@ -898,16 +900,25 @@ class Grower {
     settings.clearance = clearance_;
     settings.turn = turn_;
     settings.candidates = 32;
+    settings.continuation = kSeamReach * median_;
     std::vector<network_detail::QuiltLine> lines =
         network_detail::quilt_lines(exemplar_, settings, rng_);
-    std::vector<Vec2> seam_ends;
+    std::vector<std::pair<Vec2, std::vector<Vec2>>> seam_ends;  // and their continuations
     for (network_detail::QuiltLine& line : lines) {
       for (int end = 0; end < 2; ++end)
         if (line.seam_end[end])
-          seam_ends.push_back(end == 0 ? line.points.front() : line.points.back());
-      for (std::vector<Vec2>& part : inside_parts(line.points)) place_line(std::move(part));
+          seam_ends.push_back({end == 0 ? line.points.front() : line.points.back(),
+                               std::move(line.continuation[end])});
+      for (std::vector<Vec2>& part : inside_parts(line.points)) {
+        // A dip into the region shorter than a piece (both ends on its boundary) is left out:
+        // an edge the exemplar, which no boundary cuts, does not have.
+        if (near_boundary(part.front()) && near_boundary(part.back()) &&
+            polyline_length(part) < min_piece_)
+          continue;
+        place_line(std::move(part));
+      }
     }
-    for (Vec2 p : seam_ends) {
+    for (auto& [p, continuation] : seam_ends) {
       const auto it = node_at_.find({p.x, p.y});
       if (it == node_at_.end()) continue;
       const int n = it->second;
@@ -916,7 +927,10 @@ class Grower {
       for (int i : incident_[std::size_t(n)])
         if (alive_[std::size_t(i)]) edge = i;
       const NetworkEdge& e = out_.edges[std::size_t(edge)];
-      if (link_ahead(n, leaving(e.points, e.from == n) + kPi, 1.5 * median_, edge)) continue;
+      // Along the exemplar's own line beyond the cut first (its bends and bearing), else
+      // straight ahead.
+      if (continuation.size() >= 2 && link_along(n, continuation, edge)) continue;
+      if (link_ahead(n, leaving(e.points, e.from == n) + kPi, kSeamReach * median_, edge)) continue;
       trim_from(n, median_);
     }
     close_corners();  // a junction that lost a line to the trimming or the rules
@@ -1450,7 +1464,12 @@ class Grower {
   // valid: the node becomes a junction.
   bool link_ahead(int n, double heading, double reach, int own_edge) {
     const Vec2 p = out_.nodes[std::size_t(n)];
-    std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+    return link_along(n, {p, p + Vec2{std::cos(heading), std::sin(heading)} * reach}, own_edge);
+  }
+
+  // Node n joined along `ray` (a polyline from it) onto the first line it meets, when that is
+  // valid.
+  bool link_along(int n, std::vector<Vec2> ray, int own_edge) {
     const auto hit = first_edge_hit(ray);
     if (!hit || hit->edge == own_edge) return false;
     truncate(ray, *hit);

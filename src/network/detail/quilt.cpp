@@ -1,6 +1,7 @@
 #include "network/detail/quilt.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <tuple>
@@ -23,6 +24,11 @@ constexpr double kBlockFraction = 0.6;
 constexpr double kOverlapFraction = 0.18;
 // Seam ends are joined when their lines cross the seam within this angle of each other.
 constexpr double kStitchCos = 0.64;  // cos 50°
+// A part of a line with both ends on seams, shorter than this fraction of the stitch radius, is
+// a sliver.
+constexpr double kSliverFraction = 1.0;
+// The candidates best on the seam among which the edges' traits choose.
+constexpr int kShortlist = 16;
 
 Vec2 rotate(Vec2 v, double a) {
   const double c = std::cos(a), s = std::sin(a);
@@ -46,6 +52,49 @@ Vec2& end_vertex(std::vector<Vec2>& pts, int end) {
 }
 Vec2 inner_vertex(const std::vector<Vec2>& pts, int end) {
   return end == 0 ? pts[1] : pts[pts.size() - 2];
+}
+
+// Where p lies along `line` (arc length to its nearest point).
+double arc_position(const std::vector<Vec2>& line, Vec2 p) {
+  double best = INFINITY, at = 0.0, walked = 0.0;
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Vec2 d = line[k + 1] - line[k];
+    const double size = length(d);
+    const double t = size > 0.0 ? std::clamp(dot(p - line[k], d) / (size * size), 0.0, 1.0) : 0.0;
+    const double gap = distance(p, line[k] + t * d);
+    if (gap < best) best = gap, at = walked + t * size;
+    walked += size;
+  }
+  return at;
+}
+
+// The exemplar line `line` beyond a cut at p, away from the part's vertex `inner`, for `reach`
+// metres: it runs on straight past the line's own end (a junction whose other lines the block
+// did not bring).
+std::vector<Vec2> continuation_of(const std::vector<Vec2>& line, Vec2 p, Vec2 inner, double reach) {
+  std::vector<Vec2> path{p};
+  if (!(reach > 0.0) || line.size() < 2) return path;
+  std::vector<Vec2> ahead = line;
+  if (arc_position(line, inner) > arc_position(line, p)) std::reverse(ahead.begin(), ahead.end());
+  const double from = arc_position(ahead, p);
+  double walked = 0.0, left = reach;
+  for (std::size_t k = 0; k + 1 < ahead.size() && left > 0.0; ++k) {
+    const double size = distance(ahead[k], ahead[k + 1]);
+    walked += size;
+    if (walked <= from + 1e-9 * reach) continue;
+    const double step = distance(path.back(), ahead[k + 1]);
+    if (step >= left) {
+      path.push_back(lerp(path.back(), ahead[k + 1], left / step));
+      return path;
+    }
+    path.push_back(ahead[k + 1]);
+    left -= step;
+  }
+  if (path.size() < 2)
+    path.push_back(p + normalized(p - inner) * left);
+  else if (left > 0.0)
+    path.push_back(path.back() + normalized(path.back() - path[path.size() - 2]) * left);
+  return path;
 }
 
 // The distance to the exemplar's nearest line on a lattice over its extent, clamped, read
@@ -82,6 +131,82 @@ class DistanceField {
   double clamp_, cell_ = 1.0;
   int width_ = 2, height_ = 2;
   std::vector<double> d_;
+};
+
+// Histograms of the exemplar's edges' bearing, curvature and length (the last two in bins of
+// its own quantiles), and of the edges the quilt's blocks have brought so far.
+class QuiltTraits {
+ public:
+  static constexpr int kBins = 12;
+  explicit QuiltTraits(const Network& exemplar) {
+    std::vector<double> curvature, size;
+    for (const NetworkEdge& e : exemplar.edges) {
+      curvature.push_back(curvature_of(e.points));
+      size.push_back(polyline_length(e.points));
+    }
+    const std::vector<double> curvature_edges = quantile_edges(curvature);
+    const std::vector<double> length_edges = quantile_edges(size);
+    for (std::size_t e = 0; e < exemplar.edges.size(); ++e) {
+      const auto& pts = exemplar.edges[e].points;
+      bins_.push_back({bearing_of(pts.back() - pts.front()), bin(curvature_edges, curvature[e]),
+                       bin(length_edges, size[e])});
+      for (int t = 0; t < 3; ++t)
+        want_[std::size_t(t)][std::size_t(bins_.back()[std::size_t(t)])] += 1.0;
+    }
+    for (auto& h : want_)
+      for (double& v : h) v /= std::max<double>(1.0, double(exemplar.edges.size()));
+  }
+  // The sum over the three traits of the L1 distance between the exemplar's histogram and the
+  // placed edges' with `edges` added.
+  double mismatch(const std::vector<int>& edges) const {
+    auto have = have_;
+    for (int e : edges)
+      for (int t = 0; t < 3; ++t)
+        have[std::size_t(t)][std::size_t(bins_[std::size_t(e)][std::size_t(t)])] += 1.0;
+    const double total = count_ + double(edges.size());
+    if (!(total > 0.0)) return 0.0;
+    double m = 0.0;
+    for (int t = 0; t < 3; ++t)
+      for (int k = 0; k < kBins; ++k)
+        m += std::abs(have[std::size_t(t)][std::size_t(k)] / total -
+                      want_[std::size_t(t)][std::size_t(k)]);
+    return m;
+  }
+  void add(const std::vector<int>& edges) {
+    for (int e : edges)
+      for (int t = 0; t < 3; ++t)
+        have_[std::size_t(t)][std::size_t(bins_[std::size_t(e)][std::size_t(t)])] += 1.0;
+    count_ += double(edges.size());
+  }
+
+ private:
+  static double curvature_of(const std::vector<Vec2>& pts) {
+    double turning = 0.0;
+    for (std::size_t k = 1; k + 1 < pts.size(); ++k) {
+      const Vec2 a = pts[k] - pts[k - 1], b = pts[k + 1] - pts[k];
+      turning += std::abs(std::atan2(cross(a, b), dot(a, b)));
+    }
+    const double size = polyline_length(pts);
+    return size > 0.0 ? turning / size : 0.0;
+  }
+  static int bearing_of(Vec2 chord) {
+    const double b =
+        std::fmod(std::atan2(chord.x, chord.y) * 180.0 / std::numbers::pi + 360.0, 180.0);
+    return std::min(kBins - 1, int(b / (180.0 / kBins)));
+  }
+  static std::vector<double> quantile_edges(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::vector<double> edges;
+    for (int k = 1; k < kBins && !v.empty(); ++k)
+      edges.push_back(v[v.size() * std::size_t(k) / kBins]);
+    return edges;
+  }
+  static int bin(const std::vector<double>& edges, double v) {
+    return int(std::upper_bound(edges.begin(), edges.end(), v) - edges.begin());
+  }
+  std::vector<std::array<int, 3>> bins_;
+  std::array<std::array<double, kBins>, 3> want_{}, have_{};
+  double count_ = 0.0;
 };
 
 struct Block {
@@ -131,7 +256,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
     int far = 0;
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i) {
-        const Vec2 q = b.centre + Vec2{(i - 2) * 0.45 * side, (j - 2) * 0.45 * side};
+        const Vec2 q = b.centre + Vec2{(i - 2) * 0.225 * side, (j - 2) * 0.225 * side};
         far += field.at(to_exemplar(b, q)) > empty;
       }
     return far > 1;
@@ -145,8 +270,33 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
 
   // Blocks in rows from the region's lower left; each compared with the blocks below and to its
   // left in their overlap.
+  // The exemplar edges whose middle vertex a block puts in the cell [c0, c1].
+  std::vector<int> in_cell;
+  std::vector<SegValue> hits;
+  const auto edges_in_cell = [&](const Block& b, Vec2 c0, Vec2 c1) -> const std::vector<int>& {
+    in_cell.clear();
+    hits.clear();
+    const double r = 0.5 * std::sqrt(2.0) * std::max(c1.x - c0.x, c1.y - c0.y);
+    lines.query(bgi::intersects(BgBox(to_bg(b.source - Vec2{r, r}), to_bg(b.source + Vec2{r, r}))),
+                std::back_inserter(hits));
+    for (const SegValue& v : hits) in_cell.push_back(v.second);
+    std::sort(in_cell.begin(), in_cell.end());
+    in_cell.erase(std::unique(in_cell.begin(), in_cell.end()), in_cell.end());
+    std::erase_if(in_cell, [&](int e) {
+      const auto& pts = exemplar.edges[std::size_t(e)].points;
+      const Vec2 q = rotate(pts[pts.size() / 2] - b.source, settings.turn) + b.centre;
+      return !(q.x >= c0.x && q.x < c1.x && q.y >= c0.y && q.y < c1.y);
+    });
+    return in_cell;
+  };
+  QuiltTraits traits(exemplar);
+  std::vector<std::pair<double, Block>> scored;
   Segments placed;
   std::vector<std::vector<std::vector<Vec2>>> content(std::size_t(nx) * std::size_t(ny));
+  // Per block, the exemplar's edges moved there uncut, and per line of `content` the one it was
+  // cut from: a seam end's continuation is read from it.
+  std::vector<std::vector<std::vector<Vec2>>> whole(content.size());
+  std::vector<std::vector<std::size_t>> cut_from(content.size());
   const double step = 0.25 * overlap;
   const int along = std::max(2, int(std::ceil(side / step))), across = 5;
   std::vector<Vec2> samples;
@@ -175,17 +325,26 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
         }
         return cost;
       };
-      Block best{};
-      double best_cost = INFINITY;
-      int tried = 0;
-      for (int attempt = 0; tried < settings.candidates && attempt < 8 * settings.candidates;
+      scored.clear();
+      for (int attempt = 0;
+           int(scored.size()) < settings.candidates && attempt < 8 * settings.candidates;
            ++attempt) {
         const Block b{random_source(), centre};
         if (attempt + 1 < 8 * settings.candidates && mostly_empty(b)) continue;
-        ++tried;
-        const double cost = cost_of(b, best_cost);
-        if (cost < best_cost) best_cost = cost, best = b;
-        if (samples.empty()) break;
+        scored.push_back({cost_of(b, INFINITY), b});
+      }
+      // Of the few that agree best with the neighbours, the one whose edges bring the traits
+      // placed so far closest to the exemplar's (a choice by the seam alone favours the parts of
+      // the exemplar whose lines are easiest to continue: straight ones).
+      const std::size_t shortlist = std::min(scored.size(), std::size_t(kShortlist));
+      std::partial_sort(scored.begin(), scored.begin() + long(shortlist), scored.end(),
+                        [](const auto& x, const auto& y) { return x.first < y.first; });
+      Block best = scored[0].second;
+      double best_cost = scored[0].first, best_mismatch = INFINITY;
+      for (std::size_t k = 0; k < shortlist; ++k) {
+        const double m = traits.mismatch(edges_in_cell(scored[k].second, c0, c0 + cell));
+        if (m < best_mismatch - 1e-12)
+          best_mismatch = m, best = scored[k].second, best_cost = scored[k].first;
       }
       // The best candidate slid to where its lines agree best with the neighbours' (a descent
       // over the source's offset, halving the step): lattices (grids, cells of one size) line
@@ -203,6 +362,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
         }
         if (!moved) slide *= 0.5;
       }
+      traits.add(edges_in_cell(best, c0, c0 + cell));
       // The block's lines: the exemplar's edges under its square, moved and cut to it.
       const double reach = half * std::sqrt(2.0);
       found.clear();
@@ -213,12 +373,15 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
       for (const SegValue& v : found) edges.push_back(v.second);
       std::sort(edges.begin(), edges.end());
       edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-      auto& mine = content[std::size_t(j) * std::size_t(nx) + std::size_t(i)];
+      const std::size_t block = std::size_t(j) * std::size_t(nx) + std::size_t(i);
+      auto& mine = content[block];
       for (int e : edges) {
         std::vector<Vec2> moved;
         for (Vec2 p : exemplar.edges[std::size_t(e)].points)
           moved.push_back(rotate(p - best.source, settings.turn) + best.centre);
         cut_to_box(moved, centre - Vec2{half, half}, centre + Vec2{half, half}, mine);
+        cut_from[block].resize(mine.size(), whole[block].size());
+        whole[block].push_back(std::move(moved));
       }
       for (const auto& line : mine) insert_line(placed, line, j * nx + i);
     }
@@ -292,14 +455,21 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
   std::vector<QuiltLine> out;
   const double eps = 1e-9 * std::max(1.0, side);
   std::vector<std::vector<Vec2>> parts;
+  std::vector<std::size_t> part_from;
   std::vector<std::tuple<int, int, int>> ends;  // line, end, cell
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const Vec2 c0{cut_x(i, j), row_cut[std::size_t(j)]};
       const Vec2 c1{cut_x(i + 1, j), row_cut[std::size_t(j) + 1]};
+      const std::size_t block = std::size_t(j) * std::size_t(nx) + std::size_t(i);
       parts.clear();
-      for (const auto& line : block_lines(i, j)) cut_to_box(line, c0, c1, parts);
-      for (auto& part : parts) {
+      part_from.clear();
+      for (std::size_t l = 0; l < content[block].size(); ++l) {
+        cut_to_box(content[block][l], c0, c1, parts);
+        part_from.resize(parts.size(), cut_from[block][l]);
+      }
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        auto& part = parts[k];
         if (polyline_length(part) <= eps) continue;
         QuiltLine q;
         q.points = std::move(part);
@@ -309,7 +479,19 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
                             (i + 1 < nx && std::abs(p.x - c1.x) <= eps) ||
                             (j > 0 && std::abs(p.y - c0.y) <= eps) ||
                             (j + 1 < ny && std::abs(p.y - c1.y) <= eps);
-          if (q.seam_end[end]) ends.push_back({int(out.size()), end, j * nx + i});
+        }
+        // A sliver between two seams (a line grazing a cell's corner) is left out: stitched, it
+        // would join its neighbours by a kink or close a tiny ring with another sliver; without
+        // it they meet across the gap as any two seam ends do.
+        if (q.seam_end[0] && q.seam_end[1] &&
+            polyline_length(q.points) < kSliverFraction * settings.stitch)
+          continue;
+        for (int end = 0; end < 2; ++end) {
+          if (!q.seam_end[end]) continue;
+          ends.push_back({int(out.size()), end, j * nx + i});
+          q.continuation[end] =
+              continuation_of(whole[block][part_from[k]], end == 0 ? q.points[0] : q.points.back(),
+                              inner_vertex(q.points, end), settings.continuation);
         }
         out.push_back(std::move(q));
       }

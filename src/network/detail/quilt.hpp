@@ -16,14 +16,18 @@ struct QuiltLine {
   // Per end (front, back): cut at a seam between two blocks (joined or not to a line of the
   // other block; an end left alone there is a stub to link or trim).
   bool seam_end[2] = {false, false};
+  // Per seam end: the exemplar line it was cut from, beyond the cut (starting at the end, at
+  // most QuiltSettings::continuation long): where the line would have gone on.
+  std::vector<Vec2> continuation[2];
 };
 
 struct QuiltSettings {
-  Vec2 lo, hi;             // the region's extent
-  double stitch = 0.0;     // seam ends closer than this (metres) are joined
-  double clearance = 0.0;  // lines closer than this to each other are one too many
-  double turn = 0.0;       // the exemplar turned by this (radians) before it is copied
-  int candidates = 32;     // exemplar squares tried per block
+  Vec2 lo, hi;                // the region's extent
+  double stitch = 0.0;        // seam ends closer than this (metres) are joined
+  double clearance = 0.0;     // lines closer than this to each other are one too many
+  double turn = 0.0;          // the exemplar turned by this (radians) before it is copied
+  double continuation = 0.0;  // a seam end's continuation is this long (metres)
+  int candidates = 32;        // exemplar squares tried per block
 };
 
 // The lines of the quilt over [lo, hi], drawn from `rng` in a fixed order (same seed, same
