@@ -169,7 +169,7 @@ class PatternMethod final : public SynthesisMethod {
   std::string stage_name() const override { return "synthesis"; }
   MethodStage stage() const override { return MethodStage::placements; }
   bool serves(const PipelineConfig& config, const PlanOptions& options) const override {
-    return options.synthesize && !config.synthesis_order.empty();
+    return options.synthesize && !synthesis_order(config).empty();
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<PatternsPlan>();
