@@ -257,16 +257,13 @@ struct PipelineConfig {
   std::string backend = "auto";              // cpu | opencl | auto
   std::vector<FeatureClassConfig> features;  // in precedence order: later wins on overlaps
   // The methods' own options, in the order their readers made them (the `kind: area` classes
-  // are the areas method's); method_options finds one.
+  // are the areas method's, `synthesis_order` the patterns'); method_options finds one.
   std::vector<MethodConfigPart> methods;
   std::vector<ExistingConfig> existing;
   AvoidanceConfig avoidance;
   // Synthesis canvas cell size in metres, independent of `resolution` (placements never
   // depend on the output grid).
   double synthesis_resolution = 1.0;
-  // Classes with synthesis, in the order they are synthesized: each avoids the patterns of
-  // the classes before it. Default: precedence order.
-  std::vector<std::string> synthesis_order;
   // `cache`: the folder where runs keep and reuse syntheses and tiles (docs/cache.md); --cache
   // replaces it. Absent: no cache.
   std::optional<std::filesystem::path> cache_dir;
@@ -293,6 +290,20 @@ const T* method_options(const PipelineConfig& config, const std::string& method)
 template <class T>
 T& method_options(PipelineConfig& config, const std::string& method) {
   return method_options_in<T>(config.methods, method);
+}
+
+// The patterns' config-level option (`synthesis_order`), in PipelineConfig::methods under
+// kPatternsMethodName: the classes with synthesis in the order they are synthesized, each
+// avoiding the patterns of the classes before it (default: precedence order).
+struct SynthesisOrder : MethodOptionsOf<SynthesisOrder> {
+  std::vector<std::string> classes;
+};
+
+// The classes with synthesis in synthesis order; empty when the config has none.
+inline const std::vector<std::string>& synthesis_order(const PipelineConfig& config) {
+  static const std::vector<std::string> none;
+  const SynthesisOrder* order = method_options<SynthesisOrder>(config, kPatternsMethodName);
+  return order ? order->classes : none;
 }
 
 // A variables file (`--vars FILE`, docs/pipeline.md): a YAML mapping of name: value. Every

@@ -239,7 +239,7 @@ features:
 )";
   const PipelineConfig c = parse(classes + "synthesis_resolution: 0.5\n");
   EXPECT_DOUBLE_EQ(c.synthesis_resolution, 0.5);
-  EXPECT_EQ(c.synthesis_order, (std::vector<std::string>{"roads", "rivers"}));
+  EXPECT_EQ(synthesis_order(c), (std::vector<std::string>{"roads", "rivers"}));
   const SynthesisConfig& s = *method_options<SynthesisConfig>(c.features[0], kPatternsMethodName);
   EXPECT_EQ(s.choice, ExemplarChoice::best);
   EXPECT_DOUBLE_EQ(*s.width, 12.0);
@@ -276,7 +276,7 @@ features:
   EXPECT_THAT(error_of(classes, {{"features.rivers.synthesis.width", "wide"}}),
               HasSubstr("features.rivers.synthesis.width: expected a number, got 'wide'"));
 
-  EXPECT_EQ(parse(classes + "synthesis_order: [rivers, roads]\n").synthesis_order,
+  EXPECT_EQ(synthesis_order(parse(classes + "synthesis_order: [rivers, roads]\n")),
             (std::vector<std::string>{"rivers", "roads"}));
   EXPECT_THAT(error_of(classes + "synthesis_order: [rivers]\n"),
               HasSubstr("synthesis_order: feature class 'roads' (with synthesis) is missing"));
@@ -520,7 +520,7 @@ synthesis_resolution: 0.5
   EXPECT_EQ(hedges.ridge.height, 1.5);
   ASSERT_TRUE(has_method_options(hedges, kPatternsMethodName));
   EXPECT_EQ(method_options<SynthesisConfig>(hedges, kPatternsMethodName)->bind.size(), 1u);
-  EXPECT_EQ(c.synthesis_order, std::vector<std::string>{"hedges"});
+  EXPECT_EQ(synthesis_order(c), std::vector<std::string>{"hedges"});
   EXPECT_EQ(c.synthesis_resolution, 0.5);
   // Without the block, the hedge kind is the grown method's, which asks for its grow: block.
   EXPECT_THAT(error_of(std::string(kMinimal) + "  hedges: { kind: hedge }\n"),

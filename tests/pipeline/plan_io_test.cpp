@@ -18,9 +18,11 @@
 #include "core/file_io.hpp"
 #include "pipeline/detail/job_files.hpp"
 #include "pipeline/detail/plan_fields.hpp"
+#include "pipeline/detail/plan_objects.hpp"
 #include "pipeline/detail/plan_ribbons.hpp"
 #include "pipeline/detail/report_json.hpp"
 #include "pipeline/job.hpp"
+#include "pipeline/methods/network/network_report.hpp"
 #include "pipeline/methods/patterns/pattern_method.hpp"
 #include "pipeline/methods/patterns/pattern_report.hpp"
 #include "pipeline/plan.hpp"
@@ -198,6 +200,45 @@ TEST_F(PlanFolder, AnObjectThatDoesNotMatchItsHashIsRefusedByName) {
     EXPECT_THAT(e.what(), HasSubstr(object.filename().string()));
     EXPECT_THAT(e.what(), HasSubstr("does not match its content hash"));
   }
+}
+
+// Every method stores its report part the same way (detail/plan_report_parts.hpp): a network
+// class's counts come back as they went, and bytes that are not a part (an intact object, so
+// past the hash check) are refused naming plan.json and the method's own key.
+TEST_F(PlanFolder, EachMethodsReportPartRoundTripsAndBadBytesNameItsKey) {
+  const fs::path dir = dir_ / "parts";
+  fs::create_directories(dir / "objects");
+  detail::PlanObjects objects(dir);
+  for (const SynthesisMethod* method : builtin_synthesis_methods()) {
+    const nlohmann::json bad = objects.put_binary("not a report part");
+    try {
+      method->decode_report(bad, objects);
+      FAIL() << method->name() << ": bad bytes were read";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr((dir / "plan.json").string() + ": methods." + method->name() +
+                                      ".report"));
+    }
+  }
+  detail::NetworkReport part;
+  part.classes.resize(2);
+  part.classes[1] = detail::NetworkClassReport{.exemplar = "hedges.gpkg:lines",
+                                               .method = "automatic",
+                                               .chosen = "quilt",
+                                               .lines = 17,
+                                               .rejected_region = 3};
+  const SynthesisMethod& network =
+      **std::find_if(builtin_synthesis_methods().begin(), builtin_synthesis_methods().end(),
+                     [](const SynthesisMethod* m) { return m->name() == "network"; });
+  const std::unique_ptr<MethodPayload> back =
+      network.decode_report(network.encode_report(part, objects), objects);
+  const auto& decoded = dynamic_cast<const detail::NetworkReport&>(*back);
+  ASSERT_EQ(decoded.classes.size(), 2u);
+  EXPECT_FALSE(decoded.classes[0]);
+  ASSERT_TRUE(decoded.classes[1]);
+  EXPECT_EQ(decoded.classes[1]->exemplar, "hedges.gpkg:lines");
+  EXPECT_EQ(decoded.classes[1]->chosen, "quilt");
+  EXPECT_EQ(decoded.classes[1]->lines, 17);
+  EXPECT_EQ(decoded.classes[1]->rejected_region, 3);
 }
 
 // A render-tile decodes the ribbons that can reach its tile, not the world's (issue #23 item 4):

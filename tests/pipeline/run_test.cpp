@@ -42,7 +42,7 @@ PipelineConfig demo_config(const fs::path& out) {
       load_pipeline(test::source_dir() / "pipelines/demo.yaml",
                     {{"resolution", std::to_string(kResolution)}, {"output.dir", out.string()}});
   for (FeatureClassConfig& c : config.features) drop_method_options(c.methods, kPatternsMethodName);
-  config.synthesis_order.clear();
+  drop_method_options(config.methods, kPatternsMethodName);  // its synthesis_order
   return config;
 }
 

@@ -381,8 +381,8 @@ TEST(TiledDemo, TheMosaicEqualsTheUntiledRun) {
     overrides.push_back({"output.dir", (dir.path() / out).string()});
     PipelineConfig config = load_pipeline(pipeline, overrides);
     for (FeatureClassConfig& c : config.features)
-      drop_method_options(c.methods, kPatternsMethodName);  // run_test.cpp's demo
-    config.synthesis_order.clear();
+      drop_method_options(c.methods, kPatternsMethodName);     // run_test.cpp's demo
+    drop_method_options(config.methods, kPatternsMethodName);  // its synthesis_order
     return config;
   };
   const RunReport a = run_pipeline(demo("untiled", {}));

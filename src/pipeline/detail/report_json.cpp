@@ -147,7 +147,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
         {"crs_wkt", report.crs_wkt}}},
       {"forbidden_pixels", report.forbidden_pixels},
       {"synthesis_resolution", config.synthesis_resolution},
-      {"synthesis_order", config.synthesis_order},
+      {"synthesis_order", synthesis_order(config)},
       {"classes", classes},
       {"warning_count", report.warnings.size()},
       {"warnings", warnings},

@@ -6,9 +6,10 @@
 #include "core/output_folder.hpp"
 #include "geo/height_sampler.hpp"
 #include "pipeline/area_output.hpp"
-#include "pipeline/detail/plan_binary.hpp"
+#include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_report_parts.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/methods/areas/area_report.hpp"
 #include "pipeline/methods/areas/areas.hpp"
@@ -228,14 +229,11 @@ class AreaMethod final : public SynthesisMethod {
   }
 
   json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
-    return objects.put_binary(to_bytes(dynamic_cast<const AreasReport&>(part)));
+    return detail::put_report_part<AreasReport>(part, objects);
   }
   std::unique_ptr<MethodPayload> decode_report(const json& value,
                                                PlanObjects& objects) const override {
-    auto part = std::make_unique<AreasReport>();
-    from_bytes(objects.get_binary(value, "methods.areas.report").body(), *part,
-               "plan " + (objects.dir() / "plan.json").string() + ": methods.areas.report");
-    return part;
+    return detail::get_report_part<AreasReport>(value, objects, "areas");
   }
 
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {

@@ -6,9 +6,10 @@
 #include "core/output_folder.hpp"
 #include "ornament/element.hpp"
 #include "pipeline/detail/ingest.hpp"
-#include "pipeline/detail/plan_binary.hpp"
+#include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_report_parts.hpp"
 #include "pipeline/detail/stages.hpp"
 #include "pipeline/grow_region.hpp"
 #include "pipeline/methods/grown/grown_classes.hpp"
@@ -142,14 +143,11 @@ class GrownMethod final : public SynthesisMethod {
   }
 
   json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
-    return objects.put_binary(to_bytes(dynamic_cast<const GrownReport&>(part)));
+    return detail::put_report_part<GrownReport>(part, objects);
   }
   std::unique_ptr<MethodPayload> decode_report(const json& value,
                                                PlanObjects& objects) const override {
-    auto part = std::make_unique<GrownReport>();
-    from_bytes(objects.get_binary(value, "methods.grown.report").body(), *part,
-               "plan " + (objects.dir() / "plan.json").string() + ": methods.grown.report");
-    return part;
+    return detail::get_report_part<GrownReport>(value, objects, "grown");
   }
 
   json encode(const MethodPlan& entry, PlanObjects& objects) const override {

@@ -4,8 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/detail/plan_binary.hpp"
+#include "pipeline/detail/plan_codec.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_report_parts.hpp"
 #include "pipeline/methods/network/network_classes.hpp"
 #include "pipeline/methods/network/network_report.hpp"
 
@@ -82,14 +83,11 @@ class NetworkMethod final : public SynthesisMethod {
   }
 
   json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
-    return objects.put_binary(to_bytes(dynamic_cast<const NetworkReport&>(part)));
+    return detail::put_report_part<NetworkReport>(part, objects);
   }
   std::unique_ptr<MethodPayload> decode_report(const json& value,
                                                PlanObjects& objects) const override {
-    auto part = std::make_unique<NetworkReport>();
-    from_bytes(objects.get_binary(value, "methods.network.report").body(), *part,
-               "plan " + (objects.dir() / "plan.json").string() + ": methods.network.report");
-    return part;
+    return detail::get_report_part<NetworkReport>(value, objects, "network");
   }
 
   json encode(const MethodPlan& /*entry*/, PlanObjects& /*objects*/) const override {

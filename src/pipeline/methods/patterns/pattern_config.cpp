@@ -164,12 +164,14 @@ SynthesisConfig read_synthesis(const MapReader& m, std::uint64_t default_seed,
 
 // `synthesis_order`: each class with synthesis exactly once; default precedence order.
 void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
+  std::vector<std::string> order;
   std::vector<std::string> with_synthesis;
   for (const auto& f : c.features) {
     if (has_method_options(f, kPatternsMethodName)) with_synthesis.push_back(f.name);
   }
   if (!root.has("synthesis_order")) {
-    c.synthesis_order = with_synthesis;
+    if (!with_synthesis.empty())
+      method_options<SynthesisOrder>(c, kPatternsMethodName).classes = with_synthesis;
     return;
   }
   const YAML::Node list = root.get("synthesis_order");
@@ -178,8 +180,7 @@ void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string key = list_path + "." + std::to_string(i);
     const std::string name = read_string(root.source(), list[i], key);
-    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) !=
-        c.synthesis_order.end()) {
+    if (std::find(order.begin(), order.end(), name) != order.end()) {
       root.source().fail(list[i], key, fmt::format("'{}' is listed twice", name));
     }
     if (std::find(with_synthesis.begin(), with_synthesis.end(), name) == with_synthesis.end()) {
@@ -189,16 +190,16 @@ void read_synthesis_order(const MapReader& root, PipelineConfig& c) {
           fmt::format("'{}' is not a feature class with synthesis{}", name,
                       hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
     }
-    c.synthesis_order.push_back(name);
+    order.push_back(name);
   }
   for (const std::string& name : with_synthesis) {
-    if (std::find(c.synthesis_order.begin(), c.synthesis_order.end(), name) ==
-        c.synthesis_order.end()) {
+    if (std::find(order.begin(), order.end(), name) == order.end()) {
       root.source().fail(
           list, list_path,
           fmt::format("feature class '{}' (with synthesis) is missing from the list", name));
     }
   }
+  if (!order.empty()) method_options<SynthesisOrder>(c, kPatternsMethodName).classes = order;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "pipeline/detail/plan_binary.hpp"
 #include "pipeline/detail/plan_fields.hpp"
 #include "pipeline/detail/plan_objects.hpp"
+#include "pipeline/detail/plan_report_parts.hpp"
 #include "pipeline/detail/plan_synthesis.hpp"
 #include "pipeline/detail/tile_cache.hpp"
 #include "pipeline/methods/patterns/pattern_config.hpp"
@@ -168,7 +169,7 @@ class PatternMethod final : public SynthesisMethod {
   std::string stage_name() const override { return "synthesis"; }
   MethodStage stage() const override { return MethodStage::placements; }
   bool serves(const PipelineConfig& config, const PlanOptions& options) const override {
-    return options.synthesize && !config.synthesis_order.empty();
+    return options.synthesize && !synthesis_order(config).empty();
   }
   std::unique_ptr<MethodPayload> empty_payload() const override {
     return std::make_unique<PatternsPlan>();
@@ -400,14 +401,11 @@ class PatternMethod final : public SynthesisMethod {
   // Its report: the features' timings apart, per class, per feature ([avoidance, synthesis,
   // render] seconds; null: not synthesized).
   json encode_report(const MethodPayload& part, PlanObjects& objects) const override {
-    return objects.put_binary(to_bytes(dynamic_cast<const PatternsReport&>(part)));
+    return detail::put_report_part<PatternsReport>(part, objects);
   }
   std::unique_ptr<MethodPayload> decode_report(const json& value,
                                                PlanObjects& objects) const override {
-    auto part = std::make_unique<PatternsReport>();
-    from_bytes(objects.get_binary(value, "methods.patterns.report").body(), *part,
-               "plan " + (objects.dir() / "plan.json").string() + ": methods.patterns.report");
-    return part;
+    return detail::get_report_part<PatternsReport>(value, objects, "patterns");
   }
   json take_report_timings(MethodPayload& part) const override {
     json classes = json::array();

@@ -94,7 +94,7 @@ PatternRun synthesize_patterns(const PipelineConfig& config,
                                const PatternOptions& options) {
   PatternRun run;
   std::vector<ClassPlan> plans;
-  for (const std::string& name : config.synthesis_order) {
+  for (const std::string& name : synthesis_order(config)) {
     const auto it = std::find_if(config.features.begin(), config.features.end(),
                                  [&](const FeatureClassConfig& c) { return c.name == name; });
     const SynthesisConfig* synthesis =
