@@ -12,9 +12,9 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/border.hpp"
 #include "network/detail/forest.hpp"
 #include "network/detail/layout_copies.hpp"
-#include "network/detail/border.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
@@ -649,7 +649,7 @@ class Grower {
       // junction are necessarily close to each other there.
       Vec2 ta = a, tb = b;
       bool kept = true;
-      for (Vec2 j : joints) kept = kept && outside_disc(ta, tb, j, clearance_);
+      for (Vec2 j : joints) kept = kept && trim_outside_disc(ta, tb, j, clearance_);
       const BgSegment trimmed(to_bg(ta), to_bg(tb));
       for (const SegValue& v : near) {
         common.clear();
@@ -681,7 +681,7 @@ class Grower {
         if (spacing == Spacing::laid_out && edge_meets(v.second, joints))
           for (Vec2 j : joints)
             if (distance_to_segment(j, sa, sb) < clearance_)
-              stored_outside = stored_outside && outside_disc(sa, sb, j, clearance_);
+              stored_outside = stored_outside && trim_outside_disc(sa, sb, j, clearance_);
         if (kept && stored_outside &&
             bg::distance(trimmed, BgSegment(to_bg(sa), to_bg(sb))) < clearance_)
           return false;
@@ -692,7 +692,7 @@ class Grower {
         // (not `Spacing::grown`) keep the exemplar's own spacing.
         Vec2 va = ea, vb = eb;
         bool stored_kept = true;
-        for (Vec2 j : joints) stored_kept = stored_kept && outside_disc(va, vb, j, clearance_);
+        for (Vec2 j : joints) stored_kept = stored_kept && trim_outside_disc(va, vb, j, clearance_);
         if (own_clearance && stored_kept &&
             bg::distance(s, BgSegment(to_bg(va), to_bg(vb))) < clearance_ &&
             !edge_meets(v.second, joints))
@@ -741,25 +741,6 @@ class Grower {
       for (std::size_t k = 0; k + 1 < pts.size(); ++k)
         if (distance_to_segment(j, pts[k], pts[k + 1]) <= eps) return true;
     return false;
-  }
-
-  // Trims ab to its part outside the disc (j, r); false when nothing is left.
-  static bool outside_disc(Vec2& a, Vec2& b, Vec2 j, double r) {
-    const Vec2 d = b - a, f = a - j;
-    const double A = dot(d, d), B = 2.0 * dot(f, d), C = dot(f, f) - r * r;
-    if (A <= 0.0) return C >= 0.0;
-    const double disc = B * B - 4.0 * A * C;
-    if (disc <= 0.0) return true;
-    const double t1 = (-B - std::sqrt(disc)) / (2.0 * A), t2 = (-B + std::sqrt(disc)) / (2.0 * A);
-    if (t1 <= 0.0 && t2 >= 1.0) return false;
-    const Vec2 p1 = a + d * t1, p2 = a + d * t2;
-    if (t1 <= 0.0) return a = p2, t2 < 1.0;
-    if (t2 >= 1.0) return b = p1, t1 > 0.0;
-    if (t1 > 1.0 - t2)
-      b = p1;
-    else
-      a = p2;
-    return true;
   }
 
   // ---- layout (docs/networks.md, "Layout") ---------------------------------------------------
