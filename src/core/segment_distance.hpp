@@ -1,6 +1,6 @@
 #pragma once
 // The distance from a point to a segment, the one helper for it (strokes, junction rules, leads),
-// and a segment's part outside a disc (the clearance exempt around a junction).
+// and a segment's part outside a disc or prolonged to it (the clearance around a junction).
 #include <algorithm>
 #include <cmath>
 
@@ -36,6 +36,20 @@ inline bool trim_outside_disc(Vec2& a, Vec2& b, Vec2 j, double r) {
   else
     a = p2;
   return true;
+}
+
+// Extends ab along its line to the near side of the disc (j, r) when the disc lies wholly beyond
+// one of its ends, at most `reach` beyond it; unchanged otherwise.
+inline void prolong_to_disc(Vec2& a, Vec2& b, Vec2 j, double r, double reach) {
+  const Vec2 d = b - a, f = a - j;
+  const double A = dot(d, d), B = 2.0 * dot(f, d), C = dot(f, f) - r * r;
+  if (A <= 0.0) return;
+  const double disc = B * B - 4.0 * A * C;
+  if (disc <= 0.0) return;
+  const double t1 = (-B - std::sqrt(disc)) / (2.0 * A), t2 = (-B + std::sqrt(disc)) / (2.0 * A);
+  const double length = std::sqrt(A);
+  if (t1 >= 1.0 && (t1 - 1.0) * length <= reach) b = a + d * t1;
+  if (t2 <= 0.0 && -t2 * length <= reach) a = a + d * t2;
 }
 
 }  // namespace tw

@@ -692,7 +692,13 @@ class Grower {
         // (not `Spacing::grown`) keep the exemplar's own spacing.
         Vec2 va = ea, vb = eb;
         bool stored_kept = true;
-        for (Vec2 j : joints) stored_kept = stored_kept && trim_outside_disc(va, vb, j, clearance_);
+        // A line aimed at the joint and ending at most a median edge short of its disc counts
+        // as reaching the disc: a candidate leaving the joint across that gap would cut a sliver
+        // off the cell the line's continuation closes.
+        for (Vec2 j : joints) {
+          prolong_to_disc(va, vb, j, clearance_, median_);
+          stored_kept = stored_kept && trim_outside_disc(va, vb, j, clearance_);
+        }
         if (own_clearance && stored_kept &&
             bg::distance(s, BgSegment(to_bg(va), to_bg(vb))) < clearance_ &&
             !edge_meets(v.second, joints))

@@ -46,6 +46,18 @@ TEST(SegmentDisc, ADiscBeyondTheSegmentsEndsLeavesItAsItIs) {
   EXPECT_FALSE(trim_outside_disc(a, b, {5, 0}, 4));  // the whole segment inside
 }
 
+TEST(SegmentDisc, ASegmentAimedAtADiscIsProlongedToItWithinReach) {
+  Vec2 a{0, 0}, b{10, 0};
+  prolong_to_disc(a, b, {15, 0}, 3, 1);  // 2 m short of the disc: beyond reach
+  EXPECT_EQ(b.x, 10.0);
+  prolong_to_disc(a, b, {15, 0}, 3, 2.5);
+  EXPECT_NEAR(b.x, 12.0, 1e-12);
+  prolong_to_disc(a, b, {-4, 0}, 3, 2.5);
+  EXPECT_NEAR(a.x, -1.0, 1e-12);
+  prolong_to_disc(a, b, {15, 5}, 3, 100);  // not aimed at it
+  EXPECT_NEAR(b.x, 12.0, 1e-12);
+}
+
 TEST(NetworkGrowth, GridNeverCrossesStaysInsideAndIsDeterministic) {
   const Network ex = exemplar("grid");
   const auto region = box(0, 0, 1200, 900);
