@@ -104,6 +104,8 @@ constexpr double kMinMeetingAngle = 0.35;
 // hold at least this share of its length.
 constexpr double kLayoutStrokeFraction = 0.4;
 constexpr double kLayoutShare = 0.25;
+// No lattice seed where the layout's copies have no line within this many median edges.
+constexpr double kLayoutEmptyReach = 0.75;
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
 // How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
@@ -810,11 +812,16 @@ class Grower {
           {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
-    layout_copies_.emplace(
-        exemplar_, network_detail::LayoutFrame{origin, centre, size, lo, hi, turn_, ni, nj});
+    // Copies whose corners are empty are islands: turned (by a lead bearing), each turns about
+    // its own centre on the region's grid, or a neighbour's ring would reach into the region's
+    // corners.
+    network_detail::LayoutFrame frame{origin, centre, size, lo, hi, turn_, ni, nj};
+    layout_copies_.emplace(exemplar_, frame);
+    // (Unturned, both grids are one: the copies stay as they were, to the bit.)
+    frame.islands = turn_ != 0.0 && layout_copies_->corners_empty(kLayoutEmptyReach * median_);
+    layout_copies_.emplace(exemplar_, frame);
     for (auto [i, j] : tiles) {
-      const Vec2 tile{i * size.x, j * size.y};
-      const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
+      const auto place = [&](Vec2 p) { return frame.place(p, i, j); };
       std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
       for (std::size_t e : order) {
         const NetworkEdge& edge = exemplar_.edges[e];
@@ -1434,7 +1441,8 @@ class Grower {
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < seed_room_) continue;
-      if (near_boundary(p) || (layout_copies_ && layout_copies_->empty_near(p, 0.75 * spacing)))
+      if (near_boundary(p) ||
+          (layout_copies_ && layout_copies_->empty_near(p, kLayoutEmptyReach * spacing)))
         continue;
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
       const int node = add_node(p);
