@@ -12,9 +12,9 @@
 #include "core/error.hpp"
 #include "core/segment_distance.hpp"
 #include "core/split_mix.hpp"
+#include "network/detail/border.hpp"
 #include "network/detail/forest.hpp"
 #include "network/detail/layout_copies.hpp"
-#include "network/detail/border.hpp"
 #include "network/detail/quilt.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/stats.hpp"
@@ -104,6 +104,8 @@ constexpr double kMinMeetingAngle = 0.35;
 // hold at least this share of its length.
 constexpr double kLayoutStrokeFraction = 0.4;
 constexpr double kLayoutShare = 0.25;
+// No lattice seed where the layout's copies have no line within this many median edges.
+constexpr double kLayoutEmptyReach = 0.75;
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
 // How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
@@ -649,7 +651,7 @@ class Grower {
       // junction are necessarily close to each other there.
       Vec2 ta = a, tb = b;
       bool kept = true;
-      for (Vec2 j : joints) kept = kept && outside_disc(ta, tb, j, clearance_);
+      for (Vec2 j : joints) kept = kept && trim_outside_disc(ta, tb, j, clearance_);
       const BgSegment trimmed(to_bg(ta), to_bg(tb));
       for (const SegValue& v : near) {
         common.clear();
@@ -681,7 +683,7 @@ class Grower {
         if (spacing == Spacing::laid_out && edge_meets(v.second, joints))
           for (Vec2 j : joints)
             if (distance_to_segment(j, sa, sb) < clearance_)
-              stored_outside = stored_outside && outside_disc(sa, sb, j, clearance_);
+              stored_outside = stored_outside && trim_outside_disc(sa, sb, j, clearance_);
         if (kept && stored_outside &&
             bg::distance(trimmed, BgSegment(to_bg(sa), to_bg(sb))) < clearance_)
           return false;
@@ -692,7 +694,13 @@ class Grower {
         // (not `Spacing::grown`) keep the exemplar's own spacing.
         Vec2 va = ea, vb = eb;
         bool stored_kept = true;
-        for (Vec2 j : joints) stored_kept = stored_kept && outside_disc(va, vb, j, clearance_);
+        // A line aimed at the joint and ending at most a median edge short of its disc counts
+        // as reaching the disc: a candidate leaving the joint across that gap would cut a sliver
+        // off the cell the line's continuation closes.
+        for (Vec2 j : joints) {
+          prolong_to_disc(va, vb, j, clearance_, median_);
+          stored_kept = stored_kept && trim_outside_disc(va, vb, j, clearance_);
+        }
         if (own_clearance && stored_kept &&
             bg::distance(s, BgSegment(to_bg(va), to_bg(vb))) < clearance_ &&
             !edge_meets(v.second, joints))
@@ -741,25 +749,6 @@ class Grower {
       for (std::size_t k = 0; k + 1 < pts.size(); ++k)
         if (distance_to_segment(j, pts[k], pts[k + 1]) <= eps) return true;
     return false;
-  }
-
-  // Trims ab to its part outside the disc (j, r); false when nothing is left.
-  static bool outside_disc(Vec2& a, Vec2& b, Vec2 j, double r) {
-    const Vec2 d = b - a, f = a - j;
-    const double A = dot(d, d), B = 2.0 * dot(f, d), C = dot(f, f) - r * r;
-    if (A <= 0.0) return C >= 0.0;
-    const double disc = B * B - 4.0 * A * C;
-    if (disc <= 0.0) return true;
-    const double t1 = (-B - std::sqrt(disc)) / (2.0 * A), t2 = (-B + std::sqrt(disc)) / (2.0 * A);
-    if (t1 <= 0.0 && t2 >= 1.0) return false;
-    const Vec2 p1 = a + d * t1, p2 = a + d * t2;
-    if (t1 <= 0.0) return a = p2, t2 < 1.0;
-    if (t2 >= 1.0) return b = p1, t1 > 0.0;
-    if (t1 > 1.0 - t2)
-      b = p1;
-    else
-      a = p2;
-    return true;
   }
 
   // ---- layout (docs/networks.md, "Layout") ---------------------------------------------------
@@ -823,11 +812,16 @@ class Grower {
           {leaving(edge.points, false) + turn_, piece_of_[2 * e + 1]});
     }
     std::vector<char> laid(out_.nodes.size(), 0);
-    layout_copies_.emplace(
-        exemplar_, network_detail::LayoutFrame{origin, centre, size, lo, hi, turn_, ni, nj});
+    // Copies whose corners are empty are islands: turned (by a lead bearing), each turns about
+    // its own centre on the region's grid, or a neighbour's ring would reach into the region's
+    // corners.
+    network_detail::LayoutFrame frame{origin, centre, size, lo, hi, turn_, ni, nj};
+    layout_copies_.emplace(exemplar_, frame);
+    // (Unturned, both grids are one: the copies stay as they were, to the bit.)
+    frame.islands = turn_ != 0.0 && layout_copies_->corners_empty(kLayoutEmptyReach * median_);
+    layout_copies_.emplace(exemplar_, frame);
     for (auto [i, j] : tiles) {
-      const Vec2 tile{i * size.x, j * size.y};
-      const auto place = [&](Vec2 p) { return origin + rotate(p - centre + tile, turn_); };
+      const auto place = [&](Vec2 p) { return frame.place(p, i, j); };
       std::vector<std::pair<int, int>> copied;  // (exemplar node, output node)
       for (std::size_t e : order) {
         const NetworkEdge& edge = exemplar_.edges[e];
@@ -1447,7 +1441,8 @@ class Grower {
       std::vector<SegValue> near;
       segments_.query(bgi::nearest(to_bg(p), 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0].first, to_bg(p)) < seed_room_) continue;
-      if (near_boundary(p) || (layout_copies_ && layout_copies_->empty_near(p, 0.75 * spacing)))
+      if (near_boundary(p) ||
+          (layout_copies_ && layout_copies_->empty_near(p, kLayoutEmptyReach * spacing)))
         continue;
       const std::size_t j = std::size_t(rng_.below(junctions_.size()));
       const int node = add_node(p);

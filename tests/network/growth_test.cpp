@@ -27,6 +27,37 @@ std::vector<Polygon> box(double x0, double y0, double x1, double y1) {
   return {{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}};
 }
 
+// The clearance exempt around a junction trims a segment to its part outside the junction's
+// disc; a disc wholly beyond either end of the segment leaves it as it is (it once stretched
+// the segment back to the far side of the disc).
+TEST(SegmentDisc, ADiscBeyondTheSegmentsEndsLeavesItAsItIs) {
+  Vec2 a{0, 0}, b{10, 0};
+  EXPECT_TRUE(trim_outside_disc(a, b, {15, 0}, 3));  // beyond b
+  EXPECT_EQ(a.x, 0.0);
+  EXPECT_EQ(b.x, 10.0);
+  EXPECT_TRUE(trim_outside_disc(a, b, {-5, 1}, 3));  // before a
+  EXPECT_EQ(a.x, 0.0);
+  EXPECT_EQ(b.x, 10.0);
+  EXPECT_TRUE(trim_outside_disc(a, b, {11, 0}, 3));  // over b: b moves to the disc
+  EXPECT_NEAR(b.x, 8.0, 1e-12);
+  EXPECT_TRUE(trim_outside_disc(a, b, {-1, 0}, 3));  // over a
+  EXPECT_NEAR(a.x, 2.0, 1e-12);
+  EXPECT_EQ(b.x, 8.0);
+  EXPECT_FALSE(trim_outside_disc(a, b, {5, 0}, 4));  // the whole segment inside
+}
+
+TEST(SegmentDisc, ASegmentAimedAtADiscIsProlongedToItWithinReach) {
+  Vec2 a{0, 0}, b{10, 0};
+  prolong_to_disc(a, b, {15, 0}, 3, 1);  // 2 m short of the disc: beyond reach
+  EXPECT_EQ(b.x, 10.0);
+  prolong_to_disc(a, b, {15, 0}, 3, 2.5);
+  EXPECT_NEAR(b.x, 12.0, 1e-12);
+  prolong_to_disc(a, b, {-4, 0}, 3, 2.5);
+  EXPECT_NEAR(a.x, -1.0, 1e-12);
+  prolong_to_disc(a, b, {15, 5}, 3, 100);  // not aimed at it
+  EXPECT_NEAR(b.x, 12.0, 1e-12);
+}
+
 TEST(NetworkGrowth, GridNeverCrossesStaysInsideAndIsDeterministic) {
   const Network ex = exemplar("grid");
   const auto region = box(0, 0, 1200, 900);

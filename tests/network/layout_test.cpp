@@ -107,6 +107,36 @@ TEST(NetworkLayout, RadialKeepsItsDanglingSpokeEndsAndEmptyCorners) {
   }
 }
 
+// Turned by a lead bearing, the radial exemplar's copies turn each about its own centre (its
+// corners are empty: the copies are islands), so no neighbouring copy's ring reaches into the
+// region's corners (on a grid turned with the copies, those at 30° did).
+TEST(NetworkLayout, RadialTurnedByALeadBearingKeepsItsCornersEmpty) {
+  const Network ex = layout_exemplar("radial");
+  const std::vector<Polygon> region = layout_region(ex);
+  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (Vec2 p : ex.nodes) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const Vec2 centre = 0.5 * (lo + hi);
+  const double radius = 0.5 * (hi.x - lo.x);
+  NetworkGrowthOptions options;
+  options.seed = 1;
+  options.method = NetworkMethod::layout;
+  options.lead_bearing = 30.0;
+  NetworkGrowthReport report;
+  const Network out = grow_network(ex, region, nullptr, nullptr, options, &report);
+  EXPECT_TRUE(report.laid_out);
+  EXPECT_EQ(check_network(out, region, nullptr).total(), 0);
+  int in_corners = 0;
+  for (const NetworkEdge& e : out.edges)
+    for (Vec2 p : e.points)
+      in_corners +=
+          std::abs(p.x - centre.x) > 0.8 * radius && std::abs(p.y - centre.y) > 0.8 * radius;
+  EXPECT_EQ(in_corners, 0);
+  EXPECT_GT(out.edges.size(), ex.edges.size() / 2);
+}
+
 TEST(NetworkLayout, TerraceWallsKeepTheirDegreesAndCells) {
   const auto [ex, region, out] = laid_out("terraces");
   const auto [a, b] = halves(ex);

@@ -59,24 +59,40 @@ LayoutCopies::~LayoutCopies() = default;
 LayoutCopies::LayoutCopies(LayoutCopies&&) noexcept = default;
 LayoutCopies& LayoutCopies::operator=(LayoutCopies&&) noexcept = default;
 
+Vec2 LayoutFrame::place(Vec2 q, int i, int j) const {
+  const Vec2 tile{i * size.x, j * size.y};
+  return islands ? origin + tile + turned_by(q - centre, turn)
+                 : origin + turned_by(q - centre + tile, turn);
+}
+
 bool LayoutCopies::empty_near(Vec2 p, double reach) const {
   const LayoutFrame& f = frame_;
   if (lines_->index.empty()) return false;
-  const Vec2 q = turned_by(p - f.origin, -f.turn) + f.centre;  // in the exemplar's frame
+  // p on the copies' grid, relative to its origin.
+  const Vec2 g = f.islands ? p - f.origin : turned_by(p - f.origin, -f.turn);
+  const Vec2 q = g + f.centre;
   const Vec2 copies{f.ni * f.size.x, f.nj * f.size.y};
   if (q.x < f.lo.x - copies.x || q.y < f.lo.y - copies.y || q.x > f.hi.x + copies.x ||
       q.y > f.hi.y + copies.y)
     return false;
   // The copy p lies in and its neighbours (a line of the next copy may be nearer).
-  const int i0 = int(std::lround((q.x - f.centre.x) / f.size.x));
-  const int j0 = int(std::lround((q.y - f.centre.y) / f.size.y));
+  const int i0 = int(std::lround(g.x / f.size.x));
+  const int j0 = int(std::lround(g.y / f.size.y));
   for (int j = std::max(j0 - 1, -f.nj); j <= std::min(j0 + 1, f.nj); ++j)
     for (int i = std::max(i0 - 1, -f.ni); i <= std::min(i0 + 1, f.ni); ++i) {
-      const BgPoint in_copy = to_bg(q - Vec2{i * f.size.x, j * f.size.y});
+      const Vec2 tile{i * f.size.x, j * f.size.y};
+      const BgPoint in_copy = to_bg(f.islands ? turned_by(g - tile, -f.turn) + f.centre : q - tile);
       std::vector<BgSegment> near;
       lines_->index.query(bgi::nearest(in_copy, 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0], in_copy) < reach) return false;
     }
+  return true;
+}
+
+bool LayoutCopies::corners_empty(double reach) const {
+  const LayoutFrame& f = frame_;
+  for (Vec2 q : {f.lo, f.hi, Vec2{f.lo.x, f.hi.y}, Vec2{f.hi.x, f.lo.y}})
+    if (!empty_near(f.place(q, 0, 0), reach)) return false;
   return true;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // What the layout (docs/networks.md, "Layout") keeps of the exemplar besides its long strokes:
 // its empty parts (no lattice seed where the copies have no line: beyond a radial network's
-// outer ring) and its dangling ends (moved to keep the clearance, not dropped).
+// outer ring; turned copies of such an exemplar are islands, LayoutFrame) and its dangling ends
+// (moved to keep the clearance, not dropped).
 #include <functional>
 #include <memory>
 #include <vector>
@@ -11,12 +12,17 @@
 namespace tw::network_detail {
 
 // The exemplar as the layout copies it: copy (i, j), |i| <= ni, |j| <= nj, of exemplar point q
-// lies at origin + rotate(q - centre + (i size.x, j size.y), turn); [lo, hi] is the exemplar's
-// extent.
+// lies at origin + rotate(q - centre + (i size.x, j size.y), turn) when the copies join (their
+// grid turns with them), at origin + (i size.x, j size.y) + rotate(q - centre, turn) when they
+// are islands (the exemplar's corners empty: each copy turns about its own centre, and the
+// region's corners stay as empty as the exemplar's); [lo, hi] is the exemplar's extent.
 struct LayoutFrame {
   Vec2 origin, centre, size, lo, hi;
   double turn = 0.0;
   int ni = 0, nj = 0;
+  bool islands = false;
+
+  Vec2 place(Vec2 q, int i, int j) const;
 };
 
 class LayoutCopies {
@@ -29,6 +35,9 @@ class LayoutCopies {
   // Whether p lies within the copies with no exemplar line within `reach` (of the copy p lies
   // in or a neighbouring one); false beyond the copies.
   bool empty_near(Vec2 p, double reach) const;
+  // Whether the exemplar's four extent corners are empty_near (copies tiled at them meet no
+  // line there): the copies are islands.
+  bool corners_empty(double reach) const;
 
  private:
   struct Lines;
