@@ -112,6 +112,9 @@ constexpr double kCornerTurn = 0.5;
 // How far (median edge lengths) a corner's edge is continued to make it a T-junction (3 and 6
 // met fewer targets over three seeds: long links break cells).
 constexpr double kCornerReach = 1.5;
+// How far (median edge lengths) straighten_edges continues a corner's leg that neither its
+// chord nor its removal could undo: across the open cell beside it.
+constexpr double kChainCornerReach = 4.0;
 // The gap, in clearances, that a piece ending alone in the exemplar keeps from the line it
 // meets when it is kept dangling (three: a clear gap, not a near miss).
 constexpr double kDanglingGap = 3.0;
@@ -132,6 +135,9 @@ constexpr double kStraightTurning = 0.01;
 constexpr double kStraightShare = 0.9;
 // How far (radians) a straightened edge may leave its junctions off its old heading there.
 constexpr double kStraightenDeflection = 1.0;
+// A step of an output line shorter than this part of the clearance is a hair (a snapped end's
+// last step), left out where the exemplar's lines are straight (Grower::straighten_edges).
+constexpr double kShortStep = 0.3;
 
 // An exemplar whose lines come within the clearance of this share of its extent's perimeter
 // has a drawn frame: its border is that frame, not its outermost cells' sides (keep_whole_cells).
@@ -1738,14 +1744,34 @@ class Grower {
           if (n != c.from && n != c.to && border_node_[std::size_t(n)]) return true;
       return false;
     };
+    // Steps shorter than kShortStep clearances (a snapped end's last hair) turn sharply over no
+    // length: the exemplar's straight lines have none. `bent` still counts them (the corners'
+    // pass below went on as long as before).
+    for (const Chain& c : before)
+      if (const std::vector<Vec2> tidy = without_short_steps(c.points);
+          polyline_turning(tidy) + kStraightTurning < polyline_turning(c.points))
+        replace_chain(c, tidy);
+    before = chains();
+    std::erase_if(before, [](const Chain& c) { return c.kept; });
     for (const Chain& c : before)
       if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn && !on_border(c) &&
-          (straighten(c) || remove_corner(c, ends_allowed)))
+          (straighten(c) || remove_corner(c, ends_allowed) || link_chain_corner(c)))
         --bent;
     // Kinks always (the junctions a removed corner left are straight through now).
     for (const Chain& c : chains())
       if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
         straighten(c);
+  }
+  // Points p with those less than kShortStep clearances past the last one kept, or short of the
+  // end, left out (the ends stay).
+  std::vector<Vec2> without_short_steps(const std::vector<Vec2>& p) const {
+    std::vector<Vec2> out{p.front()};
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      if (distance(p[k], out.back()) >= kShortStep * clearance_ &&
+          distance(p[k], p.back()) >= kShortStep * clearance_)
+        out.push_back(p[k]);
+    out.push_back(p.back());
+    return out;
   }
   static double sharpest_turn(const std::vector<Vec2>& p) {
     double sharpest = 0.0;
@@ -1821,6 +1847,31 @@ class Grower {
     }
     return false;
   }
+  // A corner its chord cannot replace nor its removal undo, at a node the chain passes (degree
+  // 2), becomes a T-junction as close_corners makes one, but reaching farther (the cell beyond
+  // is still open there): one leg continued straight through it onto the line ahead or to the
+  // region's boundary. Both legs are then edges of their own, straight.
+  bool link_chain_corner(const Chain& c) {
+    for (int e : c.edges)
+      for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to}) {
+        if (n == c.from || n == c.to || degree_[std::size_t(n)] != 2 ||
+            out_.on_boundary[std::size_t(n)])
+          continue;
+        const std::vector<int> legs = alive_incident(n);
+        if (legs.size() != 2) continue;
+        double h[2];
+        for (int k = 0; k < 2; ++k) {
+          const NetworkEdge& leg = out_.edges[std::size_t(legs[std::size_t(k)])];
+          h[k] = leaving(leg.points, leg.from == n);
+        }
+        if (std::abs(wrap(h[0] - h[1] - kPi)) < kCornerTurn) continue;
+        for (int k = 0; k < 2; ++k)
+          if (link_ahead(n, h[k] + kPi, kChainCornerReach * median_, legs[std::size_t(1 - k)]) ||
+              link_to_boundary(n, h[k] + kPi, kChainCornerReach * median_))
+            return true;
+      }
+    return false;
+  }
   // The nodes a chain passed through, left without edges, are no seeds to keep clear of.
   void forget_passed_nodes(const Chain& c) {
     for (int e : c.edges) {
@@ -1847,10 +1898,14 @@ class Grower {
         if (std::abs(wrap(h - new_heading)) < kMinMeetingAngle) return false;
       }
     }
-    // Under the rules the line it replaces kept: a copy of exemplar lines (quilt, layout) keeps
-    // the exemplar's own spacing near its junctions, a grown piece the clearance there too.
+    return replace_chain(c, chord);
+  }
+  // Chain c replaced by `line` (same ends) when that is committed under the rules the line it
+  // replaces kept: a copy of exemplar lines (quilt, layout) keeps the exemplar's own spacing near
+  // its junctions, a grown piece the clearance there too.
+  bool replace_chain(const Chain& c, const std::vector<Vec2>& line) {
     for (int e : c.edges) index_edge(e, false);
-    if (!valid(chord, true) && (valid(c.points, true) || !valid(chord, true, Spacing::laid_out))) {
+    if (!valid(line, true) && (valid(c.points, true) || !valid(line, true, Spacing::laid_out))) {
       for (int e : c.edges) index_edge(e, true);
       return false;
     }
@@ -1863,7 +1918,7 @@ class Grower {
     NetworkEdge straight;
     straight.from = c.from;
     straight.to = c.to;
-    straight.points = chord;
+    straight.points = line;
     add_edge(std::move(straight));
     return true;
   }
