@@ -55,7 +55,7 @@ inline int bearing_bin(Vec2 chord) {
 
 // First distinct-point heading leaving an end of a polyline.
 inline double leaving(const std::vector<Vec2>& pts, bool from_start) {
-  return network_detail::leaving_heading(pts, from_start);
+  return leaving_heading(pts, from_start);
 }
 
 // A whole exemplar edge, walked from one end: start at the origin heading +x.
@@ -155,13 +155,13 @@ class Grower {
   Network run(Mode mode);
 
  private:
-  // ---- the exemplar --------------------------------------------------------------------------
+  // ---- the exemplar (grower_exemplar.cpp) -------------------------------------------------------
   void learn(const Network& ex);
 
   static std::vector<char> dangling_at_line(const Network& ex, const std::vector<int>& degree,
                                             double reach);
 
-  // ---- the region ----------------------------------------------------------------------------
+  // ---- the region (grower_exemplar.cpp) ---------------------------------------------------------
   void set_region(const std::vector<Polygon>& region);
 
   bool inside_region(Vec2 p) const { return bg::covered_by(to_bg(p), region_); }
@@ -177,7 +177,7 @@ class Grower {
   }
   bool enters_forbidden(const std::vector<Vec2>& pts) const;
 
-  // ---- the network so far ----------------------------------------------------------------------
+  // ---- the network so far, the rules a line keeps (grower_rules.cpp) ----------------------------
   int add_node(Vec2 p);
   void index_edge(int id, bool insert);
   int add_edge(NetworkEdge e);
@@ -191,25 +191,27 @@ class Grower {
              double joint_slack = 0.0);
 
   bool edge_meets(int id, const std::vector<Vec2>& joints) const;
-
-  // ---- layout (docs/networks.md, "Layout") ---------------------------------------------------
-  bool lay_out_long_strokes();
-
   bool clear_of_lines(Vec2 p) const;
-
   void count_line(const std::vector<Vec2>& pts);
-
-  // ---- quilting (docs/networks.md, "Quilting") -----------------------------------------------
-  void quilt();
-
   std::vector<std::vector<Vec2>> inside_parts(std::vector<Vec2> pts) const;
-
   bool place_line(std::vector<Vec2> pts, double joint_slack = 0.0,
                   Spacing spacing = Spacing::copied);
 
-  int trim_from(int n, double at_most);
+  // ---- layout (docs/networks.md, "Layout"; grower_layout.cpp) -----------------------------------
+  bool lay_out_long_strokes();
 
-  // ---- growth ----------------------------------------------------------------------------------
+  // ---- quilting, links, trimming (docs/networks.md, "Quilting"; grower_quilt.cpp) ---------------
+  void quilt();
+
+  int trim_from(int n, double at_most);
+  bool link_ahead(int n, double heading, double reach, int own_edge);
+  bool link_along(int n, std::vector<Vec2> ray, int own_edge);
+  void link_onto(int n, std::vector<Vec2> ray, const Hit& hit);
+  void close_corners();
+  bool link_to_boundary(int n, double heading, double reach);
+  void close_dangling_ends();
+
+  // ---- growth (growth.cpp) ----------------------------------------------------------------------
   // How far a histogram would move from its target when `bin` gains one (> 0: over-represented).
   template <std::size_t N>
   static double excess(const std::array<double, N>& have, double total,
@@ -270,22 +272,10 @@ class Grower {
 
   void seed_lattice();
 
-  bool link_ahead(int n, double heading, double reach, int own_edge);
-
-  bool link_along(int n, std::vector<Vec2> ray, int own_edge);
-
-  void link_onto(int n, std::vector<Vec2> ray, const Hit& hit);
-
-  void close_corners();
-
-  bool link_to_boundary(int n, double heading, double reach);
-
-  void close_dangling_ends();
-
-  // ---- whole cells at the border --------------------------------------------------------------
+  // ---- whole cells at the border (grower_quilt.cpp) ---------------------------------------------
   void keep_whole_cells();
 
-  // ---- straight edges -------------------------------------------------------------------------
+  // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
   // two of them meet (neither kept), from every other node in order, then the cycles left; a kept
   // edge alone, as drawn.
@@ -343,7 +333,7 @@ class Grower {
   std::array<double, 7> target_degree_{}, have_degree_{};
   std::array<double, 12> target_bearing_{}, have_bearing_{}, edge_bearing_{};
   double edge_count_ = 0.0;
-  network_detail::BearingCdf bearing_cdf_;
+  BearingCdf bearing_cdf_;
   std::array<double, 12> target_length_{}, have_length_{};
   double grown_length_ = 0.0, length_per_junction_ = 1.0;
   double junctions() const {
@@ -363,7 +353,7 @@ class Grower {
   bgi::rtree<BgSegment, bgi::quadratic<16>> boundary_;
   bgi::rtree<SegValue, bgi::quadratic<16>> segments_;
   // The layout's copies of the exemplar (their empty parts get no lattice seed).
-  std::optional<network_detail::LayoutCopies> layout_copies_;
+  std::optional<LayoutCopies> layout_copies_;
   bgi::rtree<NodeValue, bgi::quadratic<16>> nodes_;
 
   Network out_;

@@ -179,15 +179,13 @@ void Grower::learn(const Network& ex) {
     // on through it.
     seed_room_ = 0.75 * median_;
     if (3 * dangling >= exemplar_nodes_) {
-      seed_room_ = std::max(
-          seed_room_, network_detail::empty_space_quantile(ex, 0.5 * median_, kSeedRoomQuantile));
-      if (network_detail::lines_cross_more_than_they_end_on_lines(ex, kStrokeDeflection))
-        line_meeting_degree_ = 4;
+      seed_room_ = std::max(seed_room_, empty_space_quantile(ex, 0.5 * median_, kSeedRoomQuantile));
+      if (lines_cross_more_than_they_end_on_lines(ex, kStrokeDeflection)) line_meeting_degree_ = 4;
     }
     whole_cells_ =
         dangling == 0 &&
         std::none_of(ex.on_boundary.begin(), ex.on_boundary.end(), [](char b) { return b != 0; }) &&
-        !network_detail::has_drawn_frame(ex, clearance_, kFrameShare);
+        !has_drawn_frame(ex, clearance_, kFrameShare);
   }
   {
     std::size_t straight = 0;

@@ -23,8 +23,8 @@ namespace tw::network_detail {
 // the copies' empty parts get no lattice seed (layout_copies.hpp). False when the exemplar has
 // no such strokes.
 bool Grower::lay_out_long_strokes() {
-  const std::vector<double> skeleton = network_detail::long_stroke_edges(
-      exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
+  const std::vector<double> skeleton =
+      long_stroke_edges(exemplar_, kStrokeDeflection, kLayoutStrokeFraction, kLayoutShare);
   // The longest strokes first (rings, whole tracks): a shorter one ending short of them, as
   // drawn exemplars' lines do, gives way.
   std::vector<std::size_t> order;
@@ -78,7 +78,7 @@ bool Grower::lay_out_long_strokes() {
   // Copies whose corners are empty are islands: turned (by a lead bearing), each turns about
   // its own centre on the region's grid, or a neighbour's ring would reach into the region's
   // corners.
-  network_detail::LayoutFrame frame{origin, centre, size, lo, hi, turn_, ni, nj};
+  LayoutFrame frame{origin, centre, size, lo, hi, turn_, ni, nj};
   layout_copies_.emplace(exemplar_, frame);
   // (Unturned, both grids are one: the copies stay as they were, to the bit.)
   frame.islands = turn_ != 0.0 && layout_copies_->corners_empty(kLayoutEmptyReach * median_);
@@ -103,9 +103,9 @@ bool Grower::lay_out_long_strokes() {
           const auto free_end = [&](int end, Vec2 p) {
             return degree[std::size_t(end)] == 1 && p == place(exemplar_.nodes[std::size_t(end)]);
           };
-          kept = network_detail::with_free_ends_clear(
-              std::move(kept), free_end(edge.from, kept.front()), free_end(edge.to, kept.back()),
-              clearance_, [&](Vec2 p) { return clear_of_lines(p); });
+          kept = with_free_ends_clear(std::move(kept), free_end(edge.from, kept.front()),
+                                      free_end(edge.to, kept.back()), clearance_,
+                                      [&](Vec2 p) { return clear_of_lines(p); });
           if (kept.empty() || !place_line(kept, clearance_, Spacing::laid_out)) continue;
         }
         count_line(kept);

@@ -31,7 +31,7 @@ constexpr double kSeamReach = 1.5;
 // is left out. Seam ends that found no partner are linked straight onto the line ahead, or
 // trimmed back to the last junction.
 void Grower::quilt() {
-  network_detail::QuiltSettings settings;
+  QuiltSettings settings;
   settings.lo = vec(extent_.min_corner());
   settings.hi = vec(extent_.max_corner());
   settings.stitch = 0.6 * snap_;
@@ -39,10 +39,9 @@ void Grower::quilt() {
   settings.turn = turn_;
   settings.candidates = 32;
   settings.continuation = kSeamReach * median_;
-  std::vector<network_detail::QuiltLine> lines =
-      network_detail::quilt_lines(exemplar_, settings, rng_);
+  std::vector<QuiltLine> lines = quilt_lines(exemplar_, settings, rng_);
   std::vector<std::pair<Vec2, std::vector<Vec2>>> seam_ends;  // and their continuations
-  for (network_detail::QuiltLine& line : lines) {
+  for (QuiltLine& line : lines) {
     for (int end = 0; end < 2; ++end)
       if (line.seam_end[end])
         seam_ends.push_back({end == 0 ? line.points.front() : line.points.back(),
