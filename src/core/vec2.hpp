@@ -26,6 +26,11 @@ inline double length(Vec2 a) { return std::hypot(a.x, a.y); }
 inline double distance(Vec2 a, Vec2 b) { return length(b - a); }
 // Rotated by +90 degrees (counter-clockwise in a y-up frame): the left normal of a tangent.
 constexpr Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
+// Turned by `radians` counter-clockwise (in a y-up frame) about the origin.
+inline Vec2 rotated(Vec2 v, double radians) {
+  const double c = std::cos(radians), s = std::sin(radians);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
 inline Vec2 normalized(Vec2 a) {
   const double n = length(a);
   return n > 0.0 ? a / n : Vec2{};

@@ -93,7 +93,6 @@ void add_parts(const OGRGeometry* g, std::int64_t fid, NetworkLines& out) {
   }
 }
 
-
 }  // namespace
 
 std::pair<std::string, std::string> split_source(const std::string& text) {

@@ -134,7 +134,7 @@ void Grower::grow_stub(const Stub& stub, bool retry) {
     // between the long strokes as the exemplar has them); the drawn candidates otherwise.
     const Piece& piece = pieces_[std::size_t(stub.own_piece)];
     std::vector<Vec2> pts;
-    for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+    for (Vec2 v : piece.points) pts.push_back(origin + rotated(v, stub.heading));
     if (std::optional<Outcome> o = evaluate(stub, piece, std::move(pts), Spacing::laid_out)) {
       commit(stub, piece, std::move(*o));
       return;
@@ -151,7 +151,7 @@ void Grower::grow_stub(const Stub& stub, bool retry) {
                                             : rng_.below(pieces_.size()))];
     const double noise = 0.15 * rng_.uniform();
     std::vector<Vec2> pts;
-    for (Vec2 v : piece.points) pts.push_back(origin + rotate(v, stub.heading));
+    for (Vec2 v : piece.points) pts.push_back(origin + rotated(v, stub.heading));
     std::optional<Outcome> o = evaluate(stub, piece, std::move(pts));
     if (!o) continue;
     // Turned as little as possible from how it lies in the exemplar: the exemplar's

@@ -31,11 +31,6 @@ bool subdivide(const TerrainSurface& s, const Cubic& c, int depth, std::vector<S
          subdivide(s, {*m, *m123, *m23, c.p[3]}, depth - 1, out);
 }
 
-Vec2 rotated(Vec2 v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 }  // namespace
 
 std::optional<TracedElement> trace_element(const TerrainSurface& surface,

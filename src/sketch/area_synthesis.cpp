@@ -16,11 +16,6 @@ namespace tw {
 
 namespace {
 
-Vec2 rotated(Vec2 v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 // Area centroid of the outer ring (shoelace), holes ignored: where the sketch is laid.
 Vec2 centroid(const Ring& ring) {
   double area = 0.0;

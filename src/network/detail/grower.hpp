@@ -33,10 +33,6 @@ constexpr double kPi = std::numbers::pi;
 inline Vec2 vec(const BgPoint& p) {
   return {p.x(), p.y()};
 }
-inline Vec2 rotate(Vec2 v, double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
 inline double heading(Vec2 v) {
   return std::atan2(v.y, v.x);
 }

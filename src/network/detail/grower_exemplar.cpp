@@ -113,7 +113,7 @@ void Grower::learn(const Network& ex) {
       const double h0 = leaving(pts, true);
       p.heading = h0;
       const Vec2 origin = pts.front();
-      for (Vec2 v : pts) p.points.push_back(rotate(v - origin, -h0));
+      for (Vec2 v : pts) p.points.push_back(rotated(v - origin, -h0));
       p.length = polyline_length(p.points);
       if (p.length <= 0.0 || boundary(stroke_end)) continue;
       const double arrive = leaving(pts, false) + kPi;  // heading of travel at the end
@@ -153,7 +153,7 @@ void Grower::learn(const Network& ex) {
   gap_share_ /= std::max(1, exemplar_nodes_);
   double total = 0.0;
   for (const NetworkEdge& e : ex.edges) {
-    const Vec2 c = rotate(e.points.back() - e.points.front(), turn_);
+    const Vec2 c = rotated(e.points.back() - e.points.front(), turn_);
     target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
     bearing_cdf_.add_target(c);
   }

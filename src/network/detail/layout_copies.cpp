@@ -13,11 +13,6 @@ namespace {
 
 using namespace geometry;
 
-Vec2 turned_by(Vec2 v, double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 // A polyline with one end (the last point when `at_back`) moved along the line: `by` > 0
 // metres further straight ahead along its end segment, `by` < 0 metres back along the line
 // (empty when that leaves nothing).
@@ -61,15 +56,15 @@ LayoutCopies& LayoutCopies::operator=(LayoutCopies&&) noexcept = default;
 
 Vec2 LayoutFrame::place(Vec2 q, int i, int j) const {
   const Vec2 tile{i * size.x, j * size.y};
-  return islands ? origin + tile + turned_by(q - centre, turn)
-                 : origin + turned_by(q - centre + tile, turn);
+  return islands ? origin + tile + rotated(q - centre, turn)
+                 : origin + rotated(q - centre + tile, turn);
 }
 
 bool LayoutCopies::empty_near(Vec2 p, double reach) const {
   const LayoutFrame& f = frame_;
   if (lines_->index.empty()) return false;
   // p on the copies' grid, relative to its origin.
-  const Vec2 g = f.islands ? p - f.origin : turned_by(p - f.origin, -f.turn);
+  const Vec2 g = f.islands ? p - f.origin : rotated(p - f.origin, -f.turn);
   const Vec2 q = g + f.centre;
   const Vec2 copies{f.ni * f.size.x, f.nj * f.size.y};
   if (q.x < f.lo.x - copies.x || q.y < f.lo.y - copies.y || q.x > f.hi.x + copies.x ||
@@ -81,7 +76,7 @@ bool LayoutCopies::empty_near(Vec2 p, double reach) const {
   for (int j = std::max(j0 - 1, -f.nj); j <= std::min(j0 + 1, f.nj); ++j)
     for (int i = std::max(i0 - 1, -f.ni); i <= std::min(i0 + 1, f.ni); ++i) {
       const Vec2 tile{i * f.size.x, j * f.size.y};
-      const BgPoint in_copy = to_bg(f.islands ? turned_by(g - tile, -f.turn) + f.centre : q - tile);
+      const BgPoint in_copy = to_bg(f.islands ? rotated(g - tile, -f.turn) + f.centre : q - tile);
       std::vector<BgSegment> near;
       lines_->index.query(bgi::nearest(in_copy, 1), std::back_inserter(near));
       if (!near.empty() && bg::distance(near[0], in_copy) < reach) return false;

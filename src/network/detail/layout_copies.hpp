@@ -12,8 +12,8 @@
 namespace tw::network_detail {
 
 // The exemplar as the layout copies it: copy (i, j), |i| <= ni, |j| <= nj, of exemplar point q
-// lies at origin + rotate(q - centre + (i size.x, j size.y), turn) when the copies join (their
-// grid turns with them), at origin + (i size.x, j size.y) + rotate(q - centre, turn) when they
+// lies at origin + rotated(q - centre + (i size.x, j size.y), turn) when the copies join (their
+// grid turns with them), at origin + (i size.x, j size.y) + rotated(q - centre, turn) when they
 // are islands (the exemplar's corners empty: each copy turns about its own centre, and the
 // region's corners stay as empty as the exemplar's); [lo, hi] is the exemplar's extent.
 struct LayoutFrame {

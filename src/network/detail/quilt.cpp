@@ -34,11 +34,6 @@ constexpr int kShortlist = 16;
 // 0.5 and 1, and 3 more than the L1: the counties' bearings 0.061 -> 0.046 at seed 1).
 constexpr double kBearingCdfWeight = 0.2;
 
-Vec2 rotate(Vec2 v, double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 double nearest(const Segments& index, Vec2 p, double cap) {
   std::vector<SegValue> hit;
   index.query(bgi::nearest(to_bg(p), 1), std::back_inserter(hit));
@@ -262,7 +257,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
   const double empty = 3.0 * gaps[gaps.size() / 2];
   const DistanceField field(lines, elo, ehi, overlap / 8.0, 2.0 * std::max(cap, empty));
   const auto to_exemplar = [&](const Block& b, Vec2 q) {
-    return rotate(q - b.centre, -settings.turn) + b.source;
+    return rotated(q - b.centre, -settings.turn) + b.source;
   };
   const auto mostly_empty = [&](const Block& b) {
     int far = 0;
@@ -296,7 +291,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
     in_cell.erase(std::unique(in_cell.begin(), in_cell.end()), in_cell.end());
     std::erase_if(in_cell, [&](int e) {
       const auto& pts = exemplar.edges[std::size_t(e)].points;
-      const Vec2 q = rotate(pts[pts.size() / 2] - b.source, settings.turn) + b.centre;
+      const Vec2 q = rotated(pts[pts.size() / 2] - b.source, settings.turn) + b.centre;
       return !(q.x >= c0.x && q.x < c1.x && q.y >= c0.y && q.y < c1.y);
     });
     return in_cell;
@@ -390,7 +385,7 @@ std::vector<QuiltLine> quilt_lines(const Network& exemplar, const QuiltSettings&
       for (int e : edges) {
         std::vector<Vec2> moved;
         for (Vec2 p : exemplar.edges[std::size_t(e)].points)
-          moved.push_back(rotate(p - best.source, settings.turn) + best.centre);
+          moved.push_back(rotated(p - best.source, settings.turn) + best.centre);
         cut_to_box(moved, centre - Vec2{half, half}, centre + Vec2{half, half}, mine);
         cut_from[block].resize(mine.size(), whole[block].size());
         whole[block].push_back(std::move(moved));
