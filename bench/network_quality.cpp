@@ -34,11 +34,8 @@ struct Case {
 };
 
 std::vector<Polygon> box_of(const Network& n, double factor) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : n.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(n);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const Vec2 c = 0.5 * (lo + hi), h = 0.5 * factor * (hi - lo);
   return {{{{c.x - h.x, c.y - h.y},
             {c.x + h.x, c.y - h.y},

@@ -15,11 +15,8 @@ using network_detail::cut_to_box;
 Network baseline_network(const Network& exemplar, const std::vector<Polygon>& region,
                          std::uint64_t seed, BaselineKind kind) {
   SplitMix64 rng(seed);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : exemplar.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(exemplar);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   Vec2 rlo{INFINITY, INFINITY}, rhi{-INFINITY, -INFINITY};
   for (const Polygon& polygon : region)
     for (Vec2 p : polygon.front()) {

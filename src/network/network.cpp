@@ -1,5 +1,6 @@
 #include "network/network.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tw {
@@ -26,6 +27,15 @@ double polyline_turning(const std::vector<Vec2>& points) {
     turning += std::abs(std::atan2(cross(a, b), dot(a, b)));
   }
   return turning;
+}
+
+NodeExtent node_extent(const Network& network) {
+  NodeExtent e{{INFINITY, INFINITY}, {-INFINITY, -INFINITY}};
+  for (Vec2 p : network.nodes) {
+    e.lo = {std::min(e.lo.x, p.x), std::min(e.lo.y, p.y)};
+    e.hi = {std::max(e.hi.x, p.x), std::max(e.hi.y, p.y)};
+  }
+  return e;
 }
 
 double Network::total_length() const {

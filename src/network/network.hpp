@@ -26,6 +26,12 @@ struct Network {
   double total_length() const;
 };
 
+// The box [lo, hi] of a network's nodes (an exemplar's extent; lo > hi when it has none).
+struct NodeExtent {
+  Vec2 lo, hi;
+};
+NodeExtent node_extent(const Network& network);
+
 double polyline_length(const std::vector<Vec2>& points);
 // Total absolute turning (radians) at the interior vertices: 0 for a straight line.
 double polyline_turning(const std::vector<Vec2>& points);

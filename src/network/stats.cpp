@@ -126,11 +126,8 @@ const std::vector<double>& property(const NetworkStats& s, int index) {
 }
 
 std::pair<StatsWindow, StatsWindow> halves(const Network& net) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : net.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(net);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const bool along_x = hi.x - lo.x >= hi.y - lo.y;
   std::vector<double> v;
   for (Vec2 p : net.nodes) v.push_back(along_x ? p.x : p.y);

@@ -14,6 +14,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -25,12 +26,7 @@ TEST(NetworkBearingMatch, StreamTreesKeepTheExemplarsBearingDistribution) {
   ASSERT_STREQ(kNetworkProperties[kBearingProperty], "bearing");
   Warnings w;
   const Network ex = build_planar_network(example_network("drainage", 800.0, 3), 1e-3, "ex", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const std::vector<Polygon> region = {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+  const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   double mean_apart = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {
@@ -54,12 +50,7 @@ TEST(NetworkBearingMatch, QuiltedCountiesKeepTheirBearings) {
       read_network_lines(
           {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
       1e-3, "exemplar", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const std::vector<Polygon> region = {{{lo, {hi.x, lo.y}, hi, {lo.x, hi.y}}}};
+  const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   double mean_apart = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {

@@ -14,6 +14,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 
 namespace tw {
 namespace {
@@ -23,12 +24,7 @@ constexpr int kForestDegree = 0, kForestEdgeLength = 1, kForestJunctionAngle = 3
 TEST(NetworkForest, StreamTreesKeepTheirDegreesConfluenceAnglesAndEdgeLengths) {
   Warnings w;
   const Network ex = build_planar_network(example_network("drainage", 800.0, 3), 1e-3, "ex", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const std::vector<Polygon> region = {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+  const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   const auto [a, b] = halves(ex);
   const NetworkStats half_a = network_stats(ex, a), half_b = network_stats(ex, b);

@@ -200,11 +200,8 @@ TEST_P(NetworkProperty, RealCountiesKeepTheExemplarsStyle) {
             {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
         1e-3, "exemplar", w);
   }();
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const auto region = box(lo.x, lo.y, hi.x, hi.y);
   const NetworkStats se = network_stats(ex);
   const auto [half_a, half_b] = halves(ex);
@@ -255,11 +252,8 @@ TEST(NetworkGrowth, DanglingEndsAtTheExemplarsRate) {
 TEST(NetworkGrowth, GridBoundariesTouchingATrackKeepTheirDanglingShare) {
   Warnings w;
   const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "exemplar", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const NetworkStats own = network_stats(ex);
   ASSERT_GT(own.dangling, 8);
   const auto [a, b] = halves(ex);
@@ -285,11 +279,8 @@ TEST(NetworkGrowth, GridBoundariesTouchingATrackKeepTheirDanglingShare) {
 TEST(NetworkGrowth, GridKeepsItsTwoOrientationsInProportion) {
   Warnings w;
   const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "exemplar", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const NetworkStats own = network_stats(ex);
   double mean = 0.0;
   for (std::uint64_t seed : {1, 2, 3}) {
@@ -310,11 +301,8 @@ TEST(NetworkGrowth, NoDanglingEndWhereTheExemplarHasNone) {
           {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
       1e-3, "exemplar", w);
   ASSERT_EQ(network_stats(ex).dangling_per_km(), 0.0);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const auto region = box(lo.x, lo.y, hi.x, hi.y);
   for (NetworkMethod method : {NetworkMethod::grow, NetworkMethod::quilt}) {
     const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 1, .method = method});

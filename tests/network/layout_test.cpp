@@ -12,6 +12,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 #include "test_support.hpp"
 
 namespace tw {
@@ -23,12 +24,7 @@ Network layout_exemplar(const std::string& kind) {
 }
 
 std::vector<Polygon> layout_region(const Network& ex) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  return {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+  return test::extent_region(ex);
 }
 
 double layout_distance(const Network& ex, const Network& out, int p) {
@@ -80,11 +76,8 @@ TEST(NetworkLayout, RadialKeepsItsDanglingSpokeEndsAndEmptyCorners) {
   const Network ex = layout_exemplar("radial");
   const std::vector<Polygon> region = layout_region(ex);
   const auto [a, b] = halves(ex);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const Vec2 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * (hi.x - lo.x);
   for (std::uint64_t seed : {1, 2, 3}) {
@@ -113,11 +106,8 @@ TEST(NetworkLayout, RadialKeepsItsDanglingSpokeEndsAndEmptyCorners) {
 TEST(NetworkLayout, RadialTurnedByALeadBearingKeepsItsCornersEmpty) {
   const Network ex = layout_exemplar("radial");
   const std::vector<Polygon> region = layout_region(ex);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const Vec2 centre = 0.5 * (lo + hi);
   const double radius = 0.5 * (hi.x - lo.x);
   NetworkGrowthOptions options;

@@ -1,6 +1,7 @@
 #pragma once
-// What the growth and quilt tests share: an L-shaped field with a pond (a hole) and a forbidden
-// diagonal road across it, and the clearance measure between lines that share no node.
+// What the network tests share: an L-shaped field with a pond (a hole) and a forbidden diagonal
+// road across it, an exemplar's own extent as a region, and the clearance measure between lines
+// that share no node.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +20,13 @@ inline double across_diagonal_road(Vec2 p) {
 inline std::vector<Polygon> field_with_pond() {
   return {{{{0, 0}, {900, 0}, {900, 400}, {400, 400}, {400, 800}, {0, 800}},
            {{100, 100}, {250, 100}, {250, 250}, {100, 250}}}};
+}
+
+// A network's own extent (the box of its nodes) as a region: an exemplar over its own size, as
+// the quality bench measures it.
+inline std::vector<Polygon> extent_region(const Network& net) {
+  const NodeExtent e = node_extent(net);
+  return {{{e.lo, {e.hi.x, e.lo.y}, e.hi, {e.lo.x, e.hi.y}}}};
 }
 
 inline ForbiddenMask diagonal_road_mask() {

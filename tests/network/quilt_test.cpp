@@ -140,12 +140,7 @@ TEST(NetworkQuilt, CountiesKeepTheirCurvatureAndFaceAreas) {
       read_network_lines(
           {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
       1e-3, "exemplar", w);
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  const std::vector<Polygon> region = {{{lo, {hi.x, lo.y}, hi, {lo.x, hi.y}}}};
+  const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats se = network_stats(ex);
   const auto [half_a, half_b] = halves(ex);
   const NetworkStats s1 = network_stats(ex, half_a), s2 = network_stats(ex, half_b);

@@ -12,6 +12,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 
 namespace tw {
 namespace {
@@ -19,12 +20,7 @@ namespace {
 constexpr int kStraightCurvature = 2;
 
 std::vector<Polygon> straight_region(const Network& ex) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  return {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+  return test::extent_region(ex);
 }
 
 double bent_share(const Network& net) {

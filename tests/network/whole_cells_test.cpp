@@ -12,6 +12,7 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/stats.hpp"
+#include "network_fixtures.hpp"
 
 namespace tw {
 namespace {
@@ -19,12 +20,7 @@ namespace {
 constexpr int kCellsEdgeLength = 1, kCellsCurvature = 2;
 
 std::vector<Polygon> whole_cells_region(const Network& ex) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
-  return {{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+  return test::extent_region(ex);
 }
 
 // The bench's crocodile cells (docs/networks.md, "Quality"), seed 3: before, the quilt's lines

@@ -8,11 +8,8 @@
 namespace tw::network_detail {
 
 bool has_drawn_frame(const Network& exemplar, double tolerance, double share) {
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : exemplar.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(exemplar);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   if (!(hi.x > lo.x && hi.y > lo.y)) return false;
   // Only segments reaching within `tolerance` of the perimeter can be near it.
   std::vector<std::pair<Vec2, Vec2>> outer;

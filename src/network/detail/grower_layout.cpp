@@ -43,11 +43,8 @@ bool Grower::lay_out_long_strokes() {
     if (dangles(a) != dangles(b)) return dangles(b);
     return skeleton[a] > skeleton[b];
   });
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : exemplar_.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(exemplar_);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const Vec2 centre = 0.5 * (lo + hi), size = hi - lo;
   if (!(size.x > 0.0 && size.y > 0.0)) return false;
   const Vec2 region_lo = vec(extent_.min_corner()), region_hi = vec(extent_.max_corner());

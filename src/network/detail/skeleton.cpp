@@ -68,11 +68,8 @@ std::vector<double> long_stroke_edges(const Network& ex, double deflection, doub
       if (best_continuation(int(n), other, other_end) == l.edge)
         next[std::size_t(l.edge)][l.end] = other;
     }
-  Vec2 lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-  for (Vec2 p : ex.nodes) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  const NodeExtent extent = node_extent(ex);
+  const Vec2 lo = extent.lo, hi = extent.hi;
   const double min_length = min_fraction * std::max(hi.x - lo.x, hi.y - lo.y);
   std::vector<int> stroke(ne, -1);
   std::vector<double> stroke_length;
