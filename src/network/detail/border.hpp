@@ -1,7 +1,7 @@
 #pragma once
-// An exemplar's border (docs/networks.md, "Finish"): whether its lines run along the whole
-// perimeter of its extent (a map of fields with its outer hedge drawn as a frame), as opposed to
-// a border made of its outermost cells' own sides.
+// An exemplar's border (docs/networks.md, "Growth", step 7: whole cells): whether its lines run
+// along the whole perimeter of its extent (a map of fields with its outer hedge drawn as a frame),
+// as opposed to a border made of its outermost cells' own sides.
 #include "network/network.hpp"
 
 namespace tw::network_detail {
