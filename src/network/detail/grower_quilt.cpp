@@ -262,8 +262,9 @@ void Grower::keep_whole_cells() {
     --degree_[n];
     --degree_[std::size_t(other)];
     ++report_.pruned;
-    border_node_.resize(out_.nodes.size(), 0);
-    border_node_[std::size_t(trim_from(other, INFINITY))] = 1;
+    const std::size_t trimmed_to = std::size_t(trim_from(other, INFINITY));
+    border_node_.resize(std::max(border_node_.size(), trimmed_to + 1), 0);
+    border_node_[trimmed_to] = 1;
   }
 }
 

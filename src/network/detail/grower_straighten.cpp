@@ -107,12 +107,14 @@ void Grower::straighten_edges() {
     if (alive_[i]) length += polyline_length(out_.edges[i].points);
   int ends_allowed = int(dangling_target_ * length) - dangling;
   // The outermost cells' sides merged through the nodes that lost a cut line are the
-  // exemplar's own kind of bend (its border's): they are kept.
-  border_node_.resize(out_.nodes.size(), 0);
+  // exemplar's own kind of bend (its border's): they are kept. Nodes made below (a corner
+  // linked on) are past the end of border_node_ and never on the border.
   const auto on_border = [&](const Chain& c) {
     for (int e : c.edges)
       for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
-        if (n != c.from && n != c.to && border_node_[std::size_t(n)]) return true;
+        if (n != c.from && n != c.to && std::size_t(n) < border_node_.size() &&
+            border_node_[std::size_t(n)])
+          return true;
     return false;
   };
   // Steps shorter than kShortStep clearances (a snapped end's last hair) turn sharply over no
