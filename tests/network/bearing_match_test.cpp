@@ -45,11 +45,7 @@ TEST(NetworkBearingMatch, StreamTreesKeepTheExemplarsBearingDistribution) {
 // 0.061, 0.052, 0.066 at seeds 1-3 (a mean of 0.060; seed 1 above the baseline's 0.048), and are
 // 0.046, 0.050, 0.064 (a mean of 0.053) with the blocks chosen by the cumulative distribution.
 TEST(NetworkBearingMatch, QuiltedCountiesKeepTheirBearings) {
-  Warnings w;
-  const Network ex = build_planar_network(
-      read_network_lines(
-          {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
-      1e-3, "exemplar", w);
+  const Network ex = test::county_exemplar();
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   double mean_apart = 0.0;

@@ -193,13 +193,7 @@ TEST(NetworkGrowth, DegenerateOrHugeRegionsAreRefused) {
 class NetworkProperty : public ::testing::TestWithParam<int> {};
 
 TEST_P(NetworkProperty, RealCountiesKeepTheExemplarsStyle) {
-  static const Network ex = [] {
-    Warnings w;
-    return build_planar_network(
-        read_network_lines(
-            {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
-        1e-3, "exemplar", w);
-  }();
+  static const Network ex = test::county_exemplar();
   const NodeExtent extent = node_extent(ex);
   const Vec2 lo = extent.lo, hi = extent.hi;
   const auto region = box(lo.x, lo.y, hi.x, hi.y);
@@ -295,11 +289,7 @@ TEST(NetworkGrowth, GridKeepsItsTwoOrientationsInProportion) {
 // from growth and from the quilt: the ends the seams or failed stubs leave are pruned back to
 // their junction whatever their length (before, the quilt at seed 1 left a few).
 TEST(NetworkGrowth, NoDanglingEndWhereTheExemplarHasNone) {
-  Warnings w;
-  const Network ex = build_planar_network(
-      read_network_lines(
-          {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
-      1e-3, "exemplar", w);
+  const Network ex = test::county_exemplar();
   ASSERT_EQ(network_stats(ex).dangling_per_km(), 0.0);
   const NodeExtent extent = node_extent(ex);
   const Vec2 lo = extent.lo, hi = extent.hi;

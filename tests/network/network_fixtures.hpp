@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "core/segment_distance.hpp"
+#include "network/exemplar.hpp"
 #include "network/growth.hpp"
+#include "test_support.hpp"
 
 namespace tw::test {
 
@@ -27,6 +29,16 @@ inline std::vector<Polygon> field_with_pond() {
 inline std::vector<Polygon> extent_region(const Network& net) {
   const NodeExtent e = node_extent(net);
   return {{{e.lo, {e.hi.x, e.lo.y}, e.hi, {e.lo.x, e.hi.y}}}};
+}
+
+// The county boundaries of North Carolina (r-cran-sf's nc.shp) as a planar network: the real
+// exemplar the quality tests share.
+inline Network county_exemplar() {
+  Warnings w;
+  return build_planar_network(
+      read_network_lines(
+          {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
+      1e-3, "exemplar", w);
 }
 
 inline ForbiddenMask diagonal_road_mask() {

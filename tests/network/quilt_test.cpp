@@ -135,11 +135,7 @@ TEST_P(QuiltProperty, CrocodileCellsKeepTheExemplarsStyle) {
 // seams were left out, seed 2's faces (1.29 against 0.96) and seed 3's curvature (2.39 against
 // 0.20: a tiny ring stitched from two slivers) missed.
 TEST(NetworkQuilt, CountiesKeepTheirCurvatureAndFaceAreas) {
-  Warnings w;
-  const Network ex = build_planar_network(
-      read_network_lines(
-          {.source = (test::source_dir() / "tests/data/nc_counties.geojson").string()}, w),
-      1e-3, "exemplar", w);
+  const Network ex = test::county_exemplar();
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats se = network_stats(ex);
   const auto [half_a, half_b] = halves(ex);

@@ -203,6 +203,7 @@ class Grower {
   bool link_ahead(int n, double heading, double reach, int own_edge);
   bool link_along(int n, std::vector<Vec2> ray, int own_edge);
   void link_onto(int n, std::vector<Vec2> ray, const Hit& hit);
+  void link_to(int n, std::vector<Vec2> ray, int to);
   void close_corners();
   bool link_to_boundary(int n, double heading, double reach);
   void close_dangling_ends();

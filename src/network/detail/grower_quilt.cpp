@@ -124,10 +124,15 @@ bool Grower::link_along(int n, std::vector<Vec2> ray, int own_edge) {
 // and the link ends on the new junction.
 void Grower::link_onto(int n, std::vector<Vec2> ray, const Hit& hit) {
   const int t = split_edge(hit.edge, hit.seg, ray.back());
-  ray.back() = out_.nodes[std::size_t(t)];
+  link_to(n, std::move(ray), t);
+}
+
+// Node n joined by `ray` to node `to` (its last point moved onto it): a new edge.
+void Grower::link_to(int n, std::vector<Vec2> ray, int to) {
+  ray.back() = out_.nodes[std::size_t(to)];
   NetworkEdge link;
   link.from = n;
-  link.to = t;
+  link.to = to;
   link.points = std::move(ray);
   add_edge(std::move(link));
 }
@@ -175,11 +180,7 @@ bool Grower::link_to_boundary(int n, double heading, double reach) {
   if (!valid(ray, false)) return false;
   const int end = add_node(ray.back());
   out_.on_boundary[std::size_t(end)] = 1;
-  NetworkEdge link;
-  link.from = n;
-  link.to = end;
-  link.points = std::move(ray);
-  add_edge(std::move(link));
+  link_to(n, std::move(ray), end);
   return true;
 }
 
@@ -216,12 +217,7 @@ void Grower::close_dangling_ends() {
         if (node < 0) {
           link_onto(n, std::move(ray), *hit);
         } else {
-          ray.back() = out_.nodes[std::size_t(node)];
-          NetworkEdge link;
-          link.from = n;
-          link.to = node;
-          link.points = std::move(ray);
-          add_edge(std::move(link));
+          link_to(n, std::move(ray), node);
         }
         --dangling;
         continue;
