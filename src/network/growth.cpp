@@ -72,6 +72,7 @@ Network Grower::run(Mode mode) {
   close_dangling_ends();
   keep_whole_cells();
   straighten_edges();
+  split_large_cells();
   return finish();
 }
 

@@ -272,6 +272,9 @@ class Grower {
   // ---- whole cells at the border (grower_quilt.cpp) ---------------------------------------------
   void keep_whole_cells();
 
+  // ---- cells larger than the exemplar's split (grower_cells.cpp) --------------------------------
+  void split_large_cells();
+
   // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
   // two of them meet (neither kept), from every other node in order, then the cycles left; a kept
@@ -340,6 +343,7 @@ class Grower {
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
   double straight_share_ = 0.0;    // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;     // its largest cell, where its cells are closed and straight
   std::vector<char> border_node_;  // per node: it lost a line cut by the region (keep_whole_cells)
   bool whole_cells_ = false;  // the exemplar's cells are all closed, none cut (keep_whole_cells)
   bool completing_ = false;   // a partial network is kept (add_partial)
