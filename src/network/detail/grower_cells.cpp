@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <vector>
 
@@ -21,6 +20,10 @@ constexpr double kSideTurn = 0.05;
 
 // How many times the cells are taken again (a split cell's halves may still be too large).
 constexpr int kSplitRounds = 4;
+
+// Where along a side a chord starts, in the order tried (the exemplar's chords start within
+// its sides' middle third or so).
+constexpr double kChordPlaces[] = {0.5, 0.35, 0.65};
 
 // A cell's side: from ring vertex `first` to ring vertex `last` (indices into the ring, which
 // closes on itself), and its length.
@@ -56,10 +59,11 @@ std::vector<CellSide> cell_sides(const std::vector<Vec2>& ring) {
   return sides;
 }
 
-// The point halfway along a side, and the ring segment it lies on.
-std::pair<Vec2, std::size_t> side_middle(const std::vector<Vec2>& ring, const CellSide& side) {
+// The point `share` of the way along a side, and the ring segment it lies on.
+std::pair<Vec2, std::size_t> side_point(const std::vector<Vec2>& ring, const CellSide& side,
+                                        double share) {
   const std::size_t n = ring.size() - 1;
-  double left = 0.5 * side.length;
+  double left = share * side.length;
   for (std::size_t k = side.first; k != side.last; k = (k + 1) % n) {
     const Vec2 a = ring[k], b = ring[(k + 1) % n];
     const double l = distance(a, b);
@@ -75,9 +79,10 @@ std::pair<Vec2, std::size_t> side_middle(const std::vector<Vec2>& ring, const Ce
 // hedges), a cell of the output larger than the exemplar's largest is one no line split: it is
 // split by a straight chord from the middle of its longest side, square to it, onto the line
 // across (a T at each end, as the exemplar's chords make), under the rules of every line; else
-// from the next longest side. Until no cell is larger, or no chord is valid.
+// from the middle of the next longest side; else from a third of the way along a side. Until no
+// cell is larger, or no chord is valid.
 void Grower::split_large_cells() {
-  if (!(max_cell_area_ > 0.0) || completing_ || std::getenv("TW_NOSPLIT")) return;
+  if (!(max_cell_area_ > 0.0) || completing_) return;
   const double eps = 1e-7 * median_;
   for (int round = 0; round < kSplitRounds; ++round) {
     OGRMultiLineString all;
@@ -107,36 +112,42 @@ void Grower::split_large_cells() {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
       const double reach = distance(lo, hi);
-      for (const CellSide& side : cell_sides(ring)) {
-        const auto [middle, k] = side_middle(ring, side);
-        const Vec2 along = ring[k + 1] - ring[k];
-        const double inward = heading(along) + (twice_area > 0.0 ? 0.5 : -0.5) * kPi;
-        // The output edge the side's middle lies on, away from its ends.
+      // A chord square to the side from the point `share` of the way along it.
+      const auto chord_from = [&](const CellSide& side, double share) {
+        const auto [start, k] = side_point(ring, side, share);
+        const double inward =
+            heading(ring[k + 1] - ring[k]) + (twice_area > 0.0 ? 0.5 : -0.5) * kPi;
+        // The output edge the point lies on, away from its ends.
         std::vector<SegValue> near;
-        segments_.query(bgi::nearest(to_bg(middle), 1), std::back_inserter(near));
-        if (near.empty() || bg::distance(near[0].first, to_bg(middle)) > eps) continue;
+        segments_.query(bgi::nearest(to_bg(start), 1), std::back_inserter(near));
+        if (near.empty() || bg::distance(near[0].first, to_bg(start)) > eps) return false;
         const int id = near[0].second;
         const NetworkEdge& e = out_.edges[std::size_t(id)];
-        if (distance(middle, out_.nodes[std::size_t(e.from)]) < clearance_ ||
-            distance(middle, out_.nodes[std::size_t(e.to)]) < clearance_)
-          continue;
+        if (distance(start, out_.nodes[std::size_t(e.from)]) < clearance_ ||
+            distance(start, out_.nodes[std::size_t(e.to)]) < clearance_)
+          return false;
         std::size_t seg = 0;
         double best = INFINITY;
         for (std::size_t s = 0; s + 1 < e.points.size(); ++s)
-          if (const double d = distance_to_segment(middle, e.points[s], e.points[s + 1]); d < best)
+          if (const double d = distance_to_segment(start, e.points[s], e.points[s + 1]); d < best)
             best = d, seg = s;
-        // Tried from a node not yet made: the ray must meet a line at a T it may end on.
-        const std::vector<Vec2> ray{middle,
-                                    middle + Vec2{std::cos(inward), std::sin(inward)} * reach};
+        // Tried before a node is made: the ray must meet another line.
+        const std::vector<Vec2> ray{start,
+                                    start + Vec2{std::cos(inward), std::sin(inward)} * reach};
         const auto hit = first_edge_hit(ray);
-        if (!hit || hit->edge == id) continue;
-        const int n = split_edge(id, int(seg), middle);
-        if (link_ahead(n, inward, reach, id)) {
-          split = true;
-          break;
-        }
-        // No valid chord: n stays a node of degree 2 on a straight side, merged away as the
-        // network is written (finish).
+        if (!hit || hit->edge == id) return false;
+        // An invalid chord leaves the new node of degree 2 on a straight side, merged away as
+        // the network is written (finish).
+        return link_ahead(split_edge(id, int(seg), start), inward, reach, id);
+      };
+      const std::vector<CellSide> sides = cell_sides(ring);
+      for (double share : kChordPlaces) {
+        for (const CellSide& side : sides)
+          if (chord_from(side, share)) {
+            split = true;
+            break;
+          }
+        if (split) break;
       }
     }
     if (!split) return;
