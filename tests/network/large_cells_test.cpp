@@ -1,0 +1,52 @@
+// Cells larger than the exemplar's (docs/networks.md, "Growth", step 9): where the exemplar's
+// cells are closed and its edges straight, a cell of the output larger than its largest is one
+// no line split, and is split by a straight chord across it, as the exemplar's cells were.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "network/baseline.hpp"
+#include "network/check.hpp"
+#include "network/example_networks.hpp"
+#include "network/exemplar.hpp"
+#include "network/growth.hpp"
+#include "network/stats.hpp"
+#include "network_fixtures.hpp"
+
+namespace tw {
+namespace {
+
+constexpr int kLargeCellsFaceArea = 4;
+
+double largest_cell(const Network& net) {
+  const std::vector<double> areas = network_stats(net).face_area;
+  return areas.empty() ? 0.0 : *std::max_element(areas.begin(), areas.end());
+}
+
+// The bench's bocage (fields split by straight hedges, cells of 2 400 to 13 100 m²): before,
+// cells no chord had split (up to 58 000 m² at seed 1) put the cell areas at 0.578 and 0.362
+// × the exemplar's spread from it at seeds 1 and 3 (halves 0.209: a target of 0.31).
+TEST(NetworkLargeCells, BocageCellsLargerThanTheExemplarsAreSplitByStraightChords) {
+  Warnings w;
+  const Network ex = build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const std::vector<Polygon> region = test::extent_region(ex);
+  const NetworkStats se = network_stats(ex);
+  const auto [a, b] = halves(ex);
+  const double d_halves = normalized_w1(property(network_stats(ex, a), kLargeCellsFaceArea),
+                                        property(network_stats(ex, b), kLargeCellsFaceArea));
+  for (std::uint64_t seed : {1, 3}) {
+    const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed});
+    EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
+    EXPECT_LE(largest_cell(out), largest_cell(ex)) << seed;
+    const double d_out = normalized_w1(property(se, kLargeCellsFaceArea),
+                                       property(network_stats(out), kLargeCellsFaceArea));
+    EXPECT_LE(d_out, std::max(1.5 * d_halves, 0.05)) << seed;
+    const double d_base = normalized_w1(
+        property(se, kLargeCellsFaceArea),
+        property(network_stats(baseline_network(ex, region, seed)), kLargeCellsFaceArea));
+    EXPECT_LT(d_out, d_base) << seed;
+  }
+}
+
+}  // namespace
+}  // namespace tw
