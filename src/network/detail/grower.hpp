@@ -295,6 +295,7 @@ class Grower {
 
   void straighten_edges();
   std::vector<Vec2> without_short_steps(const std::vector<Vec2>& p) const;
+  bool without_end_jogs(const Chain& c);
   static double sharpest_turn(const std::vector<Vec2>& p);
 
   int ends_left_at(int n, const Chain& c) const;
