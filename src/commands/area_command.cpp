@@ -17,7 +17,7 @@
 #include "geo/features.hpp"
 #include "geo/heightfield.hpp"
 #include "pipeline/area_canvas.hpp"
-#include "pipeline/area_lead.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "pipeline/area_output.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"

@@ -8,15 +8,9 @@
 #include <string>
 #include <vector>
 
-namespace tw {
+#include "pipeline/lead.hpp"
 
-// Where the sketch's +x axis points in each polygon.
-enum class AreaLead {
-  bearing,       // a fixed compass bearing
-  long_axis,     // the polygon's principal axis
-  nearest_road,  // the direction of the run's line feature nearest to the polygon
-  contours,      // along the terrain's contours over the polygon (rows across the slope)
-};
+namespace tw {
 
 // One stroke material of the sketch and what it becomes.
 struct AreaMaterial {
@@ -33,8 +27,8 @@ struct AreaClassConfig {
   std::filesystem::path sketch;
   std::optional<std::filesystem::path> shapes_from;  // hybridization (Section 6)
   double scale = 20.0;                               // metres per sketch unit
-  AreaLead lead = AreaLead::long_axis;
-  double bearing_deg = 0.0;  // lead: bearing
+  Lead lead = Lead::long_axis;  // where the sketch's +x axis points in each polygon
+  double bearing_deg = 0.0;     // lead: bearing
   double jitter = 0.5;
   std::uint64_t seed = 0;
   // Stroke materials named in `materials` or `height`, in the order given; the others map to

@@ -15,7 +15,7 @@
 #include "core/progress.hpp"
 #include "geo/geopackage.hpp"
 #include "image/image_io.hpp"
-#include "pipeline/area_lead.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "raster/rasterize.hpp"
 
 namespace tw {

@@ -449,7 +449,7 @@ RunReport finish_job(const fs::path& plan_dir) {
   report.stages.push_back({"render", render_seconds});
   report.stages.push_back({"finish", seconds_since(started)});
   report.output_files = detail::record_outputs(transaction);
-  detail::write_job_report(report, config, out, transaction);
+  detail::write_job_report(plan, report, config, out, transaction);
   transaction.commit();
   report.outputs = transaction.committed();
   // Then the record that this plan is in the output folder, then the clean-up (the tiles are

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "pipeline/lead.hpp"
 #include "pipeline/method_options.hpp"
 
 namespace tw {
@@ -25,9 +26,12 @@ struct NetworkClassConfig : MethodOptionsOf<NetworkClassConfig> {
   std::string region_source, region_layer, region_where;
   std::string partial;     // the user's lines "path[:layer]" (heightfield's CRS), completed
   std::uint64_t seed = 1;  // default: the run's seed
-  std::optional<double> lead_bearing;  // compass degrees
-  double clearance = 0.0;              // metres; 0: the exemplar's own (6 % of its median edge)
-  double snap = 0.0;                   // metres; 0: 35 % of the median edge
+  // The direction the exemplar's main bearing is turned to over the region (absent: as drawn);
+  // `lead_bearing: DEG` is `lead: { bearing: DEG }`.
+  std::optional<Lead> lead;
+  double lead_bearing_deg = 0.0;  // lead: bearing, compass degrees
+  double clearance = 0.0;         // metres; 0: the exemplar's own (6 % of its median edge)
+  double snap = 0.0;              // metres; 0: 35 % of the median edge
   int candidates = 12;
   // automatic, growth, quilt or layout (docs/networks.md, "Which method"); quilt and layout are
   // refused with `partial` (completing a drawing is growth).

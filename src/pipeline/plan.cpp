@@ -112,6 +112,12 @@ std::vector<StageTiming> plan_after(const PipelineConfig& config, WorldPlan& pla
 
 }  // namespace detail
 
+std::vector<const SynthesisMethod*> methods_in(const WorldPlan& plan) {
+  std::vector<const SynthesisMethod*> methods;
+  for (const MethodPlan& entry : plan.methods) methods.push_back(entry.method);
+  return methods;
+}
+
 void index_plan(WorldPlan& plan) {
   std::vector<Window> features;
   for (const TerrainFeature& f : plan.terrain_features) {

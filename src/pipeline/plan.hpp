@@ -153,6 +153,9 @@ struct PlanOptions {
 // naming the file, key, FID or piece of the first bad input; warnings go to `warnings`.
 WorldPlan plan_world(const PipelineConfig& config, const PlanOptions& options, Warnings& warnings);
 
+// The plan's methods, in its order (those that made it: a run's report.json is written by them).
+std::vector<const SynthesisMethod*> methods_in(const WorldPlan& plan);
+
 // Builds feature_index, ribbon_index and every method entry's index from the plan's features,
 // ribbons and the methods' items (plan_world does; a plan read back from files calls it again).
 void index_plan(WorldPlan& plan);

@@ -37,8 +37,9 @@ inline constexpr const char* kTasksFormat = "terraweave.tasks";
 // the patterns' exemplars and patterns (with their placements) as binary objects too; 11: the
 // methods' parts of the report (a feature's synthesis, a class's grow and network, the areas)
 // stored by their methods, as methods[].report, in place of fields of the report's object; 12:
-// the report's object without the methods' JSON parts (every method reports through its part).
-inline constexpr int kPlanVersion = 12;
+// the report's object without the methods' JSON parts (every method reports through its part);
+// 13: a network class's `lead` and `lead_bearing_deg`.
+inline constexpr int kPlanVersion = 13;
 
 // Writes the plan into `dir` (created; objects of an earlier plan there that this one does not
 // use are deleted; plan.json and tasks.json are replaced atomically, last). Returns the plan's

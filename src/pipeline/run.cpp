@@ -262,7 +262,8 @@ RunReport run_pipeline(const PipelineConfig& config, const RunOptions& options) 
   // Only report.json itself and the commit (a rename) come after the total.
   report.total_seconds = seconds_since(run_started);
   detail::add_untimed_stage(report.stages, report.total_seconds);
-  write_report(transaction.stage(dir / "report.json"), detail::report_to_json(report, config));
+  write_report(transaction.stage(dir / "report.json"),
+               detail::report_to_json(report, config, methods_in(plan)));
   transaction.commit();
   report.outputs = transaction.committed();
   logger().info("wrote {} files to {} in {:.2f} s", report.outputs.size(), dir.string(),

@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "core/file_io.hpp"
 #include "layers/layer_set.hpp"
-#include "pipeline/area_lead.hpp"
 #include "pipeline/job.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "pipeline/methods/areas/area_config.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
 #include "pipeline/methods/areas/area_report.hpp"
@@ -496,24 +496,10 @@ features:
 // A plane rising eastward: contours run north-south.
 TEST(AreaContours, RowsRunAlongTheContours) {
   test::TempDir dir;
-  {
-    GDALAllRegister();
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
-    ASSERT_NE(driver, nullptr);
-    std::unique_ptr<GDALDataset> ds(
-        driver->Create((dir / "plane.tif").c_str(), 50, 50, 1, GDT_Float32, nullptr));
-    const double transform[6] = {500000.0, 10.0, 0.0, 5000500.0, 0.0, -10.0};
-    ds->SetGeoTransform(const_cast<double*>(transform));
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32631);
-    ds->SetSpatialRef(&srs);
-    std::vector<float> heights(50 * 50);
-    for (int row = 0; row < 50; ++row)
-      for (int col = 0; col < 50; ++col) heights[std::size_t(row * 50 + col)] = 100.0f + 2.0f * col;
-    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 50, 50, heights.data(), 50, 50,
-                                             GDT_Float32, 0, 0),
-              CE_None);
-  }
+  test::write_dem(dir / "plane.tif", {.width = 50,
+                                      .height = 50,
+                                      .origin_y = 5000500.0,
+                                      .surface = test::DemSpec::Surface::plane_east});
   test::write_layer(dir / "map.gpkg", "fields",
                     {{"POLYGON ((500100 5000100, 500400 5000100, 500400 5000200, 500100 5000200, "
                       "500100 5000100))"}});
@@ -657,7 +643,7 @@ TEST(AreaConfig, BadKeysAreOneLineNamingTheKey) {
   EXPECT_DOUBLE_EQ(areas[0].materials[0].height, 0.3);
   EXPECT_EQ(areas[0].materials[1].stroke, "post");
   EXPECT_DOUBLE_EQ(areas[0].materials[1].height, -0.1);
-  EXPECT_EQ(areas[0].lead, AreaLead::long_axis);
+  EXPECT_EQ(areas[0].lead, Lead::long_axis);
 }
 
 TEST(AreaCompass, BearingsAreClockwiseFromNorthInZeroTo360) {

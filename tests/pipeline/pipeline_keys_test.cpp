@@ -540,6 +540,7 @@ TEST_F(PipelineKeys, Network) {
           {"region", {n + "region=[500060, 5000060, 500360, 5000360]"}},
           {"partial", {n + "partial=" + net + ":drawn"}},
           {"seed", {n + "seed=5"}},
+          {"lead", {n + "lead=long_axis"}, {n + "lead={bearing: 10}"}},
           {"lead_bearing", {n + "lead_bearing=45"}},
           {"clearance", {n + "clearance=30"}},
           // How far a grown end is pulled onto the network (35 % of the median edge, 35 m).

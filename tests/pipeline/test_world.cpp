@@ -32,10 +32,10 @@ void write_dem(const fs::path& path, const DemSpec& spec) {
   std::vector<float> heights(std::size_t(spec.width) * spec.height);
   for (int y = 0; y < spec.height; ++y) {
     for (int x = 0; x < spec.width; ++x) {
-      heights[std::size_t(y) * spec.width + x] =
-          spec.all_nodata ? float(*spec.nodata)
-                          : float(100.0 + 50.0 * x / spec.width +
-                                  25.0 * std::sin(0.2 * x) * std::cos(0.15 * y));
+      double z = 100.0 + 50.0 * x / spec.width + 25.0 * std::sin(0.2 * x) * std::cos(0.15 * y);
+      if (spec.surface == DemSpec::Surface::plane_east) z = 100.0 + 2.0 * x;
+      if (spec.surface == DemSpec::Surface::flat) z = 100.0;
+      heights[std::size_t(y) * spec.width + x] = spec.all_nodata ? float(*spec.nodata) : float(z);
     }
   }
   ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, spec.width, spec.height, heights.data(), spec.width,

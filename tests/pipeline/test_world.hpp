@@ -16,11 +16,14 @@ struct DemSpec {
   double origin_y = 5000640.0;
   double pixel_size = 10.0;
   std::string crs = "EPSG:32631";  // "" = no CRS
-  std::optional<double> nodata;
+  std::optional<double> nodata{};
   bool all_nodata = false;  // every cell holds the nodata value
+  // bumps: a smooth slope with bumps (100..200 m); plane_east: 100 m + 2 m per column (contours
+  // run north-south); flat: 100 m everywhere.
+  enum class Surface { bumps, plane_east, flat } surface = Surface::bumps;
 };
 
-// A GeoTIFF of a smooth slope with bumps (heights 100..200 m).
+// A GeoTIFF of `spec.surface`.
 void write_dem(const std::filesystem::path& path, const DemSpec& spec = {});
 
 struct VectorFeature {

@@ -7,6 +7,7 @@
 
 #include "pipeline/config.hpp"
 #include "pipeline/detail/yaml_reader.hpp"
+#include "pipeline/lead.hpp"
 
 namespace tw::detail {
 
@@ -20,5 +21,10 @@ double read_width(const MapReader& m, const std::string& key);
 
 // cpu | opencl | auto; `fallback` is "auto" or an already validated backend.
 std::string read_backend(const MapReader& m, const std::string& key, const std::string& fallback);
+
+// `lead: long_axis | nearest_road | contours | { bearing: DEG }` (pipeline/lead.hpp), when given:
+// `lead` and, for a bearing, `bearing_deg` (finite compass degrees). Unknown names are refused
+// naming the key, with the closest name.
+void read_lead(const MapReader& m, Lead& lead, double& bearing_deg);
 
 }  // namespace tw::detail

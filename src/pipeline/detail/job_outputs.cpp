@@ -95,11 +95,11 @@ RunReport write_job_outputs(const WorldPlan& plan, const std::vector<RenderedTil
   return report;
 }
 
-void write_job_report(const RunReport& report, const PipelineConfig& config, const fs::path& out,
-                      OutputFolder& transaction) {
+void write_job_report(const WorldPlan& plan, const RunReport& report, const PipelineConfig& config,
+                      const fs::path& out, OutputFolder& transaction) {
   const fs::path path = transaction.stage(out / "report.json");
   std::ofstream file(path);
-  file << report_to_json(report, config).dump(2) << '\n';
+  file << report_to_json(report, config, methods_in(plan)).dump(2) << '\n';
   file.close();
   if (!file) fail("cannot write {}", path.string());
 }

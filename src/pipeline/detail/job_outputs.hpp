@@ -77,8 +77,8 @@ void write_method_outputs(const WorldPlan& plan, MethodTileFacts facts,
                           const std::filesystem::path& out, OutputFolder& transaction,
                           RunReport& report, StageClock* clock);
 
-// <out>/report.json, as terraweave run writes it.
-void write_job_report(const RunReport& report, const PipelineConfig& config,
+// <out>/report.json, as terraweave run writes it (by the plan's methods).
+void write_job_report(const WorldPlan& plan, const RunReport& report, const PipelineConfig& config,
                       const std::filesystem::path& out, OutputFolder& transaction);
 
 }  // namespace tw::detail

@@ -229,6 +229,11 @@ std::vector<KeyBlock> table_blocks() {
        {
            {"corridor", {positive()}, "metres either side of each line", no_default(), required},
        }},
+      {"lead",
+       "A fixed direction (an area class's or a network's `lead`).",
+       {
+           {"bearing", {number()}, "compass bearing in degrees", no_default(), required},
+       }},
       {"existing",
        "Features no synthesis may cover.",
        {

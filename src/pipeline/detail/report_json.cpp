@@ -155,8 +155,7 @@ nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& con
   };
   // The methods' parts in their places (their classes, features and keys; another method's
   // own object under `methods.<name>`), written by each method (SynthesisMethod::report_json).
-  for (const SynthesisMethod* method : methods_or_builtin(methods))
-    method->report_json(report, config, j);
+  for (const SynthesisMethod* method : methods) method->report_json(report, config, j);
   return j;
 }
 

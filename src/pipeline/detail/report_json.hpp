@@ -14,9 +14,9 @@ class SynthesisMethod;
 
 namespace tw::detail {
 
-// The report as report.json holds it; each method (empty: the built-in ones) writes its own
-// fields into it (SynthesisMethod::report_json).
+// The report as report.json holds it; each of `methods` (the plan's: methods_in(plan)) writes
+// its own fields into it (SynthesisMethod::report_json).
 nlohmann::json report_to_json(const RunReport& report, const PipelineConfig& config,
-                              const std::vector<const SynthesisMethod*>& methods = {});
+                              const std::vector<const SynthesisMethod*>& methods);
 
 }  // namespace tw::detail

@@ -12,34 +12,6 @@ namespace tw::detail {
 
 namespace {
 
-// lead: long_axis | nearest_road | contours | { bearing: DEG }
-void read_lead(const MapReader& m, AreaClassConfig& a) {
-  if (!m.has("lead")) return;
-  const YAML::Node node = m.get("lead");
-  const std::string key = m.path("lead");
-  if (node.IsMap()) {
-    const MapReader lead(m.source(), node, key, "lead");
-    a.lead = AreaLead::bearing;
-    a.bearing_deg = read_double(m.source(), lead.get("bearing"), lead.path("bearing"));
-    if (!std::isfinite(a.bearing_deg))
-      m.source().fail(lead.get("bearing"), lead.path("bearing"), "must be a finite angle");
-    return;
-  }
-  const std::string value = read_string(m.source(), node, key);
-  const std::vector<std::string> names = {"long_axis", "nearest_road", "contours"};
-  const auto it = std::find(names.begin(), names.end(), value);
-  if (it == names.end()) {
-    const std::string hint = closest_match(value, names);
-    m.source().fail(
-        node, key,
-        fmt::format("unknown lead '{}', expected long_axis, nearest_road, contours or "
-                    "{{ bearing: DEG }}{}",
-                    value, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
-  }
-  a.lead = std::array{AreaLead::long_axis, AreaLead::nearest_road,
-                      AreaLead::contours}[std::size_t(it - names.begin())];
-}
-
 // The entry of `stroke` in a.materials, added when missing.
 AreaMaterial& material_of(AreaClassConfig& a, const std::string& stroke) {
   const auto it = std::find_if(a.materials.begin(), a.materials.end(),
@@ -95,7 +67,7 @@ AreaClassConfig read_area_class(const MapReader& m, const std::string& name,
   if (m.has("shapes_from"))
     a.shapes_from = input_file(m, "shapes_from", InputFile::Kind::vector, inputs);
   a.scale = m.positive_or("scale", a.scale);
-  read_lead(m, a);
+  read_lead(m, a.lead, a.bearing_deg);
   a.jitter = m.non_negative_or("jitter", a.jitter);
   if (a.jitter > 1.0)
     m.source().fail(

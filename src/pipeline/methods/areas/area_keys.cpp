@@ -1,5 +1,5 @@
-// The area classes' keys of a pipeline file (docs/shape-patterns.md): a `kind: area` class and
-// its fixed lead.
+// The area classes' keys of a pipeline file (docs/shape-patterns.md): a `kind: area` class (its
+// `lead` block is the pipeline's own, shared with the network classes).
 #include "pipeline/detail/key_forms.hpp"
 #include "pipeline/detail/method_keys.hpp"
 #include "pipeline/methods/areas/area_method.hpp"
@@ -38,11 +38,6 @@ MethodKeys area_keys() {
                 {{.type = ValueType::map_number, .minimum = -100.0, .maximum = 100.0}},
                 "sketch stroke material -> metres"},
                {"seed", {uint64()}, "default: the pipeline's"},
-           }},
-          {"lead",
-           "A fixed direction.",
-           {
-               {"bearing", {number()}, "compass bearing in degrees", no_default(), required},
            }},
       },
   };

@@ -8,27 +8,13 @@
 #include "core/log.hpp"
 #include "core/split_mix.hpp"
 #include "pipeline/area_canvas.hpp"
-#include "pipeline/area_lead.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "raster/avoidance.hpp"
 #include "sketch/area_synthesis.hpp"
 
 namespace tw::detail {
 
 namespace {
-
-const char* lead_name(AreaLead lead) {
-  switch (lead) {
-    case AreaLead::bearing:
-      return "bearing";
-    case AreaLead::long_axis:
-      return "long_axis";
-    case AreaLead::nearest_road:
-      return "nearest_road";
-    case AreaLead::contours:
-      return "contours";
-  }
-  return "";
-}
 
 // The strokes of the areas synthesized so far (in their plans, which keep them in place).
 struct StrokeSet {
@@ -159,10 +145,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
                          const KeepOut& keep_out, HeightSampler& heights, Warnings& warnings) {
   AreaRun run;
   const AvoidanceInputs fixed = fixed_avoidance(lines, ribbons, existing);
-  std::vector<const LineFeature*> roads;
-  for (std::size_t c = 0; c < config.features.size(); ++c)
-    if (config.features[c].kind == FeatureKind::road)
-      for (const LineFeature& line : lines[c]) roads.push_back(&line);
+  const std::vector<const LineFeature*> roads = road_lines(config.features, lines);
   StrokeSet earlier;
   const double pixel = std::min(heights.grid().pixel_width, heights.grid().pixel_height);
   const std::vector<AreaClassConfig>& classes = area_classes(config);
@@ -179,7 +162,7 @@ AreaRun synthesize_areas(const PipelineConfig& config,
     report.name = a.name;
     report.source = a.source.string() + ":" + a.layer;
     report.sketch = a.sketch.string();
-    report.lead = lead_name(a.lead);
+    report.lead = std::string(lead_name(a.lead));
     std::map<std::int64_t, int> parts;
     std::map<std::string, double> widest;  // per stroke material placed
     for (const PolygonFeature& f : polygons[ai]) {
@@ -191,25 +174,12 @@ AreaRun synthesize_areas(const PipelineConfig& config,
       params.seed = feature_seed(config.seed, a.seed, f.fid);
       if (const int part = parts[f.fid]++; part > 0)
         params.seed = feature_seed(params.seed, std::uint64_t(part), f.fid);
-      std::optional<double> angle;
-      switch (a.lead) {
-        case AreaLead::bearing:
-          angle = angle_from_compass(a.bearing_deg);
-          break;
-        case AreaLead::long_axis:
-          break;
-        case AreaLead::nearest_road:
-          angle = nearest_line_angle(polygon, roads);
-          if (!angle)
-            warnings.add("area_no_road", key, f.fid,
-                         "no road in the run: rows follow the long axis");
-          break;
-        case AreaLead::contours:
-          angle = contour_angle(polygon, heights);
-          if (!angle) logger().info("{}: flat or nodata: rows follow the long axis", label);
-          break;
-      }
-      params.bearing = angle.value_or(long_axis_bearing(polygon));
+      const LeadAngle lead = lead_angle(a.lead, a.bearing_deg, polygon, roads, heights);
+      if (lead.fell_back && a.lead == Lead::nearest_road)
+        warnings.add("area_no_road", key, f.fid, "no road in the run: rows follow the long axis");
+      if (lead.fell_back && a.lead == Lead::contours)
+        logger().info("{}: flat or nodata: rows follow the long axis", label);
+      params.bearing = lead.radians;
 
       // Strokes are written within a tenth of an output pixel (at most a quarter of a cell).
       params.tolerance = std::min(0.1 * pixel, 0.25 * config.synthesis_resolution);

@@ -11,8 +11,10 @@
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "network/partial.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "pipeline/synthesis_method.hpp"
 #include "raster/rasterize.hpp"
+#include "sketch/area_synthesis.hpp"
 
 namespace tw::detail {
 
@@ -94,6 +96,28 @@ Network partial_network(const NetworkClassConfig& n, const std::vector<Polygon>&
   return tw::partial_network(lines, region, key, n.partial, warnings);
 }
 
+// The compass bearing the exemplar is turned to: the lead over the region's largest polygon (the
+// first of equal ones), or none without a lead. A `nearest_road` without roads and `contours`
+// over flat or nodata terrain follow the long axis, with a warning.
+std::optional<double> lead_bearing(const NetworkClassConfig& n, const std::vector<Polygon>& region,
+                                   const std::vector<const LineFeature*>& roads,
+                                   HeightSampler& heights, const std::string& key,
+                                   Warnings& warnings) {
+  if (!n.lead) return std::nullopt;
+  if (*n.lead == Lead::bearing) return n.lead_bearing_deg;
+  const auto largest = std::max_element(
+      region.begin(), region.end(),
+      [](const Polygon& a, const Polygon& b) { return polygon_area(a) < polygon_area(b); });
+  const LeadAngle lead = lead_angle(*n.lead, n.lead_bearing_deg, *largest, roads, heights);
+  if (lead.fell_back)
+    warnings.add(*n.lead == Lead::nearest_road ? "network_no_road" : "network_flat", key + ".lead",
+                 std::nullopt,
+                 *n.lead == Lead::nearest_road
+                     ? "no road in the run: the network follows the region's long axis"
+                     : "flat or nodata terrain over the region: the network follows its long axis");
+  return compass_degrees(lead.radians);
+}
+
 }  // namespace
 
 void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
@@ -103,6 +127,7 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
                           std::vector<std::optional<NetworkClassReport>>& reports,
                           Warnings& warnings) {
   HeightSampler sampler(source);
+  const std::vector<const LineFeature*> roads = road_lines(classes, lines);
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const FeatureClassConfig& fc = classes[c];
     const NetworkClassConfig* network = method_options<NetworkClassConfig>(fc, kNetworkMethodName);
@@ -141,7 +166,7 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
                         [&](const Window& w) { return source.read(w); });
     NetworkGrowthOptions options;
     options.seed = n.seed;
-    options.lead_bearing = n.lead_bearing;
+    options.lead_bearing = lead_bearing(n, region, roads, sampler, key, warnings);
     options.clearance = n.clearance;
     options.snap = n.snap;
     options.candidates = n.candidates;
@@ -176,6 +201,10 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
     NetworkClassReport& r = reports.at(c).emplace();
     r.exemplar = n.exemplar;
     r.method = network_method_name(options.method);
+    if (n.lead) {
+      r.lead = std::string(lead_name(*n.lead));
+      r.lead_bearing_deg = *options.lead_bearing;
+    }
     r.chosen = chosen_network_method(report);
     r.exemplar_edges = int(exemplar.edges.size());
     r.lines = int(lines[c].size());

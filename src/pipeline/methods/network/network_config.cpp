@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
+#include "pipeline/detail/config_values.hpp"
 
 namespace tw::detail {
 
@@ -56,12 +57,22 @@ NetworkClassConfig read_network(const MapReader& m, std::uint64_t default_seed,
   }
   if (m.has("partial")) n.partial = source_value(m, "partial", inputs);
   n.seed = m.has("seed") ? read_uint64(m.source(), m.get("seed"), m.path("seed")) : default_seed;
+  if (m.has("lead") && m.has("lead_bearing"))
+    m.source().fail(m.get("lead_bearing"), m.path("lead_bearing"),
+                    "give `lead` or `lead_bearing`, not both (lead_bearing: DEG is lead: "
+                    "{ bearing: DEG })");
+  if (m.has("lead")) {
+    Lead lead = Lead::long_axis;
+    read_lead(m, lead, n.lead_bearing_deg);
+    n.lead = lead;
+  }
   if (m.has("lead_bearing")) {
     const double bearing = read_double(m.source(), m.get("lead_bearing"), m.path("lead_bearing"));
     if (!(bearing >= 0.0 && bearing < 360.0))
       m.source().fail(m.get("lead_bearing"), m.path("lead_bearing"),
                       fmt::format("must be in [0, 360) compass degrees, got {}", bearing));
-    n.lead_bearing = bearing;
+    n.lead = Lead::bearing;
+    n.lead_bearing_deg = bearing;
   }
   n.clearance = m.non_negative_or("clearance", 0.0);
   n.snap = m.non_negative_or("snap", 0.0);

@@ -17,9 +17,10 @@ using nlohmann::json;
 // The codec's field lists of its own types (detail/plan_codec.hpp).
 #define TW_FIELDS TW_DEFINE_PLAN_FIELDS
 #define F TW_FIELD
-TW_FIELDS(NetworkClassReport, F(exemplar) F(method) F(chosen) F(exemplar_edges) F(lines) F(kept)
-                                  F(placed) F(snapped) F(t_junctions) F(boundary_ends) F(pruned)
-                                      F(rejected_crossing) F(rejected_region) F(rejected_forbidden))
+TW_FIELDS(NetworkClassReport,
+          F(exemplar) F(method) F(chosen) F(lead) F(lead_bearing_deg) F(exemplar_edges) F(lines)
+              F(kept) F(placed) F(snapped) F(t_junctions) F(boundary_ends) F(pruned)
+                  F(rejected_crossing) F(rejected_region) F(rejected_forbidden))
 TW_FIELDS(NetworkReport, F(classes))
 #undef F
 #undef TW_FIELDS
@@ -79,6 +80,10 @@ class NetworkMethod final : public SynthesisMethod {
                                        {{"crossing", n.rejected_crossing},
                                         {"region", n.rejected_region},
                                         {"forbidden", n.rejected_forbidden}}}};
+      if (!n.lead.empty()) {
+        out["classes"][i]["network"]["lead"] = n.lead;
+        out["classes"][i]["network"]["lead_bearing_deg"] = n.lead_bearing_deg;
+      }
     }
   }
 

@@ -15,6 +15,9 @@ namespace tw::detail {
 struct NetworkClassReport {
   std::string exemplar;        // "path[:layer]" or the .svg
   std::string method, chosen;  // network.method as asked; what made the lines (never automatic)
+  // network.lead ("" without one) and the compass bearing it gave over the region.
+  std::string lead;
+  double lead_bearing_deg = 0.0;
   int exemplar_edges = 0, lines = 0, kept = 0;  // kept: the partial drawing's edges
   int placed = 0, snapped = 0, t_junctions = 0, boundary_ends = 0, pruned = 0;
   int rejected_crossing = 0, rejected_region = 0, rejected_forbidden = 0;

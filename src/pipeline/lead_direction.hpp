@@ -1,14 +1,30 @@
 #pragma once
-// The lead direction fields of `kind: area` classes (pipeline/area_config.hpp): the direction of
-// the nearest line feature, and the terrain's contour direction over a polygon.
+// The directions of leads (pipeline/lead.hpp) over a polygon: the nearest road's, the terrain's
+// contours', the polygon's long axis, a compass bearing.
 #include <optional>
 #include <vector>
 
 #include "geo/features.hpp"
 #include "geo/height_sampler.hpp"
+#include "pipeline/config.hpp"
+#include "pipeline/lead.hpp"
 #include "raster/polygon.hpp"
 
 namespace tw {
+
+// The lines of the run's `kind: road` classes (`lines` per class of `classes`).
+std::vector<const LineFeature*> road_lines(const std::vector<FeatureClassConfig>& classes,
+                                           const std::vector<std::vector<LineFeature>>& lines);
+
+// A lead's angle over `polygon`, radians counter-clockwise from +x. `nearest_road` without a
+// road and `contours` over flat or nodata terrain fall back to the polygon's long axis and say so
+// (`fell_back`: the caller names it in its warning or log).
+struct LeadAngle {
+  double radians = 0.0;
+  bool fell_back = false;
+};
+LeadAngle lead_angle(Lead lead, double bearing_deg, const Polygon& polygon,
+                     const std::vector<const LineFeature*>& roads, HeightSampler& heights);
 
 // A compass bearing in degrees, in [0, 360) (clockwise from north), of the angle `radians`
 // counter-clockwise from +x; and back. One convention for reports, instances and `lead.bearing`.

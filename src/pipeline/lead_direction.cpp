@@ -1,4 +1,4 @@
-#include "pipeline/area_lead.hpp"
+#include "pipeline/lead_direction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +6,7 @@
 
 #include "core/boost_geometry.hpp"
 #include "raster/rasterize.hpp"
+#include "sketch/area_synthesis.hpp"
 
 namespace tw {
 
@@ -125,6 +126,34 @@ std::optional<double> contour_angle(const Polygon& polygon, HeightSampler& heigh
   // slopes of a valley agree); contours run across it.
   const double gradient = 0.5 * std::atan2(2.0 * xy, xx - yy);
   return folded_angle({-std::sin(gradient), std::cos(gradient)});
+}
+
+std::vector<const LineFeature*> road_lines(const std::vector<FeatureClassConfig>& classes,
+                                           const std::vector<std::vector<LineFeature>>& lines) {
+  std::vector<const LineFeature*> roads;
+  for (std::size_t c = 0; c < classes.size() && c < lines.size(); ++c)
+    if (classes[c].kind == FeatureKind::road)
+      for (const LineFeature& line : lines[c]) roads.push_back(&line);
+  return roads;
+}
+
+LeadAngle lead_angle(Lead lead, double bearing_deg, const Polygon& polygon,
+                     const std::vector<const LineFeature*>& roads, HeightSampler& heights) {
+  std::optional<double> angle;
+  switch (lead) {
+    case Lead::bearing:
+      return {angle_from_compass(bearing_deg), false};
+    case Lead::long_axis:
+      return {long_axis_bearing(polygon), false};
+    case Lead::nearest_road:
+      angle = nearest_line_angle(polygon, roads);
+      break;
+    case Lead::contours:
+      angle = contour_angle(polygon, heights);
+      break;
+  }
+  if (angle) return {*angle, false};
+  return {long_axis_bearing(polygon), true};
 }
 
 }  // namespace tw
