@@ -41,11 +41,12 @@ struct TwigSamples {
 // Growth steers each branch's bearing as it is placed (Growth, step 4), but a branch's bearing is
 // its stub's, and the stubs are the junctions': in a forest the output's distribution ends a few
 // percent off the exemplar's, bin by bin. A twig (an edge as written from a dangling end to a
-// junction) is pruned, the one whose removal brings the output's bearings, curvature and degrees
-// (the sum of their normalized W1 distances) closest to the exemplar's, while one does and at most
-// kTwigShare of the edges are gone. A twig at a junction of three leaves its two other edges
-// merged through it (one edge, bent there, instead of two); no cell is opened (a twig bounds
-// none), no line crosses another.
+// junction) is pruned, the one whose removal brings the output's bearings closest to the
+// exemplar's (normalized W1), while one does, at most kTwigShare of the edges are gone and the
+// degrees and curvature stay within kTwigAllowance of the exemplar's own variability of where
+// growth left them (a twig takes a dangling end and a junction's degree with it). A twig at a
+// junction of three leaves its two other edges merged through it (one edge, bent there, instead of
+// two); no cell is opened (a twig bounds none), no line crosses another.
 void Grower::prune_twigs_for_bearings() {
   if (!forest_ || completing_ || exemplar_bearings_.size() < 2) return;
   // The bearing distance, or nothing (infinite) when the degrees or the curvature are farther
