@@ -3,7 +3,7 @@
 // bearings closest to the exemplar's are pruned (the degrees and curvature kept near where growth
 // left them). The stream trees' bearings from growth were 0.061, 0.053, 0.045 at seeds 1-3, above
 // the placement baseline's 0.035, 0.052, 0.026 (a baseline that copies the exemplar unturned
-// keeps its bearings); with both, 0.020, 0.023, 0.021 (see the bench's rows for all seeds).
+// keeps its bearings); with both, 0.020, 0.023, 0.020 (see the bench's rows for all seeds).
 #include <gtest/gtest.h>
 
 #include <algorithm>
