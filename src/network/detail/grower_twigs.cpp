@@ -107,7 +107,7 @@ void Grower::prune_twigs_for_bearings() {
       const double length = polyline_length(points);
       return length > 0.0 ? polyline_turning(points) / length : -1.0;
     };
-    const auto bearing_bin = [&](const std::vector<Vec2>& points) {
+    const auto chord_bin = [&](const std::vector<Vec2>& points) {
       return polyline_length(points) > 0.0 && !(points.back() == points.front())
                  ? bearing_w1.bin(chord_bearing(points.back() - points.front()))
                  : -1;
@@ -118,7 +118,7 @@ void Grower::prune_twigs_for_bearings() {
       if (c.to != c.from) at[std::size_t(c.to)].push_back(int(i));
       ++ends[std::size_t(c.from)], ++ends[std::size_t(c.to)];
       curvature_of[i] = curvature(c.points);
-      bearing_bin_of[i] = bearing_bin(c.points);
+      bearing_bin_of[i] = chord_bin(c.points);
       if (bearing_bin_of[i] >= 0) bearings[std::size_t(bearing_bin_of[i])] += 1.0, ++bearing_total;
     }
     for (std::size_t n = 0; n < ends.size(); ++n)
@@ -180,7 +180,7 @@ void Grower::prune_twigs_for_bearings() {
           std::vector<Vec2> rest = b.points;
           if (b.to == t.junction) std::reverse(rest.begin(), rest.end());
           merged.insert(merged.end(), rest.begin() + 1, rest.end());
-          t.merged_bin = bearing_bin(merged);
+          t.merged_bin = chord_bin(merged);
           t.merged_curvature = curvature(merged);
         }
         apply(t, 1.0);
