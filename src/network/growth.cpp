@@ -73,6 +73,7 @@ Network Grower::run(Mode mode) {
   keep_whole_cells();
   straighten_edges();
   split_large_cells();
+  prune_twigs_for_bearings();
   return finish();
 }
 
@@ -93,16 +94,24 @@ double Grower::outcome_cost(const Outcome& o) const {
 // not which piece a stub takes: every piece is turned to the stub's heading). Only where the
 // exemplar's edges run at few orientations: elsewhere it rewards bent pieces, whose ends
 // point their stubs anywhere (the counties' curvature tripled).
+//
+// In a forest (its lines end free) the same holds of every branch: its bearing is its stub's,
+// within the bends of the piece that takes it, so a branch junction's stubs are steered by the
+// output's cumulative bearing distribution (BearingCdf) rather than by the 15° histogram.
 double Grower::opened_cost(const Outcome& o, const Piece& piece) const {
-  if (!few_orientations_ || o.how.kind != Ending::Kind::free || piece.end_turns.empty()) return 0.0;
+  if ((!few_orientations_ && !forest_) || o.how.kind != Ending::Kind::free ||
+      piece.end_turns.empty())
+    return 0.0;
   const double arrive = leaving(o.line, false) + kPi;
   double cost = 0.0;
   for (double turn : piece.end_turns) {
     const double h = arrive + turn;
-    cost += excess(edge_bearing_, edge_count_, target_bearing_,
-                   std::size_t(bearing_bin({std::cos(h), std::sin(h)})));
+    const Vec2 towards{std::cos(h), std::sin(h)};
+    cost += few_orientations_ ? kOpenedWeight * excess(edge_bearing_, edge_count_, target_bearing_,
+                                                       std::size_t(bearing_bin(towards)))
+                              : kForestOpenedWeight * bearing_cdf_.step_cost(towards);
   }
-  return kOpenedWeight * cost / double(piece.end_turns.size());
+  return cost / double(piece.end_turns.size());
 }
 
 // `retry`: a stub that found nothing the first time, tried again once the region is covered

@@ -2,7 +2,8 @@
 // The grower behind grow_network (network/growth.hpp): its state and the declarations of its
 // parts, defined by concern in growth.cpp (entry points, frontier growth), grower_exemplar.cpp
 // (what it learns; the region), grower_rules.cpp (the network so far; the rules a line keeps),
-// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming) and grower_straighten.cpp.
+// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp and
+// grower_twigs.cpp (a forest's twigs).
 // Internal to the network module.
 
 #include <algorithm>
@@ -42,11 +43,14 @@ inline double wrap(double a) {  // (-pi, pi]
   return a - kPi;
 }
 
+// A chord's bearing from north, modulo 180° (degrees), as network_stats measures it.
+inline double chord_bearing(Vec2 chord) {
+  return std::fmod(std::atan2(chord.x, chord.y) * 180.0 / kPi + 360.0, 180.0);
+}
+
 // Bearing bin (15°, 0..11) of a chord, from north, modulo 180°.
 inline int bearing_bin(Vec2 chord) {
-  double b = std::atan2(chord.x, chord.y) * 180.0 / kPi;
-  b = std::fmod(b + 360.0, 180.0);
-  return std::min(11, int(b / 15.0));
+  return std::min(11, int(chord_bearing(chord) / 15.0));
 }
 
 // First distinct-point heading leaving an end of a polyline.
@@ -110,6 +114,10 @@ constexpr double kCornerTurn = 0.5;
 // (a grid's tracks and field boundaries: nearly all).
 constexpr double kOpenedWeight = 3.0;
 constexpr double kFewOrientations = 0.75;
+
+// A forest's branch junction opening stubs where the output's bearing distribution is ahead of the
+// exemplar's costs more, by this (BearingCdf::step_cost of each stub, averaged; opened_cost).
+constexpr double kForestOpenedWeight = 1.0;
 
 // An edge turning less than this in all (radians) is straight; an exemplar whose edges are at
 // least kStraightShare straight gets straight output edges (Grower::straighten_edges).
@@ -308,6 +316,9 @@ class Grower {
   bool straighten(const Chain& c);
   bool replace_chain(const Chain& c, const std::vector<Vec2>& line);
 
+  // ---- a forest's twigs (grower_twigs.cpp) ------------------------------------------------------
+  void prune_twigs_for_bearings();
+
   Network finish();
 
   const Network& exemplar_;
@@ -343,8 +354,13 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;    // of the exemplar's edges, those turning under kStraightTurning
-  double max_cell_area_ = 0.0;     // its largest cell, where its cells are closed and straight
+  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
+  bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
+  // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
+  // prune_twigs_for_bearings keeps the output near.
+  std::vector<double> exemplar_bearings_, exemplar_degrees_, exemplar_curvature_;
+  double own_degree_apart_ = 0.0, own_curvature_apart_ = 0.0;  // its halves' distances
   std::vector<char> border_node_;  // per node: it lost a line cut by the region (keep_whole_cells)
   bool whole_cells_ = false;  // the exemplar's cells are all closed, none cut (keep_whole_cells)
   bool completing_ = false;   // a partial network is kept (add_partial)

@@ -156,6 +156,8 @@ void Grower::learn(const Network& ex) {
     const Vec2 c = rotated(e.points.back() - e.points.front(), turn_);
     target_bearing_[std::size_t(bearing_bin(c))] += 1.0, total += 1.0;
     bearing_cdf_.add_target(c);
+    if (!(c == Vec2{}) && polyline_length(e.points) > 0.0)
+      exemplar_bearings_.push_back(chord_bearing(c));
   }
   for (double& v : target_bearing_) v /= std::max(1.0, total);
   {
@@ -178,7 +180,15 @@ void Grower::learn(const Network& ex) {
     // And where such trees cross rather than end on each other, a branch meeting a line goes
     // on through it.
     seed_room_ = 0.75 * median_;
-    if (3 * dangling >= exemplar_nodes_) {
+    forest_ = 3 * dangling >= exemplar_nodes_;
+    if (forest_) {
+      const NetworkStats own = network_stats(ex);
+      exemplar_degrees_ = own.degree;
+      exemplar_curvature_ = own.curvature;
+      const auto [one, other] = halves(ex);
+      const NetworkStats half = network_stats(ex, one), other_half = network_stats(ex, other);
+      own_degree_apart_ = normalized_w1(half.degree, other_half.degree);
+      own_curvature_apart_ = normalized_w1(half.curvature, other_half.curvature);
       seed_room_ = std::max(seed_room_, empty_space_quantile(ex, 0.5 * median_, kSeedRoomQuantile));
       if (lines_cross_more_than_they_end_on_lines(ex, kStrokeDeflection)) line_meeting_degree_ = 4;
     }
