@@ -272,8 +272,9 @@ class Grower {
   // ---- whole cells at the border (grower_quilt.cpp) ---------------------------------------------
   void keep_whole_cells();
 
-  // ---- cells larger than the exemplar's split (grower_cells.cpp) --------------------------------
+  // ---- cells larger than the exemplar's split, smaller merged (grower_cells.cpp) ----------------
   void split_large_cells();
+  void merge_small_cells();
 
   // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
@@ -294,6 +295,7 @@ class Grower {
   std::vector<Chain> chains() const;
 
   void straighten_edges();
+  void straighten_kinks();
   std::vector<Vec2> without_short_steps(const std::vector<Vec2>& p) const;
   static double sharpest_turn(const std::vector<Vec2>& p);
 
@@ -344,6 +346,7 @@ class Grower {
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
   double straight_share_ = 0.0;    // of the exemplar's edges, those turning under kStraightTurning
   double max_cell_area_ = 0.0;     // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;     // and its smallest
   std::vector<char> border_node_;  // per node: it lost a line cut by the region (keep_whole_cells)
   bool whole_cells_ = false;  // the exemplar's cells are all closed, none cut (keep_whole_cells)
   bool completing_ = false;   // a partial network is kept (add_partial)

@@ -131,6 +131,10 @@ void Grower::straighten_edges() {
         (straighten(c) || remove_corner(c, ends_allowed) || link_chain_corner(c)))
       --bent;
   // Kinks always (the junctions a removed corner left are straight through now).
+  straighten_kinks();
+}
+
+void Grower::straighten_kinks() {
   for (const Chain& c : chains())
     if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
       straighten(c);
