@@ -232,6 +232,18 @@ bool Grower::remove_corner(const Chain& c, int& ends_allowed) {
 // is still open there): one leg continued straight through it onto the line ahead or to the
 // region's boundary. Both legs are then edges of their own, straight.
 bool Grower::link_chain_corner(const Chain& c) {
+  // A corner inside one edge (a copied exemplar line's own corner, as its frame's) is made a
+  // node first: one that stays of degree 2 is merged away as the network is written (finish).
+  // (The edge's first such corner: the edge ends there now, and c.edges still holds it.)
+  for (int e : c.edges) {
+    const std::vector<Vec2> p = out_.edges[std::size_t(e)].points;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      if (polyline_turning({p[k - 1], p[k], p[k + 1]}) >= kCornerTurn &&
+          distance(p[k], p.front()) >= clearance_ && distance(p[k], p.back()) >= clearance_) {
+        split_edge(e, int(k), p[k]);
+        break;
+      }
+  }
   for (int e : c.edges)
     for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to}) {
       if (n == c.from || n == c.to || degree_[std::size_t(n)] != 2 ||
