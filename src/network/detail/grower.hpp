@@ -293,6 +293,7 @@ class Grower {
     return out;
   }
   std::vector<Chain> chains() const;
+  bool still_a_chain(const Chain& c) const;
 
   void straighten_edges();
   void straighten_kinks();
@@ -304,6 +305,7 @@ class Grower {
 
   bool remove_corner(const Chain& c, int& ends_allowed);
   bool link_chain_corner(const Chain& c);
+  bool link_to_passed_node(int n, double heading, double reach);
   void forget_passed_nodes(const Chain& c);
 
   bool straighten(const Chain& c);
