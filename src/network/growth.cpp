@@ -73,6 +73,7 @@ Network Grower::run(Mode mode) {
   keep_whole_cells();
   straighten_edges();
   split_large_cells();
+  merge_small_cells();
   prune_twigs_for_bearings();
   return finish();
 }

@@ -112,6 +112,40 @@ TEST(NetworkStraight, BocageHedgesLoseTheirHairStepsAndCorners) {
   EXPECT_LT(d_out, 2.0 * d_base);
 }
 
+// Corners inside one edge (a copied frame corner) and corners whose continuation ends at a node
+// of degree 2 (Growth 8): before, neither was continued as a T, and the bocage's curvature
+// distances at seeds 1-3 were 0.214, 0.217 and 0.512 (baseline 0.116), the grid's at seed 3
+// 0.286 (halves 0.136: a target of 0.204); now 0.097, 0.176, 0.388 and 0.161.
+TEST(NetworkStraight, CornersInsideEdgesAndFacingNodesBecomeTs) {
+  Warnings w;
+  const Network bocage =
+      build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const std::vector<Polygon> region = straight_region(bocage);
+  const auto curvature_distance = [](const Network& ex, const Network& out) {
+    return normalized_w1(property(network_stats(ex), kStraightCurvature),
+                         property(network_stats(out), kStraightCurvature));
+  };
+  double sum = 0.0;
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const Network out = grow_network(bocage, region, nullptr, nullptr, {.seed = seed});
+    EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
+    sum += curvature_distance(bocage, out);
+    if (seed == 1) {
+      EXPECT_LT(curvature_distance(bocage, out),
+                curvature_distance(bocage, baseline_network(bocage, region, seed)));
+    }
+  }
+  EXPECT_LT(sum / 3.0, 0.25);
+  const Network grid = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "grid", w);
+  const std::vector<Polygon> grid_region = straight_region(grid);
+  const Network out = grow_network(grid, grid_region, nullptr, nullptr, {.seed = 3});
+  EXPECT_EQ(check_network(out, grid_region, nullptr).total(), 0);
+  const auto [a, b] = halves(grid);
+  const double d_halves = normalized_w1(property(network_stats(grid, a), kStraightCurvature),
+                                        property(network_stats(grid, b), kStraightCurvature));
+  EXPECT_LE(curvature_distance(grid, out), std::max(1.5 * d_halves, 0.05));
+}
+
 // A curved exemplar (terrace walls along contours) keeps its bends: nothing is straightened.
 TEST(NetworkStraight, ACurvedExemplarKeepsItsBends) {
   Warnings w;

@@ -280,8 +280,9 @@ class Grower {
   // ---- whole cells at the border (grower_quilt.cpp) ---------------------------------------------
   void keep_whole_cells();
 
-  // ---- cells larger than the exemplar's split (grower_cells.cpp) --------------------------------
+  // ---- cells larger than the exemplar's split, smaller merged (grower_cells.cpp) ----------------
   void split_large_cells();
+  void merge_small_cells();
 
   // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
@@ -300,8 +301,10 @@ class Grower {
     return out;
   }
   std::vector<Chain> chains() const;
+  bool still_a_chain(const Chain& c) const;
 
   void straighten_edges();
+  void straighten_kinks();
   std::vector<Vec2> without_short_steps(const std::vector<Vec2>& p) const;
   bool without_end_jogs(const Chain& c);
   static double sharpest_turn(const std::vector<Vec2>& p);
@@ -311,6 +314,7 @@ class Grower {
 
   bool remove_corner(const Chain& c, int& ends_allowed);
   bool link_chain_corner(const Chain& c);
+  bool link_to_passed_node(int n, double heading, double reach);
   void forget_passed_nodes(const Chain& c);
 
   bool straighten(const Chain& c);
@@ -356,6 +360,7 @@ class Grower {
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
   double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
   double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;   // and its smallest
   bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.

@@ -1,5 +1,5 @@
-// Grower: cells larger than the exemplar's split by straight chords (docs/networks.md, "Growth",
-// step 10).
+// Grower: cells larger than the exemplar's split by straight chords, cells smaller than its
+// smallest merged into a neighbour (docs/networks.md, "Growth", steps 9 and 10).
 
 #include <ogr_geometry.h>
 
@@ -24,6 +24,68 @@ constexpr int kSplitRounds = 4;
 // Where along a side a chord starts, in the order tried (the exemplar's chords start within
 // its sides' middle third or so).
 constexpr double kChordPlaces[] = {0.5, 0.35, 0.65};
+
+// How many times the small cells are taken again (a merged pair may still be too small).
+constexpr int kMergeRounds = 4;
+
+// A cell of the output: its rings (the outer one first, closed), their box and its area.
+struct OutputCell {
+  std::vector<std::vector<Vec2>> rings;
+  Vec2 lo, hi;
+  double area = 0.0;
+};
+
+// The cells the alive edges close (as network_stats counts them).
+std::vector<OutputCell> output_cells(const std::vector<NetworkEdge>& edges,
+                                     const std::vector<char>& alive) {
+  OGRMultiLineString all;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (!alive[i]) continue;
+    OGRLineString ls;
+    for (Vec2 p : edges[i].points) ls.addPoint(p.x, p.y);
+    all.addGeometry(&ls);
+  }
+  std::vector<OutputCell> cells;
+  const std::unique_ptr<OGRGeometry> faces(all.Polygonize());
+  if (!faces) return cells;
+  for (const OGRGeometry* g : *faces->toGeometryCollection()) {
+    if (wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
+    const OGRPolygon* polygon = g->toPolygon();
+    OutputCell cell;
+    cell.area = polygon->get_Area();
+    for (const OGRLinearRing* r : *polygon) {
+      std::vector<Vec2> ring;
+      for (const OGRPoint& p : *r) ring.push_back({p.getX(), p.getY()});
+      cell.rings.push_back(std::move(ring));
+    }
+    if (cell.rings.empty() || cell.rings[0].size() < 4) continue;
+    cell.lo = cell.hi = cell.rings[0][0];
+    for (Vec2 p : cell.rings[0])
+      cell.lo = {std::min(cell.lo.x, p.x), std::min(cell.lo.y, p.y)},
+      cell.hi = {std::max(cell.hi.x, p.x), std::max(cell.hi.y, p.y)};
+    cells.push_back(std::move(cell));
+  }
+  return cells;
+}
+
+// Whether p lies on one of the cell's rings (within eps).
+bool on_cell_rings(const OutputCell& cell, Vec2 p, double eps) {
+  if (p.x < cell.lo.x - eps || p.y < cell.lo.y - eps || p.x > cell.hi.x + eps ||
+      p.y > cell.hi.y + eps)
+    return false;
+  for (const std::vector<Vec2>& ring : cell.rings)
+    for (std::size_t k = 0; k + 1 < ring.size(); ++k)
+      if (distance_to_segment(p, ring[k], ring[k + 1]) <= eps) return true;
+  return false;
+}
+
+// The middle of a line's longest step: a point on it away from its nodes.
+Vec2 middle_of_longest_step(const std::vector<Vec2>& pts) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k + 1 < pts.size(); ++k)
+    if (distance(pts[k], pts[k + 1]) > distance(pts[best], pts[best + 1])) best = k;
+  return lerp(pts[best], pts[best + 1], 0.5);
+}
 
 // A cell's side: from ring vertex `first` to ring vertex `last` (indices into the ring, which
 // closes on itself), and its length.
@@ -85,24 +147,9 @@ void Grower::split_large_cells() {
   if (!(max_cell_area_ > 0.0) || completing_) return;
   const double eps = 1e-7 * median_;
   for (int round = 0; round < kSplitRounds; ++round) {
-    OGRMultiLineString all;
-    for (std::size_t i = 0; i < out_.edges.size(); ++i) {
-      if (!alive_[i]) continue;
-      OGRLineString ls;
-      for (Vec2 p : out_.edges[i].points) ls.addPoint(p.x, p.y);
-      all.addGeometry(&ls);
-    }
-    const std::unique_ptr<OGRGeometry> faces(all.Polygonize());
-    if (!faces) return;
     std::vector<std::vector<Vec2>> large;
-    for (const OGRGeometry* g : *faces->toGeometryCollection()) {
-      if (wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
-      const OGRPolygon* cell = g->toPolygon();
-      if (cell->get_Area() <= max_cell_area_) continue;
-      std::vector<Vec2> ring;
-      for (const OGRPoint& p : *cell->getExteriorRing()) ring.push_back({p.getX(), p.getY()});
-      if (ring.size() >= 4) large.push_back(std::move(ring));
-    }
+    for (OutputCell& cell : output_cells(out_.edges, alive_))
+      if (cell.area > max_cell_area_) large.push_back(std::move(cell.rings[0]));
     bool split = false;
     for (const std::vector<Vec2>& ring : large) {
       double twice_area = 0.0;  // > 0: counter-clockwise, the inside on the left
@@ -152,6 +199,60 @@ void Grower::split_large_cells() {
     }
     if (!split) return;
   }
+}
+
+// Where the exemplar's cells are closed and its edges straight, a cell of the output smaller
+// than the exemplar's smallest is a sliver between two lines that a field apart would not have:
+// it is merged into a neighbour by taking off the line between them, junction to junction,
+// where that leaves no dead end and no bent corner at either end (ends_left_at: each end stays
+// a junction or a line going straight through it) and the merged cell is no larger than the
+// exemplar's largest; the neighbour making the smaller merged cell first. Smallest cells first,
+// until none is left small or none can be merged. The lines that went straight through a freed
+// junction within a stroke's deflection are then straightened (straighten_kinks).
+void Grower::merge_small_cells() {
+  if (!(min_cell_area_ > 0.0) || completing_) return;
+  const double eps = 1e-6 * median_;
+  bool merged_any = false;
+  for (int round = 0; round < kMergeRounds; ++round) {
+    const std::vector<OutputCell> cells = output_cells(out_.edges, alive_);
+    std::vector<Chain> lines = chains();
+    // Per line taken off: the two cells it parts (none when it parts fewer or more).
+    struct Parting {
+      std::size_t line = 0, small = 0, other = 0;
+      double merged = 0.0;
+    };
+    std::vector<Parting> partings;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      const Chain& c = lines[i];
+      if (c.kept || c.from == c.to) continue;
+      const Vec2 probe = middle_of_longest_step(c.points);
+      std::vector<std::size_t> sides;
+      for (std::size_t f = 0; f < cells.size() && sides.size() < 3; ++f)
+        if (on_cell_rings(cells[f], probe, eps)) sides.push_back(f);
+      if (sides.size() != 2) continue;
+      const double merged = cells[sides[0]].area + cells[sides[1]].area;
+      if (merged > max_cell_area_) continue;
+      for (int k = 0; k < 2; ++k)
+        if (cells[sides[std::size_t(k)]].area < min_cell_area_)
+          partings.push_back({i, sides[std::size_t(k)], sides[std::size_t(1 - k)], merged});
+    }
+    std::sort(partings.begin(), partings.end(), [&](const Parting& a, const Parting& b) {
+      return std::pair(cells[a.small].area, a.merged) < std::pair(cells[b.small].area, b.merged);
+    });
+    std::vector<char> taken(cells.size(), 0);
+    bool merged = false;
+    for (const Parting& p : partings) {
+      if (taken[p.small] || taken[p.other]) continue;
+      const Chain& c = lines[p.line];
+      if (ends_left_at(c.from, c) != 0 || ends_left_at(c.to, c) != 0) continue;
+      take_off(c);
+      taken[p.small] = taken[p.other] = 1;
+      merged = true;
+    }
+    if (!merged) break;
+    merged_any = true;
+  }
+  if (merged_any) straighten_kinks();
 }
 
 }  // namespace tw::network_detail

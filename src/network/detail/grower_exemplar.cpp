@@ -202,10 +202,14 @@ void Grower::learn(const Network& ex) {
     for (const NetworkEdge& e : ex.edges) straight += polyline_turning(e.points) < kStraightTurning;
     straight_share_ = double(straight) / double(ex.edges.size());
     // Closed cells with straight sides (fields split by straight hedges): a larger cell of the
-    // output is one no line split (split_large_cells).
+    // output is one no line split (split_large_cells), a smaller one a sliver between lines
+    // that a line apart would have left out (merge_small_cells).
     if (dangling_target_ == 0.0 && straight_share_ >= kStraightShare) {
       const std::vector<double> areas = network_stats(ex).face_area;
-      if (!areas.empty()) max_cell_area_ = *std::max_element(areas.begin(), areas.end());
+      if (!areas.empty()) {
+        max_cell_area_ = *std::max_element(areas.begin(), areas.end());
+        min_cell_area_ = *std::min_element(areas.begin(), areas.end());
+      }
     }
   }
   for (int j : junctions_) {

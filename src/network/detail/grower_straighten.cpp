@@ -24,6 +24,10 @@ constexpr double kChainCornerReach = 4.0;
 // How far (radians) a straightened edge may leave its junctions off its old heading there.
 constexpr double kStraightenDeflection = 1.0;
 
+// How near (median edge lengths) the lines at a node may cross a link ending on it: the float
+// error of a ray passing through the node, not a gap.
+constexpr double kNodeJoinSlack = 1e-3;
+
 // A step of an output line shorter than this part of the clearance is a hair (a snapped end's
 // last step), left out where the exemplar's lines are straight (Grower::straighten_edges).
 constexpr double kShortStep = 0.3;
@@ -132,12 +136,28 @@ void Grower::straighten_edges() {
   std::erase_if(before, [](const Chain& c) { return c.kept; });
   for (const Chain& c : before)
     if (double(bent) > allowed + 0.5 && sharpest_turn(c.points) >= kCornerTurn && !on_border(c) &&
+        still_a_chain(c) &&
         (straighten(c) || remove_corner(c, ends_allowed) || link_chain_corner(c)))
       --bent;
   // Kinks always (the junctions a removed corner left are straight through now).
+  straighten_kinks();
+}
+
+void Grower::straighten_kinks() {
   for (const Chain& c : chains())
     if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
       straighten(c);
+}
+
+// Whether chain c is as it was found: its edges alive, the nodes it passes of degree 2 still
+// (a corner linked on before it may have ended on one of them, or split one of its edges).
+bool Grower::still_a_chain(const Chain& c) const {
+  for (int e : c.edges) {
+    if (!alive_[std::size_t(e)]) return false;
+    for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
+      if (n != c.from && n != c.to && degree_[std::size_t(n)] != 2) return false;
+  }
+  return true;
 }
 
 // Points p with those less than kShortStep clearances past the last one kept, or short of the
@@ -257,6 +277,18 @@ bool Grower::remove_corner(const Chain& c, int& ends_allowed) {
 // is still open there): one leg continued straight through it onto the line ahead or to the
 // region's boundary. Both legs are then edges of their own, straight.
 bool Grower::link_chain_corner(const Chain& c) {
+  // A corner inside one edge (a copied exemplar line's own corner, as its frame's) is made a
+  // node first: one that stays of degree 2 is merged away as the network is written (finish).
+  // (The edge's first such corner: the edge ends there now, and c.edges still holds it.)
+  for (int e : c.edges) {
+    const std::vector<Vec2> p = out_.edges[std::size_t(e)].points;
+    for (std::size_t k = 1; k + 1 < p.size(); ++k)
+      if (polyline_turning({p[k - 1], p[k], p[k + 1]}) >= kCornerTurn &&
+          distance(p[k], p.front()) >= clearance_ && distance(p[k], p.back()) >= clearance_) {
+        split_edge(e, int(k), p[k]);
+        break;
+      }
+  }
   for (int e : c.edges)
     for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to}) {
       if (n == c.from || n == c.to || degree_[std::size_t(n)] != 2 ||
@@ -272,9 +304,36 @@ bool Grower::link_chain_corner(const Chain& c) {
       if (std::abs(wrap(h[0] - h[1] - kPi)) < kCornerTurn) continue;
       for (int k = 0; k < 2; ++k)
         if (link_ahead(n, h[k] + kPi, kChainCornerReach * median_, legs[std::size_t(1 - k)]) ||
-            link_to_boundary(n, h[k] + kPi, kChainCornerReach * median_))
+            link_to_boundary(n, h[k] + kPi, kChainCornerReach * median_) ||
+            link_to_passed_node(n, h[k] + kPi, kChainCornerReach * median_))
           return true;
     }
+  return false;
+}
+
+// Node n joined straight along `heading` onto a node of degree 2 that the ray ends within the
+// clearance of (a line's end meeting another's side there, or another corner facing this one):
+// it becomes a T, where link_ahead refuses to end so near a node. Not onto a junction (that
+// would be a crossing), nor shorter than a piece.
+bool Grower::link_to_passed_node(int n, double heading, double reach) {
+  const Vec2 p = out_.nodes[std::size_t(n)];
+  std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+  const auto hit = first_edge_hit(ray);
+  if (!hit) return false;
+  truncate(ray, *hit);
+  const NetworkEdge& e = out_.edges[std::size_t(hit->edge)];
+  for (int m : {e.from, e.to}) {
+    if (m == n || degree_[std::size_t(m)] != 2 || out_.on_boundary[std::size_t(m)] ||
+        distance(ray.back(), out_.nodes[std::size_t(m)]) >= clearance_ || connected(n, m))
+      continue;
+    std::vector<Vec2> link{p, out_.nodes[std::size_t(m)]};
+    if (polyline_length(link) < min_piece_ ||
+        std::abs(wrap(leaving(link, true) - heading)) > kStrokeDeflection ||
+        !valid(link, true, Spacing::grown, kNodeJoinSlack * median_))
+      continue;
+    link_to(n, std::move(link), m);
+    return true;
+  }
   return false;
 }
 
