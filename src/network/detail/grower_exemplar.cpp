@@ -201,9 +201,13 @@ void Grower::learn(const Network& ex) {
     std::size_t straight = 0;
     for (const NetworkEdge& e : ex.edges) straight += polyline_turning(e.points) < kStraightTurning;
     straight_share_ = double(straight) / double(ex.edges.size());
-    // Closed cells with straight sides (fields split by straight hedges): a larger cell of the
-    // output is one no line split (split_large_cells).
-    if (dangling_target_ == 0.0 && straight_share_ >= kStraightShare) {
+    // Closed cells with straight sides, whose lines end on each other in Ts (fields split by
+    // straight hedges): a larger cell of the output is one no line split (split_large_cells).
+    const auto ends_in_ts = [&] {
+      const JunctionsGoingOn count = junctions_going_on(ex, kStrokeDeflection);
+      return double(count.t_junctions) >= kTJunctionShare * double(count.three_way);
+    };
+    if (dangling_target_ == 0.0 && straight_share_ >= kStraightShare && ends_in_ts()) {
       const std::vector<double> areas = network_stats(ex).face_area;
       if (!areas.empty()) max_cell_area_ = *std::max_element(areas.begin(), areas.end());
     }
