@@ -45,14 +45,14 @@ double empty_space_quantile(const Network& exemplar, double spacing, double quan
   return distances[at];
 }
 
-bool lines_cross_more_than_they_end_on_lines(const Network& exemplar, double deflection) {
+JunctionsGoingOn junctions_going_on(const Network& exemplar, double deflection) {
   constexpr double kPi = std::numbers::pi;
   std::vector<std::vector<double>> headings(exemplar.nodes.size());
   for (const NetworkEdge& e : exemplar.edges) {
     headings[std::size_t(e.from)].push_back(leaving_heading(e.points, true));
     headings[std::size_t(e.to)].push_back(leaving_heading(e.points, false));
   }
-  int crossings = 0, t_junctions = 0;
+  JunctionsGoingOn count;
   for (std::size_t n = 0; n < headings.size(); ++n) {
     const std::vector<double>& h = headings[n];
     if ((!exemplar.on_boundary.empty() && exemplar.on_boundary[n]) ||
@@ -68,10 +68,16 @@ bool lines_cross_more_than_they_end_on_lines(const Network& exemplar, double def
           break;
         }
       }
-    if (h.size() == 4 && going_on == 4) ++crossings;
-    if (h.size() == 3 && going_on >= 2) ++t_junctions;
+    if (h.size() == 3) ++count.three_way;
+    if (h.size() == 4 && going_on == 4) ++count.crossings;
+    if (h.size() == 3 && going_on >= 2) ++count.t_junctions;
   }
-  return crossings > t_junctions;
+  return count;
+}
+
+bool lines_cross_more_than_they_end_on_lines(const Network& exemplar, double deflection) {
+  const JunctionsGoingOn count = junctions_going_on(exemplar, deflection);
+  return count.crossings > count.t_junctions;
 }
 
 }  // namespace tw::network_detail

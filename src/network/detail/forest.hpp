@@ -14,9 +14,17 @@ namespace tw::network_detail {
 // a median edge would fill.
 double empty_space_quantile(const Network& exemplar, double spacing, double quantile);
 
-// Whether the exemplar's lines cross other lines more often than they end on them: more nodes
-// (not on its boundary) of degree 4 whose edges pair into two lines going on within `deflection`
-// radians (a crossing) than nodes of degree 3 with one such pair (a T-junction). Trees drawn
+// The exemplar's junctions (nodes not on its boundary) where a line goes on through: crossings
+// (degree 4, whose edges pair into two lines going on within `deflection` radians) and
+// T-junctions (degree 3 with one such pair), and all its junctions of degree 3. Fields' hedges
+// end on each other in Ts; cracks in drying mud meet in Ys, none going on.
+struct JunctionsGoingOn {
+  int crossings = 0, t_junctions = 0, three_way = 0;
+};
+JunctionsGoingOn junctions_going_on(const Network& exemplar, double deflection);
+
+// Whether the exemplar's lines cross other lines more often than they end on them: more
+// crossings than T-junctions (junctions_going_on). Trees drawn
 // over each other cross; fields' boundaries end on each other.
 bool lines_cross_more_than_they_end_on_lines(const Network& exemplar, double deflection);
 

@@ -124,6 +124,11 @@ constexpr double kForestOpenedWeight = 1.0;
 constexpr double kStraightTurning = 0.01;
 constexpr double kStraightShare = 0.9;
 
+// An exemplar whose degree-3 junctions are at least this share T-junctions (a line going on
+// through within kStrokeDeflection) gets its large cells split by square chords, which make Ts
+// (Grower::split_large_cells); one whose lines meet in Ys has no 180° gap for a chord to copy.
+constexpr double kTJunctionShare = 0.1;
+
 // Where a candidate ends.
 struct Ending {
   enum class Kind { free, node, edge, boundary } kind = Kind::free;
@@ -361,6 +366,7 @@ class Grower {
   double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
   double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
   double min_cell_area_ = 0.0;   // and its smallest
+  bool cells_end_in_ts_ = false;  // and its lines end on each other in Ts (split_large_cells)
   bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.

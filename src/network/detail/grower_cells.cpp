@@ -137,14 +137,14 @@ std::pair<Vec2, std::size_t> side_point(const std::vector<Vec2>& ring, const Cel
 
 }  // namespace
 
-// Where the exemplar's cells are closed and its edges straight (fields split by straight
-// hedges), a cell of the output larger than the exemplar's largest is one no line split: it is
-// split by a straight chord from the middle of its longest side, square to it, onto the line
-// across (a T at each end, as the exemplar's chords make), under the rules of every line; else
-// from the middle of the next longest side; else from a third of the way along a side. Until no
-// cell is larger, or no chord is valid.
+// Where the exemplar's cells are closed, its edges straight and its lines end on each other in
+// Ts (fields split by straight hedges; max_cell_area_ is 0 elsewhere), a cell of the output larger
+// than the exemplar's largest is one no line split: it is split by a straight chord from the middle
+// of its longest side, square to it, onto the line across (a T at each end, as the exemplar's
+// chords make), under the rules of every line; else from the middle of the next longest side; else
+// from a third of the way along a side. Until no cell is larger, or no chord is valid.
 void Grower::split_large_cells() {
-  if (!(max_cell_area_ > 0.0) || completing_) return;
+  if (!(max_cell_area_ > 0.0) || !cells_end_in_ts_ || completing_) return;
   const double eps = 1e-7 * median_;
   for (int round = 0; round < kSplitRounds; ++round) {
     std::vector<std::vector<Vec2>> large;

@@ -202,9 +202,12 @@ void Grower::learn(const Network& ex) {
     for (const NetworkEdge& e : ex.edges) straight += polyline_turning(e.points) < kStraightTurning;
     straight_share_ = double(straight) / double(ex.edges.size());
     // Closed cells with straight sides (fields split by straight hedges): a larger cell of the
-    // output is one no line split (split_large_cells), a smaller one a sliver between lines
-    // that a line apart would have left out (merge_small_cells).
+    // output is one no line split (split_large_cells, where the exemplar's lines end on each
+    // other in Ts: a chord makes a T), a smaller one a sliver between lines that a line apart
+    // would have left out (merge_small_cells).
     if (dangling_target_ == 0.0 && straight_share_ >= kStraightShare) {
+      const JunctionsGoingOn count = junctions_going_on(ex, kStrokeDeflection);
+      cells_end_in_ts_ = double(count.t_junctions) >= kTJunctionShare * double(count.three_way);
       const std::vector<double> areas = network_stats(ex).face_area;
       if (!areas.empty()) {
         max_cell_area_ = *std::max_element(areas.begin(), areas.end());
