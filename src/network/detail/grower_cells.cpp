@@ -215,6 +215,12 @@ void Grower::merge_small_cells() {
   bool merged_any = false;
   for (int round = 0; round < kMergeRounds; ++round) {
     const std::vector<OutputCell> cells = output_cells(out_.edges, alive_);
+    // The cells by their boxes: a line's probe meets a few, not all (the pass stays near
+    // linear in the network's size).
+    std::vector<std::pair<BgBox, std::size_t>> boxes;
+    for (std::size_t f = 0; f < cells.size(); ++f)
+      boxes.emplace_back(BgBox(to_bg(cells[f].lo), to_bg(cells[f].hi)), f);
+    const bgi::rtree<std::pair<BgBox, std::size_t>, bgi::rstar<16>> cell_index(boxes);
     std::vector<Chain> lines = chains();
     // Per line taken off: the two cells it parts (none when it parts fewer or more).
     struct Parting {
@@ -226,9 +232,15 @@ void Grower::merge_small_cells() {
       const Chain& c = lines[i];
       if (c.kept || c.from == c.to) continue;
       const Vec2 probe = middle_of_longest_step(c.points);
+      std::vector<std::size_t> near;  // in the cells' order, as a scan of them all would be
+      for (auto it = cell_index.qbegin(bgi::intersects(
+               BgBox(to_bg(probe - Vec2{eps, eps}), to_bg(probe + Vec2{eps, eps}))));
+           it != cell_index.qend(); ++it)
+        near.push_back(it->second);
+      std::sort(near.begin(), near.end());
       std::vector<std::size_t> sides;
-      for (std::size_t f = 0; f < cells.size() && sides.size() < 3; ++f)
-        if (on_cell_rings(cells[f], probe, eps)) sides.push_back(f);
+      for (std::size_t k = 0; k < near.size() && sides.size() < 3; ++k)
+        if (on_cell_rings(cells[near[k]], probe, eps)) sides.push_back(near[k]);
       if (sides.size() != 2) continue;
       const double merged = cells[sides[0]].area + cells[sides[1]].area;
       if (merged > max_cell_area_) continue;
