@@ -137,8 +137,9 @@ std::pair<Vec2, std::size_t> side_point(const std::vector<Vec2>& ring, const Cel
 
 }  // namespace
 
-// Where the exemplar's cells are closed, its edges straight and its lines end on each other in
-// Ts (fields split by straight hedges; max_cell_area_ is 0 elsewhere), a cell of the output larger
+// Where the exemplar's cells are closed, its edges straight (max_cell_area_ is 0 elsewhere) and
+// its lines end on each other in Ts (cells_end_in_ts_: fields split by straight hedges, not the
+// crocodile's Ys), a cell of the output larger
 // than the exemplar's largest is one no line split: it is split by a straight chord from the middle
 // of its longest side, square to it, onto the line across (a T at each end, as the exemplar's
 // chords make), under the rules of every line; else from the middle of the next longest side; else
