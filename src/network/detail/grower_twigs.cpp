@@ -1,5 +1,5 @@
 // Grower: a forest's twigs pruned where its bearings are over-represented (docs/networks.md,
-// "Growth", step 9).
+// "Growth", step 11).
 
 #include <algorithm>
 #include <cmath>
