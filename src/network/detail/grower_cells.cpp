@@ -188,15 +188,19 @@ void Grower::split_large_cells() {
         // the network is written (finish).
         return link_ahead(split_edge(id, int(seg), start), inward, reach, id);
       };
+      // Every place along every side is tried for this cell until one chord is valid (a cell
+      // split before it in the round does not cut its tries short).
+      bool this_split = false;
       const std::vector<CellSide> sides = cell_sides(ring);
       for (double share : kChordPlaces) {
         for (const CellSide& side : sides)
           if (chord_from(side, share)) {
-            split = true;
+            this_split = true;
             break;
           }
-        if (split) break;
+        if (this_split) break;
       }
+      split = split || this_split;
     }
     if (!split) return;
   }
