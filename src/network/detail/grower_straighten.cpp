@@ -144,6 +144,11 @@ void Grower::straighten_edges() {
 }
 
 void Grower::straighten_kinks() {
+  // Hair steps first (a link or a merge may have left one at a node since straighten_edges).
+  for (const Chain& c : chains())
+    if (const std::vector<Vec2> tidy = without_short_steps(c.points);
+        !c.kept && polyline_turning(tidy) + kStraightTurning < polyline_turning(c.points))
+      replace_chain(c, tidy);
   for (const Chain& c : chains())
     if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
       straighten(c);
@@ -313,8 +318,11 @@ bool Grower::link_chain_corner(const Chain& c) {
 
 // Node n joined straight along `heading` onto a node of degree 2 that the ray ends within the
 // clearance of (a line's end meeting another's side there, or another corner facing this one):
-// it becomes a T, where link_ahead refuses to end so near a node. Not onto a junction (that
-// would be a crossing), nor shorter than a piece.
+// it becomes a T, where link_ahead refuses to end so near a node. Where the exemplar's cells
+// are closed and straight and its lines end in Ts (cells_end_in_ts_: a field's one bent edge
+// weighs more on its curvature than a junction of four on its degrees), also onto a junction
+// of three, which becomes one of four; elsewhere not (the grid's junction angles suffered at
+// seed 3). Never shorter than a piece.
 bool Grower::link_to_passed_node(int n, double heading, double reach) {
   const Vec2 p = out_.nodes[std::size_t(n)];
   std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
@@ -323,7 +331,9 @@ bool Grower::link_to_passed_node(int n, double heading, double reach) {
   truncate(ray, *hit);
   const NetworkEdge& e = out_.edges[std::size_t(hit->edge)];
   for (int m : {e.from, e.to}) {
-    if (m == n || degree_[std::size_t(m)] != 2 || out_.on_boundary[std::size_t(m)] ||
+    const bool joinable =
+        degree_[std::size_t(m)] == 2 || (cells_end_in_ts_ && degree_[std::size_t(m)] == 3);
+    if (m == n || !joinable || out_.on_boundary[std::size_t(m)] ||
         distance(ray.back(), out_.nodes[std::size_t(m)]) >= clearance_ || connected(n, m))
       continue;
     std::vector<Vec2> link{p, out_.nodes[std::size_t(m)]};
