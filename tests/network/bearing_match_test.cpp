@@ -24,8 +24,7 @@ constexpr int kBearingProperty = 5;
 
 TEST(NetworkBearingMatch, StreamTreesKeepTheExemplarsBearingDistribution) {
   ASSERT_STREQ(kNetworkProperties[kBearingProperty], "bearing");
-  Warnings w;
-  const Network ex = build_planar_network(example_network("drainage", 800.0, 3), 1e-3, "ex", w);
+  const Network ex = test::bench_exemplar("drainage");
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   double mean_apart = 0.0;

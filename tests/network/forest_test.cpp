@@ -22,8 +22,7 @@ namespace {
 constexpr int kForestDegree = 0, kForestEdgeLength = 1, kForestJunctionAngle = 3;
 
 TEST(NetworkForest, StreamTreesKeepTheirDegreesConfluenceAnglesAndEdgeLengths) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("drainage", 800.0, 3), 1e-3, "ex", w);
+  const Network ex = test::bench_exemplar("drainage");
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats exemplar = network_stats(ex);
   const auto [a, b] = halves(ex);

@@ -244,8 +244,7 @@ TEST(NetworkGrowth, DanglingEndsAtTheExemplarsRate) {
 // ends than that share, so the degree histogram keeps them (before, every such end was snapped
 // into a T: degrees 0.27, 0.29, 0.37 at seeds 1 to 3, three times the halves).
 TEST(NetworkGrowth, GridBoundariesTouchingATrackKeepTheirDanglingShare) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "exemplar", w);
+  const Network ex = test::bench_exemplar("grid");
   const NodeExtent extent = node_extent(ex);
   const Vec2 lo = extent.lo, hi = extent.hi;
   const NetworkStats own = network_stats(ex);
@@ -271,8 +270,7 @@ TEST(NetworkGrowth, GridBoundariesTouchingATrackKeepTheirDanglingShare) {
 // the stubs it opens against the output's edges; the mean bearing distance over seeds 1 to 3
 // was 0.154 without it (0.163, 0.149, 0.151), 0.091 with it.
 TEST(NetworkGrowth, GridKeepsItsTwoOrientationsInProportion) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "exemplar", w);
+  const Network ex = test::bench_exemplar("grid");
   const NodeExtent extent = node_extent(ex);
   const Vec2 lo = extent.lo, hi = extent.hi;
   const NetworkStats own = network_stats(ex);

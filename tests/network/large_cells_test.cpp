@@ -29,8 +29,7 @@ double largest_cell(const Network& net) {
 // cells no chord had split (up to 58 000 m² at seed 1) put the cell areas at 0.578 and 0.362
 // × the exemplar's spread from it at seeds 1 and 3 (halves 0.209: a target of 0.31).
 TEST(NetworkLargeCells, BocageCellsLargerThanTheExemplarsAreSplitByStraightChords) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const Network ex = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats se = network_stats(ex);
   const auto [a, b] = halves(ex);
@@ -56,9 +55,7 @@ TEST(NetworkLargeCells, BocageCellsLargerThanTheExemplarsAreSplitByStraightChord
 // 0.079 × the exemplar's spread from them at seeds 3, 7 and 10 (halves 0.048: a target of
 // 0.071); now 0.062, 0.061 and 0.067.
 TEST(NetworkLargeCells, CrocodileCellsMeetingInYsAreNotSplitIntoTs) {
-  Warnings w;
-  const Network ex =
-      build_planar_network(example_network("crocodile", 800.0, 3), 1e-3, "crocodile", w);
+  const Network ex = test::bench_exemplar("crocodile");
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats se = network_stats(ex);
   const auto [a, b] = halves(ex);

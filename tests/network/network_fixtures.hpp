@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/segment_distance.hpp"
+#include "network/example_networks.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
 #include "test_support.hpp"
@@ -29,6 +31,13 @@ inline std::vector<Polygon> field_with_pond() {
 inline std::vector<Polygon> extent_region(const Network& net) {
   const NodeExtent e = node_extent(net);
   return {{{e.lo, {e.hi.x, e.lo.y}, e.hi, {e.lo.x, e.hi.y}}}};
+}
+
+// The quality bench's synthetic exemplar of `kind` (network/example_networks.hpp: 800 m, seed 3)
+// as a planar network, as bench_network_quality builds it.
+inline Network bench_exemplar(const std::string& kind) {
+  Warnings w;
+  return build_planar_network(example_network(kind, 800.0, 3), 1e-3, kind, w);
 }
 
 // The county boundaries of North Carolina (r-cran-sf's nc.shp) as a planar network: the real

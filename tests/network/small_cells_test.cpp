@@ -22,8 +22,7 @@ constexpr int kSmallCellsFaceArea = 4;
 // slivers between near-parallel lines (ten cells under 2 400 m² at seed 2) put the cell areas
 // at 0.317 × the exemplar's spread from it (halves 0.209: a target of 0.314).
 TEST(NetworkSmallCells, BocageSliversSmallerThanTheExemplarsCellsAreMergedAway) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const Network ex = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = test::extent_region(ex);
   const NetworkStats se = network_stats(ex);
   const auto [a, b] = halves(ex);

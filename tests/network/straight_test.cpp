@@ -33,8 +33,7 @@ double bent_share(const Network& net) {
 // edges where the exemplar has four of 157 (its frame's), a curvature distance of 0.29 against
 // halves of 0.14 and a baseline of 0.155.
 TEST(NetworkStraight, AStraightExemplarsCurvatureIsMetOnTheGrid) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "grid", w);
+  const Network ex = test::bench_exemplar("grid");
   const std::vector<Polygon> region = straight_region(ex);
   const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 1});
   EXPECT_EQ(check_network(out, region, nullptr).total(), 0);
@@ -75,8 +74,7 @@ JogDistances jog_distances(const Network& ex, const Network& out,
 // a target of 0.204 and a baseline of 0.155. Such jogs left out: 0.134 and 0.053; `automatic`
 // keeps the layout at seed 1, whose bearings are the grid's (0.023; growth's 0.155 before).
 TEST(NetworkStraight, GridEdgesLoseTheJogsBesideTheirJunctions) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "grid", w);
+  const Network ex = test::bench_exemplar("grid");
   const std::vector<Polygon> region = straight_region(ex);
   for (std::uint64_t seed : {1, 3}) {
     const Network out =
@@ -98,8 +96,7 @@ TEST(NetworkStraight, GridEdgesLoseTheJogsBesideTheirJunctions) {
 // chord nor their removal could undo gave a curvature distance of 1.71 (its placement baseline:
 // 0.116); hairs left out and such corners made T-junctions farther on, 0.23.
 TEST(NetworkStraight, BocageHedgesLoseTheirHairStepsAndCorners) {
-  Warnings w;
-  const Network ex = build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const Network ex = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = straight_region(ex);
   const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 1});
   EXPECT_EQ(check_network(out, region, nullptr).total(), 0);
@@ -119,9 +116,7 @@ TEST(NetworkStraight, BocageHedgesLoseTheirHairStepsAndCorners) {
 // 0.15-0.55 with or without the change: seed 1 is the one that tells.) The grid's at seed 3
 // stays within its target (halves 0.136: 0.204).
 TEST(NetworkStraight, CornersInsideEdgesAndFacingNodesBecomeTs) {
-  Warnings w;
-  const Network bocage =
-      build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const Network bocage = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = straight_region(bocage);
   const auto curvature_distance = [](const Network& ex, const Network& out) {
     return normalized_w1(property(network_stats(ex), kStraightCurvature),
@@ -135,7 +130,7 @@ TEST(NetworkStraight, CornersInsideEdgesAndFacingNodesBecomeTs) {
                 curvature_distance(bocage, baseline_network(bocage, region, seed)));
     }
   }
-  const Network grid = build_planar_network(example_network("grid", 800.0, 3), 1e-3, "grid", w);
+  const Network grid = test::bench_exemplar("grid");
   const std::vector<Polygon> grid_region = straight_region(grid);
   const Network out = grow_network(grid, grid_region, nullptr, nullptr, {.seed = 3});
   EXPECT_EQ(check_network(out, grid_region, nullptr).total(), 0);
@@ -150,9 +145,7 @@ TEST(NetworkStraight, CornersInsideEdgesAndFacingNodesBecomeTs) {
 // left by a later link. Before, its curvature distance was 0.545 there, far above the
 // baseline's 0.116; now 0.089. The junctions of four made cost its degrees little (0.011).
 TEST(NetworkStraight, BocageCornersFacingAJunctionJoinItAndLoseTheirHairs) {
-  Warnings w;
-  const Network bocage =
-      build_planar_network(example_network("bocage", 800.0, 3), 1e-3, "bocage", w);
+  const Network bocage = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = straight_region(bocage);
   const Network out = grow_network(bocage, region, nullptr, nullptr, {.seed = 3});
   EXPECT_EQ(check_network(out, region, nullptr).total(), 0);

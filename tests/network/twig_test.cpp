@@ -24,8 +24,7 @@ namespace {
 constexpr int kTwigDegree = 0, kTwigCurvature = 2, kTwigBearing = 5;
 
 Network stream_trees_exemplar() {
-  Warnings w;
-  return build_planar_network(example_network("drainage", 800.0, 3), 1e-3, "ex", w);
+  return test::bench_exemplar("drainage");
 }
 
 TEST(NetworkTwigs, StreamTreeBearingsBeatThePlacementBaselineAtEverySeed) {

@@ -28,9 +28,7 @@ std::vector<Polygon> whole_cells_region(const Network& ex) {
 // hexagons' sides merged through their corners) had no counterpart: edge lengths at 0.145 and
 // curvature at 0.160 against halves of 0.026 and 0.011.
 TEST(NetworkWholeCells, CrocodileCellsBorderIsTheirOwnSides) {
-  Warnings w;
-  const Network ex =
-      build_planar_network(example_network("crocodile", 800.0, 3), 1e-3, "crocodile", w);
+  const Network ex = test::bench_exemplar("crocodile");
   const std::vector<Polygon> region = whole_cells_region(ex);
   const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = 3});
   EXPECT_EQ(check_network(out, region, nullptr).total(), 0);
