@@ -626,6 +626,9 @@ int cli_main(int argc, char** argv) {
     mode->add_option("--seed", network_args.growth.seed, "same seed, same network");
     mode->add_option("--lead-bearing", network_args.growth.lead_bearing,
                      "compass degrees the exemplar's main bearing is turned to");
+    mode->add_option("--lead", network_args.lead,
+                     "long_axis: the exemplar's main bearing is turned to the region's long axis "
+                     "(its largest polygon's), as a pipeline's `lead: long_axis`");
     mode->add_option("--clearance", network_args.growth.clearance,
                      "metres between unrelated curves; default: 6 % of the median edge length")
         ->check(number_above(0.0, true));

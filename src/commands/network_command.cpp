@@ -10,6 +10,8 @@
 #include <memory>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "commands/detail/vector_inputs.hpp"
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
@@ -22,8 +24,10 @@
 #include "network/exemplar.hpp"
 #include "network/partial.hpp"
 #include "network/preview.hpp"
+#include "pipeline/lead_direction.hpp"
 #include "pipeline/version.hpp"
 #include "raster/rasterize.hpp"
+#include "sketch/area_synthesis.hpp"
 
 namespace tw {
 
@@ -89,6 +93,10 @@ std::vector<std::pair<std::string, std::string>> network_provenance(const Networ
       {"TERRAWEAVE_NETWORK_METHOD", std::string(network_method_name(r.method))},
       {"TERRAWEAVE_NETWORK_CHOSEN", std::string(chosen_network_method(r.growth))},
       {"TERRAWEAVE_SEED", std::to_string(c.growth.seed)}};
+  if (!c.lead.empty()) items.emplace_back("TERRAWEAVE_LEAD", c.lead);
+  // Exact (17 digits): `--lead-bearing` with it grows the same lines.
+  if (r.lead_bearing)
+    items.emplace_back("TERRAWEAVE_LEAD_BEARING", fmt::format("{:.17g}", *r.lead_bearing));
   const std::pair<const char*, const std::string*> inputs[] = {
       {"TERRAWEAVE_EXEMPLAR", &c.exemplar},
       {"TERRAWEAVE_PARTIAL", &c.partial},
@@ -176,6 +184,13 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   if (c.mode != "synthesize" && c.mode != "complete" && c.mode != "clone")
     fail("network: unknown mode '{}' (synthesize, complete, clone)", c.mode);
   if (c.out.empty()) fail("{}: --out is required", cmd);
+  if (!c.lead.empty() && c.lead != "long_axis")
+    fail(
+        "{}: --lead {}: the command follows long_axis only (nearest_road and contours read a "
+        "run's roads and heightfield: give a pipeline's network class `lead: {}`)",
+        cmd, c.lead, c.lead);
+  if (!c.lead.empty() && c.growth.lead_bearing)
+    fail("{}: give --lead or --lead-bearing, not both", cmd);
   if (c.mode == "complete" && !network_method_completes(c.growth.method))
     fail(
         "{}: --method {} cannot complete a drawing: completing is growth from its ends (use "
@@ -247,12 +262,16 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
   std::optional<ForbiddenMask> forbidden;
   if (!c.avoid.empty()) forbidden = forbidden_mask(c, region, exemplar_lines.crs_wkt, warnings);
 
+  NetworkGrowthOptions growth = c.growth;
+  if (c.lead == "long_axis")
+    growth.lead_bearing = compass_degrees(long_axis_bearing(lead_polygon(region)));
+
   NetworkCommandResult result;
   const auto t0 = std::chrono::steady_clock::now();
   Network grown;
   try {
     grown = grow_network(exemplar, region, forbidden ? &*forbidden : nullptr,
-                         partial ? &*partial : nullptr, c.growth, &result.growth);
+                         partial ? &*partial : nullptr, growth, &result.growth);
   } catch (const Error& e) {
     fail("{} {}: {}", c.mode == "clone" ? "--target-region" : "--region",
          c.mode == "clone" ? c.target_region : c.region, e.what());
@@ -265,6 +284,7 @@ NetworkCommandResult run_network_command(const NetworkCommand& c) {
     fail("{}: {} crossings, {} outside the region, {} through avoided cells (a growth bug): {}",
          cmd, check.crossings, check.outside, check.forbidden, check.first);
   result.method = c.growth.method;
+  result.lead_bearing = growth.lead_bearing;
   result.exemplar_edges = int(exemplar.edges.size());
   result.nodes = int(grown.nodes.size());
   for (const NetworkEdge& e : grown.edges) (e.kept ? result.kept_edges : result.suggested_edges)++;

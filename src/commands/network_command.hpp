@@ -28,6 +28,9 @@ struct NetworkCommand {
   double avoid_width = 10.0;
   double snap = 0.0;  // exemplar repair: ends within it are joined; 0 = 1e-3 of its extent
   NetworkGrowthOptions growth;
+  // `--lead long_axis`: growth.lead_bearing from the region's (largest polygon's) long axis, as
+  // a pipeline's `lead: long_axis`; "" none. (The other leads read a run's roads and DEM.)
+  std::string lead;
   std::filesystem::path out;  // folder: network.gpkg, preview.png
 };
 
@@ -37,6 +40,7 @@ struct NetworkCommandResult {
       NetworkMethod::automatic;  // as asked; chosen_network_method(growth) made it
   NetworkGrowthReport growth;
   double growth_ms = 0.0;
+  std::optional<double> lead_bearing;  // the compass bearing the exemplar was turned to
 };
 
 // Throws tw::Error naming the file, key or FID at fault; writes every file or none.

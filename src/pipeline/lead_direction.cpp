@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/boost_geometry.hpp"
 #include "raster/rasterize.hpp"
@@ -135,6 +136,13 @@ std::vector<const LineFeature*> road_lines(const std::vector<FeatureClassConfig>
     if (classes[c].kind == FeatureKind::road)
       for (const LineFeature& line : lines[c]) roads.push_back(&line);
   return roads;
+}
+
+const Polygon& lead_polygon(const std::vector<Polygon>& region) {
+  if (region.empty()) throw std::logic_error("lead_polygon: an empty region");
+  return *std::max_element(region.begin(), region.end(), [](const Polygon& a, const Polygon& b) {
+    return polygon_area(a) < polygon_area(b);
+  });
 }
 
 LeadAngle lead_angle(Lead lead, double bearing_deg, const Polygon& polygon,

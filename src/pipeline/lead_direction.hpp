@@ -16,6 +16,9 @@ namespace tw {
 std::vector<const LineFeature*> road_lines(const std::vector<FeatureClassConfig>& classes,
                                            const std::vector<std::vector<LineFeature>>& lines);
 
+// The polygon of a region that a lead is read on: its largest (the first of equal ones).
+const Polygon& lead_polygon(const std::vector<Polygon>& region);
+
 // A lead's angle over `polygon`, radians counter-clockwise from +x. `nearest_road` without a
 // road and `contours` over flat or nodata terrain fall back to the polygon's long axis and say so
 // (`fell_back`: the caller names it in its warning or log).

@@ -165,6 +165,34 @@ TEST_F(NetworkCommandTest, SynthesizeWritesLinesThatNeverCrossInsideTheRegionSam
   EXPECT_EQ(read_file(dir / "a/preview.png"), read_file(dir / "b/preview.png"));
 }
 
+// `--lead long_axis` turns the exemplar to the region's long axis (a pipeline's `lead:
+// long_axis`): over a box wider east-west, 90°, the same lines as `--lead-bearing 90`, other
+// than the lines as drawn; over one taller north-south, 0°.
+TEST_F(NetworkCommandTest, LeadLongAxisIsTheBearingOfTheRegionsLongAxis) {
+  const auto lines = [&](const std::string& box, const std::string& lead, const std::string& name) {
+    const CommandResult r = network("synthesize --exemplar " + exemplar + " --region " + box +
+                                    " --seed 4 " + lead + " --out " + (dir / name).string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_layer(dir / name / "network.gpkg", "suggestions").lines;
+  };
+  const std::string wide = "500000,4000000,500900,4000500", tall = "500000,4000000,500500,4000900";
+  const auto bearing = [&](const std::string& name) {
+    return network_layer_metadata(dir / name / "network.gpkg", "suggestions")
+        .at("TERRAWEAVE_LEAD_BEARING");
+  };
+  const auto axis_wide = lines(wide, "--lead long_axis", "a");
+  ASSERT_GT(axis_wide.size(), 10u);
+  EXPECT_NEAR(std::stod(bearing("a")), 90.0, 1e-6);
+  EXPECT_EQ(axis_wide, lines(wide, "--lead-bearing " + bearing("a"), "b"));
+  EXPECT_NE(axis_wide, lines(wide, "", "c"));
+  const auto axis_tall = lines(tall, "--lead long_axis", "d");
+  const double tall_bearing = std::stod(bearing("d"));
+  EXPECT_LT(std::min(tall_bearing, 360.0 - tall_bearing), 1e-6) << tall_bearing;
+  EXPECT_EQ(axis_tall, lines(tall, "--lead-bearing " + bearing("d"), "e"));
+  EXPECT_EQ(network_layer_metadata(dir / "a/network.gpkg", "suggestions").at("TERRAWEAVE_LEAD"),
+            "long_axis");
+}
+
 // The summary says which method made the network (issue #20): on the terraces `automatic` keeps
 // the layout (tests/network/layout_test.cpp, same exemplar, region and seed); `--method growth`
 // is growth.
@@ -485,6 +513,12 @@ TEST_F(NetworkCommandTest, BadInputIsOneLineAndNothingIsWritten) {
            " --source-region 500000,4000000,500350,4000480" +
            " --target-region 500350,4000000,500950,4000480",
        "network clone: --method layout: --target-region 500350,4000000,500950,4000480 holds"},
+      // The command follows the region's long axis; the other leads read a run's roads and DEM.
+      {"synthesize --lead contours --exemplar " + exemplar + " --region " + region,
+       "network synthesize: --lead contours: the command follows long_axis only"},
+      {"synthesize --lead long_axis --lead-bearing 30 --exemplar " + exemplar + " --region " +
+           region,
+       "give --lead or --lead-bearing, not both"},
   };
   for (const auto& c : cases) {
     const CommandResult r = network(c.args + " --out " + out);

@@ -610,6 +610,9 @@ TEST_F(OptionTables, Network) {
             "--avoid " + track + " --avoid-width 60"),
         {"--seed", {words(base)}, replaced("--seed 4", "--seed 5")},
         row("--lead-bearing", base, "--lead-bearing 0", "--lead-bearing 45"),
+        // The square region's long axis is north-south, as the exemplar's main bearing: against
+        // a turned exemplar.
+        row("--lead", base, "--lead-bearing 45", "--lead long_axis"),
         row("--clearance", base, "", "--clearance 30"),
         {"--out", {words(base), {}, {}, "out"}, moved, Expect::same_bytes, out_doc},
         // Pieces tried per stub, a knob of growth (`automatic` may keep the quilt).

@@ -14,7 +14,6 @@
 #include "pipeline/lead_direction.hpp"
 #include "pipeline/synthesis_method.hpp"
 #include "raster/rasterize.hpp"
-#include "sketch/area_synthesis.hpp"
 
 namespace tw::detail {
 
@@ -105,10 +104,8 @@ std::optional<double> lead_bearing(const NetworkClassConfig& n, const std::vecto
                                    Warnings& warnings) {
   if (!n.lead) return std::nullopt;
   if (*n.lead == Lead::bearing) return n.lead_bearing_deg;
-  const auto largest = std::max_element(
-      region.begin(), region.end(),
-      [](const Polygon& a, const Polygon& b) { return polygon_area(a) < polygon_area(b); });
-  const LeadAngle lead = lead_angle(*n.lead, n.lead_bearing_deg, *largest, roads, heights);
+  const LeadAngle lead =
+      lead_angle(*n.lead, n.lead_bearing_deg, lead_polygon(region), roads, heights);
   if (lead.fell_back)
     warnings.add(*n.lead == Lead::nearest_road ? "network_no_road" : "network_flat", key + ".lead",
                  std::nullopt,
