@@ -31,21 +31,14 @@ double largest_cell(const Network& net) {
 TEST(NetworkLargeCells, BocageCellsLargerThanTheExemplarsAreSplitByStraightChords) {
   const Network ex = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = test::extent_region(ex);
-  const NetworkStats se = network_stats(ex);
-  const auto [a, b] = halves(ex);
-  const double d_halves = normalized_w1(property(network_stats(ex, a), kLargeCellsFaceArea),
-                                        property(network_stats(ex, b), kLargeCellsFaceArea));
   for (std::uint64_t seed : {1, 3}) {
     const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed});
     EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
     EXPECT_LE(largest_cell(out), largest_cell(ex)) << seed;
-    const double d_out = normalized_w1(property(se, kLargeCellsFaceArea),
-                                       property(network_stats(out), kLargeCellsFaceArea));
-    EXPECT_LE(d_out, std::max(1.5 * d_halves, 0.05)) << seed;
-    const double d_base = normalized_w1(
-        property(se, kLargeCellsFaceArea),
-        property(network_stats(baseline_network(ex, region, seed)), kLargeCellsFaceArea));
-    EXPECT_LT(d_out, d_base) << seed;
+    const test::PropertyTarget cells =
+        test::property_target(ex, out, region, kLargeCellsFaceArea, seed);
+    EXPECT_LE(cells.output, cells.bound) << seed;
+    EXPECT_LT(cells.output, cells.baseline) << seed;
   }
 }
 
@@ -57,17 +50,13 @@ TEST(NetworkLargeCells, BocageCellsLargerThanTheExemplarsAreSplitByStraightChord
 TEST(NetworkLargeCells, CrocodileCellsMeetingInYsAreNotSplitIntoTs) {
   const Network ex = test::bench_exemplar("crocodile");
   const std::vector<Polygon> region = test::extent_region(ex);
-  const NetworkStats se = network_stats(ex);
-  const auto [a, b] = halves(ex);
-  const double d_halves = normalized_w1(property(network_stats(ex, a), kLargeCellsJunctionAngle),
-                                        property(network_stats(ex, b), kLargeCellsJunctionAngle));
   for (std::uint64_t seed : {3, 7, 10}) {
     const Network out =
         grow_network(ex, region, nullptr, nullptr, {.seed = seed, .method = NetworkMethod::quilt});
     EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
-    const double d_out = normalized_w1(property(se, kLargeCellsJunctionAngle),
-                                       property(network_stats(out), kLargeCellsJunctionAngle));
-    EXPECT_LE(d_out, std::max(1.5 * d_halves, 0.05)) << seed;
+    const test::PropertyTarget angles =
+        test::property_target(ex, out, region, kLargeCellsJunctionAngle, seed);
+    EXPECT_LE(angles.output, angles.bound) << seed;
   }
 }
 

@@ -9,9 +9,11 @@
 #include <vector>
 
 #include "core/segment_distance.hpp"
+#include "network/baseline.hpp"
 #include "network/example_networks.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
+#include "network/stats.hpp"
 #include "test_support.hpp"
 
 namespace tw::test {
@@ -38,6 +40,26 @@ inline std::vector<Polygon> extent_region(const Network& net) {
 inline Network bench_exemplar(const std::string& kind) {
   Warnings w;
   return build_planar_network(example_network(kind, 800.0, 3), 1e-3, kind, w);
+}
+
+// The target for one property (an index of network/stats.hpp's properties) of `out`
+// against the exemplar `ex` over `region`, as the quality bench measures it: the output's
+// distance, the bound it must stay within (1.5 × the exemplar's halves' distance, or 0.05) and
+// the placement baseline's distance at `seed`, which it must stay below.
+struct PropertyTarget {
+  double output = 0.0, bound = 0.0, baseline = 0.0;
+};
+inline PropertyTarget property_target(const Network& ex, const Network& out,
+                                      const std::vector<Polygon>& region, int p,
+                                      std::uint64_t seed) {
+  const NetworkStats own = network_stats(ex);
+  const auto [a, b] = halves(ex);
+  const double halves_apart =
+      normalized_w1(property(network_stats(ex, a), p), property(network_stats(ex, b), p));
+  return {normalized_w1(property(own, p), property(network_stats(out), p)),
+          std::max(1.5 * halves_apart, 0.05),
+          normalized_w1(property(own, p),
+                        property(network_stats(baseline_network(ex, region, seed)), p))};
 }
 
 // The county boundaries of North Carolina (r-cran-sf's nc.shp) as a planar network: the real

@@ -24,20 +24,13 @@ constexpr int kSmallCellsFaceArea = 4;
 TEST(NetworkSmallCells, BocageSliversSmallerThanTheExemplarsCellsAreMergedAway) {
   const Network ex = test::bench_exemplar("bocage");
   const std::vector<Polygon> region = test::extent_region(ex);
-  const NetworkStats se = network_stats(ex);
-  const auto [a, b] = halves(ex);
-  const double d_halves = normalized_w1(property(network_stats(ex, a), kSmallCellsFaceArea),
-                                        property(network_stats(ex, b), kSmallCellsFaceArea));
   for (std::uint64_t seed : {1, 2, 3}) {
     const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed});
     EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << seed;
-    const double d_out = normalized_w1(property(se, kSmallCellsFaceArea),
-                                       property(network_stats(out), kSmallCellsFaceArea));
-    EXPECT_LE(d_out, std::max(1.5 * d_halves, 0.05)) << seed;
-    const double d_base = normalized_w1(
-        property(se, kSmallCellsFaceArea),
-        property(network_stats(baseline_network(ex, region, seed)), kSmallCellsFaceArea));
-    EXPECT_LT(d_out, d_base) << seed;
+    const test::PropertyTarget cells =
+        test::property_target(ex, out, region, kSmallCellsFaceArea, seed);
+    EXPECT_LE(cells.output, cells.bound) << seed;
+    EXPECT_LT(cells.output, cells.baseline) << seed;
   }
 }
 
