@@ -124,7 +124,6 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
                           std::vector<std::optional<NetworkClassReport>>& reports,
                           Warnings& warnings) {
   HeightSampler sampler(source);
-  const std::vector<const LineFeature*> roads = road_lines(classes, lines);
   for (std::size_t c = 0; c < classes.size(); ++c) {
     const FeatureClassConfig& fc = classes[c];
     const NetworkClassConfig* network = method_options<NetworkClassConfig>(fc, kNetworkMethodName);
@@ -163,7 +162,9 @@ void grow_network_classes(const std::vector<FeatureClassConfig>& classes,
                         [&](const Window& w) { return source.read(w); });
     NetworkGrowthOptions options;
     options.seed = n.seed;
-    options.lead_bearing = lead_bearing(n, region, roads, sampler, key, warnings);
+    // The roads there now: read ones, and an earlier network class's grown lanes.
+    options.lead_bearing =
+        lead_bearing(n, region, road_lines(classes, lines), sampler, key, warnings);
     options.clearance = n.clearance;
     options.snap = n.snap;
     options.candidates = n.candidates;
