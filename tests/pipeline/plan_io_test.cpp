@@ -224,6 +224,8 @@ TEST_F(PlanFolder, EachMethodsReportPartRoundTripsAndBadBytesNameItsKey) {
   part.classes[1] = detail::NetworkClassReport{.exemplar = "hedges.gpkg:lines",
                                                .method = "automatic",
                                                .chosen = "quilt",
+                                               .lead = "contours",
+                                               .lead_bearing_deg = 12.5,
                                                .lines = 17,
                                                .rejected_region = 3};
   const SynthesisMethod& network =
@@ -237,6 +239,8 @@ TEST_F(PlanFolder, EachMethodsReportPartRoundTripsAndBadBytesNameItsKey) {
   ASSERT_TRUE(decoded.classes[1]);
   EXPECT_EQ(decoded.classes[1]->exemplar, "hedges.gpkg:lines");
   EXPECT_EQ(decoded.classes[1]->chosen, "quilt");
+  EXPECT_EQ(decoded.classes[1]->lead, "contours");
+  EXPECT_EQ(decoded.classes[1]->lead_bearing_deg, 12.5);
   EXPECT_EQ(decoded.classes[1]->lines, 17);
   EXPECT_EQ(decoded.classes[1]->rejected_region, 3);
 }
