@@ -2,8 +2,8 @@
 // The grower behind grow_network (network/growth.hpp): its state and the declarations of its
 // parts, defined by concern in growth.cpp (entry points, frontier growth), grower_exemplar.cpp
 // (what it learns; the region), grower_rules.cpp (the network so far; the rules a line keeps),
-// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp and
-// grower_twigs.cpp (a forest's twigs).
+// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp,
+// grower_bends.cpp (bends eased to the exemplar's) and grower_twigs.cpp (a forest's twigs).
 // Internal to the network module.
 
 #include <algorithm>
@@ -108,6 +108,10 @@ constexpr double kLayoutEmptyReach = 0.75;
 
 // A node of degree 2 turning more than this (radians) is a corner (close_corners).
 constexpr double kCornerTurn = 0.5;
+
+// How far (radians) a straightened or eased edge may leave its junctions off its old heading
+// there (Grower::straighten, Grower::ease_sharp_bends).
+constexpr double kStraightenDeflection = 1.0;
 
 // The weight of the bearings of the stubs a free end opens in a candidate's cost (opened_cost),
 // and the share of the exemplar's edges in its two main 15° bearing bins from which it counts
@@ -307,6 +311,7 @@ class Grower {
   }
   std::vector<Chain> chains() const;
   bool still_a_chain(const Chain& c) const;
+  bool on_border(const Chain& c) const;
 
   void straighten_edges();
   void straighten_kinks();
@@ -324,6 +329,11 @@ class Grower {
 
   bool straighten(const Chain& c);
   bool replace_chain(const Chain& c, const std::vector<Vec2>& line);
+  bool ends_meet_lines(const Chain& c, const std::vector<Vec2>& line, double min_angle) const;
+
+  // ---- bends as sharp as the exemplar's (grower_bends.cpp) --------------------------------------
+  void ease_sharp_bends();
+  bool ease(const Chain& c);
 
   // ---- a forest's twigs (grower_twigs.cpp) ------------------------------------------------------
   void prune_twigs_for_bearings();
@@ -363,11 +373,15 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
-  double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
-  double min_cell_area_ = 0.0;   // and its smallest
+  double straight_share_ = 0.0;   // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;    // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;    // and its smallest
   bool cells_end_in_ts_ = false;  // and its lines end on each other in Ts (split_large_cells)
-  bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
+  bool forest_ = false;           // its lines end free (dangling ends a third of its nodes or more)
+  // Where the exemplar's edges are at least kStraightShare straight: how much its other (bent)
+  // edges turn per metre, on average and at most (ease_sharp_bends; 0 when it has none), and its
+  // narrowest angle between lines at a junction (radians; straighten).
+  double bend_curvature_mean_ = 0.0, bend_curvature_max_ = 0.0, narrowest_junction_ = 0.0;
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.
   std::vector<double> exemplar_bearings_, exemplar_degrees_, exemplar_curvature_;

@@ -201,6 +201,19 @@ void Grower::learn(const Network& ex) {
     std::size_t straight = 0;
     for (const NetworkEdge& e : ex.edges) straight += polyline_turning(e.points) < kStraightTurning;
     straight_share_ = double(straight) / double(ex.edges.size());
+    // Its few bent edges (a frame's corners, a border's sides): how sharply they turn; and how
+    // narrowly its straight lines meet.
+    if (straight_share_ >= kStraightShare) {
+      for (const NetworkEdge& e : ex.edges)
+        if (const double turning = polyline_turning(e.points); turning >= kStraightTurning) {
+          const double c = turning / polyline_length(e.points);
+          bend_curvature_mean_ += c / double(ex.edges.size() - straight);
+          bend_curvature_max_ = std::max(bend_curvature_max_, c);
+        }
+      const std::vector<double> angles = network_stats(ex).junction_angle;
+      if (!angles.empty())
+        narrowest_junction_ = *std::min_element(angles.begin(), angles.end()) * kPi / 180.0;
+    }
     // Closed cells with straight sides (fields split by straight hedges): a larger cell of the
     // output is one no line split (split_large_cells, where the exemplar's lines end on each
     // other in Ts: a chord makes a T), a smaller one a sliver between lines that a line apart

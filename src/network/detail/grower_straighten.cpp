@@ -21,9 +21,6 @@ namespace {
 // chord nor its removal could undo: across the open cell beside it.
 constexpr double kChainCornerReach = 4.0;
 
-// How far (radians) a straightened edge may leave its junctions off its old heading there.
-constexpr double kStraightenDeflection = 1.0;
-
 // How near (median edge lengths) the lines at a node may cross a link ending on it: the float
 // error of a ray passing through the node, not a gap.
 constexpr double kNodeJoinSlack = 1e-3;
@@ -92,8 +89,10 @@ std::vector<Grower::Chain> Grower::chains() const {
 // hedges), the bends the output's edges pick up (a stroke's small deflections, snapped ends
 // bent, corners merged) are replaced by the edge's chord when the chord is committed under the
 // same rules as any line, leaves its junctions within kStraightenDeflection of the old
-// headings and meets the other lines there at kMinMeetingAngle or more: kinks always, corners
-// while the output holds a larger share of bent edges than the exemplar (its few bent edges
+// headings and meets the other lines there at no less than the exemplar's narrowest junction
+// angle (nor kMinMeetingAngle; a corner's chord turned up to kStraightenDeflection off its old
+// heading made Ys the exemplar has none of: the bocage's 52°, the grid's 90°): kinks always,
+// corners while the output holds a larger share of bent edges than the exemplar (its few bent edges
 // are corners too: a frame's).
 void Grower::straighten_edges() {
   if (straight_share_ < kStraightShare) return;
@@ -110,17 +109,6 @@ void Grower::straighten_edges() {
   for (std::size_t i = 0; i < out_.edges.size(); ++i)
     if (alive_[i]) length += polyline_length(out_.edges[i].points);
   int ends_allowed = int(dangling_target_ * length) - dangling;
-  // The outermost cells' sides merged through the nodes that lost a cut line are the
-  // exemplar's own kind of bend (its border's): they are kept. Nodes made below (a corner
-  // linked on) are past the end of border_node_ and never on the border.
-  const auto on_border = [&](const Chain& c) {
-    for (int e : c.edges)
-      for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
-        if (n != c.from && n != c.to && std::size_t(n) < border_node_.size() &&
-            border_node_[std::size_t(n)])
-          return true;
-    return false;
-  };
   // Steps shorter than kShortStep clearances (a snapped end's last hair) turn sharply over no
   // length: the exemplar's straight lines have none. `bent` still counts them (the corners'
   // pass below went on as long as before).
@@ -152,6 +140,18 @@ void Grower::straighten_kinks() {
   for (const Chain& c : chains())
     if (!c.kept && sharpest_turn(c.points) < kCornerTurn && polyline_turning(c.points) > 0.0)
       straighten(c);
+}
+
+// The outermost cells' sides merged through the nodes that lost a cut line are the exemplar's
+// own kind of bend (its border's): they are kept. Nodes made later (a corner linked on) are
+// past the end of border_node_ and never on the border.
+bool Grower::on_border(const Chain& c) const {
+  for (int e : c.edges)
+    for (int n : {out_.edges[std::size_t(e)].from, out_.edges[std::size_t(e)].to})
+      if (n != c.from && n != c.to && std::size_t(n) < border_node_.size() &&
+          border_node_[std::size_t(n)])
+        return true;
+  return false;
 }
 
 // Whether chain c is as it was found: its edges alive, the nodes it passes of degree 2 still
@@ -359,20 +359,29 @@ void Grower::forget_passed_nodes(const Chain& c) {
 
 bool Grower::straighten(const Chain& c) {
   const std::vector<Vec2> chord{c.points.front(), c.points.back()};
-  if (polyline_length(chord) < min_piece_) return false;
+  return polyline_length(chord) >= min_piece_ &&
+         ends_meet_lines(c, chord, std::max(kMinMeetingAngle, narrowest_junction_)) &&
+         replace_chain(c, chord);
+}
+
+// Whether `line`, to replace chain c (same ends), leaves its junctions within
+// kStraightenDeflection of the chain's headings there and meets the other lines there at
+// `min_angle` or more (no other edge joining the same two nodes).
+bool Grower::ends_meet_lines(const Chain& c, const std::vector<Vec2>& line,
+                             double min_angle) const {
   for (int end = 0; end < 2; ++end) {
     const int n = end == 0 ? c.from : c.to;
-    const double old_heading = leaving(c.points, end == 0), new_heading = leaving(chord, end == 0);
+    const double old_heading = leaving(c.points, end == 0), new_heading = leaving(line, end == 0);
     if (std::abs(wrap(new_heading - old_heading)) > kStraightenDeflection) return false;
     for (int other : alive_incident(n)) {
       if (std::find(c.edges.begin(), c.edges.end(), other) != c.edges.end()) continue;
       const NetworkEdge& e = out_.edges[std::size_t(other)];
       if ((e.from == c.from && e.to == c.to) || (e.from == c.to && e.to == c.from)) return false;
       const double h = leaving(e.points, e.from == n);
-      if (std::abs(wrap(h - new_heading)) < kMinMeetingAngle) return false;
+      if (std::abs(wrap(h - new_heading)) < min_angle) return false;
     }
   }
-  return replace_chain(c, chord);
+  return true;
 }
 
 // Chain c replaced by `line` (same ends) when that is committed under the rules the line it
