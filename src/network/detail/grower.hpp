@@ -193,6 +193,11 @@ class Grower {
   void count_edge_bearing(const std::vector<Vec2>& pts, double count);
   int split_edge(int id, int seg, Vec2 p);
 
+  // A straight ray from node n along `heading`, `reach` long: what each link from a node tries.
+  std::vector<Vec2> ray_from(int n, double heading, double reach) const {
+    const Vec2 p = out_.nodes[std::size_t(n)];
+    return {p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+  }
   std::optional<Hit> first_edge_hit(const std::vector<Vec2>& pts) const;
   std::optional<Hit> first_boundary_hit(const std::vector<Vec2>& pts) const;
 
@@ -363,11 +368,11 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
-  double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
-  double min_cell_area_ = 0.0;   // and its smallest
+  double straight_share_ = 0.0;   // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;    // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;    // and its smallest
   bool cells_end_in_ts_ = false;  // and its lines end on each other in Ts (split_large_cells)
-  bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
+  bool forest_ = false;           // its lines end free (dangling ends a third of its nodes or more)
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.
   std::vector<double> exemplar_bearings_, exemplar_degrees_, exemplar_curvature_;
