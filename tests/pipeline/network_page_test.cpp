@@ -38,19 +38,27 @@ features:
 )";
 const char* const kRoad = "LINESTRING (500050 4999600, 500300 4999800, 500600 4999700)";
 
-TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
+// Each test's run: the generated world with its road (kRoad), run in a temporary folder; `cd`
+// and `binary` start a shell command there; `svg`: the drawn exemplar.
+class NetworkPage : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
+    std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
+    const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
   TempDir dir;
-  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
   const std::string cd = "cd '" + dir.path().string() + "' && ";
   const std::string binary = "'" + terraweave_binary().string() + "'";
-  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
+};
 
+TEST_F(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   const CommandResult drive =
       run_command(cd + "timeout 120 /usr/bin/python3 '" +
                   (source_dir() / "tests/pipeline/network_page_drive.py").string() + "' " + binary +
-                  " out . --exemplar '" + (source_dir() / "tests/data/network_drawn.svg").string() +
+                  " out . --exemplar '" + svg +
                   "' --scale 0.5 --report report.json --screenshot shot.png 2>&1");
   ASSERT_EQ(drive.exit_code, 0) << drive.output;
   const nlohmann::json r = nlohmann::json::parse(read_file(dir / "report.json"));
@@ -178,10 +186,7 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
 // started with each option changed (view_drawing_requests.py, plain HTTP), the suggestions or
 // the saved file differ.
 // The option tables (option_tables_test.cpp) point here for these rows.
-TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
-  TempDir dir;
-  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
+TEST_F(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   // An exemplar with two kinds of lines, for --where: a field grid ('a') and diagonals ('b').
   std::vector<VectorFeature> lines;
   for (int i = 0; i <= 4; ++i) {
@@ -192,12 +197,7 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   lines.push_back({"LINESTRING (0 0, 150 100)", 1.0, {{"kind", "b"}}});
   lines.push_back({"LINESTRING (300 100, 450 300)", 1.0, {{"kind", "b"}}});
   write_layer(dir / "exemplar.gpkg", "lines", lines);
-  const std::string cd = "cd '" + dir.path().string() + "' && ";
-  const std::string binary = "'" + terraweave_binary().string() + "'";
-  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
 
-  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
   // The stroke inside the region. `methods`: the completions asked of one server, by the
   // request's `method` as the page's method choice sets it ("-": none named).
   const std::string stroke_region =
@@ -324,15 +324,7 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
 // box: 108.4° modulo 180°), and its suggestions are those of that bearing given as
 // {"bearing": DEG}; without a lead none is named. A run without a road says so and follows the
 // long axis; unknown leads and bearings that are no angle are refused naming the key.
-TEST(NetworkPage, TheLeadTurnsTheCompletionAsAPipelinesLeadDoes) {
-  TempDir dir;
-  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
-  const std::string cd = "cd '" + dir.path().string() + "' && ";
-  const std::string binary = "'" + terraweave_binary().string() + "'";
-  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
+TEST_F(NetworkPage, TheLeadTurnsTheCompletionAsAPipelinesLeadDoes) {
   // South of the stroke, clear of the road: 320 m wide, 130 m tall.
   const std::string stroke_and_region =
       "'[[500080, 4999900], [500200, 4999930]]' "
