@@ -4,12 +4,14 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 
 #include "commands/network_command.hpp"
+#include "commands/view.hpp"
 #include "core/error.hpp"
 #include "core/log.hpp"
 #include "core/output_guard.hpp"
@@ -56,6 +58,28 @@ NetworkMethod method_of(const json& body) {
     fail("key method: {} is none of {}", name.dump(), listed);
   }
   return NetworkMethod(known - names.begin());
+}
+
+// The request's `lead` (absent or null: none), written as a network class's `lead:` is:
+// "long_axis", "nearest_road", "contours" or {"bearing": DEG}.
+struct RequestedLead {
+  Lead lead = Lead::bearing;
+  double bearing_deg = 0.0;
+};
+std::optional<RequestedLead> lead_of(const json& body) {
+  if (!body.contains("lead") || body["lead"].is_null()) return std::nullopt;
+  const json& lead = body["lead"];
+  if (lead.is_object() && lead.size() == 1 && lead.contains("bearing")) {
+    const json& bearing = lead["bearing"];
+    if (!bearing.is_number() || !std::isfinite(bearing.get<double>()))
+      fail("key lead.bearing: {} is not a finite angle in degrees", bearing.dump());
+    return RequestedLead{Lead::bearing, bearing.get<double>()};
+  }
+  for (Lead named : {Lead::long_axis, Lead::nearest_road, Lead::contours})
+    if (lead.is_string() && lead.get<std::string>() == lead_name(named))
+      return RequestedLead{named, 0.0};
+  fail("key lead: {} is none of long_axis, nearest_road, contours or {{\"bearing\": DEG}}",
+       lead.dump());
 }
 
 json to_json(const std::vector<std::vector<Vec2>>& lines) {
@@ -115,8 +139,11 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
       response.set_content(page, "text/html; charset=utf-8");
     });
     // {lines: [[[x, y], ...], ...], region: [[x, y], ...], method: "automatic" | "growth" |
-    // "quilt" | "layout" (absent: automatic)} -> {suggestions: [...], method: as asked, chosen:
-    // the one that made them (chosen_network_method: never automatic)}
+    // "quilt" | "layout" (absent: automatic), lead: as lead_of reads it (absent: none)} ->
+    // {suggestions: [...], method: as asked, chosen: the one that made them
+    // (chosen_network_method: never automatic), lead_bearing_deg: the compass bearing the
+    // exemplar was turned to (null: none), warning: why the lead fell back to the long axis
+    // (absent when it did not)}
     server.Post("/complete", [&](const httplib::Request& request, httplib::Response& response) {
       answer(request, response, [&](const json& body) {
         NetworkLines drawn;
@@ -131,13 +158,31 @@ void serve_view(const ViewOptions& view, const ViewServeOptions& o) {
         NetworkGrowthOptions growth;
         growth.seed = body.value("seed", o.seed);
         growth.method = method_of(body);
+        const std::optional<RequestedLead> lead = lead_of(body);
         std::lock_guard lock(one_at_a_time);
+        std::string fell_back;
+        if (lead && lead->lead == Lead::bearing) {
+          growth.lead_bearing = lead->bearing_deg;
+        } else if (lead) {
+          const LeadAngle angle =
+              run_lead_angle(view.run_dir, lead->lead, lead->bearing_deg, {{ring}});
+          growth.lead_bearing = compass_degrees(angle.radians);
+          if (angle.fell_back)
+            fell_back = lead->lead == Lead::nearest_road
+                            ? "no road in the run: the lines follow the region's long axis"
+                            : "flat or nodata terrain over the region: the lines follow its "
+                              "long axis";
+        }
         NetworkGrowthReport report;
         const auto suggestions =
             complete_drawing(*exemplar, drawn, {{ring}}, &forbidden, growth, &report);
-        return json{{"suggestions", to_json(suggestions)},
-                    {"method", std::string(network_method_name(growth.method))},
-                    {"chosen", std::string(chosen_network_method(report))}};
+        json answer{
+            {"suggestions", to_json(suggestions)},
+            {"method", std::string(network_method_name(growth.method))},
+            {"chosen", std::string(chosen_network_method(report))},
+            {"lead_bearing_deg", growth.lead_bearing ? json(*growth.lead_bearing) : json()}};
+        if (!fell_back.empty()) answer["warning"] = fell_back;
+        return answer;
       });
     });
     // The drawing saved at --save, when there is one: {lines, origins} as saved (empty lists

@@ -18,6 +18,10 @@
 #include "core/atomic_output.hpp"
 #include "core/error.hpp"
 #include "core/output_guard.hpp"
+#include "core/warnings.hpp"
+#include "geo/height_sampler.hpp"
+#include "geo/heightfield_source.hpp"
+#include "layers/export.hpp"
 #include "layers/layer_raster.hpp"
 #include "layers/write.hpp"
 #include "pipeline/json_file.hpp"
@@ -251,6 +255,27 @@ std::string run_crs_wkt(const fs::path& run_dir) {
   return grid.contains("crs_wkt") && grid["crs_wkt"].is_string()
              ? grid["crs_wkt"].get<std::string>()
              : std::string();
+}
+
+LeadAngle run_lead_angle(const fs::path& run_dir, Lead lead, double bearing_deg,
+                         const std::vector<Polygon>& region) {
+  const Polygon& polygon = lead_polygon(region);
+  std::vector<LineFeature> road_features;
+  if (lead == Lead::nearest_road && fs::exists(run_dir / "features.geojson"))
+    for (ExportCurve& curve : read_curves_geojson(run_dir / "features.geojson"))
+      if (curve.kind == "road")
+        road_features.push_back({.fid = curve.fid,
+                                 .points = std::move(curve.points),
+                                 .width = curve.width,
+                                 .source = (run_dir / "features.geojson").string()});
+  std::vector<const LineFeature*> roads;
+  for (const LineFeature& road : road_features) roads.push_back(&road);
+  // Opened, not read: only `contours` reads pixels (a 32 x 32 lattice over the polygon).
+  Warnings warnings;
+  const std::unique_ptr<HeightfieldSource> source =
+      open_heightfield(required_run_layer_raster(run_dir, "height").string(), {}, warnings);
+  HeightSampler heights(*source);
+  return lead_angle(lead, bearing_deg, polygon, roads, heights);
 }
 
 fs::path write_view(const ViewOptions& options) {

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "network/growth.hpp"
+#include "pipeline/lead.hpp"
+#include "pipeline/lead_direction.hpp"
 
 namespace tw {
 
@@ -36,5 +38,11 @@ ForbiddenMask run_forbidden_mask(const std::filesystem::path& run_dir);
 
 // The run's CRS as WKT (report.json's grid), "" when it has none.
 std::string run_crs_wkt(const std::filesystem::path& run_dir);
+
+// A lead's direction over `region` (its largest polygon) on a run, as a network class's `lead:`
+// reads it in a pipeline: `contours` over the run's height layer, `nearest_road` along the run's
+// `kind: road` features (features.geojson); their fall-back to the long axis as lead_angle has it.
+LeadAngle run_lead_angle(const std::filesystem::path& run_dir, Lead lead, double bearing_deg,
+                         const std::vector<Polygon>& region);
 
 }  // namespace tw

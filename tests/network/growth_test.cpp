@@ -18,9 +18,9 @@
 namespace tw {
 namespace {
 
+// The growth tests' exemplars: snapped within 1 m.
 Network exemplar(const std::string& kind, double size = 800.0) {
-  Warnings w;
-  return build_planar_network(example_network(kind, size, 3), 1.0, "exemplar", w);
+  return test::example_exemplar(kind, size, 1.0);
 }
 
 std::vector<Polygon> box(double x0, double y0, double x1, double y1) {

@@ -18,9 +18,9 @@
 namespace tw {
 namespace {
 
+// The layout's exemplars: 400 m across.
 Network layout_exemplar(const std::string& kind) {
-  Warnings w;
-  return build_planar_network(example_network(kind, 400.0, 3), 1e-3, "exemplar", w);
+  return test::example_exemplar(kind, 400.0, 1e-3);
 }
 
 std::vector<Polygon> layout_region(const Network& ex) {

@@ -35,11 +35,17 @@ inline std::vector<Polygon> extent_region(const Network& net) {
   return {{{e.lo, {e.hi.x, e.lo.y}, e.hi, {e.lo.x, e.hi.y}}}};
 }
 
-// The quality bench's synthetic exemplar of `kind` (network/example_networks.hpp: 800 m, seed 3)
-// as a planar network, as bench_network_quality builds it.
-inline Network bench_exemplar(const std::string& kind) {
+// A synthetic exemplar of `kind` (network/example_networks.hpp, seed 3) `size` metres across, as a
+// planar network with its near-junctions snapped within `snap` metres.
+inline Network example_exemplar(const std::string& kind, double size, double snap) {
   Warnings w;
-  return build_planar_network(example_network(kind, 800.0, 3), 1e-3, kind, w);
+  return build_planar_network(example_network(kind, size, 3), snap, kind, w);
+}
+
+// The quality bench's exemplar of `kind` (800 m, snapped within 1e-3 m), as
+// bench_network_quality builds it.
+inline Network bench_exemplar(const std::string& kind) {
+  return example_exemplar(kind, 800.0, 1e-3);
 }
 
 // The target for one property (an index of network/stats.hpp's properties) of `out`

@@ -18,17 +18,12 @@
 namespace tw {
 namespace {
 
-Network quilt_exemplar(const std::string& kind, double size) {
-  Warnings w;
-  return build_planar_network(example_network(kind, size, 3), 1.0, "exemplar", w);
-}
-
 std::vector<Polygon> square(double side) {
   return {{{{0, 0}, {side, 0}, {side, side}, {0, side}}}};
 }
 
 TEST(NetworkQuilt, KeepsTheRulesInAPolygonWithAHoleAndIsDeterministic) {
-  const Network ex = quilt_exemplar("bocage", 600.0);
+  const Network ex = test::example_exemplar("bocage", 600.0, 1.0);
   const std::vector<Polygon> region = test::field_with_pond();
   const ForbiddenMask forbidden = test::diagonal_road_mask();
   NetworkGrowthOptions options;
@@ -55,7 +50,7 @@ TEST(NetworkQuilt, KeepsTheRulesInAPolygonWithAHoleAndIsDeterministic) {
 // that is the quilt (growth makes T-junctions where the exemplar has Y-junctions), the same bytes
 // as asked for by name; completing a partial network is growth.
 TEST(NetworkQuilt, AutomaticKeepsTheQuiltWhereItIsCloser) {
-  const Network ex = quilt_exemplar("crocodile", 400.0);
+  const Network ex = test::example_exemplar("crocodile", 400.0, 1.0);
   const auto region = square(400.0);
   NetworkGrowthReport report;
   const Network automatic = grow_network(ex, region, nullptr, nullptr, {.seed = 1}, &report);
@@ -83,7 +78,7 @@ TEST(NetworkQuilt, AutomaticKeepsTheQuiltWhereItIsCloser) {
 class QuiltProperty : public ::testing::TestWithParam<int> {};
 
 TEST_P(QuiltProperty, CrocodileCellsKeepTheExemplarsStyle) {
-  static const Network ex = quilt_exemplar("crocodile", 400.0);
+  static const Network ex = test::example_exemplar("crocodile", 400.0, 1.0);
   static const auto region = square(400.0);
   // The networks of both seeds, made once for the six properties.
   struct Made {

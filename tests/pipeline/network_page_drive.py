@@ -272,6 +272,17 @@ def main():
         page.drag([to_screen(0.5 + 0.3 * math.cos(a * math.pi / 4),
                              0.5 + 0.3 * math.sin(a * math.pi / 4)) for a in range(8)])
         region = page.eval("window.__network.region.length")
+        # Turned to a bearing of 45°, typed in the box that choosing the lead `bearing` shows.
+        bearing_hidden = page.eval(
+            "getComputedStyle(document.getElementById('bearing')).display === 'none'")
+        page.eval("(s => { s.value = 'bearing'; s.dispatchEvent(new Event('change')); })"
+                  "(document.getElementById('lead'))")
+        bearing_shown = page.eval(
+            "getComputedStyle(document.getElementById('bearing')).display !== 'none'")
+        page.eval("document.getElementById('bearing').value = '45'")
+        # Every control of the bar within the window's width (the box shown too).
+        bar_fits = page.eval("[...document.querySelectorAll('#bar button, #bar select, #bar input')]"
+                             ".every(e => e.getBoundingClientRect().right <= innerWidth)")
         page.click("complete")
         page.wait("+document.body.dataset.completed === 2")
         second = page.eval("window.__network.suggestions.length")
@@ -299,6 +310,8 @@ def main():
             "second_region_points": region,
             "first_status": first_status,
             "second_status": second_status,
+            "bearing_box": [bearing_hidden, bearing_shown],
+            "bar_fits": bar_fits,
             "server_pid": server.pid,
             "view_page": view_page,
             "all_accepted": all_accepted,

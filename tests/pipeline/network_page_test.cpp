@@ -38,19 +38,27 @@ features:
 )";
 const char* const kRoad = "LINESTRING (500050 4999600, 500300 4999800, 500600 4999700)";
 
-TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
+// Each test's run: the generated world with its road (kRoad), run in a temporary folder; `cd`
+// and `binary` start a shell command there; `svg`: the drawn exemplar.
+class NetworkPage : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
+    std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
+    const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
   TempDir dir;
-  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
   const std::string cd = "cd '" + dir.path().string() + "' && ";
   const std::string binary = "'" + terraweave_binary().string() + "'";
-  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
+};
 
+TEST_F(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   const CommandResult drive =
       run_command(cd + "timeout 120 /usr/bin/python3 '" +
                   (source_dir() / "tests/pipeline/network_page_drive.py").string() + "' " + binary +
-                  " out . --exemplar '" + (source_dir() / "tests/data/network_drawn.svg").string() +
+                  " out . --exemplar '" + svg +
                   "' --scale 0.5 --report report.json --screenshot shot.png 2>&1");
   ASSERT_EQ(drive.exit_code, 0) << drive.output;
   const nlohmann::json r = nlohmann::json::parse(read_file(dir / "report.json"));
@@ -67,6 +75,12 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
   // grows from the drawn ends.
   EXPECT_EQ(r["first_status"], std::to_string(r["first_suggestions"].get<int>()) +
                                    " suggestions, completed by growth (automatic chose it)");
+  // The second completion was turned to a bearing typed in the box the lead `bearing` shows.
+  EXPECT_EQ(r["bearing_box"], nlohmann::json::parse("[true, true]"));
+  EXPECT_EQ(r["bar_fits"], true);  // in a 1000-pixel window, the bearing box shown
+  EXPECT_EQ(r["second_status"], std::to_string(r["second_suggestions"].get<int>()) +
+                                    " suggestions, completed by growth (automatic chose it), "
+                                    "turned to 45.0°");
   const auto& lines = r["lines"];
   ASSERT_EQ(lines.size(), r["after_lasso"].get<std::size_t>() + r["second_suggestions"].get<int>());
   EXPECT_TRUE(fs::equivalent(r["saved"].get<std::string>(), dir / "drawn_network.gpkg"));
@@ -172,10 +186,7 @@ TEST(NetworkPage, DrawCompleteAcceptAndSaveInHeadlessChromium) {
 // started with each option changed (view_drawing_requests.py, plain HTTP), the suggestions or
 // the saved file differ.
 // The option tables (option_tables_test.cpp) point here for these rows.
-TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
-  TempDir dir;
-  write_layer(dir / "map.gpkg", "roads", {{kRoad, 12.0}});
-  std::ofstream(dir / "pipeline.yaml") << kNetworkPagePipeline;
+TEST_F(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   // An exemplar with two kinds of lines, for --where: a field grid ('a') and diagonals ('b').
   std::vector<VectorFeature> lines;
   for (int i = 0; i <= 4; ++i) {
@@ -186,12 +197,7 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   lines.push_back({"LINESTRING (0 0, 150 100)", 1.0, {{"kind", "b"}}});
   lines.push_back({"LINESTRING (300 100, 450 300)", 1.0, {{"kind", "b"}}});
   write_layer(dir / "exemplar.gpkg", "lines", lines);
-  const std::string cd = "cd '" + dir.path().string() + "' && ";
-  const std::string binary = "'" + terraweave_binary().string() + "'";
-  const CommandResult run = run_command(cd + binary + " -q run pipeline.yaml 2>&1");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
 
-  const std::string svg = (source_dir() / "tests/data/network_drawn.svg").string();
   // The stroke inside the region. `methods`: the completions asked of one server, by the
   // request's `method` as the page's method choice sets it ("-": none named).
   const std::string stroke_region =
@@ -310,6 +316,83 @@ TEST(NetworkPage, EveryDrawingOptionChangesWhatTheServerAnswersOrWrites) {
   EXPECT_EQ(other_crs["drawing"]["status"], 400);
   EXPECT_THAT(other_crs["drawing"]["body"]["error"].get<std::string>(),
               ::testing::HasSubstr("lon_lat.gpkg: the drawing is not in the run's CRS"));
+}
+
+// The page's lead choice (docs/networks.md, "Drawing", lead): over a region clear of the stroke,
+// each lead turns the completion to the bearing it answers, which is the pipeline's own reading
+// of that lead there (the long axis of a wide box: 90°; the run's road segment nearest to the
+// box: 108.4° modulo 180°), and its suggestions are those of that bearing given as
+// {"bearing": DEG}; without a lead none is named. A run without a road says so and follows the
+// long axis; unknown leads and bearings that are no angle are refused naming the key.
+TEST_F(NetworkPage, TheLeadTurnsTheCompletionAsAPipelinesLeadDoes) {
+  // South of the stroke, clear of the road: 320 m wide, 130 m tall.
+  const std::string stroke_and_region =
+      "'[[500080, 4999900], [500200, 4999930]]' "
+      "'[[500300, 4999530], [500620, 4999530], [500620, 4999660], [500300, 4999660]]' ";
+  const auto completions = [&](const std::string& run_dir, const nlohmann::json& leads) {
+    const CommandResult r =
+        run_command(cd + "COMPLETE_LEADS='" + leads.dump() + "' timeout 120 /usr/bin/python3 '" +
+                    (source_dir() / "tests/pipeline/view_drawing_requests.py").string() + "' " +
+                    binary + " " + run_dir + " . " + stroke_and_region + "--exemplar '" + svg +
+                    "' --scale 0.5 --seed 1 --save lead.gpkg");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json answer = nlohmann::json::parse(r.output, nullptr, false);
+    EXPECT_FALSE(answer.is_discarded()) << r.output;
+    return answer.is_discarded() ? nlohmann::json::array() : answer["completions"];
+  };
+  const nlohmann::json leads = nlohmann::json::parse(
+      R"([null, "long_axis", "nearest_road", "contours", {"bearing": 30}, "uphill",
+          {"bearing": "east"}])");
+  const nlohmann::json asked = completions("out", leads);
+  ASSERT_EQ(asked.size(), leads.size());
+  for (std::size_t i = 0; i < 5; ++i) {
+    ASSERT_EQ(asked[i]["status"], 200) << leads[i];
+    EXPECT_GT(asked[i]["body"]["suggestions"].size(), 0u) << leads[i];
+    EXPECT_FALSE(asked[i]["body"].contains("warning")) << leads[i];
+  }
+  EXPECT_TRUE(asked[0]["body"]["lead_bearing_deg"].is_null());
+  const double long_axis = asked[1]["body"]["lead_bearing_deg"].get<double>();
+  const double nearest_road = asked[2]["body"]["lead_bearing_deg"].get<double>();
+  const double contours = asked[3]["body"]["lead_bearing_deg"].get<double>();
+  EXPECT_NEAR(std::fmod(long_axis, 180.0), 90.0, 1e-6);
+  // The road's segment from (500300, 4999800) to (500600, 4999700): 3 east for 1 south.
+  EXPECT_NEAR(std::fmod(nearest_road, 180.0), 90.0 + std::atan(1.0 / 3.0) * 180.0 / M_PI, 1e-6);
+  EXPECT_GE(contours, 0.0);
+  EXPECT_LT(contours, 360.0);
+  EXPECT_EQ(asked[4]["body"]["lead_bearing_deg"], 30.0);
+  for (std::size_t i = 1; i < 5; ++i)
+    EXPECT_NE(asked[i]["body"]["suggestions"], asked[0]["body"]["suggestions"]) << leads[i];
+  // Each lead's suggestions are its bearing's (the same doubles sent back).
+  const nlohmann::json as_bearings = completions(
+      "out", {{{"bearing", long_axis}}, {{"bearing", nearest_road}}, {{"bearing", contours}}});
+  ASSERT_EQ(as_bearings.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_EQ(as_bearings[i]["status"], 200) << i;
+    EXPECT_EQ(as_bearings[i]["body"]["suggestions"], asked[i + 1]["body"]["suggestions"])
+        << leads[i + 1];
+  }
+  EXPECT_EQ(asked[5]["status"], 400);
+  EXPECT_EQ(asked[5]["body"]["error"],
+            "key lead: \"uphill\" is none of long_axis, nearest_road, contours or "
+            "{\"bearing\": DEG}");
+  EXPECT_EQ(asked[6]["status"], 400);
+  EXPECT_EQ(asked[6]["body"]["error"],
+            "key lead.bearing: \"east\" is not a finite angle in degrees");
+
+  // A run without a road (the same line as a river): the nearest road falls back to the long
+  // axis, and says so.
+  std::string bare = kNetworkPagePipeline;
+  bare.replace(bare.find("kind: road"), 10, "kind: river");
+  std::ofstream(dir / "bare.yaml") << bare;
+  const CommandResult bare_run =
+      run_command(cd + binary + " -q run bare.yaml --set output.dir=bare 2>&1");
+  ASSERT_EQ(bare_run.exit_code, 0) << bare_run.output;
+  const nlohmann::json roadless = completions("bare", {"nearest_road"});
+  ASSERT_EQ(roadless.size(), 1u);
+  ASSERT_EQ(roadless[0]["status"], 200);
+  EXPECT_NEAR(std::fmod(roadless[0]["body"]["lead_bearing_deg"].get<double>(), 180.0), 90.0, 1e-6);
+  EXPECT_EQ(roadless[0]["body"]["warning"],
+            "no road in the run: the lines follow the region's long axis");
 }
 
 }  // namespace

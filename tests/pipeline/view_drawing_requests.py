@@ -10,7 +10,9 @@ options follow the run folder; it is stopped whatever happens.
 STROKE and REGION are JSON lists of [x, y] points in the run's CRS. With COMPLETE_METHOD set to
 a comma-separated list of methods ("-": none named), it completes once per method as the page's
 method choice asks, saves nothing and prints {"drawing": ..., "completions": {METHOD: {"status":
-HTTP status, "body": answer}}}.
+HTTP status, "body": answer}}}. With COMPLETE_LEADS set to a JSON list of leads (null: none), it
+completes once per lead as the page's lead choice asks (the method named by COMPLETE_METHOD's
+first entry, when set) and prints {"drawing": ..., "completions": [{"status", "body"} per lead]}.
 """
 import ctypes
 import json
@@ -65,6 +67,15 @@ def main():
         base = match.group(1)
         drawing = get(base + "/drawing")
         drawn = json.loads(stroke)
+        if "COMPLETE_LEADS" in os.environ:
+            completions = []
+            for lead in json.loads(os.environ["COMPLETE_LEADS"]):
+                request = {"lines": [drawn], "region": json.loads(region), "lead": lead}
+                if os.environ.get("COMPLETE_METHOD", "-") != "-":
+                    request["method"] = os.environ["COMPLETE_METHOD"].split(",")[0]
+                completions.append(get(base + "/complete", request))
+            print(json.dumps({"drawing": drawing, "completions": completions}))
+            return
         if "COMPLETE_METHOD" in os.environ:
             completions = {}
             for method in os.environ["COMPLETE_METHOD"].split(","):

@@ -2,8 +2,10 @@
 // The drawing page of `terraweave view RUN --serve --exemplar ...` (docs/networks.md, "Drawing"):
 // @DATA@ becomes the run's map as JSON (its colours as RGB rows north first, its grid and CRS,
 // its feature lines, where the drawing is saved). The page draws strokes in map coordinates,
-// asks the server (POST /complete) to complete a region by the method chosen and names in its
-// status line the method that made the suggestions ("completed by layout (automatic chose it)"),
+// asks the server (POST /complete) to complete a region by the method chosen, turned to the lead
+// chosen (none, the long axis, the nearest road, the contours or a bearing), and names in its
+// status line the method that made the suggestions ("completed by layout (automatic chose it)")
+// and the bearing the lead gave,
 // lets the user accept the suggestions (all, one by a click, or those inside a lasso) or reject
 // them, undo the last stroke or accept (Ctrl+Z), and saves (POST /save). On loading it shows the
 // drawing saved before (GET /drawing) as accepted lines; a stroke's ends within a few pixels of a
@@ -16,8 +18,8 @@ inline constexpr const char* kNetworkPage = R"html(<!doctype html>
 <style>
 html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 #bar{position:absolute;top:0;left:0;right:0;height:34px;background:#fff;padding:4px 8px;
-  box-sizing:border-box;display:flex;gap:6px;align-items:center}
-#bar button{white-space:nowrap}
+  box-sizing:border-box;display:flex;gap:4px;align-items:center}
+#bar button,#bar select,#bar input{white-space:nowrap;font:12px sans-serif;padding:1px 4px}
 #bar button.on{background:#246;color:#fff}
 #map{position:absolute;top:34px;left:0;cursor:crosshair;touch-action:none}
 #status{margin-left:8px;color:#333;white-space:nowrap;overflow:hidden}
@@ -28,6 +30,9 @@ html,body{margin:0;height:100%;background:#ddd;font:13px sans-serif}
 <button id="area" title="draw a loop: the region to complete">region by lasso</button>
 <select id="method" title="how the region is completed: growth from the drawn ends, quilting of exemplar blocks or growth from the exemplar's laid-out long strokes (a region without drawn lines), or automatic (the closest to the exemplar's style; growth where lines are drawn)">
 <option>automatic</option><option>growth</option><option>quilt</option><option>layout</option></select>
+<select id="lead" title="the direction the exemplar is turned to over the region, as a pipeline's network lead: none (as drawn), the region's long axis, the run's nearest road, the terrain's contours, or a compass bearing">
+<option value="">no lead</option><option value="long_axis">long axis</option><option value="nearest_road">road</option><option value="contours">contours</option><option value="bearing">bearing</option></select>
+<input id="bearing" type="number" value="0" step="any" title="the lead's compass bearing in degrees (lead: bearing)" style="width:3.5em;display:none">
 <button id="complete" title="ask for suggestions in the region">complete</button>
 <button id="pick" title="click a suggestion to accept it">accept one</button>
 <button id="lasso" title="draw a loop: suggestions inside it are accepted">accept by lasso</button>
@@ -243,14 +248,23 @@ document.getElementById('complete').onclick = async () => {
   if (!S.region) { status('drag a region first'); return; }
   status('completing...');
   try {
+    const lead = document.getElementById('lead').value;
     const a = await post('complete', {lines: S.lines, region: S.region,
-                                      method: document.getElementById('method').value});
+                                      method: document.getElementById('method').value,
+                                      lead: lead === 'bearing'
+                                          ? {bearing: +document.getElementById('bearing').value}
+                                          : lead || null});
     S.suggestions = a.suggestions;
     const asked = a.method === a.chosen ? '' : ` (${a.method} chose it)`;
-    status(`${a.suggestions.length} suggestions, completed by ${a.chosen}${asked}`);
+    const turned = a.lead_bearing_deg === null ? '' : `, turned to ${a.lead_bearing_deg.toFixed(1)}°`;
+    const warned = a.warning ? ` (${a.warning})` : '';
+    status(`${a.suggestions.length} suggestions, completed by ${a.chosen}${asked}${turned}${warned}`);
   } catch (err) { status(err.message); }
   document.body.dataset.completed = (+document.body.dataset.completed || 0) + 1;
   redraw();
+};
+document.getElementById('lead').onchange = e => {
+  document.getElementById('bearing').style.display = e.target.value === 'bearing' ? '' : 'none';
 };
 document.getElementById('all').onclick = () => accept(() => true);
 document.getElementById('reject').onclick = () => {

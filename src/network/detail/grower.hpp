@@ -197,6 +197,11 @@ class Grower {
   void count_edge_bearing(const std::vector<Vec2>& pts, double count);
   int split_edge(int id, int seg, Vec2 p);
 
+  // A straight ray from node n along `heading`, `reach` long: what each link from a node tries.
+  std::vector<Vec2> ray_from(int n, double heading, double reach) const {
+    const Vec2 p = out_.nodes[std::size_t(n)];
+    return {p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+  }
   std::optional<Hit> first_edge_hit(const std::vector<Vec2>& pts) const;
   std::optional<Hit> first_boundary_hit(const std::vector<Vec2>& pts) const;
 

@@ -98,8 +98,7 @@ int Grower::trim_from(int n, double at_most) {
 // A straight link from node n along `heading` onto the first line ahead within `reach`, when
 // valid: the node becomes a junction.
 bool Grower::link_ahead(int n, double heading, double reach, int own_edge) {
-  const Vec2 p = out_.nodes[std::size_t(n)];
-  return link_along(n, {p, p + Vec2{std::cos(heading), std::sin(heading)} * reach}, own_edge);
+  return link_along(n, ray_from(n, heading, reach), own_edge);
 }
 
 // Node n joined along `ray` (a polyline from it) onto the first line it meets, when that is
@@ -169,8 +168,7 @@ void Grower::close_corners() {
 // A straight link from node n along `heading` to the region's boundary within `reach`, when
 // no line lies between and it is valid: the node becomes a junction.
 bool Grower::link_to_boundary(int n, double heading, double reach) {
-  const Vec2 p = out_.nodes[std::size_t(n)];
-  std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+  std::vector<Vec2> ray = ray_from(n, heading, reach);
   const auto wall = first_boundary_hit(ray);
   if (!wall) return false;
   truncate(ray, *wall);
@@ -203,8 +201,7 @@ void Grower::close_dangling_ends() {
     if (edge < 0 || out_.edges[std::size_t(edge)].kept) continue;
     const NetworkEdge& e = out_.edges[std::size_t(edge)];
     const double ahead = leaving(e.points, e.from == n) + kPi;
-    const Vec2 p = out_.nodes[std::size_t(n)];
-    std::vector<Vec2> ray{p, p + Vec2{std::cos(ahead), std::sin(ahead)} * (0.6 * median_)};
+    std::vector<Vec2> ray = ray_from(n, ahead, 0.6 * median_);
     if (auto hit = first_edge_hit(ray); hit && hit->edge != edge) {
       truncate(ray, *hit);
       // Met exactly at the hit edge's end node: joined to that node (splitting the edge there

@@ -325,7 +325,7 @@ bool Grower::link_chain_corner(const Chain& c) {
 // seed 3). Never shorter than a piece.
 bool Grower::link_to_passed_node(int n, double heading, double reach) {
   const Vec2 p = out_.nodes[std::size_t(n)];
-  std::vector<Vec2> ray{p, p + Vec2{std::cos(heading), std::sin(heading)} * reach};
+  std::vector<Vec2> ray = ray_from(n, heading, reach);
   const auto hit = first_edge_hit(ray);
   if (!hit) return false;
   truncate(ray, *hit);
