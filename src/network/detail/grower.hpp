@@ -19,6 +19,7 @@
 #include "core/boost_geometry.hpp"
 #include "core/split_mix.hpp"
 #include "network/detail/bearing_cdf.hpp"
+#include "network/detail/cell_cycles.hpp"
 #include "network/detail/layout_copies.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/growth.hpp"
@@ -286,8 +287,8 @@ class Grower {
   void keep_whole_cells();
 
   // ---- cells larger than the exemplar's split, smaller merged (grower_cells.cpp) ----------------
-  void split_large_cells();
-  void merge_small_cells();
+  void split_large_cells(CellCycles& cells);
+  bool merge_small_cells(CellCycles& cells);
 
   // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
@@ -363,11 +364,11 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
-  double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
-  double min_cell_area_ = 0.0;   // and its smallest
+  double straight_share_ = 0.0;   // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;    // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;    // and its smallest
   bool cells_end_in_ts_ = false;  // and its lines end on each other in Ts (split_large_cells)
-  bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
+  bool forest_ = false;           // its lines end free (dangling ends a third of its nodes or more)
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.
   std::vector<double> exemplar_bearings_, exemplar_degrees_, exemplar_curvature_;
@@ -392,6 +393,8 @@ class Grower {
   std::vector<char> cancelled_;
   std::vector<char> alive_;
   std::deque<Stub> queue_;
+  // While cells are split and merged: told of every edit (split_edge, link_to, take_off).
+  CellCycles* cell_cycles_ = nullptr;
 };
 
 }  // namespace tw::network_detail
