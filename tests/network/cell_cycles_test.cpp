@@ -13,7 +13,7 @@ namespace {
 using network_detail::CellCycles;
 
 // A network edited as the grower edits its own (Grower::split_edge, link_to, take_off).
-struct EditedNetwork {
+struct CellCycleNetwork {
   Network net;
   std::vector<char> alive;
   std::vector<std::vector<int>> incident;
@@ -47,10 +47,10 @@ struct EditedNetwork {
 
 // A grid of 3 × 3 square cells 100 m a side; the edges between nodes (i, j) and (i + 1, j)
 // are h[i][j], those between (i, j) and (i, j + 1) are v[i][j].
-struct Grid {
-  EditedNetwork g;
+struct CellCycleGrid {
+  CellCycleNetwork g;
   int h[3][4], v[4][3];
-  Grid() {
+  CellCycleGrid() {
     int at[4][4];
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) at[i][j] = g.node({100.0 * i, 100.0 * j});
@@ -62,7 +62,7 @@ struct Grid {
 };
 
 // The cells kept through the edits are those polygonize finds now, ring for ring.
-void expect_as_polygonize_finds(CellCycles& kept, const EditedNetwork& g) {
+void expect_as_polygonize_finds(CellCycles& kept, const CellCycleNetwork& g) {
   CellCycles found(g.net, g.alive, g.incident);
   const std::vector<const CellCycles::Cell*> a = kept.cells(), b = found.cells();
   ASSERT_EQ(a.size(), b.size());
@@ -73,7 +73,7 @@ void expect_as_polygonize_finds(CellCycles& kept, const EditedNetwork& g) {
   }
 }
 
-std::vector<double> areas(CellCycles& cells) {
+std::vector<double> cell_cycle_areas(CellCycles& cells) {
   std::vector<double> out;
   for (const CellCycles::Cell* c : cells.cells()) out.push_back(c->area);
   std::sort(out.begin(), out.end());
@@ -81,10 +81,10 @@ std::vector<double> areas(CellCycles& cells) {
 }
 
 TEST(NetworkCellCycles, AChordSplitsOneCellAsPolygonizeWould) {
-  Grid grid;
-  EditedNetwork& g = grid.g;
+  CellCycleGrid grid;
+  CellCycleNetwork& g = grid.g;
   CellCycles cells(g.net, g.alive, g.incident);
-  EXPECT_EQ(areas(cells), std::vector<double>(9, 1e4));
+  EXPECT_EQ(cell_cycle_areas(cells), std::vector<double>(9, 1e4));
   // The middle cell split from its bottom side to its top side, as split_large_cells does.
   const int p = g.split(grid.h[1][1], {150.0, 100.0});
   cells.edge_split(grid.h[1][1], int(g.net.edges.size()) - 1);
@@ -95,13 +95,13 @@ TEST(NetworkCellCycles, AChordSplitsOneCellAsPolygonizeWould) {
   EXPECT_TRUE(cells.following());
   std::vector<double> want(8, 1e4);
   want.insert(want.begin(), {5e3, 5e3});
-  EXPECT_EQ(areas(cells), want);
+  EXPECT_EQ(cell_cycle_areas(cells), want);
   expect_as_polygonize_finds(cells, g);
 }
 
 TEST(NetworkCellCycles, ALineTakenOffMergesItsTwoCellsAsPolygonizeWould) {
-  Grid grid;
-  EditedNetwork& g = grid.g;
+  CellCycleGrid grid;
+  CellCycleNetwork& g = grid.g;
   CellCycles cells(g.net, g.alive, g.incident);
   cells.cells();
   // The line between the bottom left cell and the one right of it, as merge_small_cells does.
@@ -110,7 +110,7 @@ TEST(NetworkCellCycles, ALineTakenOffMergesItsTwoCellsAsPolygonizeWould) {
   EXPECT_TRUE(cells.following());
   std::vector<double> want(7, 1e4);
   want.push_back(2e4);
-  EXPECT_EQ(areas(cells), want);
+  EXPECT_EQ(cell_cycle_areas(cells), want);
   expect_as_polygonize_finds(cells, g);
   // Then the middle cell split: the merged cell's cycle is split-able as any other.
   const int p = g.split(grid.h[1][1], {150.0, 100.0});
@@ -126,14 +126,14 @@ TEST(NetworkCellCycles, ALineTakenOffMergesItsTwoCellsAsPolygonizeWould) {
 // An edit no cell's cycle can follow (a line on the network's outside: one cell beside it) has
 // the cells found again over the whole network.
 TEST(NetworkCellCycles, AnEditItCannotFollowHasTheCellsFoundAgain) {
-  Grid grid;
-  EditedNetwork& g = grid.g;
+  CellCycleGrid grid;
+  CellCycleNetwork& g = grid.g;
   CellCycles cells(g.net, g.alive, g.incident);
   cells.cells();
   g.alive[std::size_t(grid.h[0][0])] = 0;
   cells.line_taken_off({grid.h[0][0]});
   EXPECT_FALSE(cells.following());
-  EXPECT_EQ(areas(cells), std::vector<double>(8, 1e4));
+  EXPECT_EQ(cell_cycle_areas(cells), std::vector<double>(8, 1e4));
   expect_as_polygonize_finds(cells, g);
 }
 
