@@ -72,8 +72,14 @@ Network Grower::run(Mode mode) {
   close_dangling_ends();
   keep_whole_cells();
   straighten_edges();
-  split_large_cells();
-  merge_small_cells();
+  {
+    CellCycles cells(out_, alive_, incident_);
+    cell_cycles_ = &cells;
+    split_large_cells(cells);
+    const bool merged = merge_small_cells(cells);
+    cell_cycles_ = nullptr;
+    if (merged) straighten_kinks();
+  }
   ease_sharp_bends();
   prune_twigs_for_bearings();
   return finish();

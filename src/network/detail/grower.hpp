@@ -19,6 +19,7 @@
 #include "core/boost_geometry.hpp"
 #include "core/split_mix.hpp"
 #include "network/detail/bearing_cdf.hpp"
+#include "network/detail/cell_cycles.hpp"
 #include "network/detail/layout_copies.hpp"
 #include "network/detail/skeleton.hpp"
 #include "network/growth.hpp"
@@ -295,8 +296,8 @@ class Grower {
   void keep_whole_cells();
 
   // ---- cells larger than the exemplar's split, smaller merged (grower_cells.cpp) ----------------
-  void split_large_cells();
-  void merge_small_cells();
+  void split_large_cells(CellCycles& cells);
+  bool merge_small_cells(CellCycles& cells);
 
   // ---- straight edges (grower_straighten.cpp) ---------------------------------------------------
   // An output edge as the network is written: alive edges merged through the nodes where exactly
@@ -411,6 +412,8 @@ class Grower {
   std::vector<char> cancelled_;
   std::vector<char> alive_;
   std::deque<Stub> queue_;
+  // While cells are split and merged: told of every edit (split_edge, link_to, take_off).
+  CellCycles* cell_cycles_ = nullptr;
 };
 
 }  // namespace tw::network_detail

@@ -1,11 +1,8 @@
 // Grower: cells larger than the exemplar's split by straight chords, cells smaller than its
 // smallest merged into a neighbour (docs/networks.md, "Growth", steps 9 and 10).
 
-#include <ogr_geometry.h>
-
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <vector>
 
 #include "core/segment_distance.hpp"
@@ -28,48 +25,8 @@ constexpr double kChordPlaces[] = {0.5, 0.35, 0.65};
 // How many times the small cells are taken again (a merged pair may still be too small).
 constexpr int kMergeRounds = 4;
 
-// A cell of the output: its rings (the outer one first, closed), their box and its area.
-struct OutputCell {
-  std::vector<std::vector<Vec2>> rings;
-  Vec2 lo, hi;
-  double area = 0.0;
-};
-
-// The cells the alive edges close (as network_stats counts them).
-std::vector<OutputCell> output_cells(const std::vector<NetworkEdge>& edges,
-                                     const std::vector<char>& alive) {
-  OGRMultiLineString all;
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    if (!alive[i]) continue;
-    OGRLineString ls;
-    for (Vec2 p : edges[i].points) ls.addPoint(p.x, p.y);
-    all.addGeometry(&ls);
-  }
-  std::vector<OutputCell> cells;
-  const std::unique_ptr<OGRGeometry> faces(all.Polygonize());
-  if (!faces) return cells;
-  for (const OGRGeometry* g : *faces->toGeometryCollection()) {
-    if (wkbFlatten(g->getGeometryType()) != wkbPolygon) continue;
-    const OGRPolygon* polygon = g->toPolygon();
-    OutputCell cell;
-    cell.area = polygon->get_Area();
-    for (const OGRLinearRing* r : *polygon) {
-      std::vector<Vec2> ring;
-      for (const OGRPoint& p : *r) ring.push_back({p.getX(), p.getY()});
-      cell.rings.push_back(std::move(ring));
-    }
-    if (cell.rings.empty() || cell.rings[0].size() < 4) continue;
-    cell.lo = cell.hi = cell.rings[0][0];
-    for (Vec2 p : cell.rings[0])
-      cell.lo = {std::min(cell.lo.x, p.x), std::min(cell.lo.y, p.y)},
-      cell.hi = {std::max(cell.hi.x, p.x), std::max(cell.hi.y, p.y)};
-    cells.push_back(std::move(cell));
-  }
-  return cells;
-}
-
 // Whether p lies on one of the cell's rings (within eps).
-bool on_cell_rings(const OutputCell& cell, Vec2 p, double eps) {
+bool on_cell_rings(const CellCycles::Cell& cell, Vec2 p, double eps) {
   if (p.x < cell.lo.x - eps || p.y < cell.lo.y - eps || p.x > cell.hi.x + eps ||
       p.y > cell.hi.y + eps)
     return false;
@@ -144,13 +101,13 @@ std::pair<Vec2, std::size_t> side_point(const std::vector<Vec2>& ring, const Cel
 // of its longest side, square to it, onto the line across (a T at each end, as the exemplar's
 // chords make), under the rules of every line; else from the middle of the next longest side; else
 // from a third of the way along a side. Until no cell is larger, or no chord is valid.
-void Grower::split_large_cells() {
+void Grower::split_large_cells(CellCycles& cells) {
   if (!(max_cell_area_ > 0.0) || !cells_end_in_ts_ || completing_) return;
   const double eps = 1e-7 * median_;
   for (int round = 0; round < kSplitRounds; ++round) {
     std::vector<std::vector<Vec2>> large;
-    for (OutputCell& cell : output_cells(out_.edges, alive_))
-      if (cell.area > max_cell_area_) large.push_back(std::move(cell.rings[0]));
+    for (const CellCycles::Cell* cell : cells.cells())
+      if (cell->area > max_cell_area_) large.push_back(cell->rings[0]);
     bool split = false;
     for (const std::vector<Vec2>& ring : large) {
       double twice_area = 0.0;  // > 0: counter-clockwise, the inside on the left
@@ -212,19 +169,19 @@ void Grower::split_large_cells() {
 // where that leaves no dead end and no bent corner at either end (ends_left_at: each end stays
 // a junction or a line going straight through it) and the merged cell is no larger than the
 // exemplar's largest; the neighbour making the smaller merged cell first. Smallest cells first,
-// until none is left small or none can be merged. The lines that went straight through a freed
-// junction within a stroke's deflection are then straightened (straighten_kinks).
-void Grower::merge_small_cells() {
-  if (!(min_cell_area_ > 0.0) || completing_) return;
+// until none is left small or none can be merged. Whether any was (the lines that went straight
+// through a freed junction within a stroke's deflection are then straightened: straighten_kinks).
+bool Grower::merge_small_cells(CellCycles& found) {
+  if (!(min_cell_area_ > 0.0) || completing_) return false;
   const double eps = 1e-6 * median_;
   bool merged_any = false;
   for (int round = 0; round < kMergeRounds; ++round) {
-    const std::vector<OutputCell> cells = output_cells(out_.edges, alive_);
+    const std::vector<const CellCycles::Cell*> cells = found.cells();
     // The cells by their boxes: a line's probe meets a few, not all (the pass stays near
     // linear in the network's size).
     std::vector<std::pair<BgBox, std::size_t>> boxes;
     for (std::size_t f = 0; f < cells.size(); ++f)
-      boxes.emplace_back(BgBox(to_bg(cells[f].lo), to_bg(cells[f].hi)), f);
+      boxes.emplace_back(BgBox(to_bg(cells[f]->lo), to_bg(cells[f]->hi)), f);
     const bgi::rtree<std::pair<BgBox, std::size_t>, bgi::rstar<16>> cell_index(boxes);
     std::vector<Chain> lines = chains();
     // Per line taken off: the two cells it parts (none when it parts fewer or more).
@@ -245,16 +202,16 @@ void Grower::merge_small_cells() {
       std::sort(near.begin(), near.end());
       std::vector<std::size_t> sides;
       for (std::size_t k = 0; k < near.size() && sides.size() < 3; ++k)
-        if (on_cell_rings(cells[near[k]], probe, eps)) sides.push_back(near[k]);
+        if (on_cell_rings(*cells[near[k]], probe, eps)) sides.push_back(near[k]);
       if (sides.size() != 2) continue;
-      const double merged = cells[sides[0]].area + cells[sides[1]].area;
+      const double merged = cells[sides[0]]->area + cells[sides[1]]->area;
       if (merged > max_cell_area_) continue;
       for (int k = 0; k < 2; ++k)
-        if (cells[sides[std::size_t(k)]].area < min_cell_area_)
+        if (cells[sides[std::size_t(k)]]->area < min_cell_area_)
           partings.push_back({i, sides[std::size_t(k)], sides[std::size_t(1 - k)], merged});
     }
     std::sort(partings.begin(), partings.end(), [&](const Parting& a, const Parting& b) {
-      return std::pair(cells[a.small].area, a.merged) < std::pair(cells[b.small].area, b.merged);
+      return std::pair(cells[a.small]->area, a.merged) < std::pair(cells[b.small]->area, b.merged);
     });
     std::vector<char> taken(cells.size(), 0);
     bool merged = false;
@@ -269,7 +226,7 @@ void Grower::merge_small_cells() {
     if (!merged) break;
     merged_any = true;
   }
-  if (merged_any) straighten_kinks();
+  return merged_any;
 }
 
 }  // namespace tw::network_detail

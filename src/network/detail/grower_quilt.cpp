@@ -134,6 +134,7 @@ void Grower::link_to(int n, std::vector<Vec2> ray, int to) {
   link.to = to;
   link.points = std::move(ray);
   add_edge(std::move(link));
+  if (cell_cycles_) cell_cycles_->chord_added(int(out_.edges.size()) - 1);
 }
 
 // Nodes left with two edges at a corner (a junction whose other stubs found nothing) would be

@@ -100,6 +100,7 @@ int Grower::split_edge(int id, int seg, Vec2 p) {
   --degree_[std::size_t(second.to)];  // add_edge counts both of its ends
   add_edge(std::move(second));
   degree_[std::size_t(node)] = 2;
+  if (cell_cycles_) cell_cycles_->edge_split(id, int(out_.edges.size()) - 1);
   return node;
 }
 

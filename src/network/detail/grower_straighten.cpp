@@ -236,6 +236,7 @@ void Grower::take_off(const Chain& c) {
     ++report_.pruned;
   }
   forget_passed_nodes(c);
+  if (cell_cycles_) cell_cycles_->line_taken_off(c.edges);
 }
 
 // A corner its chord cannot replace is taken out whole, junction to junction, when both its
