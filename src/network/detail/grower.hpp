@@ -2,8 +2,8 @@
 // The grower behind grow_network (network/growth.hpp): its state and the declarations of its
 // parts, defined by concern in growth.cpp (entry points, frontier growth), grower_exemplar.cpp
 // (what it learns; the region), grower_rules.cpp (the network so far; the rules a line keeps),
-// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp and
-// grower_twigs.cpp (a forest's twigs).
+// grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp,
+// grower_twigs.cpp (a forest's twigs) and grower_junction_shift.cpp (closed bent cells' junctions).
 // Internal to the network module.
 
 #include <algorithm>
@@ -325,6 +325,9 @@ class Grower {
   bool straighten(const Chain& c);
   bool replace_chain(const Chain& c, const std::vector<Vec2>& line);
 
+  // ---- closed bent cells' junctions shifted for bearings (grower_junction_shift.cpp)
+  // -------------
+  void shift_junctions_for_bearings();
   // ---- a forest's twigs (grower_twigs.cpp) ------------------------------------------------------
   void prune_twigs_for_bearings();
 
@@ -363,11 +366,11 @@ class Grower {
     return n;
   }
   double placed_ = 0.0, junction_count_ = 0.0, dangling_target_ = 0.0;
-  double straight_share_ = 0.0;  // of the exemplar's edges, those turning under kStraightTurning
-  double max_cell_area_ = 0.0;   // its largest cell, where its cells are closed and straight
-  double min_cell_area_ = 0.0;   // and its smallest
+  double straight_share_ = 0.0;   // of the exemplar's edges, those turning under kStraightTurning
+  double max_cell_area_ = 0.0;    // its largest cell, where its cells are closed and straight
+  double min_cell_area_ = 0.0;    // and its smallest
   bool cells_end_in_ts_ = false;  // and its lines end on each other in Ts (split_large_cells)
-  bool forest_ = false;          // its lines end free (dangling ends a third of its nodes or more)
+  bool forest_ = false;           // its lines end free (dangling ends a third of its nodes or more)
   // A forest's own samples, as network_stats has them (bearings turned by the lead bearing), that
   // prune_twigs_for_bearings keeps the output near.
   std::vector<double> exemplar_bearings_, exemplar_degrees_, exemplar_curvature_;
