@@ -66,6 +66,11 @@ class BinnedW1 {
     return change * width_ / spread_;
   }
 
+  // How much apart() can change when one count of `total` moves by `by` (in the values' unit).
+  double one_count_moved(double by, double total) const {
+    return total > 0.0 ? by / (total * spread_) : 0.0;
+  }
+
  private:
   double width_, spread_ = 1.0;
   std::vector<double> cdf_;
