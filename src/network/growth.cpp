@@ -74,8 +74,8 @@ Network Grower::run(Mode mode) {
   straighten_edges();
   split_large_cells();
   merge_small_cells();
-  shift_junctions_for_bearings();
   prune_twigs_for_bearings();
+  shift_junctions_for_bearings();
   return finish();
 }
 

@@ -3,7 +3,8 @@
 // parts, defined by concern in growth.cpp (entry points, frontier growth), grower_exemplar.cpp
 // (what it learns; the region), grower_rules.cpp (the network so far; the rules a line keeps),
 // grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp,
-// grower_twigs.cpp (a forest's twigs) and grower_junction_shift.cpp (closed bent cells' junctions).
+// grower_twigs.cpp (a forest's twigs) and grower_junction_shift.cpp (junctions shifted for the
+// bearings).
 // Internal to the network module.
 
 #include <algorithm>
@@ -325,11 +326,10 @@ class Grower {
   bool straighten(const Chain& c);
   bool replace_chain(const Chain& c, const std::vector<Vec2>& line);
 
-  // ---- closed bent cells' junctions shifted for bearings (grower_junction_shift.cpp)
-  // -------------
-  void shift_junctions_for_bearings();
   // ---- a forest's twigs (grower_twigs.cpp) ------------------------------------------------------
   void prune_twigs_for_bearings();
+  // ---- junctions shifted for bearings (grower_junction_shift.cpp) -------------------------------
+  void shift_junctions_for_bearings();
 
   Network finish();
 

@@ -1,5 +1,6 @@
-// Grower: the junctions of a network of closed, bent cells shifted a little where that brings
-// the output's edge bearings nearer the exemplar's (docs/networks.md, "Growth", step 12).
+// Grower: the junctions of a network of closed bent cells, or of a forest, shifted a little where
+// that brings the output's edge bearings nearer the exemplar's (docs/networks.md, "Growth",
+// step 12).
 
 #include <algorithm>
 #include <cmath>
@@ -64,20 +65,22 @@ std::array<double, 5> other_distances(const NetworkStats& exemplar, const Networ
 
 }  // namespace
 
-// Where the exemplar's cells are closed and whole (keep_whole_cells) and its edges bend, a
-// junction's exact place is within the wobble of the lines meeting there, but every edge's chord
-// bearing hangs on it: the quilt's blocks and growth's pieces bring the exemplar's bearings in
-// the proportions the blocks or pieces drawn happen to have (the county map's 300 edges, a few
-// degrees off bin by bin: as far from the exemplar as a placement of random squares). So
-// junctions are moved by a few hundredths of a median edge, each of its lines deformed along its
-// length (its far end staying), where that brings the output's chord bearings nearest the
-// exemplar's, the best first, while the distance falls, each line committed under the rules of
-// every line ("Guarantees") and the other properties kept within a tenth of the exemplar's own
-// half-to-half distances of where they were.
+// Where the exemplar's cells are closed and whole (keep_whole_cells) and its edges bend, or its
+// lines end free (a forest), a junction's exact place is within the wobble of the lines meeting
+// there, but every edge's chord bearing hangs on it: the quilt's blocks and growth's pieces bring
+// the exemplar's bearings in the proportions the blocks or pieces drawn happen to have (the
+// county map's 300 edges, a few degrees off bin by bin: as far from the exemplar as a placement
+// of random squares), and a forest's twigs pruned for bearings (prune_twigs_for_bearings, run
+// first) leave what no whole twig fixes. So junctions are moved by a few hundredths of a median
+// edge, each of its lines deformed along its length (its far end staying), where that brings
+// the output's chord bearings nearest the exemplar's, the best first, while the distance falls,
+// each line committed under the rules of every line ("Guarantees") and the other properties kept
+// within a tenth of the exemplar's own half-to-half distances of where they were. Not where the
+// cells are straight: their lines go straight through their junctions (Ts), which a shift would
+// bend.
 void Grower::shift_junctions_for_bearings() {
-  if (!whole_cells_ || completing_ || forest_ || straight_share_ >= kStraightShare ||
-      exemplar_bearings_.size() < 2)
-    return;
+  const bool closed_bent_cells = whole_cells_ && straight_share_ < kStraightShare;
+  if (!(forest_ || closed_bent_cells) || completing_ || exemplar_bearings_.size() < 2) return;
   const BinnedW1 bearing_w1(exemplar_bearings_, 180.0 / kShiftBearingBins, kShiftBearingBins);
   const NetworkStats exemplar_stats = network_stats(exemplar_);
   std::array<double, 5> allowed{};
