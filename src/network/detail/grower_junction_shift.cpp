@@ -21,8 +21,8 @@ constexpr int kShiftDirections = 8;
 
 // At most this many rounds, each moving junctions that share no edge, best gain first, at most
 // kShiftShare of the junctions in all; the pass ends after a round that gains less than
-// kShiftLastGain of the first round's (each round measures the whole network: over six times
-// the counties' side, 15 000 edges, 8 rounds took 5 s where the quilt takes 1.5).
+// kShiftLastGain of the first round's (each round finds the chains and tries every junction:
+// over six times the counties' side, 15 000 edges, 8 rounds took 5 s where the quilt takes 1.5).
 constexpr int kShiftRounds = 8;
 constexpr double kShiftShare = 0.5;
 constexpr double kShiftLastGain = 0.1;
@@ -92,9 +92,35 @@ void Grower::shift_junctions_for_bearings() {
     for (std::size_t p = 0; p < allowed.size(); ++p)
       allowed[p] = now[p] + kShiftAllowance * own[p] + 1e-12;
   }
+  struct Made {
+    std::vector<int> old_edges, new_edges, emptied;
+    int new_node = -1;
+  };
+  // A move undone: its new lines gone, the old ones back.
+  const auto undo = [&](const Made& done) {
+    for (int e : done.new_edges) {
+      index_edge(e, false);
+      alive_[std::size_t(e)] = 0;
+      --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+    }
+    if (done.new_node >= 0)
+      nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(done.new_node)]), done.new_node});
+    for (int n : done.emptied) nodes_.insert({to_bg(out_.nodes[std::size_t(n)]), n});
+    for (int e : done.old_edges) {
+      alive_[std::size_t(e)] = 1;
+      ++degree_[std::size_t(out_.edges[std::size_t(e)].from)];
+      ++degree_[std::size_t(out_.edges[std::size_t(e)].to)];
+      index_edge(e, true);
+    }
+  };
+  // Every move made, in order, and where each round's moves begin.
+  std::vector<Made> made;
+  std::vector<std::size_t> round_starts;
   std::size_t budget = 0;
   double first_gain = 0.0;
   for (int round = 0; round < kShiftRounds; ++round) {
+    round_starts.push_back(made.size());
     const std::vector<Chain> all = chains();
     std::vector<std::vector<int>> at(out_.nodes.size());
     std::vector<double> bearings(kShiftBearingBins, 0.0);
@@ -175,29 +201,6 @@ void Grower::shift_junctions_for_bearings() {
     // sharing a chain with another.
     double now = now_before;
     std::vector<char> node_used(out_.nodes.size(), 0);
-    struct Made {
-      std::vector<int> old_edges, new_edges, emptied;
-      int new_node = -1;
-    };
-    std::vector<Made> made;
-    // A move undone: its new lines gone, the old ones back.
-    const auto undo = [&](const Made& done) {
-      for (int e : done.new_edges) {
-        index_edge(e, false);
-        alive_[std::size_t(e)] = 0;
-        --degree_[std::size_t(out_.edges[std::size_t(e)].from)];
-        --degree_[std::size_t(out_.edges[std::size_t(e)].to)];
-      }
-      if (done.new_node >= 0)
-        nodes_.remove(NodeValue{to_bg(out_.nodes[std::size_t(done.new_node)]), done.new_node});
-      for (int n : done.emptied) nodes_.insert({to_bg(out_.nodes[std::size_t(n)]), n});
-      for (int e : done.old_edges) {
-        alive_[std::size_t(e)] = 1;
-        ++degree_[std::size_t(out_.edges[std::size_t(e)].from)];
-        ++degree_[std::size_t(out_.edges[std::size_t(e)].to)];
-        index_edge(e, true);
-      }
-    };
     for (const Move& m : moves) {
       if (budget == 0) break;
       if (node_used[std::size_t(m.node)]) continue;
@@ -257,23 +260,24 @@ void Grower::shift_junctions_for_bearings() {
       made.push_back(std::move(done));
       --budget;
     }
-    if (made.empty()) return;
-    // The round's moves are kept while the other properties stay within their allowance: else
-    // its later half is undone (the smaller gains), and again, until they do.
-    // A round cut back so ends the pass (the allowance is spent).
-    bool cut = false;
-    while (!made.empty()) {
-      const std::array<double, 5> d = other_distances(exemplar_stats, network_stats(finish()));
-      bool within = true;
-      for (std::size_t p = 0; p < d.size(); ++p) within = within && d[p] <= allowed[p];
-      if (within) break;
-      cut = true;
-      for (std::size_t keep = made.size() / 2; made.size() > keep; made.pop_back(), ++budget)
-        undo(made.back());
+    if (made.size() == round_starts.back()) {
+      round_starts.pop_back();
+      break;
     }
-    if (made.empty() || cut) return;
     if (round == 0) first_gain = now_before - now;
-    if (now_before - now < kShiftLastGain * first_gain) return;
+    if (now_before - now < kShiftLastGain * first_gain) break;
+  }
+  // The moves are kept while the other properties stay within their allowance: else the later
+  // half of the last round's moves is undone (the smaller gains), and again, until they are.
+  while (!made.empty()) {
+    const std::array<double, 5> d = other_distances(exemplar_stats, network_stats(finish()));
+    bool within = true;
+    for (std::size_t p = 0; p < d.size(); ++p) within = within && d[p] <= allowed[p];
+    if (within) break;
+    const std::size_t start = round_starts.back();
+    for (std::size_t keep = start + (made.size() - start) / 2; made.size() > keep; made.pop_back())
+      undo(made.back());
+    if (made.size() == start) round_starts.pop_back();
   }
 }
 
