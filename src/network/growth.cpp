@@ -82,6 +82,7 @@ Network Grower::run(Mode mode) {
   }
   ease_sharp_bends();
   prune_twigs_for_bearings();
+  shift_junctions_for_bearings();
   return finish();
 }
 

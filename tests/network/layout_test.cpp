@@ -173,11 +173,7 @@ TEST(NetworkLayout, TerraceRampsStayStraightAndCurvatureBeatsTheBaseline) {
 // snapping onto a line. Degrees, edge lengths and bearings meet the target at seeds
 // 1-3 (before: bearings at no seed, degrees not at seed 3, edge lengths not at seeds 1 and 3).
 TEST(NetworkLayout, DrawnNearTJunctionsKeepTheirDegreesAndBearings) {
-  Warnings w;
-  const Network ex = build_planar_network(
-      read_network_lines({.source = (test::source_dir() / "tests/data/network_drawn.svg").string()},
-                         w),
-      1e-3, "drawn", w);
+  const Network ex = test::drawn_exemplar();
   const std::vector<Polygon> region = layout_region(ex);
   for (std::uint64_t seed : {1, 2, 3}) {
     NetworkGrowthReport report;

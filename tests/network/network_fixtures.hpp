@@ -78,6 +78,16 @@ inline Network county_exemplar() {
       1e-3, "exemplar", w);
 }
 
+// The hand-drawn exemplar (tests/data/network_drawn.svg: lanes and lines ending a hair short of
+// another) as a planar network, as the quality bench builds it.
+inline Network drawn_exemplar() {
+  Warnings w;
+  return build_planar_network(
+      read_network_lines({.source = (test::source_dir() / "tests/data/network_drawn.svg").string()},
+                         w),
+      1e-3, "drawn", w);
+}
+
 inline ForbiddenMask diagonal_road_mask() {
   ForbiddenMask forbidden;
   forbidden.grid = {.width = 180,

@@ -3,7 +3,8 @@
 // parts, defined by concern in growth.cpp (entry points, frontier growth), grower_exemplar.cpp
 // (what it learns; the region), grower_rules.cpp (the network so far; the rules a line keeps),
 // grower_layout.cpp, grower_quilt.cpp (quilting; links and trimming), grower_straighten.cpp,
-// grower_bends.cpp (bends eased to the exemplar's) and grower_twigs.cpp (a forest's twigs).
+// grower_bends.cpp (bends eased to the exemplar's), grower_twigs.cpp (a forest's twigs) and
+// grower_junction_shift.cpp (junctions shifted for the bearings).
 // Internal to the network module.
 
 #include <algorithm>
@@ -343,6 +344,8 @@ class Grower {
 
   // ---- a forest's twigs (grower_twigs.cpp) ------------------------------------------------------
   void prune_twigs_for_bearings();
+  // ---- junctions shifted for bearings (grower_junction_shift.cpp) -------------------------------
+  void shift_junctions_for_bearings();
 
   Network finish();
 

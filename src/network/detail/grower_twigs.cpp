@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "network/detail/binned_w1.hpp"
 #include "network/detail/grower.hpp"
 #include "network/stats.hpp"
 
@@ -30,40 +31,6 @@ constexpr double kTwigAllowance = 0.1;
 // one), the degrees by their value.
 constexpr int kTwigBearingBins = 1800;
 constexpr int kTwigDegrees = 16;
-
-// The W1 distance between a sample held as counts in `bins` bins of `width` from 0 and a
-// reference sample, normalized by the reference's spread as normalized_w1 is: exact for integer
-// values in bins of 1.
-class BinnedW1 {
- public:
-  BinnedW1(const std::vector<double>& reference, double width, int bins)
-      : width_(width), cdf_(std::size_t(bins), 0.0) {
-    double mean = 0.0, var = 0.0;
-    for (double v : reference) cdf_[std::size_t(bin(v))] += 1.0, mean += v;
-    mean /= double(reference.size());
-    for (double v : reference) var += (v - mean) * (v - mean);
-    spread_ = std::sqrt(var / double(reference.size()));
-    if (!(spread_ > 0.0)) spread_ = 1.0;
-    double running = 0.0;
-    for (double& c : cdf_) running += c, c = running / double(reference.size());
-  }
-  int bin(double v) const {
-    return std::clamp(int(std::floor(v / width_)), 0, int(cdf_.size()) - 1);
-  }
-  double apart(const std::vector<double>& counts, double total) const {
-    if (!(total > 0.0)) return 1e300;
-    double running = 0.0, sum = 0.0;
-    for (std::size_t k = 0; k + 1 < cdf_.size(); ++k) {
-      running += counts[k];
-      sum += std::abs(running / total - cdf_[k]);
-    }
-    return sum * width_ / spread_;
-  }
-
- private:
-  double width_, spread_ = 1.0;
-  std::vector<double> cdf_;
-};
 
 // A twig's removal, as the network is written: its chain, and at a junction of three the two
 // others, gone; their merged line (its bearing bin and curvature) in their place.
