@@ -1,6 +1,6 @@
 // Where the exemplar's cells are closed and whole and its edges bend, or its lines end free (a
 // forest), junctions are shifted by a few hundredths of a median edge where that brings the
-// output's chord bearings nearer the exemplar's (docs/networks.md, "Growth", step 12). The county
+// output's chord bearings nearer the exemplar's (docs/networks.md, "Growth", step 13). The county
 // boundaries of North Carolina over their own box: from the quilt (what `automatic` keeps) their
 // bearings were 0.064, 0.055, 0.072, 0.095, 0.065 at seeds 3, 4, 6, 9 and 11, each above the
 // placement baseline's (0.057, 0.051, 0.066, 0.045, 0.054); growth's 0.063, 0.062, 0.077, 0.096,
