@@ -80,18 +80,24 @@ std::vector<double> cell_cycle_areas(CellCycles& cells) {
   return out;
 }
 
-TEST(NetworkCellCycles, AChordSplitsOneCellAsPolygonizeWould) {
-  CellCycleGrid grid;
+// The middle cell split from its bottom side to its top side by a chord, as split_large_cells
+// does: both sides split at their middle, each edit told.
+void split_middle_cell(CellCycleGrid& grid, CellCycles& cells) {
   CellCycleNetwork& g = grid.g;
-  CellCycles cells(g.net, g.alive, g.incident);
-  EXPECT_EQ(cell_cycle_areas(cells), std::vector<double>(9, 1e4));
-  // The middle cell split from its bottom side to its top side, as split_large_cells does.
   const int p = g.split(grid.h[1][1], {150.0, 100.0});
   cells.edge_split(grid.h[1][1], int(g.net.edges.size()) - 1);
   const int q = g.split(grid.h[1][2], {150.0, 200.0});
   cells.edge_split(grid.h[1][2], int(g.net.edges.size()) - 1);
   g.edge(p, q);
   cells.chord_added(int(g.net.edges.size()) - 1);
+}
+
+TEST(NetworkCellCycles, AChordSplitsOneCellAsPolygonizeWould) {
+  CellCycleGrid grid;
+  CellCycleNetwork& g = grid.g;
+  CellCycles cells(g.net, g.alive, g.incident);
+  EXPECT_EQ(cell_cycle_areas(cells), std::vector<double>(9, 1e4));
+  split_middle_cell(grid, cells);
   EXPECT_TRUE(cells.following());
   std::vector<double> want(8, 1e4);
   want.insert(want.begin(), {5e3, 5e3});
@@ -113,12 +119,7 @@ TEST(NetworkCellCycles, ALineTakenOffMergesItsTwoCellsAsPolygonizeWould) {
   EXPECT_EQ(cell_cycle_areas(cells), want);
   expect_as_polygonize_finds(cells, g);
   // Then the middle cell split: the merged cell's cycle is split-able as any other.
-  const int p = g.split(grid.h[1][1], {150.0, 100.0});
-  cells.edge_split(grid.h[1][1], int(g.net.edges.size()) - 1);
-  const int q = g.split(grid.h[1][2], {150.0, 200.0});
-  cells.edge_split(grid.h[1][2], int(g.net.edges.size()) - 1);
-  g.edge(p, q);
-  cells.chord_added(int(g.net.edges.size()) - 1);
+  split_middle_cell(grid, cells);
   EXPECT_TRUE(cells.following());
   expect_as_polygonize_finds(cells, g);
 }

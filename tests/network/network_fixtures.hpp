@@ -10,6 +10,7 @@
 
 #include "core/segment_distance.hpp"
 #include "network/baseline.hpp"
+#include "network/check.hpp"
 #include "network/example_networks.hpp"
 #include "network/exemplar.hpp"
 #include "network/growth.hpp"
@@ -66,6 +67,17 @@ inline PropertyTarget property_target(const Network& ex, const Network& out,
           std::max(1.5 * halves_apart, 0.05),
           normalized_w1(property(own, p),
                         property(network_stats(baseline_network(ex, region, seed)), p))};
+}
+
+// What `automatic` grows from `ex` over its extent at `seed` has no problem GEOS finds and meets
+// the target for property `p`: within the bound and below the placement baseline.
+inline void expect_target_met(const Network& ex, int p, std::uint64_t seed) {
+  const std::vector<Polygon> region = extent_region(ex);
+  const Network out = grow_network(ex, region, nullptr, nullptr, {.seed = seed});
+  EXPECT_EQ(check_network(out, region, nullptr).total(), 0) << "seed " << seed;
+  const PropertyTarget t = property_target(ex, out, region, p, seed);
+  EXPECT_LE(t.output, t.bound) << "seed " << seed;
+  EXPECT_LT(t.output, t.baseline) << "seed " << seed;
 }
 
 // The county boundaries of North Carolina (r-cran-sf's nc.shp) as a planar network: the real
