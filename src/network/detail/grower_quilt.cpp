@@ -104,6 +104,9 @@ bool Grower::link_ahead(int n, double heading, double reach, int own_edge) {
 // Node n joined along `ray` (a polyline from it) onto the first line it meets, when that is
 // valid.
 bool Grower::link_along(int n, std::vector<Vec2> ray, int own_edge) {
+  // The link starts at the node, as it is committed (a quilt seam end's continuation starts
+  // where the end was cut, before stitching moved it).
+  ray.front() = out_.nodes[std::size_t(n)];
   const auto hit = first_edge_hit(ray);
   if (!hit || hit->edge == own_edge) return false;
   truncate(ray, *hit);

@@ -1,7 +1,9 @@
 // Grower: the network so far (nodes, edges, their index) and the rules a line keeps to be placed.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/error.hpp"
@@ -26,6 +28,27 @@ bool segment_hit(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double& t, double& u) {
   u = cross(a - p, r) / denom;
   return t >= 0.0 && t <= 1.0 && u >= 0.0 && u <= 1.0;
 }
+
+// Whether segments pq and ab run along each other for more than `eps`: two of their four ends
+// lie within `eps` of the other segment and more than `eps` apart. Boost's intersection of two
+// segments a rounding error off collinear may give a single point (at a joint, where they meet
+// anyway) rather than their overlap.
+bool runs_along(Vec2 p, Vec2 q, Vec2 a, Vec2 b, double eps) {
+  std::array<Vec2, 4> on;
+  std::size_t n = 0;
+  for (Vec2 x : {a, b})
+    if (distance_to_segment(x, p, q) <= eps) on[n++] = x;
+  for (Vec2 x : {p, q})
+    if (distance_to_segment(x, a, b) <= eps) on[n++] = x;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (distance(on[i], on[j]) > eps) return true;
+  return false;
+}
+
+// A point this many units in the last place of its coordinates from a vertex is the vertex,
+// rounded (a hit's point computed along the line that hit it).
+constexpr double kRoundingUlps = 16.0;
 
 }  // namespace
 
@@ -76,6 +99,16 @@ void Grower::count_edge_bearing(const std::vector<Vec2>& pts, double count) {
 
 // Splits edge `id` at `p` on its segment `seg`: the new node.
 int Grower::split_edge(int id, int seg, Vec2 p) {
+  // A hit at a vertex, its point rounded a few units in the last place off it, splits the edge
+  // at the vertex: kept beside p, the vertex would leave a step of 1e-14 m that `valid` never
+  // saw, lying on the line that ends at p (the safety net finds the two overlapping). The
+  // callers end their lines on the node, where it is.
+  const double hair = kRoundingUlps * std::numeric_limits<double>::epsilon() *
+                      std::max({std::abs(p.x), std::abs(p.y), median_});
+  for (std::size_t k : {std::size_t(seg), std::size_t(seg) + 1})
+    if (k > 0 && k + 1 < out_.edges[std::size_t(id)].points.size() &&
+        distance(out_.edges[std::size_t(id)].points[k], p) <= hair)
+      p = out_.edges[std::size_t(id)].points[k];
   index_edge(id, false);
   const int node = add_node(p);
   NetworkEdge& e = out_.edges[std::size_t(id)];
@@ -207,13 +240,19 @@ bool Grower::valid(const std::vector<Vec2>& pts, bool end_joint, Spacing spacing
         const bool at_start = k == 0 && meets(start);
         const bool at_end = end_joint && k + 2 == pts.size() && meets(end);
         if (!at_start && !at_end) return false;
+        // Nor along a line from the joint (Boost gives one point for two segments a rounding
+        // error off collinear).
+        if (runs_along(a, b, vec(v.first.first), vec(v.first.second), eps)) return false;
         continue;
       }
       // Segments meeting at a joint (its edges, the edge a T-junction splits) are exempt.
       const Vec2 ea = vec(v.first.first), eb = vec(v.first.second);
       bool at_joint = false;
       for (Vec2 j : joints) at_joint = at_joint || distance_to_segment(j, ea, eb) <= eps;
-      if (at_joint) continue;
+      if (at_joint) {
+        if (runs_along(a, b, ea, eb, eps)) return false;
+        continue;
+      }
       // A laid-out line keeps the exemplar's spacing from the lines it meets at its joints:
       // their part within the joint's clearance is exempt too, as the candidate's is (two
       // lines meeting at right angles are just a clearance apart outside it).
